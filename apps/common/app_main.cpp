@@ -1,0 +1,44 @@
+#include "common/app_main.hpp"
+
+#include <boost/program_options/errors.hpp>
+#include <iostream>
+
+#include "powderbed/bed/errors.hpp"
+
+namespace powderbed::app {
+
+int run_app(const char* app, int /*argc*/, char** /*argv*/, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const InputError& e) {
+    std::cerr << app << ": " << e.what() << '\n';
+    return 2;
+  } catch (const boost::program_options::error& e) {
+    std::cerr << app << ": " << e.what() << " (see " << app << " --help)\n";
+    return 2;
+  } catch (const NumericalError& e) {
+    std::cerr << app << ": numerical failure: " << e.what() << '\n';
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << app << ": internal error: " << e.what() << '\n';
+    return 1;
+  }
+}
+
+std::string version_string(const char* app) { return std::string(app) + " " + POWDERBED_VERSION; }
+
+std::string command_line(int argc, char** argv) {
+  std::string out;
+  for (int i = 0; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (i) out += ' ';
+    if (arg.find_first_of(" \t\"'") != std::string::npos) {
+      out += '\'' + arg + '\'';
+    } else {
+      out += arg;
+    }
+  }
+  return out;
+}
+
+}  // namespace powderbed::app

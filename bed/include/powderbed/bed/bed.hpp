@@ -1,0 +1,46 @@
+#pragma once
+// The one bed of DESIGN.md: particles as a structure of arrays plus the domain and provenance.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "powderbed/bed/domain.hpp"
+
+namespace powderbed::bed {
+
+enum class Phase : std::uint8_t { solid = 0, liquid = 1, gas = 2 };
+
+// Where a bed came from; written to the file root and /provenance.
+struct Provenance {
+  std::string created_by;    // "<app> <version>"
+  std::string command_line;  // as typed
+  std::uint64_t rng_seed = 0;
+  std::string stage;         // "packgen", "deposit", "lattice", ...
+  std::string scene;         // the whole resolved configuration, INI text
+};
+
+struct Bed {
+  Domain domain;
+  // Required per-particle arrays (all of size n()).
+  std::vector<double> x, y, z;     // centre, m (2D beds: z = 0)
+  std::vector<double> radius;      // m
+  std::vector<std::uint64_t> id;   // stable identity across stages
+  // Optional per-particle arrays: empty when absent, else of size n().
+  std::vector<double> vx, vy, vz;  // m/s
+  std::vector<std::uint16_t> material;
+  std::vector<double> temperature;  // K
+  std::vector<std::uint8_t> phase;  // Phase values
+  Provenance provenance;
+
+  std::size_t n() const { return radius.size(); }
+  bool has_velocity() const { return !vx.empty(); }
+
+  // Appends a particle with the next free id (max id + 1, or 0 for the first).
+  void add(double px, double py, double pz, double r);
+  void reserve(std::size_t count);
+  // Throws InputError naming `source` when arrays disagree in size, a value is NaN/Inf, a
+  // radius is not positive, or ids repeat.
+  void validate(const std::string& source) const;
+};
+
+}  // namespace powderbed::bed

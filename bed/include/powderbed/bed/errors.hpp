@@ -1,0 +1,21 @@
+#pragma once
+// The two error kinds of DESIGN.md "House style": every app's main maps them to exit 2 / 3.
+#include <stdexcept>
+#include <string>
+
+namespace powderbed {
+
+// Bad input: a file, option, field or scene value. The message is one line naming what is
+// wrong (file/dataset/option), the value given and what is accepted.
+class InputError : public std::runtime_error {
+ public:
+  explicit InputError(const std::string& message) : std::runtime_error(message) {}
+};
+
+// A run that went non-finite or otherwise broke numerically; names the particle/node and step.
+class NumericalError : public std::runtime_error {
+ public:
+  explicit NumericalError(const std::string& message) : std::runtime_error(message) {}
+};
+
+}  // namespace powderbed

@@ -1,0 +1,70 @@
+#pragma once
+// Particle size distributions of SPEC.md §1 and the PSD string syntax shared by all programs:
+//   one or more components joined by '+', each
+//     mono:d=D | mono:r=R
+//     gauss:mean=M,sd=S,min=A,max=B[,on=radius|diameter]
+//     lognormal:median=M,gsd=G[,min=A,max=B][,on=...]      (geometric sd G > 1)
+//     lognormal:d10=A,d50=B,d90=C[,min=..,max=..]          (fitted lognormal, diameters)
+//     table:file=PATH[,on=radius|diameter]                  (CSV: bin edges and fractions)
+//   each optionally weighted by count=N (number of particles), frac=F (number fraction) or
+//   vfrac=F (volume fraction). Parameters are diameters unless on=radius. SI units (m).
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "powderbed/bed/random.hpp"
+
+namespace powderbed::bed {
+
+enum class SizeVariable { radius, diameter };
+
+struct PsdComponent {
+  enum class Kind { mono, gauss, lognormal, table };
+  Kind kind = Kind::mono;
+  SizeVariable on = SizeVariable::diameter;  // the variable the parameters below describe
+  double mean = 0;   // mono: the size; gauss: mean of the untruncated normal
+  double sd = 0;     // gauss: sd of the untruncated normal
+  double mu = 0;     // lognormal: mean of ln(size)
+  double sigma = 0;  // lognormal: sd of ln(size)
+  double min = 0;    // truncation window (gauss, lognormal), in `on` units
+  double max = 0;
+  std::vector<double> edges;      // table: bin edges, increasing, in `on` units
+  std::vector<double> fractions;  // table: number fraction per bin (normalised)
+  double number_fraction = 1;     // weight of this component, by number, normalised over the PSD
+  std::size_t count = 0;          // count=N when given (0 otherwise)
+};
+
+class Psd {
+ public:
+  // Parses the PSD string syntax above. Throws InputError naming the component and field
+  // (e.g. "--psd: component 1 (gauss): min 4e-05 > max 2e-05") for: unknown kind or key,
+  // missing key, non-number, size <= 0, sd < 0, min > max, a window with no probability mass,
+  // mixed count/frac weights, unreadable table file. `option` names the option in messages.
+  static Psd parse(const std::string& spec, const std::string& option = "--psd");
+  static Psd mono_radius(double radius);
+
+  const std::vector<PsdComponent>& components() const { return components_; }
+  const std::string& text() const { return text_; }
+
+  // Draws one radius (m): picks a component by number fraction, then inverse-CDF sampling on
+  // its truncated window (SPEC §1). Uses 2 uniform draws.
+  double sample_radius(Rng& rng) const;
+  // Number-weighted CDF of the radius, for KS tests.
+  double cdf_radius(double radius) const;
+  double min_radius() const;
+  double max_radius() const;
+  double mean_radius() const;         // number mean, analytic (truncated moments)
+  double mean_radius_squared() const; // E[r^2], analytic
+  double mean_radius_cubed() const;   // E[r^3], analytic
+  // Sum of count= weights, 0 when no component has one.
+  std::size_t total_count() const;
+
+ private:
+  std::vector<PsdComponent> components_;
+  std::string text_;
+};
+
+// Kolmogorov–Smirnov distance sup |F_n(r) - F(r)| between sampled radii and the PSD.
+double ks_distance(std::vector<double> radii, const Psd& psd);
+
+}  // namespace powderbed::bed

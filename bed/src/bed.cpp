@@ -1,0 +1,103 @@
+#include "powderbed/bed/bed.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <unordered_set>
+
+#include "powderbed/bed/errors.hpp"
+
+namespace powderbed::bed {
+
+void Bed::reserve(std::size_t count) {
+  x.reserve(count);
+  y.reserve(count);
+  z.reserve(count);
+  radius.reserve(count);
+  id.reserve(count);
+}
+
+void Bed::add(double px, double py, double pz, double r) {
+  const std::uint64_t next = id.empty() ? 0 : *std::max_element(id.begin(), id.end()) + 1;
+  x.push_back(px);
+  y.push_back(py);
+  z.push_back(pz);
+  radius.push_back(r);
+  id.push_back(next);
+}
+
+namespace {
+
+template <class T>
+void check_size(const std::string& source, const char* name, const std::vector<T>& v,
+                std::size_t n, bool optional) {
+  if (optional && v.empty()) return;
+  if (v.size() != n) {
+    std::ostringstream msg;
+    msg << source << ": " << name << " has " << v.size() << " entries but the bed has " << n
+        << " particles (accepted: one per particle)";
+    throw InputError(msg.str());
+  }
+}
+
+void check_finite(const std::string& source, const char* name, const std::vector<double>& v) {
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i])) {
+      std::ostringstream msg;
+      msg << source << ": " << name << "[" << i << "] is " << v[i]
+          << " (accepted: finite numbers)";
+      throw InputError(msg.str());
+    }
+  }
+}
+
+}  // namespace
+
+void Bed::validate(const std::string& source) const {
+  domain.validate(source.c_str());
+  const std::size_t count = n();
+  check_size(source, "position x", x, count, false);
+  check_size(source, "position y", y, count, false);
+  check_size(source, "position z", z, count, false);
+  check_size(source, "id", id, count, false);
+  check_size(source, "velocity x", vx, count, true);
+  check_size(source, "velocity y", vy, count, true);
+  check_size(source, "velocity z", vz, count, true);
+  check_size(source, "material", material, count, true);
+  check_size(source, "temperature", temperature, count, true);
+  check_size(source, "phase", phase, count, true);
+  check_finite(source, "position x", x);
+  check_finite(source, "position y", y);
+  check_finite(source, "position z", z);
+  check_finite(source, "radius", radius);
+  check_finite(source, "velocity x", vx);
+  check_finite(source, "velocity y", vy);
+  check_finite(source, "velocity z", vz);
+  check_finite(source, "temperature", temperature);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!(radius[i] > 0)) {
+      std::ostringstream msg;
+      msg << source << ": radius[" << i << "] is " << radius[i] << " (accepted: > 0)";
+      throw InputError(msg.str());
+    }
+  }
+  for (std::size_t i = 0; i < phase.size(); ++i) {
+    if (phase[i] > 2) {
+      std::ostringstream msg;
+      msg << source << ": phase[" << i << "] is " << int{phase[i]}
+          << " (accepted: 0 solid, 1 liquid, 2 gas)";
+      throw InputError(msg.str());
+    }
+  }
+  std::unordered_set<std::uint64_t> seen;
+  seen.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!seen.insert(id[i]).second) {
+      std::ostringstream msg;
+      msg << source << ": id " << id[i] << " appears twice (accepted: unique ids)";
+      throw InputError(msg.str());
+    }
+  }
+}
+
+}  // namespace powderbed::bed

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages powderbed needs that are not yet installed (idempotent).
+# Runs apt-get as root, or through sudo when started as another user.
+set -euo pipefail
+
+packages=(
+  build-essential cmake
+  libcgal-dev libnanoflann-dev libeigen3-dev libhdf5-dev libboost-program-options-dev
+  libgtest-dev libbenchmark-dev
+  python3 python3-h5py python3-matplotlib python3-numpy
+  lammps          # `lmp` reads our LAMMPS data export back in the tests
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+as_root=()
+if [[ $(id -u) -ne 0 ]]; then as_root=(sudo); fi
+echo "setup: installing ${missing[*]}"
+"${as_root[@]}" apt-get update -qq
+DEBIAN_FRONTEND=noninteractive "${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
