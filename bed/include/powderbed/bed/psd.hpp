@@ -8,6 +8,18 @@
 //     table:file=PATH[,on=radius|diameter]                  (CSV: bin edges and fractions)
 //   each optionally weighted by count=N (number of particles), frac=F (number fraction) or
 //   vfrac=F (volume fraction). Parameters are diameters unless on=radius. SI units (m).
+//   Without weights the components get equal number fractions; count and frac/vfrac cannot be
+//   mixed; frac and vfrac values are normalised over the components.
+//   gauss: the mean may lie outside [min, max] (even <= 0: the window keeps sizes positive);
+//   sd = 0 is a point mass at the mean, allowed when min <= mean <= max.
+//   A lognormal without min/max is truncated at exp(mu -/+ 5 sigma) (5.7e-7 of its mass lies
+//   outside), so that every PSD has a finite largest particle (cell lists are sized from it).
+//   d10/d50/d90: mu = ln d50 and sigma = ln(d90/d10) / (2 z90), z90 = Phi^-1(0.9) = 1.28155
+//   (least squares on ln d10 = mu - z90 sigma, ln d90 = mu + z90 sigma with mu fixed by d50).
+//   Components are split at a '+' followed by a letter (so 1e+6 stays a number); a table path
+//   must therefore contain neither ',' nor '+' followed by a letter.
+//   Table CSV: header line edge_low,edge_high,fraction then one bin per row (number fraction,
+//   normalised; uniform within a bin); blank lines and lines starting with '#' are skipped.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -63,6 +75,15 @@ class Psd {
   std::vector<PsdComponent> components_;
   std::string text_;
 };
+
+// One component on its own, in radius (m) whatever `on` says (the PSD's members are these
+// mixed by number_fraction): E[r^k] for k = 1, 2, 3; P(R <= r); and the inverse CDF at
+// u in [0, 1) (SPEC §1), which is what sample_radius uses for its second draw.
+double radius_moment(const PsdComponent& component, int k);
+double cdf_radius(const PsdComponent& component, double radius);
+double quantile_radius(const PsdComponent& component, double u);
+// Probability mass of the untruncated gauss/lognormal inside [min, max] (1 for mono, table).
+double window_mass(const PsdComponent& component);
 
 // Kolmogorov–Smirnov distance sup |F_n(r) - F(r)| between sampled radii and the PSD.
 double ks_distance(std::vector<double> radii, const Psd& psd);

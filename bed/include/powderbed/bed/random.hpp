@@ -15,8 +15,9 @@ inline double uniform(Rng& rng, double lo, double hi) { return lo + (hi - lo) * 
 
 // Uniform integer in [0, n) (n > 0), by Lemire's multiply-shift without rejection: the bias is
 // below n / 2^64, far under any statistic we compute.
+__extension__ typedef unsigned __int128 Uint128;  // a GCC/Clang extension: __extension__ keeps -Wpedantic quiet
 inline std::uint64_t uniform_index(Rng& rng, std::uint64_t n) {
-  return static_cast<std::uint64_t>((static_cast<unsigned __int128>(rng()) * n) >> 64);
+  return static_cast<std::uint64_t>((static_cast<Uint128>(rng()) * n) >> 64);
 }
 
 }  // namespace powderbed::bed
