@@ -1,6 +1,5 @@
 #include "powderbed/bed/bed.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <unordered_set>
@@ -18,7 +17,9 @@ void Bed::reserve(std::size_t count) {
 }
 
 void Bed::add(double px, double py, double pz, double r) {
-  const std::uint64_t next = id.empty() ? 0 : *std::max_element(id.begin(), id.end()) + 1;
+  // Ids are appended in increasing order by every stage, so the last one is the largest
+  // (validate() still catches a repeat in a bed assembled otherwise).
+  const std::uint64_t next = id.empty() ? 0 : id.back() + 1;
   x.push_back(px);
   y.push_back(py);
   z.push_back(pz);

@@ -35,7 +35,7 @@ struct Bed {
   std::size_t n() const { return radius.size(); }
   bool has_velocity() const { return !vx.empty(); }
 
-  // Appends a particle with the next free id (max id + 1, or 0 for the first).
+  // Appends a particle with id = last id + 1 (0 for the first); O(1).
   void add(double px, double py, double pz, double r);
   void reserve(std::size_t count);
   // Throws InputError naming `source` when arrays disagree in size, a value is NaN/Inf, a
