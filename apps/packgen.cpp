@@ -1,0 +1,191 @@
+// packgen: geometric packing (SPEC.md §3) -> one bed file, with a short summary or --json.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+#include "common/app_main.hpp"
+#include "common/options.hpp"
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/io.hpp"
+#include "powderbed/bed/json.hpp"
+#include "powderbed/bed/psd.hpp"
+#include "powderbed/bed/stats.hpp"
+#include "powderbed/packgen/pack.hpp"
+
+namespace {
+
+using namespace powderbed;
+namespace po = app::po;
+
+// The contact tolerances of SPEC §2 (JSON coordination_by_tol); "coordination" is at 1e-6.
+constexpr double kTolerances[] = {1e-6, 1e-3, 1e-2};
+
+std::string tolerance_key(double tol) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", tol);
+  return buf;
+}
+
+// The resolved options as INI text: the bed's /provenance scene.
+std::string scene_ini(const po::variables_map& vm) {
+  std::ostringstream ini;
+  for (const auto& [key, value] : vm) {
+    if (key == "config" || key == "json" || key == "help" || key == "version") continue;
+    const auto& v = value.value();
+    ini << key << " = ";
+    if (const auto* s = boost::any_cast<std::string>(&v)) ini << *s;
+    else if (const auto* i = boost::any_cast<int>(&v)) ini << *i;
+    else if (const auto* u = boost::any_cast<std::size_t>(&v)) ini << *u;
+    else if (const auto* d = boost::any_cast<double>(&v)) ini << *d;
+    else if (const auto* l = boost::any_cast<std::uint64_t>(&v)) ini << *l;
+    ini << '\n';
+  }
+  return ini.str();
+}
+
+void show_progress(const packgen::PackProgress& p) {
+  const double f = std::min(std::max(p.fraction_done, 1e-9), 1.0);
+  const double eta = p.elapsed * (1 - f) / f;
+  std::fprintf(stderr, "\rpackgen: %zu particles, density %.4f, %.1f s, ETA %.0f s   ", p.n,
+               p.density, p.elapsed, eta);
+}
+
+int run(int argc, char** argv) {
+  po::options_description desc("packgen options (SI units: m)");
+  app::add_common_options(desc);
+  desc.add_options()
+      ("dim", po::value<int>()->required(), "2 (disks) or 3 (spheres); must match --domain")
+      ("domain", po::value<std::string>()->required(), "LX,LY[,LZ] (m): the box [0, L]")
+      ("psd", po::value<std::string>()->required(), "size distribution (PSD string syntax)")
+      ("approach", po::value<int>()->default_value(1),
+       "contacts per new particle: 0 random, 1, 2, 3 (3D only); walls count as partners")
+      ("phases", po::value<std::string>(),
+       "approach[:density],... e.g. 0:0.3,1 = 0-contact to density 0.3, then 1-contact; "
+       "replaces --approach")
+      ("collision", po::value<std::string>()->default_value("grid"),
+       "raster (status grid of [LP], approximate), grid (exact cell list) or kdtree (exact)")
+      ("raster-spacing", po::value<double>(), "raster grid spacing h (m), needed by raster")
+      ("tries", po::value<int>()->default_value(1000),
+       "n_T: tries per size before a new size is drawn")
+      ("directions", po::value<int>()->default_value(16),
+       "K: directions per 1-contact try, circle angles per 3D 2-contact try")
+      ("count", po::value<std::size_t>(), "stop at N particles")
+      ("target-density", po::value<double>(),
+       "stop at this density (0 < F < 1); if it cannot be reached the run stops at "
+       "--max-failures, still writes the bed, warns on stderr and exits 0")
+      ("max-failures", po::value<std::size_t>()->default_value(100),
+       "stop after M consecutive failed placements (the default stop rule)")
+      ("retire-after", po::value<int>()->default_value(32),
+       "drop a particle from the partner list after this many consecutive failed tries "
+       "around it (0 = never; O(N) front advancing)")
+      ("edge-fraction", po::value<double>()->default_value(0.0),
+       "fraction of 0-contact tries drawn within one largest diameter of a wall")
+      ("seed", po::value<std::uint64_t>()->required(), "random seed")
+      ("out", po::value<std::string>()->required(), "output bed (.h5)");
+  po::variables_map vm;
+  if (!app::parse_options("packgen",
+                          "packgen --dim 2|3 --domain LX,LY[,LZ] --psd SPEC --approach 0|1|2|3 "
+                          "--seed S --out BED.h5 [options]",
+                          desc, {}, argc, argv, vm)) {
+    return 0;
+  }
+  const bed::Domain domain = app::parse_domain_lengths(vm["domain"].as<std::string>(), "--domain");
+  const int dim = vm["dim"].as<int>();
+  if (dim != domain.dimension) {
+    throw InputError("--dim: " + std::to_string(dim) + " but --domain '" +
+                     vm["domain"].as<std::string>() + "' has " +
+                     std::to_string(domain.dimension) + " lengths (accepted: equal)");
+  }
+  const bed::Psd psd = bed::Psd::parse(vm["psd"].as<std::string>(), "--psd");
+  packgen::PackOptions o;
+  o.phases = vm.count("phases") ? packgen::parse_phases(vm["phases"].as<std::string>())
+                                : std::vector<packgen::Phase>{{vm["approach"].as<int>(), 1.0}};
+  o.collision = packgen::parse_collision(vm["collision"].as<std::string>());
+  if (vm.count("raster-spacing")) o.raster_spacing = vm["raster-spacing"].as<double>();
+  o.tries = vm["tries"].as<int>();
+  o.directions = vm["directions"].as<int>();
+  if (vm.count("count")) o.count = vm["count"].as<std::size_t>();
+  if (vm.count("target-density")) {
+    o.target_density = vm["target-density"].as<double>();
+    if (!(o.target_density > 0 && o.target_density < 1)) {
+      throw InputError("--target-density: " + std::to_string(o.target_density) +
+                       " (accepted: 0 < F < 1)");
+    }
+  }
+  if (o.count > 0 && o.target_density > 0) {
+    throw InputError("--count and --target-density: give one stop rule, not both");
+  }
+  o.max_failures = vm["max-failures"].as<std::size_t>();
+  o.retire_after = vm["retire-after"].as<int>();
+  o.edge_fraction = vm["edge-fraction"].as<double>();
+  if (::isatty(STDERR_FILENO)) o.progress = show_progress;
+  const std::uint64_t seed = vm["seed"].as<std::uint64_t>();
+
+  packgen::PackResult result = packgen::pack(domain, psd, o, seed);
+  if (o.progress) std::fputc('\n', stderr);
+  bed::Bed& b = result.bed;
+  b.provenance.created_by = app::version_string("packgen");
+  b.provenance.command_line = app::command_line(argc, argv);
+  b.provenance.rng_seed = seed;
+  b.provenance.stage = "packgen";
+  b.provenance.scene = scene_ini(vm);
+  bed::write_bed_h5(b, vm["out"].as<std::string>());
+
+  if (!result.target_reached) {
+    std::cerr << "packgen: warning: " << (o.count > 0 ? "--count " : "--target-density ")
+              << (o.count > 0 ? std::to_string(o.count) : tolerance_key(o.target_density))
+              << " not reached: stopped after " << o.max_failures
+              << " consecutive failed placements with " << b.n() << " particles at density "
+              << bed::packing_density(b) << "; the bed was written\n";
+  }
+  const double density = bed::packing_density(b);
+  std::vector<bed::ContactStats> by_tol;
+  for (double tol : kTolerances) by_tol.push_back(bed::contact_stats(b, tol));
+  const int approach = o.phases.back().approach;
+  if (vm.count("json")) {
+    bed::JsonWriter j;
+    j.begin_object();
+    j.value("n", std::uint64_t{b.n()});
+    j.value("density", density);
+    j.value("coordination", by_tol[0].coordination);
+    j.begin_object("coordination_by_tol");
+    for (std::size_t t = 0; t < by_tol.size(); ++t) {
+      j.value(tolerance_key(kTolerances[t]), by_tol[t].coordination);
+    }
+    j.end_object();
+    j.value("rattlers", std::uint64_t{by_tol[0].rattlers});
+    j.value("wall_contacts", std::uint64_t{by_tol[0].wall_contacts});
+    j.value("max_relative_overlap", bed::max_relative_overlap(b));
+    j.value("wall_time", result.wall_time);
+    j.value("attempts", std::uint64_t{result.attempts});
+    j.value("tries", std::uint64_t{result.tries});
+    j.value("failed_placements", std::uint64_t{result.failed_placements});
+    j.value("retired", std::uint64_t{result.retired});
+    j.value("refused_valid", std::uint64_t{result.refused_valid});
+    j.value("accepted_overlapping", std::uint64_t{result.accepted_overlapping});
+    j.value("target_reached", result.target_reached);
+    j.value("stop_reason", result.stop_reason);
+    j.value("collision", packgen::collision_name(o.collision));
+    j.value("approach", approach);
+    j.value("seed", seed);
+    j.end_object();
+    std::cout << j.str() << '\n';
+  } else {
+    std::cout << "packgen: " << b.n() << " particles, density " << density
+              << ", coordination " << by_tol[0].coordination << " (tol 1e-6), "
+              << result.wall_time << " s, " << result.attempts << " attempts, stopped by "
+              << result.stop_reason << " (" << packgen::collision_name(o.collision)
+              << ", approach " << approach << ") -> " << vm["out"].as<std::string>() << '\n';
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return powderbed::app::run_app("packgen", argc, argv, [&] { return run(argc, argv); });
+}

@@ -1,0 +1,64 @@
+#pragma once
+// Closed-form positions of a new particle touching two or three partners (SPEC.md §3,
+// 2-contact and 3-contact). A partner is a placed particle (|x - c| = R + r) or a wall plane
+// (n . x = offset + r: the new centre sits r inside the wall). The first partner is always a
+// particle. Subtracting its sphere equation from the others leaves linear equations, so
+//   2D, two partners: a line cut by a circle   -> 0 or 2 points (circle–circle intersection)
+//   3D, two partners: a plane cut by a sphere  -> a circle of solutions
+//   3D, three partners: a line cut by a sphere -> 0 or 2 mirror points (trilateration)
+// Near-tangent cases (discriminant ~ 0) are clamped when the discriminant is above
+// -kClampTolerance R^2 (the clamped point has a gap of at most ~kClampTolerance / 2 relative
+// to both partners, never an overlap); colinear centres (parallel linear equations) and any
+// non-finite result give no solution, never NaN.
+#include <array>
+#include <cmath>
+
+namespace powderbed::packgen {
+
+struct Vec3 {
+  double x = 0, y = 0, z = 0;
+};
+inline Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline Vec3 operator*(double s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
+inline double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 cross(Vec3 a, Vec3 b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double norm(Vec3 a) { return std::sqrt(dot(a, a)); }
+
+struct Partner {
+  bool is_plane = false;
+  Vec3 centre;        // particle centre
+  double radius = 0;  // particle radius
+  Vec3 normal;        // plane: unit normal pointing into the domain
+  double offset = 0;  // plane: n . x = offset on the wall
+
+  static Partner particle(Vec3 c, double r) { return {false, c, r, {}, 0}; }
+  static Partner plane(Vec3 n, double offset) { return {true, {}, 0, n, offset}; }
+};
+
+constexpr double kClampTolerance = 1e-12;
+
+// Distance error of x as a contact of `partner` for a new particle of radius r, relative to
+// the contact distance (R + r for particles, r for planes).
+double contact_residual(const Partner& partner, Vec3 x, double r);
+
+// 2D (z = 0): up to two centres touching particle a and partner b. Returns the count (0, 1 or 2).
+int touch_two_2d(const Partner& a, const Partner& b, double r, std::array<Vec3, 2>& out);
+
+// 3D: the circle of centres touching particle a and partner b.
+struct Circle {
+  Vec3 centre, e1, e2;  // e1, e2: orthonormal, spanning the circle's plane
+  double radius = 0;
+  Vec3 at(double angle) const {
+    return centre + (radius * std::cos(angle)) * e1 + (radius * std::sin(angle)) * e2;
+  }
+};
+bool touch_two_3d(const Partner& a, const Partner& b, double r, Circle& out);
+
+// 3D: up to two mirror centres touching particle a and partners b and c. Returns 0, 1 or 2.
+int touch_three_3d(const Partner& a, const Partner& b, const Partner& c, double r,
+                   std::array<Vec3, 2>& out);
+
+}  // namespace powderbed::packgen

@@ -1,0 +1,122 @@
+// Validation and parsing of the packing options (SPEC.md §3).
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/packgen/pack.hpp"
+#include "powderbed/packgen/raster_grid.hpp"
+
+namespace powderbed::packgen {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& text) { throw InputError(text); }
+
+std::string str(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+void validate(const bed::Domain& domain, const bed::Psd& psd, const PackOptions& o) {
+  domain.validate("--domain");
+  if (o.phases.empty()) fail("--phases: no phase given (accepted: e.g. 0:0.3,1)");
+  for (const Phase& p : o.phases) {
+    if (p.approach < 0 || p.approach > 3) {
+      fail("--approach: " + std::to_string(p.approach) + " (accepted: 0, 1, 2 or 3 contacts)");
+    }
+    if (p.approach == 3 && domain.dimension == 2) {
+      fail("--approach: 3 needs a 3D domain (accepted in 2D: 0, 1 or 2 contacts)");
+    }
+  }
+  if (o.tries < 1) fail("--tries: " + std::to_string(o.tries) + " (accepted: >= 1)");
+  if (o.directions < 1) fail("--directions: " + std::to_string(o.directions) + " (accepted: >= 1)");
+  if (o.retire_after < 0) {
+    fail("--retire-after: " + std::to_string(o.retire_after) + " (accepted: >= 0, 0 = never)");
+  }
+  if (o.max_failures < 1) fail("--max-failures: 0 (accepted: >= 1)");
+  if (o.target_density != 0 && !(o.target_density > 0 && o.target_density < 1)) {
+    fail("--target-density: " + str(o.target_density) + " (accepted: 0 < F < 1)");
+  }
+  if (!(o.edge_fraction >= 0 && o.edge_fraction <= 1)) {
+    fail("--edge-fraction: " + str(o.edge_fraction) + " (accepted: 0 <= F <= 1)");
+  }
+  const double d_min = 2 * psd.min_radius();
+  double shortest = domain.length(0);
+  for (int a = 1; a < domain.dimension; ++a) shortest = std::min(shortest, domain.length(a));
+  if (shortest < d_min) {
+    std::string lengths = str(domain.length(0));
+    for (int a = 1; a < domain.dimension; ++a) lengths += " x " + str(domain.length(a));
+    fail("--domain: " + lengths + " is smaller than the smallest particle diameter " + str(d_min));
+  }
+  if (o.collision == Collision::raster) {
+    if (!(o.raster_spacing > 0) || !std::isfinite(o.raster_spacing)) {
+      fail("--raster-spacing: " + str(o.raster_spacing) + " (accepted: a spacing > 0 in m)");
+    }
+    const double finest = RasterGrid::finest_spacing(domain, o.raster_max_bytes);
+    if (o.raster_spacing < finest) {
+      fail("--raster-spacing: " + str(o.raster_spacing) + " needs more than " +
+           str(static_cast<double>(o.raster_max_bytes) / (1 << 30)) +
+           " GiB for the status grid (the finest allowed for this domain is " + str(finest) + ")");
+    }
+  }
+}
+
+std::vector<Phase> parse_phases(const std::string& text, const std::string& option) {
+  std::vector<Phase> phases;
+  std::stringstream in(text);
+  std::string item;
+  const std::string accepted = " (accepted: approach[:density],... e.g. 0:0.3,1)";
+  double last = 0;
+  while (std::getline(in, item, ',')) {
+    const auto colon = item.find(':');
+    Phase p;
+    try {
+      std::size_t used = 0;
+      const std::string a = item.substr(0, colon);
+      p.approach = std::stoi(a, &used);
+      if (used != a.size()) throw std::invalid_argument(a);
+      if (colon != std::string::npos) {
+        const std::string d = item.substr(colon + 1);
+        p.until_density = std::stod(d, &used);
+        if (used != d.size()) throw std::invalid_argument(d);
+      }
+    } catch (const std::exception&) {
+      fail(option + ": '" + text + "' cannot be read" + accepted);
+    }
+    if (colon != std::string::npos && !(p.until_density > last && p.until_density < 1)) {
+      fail(option + ": '" + text + "' has density " + str(p.until_density) +
+           " (accepted: increasing densities in (0, 1))");
+    }
+    if (colon != std::string::npos) last = p.until_density;
+    phases.push_back(p);
+  }
+  if (phases.empty()) fail(option + ": '" + text + "' has no phase" + accepted);
+  for (std::size_t i = 0; i + 1 < phases.size(); ++i) {
+    if (phases[i].until_density >= 1) {
+      fail(option + ": '" + text + "': every phase but the last needs :density" + accepted);
+    }
+  }
+  return phases;
+}
+
+Collision parse_collision(const std::string& text, const std::string& option) {
+  if (text == "raster") return Collision::raster;
+  if (text == "grid") return Collision::grid;
+  if (text == "kdtree") return Collision::kdtree;
+  fail(option + ": '" + text + "' (accepted: raster, grid or kdtree)");
+}
+
+const char* collision_name(Collision c) {
+  switch (c) {
+    case Collision::raster: return "raster";
+    case Collision::grid: return "grid";
+    case Collision::kdtree: return "kdtree";
+  }
+  return "grid";
+}
+
+}  // namespace powderbed::packgen

@@ -1,0 +1,424 @@
+// The placement loop of SPEC.md §3: sizes from the PSD, n_T tries per size, 0/1/2/3-contact
+// candidates, one collision back-end. The loop is a template over the back-end, dispatched
+// once in pack(), so no test in the hot loop goes through a virtual call.
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "powderbed/packgen/cell_grid.hpp"
+#include "powderbed/packgen/contact_geometry.hpp"
+#include "powderbed/packgen/kdtree_index.hpp"
+#include "powderbed/packgen/pack.hpp"
+#include "powderbed/packgen/raster_grid.hpp"
+
+namespace powderbed::packgen {
+
+namespace {
+
+using bed::Rng;
+using bed::uniform;
+using bed::uniform01;
+using bed::uniform_index;
+constexpr double kPi = std::numbers::pi;
+
+// Containment tolerance (SPEC §3 "every particle lies fully inside"): 1e-12 relative to the
+// radius and the coordinate, so centres computed to touch a wall are not refused for rounding.
+constexpr double kInsideTolerance = 1e-12;
+
+// The back-ends behind one small interface: insert(i), fits(x, y, z, r), `approximate`.
+struct GridBackend {  // the exact partner grid doubles as the collision grid
+  static constexpr bool approximate = false;
+  const CellGrid& grid;
+  void insert(std::uint32_t) {}
+  bool fits(double x, double y, double z, double r) const { return grid.fits(x, y, z, r); }
+};
+struct KdTreeBackend {
+  static constexpr bool approximate = false;
+  KdTreeIndex index;
+  void insert(std::uint32_t i) { index.insert(i); }
+  bool fits(double x, double y, double z, double r) const { return index.fits(x, y, z, r); }
+};
+struct RasterBackend {
+  static constexpr bool approximate = true;
+  RasterGrid raster;
+  void insert(std::uint32_t i) { raster.insert(i); }
+  bool fits(double x, double y, double z, double r) const { return raster.fits(x, y, z, r); }
+};
+
+template <class Backend>
+class Packer {
+ public:
+  Packer(const bed::Domain& domain, const bed::Psd& psd, const PackOptions& options,
+         std::uint64_t seed, Particles& particles, CellGrid& partners, Backend& backend)
+      : domain_(domain),
+        psd_(psd),
+        o_(options),
+        rng_(seed),
+        p_(particles),
+        partners_(partners),
+        backend_(backend),
+        dim_(domain.dimension),
+        r_max_(psd.max_radius()) {
+    order_.resize(static_cast<std::size_t>(o_.directions));
+  }
+
+  PackResult run();
+
+ private:
+  double density() const { return volume_ / domain_.measure(); }
+  bool exhausted(int approach) const { return approach > 0 && p_.size() > 0 && active_.empty(); }
+  bool size_fits(double r) const;
+  bool inside(const Vec3& c, double r) const;
+  bool accept(const Vec3& c, double r);
+  void place(const Vec3& c, double r);
+  void retire(std::uint32_t s);
+  void shuffle_order();
+  Partner partner(std::int64_t code) const;
+  double wall_distance(int wall, const Vec3& c) const;
+  bool compatible(std::int64_t a, std::int64_t b, double r) const;
+  void gather_partners(std::uint32_t s, double r);
+
+  bool try_once(int approach, double r);
+  bool try_random(double r);
+  bool try_one(std::uint32_t s, double r);
+  bool try_two(std::uint32_t s, double r);
+  bool try_three(std::uint32_t s, double r);
+  bool touch_two(std::uint32_t s, std::int64_t q, double r);
+  bool accept_mirror(const std::array<Vec3, 2>& x, int m, double r);
+
+  const bed::Domain& domain_;
+  const bed::Psd& psd_;
+  const PackOptions& o_;
+  Rng rng_;
+  Particles& p_;
+  CellGrid& partners_;
+  Backend& backend_;
+  int dim_;
+  double r_max_;
+  double volume_ = 0;
+  PackResult result_;
+  // Front-advancing partner list: active_ holds particles that may still have free surface.
+  std::vector<std::uint32_t> active_, slot_;
+  std::vector<int> fails_;
+  // Scratch, reused so the hot loop does not allocate: partner codes (>= 0 particles,
+  // < 0 walls as -1 - wall) and a shuffled order of directions.
+  std::vector<std::int64_t> near_, near2_;
+  std::vector<int> order_;
+};
+
+template <class Backend>
+bool Packer<Backend>::size_fits(double r) const {
+  for (int a = 0; a < dim_; ++a) {
+    if (2 * r > domain_.length(a) * (1 + kInsideTolerance)) return false;
+  }
+  return true;
+}
+
+template <class Backend>
+bool Packer<Backend>::inside(const Vec3& c, double r) const {
+  const double v[3] = {c.x, c.y, c.z};
+  for (int a = 0; a < dim_; ++a) {
+    const double tol = kInsideTolerance * (r + std::abs(v[a]));
+    if (!(v[a] - r >= domain_.lower[a] - tol && v[a] + r <= domain_.upper[a] + tol)) return false;
+  }
+  return true;
+}
+
+template <class Backend>
+bool Packer<Backend>::accept(const Vec3& c, double r) {
+  ++result_.attempts;
+  if (!inside(c, r)) return false;
+  const bool ok = backend_.fits(c.x, c.y, c.z, r);
+  if constexpr (Backend::approximate) {
+    const bool exact = partners_.fits(c.x, c.y, c.z, r);
+    result_.refused_valid += !ok && exact;
+    result_.accepted_overlapping += ok && !exact;
+  }
+  if (ok) place(c, r);
+  return ok;
+}
+
+template <class Backend>
+void Packer<Backend>::place(const Vec3& c, double r) {
+  const std::uint32_t i = p_.size();
+  p_.x.push_back(c.x);
+  p_.y.push_back(c.y);
+  p_.z.push_back(dim_ == 3 ? c.z : 0.0);
+  p_.r.push_back(r);
+  partners_.insert(i);
+  backend_.insert(i);
+  slot_.push_back(static_cast<std::uint32_t>(active_.size()));
+  active_.push_back(i);
+  fails_.push_back(0);
+  volume_ += dim_ == 3 ? 4.0 / 3.0 * kPi * r * r * r : kPi * r * r;
+}
+
+template <class Backend>
+void Packer<Backend>::retire(std::uint32_t s) {
+  const std::uint32_t at = slot_[s], last = active_.back();
+  active_[at] = last;
+  slot_[last] = at;
+  active_.pop_back();
+  ++result_.retired;
+}
+
+// Fisher–Yates over 0..K-1 (SPEC §3: "evenly spaced angles shuffled").
+template <class Backend>
+void Packer<Backend>::shuffle_order() {
+  for (std::size_t k = 0; k < order_.size(); ++k) order_[k] = static_cast<int>(k);
+  for (std::size_t k = order_.size(); k > 1; --k) {
+    std::swap(order_[k - 1], order_[uniform_index(rng_, k)]);
+  }
+}
+
+// Walls 0..2 dim - 1: lower x, upper x, lower y, ... ; normals point into the domain.
+template <class Backend>
+Partner Packer<Backend>::partner(std::int64_t code) const {
+  if (code >= 0) {
+    const auto j = static_cast<std::size_t>(code);
+    return Partner::particle({p_.x[j], p_.y[j], p_.z[j]}, p_.r[j]);
+  }
+  const int wall = static_cast<int>(-1 - code), axis = wall / 2;
+  Vec3 n;
+  (axis == 0 ? n.x : axis == 1 ? n.y : n.z) = wall % 2 == 0 ? 1.0 : -1.0;
+  return Partner::plane(n, wall % 2 == 0 ? domain_.lower[axis] : -domain_.upper[axis]);
+}
+
+template <class Backend>
+double Packer<Backend>::wall_distance(int wall, const Vec3& c) const {
+  const int axis = wall / 2;
+  const double v = axis == 0 ? c.x : axis == 1 ? c.y : c.z;
+  return wall % 2 == 0 ? v - domain_.lower[axis] : domain_.upper[axis] - v;
+}
+
+// Whether a new particle of radius r can touch both partners at once.
+template <class Backend>
+bool Packer<Backend>::compatible(std::int64_t a, std::int64_t b, double r) const {
+  if (a < 0 && b < 0) return (-1 - a) / 2 != (-1 - b) / 2;  // walls on different axes
+  if (a < 0) std::swap(a, b);
+  const auto i = static_cast<std::size_t>(a);
+  const Vec3 c{p_.x[i], p_.y[i], p_.z[i]};
+  if (b < 0) return wall_distance(static_cast<int>(-1 - b), c) <= p_.r[i] + 2 * r;
+  const auto j = static_cast<std::size_t>(b);
+  const double dx = p_.x[j] - c.x, dy = p_.y[j] - c.y, dz = p_.z[j] - c.z;
+  const double s = p_.r[i] + p_.r[j] + 2 * r;
+  return dx * dx + dy * dy + dz * dz <= s * s;
+}
+
+// Partners of s for a new particle of radius r: particles with centre distance <= r_s + r_j + 2r
+// (SPEC §3 2-contact) and walls within r_s + 2r, found through the exact grid.
+template <class Backend>
+void Packer<Backend>::gather_partners(std::uint32_t s, double r) {
+  near_.clear();
+  const Vec3 c{p_.x[s], p_.y[s], p_.z[s]};
+  partners_.for_each_within(c.x, c.y, c.z, p_.r[s] + 2 * r, [&](std::uint32_t j) {
+    if (j != s) near_.push_back(j);
+    return false;
+  });
+  for (int wall = 0; wall < 2 * dim_; ++wall) {
+    if (wall_distance(wall, c) <= p_.r[s] + 2 * r) near_.push_back(-1 - wall);
+  }
+}
+
+// 0-contact: centre uniform in the domain inset by r; with probability edge_fraction one axis
+// is redrawn within one largest diameter of a random wall ([LP] extra boundary sampling).
+template <class Backend>
+bool Packer<Backend>::try_random(double r) {
+  double v[3] = {0, 0, 0};
+  for (int a = 0; a < dim_; ++a) v[a] = uniform(rng_, domain_.lower[a] + r, domain_.upper[a] - r);
+  if (o_.edge_fraction > 0 && uniform01(rng_) < o_.edge_fraction) {
+    const auto wall = static_cast<int>(uniform_index(rng_, static_cast<std::uint64_t>(2 * dim_)));
+    const int axis = wall / 2;
+    const double lo = domain_.lower[axis] + r, hi = domain_.upper[axis] - r;
+    const double band = 2 * r_max_;
+    v[axis] = wall % 2 == 0 ? uniform(rng_, lo, std::min(lo + band, hi))
+                            : uniform(rng_, std::max(hi - band, lo), hi);
+  }
+  return accept({v[0], v[1], v[2]}, r);
+}
+
+// 1-contact: on the circle/sphere of radius r_s + r around s; 2D: K evenly spaced angles with
+// a random offset in shuffled order; 3D: K uniform directions on the sphere.
+template <class Backend>
+bool Packer<Backend>::try_one(std::uint32_t s, double r) {
+  const Vec3 c{p_.x[s], p_.y[s], p_.z[s]};
+  const double rho = p_.r[s] + r;
+  const int k_max = o_.directions;
+  if (dim_ == 2) {
+    const double step = 2 * kPi / k_max;
+    const double offset = uniform(rng_, 0, step);
+    shuffle_order();
+    for (int k = 0; k < k_max; ++k) {
+      const double angle = offset + step * order_[static_cast<std::size_t>(k)];
+      if (accept({c.x + rho * std::cos(angle), c.y + rho * std::sin(angle), 0}, r)) return true;
+    }
+    return false;
+  }
+  for (int k = 0; k < k_max; ++k) {
+    const double cz = uniform(rng_, -1, 1), phi = uniform(rng_, 0, 2 * kPi);
+    const double sz = std::sqrt(std::max(0.0, 1 - cz * cz));
+    if (accept({c.x + rho * sz * std::cos(phi), c.y + rho * sz * std::sin(phi), c.z + rho * cz},
+               r)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// 2-contact: touch s and a partner (particle or wall) chosen uniformly among those in reach.
+// With no partner in reach, s is tried with 1 contact (an approach uses at most its contacts).
+template <class Backend>
+bool Packer<Backend>::try_two(std::uint32_t s, double r) {
+  gather_partners(s, r);
+  if (near_.empty()) return try_one(s, r);
+  return touch_two(s, near_[uniform_index(rng_, near_.size())], r);
+}
+
+template <class Backend>
+bool Packer<Backend>::touch_two(std::uint32_t s, std::int64_t q, double r) {
+  const Partner a = partner(s), b = partner(q);
+  if (dim_ == 2) {
+    std::array<Vec3, 2> x;
+    return accept_mirror(x, touch_two_2d(a, b, r, x), r);
+  }
+  Circle circle;
+  if (!touch_two_3d(a, b, r, circle)) return false;
+  const double step = 2 * kPi / o_.directions;
+  const double offset = uniform(rng_, 0, step);
+  shuffle_order();
+  for (int k = 0; k < o_.directions; ++k) {
+    if (accept(circle.at(offset + step * order_[static_cast<std::size_t>(k)]), r)) return true;
+  }
+  return false;
+}
+
+// The (up to) two solutions of a closed form, in random order.
+template <class Backend>
+bool Packer<Backend>::accept_mirror(const std::array<Vec3, 2>& x, int m, double r) {
+  const std::size_t first = m == 2 ? uniform_index(rng_, 2) : 0;
+  for (int k = 0; k < m; ++k) {
+    if (accept(x[(first + static_cast<std::size_t>(k)) % 2], r)) return true;
+  }
+  return false;
+}
+
+// 3-contact (3D): touch s and two partners in reach of s and of each other; two mirror points.
+// With fewer partners in reach it falls back to 2 and then 1 contact.
+template <class Backend>
+bool Packer<Backend>::try_three(std::uint32_t s, double r) {
+  gather_partners(s, r);
+  if (near_.empty()) return try_one(s, r);
+  const std::int64_t q1 = near_[uniform_index(rng_, near_.size())];
+  near2_.clear();
+  for (const std::int64_t q : near_) {
+    if (q != q1 && compatible(q1, q, r)) near2_.push_back(q);
+  }
+  if (near2_.empty()) return touch_two(s, q1, r);
+  const std::int64_t q2 = near2_[uniform_index(rng_, near2_.size())];
+  std::array<Vec3, 2> x;
+  return accept_mirror(x, touch_three_3d(partner(s), partner(q1), partner(q2), r, x), r);
+}
+
+template <class Backend>
+bool Packer<Backend>::try_once(int approach, double r) {
+  ++result_.tries;
+  if (approach == 0 || p_.size() == 0) return try_random(r);  // the first particle: 0-contact
+  const std::uint32_t s = active_[uniform_index(rng_, active_.size())];
+  const bool ok = approach == 1 ? try_one(s, r) : approach == 2 ? try_two(s, r) : try_three(s, r);
+  if (ok) {
+    fails_[s] = 0;
+  } else if (o_.retire_after > 0 && ++fails_[s] >= o_.retire_after) {
+    retire(s);
+  }
+  return ok;
+}
+
+template <class Backend>
+PackResult Packer<Backend>::run() {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  auto last_report = start;
+  std::size_t phase = 0;
+  for (std::size_t loop = 0;; ++loop) {
+    if (o_.count > 0 && p_.size() >= o_.count) {
+      result_.stop_reason = "count";
+      break;
+    }
+    if (o_.target_density > 0 && density() >= o_.target_density) {
+      result_.stop_reason = "target density";
+      break;
+    }
+    if (result_.failures_in_a_row >= o_.max_failures) {
+      result_.stop_reason = "max failures";
+      result_.target_reached = o_.count == 0 && o_.target_density == 0;
+      break;
+    }
+    while (phase + 1 < o_.phases.size() && density() >= o_.phases[phase].until_density) ++phase;
+    const int approach = o_.phases[phase].approach;
+    const double r = psd_.sample_radius(rng_);
+    bool placed = false;
+    if (size_fits(r)) {
+      // A partner-based approach with every particle retired has nowhere left to try.
+      for (int t = 0; t < o_.tries && !placed && !exhausted(approach); ++t) {
+        placed = try_once(approach, r);
+      }
+    }
+    if (placed) {
+      result_.failures_in_a_row = 0;
+    } else {
+      ++result_.failed_placements;
+      ++result_.failures_in_a_row;
+    }
+    if (o_.progress && loop % 256 == 0) {
+      const auto now = Clock::now();
+      if (now - last_report > std::chrono::milliseconds(250)) {
+        last_report = now;
+        PackProgress pr;
+        pr.n = p_.size();
+        pr.density = density();
+        pr.elapsed = std::chrono::duration<double>(now - start).count();
+        pr.fraction_done =
+            o_.count > 0            ? double(p_.size()) / double(o_.count)
+            : o_.target_density > 0 ? density() / o_.target_density
+                                    : double(result_.failures_in_a_row) / double(o_.max_failures);
+        o_.progress(pr);
+      }
+    }
+  }
+  result_.wall_time = std::chrono::duration<double>(Clock::now() - start).count();
+  bed::Bed& bed = result_.bed;
+  bed.domain = domain_;
+  bed.x = p_.x;
+  bed.y = p_.y;
+  bed.z = p_.z;
+  bed.radius = p_.r;
+  bed.id.resize(p_.size());
+  for (std::size_t i = 0; i < bed.id.size(); ++i) bed.id[i] = i;
+  return std::move(result_);
+}
+
+}  // namespace
+
+PackResult pack(const bed::Domain& domain, const bed::Psd& psd, const PackOptions& options,
+                std::uint64_t seed) {
+  validate(domain, psd, options);
+  Particles particles;
+  CellGrid partners(domain, psd.min_radius(), psd.max_radius(), particles);
+  switch (options.collision) {
+    case Collision::raster: {
+      RasterBackend backend{RasterGrid(domain, options.raster_spacing, particles,
+                                       options.raster_max_bytes)};
+      return Packer<RasterBackend>(domain, psd, options, seed, particles, partners, backend).run();
+    }
+    case Collision::kdtree: {
+      KdTreeBackend backend{KdTreeIndex(domain.dimension, psd.max_radius(), particles)};
+      return Packer<KdTreeBackend>(domain, psd, options, seed, particles, partners, backend).run();
+    }
+    case Collision::grid:
+      break;
+  }
+  GridBackend backend{partners};
+  return Packer<GridBackend>(domain, psd, options, seed, particles, partners, backend).run();
+}
+
+}  // namespace powderbed::packgen

@@ -1,0 +1,54 @@
+#pragma once
+// Runs a program of the build end to end and captures its exit status, stdout and stderr.
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace powderbed::test {
+
+struct CommandResult {
+  int status = -1;  // exit status of the program
+  std::string out, err;
+  // Lines of stderr (without the trailing newline), for "one clear line" checks.
+  int err_lines() const {
+    int n = 0;
+    for (char c : err) n += c == '\n';
+    return n;
+  }
+};
+
+inline std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// `args` is appended to POWDERBED_APPS_DIR/<app> and run through the shell.
+inline CommandResult run_app(const std::string& app, const std::string& args) {
+  const std::string stem = "/tmp/powderbed_test_" + std::to_string(::getpid()) + "_" + app;
+  const std::string cmd = std::string(POWDERBED_APPS_DIR) + "/" + app + " " + args + " >" + stem +
+                          ".out 2>" + stem + ".err </dev/null";
+  CommandResult r;
+  const int raw = std::system(cmd.c_str());
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = read_text(stem + ".out");
+  r.err = read_text(stem + ".err");
+  std::remove((stem + ".out").c_str());
+  std::remove((stem + ".err").c_str());
+  return r;
+}
+
+// A fresh scratch directory for one test, removed by the caller if it wants.
+inline std::string scratch_dir(const std::string& name) {
+  const std::string dir = "/tmp/powderbed_test_" + std::to_string(::getpid()) + "_" + name;
+  const std::string cmd = "rm -rf '" + dir + "' && mkdir -p '" + dir + "'";
+  if (std::system(cmd.c_str()) != 0) return "/tmp";
+  return dir;
+}
+
+}  // namespace powderbed::test

@@ -1,0 +1,92 @@
+// End-to-end tests of bedstat: JSON keys and values on a lattice with closed-form statistics,
+// the side-by-side table, and bad input (exit 2, one line).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <regex>
+
+#include "powderbed/bed/io.hpp"
+#include "powderbed/bed/lattice.hpp"
+#include "run_command.hpp"
+
+namespace {
+
+using powderbed::test::run_app;
+
+// Pulls a top-level number out of the one-line JSON object (keys are unique in our output).
+double json_number(const std::string& json, const std::string& key) {
+  const std::regex re("\"" + key + "\":(-?[0-9.eE+-]+)");
+  std::smatch m;
+  if (!std::regex_search(json, m, re)) return NAN;
+  return std::stod(m[1]);
+}
+
+class BedstatTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = powderbed::test::scratch_dir("bedstat");
+    // 10^3 simple cubic touching spheres: phi = pi/6, Z = 2 * 2700 / 1000 = 5.4.
+    powderbed::bed::write_bed_h5(powderbed::bed::simple_cubic_lattice(10, 1e-5), sc_path());
+  }
+  std::string sc_path() const { return dir_ + "/sc.h5"; }
+  std::string dir_;
+};
+
+TEST_F(BedstatTest, JsonOfSimpleCubicLatticeMatchesClosedForms) {
+  const auto r = run_app("bedstat", sc_path() + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  // Exact lattice: only rounding of positions (~1e-16 relative) separates these from closed form.
+  EXPECT_NEAR(json_number(r.out, "density"), std::numbers::pi / 6, 1e-9);
+  EXPECT_NEAR(json_number(r.out, "coordination"), 5.4, 1e-12);
+  EXPECT_EQ(json_number(r.out, "n"), 1000);
+  EXPECT_EQ(json_number(r.out, "dimension"), 3);
+  EXPECT_EQ(json_number(r.out, "rattlers"), 0);
+  EXPECT_NEAR(json_number(r.out, "max_overlap"), 0.0, 1e-12);
+  for (const char* key : {"\"1e-06\":", "\"0.001\":", "\"0.01\":"}) {
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << " missing in " << r.out;
+  }
+}
+
+TEST_F(BedstatTest, LayerDensityOfOneLatticeRow) {
+  // The layer z in [0, 2r] holds one full row of spheres: phi = pi/6 as well; the half layer
+  // [0, r] holds hemispheres: also pi/6 by symmetry.
+  const auto r = run_app("bedstat", sc_path() + " --json --layer 0,1e-5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NEAR(json_number(r.out, "density"), std::numbers::pi / 6, 1e-9);
+}
+
+TEST_F(BedstatTest, TwoBedsPrintSideBySide) {
+  const std::string fcc = dir_ + "/fcc.h5";
+  powderbed::bed::write_bed_h5(powderbed::bed::fcc_lattice(4, 1e-5), fcc);
+  const auto r = run_app("bedstat", sc_path() + " " + fcc);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("sc.h5"), std::string::npos);
+  EXPECT_NE(r.out.find("fcc.h5"), std::string::npos);
+  EXPECT_NE(r.out.find("0.523599"), std::string::npos) << r.out;  // pi/6
+  EXPECT_NE(r.out.find("0.74048"), std::string::npos) << r.out;   // pi/(3 sqrt 2)
+}
+
+TEST_F(BedstatTest, MissingFileIsExit2WithOneLine) {
+  const auto r = run_app("bedstat", dir_ + "/nope.h5 --json");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("nope.h5"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+}
+
+TEST_F(BedstatTest, ReversedLayerIsExit2WithOneLine) {
+  const auto r = run_app("bedstat", sc_path() + " --layer 2e-5,1e-5");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("--layer"), std::string::npos) << r.err;
+}
+
+TEST_F(BedstatTest, MalformedPsdIsExit2WithOneLine) {
+  const auto r = run_app("bedstat", sc_path() + " --psd gauss:mean=1e-5,sd=1e-6,min=2e-5,max=1e-5");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("--psd"), std::string::npos) << r.err;
+}
+
+}  // namespace
