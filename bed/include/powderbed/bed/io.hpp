@@ -9,6 +9,8 @@
 namespace powderbed::bed {
 
 constexpr int kBedFormatVersion = 1;
+// Default particle density of LAMMPS exports, kg/m^3 (316L stainless steel).
+constexpr double kDefaultLammpsDensity = 7952.0;
 
 // HDF5 bed (format version 1) plus `<path without .h5>.xmf` for ParaView.
 void write_bed_h5(const Bed& bed, const std::string& path);
@@ -20,7 +22,8 @@ Bed read_bed_csv(const std::string& path, const Domain& domain);
 
 // LAMMPS data file, atom_style sphere (id type diameter density x y z), one atom type.
 // `density` (kg/m^3) is written per atom since atom_style sphere needs it.
-void write_lammps_data(const Bed& bed, const std::string& path, double density = 7952.0);
+void write_lammps_data(const Bed& bed, const std::string& path,
+                       double density = kDefaultLammpsDensity);
 // LAMMPS/LIGGGHTS text dump (ITEM: ATOMS with id, x y z and radius or diameter columns); the
 // last snapshot is read, the box bounds become the domain.
 Bed read_lammps_dump(const std::string& path);

@@ -1,0 +1,44 @@
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+#include "io_detail.hpp"
+#include "powderbed/bed/errors.hpp"
+
+namespace powderbed::bed::detail {
+
+AtomicFile::AtomicFile(std::string path)
+    : path_(std::move(path)), temp_(path_ + ".tmp." + std::to_string(::getpid())) {
+  // Create the temporary now, so an unwritable folder is reported with the system's reason.
+  std::FILE* f = std::fopen(temp_.c_str(), "wb");
+  if (!f) {
+    throw InputError(path_ + ": cannot create temporary file '" + temp_ + "': " +
+                     std::strerror(errno));
+  }
+  std::fclose(f);
+}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_) std::remove(temp_.c_str());
+}
+
+void AtomicFile::commit() {
+  if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
+    const int err = errno;
+    std::remove(temp_.c_str());
+    throw InputError(path_ + ": cannot replace with '" + temp_ + "': " + std::strerror(err));
+  }
+  committed_ = true;
+}
+
+void write_text(const std::string& temp_path, const std::string& path, std::string_view text) {
+  std::ofstream out(temp_path, std::ios::binary | std::ios::trunc);
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  out.close();
+  if (!out) throw InputError(path + ": cannot write '" + temp_path + "' (disk full?)");
+}
+
+}  // namespace powderbed::bed::detail

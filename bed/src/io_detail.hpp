@@ -1,0 +1,78 @@
+#pragma once
+// Helpers shared by the bed readers and writers (io_*.cpp); not part of the public interface.
+#include <charconv>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "powderbed/bed/bed.hpp"
+
+namespace powderbed::bed::detail {
+
+// A file written atomically (DESIGN.md "The bed file": a crash never leaves half a bed).
+// The constructor creates `<path>.tmp.<pid>` (throws InputError naming `path` with the system's
+// reason when it cannot); the caller writes temp_path(); commit() renames it over `path`. The
+// destructor removes the temporary unless commit() succeeded, so any failure leaves an existing
+// file at `path` untouched.
+class AtomicFile {
+ public:
+  explicit AtomicFile(std::string path);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  const std::string& path() const { return path_; }
+  const std::string& temp_path() const { return temp_; }
+  // Renames the temporary over `path`; throws InputError naming `path` on failure.
+  void commit();
+
+ private:
+  std::string path_;
+  std::string temp_;
+  bool committed_ = false;
+};
+
+// Writes `text` to `temp_path` in one go; throws InputError naming `path` on failure.
+void write_text(const std::string& temp_path, const std::string& path, std::string_view text);
+
+// The whole file; throws InputError naming `path` when it cannot be read.
+std::string read_text(const std::string& path);
+
+// Lower-case extension with the dot (".h5"), or "" when there is none.
+std::string extension_of(const std::string& path);
+
+// The XDMF sidecar of an HDF5 bed: `<path minus .h5>.xmf`.
+std::string xdmf_path(const std::string& h5_path);
+// XDMF 3 text describing `bed` as stored in the HDF5 file named `h5_file_name` (no folder, so
+// the pair can be moved together).
+std::string xdmf_text(const Bed& bed, const std::string& h5_file_name);
+
+// Whole-token number parsing (std::from_chars: locale-free, exact round trip).
+inline bool parse_double(std::string_view text, double& value) {
+  const char* end = text.data() + text.size();
+  const auto res = std::from_chars(text.data(), end, value);
+  return res.ec == std::errc() && res.ptr == end;
+}
+inline bool parse_uint(std::string_view text, std::uint64_t& value) {
+  const char* end = text.data() + text.size();
+  const auto res = std::from_chars(text.data(), end, value);
+  return res.ec == std::errc() && res.ptr == end;
+}
+
+// Text lines split from a whole file, with their 1-based numbers for error messages.
+// Trailing '\r' (CRLF files) is dropped. `first_line` is the number of the text's first line.
+class LineCursor {
+ public:
+  explicit LineCursor(std::string_view text, std::size_t first_line = 1)
+      : text_(text), number_(first_line - 1) {}
+  // The next line, or false at the end of the text.
+  bool next(std::string_view& line);
+  std::size_t line_number() const { return number_; }
+
+ private:
+  std::string_view text_;
+  std::size_t number_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace powderbed::bed::detail

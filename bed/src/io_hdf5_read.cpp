@@ -1,0 +1,250 @@
+// Reader of the HDF5 bed file, format version 1 (DESIGN.md "The bed file"): checks everything and
+// refuses a bad file with one line "<file>: <dataset>: <what is wrong>".
+#include <array>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "io_detail.hpp"
+#include "io_hdf5_handle.hpp"
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/io.hpp"
+
+namespace powderbed::bed {
+
+namespace {
+
+using detail::H5Attr;
+using detail::H5Dataset;
+using detail::H5File;
+using detail::H5Group;
+using detail::H5Space;
+using detail::H5Type;
+
+class H5Reader {
+ public:
+  explicit H5Reader(std::string path) : path_(std::move(path)) {}
+
+  Bed read() {
+    open();
+    Bed bed;
+    read_root(bed);
+    read_domain(bed.domain);
+    read_particles(bed);
+    read_provenance(bed.provenance);
+    bed.validate(path_);  // NaN/Inf, radius <= 0, phase range, repeated ids
+    if (bed.domain.dimension == 2) {
+      for (std::size_t i = 0; i < bed.n(); ++i) {
+        if (bed.z[i] != 0.0) {
+          std::ostringstream msg;
+          msg << "z of particle " << i << " is " << bed.z[i] << " in a 2D bed (accepted: 0)";
+          fail("/particles/position", msg.str());
+        }
+      }
+    }
+    return bed;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& object, const std::string& what) const {
+    throw InputError(path_ + ": " + object + ": " + what);
+  }
+
+  void open() {
+    if (!std::ifstream(path_)) throw InputError(path_ + ": cannot open (missing or unreadable)");
+    if (H5Fis_hdf5(path_.c_str()) <= 0)
+      throw InputError(path_ + ": not an HDF5 file (accepted: a powderbed bed, format version 1)");
+    file_ = H5File(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+    if (!file_.valid()) throw InputError(path_ + ": cannot open as HDF5 (damaged file?)");
+  }
+
+  H5Group group(const char* name) const {
+    const std::string object = std::string("/") + name;
+    if (H5Lexists(file_, name, H5P_DEFAULT) <= 0) fail(object, "missing (required group)");
+    H5Group g(H5Gopen2(file_, name, H5P_DEFAULT));
+    if (!g.valid()) fail(object, "is not a group");
+    return g;
+  }
+
+  bool has_attr(hid_t loc, const char* name) const { return H5Aexists(loc, name) > 0; }
+
+  H5Attr attr(hid_t loc, const std::string& object, const char* name) const {
+    if (!has_attr(loc, name)) fail(object, std::string("attribute ") + name + " is missing");
+    return H5Attr(H5Aopen(loc, name, H5P_DEFAULT));
+  }
+
+  std::string string_attr(hid_t loc, const std::string& object, const char* name) const {
+    H5Attr a = attr(loc, object, name);
+    H5Type type(H5Aget_type(a));
+    if (H5Tget_class(type) != H5T_STRING)
+      fail(object, std::string("attribute ") + name + " is not a string");
+    if (H5Tis_variable_str(type) > 0) {  // as h5py writes them
+      H5Type mem(H5Tcopy(H5T_C_S1));
+      H5Tset_size(mem, H5T_VARIABLE);
+      H5Tset_cset(mem, H5Tget_cset(type));  // HDF5 does not convert ASCII <-> UTF-8
+      char* text = nullptr;
+      if (H5Aread(a, mem, &text) < 0)
+        fail(object, std::string("attribute ") + name + " cannot be read");
+      std::string value = text ? text : "";
+      H5free_memory(text);
+      return value;
+    }
+    std::string value(H5Tget_size(type), '\0');
+    if (H5Aread(a, type, value.data()) < 0)
+      fail(object, std::string("attribute ") + name + " cannot be read");
+    value.resize(value.find('\0') == std::string::npos ? value.size() : value.find('\0'));
+    return value;
+  }
+
+  // `count` numbers of attribute `name`, converted by HDF5 to `mem_type`.
+  template <class T>
+  void numeric_attr(hid_t loc, const std::string& object, const char* name, hid_t mem_type,
+                    T* out, hssize_t count) const {
+    H5Attr a = attr(loc, object, name);
+    H5Type type(H5Aget_type(a));
+    const H5T_class_t cls = H5Tget_class(type);
+    if (cls != H5T_INTEGER && cls != H5T_FLOAT)
+      fail(object, std::string("attribute ") + name + " is not numeric");
+    H5Space space(H5Aget_space(a));
+    const hssize_t got = H5Sget_simple_extent_npoints(space);
+    if (got != count) {
+      fail(object, std::string("attribute ") + name + " has " + std::to_string(got) +
+                       " values (accepted: " + std::to_string(count) + ")");
+    }
+    if (H5Aread(a, mem_type, out) < 0)
+      fail(object, std::string("attribute ") + name + " cannot be read");
+  }
+
+  void read_root(Bed& bed) const {
+    const std::string format = string_attr(file_, "/", "format");
+    if (format != "powderbed.bed")
+      fail("/", "format is '" + format + "' (accepted: powderbed.bed)");
+    int version = 0;
+    numeric_attr(file_, "/", "version", H5T_NATIVE_INT, &version, 1);
+    if (version > kBedFormatVersion) {
+      fail("/", "format version " + std::to_string(version) +
+                    " is newer than this reader (accepted: " + std::to_string(kBedFormatVersion) +
+                    "; update powderbed)");
+    }
+    if (version < 1) {
+      fail("/", "format version " + std::to_string(version) +
+                    " (accepted: " + std::to_string(kBedFormatVersion) + ")");
+    }
+    numeric_attr(file_, "/", "dimension", H5T_NATIVE_INT, &bed.domain.dimension, 1);
+    if (has_attr(file_, "length_unit")) {
+      const std::string unit = string_attr(file_, "/", "length_unit");
+      if (unit != "m") fail("/", "length_unit is '" + unit + "' (accepted: m)");
+    }
+    Provenance& p = bed.provenance;
+    if (has_attr(file_, "created_by")) p.created_by = string_attr(file_, "/", "created_by");
+    if (has_attr(file_, "command_line")) p.command_line = string_attr(file_, "/", "command_line");
+    if (has_attr(file_, "rng_seed"))
+      numeric_attr(file_, "/", "rng_seed", H5T_NATIVE_UINT64, &p.rng_seed, 1);
+  }
+
+  void read_domain(Domain& d) const {
+    H5Group g = group("domain");
+    numeric_attr(g, "/domain", "lower", H5T_NATIVE_DOUBLE, d.lower.data(), 3);
+    numeric_attr(g, "/domain", "upper", H5T_NATIVE_DOUBLE, d.upper.data(), 3);
+    if (has_attr(g, "periodic")) {
+      std::array<std::uint8_t, 3> periodic{};
+      numeric_attr(g, "/domain", "periodic", H5T_NATIVE_UINT8, periodic.data(), 3);
+      for (int a = 0; a < 3; ++a) {
+        if (periodic[a] > 1) {
+          fail("/domain", std::string("periodic[") + std::to_string(a) + "] is " +
+                              std::to_string(periodic[a]) + " (accepted: 0 or 1)");
+        }
+        d.periodic[a] = periodic[a] == 1;
+      }
+    }
+    d.validate((path_ + ": /domain").c_str());
+  }
+
+  // Dataset /particles/<name> of `rows` x `cols` (cols 0: one-dimensional; rows < 0: any, taken
+  // from the file) read in one H5Dread, converted to `mem_type`. Returns false when `optional`
+  // and absent.
+  template <class T>
+  bool dataset(hid_t particles, const char* name, H5T_class_t cls, hid_t mem_type, bool optional,
+               hssize_t& rows, hsize_t cols, std::vector<T>& out) const {
+    const std::string object = std::string("/particles/") + name;
+    if (H5Lexists(particles, name, H5P_DEFAULT) <= 0) {
+      if (optional) return false;
+      fail(object, "missing (required dataset)");
+    }
+    H5Dataset set(H5Dopen2(particles, name, H5P_DEFAULT));
+    if (!set.valid()) fail(object, "is not a dataset");
+    H5Type type(H5Dget_type(set));
+    if (H5Tget_class(type) != cls)
+      fail(object, cls == H5T_FLOAT ? "is not floating point" : "is not integer");
+    H5Space space(H5Dget_space(set));
+    const int rank = H5Sget_simple_extent_ndims(space);
+    hsize_t dims[2] = {0, 0};
+    if (rank == 1 || rank == 2) H5Sget_simple_extent_dims(space, dims, nullptr);
+    const int want_rank = cols == 0 ? 1 : 2;
+    if (rank != want_rank || (rank == 2 && dims[1] != cols)) {
+      std::ostringstream msg;
+      msg << "wrong shape (rank " << rank;
+      if (rank == 2) msg << ", " << dims[0] << " x " << dims[1];
+      msg << "; accepted: " << (cols == 0 ? "N" : "N x 3") << ")";
+      fail(object, msg.str());
+    }
+    if (rows < 0) {
+      rows = static_cast<hssize_t>(dims[0]);
+    } else if (dims[0] != static_cast<hsize_t>(rows)) {
+      fail(object, "has " + std::to_string(dims[0]) + " rows but /particles/position has " +
+                       std::to_string(rows) + " (accepted: one per particle)");
+    }
+    out.resize(dims[0] * (cols == 0 ? 1 : cols));
+    if (!out.empty() && H5Dread(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+      fail(object, "cannot be read (damaged file?)");
+    return true;
+  }
+
+  void read_particles(Bed& bed) const {
+    H5Group g = group("particles");
+    hssize_t n = -1;
+    std::vector<double> rows;
+    dataset(g, "position", H5T_FLOAT, H5T_NATIVE_DOUBLE, false, n, 3, rows);
+    split(rows, bed.x, bed.y, bed.z);
+    dataset(g, "radius", H5T_FLOAT, H5T_NATIVE_DOUBLE, false, n, 0, bed.radius);
+    dataset(g, "id", H5T_INTEGER, H5T_NATIVE_UINT64, false, n, 0, bed.id);
+    dataset(g, "material", H5T_INTEGER, H5T_NATIVE_UINT16, true, n, 0, bed.material);
+    if (dataset(g, "velocity", H5T_FLOAT, H5T_NATIVE_DOUBLE, true, n, 3, rows))
+      split(rows, bed.vx, bed.vy, bed.vz);
+    dataset(g, "temperature", H5T_FLOAT, H5T_NATIVE_DOUBLE, true, n, 0, bed.temperature);
+    dataset(g, "phase", H5T_INTEGER, H5T_NATIVE_UINT8, true, n, 0, bed.phase);
+  }
+
+  void read_provenance(Provenance& p) const {
+    if (H5Lexists(file_, "provenance", H5P_DEFAULT) <= 0) return;  // optional group
+    H5Group g = group("provenance");
+    if (has_attr(g, "stage")) p.stage = string_attr(g, "/provenance", "stage");
+    if (has_attr(g, "scene")) p.scene = string_attr(g, "/provenance", "scene");
+  }
+
+  // N x 3 rows -> structure of arrays.
+  static void split(const std::vector<double>& rows, std::vector<double>& a,
+                    std::vector<double>& b, std::vector<double>& c) {
+    const std::size_t n = rows.size() / 3;
+    a.resize(n);
+    b.resize(n);
+    c.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      a[i] = rows[3 * i];
+      b[i] = rows[3 * i + 1];
+      c[i] = rows[3 * i + 2];
+    }
+  }
+
+  std::string path_;
+  H5File file_;
+};
+
+}  // namespace
+
+Bed read_bed_h5(const std::string& path) {
+  detail::silence_hdf5_errors();
+  return H5Reader(path).read();
+}
+
+}  // namespace powderbed::bed

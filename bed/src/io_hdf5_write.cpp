@@ -1,0 +1,159 @@
+// Writer of the HDF5 bed file, format version 1 (DESIGN.md "The bed file"), plus its XDMF sidecar.
+#include <array>
+#include <vector>
+
+#include "io_detail.hpp"
+#include "io_hdf5_handle.hpp"
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/io.hpp"
+
+namespace powderbed::bed {
+
+namespace {
+
+using detail::H5Attr;
+using detail::H5Dataset;
+using detail::H5File;
+using detail::H5Group;
+using detail::H5Space;
+using detail::H5Type;
+
+class H5Writer {
+ public:
+  explicit H5Writer(std::string path) : path_(std::move(path)) {}
+
+  [[noreturn]] void fail(const std::string& object, const std::string& what) const {
+    throw InputError(path_ + ": " + object + ": " + what);
+  }
+
+  // Variable-length UTF-8 string attribute (h5py reads it as str, not bytes).
+  void string_attr(hid_t loc, const std::string& object, const char* name,
+                   const std::string& value) const {
+    H5Type type(H5Tcopy(H5T_C_S1));
+    H5Tset_size(type, H5T_VARIABLE);
+    H5Tset_cset(type, H5T_CSET_UTF8);
+    H5Space space(H5Screate(H5S_SCALAR));
+    H5Attr attr(H5Acreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT));
+    const char* text = value.c_str();
+    if (!attr.valid() || H5Awrite(attr, type, &text) < 0)
+      fail(object, std::string("cannot write attribute ") + name);
+  }
+
+  // Numeric attribute of `count` values (count 1 -> scalar dataspace).
+  void numeric_attr(hid_t loc, const std::string& object, const char* name, hid_t file_type,
+                    hid_t mem_type, const void* data, hsize_t count) const {
+    H5Space space(count == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &count, nullptr));
+    H5Attr attr(H5Acreate2(loc, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT));
+    if (!attr.valid() || H5Awrite(attr, mem_type, data) < 0)
+      fail(object, std::string("cannot write attribute ") + name);
+  }
+
+  // Contiguous dataset of `rows` x `cols` (cols 0 -> one-dimensional), written in one call.
+  void dataset(hid_t group, const char* name, hid_t file_type, hid_t mem_type, const void* data,
+               hsize_t rows, hsize_t cols) const {
+    const std::string object = std::string("/particles/") + name;
+    const hsize_t dims[2] = {rows, cols};
+    H5Space space(H5Screate_simple(cols == 0 ? 1 : 2, dims, nullptr));
+    H5Dataset set(H5Dcreate2(group, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT,
+                             H5P_DEFAULT));
+    if (!set.valid()) fail(object, "cannot create dataset");
+    if (rows > 0 && H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+      fail(object, "cannot write dataset (disk full?)");
+  }
+
+  void write(const Bed& bed, const std::string& file_name) const {
+    H5File file(H5Fcreate(file_name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+    if (!file.valid()) fail("/", "cannot create HDF5 file '" + file_name + "'");
+    write_root(file, bed);
+    write_domain(file, bed.domain);
+    write_particles(file, bed);
+    write_provenance(file, bed.provenance);
+    if (!file.close()) fail("/", "cannot close HDF5 file '" + file_name + "' (disk full?)");
+  }
+
+ private:
+  void write_root(hid_t file, const Bed& bed) const {
+    const int version = kBedFormatVersion;
+    const int dimension = bed.domain.dimension;
+    const std::uint64_t seed = bed.provenance.rng_seed;
+    string_attr(file, "/", "format", "powderbed.bed");
+    numeric_attr(file, "/", "version", H5T_STD_I32LE, H5T_NATIVE_INT, &version, 1);
+    numeric_attr(file, "/", "dimension", H5T_STD_I32LE, H5T_NATIVE_INT, &dimension, 1);
+    string_attr(file, "/", "length_unit", "m");
+    string_attr(file, "/", "created_by", bed.provenance.created_by);
+    string_attr(file, "/", "command_line", bed.provenance.command_line);
+    numeric_attr(file, "/", "rng_seed", H5T_STD_U64LE, H5T_NATIVE_UINT64, &seed, 1);
+  }
+
+  void write_domain(hid_t file, const Domain& d) const {
+    H5Group group(H5Gcreate2(file, "domain", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    if (!group.valid()) fail("/domain", "cannot create group");
+    const std::array<std::uint8_t, 3> periodic = {d.periodic[0], d.periodic[1], d.periodic[2]};
+    numeric_attr(group, "/domain", "lower", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, d.lower.data(), 3);
+    numeric_attr(group, "/domain", "upper", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, d.upper.data(), 3);
+    numeric_attr(group, "/domain", "periodic", H5T_STD_U8LE, H5T_NATIVE_UINT8, periodic.data(),
+                 3);
+  }
+
+  void write_particles(hid_t file, const Bed& bed) const {
+    H5Group group(H5Gcreate2(file, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    if (!group.valid()) fail("/particles", "cannot create group");
+    const hsize_t n = bed.n();
+    std::vector<double> rows = interleave(bed.x, bed.y, bed.z);
+    dataset(group, "position", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows.data(), n, 3);
+    dataset(group, "radius", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, bed.radius.data(), n, 0);
+    dataset(group, "id", H5T_STD_U64LE, H5T_NATIVE_UINT64, bed.id.data(), n, 0);
+    if (!bed.material.empty())
+      dataset(group, "material", H5T_STD_U16LE, H5T_NATIVE_UINT16, bed.material.data(), n, 0);
+    if (bed.has_velocity()) {
+      rows = interleave(bed.vx, bed.vy, bed.vz);
+      dataset(group, "velocity", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows.data(), n, 3);
+    }
+    if (!bed.temperature.empty())
+      dataset(group, "temperature", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, bed.temperature.data(), n,
+              0);
+    if (!bed.phase.empty())
+      dataset(group, "phase", H5T_STD_U8LE, H5T_NATIVE_UINT8, bed.phase.data(), n, 0);
+  }
+
+  void write_provenance(hid_t file, const Provenance& p) const {
+    H5Group group(H5Gcreate2(file, "provenance", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    if (!group.valid()) fail("/provenance", "cannot create group");
+    string_attr(group, "/provenance", "stage", p.stage);
+    string_attr(group, "/provenance", "scene", p.scene);
+  }
+
+  // Structure of arrays -> N x 3 rows.
+  static std::vector<double> interleave(const std::vector<double>& a, const std::vector<double>& b,
+                                        const std::vector<double>& c) {
+    std::vector<double> rows(3 * a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      rows[3 * i] = a[i];
+      rows[3 * i + 1] = b[i];
+      rows[3 * i + 2] = c[i];
+    }
+    return rows;
+  }
+
+  std::string path_;
+};
+
+std::string file_name_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+}  // namespace
+
+void write_bed_h5(const Bed& bed, const std::string& path) {
+  bed.validate(path);
+  detail::silence_hdf5_errors();
+  detail::AtomicFile h5(path);
+  detail::AtomicFile xmf(detail::xdmf_path(path));
+  H5Writer(path).write(bed, h5.temp_path());
+  detail::write_text(xmf.temp_path(), xmf.path(), detail::xdmf_text(bed, file_name_of(path)));
+  h5.commit();
+  xmf.commit();
+}
+
+}  // namespace powderbed::bed
