@@ -1,0 +1,72 @@
+// End-to-end tests of the deposit program: bad input exits 2 with one line; a small run writes
+// a bed and a JSON summary.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "powderbed/bed/bed.hpp"
+#include "powderbed/bed/io.hpp"
+#include "run_command.hpp"
+
+using namespace powderbed;
+
+namespace {
+
+// Two 20 um particles resting 1 um above the floor of a 0.3 mm box.
+std::string small_bed(const std::string& dir) {
+  bed::Bed b;
+  b.domain.upper = {0.3e-3, 0.3e-3, 0.3e-3};
+  b.add(1e-4, 1.5e-4, 21e-6, 20e-6);
+  b.add(2e-4, 1.5e-4, 21e-6, 20e-6);
+  const std::string path = dir + "/in.h5";
+  bed::write_bed_h5(b, path);
+  return path;
+}
+
+}  // namespace
+
+TEST(DepositCli, DtAboveStableBoundExits2WithOneLine) {
+  const std::string dir = test::scratch_dir("deposit_dt");
+  const auto r = test::run_app("deposit", "--in " + small_bed(dir) +
+                                              " --t-end 1e-6 --dt 1e-6 --seed 1 --out " + dir +
+                                              "/out.h5");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("--dt"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::ifstream(dir + "/out.h5").good());  // no partial output
+}
+
+TEST(DepositCli, UnknownEffectAndNegativeDampingExit2) {
+  const std::string dir = test::scratch_dir("deposit_scene");
+  const std::string in = small_bed(dir);
+  {
+    std::ofstream scene(dir + "/bad.ini");
+    scene << "[effects]\nmagnetism = true\n";
+  }
+  auto r = test::run_app("deposit", "--config " + dir + "/bad.ini --in " + in +
+                                        " --t-end 1e-6 --seed 1 --out " + dir + "/out.h5");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  r = test::run_app("deposit", "--in " + in + " --material.damping -0.1 --t-end 1e-6 --seed 1 "
+                                              "--out " + dir + "/out.h5");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("material.damping"), std::string::npos) << r.err;
+}
+
+TEST(DepositCli, SmallRunWritesBedAndJson) {
+  const std::string dir = test::scratch_dir("deposit_run");
+  const auto r = test::run_app("deposit", "--in " + small_bed(dir) +
+                                              " --young-scale 1e3 --t-end 1e-4 --seed 1 --json "
+                                              "--out " + dir + "/out.h5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* key : {"\"n\":2", "\"steps\"", "\"sim_time\"", "\"wall_time\"",
+                          "\"particle_steps_per_s\"", "\"dt\"", "\"kinetic_energy\"",
+                          "\"max_overlap\"", "\"lost\":0"}) {
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
+  }
+  const bed::Bed out = bed::read_bed_h5(dir + "/out.h5");
+  EXPECT_EQ(out.n(), 2u);
+  EXPECT_TRUE(out.has_velocity());
+  EXPECT_LT(out.z[0], 21e-6);  // it fell onto the floor
+}
