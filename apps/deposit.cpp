@@ -1,0 +1,284 @@
+// deposit: DEM drop deposition (SPEC.md §4). Particles come from a PSD (placed without overlap
+// in the insertion region by packgen's 0-contact packing) or from a bed file, fall under the
+// scene's effects and settle; the settled bed is written with velocities.
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "common/app_main.hpp"
+#include "common/options.hpp"
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/io.hpp"
+#include "powderbed/bed/json.hpp"
+#include "powderbed/bed/psd.hpp"
+#include "powderbed/dem/scene.hpp"
+#include "powderbed/dem/solver.hpp"
+#include "powderbed/dem/time_step.hpp"
+#include "powderbed/packgen/pack.hpp"
+
+namespace {
+
+using namespace powderbed;
+namespace po = app::po;
+
+const char* const kUsage =
+    "deposit [--config SCENE.ini] [--in BED.h5 | --psd SPEC --count N] --domain LX,LY,LZ "
+    "[--insert-z Z0,Z1] [--t-end T | --until-rest] [--dt DT] [--unsafe-dt] "
+    "[--integrator verlet|rk4] [--young-scale S] --seed S --out BED.h5 "
+    "[--trajectory RUN.h5 --every K] [--json]";
+
+void add_options(po::options_description& desc) {
+  app::add_common_options(desc);
+  const dem::Scene d;
+  desc.add_options()
+      ("in", po::value<std::string>(), "start from this bed (HDF5, CSV needs --domain)")
+      ("psd", po::value<std::string>(), "particle size distribution (see bed/psd.hpp syntax), m")
+      ("count", po::value<std::size_t>(), "number of particles to insert from --psd")
+      ("domain", po::value<std::string>(), "box LX,LY,LZ (m), floor at z = 0")
+      ("periodic", po::value<std::string>()->default_value("none"),
+       "periodic axes: none, x, y or x,y")
+      ("insert-z", po::value<std::string>(), "insertion region Z0,Z1 (m); default: the whole box")
+      ("t-end", po::value<double>(), "simulated time (s); with --until-rest the cap (default 1 s)")
+      ("until-rest", po::bool_switch(), "stop when the bed is at rest (rest.speed, rest.window)")
+      ("rest.speed", po::value<double>()->default_value(1e-4),
+       "rest: largest speed below this (m/s)")
+      ("rest.window", po::value<double>()->default_value(1e-3),
+       "rest: for this long (s of simulated time)")
+      ("dt", po::value<double>(), "time step (s); default 0.2 x the Rayleigh step of the smallest "
+                                  "particle (or the drag relaxation time when shorter)")
+      ("unsafe-dt", po::bool_switch(), "accept a --dt above the stable bound (with a warning)")
+      ("integrator", po::value<std::string>()->default_value("verlet"), "verlet or rk4")
+      ("young-scale", po::value<double>()->default_value(1.0),
+       "stiffness softening S: E used = E / S (particles and walls)")
+      ("seed", po::value<std::uint64_t>(), "random seed (insertion positions and sizes)")
+      ("threads", po::value<int>()->default_value(0), "OpenMP threads (0: OpenMP's default)")
+      ("out", po::value<std::string>(), "output bed (HDF5 + XDMF sidecar)")
+      ("trajectory", po::value<std::string>(), "HDF5 time series of snapshots (+ .xmf)")
+      ("every", po::value<std::uint64_t>()->default_value(0), "steps between snapshots")
+      ("material.young", po::value<double>()->default_value(d.material.young), "E (Pa)")
+      ("material.poisson", po::value<double>()->default_value(d.material.poisson), "nu")
+      ("material.density", po::value<double>()->default_value(d.material.density), "rho (kg/m^3)")
+      ("material.damping", po::value<double>()->default_value(d.material.damping),
+       "damping ratio zeta in [0, 1]")
+      ("material.friction", po::value<double>()->default_value(d.material.friction),
+       "sliding friction mu_d")
+      ("fluid.viscosity", po::value<double>()->default_value(d.fluid_viscosity), "mu_f (Pa s)")
+      ("wall.young", po::value<double>()->default_value(d.wall.young), "wall E (Pa)")
+      ("wall.poisson", po::value<double>()->default_value(d.wall.poisson), "wall nu")
+      ("gravity", po::value<double>()->default_value(d.gravity), "g (m/s^2)");
+  for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
+    const std::string name = std::string("effects.") + dem::effect_name(bit);
+    desc.add_options()(name.c_str(), po::value<bool>()->default_value(true),
+                       "effect on/off (true/false)");
+  }
+}
+
+template <class T>
+T required(const po::variables_map& vm, const char* name) {
+  if (!vm.count(name)) throw InputError(std::string("--") + name + ": missing (required)");
+  return vm[name].as<T>();
+}
+
+// The resolved configuration as INI text, for the bed's provenance.
+std::string scene_text(const po::variables_map& vm) {
+  std::ostringstream out;
+  out.precision(17);
+  for (const auto& [key, value] : vm) {
+    const auto& v = value.value();
+    out << key << " = ";
+    if (const auto* s = boost::any_cast<std::string>(&v)) out << *s;
+    else if (const auto* d = boost::any_cast<double>(&v)) out << *d;
+    else if (const auto* b = boost::any_cast<bool>(&v)) out << (*b ? "true" : "false");
+    else if (const auto* u = boost::any_cast<std::uint64_t>(&v)) out << *u;
+    else if (const auto* z = boost::any_cast<std::size_t>(&v)) out << *z;
+    else if (const auto* i = boost::any_cast<int>(&v)) out << *i;
+    out << '\n';
+  }
+  return out.str();
+}
+
+bed::Bed insert_from_psd(const po::variables_map& vm, const bed::Domain& domain,
+                         std::uint64_t seed) {
+  const bed::Psd psd = bed::Psd::parse(required<std::string>(vm, "psd"), "--psd");
+  const std::size_t count = required<std::size_t>(vm, "count");
+  if (count == 0) throw InputError("--count: 0 (accepted: N >= 1)");
+  bed::Domain region = domain;
+  if (vm.count("insert-z")) {
+    const auto z = app::parse_number_list(vm["insert-z"].as<std::string>(), 2, 2, "--insert-z");
+    if (!(z[0] >= domain.lower[2] && z[1] <= domain.upper[2] && z[0] < z[1])) {
+      std::ostringstream msg;
+      msg << "--insert-z: " << z[0] << "," << z[1] << " (accepted: " << domain.lower[2]
+          << " <= Z0 < Z1 <= " << domain.upper[2] << ")";
+      throw InputError(msg.str());
+    }
+    region.lower[2] = z[0];
+    region.upper[2] = z[1];
+  }
+  region.periodic = {false, false, false};  // insertion keeps every particle inside the region
+  packgen::PackOptions options;
+  options.phases = {packgen::Phase{0, 1.0}};
+  options.count = count;
+  options.max_failures = 100;
+  packgen::validate(region, psd, options);
+  packgen::PackResult placed = packgen::pack(region, psd, options, seed);
+  if (placed.bed.n() < count) {
+    std::ostringstream msg;
+    msg << "--count: " << count << " particles do not fit the insertion region without overlap ("
+        << placed.bed.n() << " placed by 0-contact packing; accepted: N <= " << placed.bed.n()
+        << ", or a taller --insert-z)";
+    throw InputError(msg.str());
+  }
+  placed.bed.domain = domain;
+  return placed.bed;
+}
+
+// "[#####.....]  45 %  t = 4.5e-02 s  ETA 12 s" on stderr, redrawn in place.
+class ProgressBar {
+ public:
+  void operator()(const dem::Progress& p) {
+    const double fraction = p.t_end > 0 ? std::min(1.0, p.time / p.t_end) : 1.0;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
+    const int filled = static_cast<int>(30 * fraction);
+    std::fprintf(stderr, "\r[%s%s] %3d %%  t = %.3e s  KE = %.2e J  ETA %.0f s ",
+                 std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                 std::string(static_cast<std::size_t>(30 - filled), '.').c_str(),
+                 static_cast<int>(100 * fraction), p.time, p.kinetic_energy, eta);
+    if (fraction >= 1) std::fputc('\n', stderr);
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+int run(int argc, char** argv) {
+  po::options_description desc("deposit options (SI units)");
+  add_options(desc);
+  po::variables_map vm;
+  if (!app::parse_options("deposit", kUsage, desc, {}, argc, argv, vm)) return 0;
+
+  const std::string out = required<std::string>(vm, "out");
+  const auto seed = required<std::uint64_t>(vm, "seed");
+  if (vm.count("in") && vm.count("psd")) {
+    throw InputError("--in and --psd: both given (accepted: one source of particles)");
+  }
+  if (!vm.count("in") && !vm.count("psd")) {
+    throw InputError("--in / --psd: neither given (accepted: --in BED.h5 or --psd SPEC --count N)");
+  }
+
+  bed::Bed bed;
+  if (vm.count("in")) {
+    std::optional<bed::Domain> domain;
+    if (vm.count("domain")) domain = app::parse_domain_lengths(vm["domain"].as<std::string>(), "--domain");
+    bed = bed::read_bed_any(vm["in"].as<std::string>(), domain ? &*domain : nullptr);
+    if (domain) bed.domain = *domain;
+  } else {
+    const bed::Domain domain =
+        app::parse_domain_lengths(required<std::string>(vm, "domain"), "--domain");
+    if (domain.dimension != 3) throw InputError("--domain: 2D box (accepted: LX,LY,LZ)");
+    bed = insert_from_psd(vm, domain, seed);
+  }
+  const std::string periodic = vm["periodic"].as<std::string>();
+  if (periodic == "x" || periodic == "x,y" || periodic == "xy") bed.domain.periodic[0] = true;
+  if (periodic == "y" || periodic == "x,y" || periodic == "xy") bed.domain.periodic[1] = true;
+  if (periodic != "none" && periodic != "x" && periodic != "y" && periodic != "x,y" &&
+      periodic != "xy") {
+    throw InputError("--periodic: '" + periodic + "' (accepted: none, x, y, x,y)");
+  }
+
+  dem::Scene scene;
+  scene.material.young = vm["material.young"].as<double>();
+  scene.material.poisson = vm["material.poisson"].as<double>();
+  scene.material.density = vm["material.density"].as<double>();
+  scene.material.damping = vm["material.damping"].as<double>();
+  scene.material.friction = vm["material.friction"].as<double>();
+  scene.fluid_viscosity = vm["fluid.viscosity"].as<double>();
+  scene.wall.young = vm["wall.young"].as<double>();
+  scene.wall.poisson = vm["wall.poisson"].as<double>();
+  scene.gravity = vm["gravity"].as<double>();
+  scene.effects = 0;
+  for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
+    if (vm[std::string("effects.") + dem::effect_name(bit)].as<bool>()) scene.effects |= bit;
+  }
+
+  dem::RunSettings s;
+  s.integrator = dem::parse_integrator(vm["integrator"].as<std::string>());
+  s.young_scale = vm["young-scale"].as<double>();
+  s.until_rest = vm["until-rest"].as<bool>();
+  if (vm.count("t-end")) s.t_end = vm["t-end"].as<double>();
+  if (!s.until_rest && !vm.count("t-end")) {
+    throw InputError("--t-end: missing (accepted: --t-end T or --until-rest)");
+  }
+  s.rest.max_speed = vm["rest.speed"].as<double>();
+  s.rest.window = vm["rest.window"].as<double>();
+  if (vm.count("dt")) {
+    s.dt = vm["dt"].as<double>();
+    if (!(s.dt > 0)) throw InputError("--dt: " + std::to_string(s.dt) + " (accepted: dt > 0 s)");
+  }
+  s.unsafe_dt = vm["unsafe-dt"].as<bool>();
+  s.threads = vm["threads"].as<int>();
+  if (vm.count("trajectory")) {
+    s.trajectory = vm["trajectory"].as<std::string>();
+    s.trajectory_every = vm["every"].as<std::uint64_t>();
+    if (s.trajectory_every == 0) throw InputError("--every: missing or 0 with --trajectory (accepted: K >= 1)");
+  }
+  if (s.unsafe_dt && s.dt > 0) {
+    scene.validate();
+    const auto bound = dem::time_step_bound(bed, scene, s.young_scale);
+    if (s.dt > bound.stable) {
+      std::cerr << "deposit: warning: --dt " << s.dt << " s is above the stable bound "
+                << bound.stable << " s (--unsafe-dt)\n";
+    }
+  }
+  ProgressBar bar;
+  if (::isatty(STDERR_FILENO)) s.progress = std::ref(bar);
+
+  const dem::RunSummary r = dem::run_deposition(bed, scene, s);
+  const std::size_t removed = dem::remove_lost_particles(bed);
+
+  bed.provenance.created_by = app::version_string("deposit");
+  bed.provenance.command_line = app::command_line(argc, argv);
+  bed.provenance.rng_seed = seed;
+  bed.provenance.stage = "deposit";
+  bed.provenance.scene = scene_text(vm);
+  bed::write_bed_h5(bed, out);
+
+  if (vm.count("json")) {
+    bed::JsonWriter j;
+    j.begin_object()
+        .value("n", static_cast<std::uint64_t>(bed.n()))
+        .value("steps", r.steps)
+        .value("sim_time", r.sim_time)
+        .value("wall_time", r.wall_time)
+        .value("particle_steps_per_s", r.particle_steps_per_s)
+        .value("dt", r.dt)
+        .value("dt_stable", r.dt_stable)
+        .value("integrator", vm["integrator"].as<std::string>())
+        .value("young_scale", s.young_scale)
+        .value("kinetic_energy", r.kinetic_energy)
+        .value("max_speed", r.max_speed)
+        .value("max_overlap", r.max_overlap)
+        .value("max_overlap_m", r.max_overlap_m)
+        .value("max_overlap_full_stiffness", r.max_overlap_full_stiffness)
+        .value("lost", static_cast<std::uint64_t>(removed))
+        .value("at_rest", r.at_rest)
+        .value("neighbour_rebuilds", r.neighbour_rebuilds)
+        .value("out", out)
+        .end_object();
+    std::cout << j.str() << '\n';
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return app::run_app("deposit", argc, argv, [&] { return run(argc, argv); });
+}

@@ -1,0 +1,31 @@
+#pragma once
+// Quantities computed from a bed's state with the scene's laws: energies, wall forces,
+// overlaps. Used by tests (energy conservation, floor force) and the run summary.
+#include <array>
+
+#include "powderbed/bed/bed.hpp"
+#include "powderbed/dem/scene.hpp"
+
+namespace powderbed::dem {
+
+struct Energy {
+  double kinetic = 0;        // sum 1/2 m v^2
+  double gravitational = 0;  // sum m g (z - z_floor), when gravity is on
+  double elastic = 0;        // Hertz contact energy of pairs (hertz on) and walls (walls on)
+  double total() const { return kinetic + gravitational + elastic; }
+};
+Energy energy(const bed::Bed& bed, const Scene& scene, double young_scale = 1);
+
+// Total normal force (N, >= 0) each box face exerts on the particles, elastic plus damping
+// (with the bed's velocities), indexed 2*axis + (0 lower face, 1 upper face). Faces on periodic
+// axes give 0.
+std::array<double, 6> wall_forces(const bed::Bed& bed, const Scene& scene, double young_scale = 1);
+
+struct Overlap {
+  double relative = 0;  // largest overlap / smaller radius of the pair (radius for walls)
+  double absolute = 0;  // m
+};
+// Largest overlap among particle pairs and (walls on) particle–wall contacts.
+Overlap max_overlap(const bed::Bed& bed, const Scene& scene);
+
+}  // namespace powderbed::dem

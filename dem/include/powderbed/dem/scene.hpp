@@ -1,0 +1,51 @@
+#pragma once
+// What a deposition scene specifies (SPEC.md §4): materials, fluid, gravity and the set of
+// physical effects switched on. The solver composes the chosen effects once, at start.
+#include <string>
+
+namespace powderbed::dem {
+
+// Particle material (one material for all particles). Defaults: 316L of [GZ] Table 2.
+struct Material {
+  double young = 193e9;    // E, Pa
+  double poisson = 0.26;   // nu
+  double density = 7952;   // rho, kg/m^3
+  double damping = 0.1;    // zeta (0 elastic, 1 critical), particle–particle and particle–wall
+  double friction = 0.1;   // mu_d, particle–particle and particle–wall
+};
+
+struct WallMaterial {
+  double young = 193e9;   // Pa
+  double poisson = 0.26;
+};
+
+// The effects of DESIGN.md "Effects a scene calls for", one bit each.
+enum Effect : unsigned {
+  kGravity = 1u << 0,
+  kHertz = 1u << 1,     // particle–particle Hertz contact
+  kDamping = 1u << 2,   // zeta damping of every Hertz contact (particle and wall)
+  kFriction = 1u << 3,  // sliding friction of every Hertz contact (particle and wall)
+  kDrag = 1u << 4,      // Stokes drag
+  kWalls = 1u << 5,     // Hertz contact with the box faces that are not periodic
+};
+constexpr unsigned kAllEffects = 0x3fu;
+constexpr unsigned kEffectCount = 6;
+
+// Scene name of one effect bit ("gravity", "hertz", ...), as in the scene's [effects] section.
+const char* effect_name(unsigned effect);
+
+struct Scene {
+  Material material;
+  WallMaterial wall;
+  double fluid_viscosity = 2.1e-5;  // mu_f, Pa s (argon at 293 K, [GZ] Table 2)
+  double gravity = 9.81;            // g, m/s^2
+  unsigned effects = kAllEffects;
+
+  bool has(unsigned effect) const { return (effects & effect) != 0; }
+  // Throws InputError (naming the scene field, the value and the accepted range) for
+  // non-positive E, rho, viscosity (when drag is on); nu outside [0, 0.5); zeta outside [0, 1];
+  // negative mu_d or g; damping or friction switched on with neither hertz nor walls.
+  void validate() const;
+};
+
+}  // namespace powderbed::dem

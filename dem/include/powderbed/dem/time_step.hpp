@@ -1,0 +1,31 @@
+#pragma once
+// Stable time step of a deposition (SPEC.md §4, DESIGN.md "Numerical stability").
+#include "powderbed/bed/bed.hpp"
+#include "powderbed/dem/scene.hpp"
+
+namespace powderbed::dem {
+
+// Rayleigh time step t_R = pi r sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu))
+// (SPEC §4).
+double rayleigh_time_step(double radius, double density, double young, double poisson);
+
+// The default step is this fraction of the stable bound. The Rayleigh step is near the
+// explicit limit: at t_R a Hertz pair of equal spheres overlapped by 1 % of a radius has
+// omega dt ~ 1 (velocity Verlet diverges at omega dt = 2, RK4 at 2.83), so 0.2 keeps about
+// 30 steps per contact oscillation, enough for the contact time within 1 %.
+constexpr double kTimeStepSafety = 0.2;
+
+struct TimeStepBound {
+  double stable = 0;       // largest accepted --dt (without --unsafe-dt), s
+  double recommended = 0;  // kTimeStepSafety * stable, the default, s
+  const char* limited_by = "none";  // "rayleigh" (contact), "drag" (Stokes relaxation), "none"
+};
+
+// Bound for the bed's smallest particle with E / young_scale for particle and wall:
+// min over the effects that are on of t_R (hertz or walls; the wall's E when it is softer)
+// and the Stokes relaxation time m / (6 pi mu_f r) (drag; velocity Verlet on a linear drag is
+// stable below twice that). Both are +inf when no effect bounds the step (hertz, walls and
+// drag off: then dt must be given). Throws InputError for an empty bed or young_scale <= 0.
+TimeStepBound time_step_bound(const bed::Bed& bed, const Scene& scene, double young_scale);
+
+}  // namespace powderbed::dem

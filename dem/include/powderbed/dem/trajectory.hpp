@@ -1,0 +1,36 @@
+#pragma once
+// Trajectory snapshots: an HDF5 time series plus an XDMF temporal collection (ParaView opens
+// the .xmf as an animation). Layout:
+//   /              attrs format = "powderbed.trajectory", version = 1, n
+//   /radius        float64 N   (shared by every step)
+//   /id            uint64  N
+//   /steps/<k>     group per snapshot, attr time (s), attr step; datasets position N×3,
+//                  velocity N×3
+// The file is written under a temporary name and renamed on close(), so an interrupted run
+// leaves no half trajectory under the requested name.
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "powderbed/bed/bed.hpp"
+
+namespace powderbed::dem {
+
+class TrajectoryWriter {
+ public:
+  // Throws InputError naming the path when the file cannot be created.
+  TrajectoryWriter(const std::string& path, const bed::Bed& bed);
+  ~TrajectoryWriter();
+  TrajectoryWriter(const TrajectoryWriter&) = delete;
+  TrajectoryWriter& operator=(const TrajectoryWriter&) = delete;
+
+  void write(std::uint64_t step, double time, const bed::Bed& bed);
+  // Closes the HDF5 file, renames it into place and writes `<path without .h5>.xmf`.
+  void close();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace powderbed::dem

@@ -1,0 +1,39 @@
+#pragma once
+// The simulation box as the inner loops see it: lower corner, lengths, periodic flags, and the
+// minimum-image convention on periodic axes.
+#include <cmath>
+
+#include "powderbed/bed/domain.hpp"
+
+namespace powderbed::dem::detail {
+
+struct Box {
+  double lower[3] = {0, 0, 0};
+  double upper[3] = {0, 0, 0};
+  double length[3] = {0, 0, 0};
+  bool periodic[3] = {false, false, false};
+
+  static Box from(const bed::Domain& d) {
+    Box b;
+    for (int a = 0; a < 3; ++a) {
+      b.lower[a] = d.lower[a];
+      b.upper[a] = d.upper[a];
+      b.length[a] = d.upper[a] - d.lower[a];
+      b.periodic[a] = d.periodic[a];
+    }
+    return b;
+  }
+  // Separation along `axis` under the minimum image on a periodic axis.
+  double image(int axis, double delta) const {
+    return periodic[axis] ? delta - length[axis] * std::nearbyint(delta / length[axis]) : delta;
+  }
+  // Coordinate wrapped into [lower, upper) on a periodic axis.
+  double wrap(int axis, double v) const {
+    if (!periodic[axis]) return v;
+    if (v < lower[axis]) return v + length[axis];
+    if (v >= upper[axis]) return v - length[axis];
+    return v;
+  }
+};
+
+}  // namespace powderbed::dem::detail

@@ -1,0 +1,59 @@
+#include "powderbed/dem/scene.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "powderbed/bed/errors.hpp"
+
+namespace powderbed::dem {
+
+const char* effect_name(unsigned effect) {
+  switch (effect) {
+    case kGravity: return "gravity";
+    case kHertz: return "hertz";
+    case kDamping: return "damping";
+    case kFriction: return "friction";
+    case kDrag: return "drag";
+    case kWalls: return "walls";
+    default: return "unknown";
+  }
+}
+
+namespace {
+
+void require(bool ok, const char* field, double value, const char* accepted) {
+  if (ok) return;
+  std::ostringstream msg;
+  msg << field << ": " << value << " is out of range (accepted: " << accepted << ")";
+  throw InputError(msg.str());
+}
+
+}  // namespace
+
+void Scene::validate() const {
+  const auto finite_positive = [](double v) { return std::isfinite(v) && v > 0; };
+  require(finite_positive(material.young), "material.young", material.young, "E > 0 Pa");
+  require(material.poisson >= 0 && material.poisson < 0.5, "material.poisson", material.poisson,
+          "0 <= nu < 0.5");
+  require(finite_positive(material.density), "material.density", material.density,
+          "rho > 0 kg/m^3");
+  // The stable step (time_step.hpp) is derived for at most critical damping.
+  require(material.damping >= 0 && material.damping <= 1, "material.damping", material.damping,
+          "0 <= zeta <= 1");
+  require(material.friction >= 0 && std::isfinite(material.friction), "material.friction",
+          material.friction, "mu_d >= 0");
+  require(finite_positive(wall.young), "wall.young", wall.young, "E > 0 Pa");
+  require(wall.poisson >= 0 && wall.poisson < 0.5, "wall.poisson", wall.poisson, "0 <= nu < 0.5");
+  require(gravity >= 0 && std::isfinite(gravity), "gravity", gravity, "g >= 0 m/s^2");
+  if (has(kDrag)) {
+    require(finite_positive(fluid_viscosity), "fluid.viscosity", fluid_viscosity,
+            "mu_f > 0 Pa s when drag is on");
+  }
+  if ((has(kDamping) || has(kFriction)) && !has(kHertz) && !has(kWalls)) {
+    throw InputError(std::string("effects.") + (has(kDamping) ? "damping" : "friction") +
+                     ": on without a contact to act on (accepted: with effects.hertz or "
+                     "effects.walls on)");
+  }
+}
+
+}  // namespace powderbed::dem

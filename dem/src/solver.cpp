@@ -1,0 +1,454 @@
+// The deposition run of SPEC.md §4: set-up, the once-only dispatch to a loop specialised for the
+// scene's effects, velocity Verlet and classic RK4 steps, rest detection, snapshots.
+#include "powderbed/dem/solver.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <utility>
+
+#include "forces.hpp"
+#include "parallel.hpp"
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/dem/diagnostics.hpp"
+#include "powderbed/dem/stokes_drag.hpp"
+#include "powderbed/dem/time_step.hpp"
+#include "powderbed/dem/trajectory.hpp"
+
+namespace powderbed::dem {
+
+Integrator parse_integrator(const std::string& text, const std::string& option) {
+  if (text == "verlet") return Integrator::verlet;
+  if (text == "rk4") return Integrator::rk4;
+  throw InputError(option + ": '" + text + "' is not an integrator (accepted: verlet, rk4)");
+}
+
+std::size_t remove_lost_particles(bed::Bed& bed) {
+  const detail::Box box = detail::Box::from(bed.domain);
+  std::size_t kept = 0;
+  const bool vel = bed.has_velocity();
+  const bool mat = !bed.material.empty(), temp = !bed.temperature.empty(),
+             phase = !bed.phase.empty();
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    const double p[3] = {bed.x[i], bed.y[i], bed.z[i]};
+    bool inside = true;
+    for (int a = 0; a < 3; ++a) {
+      inside = inside && (box.periodic[a] || (p[a] >= box.lower[a] && p[a] <= box.upper[a]));
+    }
+    if (!inside) continue;
+    bed.x[kept] = bed.x[i];
+    bed.y[kept] = bed.y[i];
+    bed.z[kept] = bed.z[i];
+    bed.radius[kept] = bed.radius[i];
+    bed.id[kept] = bed.id[i];
+    if (vel) {
+      bed.vx[kept] = bed.vx[i];
+      bed.vy[kept] = bed.vy[i];
+      bed.vz[kept] = bed.vz[i];
+    }
+    if (mat) bed.material[kept] = bed.material[i];
+    if (temp) bed.temperature[kept] = bed.temperature[i];
+    if (phase) bed.phase[kept] = bed.phase[i];
+    ++kept;
+  }
+  const std::size_t removed = bed.n() - kept;
+  for (auto* v : {&bed.x, &bed.y, &bed.z, &bed.radius}) v->resize(kept);
+  bed.id.resize(kept);
+  if (vel) {
+    bed.vx.resize(kept);
+    bed.vy.resize(kept);
+    bed.vz.resize(kept);
+  }
+  if (mat) bed.material.resize(kept);
+  if (temp) bed.temperature.resize(kept);
+  if (phase) bed.phase.resize(kept);
+  return removed;
+}
+
+namespace {
+
+using detail::Box;
+using detail::ForceArrays;
+using detail::ForceParams;
+using detail::NeighbourList;
+using detail::ParticleView;
+
+// Everything one run owns; the bed's own x, y, z, vx, vy, vz arrays are the state.
+struct Context {
+  Context(bed::Bed& b, const RunSettings& s) : bed(b), settings(s) {}
+  bed::Bed& bed;
+  const RunSettings& settings;
+  std::size_t n = 0;
+  int threads = 1;
+  double dt = 0;
+  ForceParams params;
+  std::vector<double> mass, inv_mass, drag, fx, fy, fz;
+  // RK4: state at the start of the step and the weighted sums of the stage derivatives.
+  std::vector<double> x0, y0, z0, u0, v0, w0, sx, sy, sz, su, sv, sw;
+  NeighbourList list;
+  std::uint64_t rebuilds = 0;
+
+  ParticleView view() const { return {bed.x.data(), bed.y.data(), bed.z.data(), bed.radius.data(), n}; }
+  ForceArrays arrays() {
+    return {bed.x.data(), bed.y.data(), bed.z.data(), bed.vx.data(), bed.vy.data(),
+            bed.vz.data(), bed.radius.data(), mass.data(), drag.data(), fx.data(),
+            fy.data(),     fz.data(),     n};
+  }
+  void rebuild_if_needed() {
+    const double half = 0.5 * list.skin();
+    if (list.max_displacement2(view(), threads) > half * half) {
+      list.build(view(), threads);
+      ++rebuilds;
+    }
+  }
+};
+
+// Serial scan (O(N), small beside the force loop) so the first bad particle is reported.
+void check_finite(const Context& c, std::uint64_t step) {
+  const bed::Bed& b = c.bed;
+  for (std::size_t i = 0; i < c.n; ++i) {
+    if (std::isfinite(b.x[i] + b.y[i] + b.z[i] + b.vx[i] + b.vy[i] + b.vz[i])) continue;
+    std::ostringstream msg;
+    msg << "particle id " << b.id[i] << " (index " << i << ") has a non-finite position or "
+        << "velocity at step " << step << " (t = " << static_cast<double>(step) * c.dt
+        << " s); try a smaller --dt";
+    throw NumericalError(msg.str());
+  }
+}
+
+// Velocity Verlet (kick–drift–kick); velocity-dependent forces see the half-step velocity.
+template <unsigned E>
+void step_verlet(Context& c, std::uint64_t step) {
+  const double dt = c.dt, half = 0.5 * c.dt;
+  bed::Bed& b = c.bed;
+  const Box& box = c.params.box;
+  detail::for_each_particle(c.n, c.threads, [&](std::size_t i) {
+    b.vx[i] += half * c.fx[i] * c.inv_mass[i];
+    b.vy[i] += half * c.fy[i] * c.inv_mass[i];
+    b.vz[i] += half * c.fz[i] * c.inv_mass[i];
+    b.x[i] = box.wrap(0, b.x[i] + dt * b.vx[i]);
+    b.y[i] = box.wrap(1, b.y[i] + dt * b.vy[i]);
+    b.z[i] = box.wrap(2, b.z[i] + dt * b.vz[i]);
+  });
+  c.rebuild_if_needed();
+  detail::compute_forces<E>(c.arrays(), c.params, c.list, c.threads);
+  detail::for_each_particle(c.n, c.threads, [&](std::size_t i) {
+    b.vx[i] += half * c.fx[i] * c.inv_mass[i];
+    b.vy[i] += half * c.fy[i] * c.inv_mass[i];
+    b.vz[i] += half * c.fz[i] * c.inv_mass[i];
+  });
+  check_finite(c, step);
+}
+
+// Classic RK4 on (x, v) ([GZ]); four force evaluations per step on the same neighbour list
+// (stage positions stay within one step's travel, well inside the skin).
+template <unsigned E>
+void step_rk4(Context& c, std::uint64_t step) {
+  const double dt = c.dt;
+  bed::Bed& b = c.bed;
+  const Box& box = c.params.box;
+  c.rebuild_if_needed();
+  detail::for_each_particle(c.n, c.threads, [&](std::size_t i) {
+    c.x0[i] = b.x[i];
+    c.y0[i] = b.y[i];
+    c.z0[i] = b.z[i];
+    c.u0[i] = b.vx[i];
+    c.v0[i] = b.vy[i];
+    c.w0[i] = b.vz[i];
+  });
+  // Stage k: derivative (v, F/m) at the current stage state in the bed arrays; weights 1,2,2,1.
+  for (int stage = 0; stage < 4; ++stage) {
+    detail::compute_forces<E>(c.arrays(), c.params, c.list, c.threads);
+    const double weight = (stage == 0 || stage == 3) ? 1.0 : 2.0;
+    const double next = stage < 2 ? 0.5 * dt : dt;  // offset of the next stage
+    detail::for_each_particle(c.n, c.threads, [&](std::size_t i) {
+      const double ax = c.fx[i] * c.inv_mass[i], ay = c.fy[i] * c.inv_mass[i],
+                   az = c.fz[i] * c.inv_mass[i];
+      if (stage == 0) {
+        c.sx[i] = b.vx[i];
+        c.sy[i] = b.vy[i];
+        c.sz[i] = b.vz[i];
+        c.su[i] = ax;
+        c.sv[i] = ay;
+        c.sw[i] = az;
+      } else {
+        c.sx[i] += weight * b.vx[i];
+        c.sy[i] += weight * b.vy[i];
+        c.sz[i] += weight * b.vz[i];
+        c.su[i] += weight * ax;
+        c.sv[i] += weight * ay;
+        c.sw[i] += weight * az;
+      }
+      if (stage < 3) {
+        b.x[i] = c.x0[i] + next * b.vx[i];
+        b.y[i] = c.y0[i] + next * b.vy[i];
+        b.z[i] = c.z0[i] + next * b.vz[i];
+        b.vx[i] = c.u0[i] + next * ax;
+        b.vy[i] = c.v0[i] + next * ay;
+        b.vz[i] = c.w0[i] + next * az;
+      }
+    });
+  }
+  const double sixth = dt / 6.0;
+  detail::for_each_particle(c.n, c.threads, [&](std::size_t i) {
+    b.x[i] = box.wrap(0, c.x0[i] + sixth * c.sx[i]);
+    b.y[i] = box.wrap(1, c.y0[i] + sixth * c.sy[i]);
+    b.z[i] = box.wrap(2, c.z0[i] + sixth * c.sz[i]);
+    b.vx[i] = c.u0[i] + sixth * c.su[i];
+    b.vy[i] = c.v0[i] + sixth * c.sv[i];
+    b.vz[i] = c.w0[i] + sixth * c.sw[i];
+  });
+  check_finite(c, step);
+}
+
+using StepFn = void (*)(Context&, std::uint64_t);
+
+struct Steppers {
+  StepFn step;
+  void (*forces)(const ForceArrays&, const ForceParams&, const NeighbourList&, int);
+};
+
+template <unsigned E>
+Steppers steppers_for(Integrator integrator) {
+  return {integrator == Integrator::rk4 ? &step_rk4<E> : &step_verlet<E>,
+          &detail::compute_forces<E>};
+}
+
+// The once-only dispatch: a table of the 64 effect sets, each a specialised loop.
+template <std::size_t... Masks>
+Steppers dispatch(unsigned effects, Integrator integrator, std::index_sequence<Masks...>) {
+  using Maker = Steppers (*)(Integrator);
+  static constexpr std::array<Maker, sizeof...(Masks)> table{
+      &steppers_for<static_cast<unsigned>(Masks)>...};
+  return table[effects](integrator);
+}
+
+// Serial sums, so that the rest test (and hence the run length) cannot depend on threads.
+void kinetic_state(const Context& c, double& energy, double& max_speed) {
+  energy = 0;
+  double max2 = 0;
+  for (std::size_t i = 0; i < c.n; ++i) {
+    const double v2 =
+        c.bed.vx[i] * c.bed.vx[i] + c.bed.vy[i] * c.bed.vy[i] + c.bed.vz[i] * c.bed.vz[i];
+    energy += 0.5 * c.mass[i] * v2;
+    max2 = std::max(max2, v2);
+  }
+  max_speed = std::sqrt(max2);
+}
+
+void check_inputs(const bed::Bed& bed, const RunSettings& s) {
+  if (bed.domain.dimension != 3) {
+    throw InputError("deposit: the bed is 2D (accepted: 3D beds only)");
+  }
+  if (bed.domain.periodic[2]) {
+    throw InputError("--periodic: z cannot be periodic (accepted: x, y; gravity acts along z)");
+  }
+  const double lo[3] = {bed.domain.lower[0], bed.domain.lower[1], bed.domain.lower[2]};
+  const double hi[3] = {bed.domain.upper[0], bed.domain.upper[1], bed.domain.upper[2]};
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    const double p[3] = {bed.x[i], bed.y[i], bed.z[i]};
+    for (int a = 0; a < 3; ++a) {
+      if (p[a] < lo[a] || p[a] > hi[a]) {
+        std::ostringstream msg;
+        msg << "--in: particle id " << bed.id[i] << " has " << "xyz"[a] << " = " << p[a]
+            << " outside the domain [" << lo[a] << ", " << hi[a]
+            << "] (accepted: every centre inside the domain)";
+        throw InputError(msg.str());
+      }
+    }
+  }
+  const auto bad = [](const char* what, double v, const char* accepted) {
+    std::ostringstream msg;
+    msg << what << ": " << v << " is out of range (accepted: " << accepted << ")";
+    throw InputError(msg.str());
+  };
+  if (!(s.t_end >= 0) || !std::isfinite(s.t_end)) bad("--t-end", s.t_end, "T >= 0 s");
+  if (!s.until_rest && !(s.t_end > 0)) bad("--t-end", s.t_end, "T > 0 s, or --until-rest");
+  if (!(s.dt >= 0) || !std::isfinite(s.dt)) bad("--dt", s.dt, "dt > 0 s");
+  if (!(s.skin >= 0) || !std::isfinite(s.skin)) bad("skin", s.skin, ">= 0 m");
+  if (!s.trajectory.empty() && s.trajectory_every == 0) {
+    throw InputError("--every: 0 with --trajectory (accepted: K >= 1 steps)");
+  }
+  if (!(s.rest.max_speed > 0) || !(s.rest.window >= 0) || !(s.rest.kinetic_energy >= 0)) {
+    bad("rest criteria", s.rest.max_speed, "speed > 0, window >= 0, energy >= 0");
+  }
+}
+
+}  // namespace
+
+RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
+  const auto started = std::chrono::steady_clock::now();
+  scene.validate();
+  bed.validate("deposit input bed");
+  check_inputs(bed, settings);
+  const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
+
+  Context c(bed, settings);
+  c.n = bed.n();
+  // Small beds run serially: an OpenMP fork per loop costs microseconds, more than the work.
+  constexpr std::size_t kParallelMin = 256;
+  c.threads = bed.n() < kParallelMin ? 1
+              : settings.threads > 0 ? settings.threads
+                                     : omp_get_max_threads();
+  if (settings.dt > 0) {
+    if (settings.dt > bound.stable && !settings.unsafe_dt) {
+      std::ostringstream msg;
+      msg << "--dt: " << settings.dt << " s is above the stable bound " << bound.stable
+          << " s (" << bound.limited_by << " step of the smallest particle; accepted: dt <= "
+          << bound.stable << " s, or add --unsafe-dt)";
+      throw InputError(msg.str());
+    }
+    c.dt = settings.dt;
+  } else {
+    if (!std::isfinite(bound.recommended)) {
+      throw InputError("--dt: no effect bounds the time step (hertz, walls and drag are off; "
+                       "accepted: give --dt explicitly)");
+    }
+    c.dt = bound.recommended;
+  }
+
+  const Material& mat = scene.material;
+  const double young = mat.young / settings.young_scale;
+  const double wall_young = scene.wall.young / settings.young_scale;
+  c.params.pair = {effective_modulus(young, mat.poisson, young, mat.poisson), mat.damping};
+  c.params.wall = {effective_modulus(young, mat.poisson, wall_young, scene.wall.poisson),
+                   mat.damping};
+  c.params.friction.coefficient = mat.friction;
+  c.params.gravity.acceleration = scene.gravity;
+  c.params.box = Box::from(bed.domain);
+
+  const std::size_t n = c.n;
+  if (!bed.has_velocity()) {
+    bed.vx.assign(n, 0.0);
+    bed.vy.assign(n, 0.0);
+    bed.vz.assign(n, 0.0);
+  }
+  c.mass.resize(n);
+  c.inv_mass.resize(n);
+  c.drag.resize(n);
+  for (auto* v : {&c.fx, &c.fy, &c.fz}) v->assign(n, 0.0);
+  double r_max = 0, total_mass = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double r = bed.radius[i];
+    c.mass[i] = 4.0 / 3.0 * std::numbers::pi * r * r * r * mat.density;
+    c.inv_mass[i] = 1.0 / c.mass[i];
+    c.drag[i] = stokes_drag_coefficient({scene.fluid_viscosity}, r);
+    r_max = std::max(r_max, r);
+    total_mass += c.mass[i];
+  }
+  if (settings.integrator == Integrator::rk4) {
+    for (auto* v : {&c.x0, &c.y0, &c.z0, &c.u0, &c.v0, &c.w0, &c.sx, &c.sy, &c.sz, &c.su, &c.sv,
+                    &c.sw}) {
+      v->assign(n, 0.0);
+    }
+  }
+  const double skin = settings.skin > 0 ? settings.skin : 0.2 * r_max;
+  c.list.configure(c.params.box, r_max, skin, n);
+  c.list.build(c.view(), c.threads);
+
+  const Steppers steppers =
+      dispatch(scene.effects & kAllEffects, settings.integrator, std::make_index_sequence<64>{});
+  steppers.forces(c.arrays(), c.params, c.list, c.threads);  // Verlet needs F(t0)
+
+  const double t_end = settings.t_end > 0 ? settings.t_end : 1.0;
+  const auto total_steps = static_cast<std::uint64_t>(std::ceil(t_end / c.dt - 1e-9));
+  const double rest_energy = settings.rest.kinetic_energy > 0
+                                 ? settings.rest.kinetic_energy
+                                 : 1e-2 * 0.5 * total_mass * settings.rest.max_speed *
+                                       settings.rest.max_speed;
+  // Rest checks: about ten per window (at most every 100 steps), never every step.
+  const auto rest_every = static_cast<std::uint64_t>(
+      std::clamp(std::floor(settings.rest.window / c.dt / 10.0), 1.0, 100.0));
+  const auto window_steps = static_cast<std::uint64_t>(std::ceil(settings.rest.window / c.dt));
+  constexpr std::uint64_t kNotQuiet = ~std::uint64_t{0};
+  std::uint64_t quiet_since = kNotQuiet;  // first step of the current quiet stretch
+
+  std::optional<TrajectoryWriter> trajectory;
+  if (!settings.trajectory.empty()) {
+    trajectory.emplace(settings.trajectory, bed);
+    trajectory->write(0, 0.0, bed);
+  }
+
+  RunSummary summary;
+  std::uint64_t step = 0;
+  while (step < total_steps) {
+    steppers.step(c, step + 1);
+    ++step;
+    const double time = static_cast<double>(step) * c.dt;
+    if (trajectory && step % settings.trajectory_every == 0) trajectory->write(step, time, bed);
+    if (settings.observer && step % settings.observe_every == 0 &&
+        settings.observer(step, time, bed)) {
+      break;
+    }
+    const bool report = settings.progress && step % settings.progress_every == 0;
+    if (settings.until_rest && step % rest_every == 0) {
+      double ke, vmax;
+      kinetic_state(c, ke, vmax);
+      if (ke < rest_energy && vmax < settings.rest.max_speed) {
+        if (quiet_since == kNotQuiet) quiet_since = step;
+        if (step - quiet_since >= window_steps) {
+          summary.at_rest = true;
+          break;
+        }
+      } else {
+        quiet_since = kNotQuiet;
+      }
+    }
+    if (report) {
+      Progress p;
+      p.step = step;
+      p.time = time;
+      p.t_end = t_end;
+      kinetic_state(c, p.kinetic_energy, p.max_speed);
+      settings.progress(p);
+    }
+  }
+  if (trajectory) {
+    if (step % settings.trajectory_every != 0) trajectory->write(step, static_cast<double>(step) * c.dt, bed);
+    trajectory->close();
+  }
+
+  summary.n = n;
+  summary.steps = step;
+  summary.sim_time = static_cast<double>(step) * c.dt;
+  summary.dt = c.dt;
+  summary.dt_stable = bound.stable;
+  kinetic_state(c, summary.kinetic_energy, summary.max_speed);
+  const Overlap overlap = max_overlap(bed, scene);
+  summary.max_overlap = overlap.relative;
+  summary.max_overlap_m = overlap.absolute;
+  summary.max_overlap_full_stiffness =
+      overlap.relative * std::pow(settings.young_scale, -2.0 / 3.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double p[3] = {bed.x[i], bed.y[i], bed.z[i]};
+    for (int a = 0; a < 3; ++a) {
+      if (!c.params.box.periodic[a] && (p[a] < c.params.box.lower[a] || p[a] > c.params.box.upper[a])) {
+        ++summary.lost;
+        break;
+      }
+    }
+  }
+  summary.neighbour_rebuilds = c.rebuilds;
+  if (settings.progress) {
+    Progress p;
+    p.step = step;
+    p.time = summary.sim_time;
+    p.t_end = summary.sim_time;
+    p.kinetic_energy = summary.kinetic_energy;
+    p.max_speed = summary.max_speed;
+    settings.progress(p);
+  }
+  summary.wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  summary.particle_steps_per_s =
+      summary.wall_time > 0 ? static_cast<double>(n) * static_cast<double>(step) / summary.wall_time : 0;
+  return summary;
+}
+
+}  // namespace powderbed::dem

@@ -1,0 +1,54 @@
+#include "powderbed/dem/time_step.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/dem/stokes_drag.hpp"
+
+namespace powderbed::dem {
+
+// SPEC §4: t_R = pi r sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu)).
+double rayleigh_time_step(double radius, double density, double young, double poisson) {
+  const double shear = young / (2.0 * (1.0 + poisson));
+  return std::numbers::pi * radius * std::sqrt(density / shear) / (0.1631 * poisson + 0.8766);
+}
+
+TimeStepBound time_step_bound(const bed::Bed& bed, const Scene& scene, double young_scale) {
+  if (!(young_scale > 0) || !std::isfinite(young_scale)) {
+    std::ostringstream msg;
+    msg << "--young-scale: " << young_scale << " is out of range (accepted: S > 0)";
+    throw InputError(msg.str());
+  }
+  if (bed.n() == 0) throw InputError("deposit: the bed has no particles (accepted: N >= 1)");
+  const double r_min = *std::min_element(bed.radius.begin(), bed.radius.end());
+  TimeStepBound bound;
+  bound.stable = INFINITY;
+  if (scene.has(kHertz) || scene.has(kWalls)) {
+    const Material& m = scene.material;
+    double t = rayleigh_time_step(r_min, m.density, m.young / young_scale, m.poisson);
+    if (scene.has(kWalls)) {
+      // A softer wall gives a longer contact; a stiffer one does not shorten the particle's own
+      // Rayleigh step below that of the pair E* of two particles of the stiffer material.
+      t = std::min(t, rayleigh_time_step(r_min, m.density,
+                                         std::max(m.young, scene.wall.young) / young_scale,
+                                         m.poisson));
+    }
+    bound.stable = t;
+    bound.limited_by = "rayleigh";
+  }
+  if (scene.has(kDrag)) {
+    const double mass = 4.0 / 3.0 * std::numbers::pi * r_min * r_min * r_min * scene.material.density;
+    const double relax = mass / stokes_drag_coefficient({scene.fluid_viscosity}, r_min);
+    if (relax < bound.stable) {
+      bound.stable = relax;
+      bound.limited_by = "drag";
+    }
+  }
+  bound.recommended = kTimeStepSafety * bound.stable;
+  return bound;
+}
+
+}  // namespace powderbed::dem

@@ -1,0 +1,176 @@
+#include "powderbed/dem/trajectory.hpp"
+
+#include <hdf5.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "powderbed/bed/errors.hpp"
+
+namespace powderbed::dem {
+
+namespace {
+
+// One HDF5 identifier, closed by Close when it goes out of scope.
+template <herr_t (*Close)(hid_t)>
+class Handle {
+ public:
+  explicit Handle(hid_t id) : id_(id) {}
+  ~Handle() {
+    if (id_ >= 0) Close(id_);
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  operator hid_t() const { return id_; }  // NOLINT: passes straight into the C API
+  bool valid() const { return id_ >= 0; }
+
+ private:
+  hid_t id_;
+};
+using Space = Handle<H5Sclose>;
+using Dataset = Handle<H5Dclose>;
+using Group = Handle<H5Gclose>;
+using Attribute = Handle<H5Aclose>;
+
+void check(bool ok, const std::string& path, const std::string& what) {
+  if (!ok) throw InputError("--trajectory: cannot write " + what + " to '" + path + "'");
+}
+
+void write_dataset(hid_t where, const char* name, hid_t type, const void* data, hsize_t rows,
+                   hsize_t cols, const std::string& path) {
+  const hsize_t dims[2] = {rows, cols};
+  Space space(H5Screate_simple(cols > 1 ? 2 : 1, dims, nullptr));
+  Dataset set(H5Dcreate2(where, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  check(set.valid() && H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0, path, name);
+}
+
+template <class T>
+void write_attribute(hid_t where, const char* name, hid_t type, T value, const std::string& path) {
+  Space space(H5Screate(H5S_SCALAR));
+  Attribute attr(H5Acreate2(where, name, type, space, H5P_DEFAULT, H5P_DEFAULT));
+  check(attr.valid() && H5Awrite(attr, type, &value) >= 0, path, name);
+}
+
+void write_string_attribute(hid_t where, const char* name, const std::string& value,
+                            const std::string& path) {
+  Handle<H5Tclose> type(H5Tcopy(H5T_C_S1));
+  H5Tset_size(type, value.size());
+  Space space(H5Screate(H5S_SCALAR));
+  Attribute attr(H5Acreate2(where, name, type, space, H5P_DEFAULT, H5P_DEFAULT));
+  check(attr.valid() && H5Awrite(attr, type, value.data()) >= 0, path, name);
+}
+
+std::string xdmf_path(const std::string& path) {
+  const auto dot = path.rfind(".h5");
+  return (dot != std::string::npos && dot + 3 == path.size() ? path.substr(0, dot) : path) + ".xmf";
+}
+
+std::string base_name(const std::string& path) {
+  const auto slash = path.rfind('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+}  // namespace
+
+struct TrajectoryWriter::Impl {
+  std::string path, temp;
+  hid_t file = -1;
+  std::size_t n = 0;
+  std::vector<std::pair<std::uint64_t, double>> snapshots;  // (step, time)
+  std::vector<double> xyz;                                   // scratch N×3
+};
+
+TrajectoryWriter::TrajectoryWriter(const std::string& path, const bed::Bed& bed)
+    : impl_(std::make_unique<Impl>()) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // our own one-line errors instead of HDF5's stack
+  impl_->path = path;
+  impl_->temp = path + ".tmp";
+  impl_->n = bed.n();
+  impl_->file = H5Fcreate(impl_->temp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (impl_->file < 0) throw InputError("--trajectory: cannot create '" + path + "'");
+  write_string_attribute(impl_->file, "format", "powderbed.trajectory", path);
+  write_attribute(impl_->file, "version", H5T_NATIVE_INT, 1, path);
+  write_attribute(impl_->file, "n", H5T_NATIVE_UINT64, static_cast<std::uint64_t>(bed.n()), path);
+  write_dataset(impl_->file, "radius", H5T_NATIVE_DOUBLE, bed.radius.data(), bed.n(), 1, path);
+  write_dataset(impl_->file, "id", H5T_NATIVE_UINT64, bed.id.data(), bed.n(), 1, path);
+  Group steps(H5Gcreate2(impl_->file, "steps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  check(steps.valid(), path, "/steps");
+}
+
+TrajectoryWriter::~TrajectoryWriter() {
+  if (impl_ && impl_->file >= 0) {
+    H5Fclose(impl_->file);
+    std::remove(impl_->temp.c_str());
+  }
+}
+
+void TrajectoryWriter::write(std::uint64_t step, double time, const bed::Bed& bed) {
+  Impl& s = *impl_;
+  const std::string name = "steps/" + std::to_string(step);
+  Group group(H5Gcreate2(s.file, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  check(group.valid(), s.path, "/" + name);
+  write_attribute(group, "time", H5T_NATIVE_DOUBLE, time, s.path);
+  write_attribute(group, "step", H5T_NATIVE_UINT64, step, s.path);
+  s.xyz.resize(3 * s.n);
+  for (std::size_t i = 0; i < s.n; ++i) {
+    s.xyz[3 * i] = bed.x[i];
+    s.xyz[3 * i + 1] = bed.y[i];
+    s.xyz[3 * i + 2] = bed.z[i];
+  }
+  write_dataset(group, "position", H5T_NATIVE_DOUBLE, s.xyz.data(), s.n, 3, s.path);
+  if (bed.has_velocity()) {
+    for (std::size_t i = 0; i < s.n; ++i) {
+      s.xyz[3 * i] = bed.vx[i];
+      s.xyz[3 * i + 1] = bed.vy[i];
+      s.xyz[3 * i + 2] = bed.vz[i];
+    }
+    write_dataset(group, "velocity", H5T_NATIVE_DOUBLE, s.xyz.data(), s.n, 3, s.path);
+  }
+  s.snapshots.emplace_back(step, time);
+}
+
+void TrajectoryWriter::close() {
+  Impl& s = *impl_;
+  if (s.file < 0) return;
+  const bool closed = H5Fclose(s.file) >= 0;
+  s.file = -1;
+  check(closed && std::rename(s.temp.c_str(), s.path.c_str()) == 0, s.path, "the file");
+  // XDMF temporal collection: one Polyvertex grid per snapshot, radius shared.
+  const std::string h5 = base_name(s.path);
+  std::ostringstream x;
+  x.precision(17);
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+    << "  <Grid Name=\"trajectory\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const auto& [step, time] : s.snapshots) {
+    x << "   <Grid Name=\"step " << step << "\" GridType=\"Uniform\">\n"
+      << "    <Time Value=\"" << time << "\"/>\n"
+      << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << s.n << "\"/>\n"
+      << "    <Geometry GeometryType=\"XYZ\">\n"
+      << "     <DataItem Dimensions=\"" << s.n << " 3\" NumberType=\"Float\" Precision=\"8\" "
+      << "Format=\"HDF\">" << h5 << ":/steps/" << step << "/position</DataItem>\n"
+      << "    </Geometry>\n"
+      << "    <Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+      << "     <DataItem Dimensions=\"" << s.n << "\" NumberType=\"Float\" Precision=\"8\" "
+      << "Format=\"HDF\">" << h5 << ":/radius</DataItem>\n"
+      << "    </Attribute>\n"
+      << "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n"
+      << "     <DataItem Dimensions=\"" << s.n << " 3\" NumberType=\"Float\" Precision=\"8\" "
+      << "Format=\"HDF\">" << h5 << ":/steps/" << step << "/velocity</DataItem>\n"
+      << "    </Attribute>\n"
+      << "   </Grid>\n";
+  }
+  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  const std::string xmf = xdmf_path(s.path);
+  const std::string xmf_temp = xmf + ".tmp";
+  {
+    std::ofstream out(xmf_temp);
+    out << x.str();
+    check(static_cast<bool>(out), xmf, "the XDMF text");
+  }
+  check(std::rename(xmf_temp.c_str(), xmf.c_str()) == 0, xmf, "the XDMF file");
+}
+
+}  // namespace powderbed::dem
