@@ -32,6 +32,7 @@ struct Request {
   std::size_t profile_bins = 0;
   std::size_t rdf_bins = 0;
   bool voronoi = false;
+  std::optional<double> order_margin;  // --order: bond order q6 at --tol, this margin
 };
 
 struct Report {
@@ -46,6 +47,7 @@ struct Report {
   std::optional<double> ks;
   std::optional<bed::Series> profile, rdf;
   std::optional<bed::VoronoiStats> voronoi;
+  std::optional<bed::OrderStats> order;
 };
 
 // "%g" text of a tolerance: the JSON keys "1e-06", "0.001", "0.01".
@@ -82,6 +84,9 @@ Report analyse(const std::string& file, const Request& req, const bed::Domain* c
   if (req.profile_bins) r.profile = bed::density_profile(b, req.profile_bins);
   if (req.rdf_bins && b.n() > 0) r.rdf = bed::radial_distribution(b, 5.0 * r.r_mean, req.rdf_bins);
   if (req.voronoi && b.domain.dimension == 3) r.voronoi = bed::voronoi_stats(b);
+  if (req.order_margin && b.domain.dimension == 3) {
+    r.order = bed::bond_order(b, req.tolerance, *req.order_margin);
+  }
   return r;
 }
 
@@ -134,6 +139,11 @@ void write_json_report(bed::JsonWriter& json, const Report& r, const Request& re
         .value("local_fraction_mean", r.voronoi->mean)
         .value("local_fraction_sd", r.voronoi->sd)
         .end_object();
+  }
+  if (r.order) {
+    json.value("q6_local_mean", r.order->q6_local_mean)
+        .value("q6_global", r.order->q6_global)
+        .value("q6_particles", std::uint64_t{r.order->particles});
   }
   json.end_object();
 }
@@ -205,6 +215,14 @@ void print_table(std::ostream& out, const std::vector<Report>& reports, const Re
                 if (r.voronoi) s << r.voronoi->sd; else s << "-";
               }));
   }
+  if (req.order_margin) {
+    table_row(out, "q6 local mean" + at, cells(reports, [](auto& s, const Report& r) {
+                if (r.order) s << r.order->q6_local_mean; else s << "-";
+              }));
+    table_row(out, "Q6 global" + at, cells(reports, [](auto& s, const Report& r) {
+                if (r.order) s << r.order->q6_global; else s << "-";
+              }));
+  }
 }
 
 int run(int argc, char** argv) {
@@ -222,7 +240,10 @@ int run(int argc, char** argv) {
       "bins of the density profile phi(z) (JSON only; 0 = off)")(
       "rdf", po::value<std::size_t>()->default_value(0),
       "bins of g(r) up to 5 mean radii (JSON only; 0 = off)")(
-      "voronoi", "local packing fractions from the radical Voronoi tessellation (3D)");
+      "voronoi", "local packing fractions from the radical Voronoi tessellation (3D)")(
+      "order", "bond-orientational order (3D): mean local q6 and global Q6, bonds = contacts at --tol")(
+      "order-margin", po::value<double>()->default_value(0.0),
+      "--order: average only over particles at least this far (m) from non-periodic faces");
   po::positional_options_description positional;
   positional.add("bed", -1);
   po::variables_map vm;
@@ -248,6 +269,7 @@ int run(int argc, char** argv) {
   req.profile_bins = vm["profile"].as<std::size_t>();
   req.rdf_bins = vm["rdf"].as<std::size_t>();
   req.voronoi = vm.count("voronoi") > 0;
+  if (vm.count("order")) req.order_margin = vm["order-margin"].as<double>();
 
   std::optional<bed::Domain> csv_domain;
   if (vm.count("domain")) csv_domain = app::parse_domain_bounds(vm["domain"].as<std::string>(), "--domain");

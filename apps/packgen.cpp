@@ -63,6 +63,12 @@ int run(int argc, char** argv) {
       ("psd", po::value<std::string>()->required(), "size distribution (PSD string syntax)")
       ("approach", po::value<int>()->default_value(1),
        "contacts per new particle: 0 random, 1, 2, 3 (3D only); walls count as partners")
+      ("site-order", po::value<std::string>()->default_value("lowest"),
+       "3D approach 3: lowest (fill the lowest free 3-contact site first, growing from the "
+       "floor: densest, O(N)) or random (a random particle and two random partners, [LP] tries)")
+      ("floor-seed", po::value<double>()->default_value(0.0),
+       "site order lowest: fraction of the floor first covered by particles dropped at random "
+       "onto it (0 <= F < 1)")
       ("phases", po::value<std::string>(),
        "approach[:density],... e.g. 0:0.3,1 = 0-contact to density 0.3, then 1-contact; "
        "replaces --approach")
@@ -71,8 +77,9 @@ int run(int argc, char** argv) {
       ("raster-spacing", po::value<double>(), "raster grid spacing h (m), needed by raster")
       ("tries", po::value<int>()->default_value(1000),
        "n_T: tries per size before a new size is drawn")
-      ("directions", po::value<int>()->default_value(16),
-       "K: directions per 1-contact try, circle angles per 3D 2-contact try")
+      ("directions", po::value<int>(),
+       "K: directions per 1-contact try, circle angles per 3D 2-contact try (default 10 in "
+       "2D: the [LP] 1-contact density, docs/results/packgen-2d-study.md; 16 in 3D)")
       ("count", po::value<std::size_t>(), "stop at N particles")
       ("target-density", po::value<double>(),
        "stop at this density (0 < F < 1); if it cannot be reached the run stops at "
@@ -107,7 +114,7 @@ int run(int argc, char** argv) {
   o.collision = packgen::parse_collision(vm["collision"].as<std::string>());
   if (vm.count("raster-spacing")) o.raster_spacing = vm["raster-spacing"].as<double>();
   o.tries = vm["tries"].as<int>();
-  o.directions = vm["directions"].as<int>();
+  o.directions = vm.count("directions") ? vm["directions"].as<int>() : dim == 2 ? 10 : 16;
   if (vm.count("count")) o.count = vm["count"].as<std::size_t>();
   if (vm.count("target-density")) {
     o.target_density = vm["target-density"].as<double>();
@@ -122,6 +129,8 @@ int run(int argc, char** argv) {
   o.max_failures = vm["max-failures"].as<std::size_t>();
   o.retire_after = vm["retire-after"].as<int>();
   o.edge_fraction = vm["edge-fraction"].as<double>();
+  o.site_order = packgen::parse_site_order(vm["site-order"].as<std::string>());
+  o.floor_seed = vm["floor-seed"].as<double>();
   if (::isatty(STDERR_FILENO)) o.progress = show_progress;
   const std::uint64_t seed = vm["seed"].as<std::uint64_t>();
 
@@ -171,6 +180,8 @@ int run(int argc, char** argv) {
     j.value("stop_reason", result.stop_reason);
     j.value("collision", packgen::collision_name(o.collision));
     j.value("approach", approach);
+    j.value("site_order", packgen::site_order_name(o.site_order));
+    j.value("sites", std::uint64_t{result.sites});
     j.value("seed", seed);
     j.end_object();
     std::cout << j.str() << '\n';

@@ -89,8 +89,8 @@ bool touch_two_3d(const Partner& a, const Partner& b, double r, Circle& out) {
   return verified(partners, 2, out.at(0), r) && verified(partners, 2, out.at(2.0), r);
 }
 
-int touch_three_3d(const Partner& a, const Partner& b, const Partner& c, double r,
-                   std::array<Vec3, 2>& out) {
+int trilaterate(const Partner& a, const Partner& b, const Partner& c, double r,
+                std::array<Vec3, 2>& out) {
   const Linear l1 = linearise(a, b, r), l2 = linearise(a, c, r);
   const Vec3 u = cross(l1.n, l2.n);
   const double u2 = dot(u, u);
@@ -103,6 +103,16 @@ int touch_three_3d(const Partner& a, const Partner& b, const Partner& c, double 
   const Vec3 unit = (1.0 / std::sqrt(u2)) * u;
   out[0] = a.centre + y0 + t * unit;
   out[1] = a.centre + y0 - t * unit;
+  return 2;
+}
+
+bool touches_all(const Partner* partners, int count, Vec3 x, double r) {
+  return verified(partners, count, x, r);
+}
+
+int touch_three_3d(const Partner& a, const Partner& b, const Partner& c, double r,
+                   std::array<Vec3, 2>& out) {
+  if (trilaterate(a, b, c, r, out) == 0) return 0;
   const Partner partners[3] = {a, b, c};
   return keep_verified(partners, 3, r, out);
 }

@@ -44,6 +44,9 @@ void validate(const bed::Domain& domain, const bed::Psd& psd, const PackOptions&
   if (!(o.edge_fraction >= 0 && o.edge_fraction <= 1)) {
     fail("--edge-fraction: " + str(o.edge_fraction) + " (accepted: 0 <= F <= 1)");
   }
+  if (!(o.floor_seed >= 0 && o.floor_seed < 1)) {
+    fail("--floor-seed: " + str(o.floor_seed) + " (accepted: 0 <= F < 1)");
+  }
   const double d_min = 2 * psd.min_radius();
   double shortest = domain.length(0);
   for (int a = 1; a < domain.dimension; ++a) shortest = std::min(shortest, domain.length(a));
@@ -109,6 +112,14 @@ Collision parse_collision(const std::string& text, const std::string& option) {
   if (text == "kdtree") return Collision::kdtree;
   fail(option + ": '" + text + "' (accepted: raster, grid or kdtree)");
 }
+
+SiteOrder parse_site_order(const std::string& text, const std::string& option) {
+  if (text == "random") return SiteOrder::random;
+  if (text == "lowest") return SiteOrder::lowest;
+  fail(option + ": '" + text + "' (accepted: random or lowest)");
+}
+
+const char* site_order_name(SiteOrder s) { return s == SiteOrder::random ? "random" : "lowest"; }
 
 const char* collision_name(Collision c) {
   switch (c) {

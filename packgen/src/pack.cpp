@@ -1,6 +1,7 @@
 // The placement loop of SPEC.md §3: sizes from the PSD, n_T tries per size, 0/1/2/3-contact
 // candidates, one collision back-end. The loop is a template over the back-end, dispatched
 // once in pack(), so no test in the hot loop goes through a virtual call.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -10,6 +11,7 @@
 #include "powderbed/packgen/kdtree_index.hpp"
 #include "powderbed/packgen/pack.hpp"
 #include "powderbed/packgen/raster_grid.hpp"
+#include "powderbed/packgen/site_heap.hpp"
 
 namespace powderbed::packgen {
 
@@ -20,6 +22,19 @@ using bed::uniform;
 using bed::uniform01;
 using bed::uniform_index;
 constexpr double kPi = std::numbers::pi;
+
+// Lowest-site growth with a PSD: a site refused for the drawn size but free for the smallest
+// size is put back at most this many times (each re-evaluation costs one fit test, so a site
+// costs O(1) over the run; a hole that only the smallest ~7 % of a PSD fit is found by
+// one of 32 draws with probability ~0.9).
+constexpr std::uint8_t kSiteRetries = 32;
+
+// Lowest-site growth: sites of a new particle come from pairs of its partners in reach; with a
+// wide PSD a small particle can have hundreds in reach of the largest size, so only the
+// kSitePartners with the smallest gaps are paired (O(N) for any PSD). A monodisperse bed has
+// ~19 partners in reach on average (measured), so the cap rarely bites there; sites lost are
+// those bridging distant partners, which only the largest sizes could take.
+constexpr std::size_t kSitePartners = 32;
 
 // Containment tolerance (SPEC §3 "every particle lies fully inside"): 1e-12 relative to the
 // radius and the coordinate, so centres computed to touch a wall are not refused for rounding.
@@ -58,8 +73,12 @@ class Packer {
         partners_(partners),
         backend_(backend),
         dim_(domain.dimension),
-        r_max_(psd.max_radius()) {
+        r_max_(psd.max_radius()),
+        r_min_(psd.min_radius()) {
     order_.resize(static_cast<std::size_t>(o_.directions));
+    for (const Phase& ph : o_.phases) {
+      lowest_ = lowest_ || (dim_ == 3 && ph.approach == 3 && o_.site_order == SiteOrder::lowest);
+    }
   }
 
   PackResult run();
@@ -85,6 +104,10 @@ class Packer {
   bool try_three(std::uint32_t s, double r);
   bool touch_two(std::uint32_t s, std::int64_t q, double r);
   bool accept_mirror(const std::array<Vec3, 2>& x, int m, double r);
+  bool try_lowest(double r);
+  bool try_floor(double r);
+  void find_sites(std::uint32_t i);
+  bool free_locally(const Vec3& x, double r) const;
 
   const bed::Domain& domain_;
   const bed::Psd& psd_;
@@ -94,8 +117,15 @@ class Packer {
   CellGrid& partners_;
   Backend& backend_;
   int dim_;
-  double r_max_;
+  double r_max_, r_min_;
   double volume_ = 0;
+  // Lowest-site growth (site_heap.hpp): on when a phase is 3D approach 3 with SiteOrder::lowest.
+  bool lowest_ = false;
+  SiteHeap sites_;
+  std::vector<Site> retry_;
+  std::vector<Partner> parts_;             // the partners of near_, built once per new particle
+  std::vector<double> lx_, ly_, lz_, lr_;  // neighbours of a new particle, for the site filter
+  double floor_covered_ = 0;               // area of the particles dropped onto the floor
   PackResult result_;
   // Front-advancing partner list: active_ holds particles that may still have free surface.
   std::vector<std::uint32_t> active_, slot_;
@@ -151,6 +181,130 @@ void Packer<Backend>::place(const Vec3& c, double r) {
   active_.push_back(i);
   fails_.push_back(0);
   volume_ += dim_ == 3 ? 4.0 / 3.0 * kPi * r * r * r : kPi * r * r;
+  if (lowest_) find_sites(i);
+}
+
+// The free sites of a new particle i: every pair (q1, q2) of its partners in reach of each
+// other, both mirror solutions of the trilateration (SPEC §3 3-contact). A site is kept when
+// it is inside and free for the smallest size, or failing that the largest. Any particle
+// overlapping a centre at r_i + r from i lies within r_i + r_j + 2 r of i, i.e. in the
+// partner list, so the filter is exact without the grid; sites are only ever covered later,
+// never freed, and are checked again when popped.
+template <class Backend>
+void Packer<Backend>::find_sites(std::uint32_t i) {
+  gather_partners(i, r_max_);
+  lx_.clear();
+  ly_.clear();
+  lz_.clear();
+  lr_.clear();
+  for (const std::int64_t q : near_) {
+    if (q < 0) continue;
+    const auto j = static_cast<std::size_t>(q);
+    lx_.push_back(p_.x[j]);
+    ly_.push_back(p_.y[j]);
+    lz_.push_back(p_.z[j]);
+    lr_.push_back(p_.r[j]);
+  }
+  if (near_.size() > kSitePartners) {
+    // The filter saw every partner; only the kSitePartners with the smallest gaps (walls by
+    // their gap too) are paired.
+    const Vec3 ci{p_.x[i], p_.y[i], p_.z[i]};
+    const auto gap = [&](std::int64_t q) {
+      if (q < 0) return wall_distance(static_cast<int>(-1 - q), ci) - p_.r[i];
+      const auto j = static_cast<std::size_t>(q);
+      const double dx = p_.x[j] - ci.x, dy = p_.y[j] - ci.y, dz = p_.z[j] - ci.z;
+      return std::sqrt(dx * dx + dy * dy + dz * dz) - p_.r[i] - p_.r[j];
+    };
+    std::nth_element(near_.begin(), near_.begin() + kSitePartners, near_.end(),
+                     [&](std::int64_t a, std::int64_t b) {
+                       const double ga = gap(a), gb = gap(b);
+                       return ga < gb || (ga == gb && a < b);
+                     });
+    near_.resize(kSitePartners);
+  }
+  parts_.clear();
+  for (const std::int64_t q : near_) parts_.push_back(partner(q));
+  Partner abc[3] = {partner(i), {}, {}};
+  const double radii[2] = {r_min_, r_max_};
+  const int sizes = r_max_ > r_min_ ? 2 : 1;
+  for (std::size_t u = 0; u < near_.size(); ++u) {
+    abc[1] = parts_[u];
+    for (std::size_t v = u + 1; v < near_.size(); ++v) {
+      if (!compatible(near_[u], near_[v], r_max_)) continue;
+      abc[2] = parts_[v];
+      bool found[2] = {false, false};
+      for (int k = 0; k < sizes; ++k) {
+        const double r = radii[k];
+        std::array<Vec3, 2> x;
+        const int m = trilaterate(abc[0], abc[1], abc[2], r, x);
+        for (int side = 0; side < m; ++side) {  // x[0] on the +u side, x[1] on the -u side
+          const Vec3& centre = x[static_cast<std::size_t>(side)];
+          if (found[side] || !inside(centre, r) || !free_locally(centre, r) ||
+              !touches_all(abc, 3, centre, r)) {
+            continue;
+          }
+          found[side] = true;
+          ++result_.sites;
+          sites_.push({centre.z, static_cast<std::uint32_t>(rng_() >> 32),
+                       static_cast<std::int32_t>(i), static_cast<std::int32_t>(near_[u]),
+                       static_cast<std::int32_t>(near_[v]), static_cast<std::uint8_t>(side), 0});
+        }
+      }
+    }
+  }
+}
+
+template <class Backend>
+bool Packer<Backend>::free_locally(const Vec3& x, double r) const {
+  const std::size_t n = lr_.size();
+  for (std::size_t j = 0; j < n; ++j) {
+    if (overlaps(lx_[j] - x.x, ly_[j] - x.y, lz_[j] - x.z, lr_[j] + r)) return false;
+  }
+  return true;
+}
+
+// Lowest-site growth for a drawn radius r: pop the lowest sites, re-solve each for r and place
+// at the first that fits (up to n_T sites). Until the floor seed is laid, and whenever no site
+// is known or none takes r, r is dropped at a random spot onto the floor instead.
+template <class Backend>
+bool Packer<Backend>::try_lowest(double r) {
+  if (sites_.empty() || floor_covered_ < o_.floor_seed * domain_.length(0) * domain_.length(1)) {
+    for (int t = 0; t < o_.tries; ++t) {
+      if (try_floor(r)) return true;
+    }
+  }
+  retry_.clear();
+  bool placed = false;
+  for (int t = 0; t < o_.tries && !placed && !sites_.empty(); ++t) {
+    ++result_.tries;
+    Site s = sites_.pop();
+    const Partner a = partner(s.a), b = partner(s.b), c = partner(s.c);
+    Vec3 x;
+    placed = site_centre(a, b, c, r, s.side, x) && accept(x, r);
+    if (!placed && r > r_min_ && s.retries < kSiteRetries &&
+        site_centre(a, b, c, r_min_, s.side, x) && inside(x, r_min_) &&
+        backend_.fits(x.x, x.y, x.z, r_min_)) {
+      ++s.retries;
+      retry_.push_back(s);
+    }
+  }
+  for (const Site& s : retry_) sites_.push(s);
+  if (placed) return true;
+  // No known site takes r: a free spot on the floor, if any, is the lowest of all.
+  for (int t = 0; t < o_.tries; ++t) {
+    if (try_floor(r)) return true;
+  }
+  return false;
+}
+
+template <class Backend>
+bool Packer<Backend>::try_floor(double r) {
+  ++result_.tries;
+  const Vec3 c{uniform(rng_, domain_.lower[0] + r, domain_.upper[0] - r),
+               uniform(rng_, domain_.lower[1] + r, domain_.upper[1] - r), domain_.lower[2] + r};
+  if (!accept(c, r)) return false;
+  floor_covered_ += kPi * r * r;
+  return true;
 }
 
 template <class Backend>
@@ -357,7 +511,9 @@ PackResult Packer<Backend>::run() {
     const int approach = o_.phases[phase].approach;
     const double r = psd_.sample_radius(rng_);
     bool placed = false;
-    if (size_fits(r)) {
+    if (size_fits(r) && approach == 3 && lowest_) {
+      placed = try_lowest(r);
+    } else if (size_fits(r)) {
       // A partner-based approach with every particle retired has nowhere left to try.
       for (int t = 0; t < o_.tries && !placed && !exhausted(approach); ++t) {
         placed = try_once(approach, r);

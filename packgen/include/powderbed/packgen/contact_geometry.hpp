@@ -61,4 +61,12 @@ bool touch_two_3d(const Partner& a, const Partner& b, double r, Circle& out);
 int touch_three_3d(const Partner& a, const Partner& b, const Partner& c, double r,
                    std::array<Vec3, 2>& out);
 
+// The trilateration of touch_three_3d without its final check: 0, or 2 with out[0] on the +u
+// side and out[1] on the -u side (u = n_ab x n_ac, site_heap.hpp). Hot loops filter the points
+// by cheaper tests first and then confirm the survivors with touches_all.
+int trilaterate(const Partner& a, const Partner& b, const Partner& c, double r,
+                std::array<Vec3, 2>& out);
+// True when x is a contact of every partner to within the verification tolerance (1e-9).
+bool touches_all(const Partner* partners, int count, Vec3 x, double r);
+
 }  // namespace powderbed::packgen

@@ -15,6 +15,11 @@ namespace powderbed::packgen {
 
 enum class Collision { raster, grid, kdtree };
 
+// Which 3-contact site a 3D approach-3 try takes (SPEC §3 3-contact): `random` picks a random
+// particle and two random partners near it ([LP]-style tries); `lowest` fills the lowest free
+// site of all (site_heap.hpp: Bennett / Visscher–Bolsterli growth on the floor), O(N) and denser.
+enum class SiteOrder { random, lowest };
+
 // One phase of a run: `approach` (0..3 contacts) until the density reaches `until_density`
 // (the last phase runs until the stop rule; its until_density is ignored).
 struct Phase {
@@ -42,6 +47,10 @@ struct PackOptions {
   // consecutive failed tries around it (0: never, every placed particle stays a partner).
   int retire_after = 32;
   double edge_fraction = 0;           // fraction of 0-contact tries in the band along walls
+  SiteOrder site_order = SiteOrder::lowest;  // 3D approach 3 only
+  // Lowest-site growth: fraction of the floor area first covered by particles dropped at
+  // random onto the floor (0: growth starts as soon as the first sites exist).
+  double floor_seed = 0;
   std::size_t raster_max_bytes = std::size_t{2} << 30;
   // Called about every 0.25 s when set (the app shows progress with an ETA).
   std::function<void(const PackProgress&)> progress;
@@ -54,6 +63,7 @@ struct PackResult {
   std::size_t failed_placements = 0;   // sizes given up after n_T tries
   std::size_t failures_in_a_row = 0;   // at the end of the run
   std::size_t retired = 0;             // particles dropped from the partner list
+  std::size_t sites = 0;               // lowest-site growth: free sites found
   // Raster only (checked against the exact grid): positions the raster refused that were
   // valid, and positions it accepted that overlap.
   std::size_t refused_valid = 0;
@@ -72,6 +82,8 @@ void validate(const bed::Domain& domain, const bed::Psd& psd, const PackOptions&
 std::vector<Phase> parse_phases(const std::string& text, const std::string& option = "--phases");
 Collision parse_collision(const std::string& text, const std::string& option = "--collision");
 const char* collision_name(Collision c);
+SiteOrder parse_site_order(const std::string& text, const std::string& option = "--site-order");
+const char* site_order_name(SiteOrder s);
 
 // Packs the domain (SPEC §3); same inputs and seed give the same bed bit for bit, and the
 // exact back-ends (grid, kdtree) give the same bed as each other.

@@ -1,0 +1,52 @@
+#include "powderbed/packgen/site_heap.hpp"
+
+#include <algorithm>
+
+namespace powderbed::packgen {
+
+namespace {
+
+// Min-heap order on (key, tie) for std::push_heap (which builds a max-heap of `less`).
+bool later(const Site& s, const Site& t) { return s.key > t.key || (s.key == t.key && s.tie > t.tie); }
+
+Vec3 direction(const Partner& a, const Partner& b) {
+  return b.is_plane ? b.normal : b.centre - a.centre;
+}
+
+}  // namespace
+
+void SiteHeap::push(const Site& s) {
+  heap_.push_back(s);
+  std::push_heap(heap_.begin(), heap_.end(), later);
+}
+
+Site SiteHeap::pop() {
+  std::pop_heap(heap_.begin(), heap_.end(), later);
+  const Site s = heap_.back();
+  heap_.pop_back();
+  return s;
+}
+
+// The side of a solution: the sign of (x - c_a) . u with u = n_ab x n_ac (n: the centre
+// difference for a particle partner, the normal for a plane), which does not depend on r.
+bool site_centre(const Partner& a, const Partner& b, const Partner& c, double r,
+                 std::uint8_t side, Vec3& x) {
+  std::array<Vec3, 2> out;
+  const int m = touch_three_3d(a, b, c, r, out);
+  Vec3 u = cross(direction(a, b), direction(a, c));
+  u = (1.0 / norm(u)) * u;
+  // A point within kTangent (relative) of the axis (a tangent pair) counts for both sides.
+  constexpr double kTangent = 1e-9;
+  const double tol = kTangent * (a.radius + r);
+  for (int k = 0; k < m; ++k) {
+    const Vec3 p = out[static_cast<std::size_t>(k)];
+    const double s = dot(p - a.centre, u);
+    if (side == 0 ? s >= -tol : s <= tol) {
+      x = p;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace powderbed::packgen
