@@ -1,5 +1,6 @@
 // bedstat: statistics of one or more beds (SPEC.md §2), as a table or one JSON object.
 // Several beds print side by side: this is how geometric and dynamic beds are compared.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -31,6 +32,7 @@ struct Request {
   std::optional<bed::Psd> psd;
   std::size_t profile_bins = 0;
   std::size_t rdf_bins = 0;
+  std::size_t histogram_bins = 0;
   bool voronoi = false;
   std::optional<double> order_margin;  // --order: bond order q6 at --tol, this margin
 };
@@ -46,6 +48,7 @@ struct Report {
   double r_mean = 0, r_sd = 0, r_min = 0, r_max = 0;
   std::optional<double> ks;
   std::optional<bed::Series> profile, rdf;
+  std::optional<bed::Histogram> histogram;
   std::optional<bed::VoronoiStats> voronoi;
   std::optional<bed::OrderStats> order;
 };
@@ -81,6 +84,9 @@ Report analyse(const std::string& file, const Request& req, const bed::Domain* c
     r.r_sd = std::sqrt(std::max(0.0, sum2 / n - r.r_mean * r.r_mean));
   }
   if (req.psd) r.ks = bed::ks_distance(b.radius, *req.psd);
+  if (req.histogram_bins && b.n() > 0) {
+    r.histogram = bed::radius_histogram(b, req.histogram_bins, req.psd ? &*req.psd : nullptr);
+  }
   if (req.profile_bins) r.profile = bed::density_profile(b, req.profile_bins);
   if (req.rdf_bins && b.n() > 0) r.rdf = bed::radial_distribution(b, 5.0 * r.r_mean, req.rdf_bins);
   if (req.voronoi && b.domain.dimension == 3) r.voronoi = bed::voronoi_stats(b);
@@ -131,6 +137,19 @@ void write_json_report(bed::JsonWriter& json, const Report& r, const Request& re
       .value("max", r.r_max)
       .end_object();
   if (r.ks) json.value("ks_distance", *r.ks);
+  if (r.histogram) {
+    json.begin_object("radius_histogram").begin_array("edges");
+    for (double v : r.histogram->edges) json.element(v);
+    json.end_array().begin_array("counts");
+    for (double v : r.histogram->counts) json.element(v);
+    json.end_array();
+    if (!r.histogram->target.empty()) {
+      json.begin_array("target");
+      for (double v : r.histogram->target) json.element(v);
+      json.end_array();
+    }
+    json.end_object();
+  }
   if (r.profile) write_series(json, "density_profile", *r.profile);
   if (r.rdf) write_series(json, "rdf", *r.rdf);
   if (r.voronoi) {
@@ -186,8 +205,11 @@ void print_table(std::ostream& out, const std::vector<Report>& reports, const Re
               cells(reports, [t](auto& s, const Report& r) { s << r.by_tol[t].coordination; }));
   }
   const std::string at = " (tol " + tolerance_key(req.tolerance) + ")";
-  table_row(out, "coordination" + at,
-            cells(reports, [](auto& s, const Report& r) { s << r.at_tol.coordination; }));
+  if (std::find(std::begin(kReportTolerances), std::end(kReportTolerances), req.tolerance) ==
+      std::end(kReportTolerances)) {
+    table_row(out, "coordination" + at,
+              cells(reports, [](auto& s, const Report& r) { s << r.at_tol.coordination; }));
+  }
   table_row(out, "rattlers" + at, cells(reports, [](auto& s, const Report& r) { s << r.at_tol.rattlers; }));
   table_row(out, "wall contacts" + at,
             cells(reports, [](auto& s, const Report& r) { s << r.at_tol.wall_contacts; }));
@@ -238,6 +260,8 @@ int run(int argc, char** argv) {
       "domain", po::value<std::string>(), "xlo,ylo,zlo,xhi,yhi,zhi (m) for .csv beds")(
       "profile", po::value<std::size_t>()->default_value(0),
       "bins of the density profile phi(z) (JSON only; 0 = off)")(
+      "histogram", po::value<std::size_t>()->default_value(0),
+      "bins of the radius histogram, with the --psd target per bin (JSON only; 0 = off)")(
       "rdf", po::value<std::size_t>()->default_value(0),
       "bins of g(r) up to 5 mean radii (JSON only; 0 = off)")(
       "voronoi", "local packing fractions from the radical Voronoi tessellation (3D)")(
@@ -268,6 +292,7 @@ int run(int argc, char** argv) {
   if (vm.count("psd")) req.psd = bed::Psd::parse(vm["psd"].as<std::string>(), "--psd");
   req.profile_bins = vm["profile"].as<std::size_t>();
   req.rdf_bins = vm["rdf"].as<std::size_t>();
+  req.histogram_bins = vm["histogram"].as<std::size_t>();
   req.voronoi = vm.count("voronoi") > 0;
   if (vm.count("order")) req.order_margin = vm["order-margin"].as<double>();
 

@@ -67,6 +67,15 @@ TEST_F(BedstatTest, TwoBedsPrintSideBySide) {
   EXPECT_NE(r.out.find("0.74048"), std::string::npos) << r.out;   // pi/(3 sqrt 2)
 }
 
+TEST_F(BedstatTest, RadiusHistogramAgainstTargetPsd) {
+  // All 1000 radii are 1e-5: one bin holds them all, and a mono target puts all 1000 there too.
+  const auto r = run_app("bedstat", sc_path() + " --json --histogram 4 --psd mono:r=1e-5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"radius_histogram\":{\"edges\":["), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"target\":["), std::string::npos) << r.out;
+  EXPECT_NEAR(json_number(r.out, "ks_distance"), 0.0, 1e-12);
+}
+
 TEST_F(BedstatTest, MissingFileIsExit2WithOneLine) {
   const auto r = run_app("bedstat", dir_ + "/nope.h5 --json");
   EXPECT_EQ(r.status, 2);
