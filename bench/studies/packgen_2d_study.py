@@ -1,0 +1,324 @@
+#!/usr/bin/python3
+"""Reproduces the 2D study of Luberto & de Payrebrune (SPEC.md §3 table) with packgen.
+
+--samples per paper case (seeds 1..N; the paper: 100) on the 4.0 x 4.0 um square with the raster
+collision grid of spacing h = 0.015 um and packgen's 2D defaults; the diameter reading of the Gauss
+window with --alt-samples; then one-at-a-time sensitivity runs (--sens-samples seeds each) over
+tries, directions, max-failures and retire-after. Coordination is counted on the written beds at
+absolute surface gaps of order h (SPEC §3). Writes docs/results/packgen-2d-study.md and .png.
+Usage: POWDERBED_BUILD=build bench/studies/packgen_2d_study.py [--samples N] [--alt-samples N]
+       [--sens-samples N]
+"""
+import argparse
+import math
+import os
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(__file__))
+from common import (RESULTS, app, coordination_at_gaps, read_bed, run_json,  # noqa: E402
+                    summary, write_text)
+
+H = 0.015e-6          # raster spacing of the paper
+DOMAIN = "4e-6,4e-6"
+MONO = "mono:r=0.075e-6"
+GAUSS_RADIUS = "gauss:mean=0.075e-6,sd=0.0375e-6,min=0.015e-6,max=0.15e-6,on=radius"
+# The paper's text also calls the window a diameter window: radii in [0.0075, 0.075] um.
+GAUSS_DIAMETER_WINDOW = "gauss:mean=0.075e-6,sd=0.0375e-6,min=0.0075e-6,max=0.075e-6,on=radius"
+# Contacts in a raster bed: surface gap d - ri - rj <= g with g of order h (SPEC §3). The table
+# shows g = h, sqrt(2) h (the diagonal of a grid cell) and 2 h; "strict" is packgen's tol 1e-6.
+GAPS = [("h", 1.0), ("√2 h", math.sqrt(2)), ("2 h", 2.0)]
+SCAN = [0.1 * k for k in range(31)]  # g / h for the tolerance scan, 0 .. 3 h
+
+PAPER = {  # particles, density, coordination ranges of SPEC §3
+    ("mono", 0): ((500, 520), (0.55, 0.57), (1.8, 2.1)),
+    ("mono", 1): ((560, 580), (0.62, 0.64), (3.25, 3.45)),
+    ("gauss", 0): ((325, 425), (0.42, 0.52), (1.3, 1.5)),
+    ("gauss", 1): ((525, 575), (0.68, 0.72), (3.3, 3.45)),
+}
+CASES = [  # label, psd, approach, paper key, samples option
+    ("mono r = 0.075 µm, 0-contact", MONO, 0, ("mono", 0), "samples"),
+    ("mono r = 0.075 µm, 1-contact", MONO, 1, ("mono", 1), "samples"),
+    ("Gauss (window on radius), 0-contact", GAUSS_RADIUS, 0, ("gauss", 0), "samples"),
+    ("Gauss (window on radius), 1-contact", GAUSS_RADIUS, 1, ("gauss", 1), "samples"),
+    ("Gauss (window on diameter), 0-contact", GAUSS_DIAMETER_WINDOW, 0, ("gauss", 0),
+     "alt_samples"),
+    ("Gauss (window on diameter), 1-contact", GAUSS_DIAMETER_WINDOW, 1, ("gauss", 1),
+     "alt_samples"),
+]
+# One-at-a-time changes from the defaults (tries 1000, directions 10 in 2D, max-failures 100,
+# retire-after 32): (case index, extra packgen options, seeds = sens_samples or this number).
+SENSITIVITY = [
+    (1, ["--directions", "6"], None), (1, ["--directions", "8"], None),
+    (1, ["--directions", "12"], None), (1, ["--directions", "16"], None),
+    (1, ["--directions", "32"], None),
+    (1, ["--retire-after", "8"], None), (1, ["--retire-after", "0"], None),
+    (1, ["--directions", "16", "--retire-after", "0"], None),
+    (1, ["--tries", "100"], None), (1, ["--max-failures", "10"], None),
+    (1, ["--max-failures", "1000"], None),
+    (0, ["--max-failures", "1"], None), (0, ["--max-failures", "10"], None),
+    (0, ["--tries", "100"], None), (0, ["--max-failures", "1000"], None),
+    (2, ["--max-failures", "1"], None), (2, ["--max-failures", "10"], None),
+    (2, ["--tries", "10", "--max-failures", "10"], None),
+    (3, ["--retire-after", "8"], None), (3, ["--directions", "16"], None),
+    (3, ["--retire-after", "0"], 2),  # never retiring: ~30 s per bed, so 2 seeds
+]
+
+
+def run_one(psd, approach, seed, extra, workdir):
+    out = os.path.join(workdir, "bed.h5")
+    pack, _ = run_json([app("packgen"), "--dim", "2", "--domain", DOMAIN, "--psd", psd,
+                        "--approach", str(approach), "--collision", "raster",
+                        "--raster-spacing", str(H), "--seed", str(seed), "--out", out] + extra)
+    centres, radii = read_bed(out)
+    z_scan = coordination_at_gaps(centres, radii, [g * H for g in SCAN])
+    for f in (out, out[:-3] + ".xmf"):
+        if os.path.exists(f):
+            os.remove(f)
+    return {"n": pack["n"], "density": pack["density"], "z_strict": pack["coordination"],
+            "z_scan": z_scan, "overlap": pack["max_relative_overlap"], "wall": pack["wall_time"]}
+
+
+def run_case(psd, approach, samples, workdir, extra=()):
+    return [run_one(psd, approach, s, list(extra), workdir) for s in range(1, samples + 1)]
+
+
+def z_at(rows, g_over_h):
+    k = min(range(len(SCAN)), key=lambda i: abs(SCAN[i] - g_over_h))
+    return [r["z_scan"][k] for r in rows]
+
+
+def col(rows, key):
+    return [r[key] for r in rows]
+
+
+def fmt(values, digits):
+    mean, lo, hi, sd = summary(values)
+    return f"{mean:.{digits}f} ({lo:.{digits}f}–{hi:.{digits}f}, sd {sd:.{digits}f})"
+
+
+def mean(values):
+    return summary(values)[0]
+
+
+def mark(values, rng):
+    return "" if rng[0] <= mean(values) <= rng[1] else " ✗"
+
+
+def gap_window(rows, rng):
+    """The gaps g/h of the scan at which the mean Z lies in the paper's range ('none' if no g)."""
+    inside = [g for k, g in enumerate(SCAN) if rng[0] <= mean([r["z_scan"][k] for r in rows])
+              <= rng[1]]
+    return f"{min(inside):.1f}–{max(inside):.1f}" if inside else "none"
+
+
+def plot(results, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(len(results), 3, figsize=(12, 2.5 * len(results)))
+    for row, (case, rows) in enumerate(results):
+        pn, pd, pz = PAPER[case[3]]
+        for column, (values, label, rng) in enumerate([
+                ([(col(rows, "n"), None)], "particles", pn),
+                ([(col(rows, "density"), None)], "density", pd),
+                ([(z_at(rows, 1.0), "gap ≤ h"), (z_at(rows, 2.0), "gap ≤ 2h")], "Z", pz)]):
+            ax = axes[row][column]
+            for v, name in values:
+                ax.hist(v, bins=20, alpha=0.6, label=name)
+            ax.axvspan(rng[0], rng[1], color="tab:orange", alpha=0.25, label="paper range")
+            ax.set_xlabel(label)
+            if column == 0:
+                ax.set_title(f"{case[0]} ({len(rows)} samples)", loc="left", fontsize=9)
+            if column == 2:
+                ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=80)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--samples", type=int, default=100)
+    parser.add_argument("--alt-samples", type=int, default=20)
+    parser.add_argument("--sens-samples", type=int, default=10)
+    args = parser.parse_args()
+    results, sens = [], []
+    with tempfile.TemporaryDirectory() as workdir:
+        for case in CASES:
+            print(f"{case[0]} ...", file=sys.stderr, flush=True)
+            results.append((case, run_case(case[1], case[2], getattr(args, case[4]), workdir)))
+        for index, extra, seeds in SENSITIVITY:
+            case = CASES[index]
+            print(f"{case[0]} {' '.join(extra)} ...", file=sys.stderr, flush=True)
+            sens.append((index, extra, run_case(case[1], case[2], seeds or args.sens_samples,
+                                                workdir, extra)))
+    plot(results, os.path.join(RESULTS, "packgen-2d-study.png"))
+
+    lines = [
+        "# packgen: the 2D study of Luberto & de Payrebrune",
+        "",
+        f"Regenerate: `POWDERBED_BUILD=build bench/studies/packgen_2d_study.py --samples "
+        f"{args.samples} --alt-samples {args.alt_samples} --sens-samples {args.sens_samples}` "
+        "(Release build; needs /usr/bin/python3 with h5py, scipy, matplotlib).",
+        "",
+        "Settings of the paper: 4.0 × 4.0 µm square, raster collision grid h = 0.015 µm "
+        f"(`--collision raster --raster-spacing 1.5e-08`), {args.samples} samples per case "
+        f"(seeds 1..{args.samples}; the diameter reading of the Gauss window: {args.alt_samples}). "
+        "Everything else is packgen's 2D default: `--tries 1000` (n_T), `--directions 10` (K, "
+        "evenly spaced angles with a random offset, shuffled), `--max-failures 100` (stop after "
+        "100 consecutive sizes given up), `--retire-after 32` (a particle leaves the partner list "
+        "after 32 consecutive failed tries around it).",
+        "Each cell: mean (min–max, sd) over the samples; ✗ marks a mean outside the paper's range. "
+        "Z counts particle–particle contacts (walls apart) at a surface gap ≤ g.",
+        "",
+        "| case | particles | paper | density | paper | Z gap ≤ h | Z gap ≤ √2 h | Z gap ≤ 2 h "
+        "| Z strict (tol 1e-6) | paper Z | gap g/h giving paper Z | wall time s |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for case, rows in results:
+        pn, pd, pz = PAPER[case[3]]
+        zs = " | ".join(fmt(z_at(rows, g), 2) + mark(z_at(rows, g), pz) for _, g in GAPS)
+        lines.append(
+            f"| {case[0]} | {fmt(col(rows, 'n'), 0)}{mark(col(rows, 'n'), pn)} | {pn[0]}–{pn[1]} "
+            f"| {fmt(col(rows, 'density'), 3)}{mark(col(rows, 'density'), pd)} | {pd[0]}–{pd[1]} "
+            f"| {zs} | {fmt(col(rows, 'z_strict'), 2)} | {pz[0]}–{pz[1]} "
+            f"| {gap_window(rows, pz)} | {mean(col(rows, 'wall')):.3f} |")
+    lines += ["", "![histograms](packgen-2d-study.png)", ""]
+
+    lines += [
+        "## Sensitivity to the rule parameters",
+        "",
+        f"One change at a time from the 2D defaults, {args.sens_samples} seeds each (fewer where "
+        "stated); mean over the seeds.",
+        "",
+        "| case | change | seeds | particles | density | Z gap ≤ h | Z gap ≤ 2 h | wall time s |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+
+    def sens_line(label, change, rows):
+        return (f"| {label} | {change} | {len(rows)} | {mean(col(rows, 'n')):.0f} "
+                f"| {mean(col(rows, 'density')):.3f} | {mean(z_at(rows, 1.0)):.2f} "
+                f"| {mean(z_at(rows, 2.0)):.2f} | {mean(col(rows, 'wall')):.3f} |")
+    for index in range(4):
+        base = results[index][1][:args.sens_samples]
+        lines.append(sens_line(CASES[index][0], "defaults", base))
+        for i, extra, rows in sens:
+            if i == index:
+                lines.append(sens_line(CASES[index][0], "`" + " ".join(extra) + "`", rows))
+    lines.append("")
+    lines += why_section(results, sens)
+    path = write_text("packgen-2d-study.md", "\n".join(lines) + "\n")
+    print(path)
+
+
+def where(value, rng):
+    return "inside" if rng[0] <= value <= rng[1] else "outside"
+
+
+def common_gap(results):
+    """One sentence: the gaps g/h (if any) at which every case's mean Z is in its paper range."""
+    ok = [g for k, g in enumerate(SCAN)
+          if all(PAPER[c[3]][2][0] <= mean([r["z_scan"][k] for r in rows]) <= PAPER[c[3]][2][1]
+                 for c, rows in results)]
+    if ok:
+        return f"Every case is met at g/h = {min(ok):.1f}–{max(ok):.1f}."
+    return ("These intervals have no common gap, so no single tolerance reproduces every case: "
+            "our 0-contact beds need a smaller gap than our 1-contact beds.")
+
+
+def find(sens, index, extra):
+    for i, e, rows in sens:
+        if i == index and e == extra:
+            return rows
+    raise KeyError(extra)
+
+
+def why_section(results, sens):
+    """The findings, with every number taken from this run."""
+    rows = [r for _, r in results]
+    d = lambda rs: mean(col(rs, "density"))  # noqa: E731
+    n = lambda rs: mean(col(rs, "n"))  # noqa: E731
+    k_scan = [(k, d(find(sens, 1, ["--directions", str(k)]))) for k in (6, 8, 12, 16, 32)]
+    k_scan.insert(2, (10, d(rows[1])))
+    m1_never = find(sens, 1, ["--retire-after", "0"])
+    m1_never16 = find(sens, 1, ["--directions", "16", "--retire-after", "0"])
+    m1_r8 = find(sens, 1, ["--retire-after", "8"])
+    m0_mf = [(m, d(find(sens, 0, ["--max-failures", str(m)]))) for m in (1, 10)]
+    m0_mf.append((100, d(rows[0])))
+    m0_mf.append((1000, d(find(sens, 0, ["--max-failures", "1000"]))))
+    g0_first = find(sens, 2, ["--max-failures", "1"])
+    g0_early = find(sens, 2, ["--tries", "10", "--max-failures", "10"])
+    g1_never = find(sens, 3, ["--retire-after", "0"])
+    return [
+        "## Why the numbers differ",
+        "",
+        "**What the paper fixes and what it leaves open.** [LP] give the square, h, the PSD, "
+        "the three approaches, n_T (a new size after n_T failed tries) and a random choice of "
+        "the 1-contact partner with a set of directions tried in random order. They give neither "
+        "K (how many directions), nor n_T's value, nor when a run stops. packgen's raster "
+        "back-end is the paper's status grid, so what remains open is exactly K, n_T and the "
+        "stop rule; the sensitivity table shows what each moves.",
+        "",
+        "**Monodisperse 1-contact: K sets the density.** At saturation the density grows with the "
+        "number of directions: " + ", ".join(f"K = {k}: φ = {v:.3f}" for k, v in k_scan) +
+        f". The paper's 0.62–0.64 is met at K = {', '.join(str(k) for k, v in k_scan if 0.62 <= v <= 0.64) or 'none'}; "
+        f"the partner rule moves it less (never retiring, the paper's pure random choice, gives "
+        f"{d(m1_never16):.3f} at K = 16 and {d(m1_never):.3f} at K = 10; retiring after 8 "
+        f"failed tries gives {d(m1_r8):.3f} at K = 10). packgen's 2D default K = 10 is therefore "
+        f"inferred from the paper's "
+        "density, not stated by the paper; the 3D default stays 16 (random directions on the "
+        "sphere, a different rule). n_T and the stop rule move the monodisperse 1-contact "
+        "density much less than K (see the table).",
+        "",
+        "**Monodisperse 0-contact: the stop rule is the only knob.** With one size, n_T tries "
+        "per size and M consecutive failed sizes make n_T·M consecutive failed random positions; "
+        "the density creeps towards the random-sequential-addition limit (0.547, plus the raster's "
+        "small overlaps): " + ", ".join(f"M = {m}: φ = {v:.3f}" for m, v in m0_mf) +
+        " (n_T = 1000). The paper's 0.55–0.57 needs n_T·M ≈ 1e5 or more, i.e. a run that stops "
+        "only near saturation.",
+        "",
+        f"**Gauss 0-contact: the paper stopped early.** With the consecutive-failure rule small "
+        f"particles keep fitting into the pores, each success resets the count, and the bed "
+        f"fills to φ = {d(rows[2]):.3f} with {n(rows[2]):.0f} particles, mostly small ones. The "
+        f"paper's 325–425 particles at φ = 0.42–0.52 are below its own monodisperse density: its "
+        f"run must have ended when the large sizes started to fail, before the pores were "
+        f"filled. Stopping at the first failed size (`--max-failures 1`) gives "
+        f"{n(g0_first):.0f} particles at φ = {d(g0_first):.3f}; n_T = 10 with M = 10 gives "
+        f"{n(g0_early):.0f} at φ = {d(g0_early):.3f} ({where(d(g0_early), (0.42, 0.52))} the paper's range). No "
+        f"consecutive-failure setting matches the monodisperse and the Gauss 0-contact case "
+        f"together: the monodisperse case needs the late stop, the Gauss case an early one. "
+        f"The miss is the stop rule, reported here, not tuned away.",
+        "",
+        f"**Gauss 1-contact: retiring partners acts as the stop.** With the default "
+        f"retire-after 32 the front of placed particles closes and the run ends with "
+        f"{n(rows[3]):.0f} particles at φ = {d(rows[3]):.3f} (paper: 525–575, 0.68–0.72). Never "
+        f"retiring (the pure random partner choice) keeps every particle a partner until small "
+        f"sizes have filled the pores: {n(g1_never):.0f} particles at φ = {d(g1_never):.3f} "
+        f"({len(g1_never)} seeds, {mean(col(g1_never, 'wall')):.0f} s each). The paper's "
+        "polydisperse numbers, like the 0-contact ones, describe a bed that stopped before the "
+        "small sizes filled it.",
+        "",
+        f"**The truncation window is on the radius.** Read as a diameter window (radii "
+        f"0.0075–0.075 µm) the beds hold {n(rows[4]):.0f} (0-contact) and {n(rows[5]):.0f} "
+        f"(1-contact) particles (paper: 325–425 and 525–575); the radius reading gives "
+        f"{n(rows[2]):.0f} and {n(rows[3]):.0f}. The 1-contact count is"
+        f" {n(rows[5]) / 575:.1f} times the paper's upper bound with the diameter "
+        f"reading and {n(rows[3]) / 525:.2f} times its lower bound with the radius reading. The "
+        f"study uses the radius reading.",
+        "",
+        "**Which contact tolerance reproduces the paper's coordination.** At the strict tolerance "
+        f"a 1-contact bed has Z = {mean(col(rows[1], 'z_strict')):.2f} (each particle touches "
+        "its partner exactly; further contacts are raster gaps of up to about h), far below the "
+        "paper's; its Z values mean a gap tolerance of order h. The last column of the first "
+        "table gives, per case, the gaps g/h at which our mean Z lies in the paper's range: "
+        + "; ".join(f"{case[0]}: {gap_window(r, PAPER[case[3]][2])}"
+                    for (case, r) in results[:4]) +
+        f". {common_gap(results[:4])} The paper's counting rule on the raster is not given; "
+        "we report Z at h, √2 h (the diagonal of a grid cell) and 2 h side by side.",
+        "",
+    ]
+
+
+if __name__ == "__main__":
+    main()
