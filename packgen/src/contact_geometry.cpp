@@ -89,20 +89,16 @@ bool touch_two_3d(const Partner& a, const Partner& b, double r, Circle& out) {
   return verified(partners, 2, out.at(0), r) && verified(partners, 2, out.at(2.0), r);
 }
 
+PairPlane pair_plane(const Partner& a, const Partner& b, double r) {
+  const Linear l = linearise(a, b, r);
+  return {l.n, l.e, dot(l.n, l.n)};
+}
+
 int trilaterate(const Partner& a, const Partner& b, const Partner& c, double r,
                 std::array<Vec3, 2>& out) {
-  const Linear l1 = linearise(a, b, r), l2 = linearise(a, c, r);
-  const Vec3 u = cross(l1.n, l2.n);
-  const double u2 = dot(u, u);
-  // Colinear centres (or parallel walls): the two equations are (nearly) parallel.
-  if (!(u2 > 1e-24 * dot(l1.n, l1.n) * dot(l2.n, l2.n))) return 0;
-  // The point of the line nearest to c_a: y0 = (e1 (n2 x u) + e2 (u x n1)) / |u|^2, y0 . u = 0.
-  const Vec3 y0 = (1.0 / u2) * (l1.e * cross(l2.n, u) + l2.e * cross(u, l1.n));
-  double t = 0;
-  if (!half_chord(a.radius + r, y0, t)) return 0;
-  const Vec3 unit = (1.0 / std::sqrt(u2)) * u;
-  out[0] = a.centre + y0 + t * unit;
-  out[1] = a.centre + y0 - t * unit;
+  if (trilaterate(pair_plane(a, b, r), pair_plane(a, c, r), a.radius + r, out) == 0) return 0;
+  out[0] = a.centre + out[0];
+  out[1] = a.centre + out[1];
   return 2;
 }
 

@@ -6,26 +6,11 @@ namespace powderbed::packgen {
 
 namespace {
 
-// Min-heap order on (key, tie) for std::push_heap (which builds a max-heap of `less`).
-bool later(const Site& s, const Site& t) { return s.key > t.key || (s.key == t.key && s.tie > t.tie); }
-
 Vec3 direction(const Partner& a, const Partner& b) {
   return b.is_plane ? b.normal : b.centre - a.centre;
 }
 
 }  // namespace
-
-void SiteHeap::push(const Site& s) {
-  heap_.push_back(s);
-  std::push_heap(heap_.begin(), heap_.end(), later);
-}
-
-Site SiteHeap::pop() {
-  std::pop_heap(heap_.begin(), heap_.end(), later);
-  const Site s = heap_.back();
-  heap_.pop_back();
-  return s;
-}
 
 // The side of a solution: the sign of (x - c_a) . u with u = n_ab x n_ac (n: the centre
 // difference for a particle partner, the normal for a plane), which does not depend on r.

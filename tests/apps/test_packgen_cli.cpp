@@ -21,7 +21,8 @@ TEST(PackgenCli, JsonSummaryHasTheKeys) {
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* key : {"\"n\":", "\"density\":", "\"coordination\":", "\"coordination_by_tol\":",
                           "\"wall_time\":", "\"attempts\":", "\"target_reached\":true",
-                          "\"collision\":\"grid\"", "\"approach\":1"}) {
+                          "\"collision\":\"grid\"", "\"approach\":1",
+                          "\"size_sampling\":\"iid\""}) {
     EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
   }
   EXPECT_TRUE(exists(dir + "/bed.h5"));
@@ -36,6 +37,7 @@ TEST(PackgenCli, BadInputExitsTwoWithOneLine) {
       "--dim 2 --domain 2e-6,2e-6 --psd mono:d=3e-6",                                 // too small
       "--dim 2 --domain 4e-6,4e-6 --psd mono:r=1e-7 --approach 3",                    // 3 in 2D
       "--dim 3 --domain 4e-6,4e-6 --psd mono:r=1e-7",                                 // dim
+      "--dim 2 --domain 4e-6,4e-6 --psd mono:r=1e-7 --size-sampling sobol",           // sampling
   };
   for (const auto& args : cases) {
     const auto r = run_app("packgen", args + out);

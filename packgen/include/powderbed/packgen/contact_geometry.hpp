@@ -10,6 +10,7 @@
 // -kClampTolerance R^2 (the clamped point has a gap of at most ~kClampTolerance / 2 relative
 // to both partners, never an overlap); colinear centres (parallel linear equations) and any
 // non-finite result give no solution, never NaN.
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -60,6 +61,42 @@ bool touch_two_3d(const Partner& a, const Partner& b, double r, Circle& out);
 // 3D: up to two mirror centres touching particle a and partners b and c. Returns 0, 1 or 2.
 int touch_three_3d(const Partner& a, const Partner& b, const Partner& c, double r,
                    std::array<Vec3, 2>& out);
+
+// The plane n . y = e (y = x - c_a) on which partner b's contact equation cuts the sphere
+// |y| = R_a + r of particle a (for a particle b: the plane of the circle of centres touching a
+// and b). It depends on the pair and r only, so a loop over the triples (a, b, c) of one new
+// particle a computes it once per partner and reuses it (SPEC §3 3-contact).
+struct PairPlane {
+  Vec3 n;
+  double e = 0;
+  double nn = 0;  // |n|^2
+};
+PairPlane pair_plane(const Partner& a, const Partner& b, double r);
+// Trilateration from two pair planes of the same particle a (rho = R_a + r): 0, or 2 points
+// relative to c_a, y[0] on the +u side and y[1] on the -u side of u = p1.n x p2.n. Inline: it
+// is the innermost step of the lowest-site search. The line is y = y0 + s u with
+// y0 = w / |u|^2, w = e1 (n2 x u) + e2 (u x n1) = (e1 n2 - e2 n1) x u (y0 . u = 0); it meets
+// the sphere where s^2 |u|^2 = rho^2 - |y0|^2, i.e. D = rho^2 |u|^4 - |w|^2 >= 0, tested
+// before any division; near-tangent D (above -kClampTolerance rho^2 |u|^4) is clamped to 0,
+// NaN gives no solution.
+inline int trilaterate(const PairPlane& p1, const PairPlane& p2, double rho,
+                       std::array<Vec3, 2>& y) {
+  const Vec3 u = cross(p1.n, p2.n);
+  const double u2 = dot(u, u);
+  // Colinear centres (or parallel walls): the two equations are (nearly) parallel.
+  if (!(u2 > 1e-24 * p1.nn * p2.nn)) return 0;
+  const Vec3 w = cross(p1.e * p2.n - p2.e * p1.n, u);
+  const double sphere = rho * rho * u2 * u2;
+  const double d = sphere - dot(w, w);
+  if (!(d >= -kClampTolerance * sphere)) return 0;
+  const double inv = 1.0 / u2;
+  const Vec3 y0 = inv * w;
+  const double s = std::sqrt(std::max(d, 0.0) * inv) * inv;  // = sqrt(rho^2 - |y0|^2) / |u|
+  if (!std::isfinite(s)) return 0;
+  y[0] = y0 + s * u;
+  y[1] = y0 - s * u;
+  return 2;
+}
 
 // The trilateration of touch_three_3d without its final check: 0, or 2 with out[0] on the +u
 // side and out[1] on the -u side (u = n_ab x n_ac, site_heap.hpp). Hot loops filter the points

@@ -10,6 +10,7 @@
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/bed/domain.hpp"
 #include "powderbed/bed/psd.hpp"
+#include "powderbed/packgen/size_sampler.hpp"
 
 namespace powderbed::packgen {
 
@@ -48,6 +49,7 @@ struct PackOptions {
   int retire_after = 32;
   double edge_fraction = 0;           // fraction of 0-contact tries in the band along walls
   SiteOrder site_order = SiteOrder::lowest;  // 3D approach 3 only
+  SizeSampling size_sampling = SizeSampling::iid;  // size_sampler.hpp
   // Lowest-site growth: fraction of the floor area first covered by particles dropped at
   // random onto the floor (0: growth starts as soon as the first sites exist).
   double floor_seed = 0;
