@@ -23,6 +23,7 @@ struct Box {
     }
     return b;
   }
+  bool any_periodic() const { return periodic[0] || periodic[1] || periodic[2]; }
   // Separation along `axis` under the minimum image on a periodic axis.
   double image(int axis, double delta) const {
     return periodic[axis] ? delta - length[axis] * std::nearbyint(delta / length[axis]) : delta;

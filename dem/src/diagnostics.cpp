@@ -36,8 +36,7 @@ void for_each_overlap(const bed::Bed& bed, F&& f) {
   list.build(view, 1);
   for (std::size_t i = 0; i < bed.n(); ++i) {
     for (const std::uint32_t* it = list.begin(i); it != list.end(i); ++it) {
-      const std::size_t j = *it;
-      if (j <= i) continue;
+      const std::size_t j = *it;  // j > i: a half list
       const double dx = box.image(0, bed.x[j] - bed.x[i]);
       const double dy = box.image(1, bed.y[j] - bed.y[i]);
       const double dz = box.image(2, bed.z[j] - bed.z[i]);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include <omp.h>
+
 #include "parallel.hpp"
 #include "powderbed/bed/errors.hpp"
 
@@ -62,7 +64,7 @@ void NeighbourList::for_each_candidate(const ParticleView& p, std::size_t i, F&&
             (static_cast<std::size_t>(kz) * cells_[1] + ky) * cells_[0] + kx;
         for (std::uint32_t s = cell_start_[cell]; s < cell_start_[cell + 1]; ++s) {
           const std::uint32_t j = cell_particles_[s];
-          if (j == i) continue;
+          if (j <= i) continue;  // half list: each pair under its lower index
           const double ex = box_.image(0, p.x[j] - p.x[i]);
           const double ey = box_.image(1, p.y[j] - p.y[i]);
           const double ez = box_.image(2, p.z[j] - p.z[i]);
@@ -74,7 +76,7 @@ void NeighbourList::for_each_candidate(const ParticleView& p, std::size_t i, F&&
   }
 }
 
-void NeighbourList::build(const ParticleView& p, int threads) {
+void NeighbourList::build(const ParticleView& p, int threads, bool with_incident) {
   const std::size_t n = p.n;
   const std::size_t cells = static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2];
   // Counting sort of particles by cell (serial: O(N), and the order is then fixed).
@@ -109,18 +111,67 @@ void NeighbourList::build(const ParticleView& p, int threads) {
     std::uint32_t* out = partners_.data() + offset_[i];
     for_each_candidate(p, i, [&](std::uint32_t j) { *out++ = j; });
   });
+  if (with_incident) {
+    // Serial fill in increasing i: a particle's pairs under lower indices arrive first, in the
+    // order of those indices, then its own pairs are appended.
+    incident_offset_.assign(n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      incident_offset_[i + 1] += offset_[i + 1] - offset_[i];
+      for (std::uint32_t k = offset_[i]; k < offset_[i + 1]; ++k) ++incident_offset_[partners_[k] + 1];
+    }
+    for (std::size_t i = 0; i < n; ++i) incident_offset_[i + 1] += incident_offset_[i];
+    incident_.resize(incident_offset_[n]);
+    std::vector<std::uint32_t> cursor(incident_offset_.begin(), incident_offset_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::uint32_t k = offset_[i]; k < offset_[i + 1]; ++k) {
+        incident_[cursor[i]++] = 2 * k + 1;
+        incident_[cursor[partners_[k]]++] = 2 * k;
+      }
+    }
+  }
   x0_.assign(p.x, p.x + n);
   y0_.assign(p.y, p.y + n);
   z0_.assign(p.z, p.z + n);
 }
 
-double NeighbourList::max_displacement2(const ParticleView& p, int threads) const {
+namespace {
+
+// Whether some particle of [begin, end) moved more than sqrt(limit2) from (x0, y0, z0): a
+// restrict-qualified loop with an integer OR, which the compiler vectorises.
+bool any_moved(std::size_t begin, std::size_t end, double limit2, const double* __restrict x,
+               const double* __restrict y, const double* __restrict z,
+               const double* __restrict x0, const double* __restrict y0,
+               const double* __restrict z0) {
+  unsigned moved = 0;
+  for (std::size_t i = begin; i < end; ++i) {
+    const double ex = x[i] - x0[i], ey = y[i] - y0[i], ez = z[i] - z0[i];
+    moved |= static_cast<unsigned>(ex * ex + ey * ey + ez * ez > limit2);
+  }
+  return moved != 0;
+}
+
+}  // namespace
+
+bool NeighbourList::moved_more_than(const ParticleView& p, double limit, int threads) const {
+  const double limit2 = limit * limit;
+  if (!box_.any_periodic()) {
+    bool moved = false;
+    if (threads <= 1) return any_moved(0, p.n, limit2, p.x, p.y, p.z, x0_.data(), y0_.data(), z0_.data());
+#pragma omp parallel num_threads(threads) reduction(|| : moved)
+    {
+      const auto team = static_cast<std::size_t>(omp_get_num_threads());
+      const auto rank = static_cast<std::size_t>(omp_get_thread_num());
+      moved = any_moved(p.n * rank / team, p.n * (rank + 1) / team, limit2, p.x, p.y, p.z,
+                        x0_.data(), y0_.data(), z0_.data());
+    }
+    return moved;
+  }
   return max_over_particles(p.n, threads, [&](std::size_t i) {
     const double ex = box_.image(0, p.x[i] - x0_[i]);
     const double ey = box_.image(1, p.y[i] - y0_[i]);
     const double ez = box_.image(2, p.z[i] - z0_[i]);
     return ex * ex + ey * ey + ez * ez;
-  });
+  }) > limit2;
 }
 
 }  // namespace powderbed::dem::detail

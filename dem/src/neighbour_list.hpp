@@ -1,9 +1,11 @@
 #pragma once
-// Verlet neighbour list built from a cell list (SPEC §4 "neighbour search by binning"): every
-// particle gets the full list of partners (both directions) within r_i + r_j + skin, so forces
-// are summed per particle in a fixed order for any thread count. Cells are at least the largest
-// diameter plus the skin wide, so one build costs O(N); the list is rebuilt when some particle
-// has moved more than skin/2 since the last build.
+// Verlet neighbour list built from a cell list (SPEC §4 "neighbour search by binning"): a half
+// list, each pair (i, j) within r_i + r_j + skin once, under its lower index i, so each contact
+// force is computed once. For a deterministic parallel sum each particle also gets its incident
+// pairs in a fixed order (the pairs under lower indices, by that index, then its own), the order
+// in which a serial loop over i that adds F to i and subtracts it from j meets them. Cells are
+// at least the largest diameter plus the skin wide, so one build costs O(N); the list is rebuilt
+// when some particle has moved more than skin/2 since the last build.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -25,14 +27,21 @@ class NeighbourList {
   // Fixes the geometry for n particles: cell size >= 2 r_max + skin. Throws InputError when a
   // periodic axis is shorter than 3 cells (the minimum image would then miss or repeat partners).
   void configure(const Box& box, double r_max, double skin, std::size_t n);
-  void build(const ParticleView& p, int threads);
-  // Largest squared displacement since the last build, under the minimum image.
-  double max_displacement2(const ParticleView& p, int threads) const;
+  // Builds the half list; with_incident also builds the incident lists (parallel force sums).
+  void build(const ParticleView& p, int threads, bool with_incident = false);
+  // Whether some particle moved more than `limit` since the last build (minimum image).
+  bool moved_more_than(const ParticleView& p, double limit, int threads) const;
   double skin() const { return skin_; }
 
   const std::uint32_t* begin(std::size_t i) const { return partners_.data() + offset_[i]; }
   const std::uint32_t* end(std::size_t i) const { return partners_.data() + offset_[i + 1]; }
   std::size_t pair_entries() const { return partners_.size(); }
+  // Index of i's first pair: begin(i)[m] is pair offset(i) + m (per-pair tables use it).
+  std::size_t offset(std::size_t i) const { return offset_[i]; }
+  // Incident pairs of particle i: 2 k + 1 when i is the pair's lower index (force on i is +F_k),
+  // 2 k when it is the upper one (-F_k).
+  const std::uint32_t* incident_begin(std::size_t i) const { return incident_.data() + incident_offset_[i]; }
+  const std::uint32_t* incident_end(std::size_t i) const { return incident_.data() + incident_offset_[i + 1]; }
 
  private:
   template <class F>
@@ -48,6 +57,8 @@ class NeighbourList {
   std::vector<std::uint32_t> particle_cell_;  // flat cell index per particle
   std::vector<std::uint32_t> offset_;         // size n + 1
   std::vector<std::uint32_t> partners_;
+  std::vector<std::uint32_t> incident_offset_;  // size n + 1 (with_incident)
+  std::vector<std::uint32_t> incident_;
   std::vector<double> x0_, y0_, z0_;          // positions at the last build
 };
 

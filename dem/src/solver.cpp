@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -74,6 +75,7 @@ std::size_t remove_lost_particles(bed::Bed& bed) {
 namespace {
 
 using detail::Box;
+using detail::ContactTables;
 using detail::ForceArrays;
 using detail::ForceParams;
 using detail::NeighbourList;
@@ -92,6 +94,7 @@ struct Context {
   // RK4: state at the start of the step and the weighted sums of the stage derivatives.
   std::vector<double> x0, y0, z0, u0, v0, w0, sx, sy, sz, su, sv, sw;
   NeighbourList list;
+  ContactTables tables;
   std::uint64_t rebuilds = 0;
 
   ParticleView view() const { return {bed.x.data(), bed.y.data(), bed.z.data(), bed.radius.data(), n}; }
@@ -100,18 +103,34 @@ struct Context {
             bed.vz.data(), bed.radius.data(), mass.data(), drag.data(), fx.data(),
             fy.data(),     fz.data(),     n};
   }
+  void rebuild() {
+    list.build(view(), threads, threads > 1);
+    detail::tabulate_contacts(tables, arrays(), params, list, list.skin(), threads);
+  }
   void rebuild_if_needed() {
-    const double half = 0.5 * list.skin();
-    if (list.max_displacement2(view(), threads) > half * half) {
-      list.build(view(), threads);
+    if (list.moved_more_than(view(), 0.5 * list.skin(), threads)) {
+      rebuild();
       ++rebuilds;
     }
   }
 };
 
-// Serial scan (O(N), small beside the force loop) so the first bad particle is reported.
+// True when every value is finite: a branch-free test of the 11 exponent bits (all ones for
+// inf and NaN: adding 1 carries into bit 11), shifts, masks and adds that the compiler
+// vectorises even with SSE2's lack of 64-bit compares; cheap enough for every step.
+bool all_finite(const std::vector<double>& values) {
+  std::uint64_t bad = 0;
+  for (const double v : values) bad |= (((std::bit_cast<std::uint64_t>(v) >> 52) & 0x7ffu) + 1) >> 11;
+  return bad == 0;
+}
+
+// A vectorised test of the velocities first, then (only on failure) a serial scan so that the
+// first bad particle is reported. Velocities suffice: positions are sums of finite positions
+// and dt times velocities, so a non-finite position needs a non-finite (or ~1e300 m/s)
+// velocity, which this or the next step's test catches.
 void check_finite(const Context& c, std::uint64_t step) {
   const bed::Bed& b = c.bed;
+  if (all_finite(b.vx) && all_finite(b.vy) && all_finite(b.vz)) return;
   for (std::size_t i = 0; i < c.n; ++i) {
     if (std::isfinite(b.x[i] + b.y[i] + b.z[i] + b.vx[i] + b.vy[i] + b.vz[i])) continue;
     std::ostringstream msg;
@@ -122,27 +141,43 @@ void check_finite(const Context& c, std::uint64_t step) {
   }
 }
 
+// v += h F / m and x += dt v on particles [begin, end) of one axis: restrict-qualified plain
+// loops that the compiler vectorises.
+void kick(std::size_t begin, std::size_t end, double h, const double* __restrict f,
+          const double* __restrict inv_mass, double* __restrict v) {
+  for (std::size_t i = begin; i < end; ++i) v[i] += h * f[i] * inv_mass[i];
+}
+void drift(std::size_t begin, std::size_t end, double dt, const double* __restrict v,
+           double* __restrict x) {
+  for (std::size_t i = begin; i < end; ++i) x[i] += dt * v[i];
+}
+
 // Velocity Verlet (kick–drift–kick); velocity-dependent forces see the half-step velocity.
 template <unsigned E>
 void step_verlet(Context& c, std::uint64_t step) {
   const double dt = c.dt, half = 0.5 * c.dt;
   bed::Bed& b = c.bed;
   const Box& box = c.params.box;
-  detail::for_each_particle(c.n, c.threads, [&](std::size_t i) {
-    b.vx[i] += half * c.fx[i] * c.inv_mass[i];
-    b.vy[i] += half * c.fy[i] * c.inv_mass[i];
-    b.vz[i] += half * c.fz[i] * c.inv_mass[i];
-    b.x[i] = box.wrap(0, b.x[i] + dt * b.vx[i]);
-    b.y[i] = box.wrap(1, b.y[i] + dt * b.vy[i]);
-    b.z[i] = box.wrap(2, b.z[i] + dt * b.vz[i]);
+  const auto kick_all = [&](std::size_t begin, std::size_t end) {
+    kick(begin, end, half, c.fx.data(), c.inv_mass.data(), b.vx.data());
+    kick(begin, end, half, c.fy.data(), c.inv_mass.data(), b.vy.data());
+    kick(begin, end, half, c.fz.data(), c.inv_mass.data(), b.vz.data());
+  };
+  detail::for_each_chunk(c.n, c.threads, [&](std::size_t begin, std::size_t end) {
+    kick_all(begin, end);
+    drift(begin, end, dt, b.vx.data(), b.x.data());
+    drift(begin, end, dt, b.vy.data(), b.y.data());
+    drift(begin, end, dt, b.vz.data(), b.z.data());
+    if (!box.any_periodic()) return;
+    for (std::size_t i = begin; i < end; ++i) {
+      b.x[i] = box.wrap(0, b.x[i]);
+      b.y[i] = box.wrap(1, b.y[i]);
+      b.z[i] = box.wrap(2, b.z[i]);
+    }
   });
   c.rebuild_if_needed();
-  detail::compute_forces<E>(c.arrays(), c.params, c.list, c.threads);
-  detail::for_each_particle(c.n, c.threads, [&](std::size_t i) {
-    b.vx[i] += half * c.fx[i] * c.inv_mass[i];
-    b.vy[i] += half * c.fy[i] * c.inv_mass[i];
-    b.vz[i] += half * c.fz[i] * c.inv_mass[i];
-  });
+  detail::compute_forces<E>(c.arrays(), c.params, c.list, c.tables, c.threads);
+  detail::for_each_chunk(c.n, c.threads, kick_all);
   check_finite(c, step);
 }
 
@@ -164,7 +199,7 @@ void step_rk4(Context& c, std::uint64_t step) {
   });
   // Stage k: derivative (v, F/m) at the current stage state in the bed arrays; weights 1,2,2,1.
   for (int stage = 0; stage < 4; ++stage) {
-    detail::compute_forces<E>(c.arrays(), c.params, c.list, c.threads);
+    detail::compute_forces<E>(c.arrays(), c.params, c.list, c.tables, c.threads);
     const double weight = (stage == 0 || stage == 3) ? 1.0 : 2.0;
     const double next = stage < 2 ? 0.5 * dt : dt;  // offset of the next stage
     detail::for_each_particle(c.n, c.threads, [&](std::size_t i) {
@@ -211,7 +246,8 @@ using StepFn = void (*)(Context&, std::uint64_t);
 
 struct Steppers {
   StepFn step;
-  void (*forces)(const ForceArrays&, const ForceParams&, const NeighbourList&, int);
+  void (*forces)(const ForceArrays&, const ForceParams&, const NeighbourList&, ContactTables&,
+                 int);
 };
 
 template <unsigned E>
@@ -291,9 +327,7 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
 
   Context c(bed, settings);
   c.n = bed.n();
-  // Small beds run serially: an OpenMP fork per loop costs microseconds, more than the work.
-  constexpr std::size_t kParallelMin = 256;
-  c.threads = bed.n() < kParallelMin ? 1
+  c.threads = bed.n() < settings.parallel_min_particles ? 1
               : settings.threads > 0 ? settings.threads
                                      : omp_get_max_threads();
   if (settings.dt > 0) {
@@ -350,11 +384,12 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   }
   const double skin = settings.skin > 0 ? settings.skin : 0.2 * r_max;
   c.list.configure(c.params.box, r_max, skin, n);
-  c.list.build(c.view(), c.threads);
+  detail::tabulate_wall_constants(c.tables, c.arrays(), c.params);
+  c.rebuild();
 
   const Steppers steppers =
       dispatch(scene.effects & kAllEffects, settings.integrator, std::make_index_sequence<64>{});
-  steppers.forces(c.arrays(), c.params, c.list, c.threads);  // Verlet needs F(t0)
+  steppers.forces(c.arrays(), c.params, c.list, c.tables, c.threads);  // Verlet needs F(t0)
 
   const double t_end = settings.t_end > 0 ? settings.t_end : 1.0;
   const auto total_steps = static_cast<std::uint64_t>(std::ceil(t_end / c.dt - 1e-9));

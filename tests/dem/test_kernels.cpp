@@ -41,6 +41,22 @@ TEST(HertzNormal, DampingAddsTwoZetaSqrtMkAndNeverPulls) {
   EXPECT_EQ(dem::hertz_damped_force(p, r_star, m_star, delta, -10 * fe / c), 0.0);
 }
 
+TEST(HertzNormal, TabulatedPairConstantsGiveTheSameLaw) {
+  // The force loop's division-free form a delta^{3/2} + b delta^{1/4} delta' against the
+  // direct kernels; both are a few roundings from the exact value, so 1e-14 relative.
+  const dem::HertzNormalParams p{1e11, 0.3};
+  const double r_star = 7e-6, m_star = 3e-11;
+  const dem::HertzPairConstants c = dem::hertz_pair_constants(p, r_star, m_star);
+  for (const double delta : {1e-10, 1e-8, 1e-7}) {
+    for (const double rate : {-0.05, 0.0, 0.01}) {
+      const double direct = dem::hertz_damped_force(p, r_star, m_star, delta, rate);
+      EXPECT_NEAR(dem::hertz_damped_force(c, delta, rate), direct, 1e-14 * std::abs(direct));
+    }
+    const double elastic = dem::hertz_elastic_force(p, r_star, delta);
+    EXPECT_NEAR(dem::hertz_elastic_force(c, delta), elastic, 1e-14 * elastic);
+  }
+}
+
 TEST(SlidingFriction, CoulombWhenSlidingZeroAtRest) {
   const dem::SlidingFrictionParams p{0.1, 1e-5};
   double f[3];

@@ -150,6 +150,7 @@ TEST(Determinism, OneAndTwoThreadsGiveBitIdenticalBeds) {
     s.integrator = integrator;
     s.young_scale = 1e3;
     s.t_end = integrator == dem::Integrator::verlet ? 1.5e-4 : 3.5e-5;
+    s.parallel_min_particles = 0;  // 300 particles: below the default, force the parallel path
     bed::Bed one = start, two = start;
     s.threads = 1;
     const auto summary = dem::run_deposition(one, dem::Scene{}, s);

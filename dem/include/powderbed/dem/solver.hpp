@@ -40,6 +40,11 @@ struct RunSettings {
   RestCriteria rest;
   double skin = 0;              // Verlet skin, m; 0 = 0.1 * largest diameter
   int threads = 0;              // OpenMP threads; 0 = OpenMP's default
+  // Beds with fewer particles run on one thread whatever `threads` says: a step of the 600-
+  // particle [GZ] bed is ~20 us of work in ~5 parallel loops, and each fork/barrier costs
+  // microseconds on an idle machine and far more on a busy one (measured on the shared 2-core
+  // machine: 0.5 s on 1 thread, 13 s on 2 for 20,000 steps; docs/results/deposit-speed.md).
+  std::size_t parallel_min_particles = 4096;
   std::string trajectory;       // HDF5 time series path ("" = none), with an XDMF sidecar
   std::uint64_t trajectory_every = 0;  // steps between snapshots (> 0 with a trajectory)
   // Called every progress_every steps (and at the end) when set.
