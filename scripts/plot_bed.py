@@ -60,7 +60,11 @@ def main():
     if args.color in ("temperature", "phase") and args.color not in bed:
         sys.exit(f"plot_bed: {args.bed}: no /particles/{args.color} to colour by")
     colour = {"radius": rad, "z": pos[:, 2]}.get(args.color, bed.get(args.color))
-    norm = matplotlib.colors.Normalize(colour.min(), colour.max() if colour.max() > colour.min() else colour.min() + 1)
+    lo_c, hi_c = float(colour.min()), float(colour.max())
+    if hi_c <= lo_c:  # one value (a monodisperse bed): a narrow band around it
+        pad = abs(lo_c) * 0.01 or 1.0
+        lo_c, hi_c = lo_c - pad, hi_c + pad
+    norm = matplotlib.colors.Normalize(lo_c, hi_c)
     cmap = "viridis"
     um = 1e-6
     lo, hi = bed["lower"], bed["upper"]
