@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 mkdir -p out
 psd="gauss:mean=30e-6,sd=5e-6,min=20e-6,max=40e-6"
-build/apps/packgen --dim 3 --domain 1e-3,0.5e-3,0.1e-3 --psd "$psd" --approach 3 \
+build/apps/packgen --dim 3 --domain 1e-3,0.5e-3,0.1e-3 --psd "$psd" --approach 3 --size-sampling stratified \
   --seed 1 --out out/layer.h5
 build/apps/bedstat out/layer.h5 --layer 0,30e-6 --psd "$psd"
 /usr/bin/python3 scripts/plot_bed.py out/layer.h5 out/layer.png --title "packgen powder layer"
