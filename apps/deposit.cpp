@@ -273,6 +273,11 @@ int run(int argc, char** argv) {
         .value("out", out)
         .end_object();
     std::cout << j.str() << '\n';
+  } else {
+    std::cout << "deposit: " << bed.n() << " particles (" << removed << " lost), " << r.steps
+              << " steps of " << r.dt << " s to t = " << r.sim_time << " s, " << r.wall_time
+              << " s wall, " << r.particle_steps_per_s << " particle-steps/s, max overlap "
+              << r.max_overlap << " r" << (r.at_rest ? ", at rest" : "") << " -> " << out << '\n';
   }
   return 0;
 }
