@@ -70,3 +70,44 @@ TEST(DepositCli, SmallRunWritesBedAndJson) {
   EXPECT_TRUE(out.has_velocity());
   EXPECT_LT(out.z[0], 21e-6);  // it fell onto the floor
 }
+
+TEST(DepositCli, InsertionRegionTooSmallStatesAchievableCount) {
+  // 40 um spheres in a 0.1 mm cube: at most a few dozen fit; 1000 are asked for.
+  const std::string dir = test::scratch_dir("deposit_insert");
+  const std::string common = "--psd mono:d=40e-6 --domain 1e-4,1e-4,1e-4 --young-scale 1e3 "
+                             "--t-end 1e-6 --seed 4 --out " + dir + "/out.h5";
+  auto r = test::run_app("deposit", "--count 1000 " + common);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("--count"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::ifstream(dir + "/out.h5").good());
+  // The message names the achievable N ("N <= K"), and K is achievable: the same seed places it.
+  const auto at = r.err.find("N <= ");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const unsigned long achievable = std::stoul(r.err.substr(at + 5));
+  EXPECT_GT(achievable, 0u);
+  EXPECT_LT(achievable, 1000u);
+  r = test::run_app("deposit", "--count " + std::to_string(achievable) + " " + common);
+  EXPECT_EQ(r.status, 0) << r.err;
+}
+
+TEST(DepositCli, ParticleOutsideTheDomainExits2) {
+  const std::string dir = test::scratch_dir("deposit_outside");
+  bed::Bed b;
+  b.domain.upper = {0.3e-3, 0.3e-3, 0.3e-3};
+  b.add(1e-4, 1.5e-4, 21e-6, 20e-6);
+  b.add(2e-4, 1.5e-4, 0.4e-3, 20e-6);  // centre above the lid
+  bed::write_bed_h5(b, dir + "/in.h5");
+  auto r = test::run_app("deposit", "--in " + dir + "/in.h5 --young-scale 1e3 --t-end 1e-6 "
+                                    "--seed 1 --out " + dir + "/out.h5");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("outside the domain"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::ifstream(dir + "/out.h5").good());
+  // The same through --domain: a box smaller than the bed's.
+  r = test::run_app("deposit", "--in " + small_bed(dir) + " --domain 0.15e-3,0.3e-3,0.3e-3 "
+                               "--young-scale 1e3 --t-end 1e-6 --seed 1 --out " + dir + "/out.h5");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_FALSE(std::ifstream(dir + "/out.h5").good());
+}

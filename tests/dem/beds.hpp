@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "powderbed/bed/bed.hpp"
+#include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/random.hpp"
 #include "powderbed/dem/scene.hpp"
 
@@ -47,6 +48,31 @@ inline void add_random(bed::Bed& b, std::size_t count, double r0, double r1, con
     b.add(p[0], p[1], p[2], r);
     ++placed;
   }
+}
+
+// Up to `count` non-overlapping particles with radii drawn from `psd`, x and y uniform inside the
+// box, the lowest point uniform in [0, max_gap] above the floor (a drop from a low height).
+// Brute-force rejection, giving up after `max_tries` draws; returns how many were placed.
+inline std::size_t add_near_floor(bed::Bed& b, std::size_t count, const bed::Psd& psd,
+                                  double max_gap, std::uint64_t seed,
+                                  std::size_t max_tries = 100000) {
+  bed::Rng rng(seed);
+  std::size_t placed = 0;
+  for (std::size_t tries = 0; placed < count && tries < max_tries; ++tries) {
+    const double r = psd.sample_radius(rng);
+    const double p[3] = {bed::uniform(rng, r, b.domain.upper[0] - r),
+                         bed::uniform(rng, r, b.domain.upper[1] - r),
+                         bed::uniform(rng, r, r + max_gap)};
+    bool free = true;
+    for (std::size_t j = 0; j < b.n() && free; ++j) {
+      const double dx = b.x[j] - p[0], dy = b.y[j] - p[1], dz = b.z[j] - p[2];
+      free = dx * dx + dy * dy + dz * dz > (r + b.radius[j]) * (r + b.radius[j]);
+    }
+    if (!free) continue;
+    b.add(p[0], p[1], p[2], r);
+    ++placed;
+  }
+  return placed;
 }
 
 // A scene with only the given effects on; 316L of [GZ] Table 2 otherwise.
