@@ -24,7 +24,8 @@ import numpy as np
 from common import ROOT, RESULTS, app, read_bed, run_json, write_text
 
 SCENE = os.path.join(ROOT, "data", "scenes", "gz2016-deposit.ini")
-PEER = "/work/shared/peers/gz2016.liggghts"
+# The peer scripts live in shared/ beside the repository (DESIGN.md: "side by side").
+PEER = os.path.join(ROOT, "..", "shared", "peers", "gz2016.liggghts")
 LX, LY = 1e-3, 0.5e-3
 SCALES = [1e3, 1e4]  # 1e3 is the default reported; 1e4 shows the sensitivity
 
@@ -90,7 +91,7 @@ def ours(work, scale):
 
 
 def peer(work):
-    """The LIGGGHTS peer deck as /work/shared/peers/README.md runs it; None without LIGGGHTS."""
+    """The LIGGGHTS peer deck as ../shared/peers/README.md runs it; None without LIGGGHTS."""
     exe = shutil.which("liggghts")
     if not exe:
         return None

@@ -9,6 +9,15 @@
 
 namespace powderbed::test {
 
+// Whether a sphere of radius r at p overlaps no particle of b (brute force: test beds are small).
+inline bool is_free(const bed::Bed& b, const double p[3], double r) {
+  for (std::size_t j = 0; j < b.n(); ++j) {
+    const double dx = b.x[j] - p[0], dy = b.y[j] - p[1], dz = b.z[j] - p[2];
+    if (dx * dx + dy * dy + dz * dz <= (r + b.radius[j]) * (r + b.radius[j])) return false;
+  }
+  return true;
+}
+
 inline bed::Bed box_bed(double lx, double ly, double lz) {
   bed::Bed b;
   b.domain.dimension = 3;
@@ -39,12 +48,7 @@ inline void add_random(bed::Bed& b, std::size_t count, double r0, double r1, con
     const double p[3] = {bed::uniform(rng, lo[0] + r, hi[0] - r),
                          bed::uniform(rng, lo[1] + r, hi[1] - r),
                          bed::uniform(rng, lo[2] + r, hi[2] - r)};
-    bool free = true;
-    for (std::size_t j = 0; j < b.n() && free; ++j) {
-      const double dx = b.x[j] - p[0], dy = b.y[j] - p[1], dz = b.z[j] - p[2];
-      free = dx * dx + dy * dy + dz * dz > (r + b.radius[j]) * (r + b.radius[j]);
-    }
-    if (!free) continue;
+    if (!is_free(b, p, r)) continue;
     b.add(p[0], p[1], p[2], r);
     ++placed;
   }
@@ -63,12 +67,7 @@ inline std::size_t add_near_floor(bed::Bed& b, std::size_t count, const bed::Psd
     const double p[3] = {bed::uniform(rng, r, b.domain.upper[0] - r),
                          bed::uniform(rng, r, b.domain.upper[1] - r),
                          bed::uniform(rng, r, r + max_gap)};
-    bool free = true;
-    for (std::size_t j = 0; j < b.n() && free; ++j) {
-      const double dx = b.x[j] - p[0], dy = b.y[j] - p[1], dz = b.z[j] - p[2];
-      free = dx * dx + dy * dy + dz * dz > (r + b.radius[j]) * (r + b.radius[j]);
-    }
-    if (!free) continue;
+    if (!is_free(b, p, r)) continue;
     b.add(p[0], p[1], p[2], r);
     ++placed;
   }
