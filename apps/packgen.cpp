@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common/app_main.hpp"
+#include "common/contact_report.hpp"
 #include "common/options.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
@@ -21,14 +22,7 @@ namespace {
 using namespace powderbed;
 namespace po = app::po;
 
-// The contact tolerances of SPEC §2 (JSON coordination_by_tol); "coordination" is at 1e-6.
-constexpr double kTolerances[] = {1e-6, 1e-3, 1e-2};
 
-std::string tolerance_key(double tol) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", tol);
-  return buf;
-}
 
 // The resolved options as INI text: the bed's /provenance scene.
 std::string scene_ini(const po::variables_map& vm) {
@@ -150,16 +144,16 @@ int run(int argc, char** argv) {
   b.provenance.scene = scene_ini(vm);
   bed::write_bed_h5(b, vm["out"].as<std::string>());
 
+  const double density = bed::packing_density(b);
   if (!result.target_reached) {
     std::cerr << "packgen: warning: " << (o.count > 0 ? "--count " : "--target-density ")
-              << (o.count > 0 ? std::to_string(o.count) : tolerance_key(o.target_density))
+              << (o.count > 0 ? std::to_string(o.count) : app::tolerance_key(o.target_density))
               << " not reached: stopped after " << o.max_failures
               << " consecutive failed placements with " << b.n() << " particles at density "
-              << bed::packing_density(b) << "; the bed was written\n";
+              << density << "; the bed was written\n";
   }
-  const double density = bed::packing_density(b);
-  std::vector<bed::ContactStats> by_tol;
-  for (double tol : kTolerances) by_tol.push_back(bed::contact_stats(b, tol));
+  const std::vector<bed::ContactStats> by_tol = bed::contact_stats(
+      b, std::vector<double>(std::begin(app::kReportedTolerances), std::end(app::kReportedTolerances)));
   const int approach = o.phases.back().approach;
   if (vm.count("json")) {
     bed::JsonWriter j;
@@ -169,7 +163,7 @@ int run(int argc, char** argv) {
     j.value("coordination", by_tol[0].coordination);
     j.begin_object("coordination_by_tol");
     for (std::size_t t = 0; t < by_tol.size(); ++t) {
-      j.value(tolerance_key(kTolerances[t]), by_tol[t].coordination);
+      j.value(app::tolerance_key(app::kReportedTolerances[t]), by_tol[t].coordination);
     }
     j.end_object();
     j.value("rattlers", std::uint64_t{by_tol[0].rattlers});

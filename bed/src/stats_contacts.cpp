@@ -12,53 +12,71 @@ namespace powderbed::bed {
 
 // SPEC.md §2: a pair touches when d_ij <= (r_i + r_j)(1 + tol); Z = 2 contacts / N. A particle
 // touches a non-periodic face when its centre is within r (1 + tol) of it (2D: x and y faces).
-ContactStats contact_stats(const Bed& bed, double tolerance) {
-  if (!std::isfinite(tolerance) || !(tolerance > -1)) {
-    std::ostringstream msg;
-    msg << "contact_stats: tolerance " << tolerance << " (accepted: finite, > -1)";
-    throw InputError(msg.str());
+// All tolerances are counted in one pass over the cell list built for the largest of them.
+std::vector<ContactStats> contact_stats(const Bed& bed, const std::vector<double>& tolerances) {
+  for (const double tolerance : tolerances) {
+    if (!std::isfinite(tolerance) || !(tolerance > -1)) {
+      std::ostringstream msg;
+      msg << "contact_stats: tolerance " << tolerance << " (accepted: finite, > -1)";
+      throw InputError(msg.str());
+    }
   }
   detail::check_pair_index_range(bed, "contact_stats");
-  ContactStats out;
-  out.tolerance = tolerance;
+  const std::size_t nt = tolerances.size();
+  std::vector<ContactStats> out(nt);
+  for (std::size_t t = 0; t < nt; ++t) out[t].tolerance = tolerances[t];
   const std::size_t n = bed.n();
-  if (n == 0) return out;
-  const detail::PairGeometry geometry(bed);
-  const double scale = 1.0 + tolerance;
-  std::vector<std::uint32_t> per_particle(n, 0);
-  std::size_t contacts = 0;
+  if (n == 0 || nt == 0) return out;
+  std::vector<double> scale(nt);
+  for (std::size_t t = 0; t < nt; ++t) scale[t] = 1.0 + tolerances[t];
+  const double widest = *std::max_element(scale.begin(), scale.end());
+  std::vector<std::uint32_t> per_particle(n * nt, 0);  // [particle][tolerance]
+  std::vector<std::size_t> contacts(nt, 0);
   if (n > 1) {
-    const detail::CellList cells(geometry, 2.0 * detail::max_radius(bed) * std::max(scale, 1.0));
+    const detail::PairGeometry geometry(bed);
+    const detail::CellList cells(geometry, 2.0 * detail::max_radius(bed) * std::max(widest, 1.0));
     const double* r = bed.radius.data();
     cells.for_each_candidate([&](std::uint32_t i, std::uint32_t j, double d2) {
-      const double reach = (r[i] + r[j]) * scale;
+      const double sum = r[i] + r[j];
+      const double far = sum * widest;
       // Cheap squared pre-test (widened past rounding), then the exact rule on d itself.
-      if (d2 <= reach * reach * (1.0 + 1e-12) && std::sqrt(d2) <= reach) {
-        ++per_particle[i];
-        ++per_particle[j];
-        ++contacts;
+      if (d2 > far * far * (1.0 + 1e-12)) return;
+      const double d = std::sqrt(d2);
+      for (std::size_t t = 0; t < nt; ++t) {
+        if (d <= sum * scale[t]) {
+          ++per_particle[i * nt + t];
+          ++per_particle[j * nt + t];
+          ++contacts[t];
+        }
       }
     });
   }
-  out.contacts = contacts;
-  out.coordination = 2.0 * static_cast<double>(contacts) / static_cast<double>(n);
-  const std::uint32_t most = *std::max_element(per_particle.begin(), per_particle.end());
-  out.histogram.assign(std::size_t{most} + 1, 0);
-  for (const std::uint32_t k : per_particle) ++out.histogram[k];
-  out.rattlers = out.histogram[0];
-
-  const Domain& d = bed.domain;
+  const Domain& dom = bed.domain;
   const std::vector<double>* centre[3] = {&bed.x, &bed.y, &bed.z};
-  for (int a = 0; a < d.dimension; ++a) {
-    if (d.periodic[a]) continue;
-    const std::vector<double>& c = *centre[a];
-    for (std::size_t i = 0; i < n; ++i) {
-      const double reach = bed.radius[i] * scale;
-      if (c[i] - d.lower[a] <= reach) ++out.wall_contacts;
-      if (d.upper[a] - c[i] <= reach) ++out.wall_contacts;
+  for (std::size_t t = 0; t < nt; ++t) {
+    ContactStats& o = out[t];
+    o.contacts = contacts[t];
+    o.coordination = 2.0 * static_cast<double>(contacts[t]) / static_cast<double>(n);
+    std::uint32_t most = 0;
+    for (std::size_t i = 0; i < n; ++i) most = std::max(most, per_particle[i * nt + t]);
+    o.histogram.assign(std::size_t{most} + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) ++o.histogram[per_particle[i * nt + t]];
+    o.rattlers = o.histogram[0];
+    for (int a = 0; a < dom.dimension; ++a) {
+      if (dom.periodic[a]) continue;
+      const std::vector<double>& c = *centre[a];
+      for (std::size_t i = 0; i < n; ++i) {
+        const double reach = bed.radius[i] * scale[t];
+        if (c[i] - dom.lower[a] <= reach) ++o.wall_contacts;
+        if (dom.upper[a] - c[i] <= reach) ++o.wall_contacts;
+      }
     }
   }
   return out;
+}
+
+ContactStats contact_stats(const Bed& bed, double tolerance) {
+  return contact_stats(bed, std::vector<double>{tolerance}).front();
 }
 
 // SPEC.md §2 overlap check: max over pairs of (r_i + r_j - d) / (r_i + r_j).

@@ -28,6 +28,8 @@ struct ContactStats {
   std::size_t wall_contacts = 0;        // particle–wall contacts (non-periodic faces), same tol
 };
 ContactStats contact_stats(const Bed& bed, double tolerance);
+// The same for several tolerances at once (one neighbour search), in the order given.
+std::vector<ContactStats> contact_stats(const Bed& bed, const std::vector<double>& tolerances);
 
 // max over overlapping pairs of (r_i + r_j - d) / (r_i + r_j); 0 when no pair overlaps.
 double max_relative_overlap(const Bed& bed);
