@@ -2,7 +2,6 @@
 // Several beds print side by side: this is how geometric and dynamic beds are compared.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <iomanip>
 #include <iostream>
 #include <optional>
