@@ -85,24 +85,6 @@ T required(const po::variables_map& vm, const char* name) {
   return vm[name].as<T>();
 }
 
-// The resolved configuration as INI text, for the bed's provenance.
-std::string scene_text(const po::variables_map& vm) {
-  std::ostringstream out;
-  out.precision(17);
-  for (const auto& [key, value] : vm) {
-    const auto& v = value.value();
-    out << key << " = ";
-    if (const auto* s = boost::any_cast<std::string>(&v)) out << *s;
-    else if (const auto* d = boost::any_cast<double>(&v)) out << *d;
-    else if (const auto* b = boost::any_cast<bool>(&v)) out << (*b ? "true" : "false");
-    else if (const auto* u = boost::any_cast<std::uint64_t>(&v)) out << *u;
-    else if (const auto* z = boost::any_cast<std::size_t>(&v)) out << *z;
-    else if (const auto* i = boost::any_cast<int>(&v)) out << *i;
-    out << '\n';
-  }
-  return out.str();
-}
-
 bed::Bed insert_from_psd(const po::variables_map& vm, const bed::Domain& domain,
                          std::uint64_t seed) {
   const bed::Psd psd = bed::Psd::parse(required<std::string>(vm, "psd"), "--psd");
@@ -247,7 +229,7 @@ int run(int argc, char** argv) {
   bed.provenance.command_line = app::command_line(argc, argv);
   bed.provenance.rng_seed = seed;
   bed.provenance.stage = "deposit";
-  bed.provenance.scene = scene_text(vm);
+  bed.provenance.scene = app::scene_text(vm);
   bed::write_bed_h5(bed, out);
 
   if (vm.count("json")) {

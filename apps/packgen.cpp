@@ -24,23 +24,6 @@ namespace po = app::po;
 
 
 
-// The resolved options as INI text: the bed's /provenance scene.
-std::string scene_ini(const po::variables_map& vm) {
-  std::ostringstream ini;
-  for (const auto& [key, value] : vm) {
-    if (key == "config" || key == "json" || key == "help" || key == "version") continue;
-    const auto& v = value.value();
-    ini << key << " = ";
-    if (const auto* s = boost::any_cast<std::string>(&v)) ini << *s;
-    else if (const auto* i = boost::any_cast<int>(&v)) ini << *i;
-    else if (const auto* u = boost::any_cast<std::size_t>(&v)) ini << *u;
-    else if (const auto* d = boost::any_cast<double>(&v)) ini << *d;
-    else if (const auto* l = boost::any_cast<std::uint64_t>(&v)) ini << *l;
-    ini << '\n';
-  }
-  return ini.str();
-}
-
 void show_progress(const packgen::PackProgress& p) {
   const double f = std::min(std::max(p.fraction_done, 1e-9), 1.0);
   const double eta = p.elapsed * (1 - f) / f;
@@ -141,7 +124,7 @@ int run(int argc, char** argv) {
   b.provenance.command_line = app::command_line(argc, argv);
   b.provenance.rng_seed = seed;
   b.provenance.stage = "packgen";
-  b.provenance.scene = scene_ini(vm);
+  b.provenance.scene = app::scene_text(vm);
   bed::write_bed_h5(b, vm["out"].as<std::string>());
 
   const double density = bed::packing_density(b);

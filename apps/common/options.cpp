@@ -86,4 +86,22 @@ bed::Domain parse_domain_bounds(const std::string& text, const std::string& opti
   return d;
 }
 
+std::string scene_text(const po::variables_map& vm) {
+  std::ostringstream out;
+  out.precision(17);
+  for (const auto& [key, value] : vm) {
+    if (key == "config" || key == "json" || key == "help" || key == "version") continue;
+    const auto& v = value.value();
+    out << key << " = ";
+    if (const auto* s = boost::any_cast<std::string>(&v)) out << *s;
+    else if (const auto* d = boost::any_cast<double>(&v)) out << *d;
+    else if (const auto* b = boost::any_cast<bool>(&v)) out << (*b ? "true" : "false");
+    else if (const auto* u = boost::any_cast<std::uint64_t>(&v)) out << *u;
+    else if (const auto* z = boost::any_cast<std::size_t>(&v)) out << *z;
+    else if (const auto* i = boost::any_cast<int>(&v)) out << *i;
+    out << '\n';
+  }
+  return out.str();
+}
+
 }  // namespace powderbed::app

@@ -30,4 +30,8 @@ bed::Domain parse_domain_lengths(const std::string& text, const std::string& opt
 // "xlo,ylo,zlo,xhi,yhi,zhi" -> that box (3D; zlo == zhi == 0 makes it 2D).
 bed::Domain parse_domain_bounds(const std::string& text, const std::string& option);
 
+// The resolved options as INI text (key = value per line, full precision; --config, --json,
+// --help and --version left out): what a bed's or run's /provenance scene records.
+std::string scene_text(const po::variables_map& vm);
+
 }  // namespace powderbed::app

@@ -1,0 +1,280 @@
+// sinter: the DE–FD laser thermal solver (SPEC.md §5) on a bed: one laser track, melt pool on
+// the plane x = Lx/2, an HDF5 + XDMF time series, and the energy balance of the run.
+#include <omp.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+#include "common/app_main.hpp"
+#include "common/options.hpp"
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/io.hpp"
+#include "powderbed/bed/json.hpp"
+#include "powderbed/thermal/explain.hpp"
+#include "powderbed/thermal/run_output.hpp"
+#include "powderbed/thermal/solver.hpp"
+
+namespace {
+
+using namespace powderbed;
+namespace po = app::po;
+namespace th = thermal;
+
+const char* const kUsage =
+    "sinter --config SCENE.ini --bed BED.h5 --out RUN.h5 [--power P] [--speed V] [--spot W] "
+    "[--grid-spacing DX] [--dt DT] [--unsafe-dt] [--integrator explicit|implicit] [--json] "
+    "[--explain]";
+
+void add_options(po::options_description& desc) {
+  app::add_common_options(desc);
+  const th::SinterScene d;
+  desc.add_options()
+      ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump) resting on z = floor")
+      ("out", po::value<std::string>(), "run file: HDF5 time series + XDMF sidecar")
+      ("explain", po::bool_switch(), "print the scene's scale analysis and exit")
+      ("power", po::value<double>()->default_value(d.power), "laser power P (W)")
+      ("speed", po::value<double>()->default_value(d.speed), "scan speed v (m/s)")
+      ("spot", po::value<double>()->default_value(d.spot_radius), "beam radius w at 1/e^2 (m)")
+      ("grid-spacing", po::value<double>(),
+       "substrate node spacing (m); overrides substrate.nodes (nodes = L / DX + 1, rounded)")
+      ("dt", po::value<double>(), "grid time step (s); default: safety x the stable bound")
+      ("unsafe-dt", po::bool_switch(), "accept a --dt above the stable bound (with a warning)")
+      ("integrator", po::value<std::string>()->default_value("explicit"),
+       "explicit (forward Euler, multirate) or implicit (backward Euler, Eigen CG)")
+      ("t-end", po::value<double>(), "simulated time (s); default: until the laser reaches its end")
+      ("snapshots", po::value<std::size_t>()->default_value(20),
+       "number of snapshots in the time series (besides t = 0)")
+      ("full-fields", po::bool_switch(), "also store the whole substrate field in each snapshot")
+      ("threads", po::value<int>()->default_value(0), "OpenMP threads (0: OpenMP's default)")
+      ("laser.absorptivity", po::value<double>()->default_value(d.absorptivity), "alpha")
+      ("laser.y", po::value<double>(), "track line y (m); default Ly/2")
+      ("laser.start-x", po::value<double>(), "track start x (m); default one spot radius before")
+      ("laser.end-x", po::value<double>(), "track end x (m); default one spot radius past")
+      ("material.table", po::value<std::string>()->default_value(d.material_table),
+       "CSV of solid rows + one liquid row (relative paths: to the scene file's folder too)")
+      ("material.melting-point", po::value<double>()->default_value(d.phase_change.melting_point), "T_m (K)")
+      ("material.boiling-point", po::value<double>()->default_value(d.phase_change.boiling_point), "T_v (K)")
+      ("material.latent-melt", po::value<double>()->default_value(d.phase_change.latent_melt), "L_m (J/kg)")
+      ("material.latent-vapour", po::value<double>()->default_value(d.phase_change.latent_vapour), "L_v (J/kg)")
+      ("material.window", po::value<double>()->default_value(d.phase_change.window),
+       "phase-change window dT of the apparent heat capacity (K)")
+      ("material.hold-from", po::value<double>()->default_value(d.hold_from),
+       "solid properties extrapolated to this T, then held (K)")
+      ("material.liquid-conductivity", po::value<std::string>()->default_value("solid"),
+       "solid ([GZ]: the solid value held in the liquid) or table (the liquid row)")
+      ("environment.convection", po::value<double>()->default_value(d.convection), "h (W/m^2K)")
+      ("environment.emissivity", po::value<double>()->default_value(d.emissivity), "eps")
+      ("environment.temperature", po::value<double>()->default_value(d.environment_temperature), "T_env (K)")
+      ("environment.initial-temperature", po::value<double>()->default_value(d.initial_temperature),
+       "T0 of bed and substrate, and the substrate's Dirichlet value (K)")
+      ("substrate.depth", po::value<double>()->default_value(d.substrate_depth), "depth (m)")
+      ("substrate.nodes", po::value<std::string>()->default_value("201,101,61"), "NX,NY,NZ")
+      ("time.safety", po::value<double>()->default_value(d.safety), "fraction of the stable step");
+  for (unsigned bit = 1; bit < (1u << th::kSinterEffectCount); bit <<= 1) {
+    const std::string name = std::string("effects.") + th::sinter_effect_name(bit);
+    desc.add_options()(name.c_str(), po::value<bool>()->default_value(true), "effect on/off");
+  }
+}
+
+template <class T>
+T required(const po::variables_map& vm, const char* name) {
+  if (!vm.count(name)) throw InputError(std::string("--") + name + ": missing (required)");
+  return vm[name].as<T>();
+}
+
+// A relative table path is tried from the working folder, then from the scene file's folder.
+std::string resolve_table(const po::variables_map& vm) {
+  const std::string path = vm["material.table"].as<std::string>();
+  namespace fs = std::filesystem;
+  if (fs::path(path).is_absolute() || fs::exists(path) || !vm.count("config")) return path;
+  const fs::path beside = fs::path(vm["config"].as<std::string>()).parent_path() / path;
+  return fs::exists(beside) ? beside.string() : path;
+}
+
+th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
+  th::SinterScene s;
+  s.material_table = resolve_table(vm);
+  s.phase_change.melting_point = vm["material.melting-point"].as<double>();
+  s.phase_change.boiling_point = vm["material.boiling-point"].as<double>();
+  s.phase_change.latent_melt = vm["material.latent-melt"].as<double>();
+  s.phase_change.latent_vapour = vm["material.latent-vapour"].as<double>();
+  s.phase_change.window = vm["material.window"].as<double>();
+  s.hold_from = vm["material.hold-from"].as<double>();
+  const std::string liquid = vm["material.liquid-conductivity"].as<std::string>();
+  if (liquid != "solid" && liquid != "table")
+    throw InputError("material.liquid-conductivity: '" + liquid + "' (accepted: solid, table)");
+  s.liquid_conductivity =
+      liquid == "solid" ? th::LiquidConductivity::solid : th::LiquidConductivity::table;
+  s.convection = vm["environment.convection"].as<double>();
+  s.emissivity = vm["environment.emissivity"].as<double>();
+  s.environment_temperature = vm["environment.temperature"].as<double>();
+  s.initial_temperature = vm["environment.initial-temperature"].as<double>();
+  s.power = vm["power"].as<double>();
+  s.speed = vm["speed"].as<double>();
+  s.spot_radius = vm["spot"].as<double>();
+  s.absorptivity = vm["laser.absorptivity"].as<double>();
+  if (vm.count("laser.y")) s.laser_y = vm["laser.y"].as<double>();
+  if (vm.count("laser.start-x")) s.start_x = vm["laser.start-x"].as<double>();
+  if (vm.count("laser.end-x")) s.end_x = vm["laser.end-x"].as<double>();
+  s.substrate_depth = vm["substrate.depth"].as<double>();
+  const auto nodes = app::parse_number_list(vm["substrate.nodes"].as<std::string>(), 3, 3,
+                                            "substrate.nodes");
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (!(nodes[a] >= 0 && nodes[a] == std::floor(nodes[a])))
+      throw InputError("substrate.nodes: '" + vm["substrate.nodes"].as<std::string>() +
+                       "' (accepted: three whole numbers >= 3)");
+    s.nodes[a] = static_cast<std::size_t>(nodes[a]);
+  }
+  if (vm.count("grid-spacing")) {
+    const double h = vm["grid-spacing"].as<double>();
+    if (!(h > 0 && std::isfinite(h)))
+      throw InputError("--grid-spacing: " + std::to_string(h) + " (accepted: DX > 0 m)");
+    const double lengths[3] = {lx, ly, s.substrate_depth};
+    for (std::size_t a = 0; a < 3; ++a)
+      s.nodes[a] = static_cast<std::size_t>(std::llround(lengths[a] / h)) + 1;
+  }
+  const std::string integrator = vm["integrator"].as<std::string>();
+  if (integrator != "explicit" && integrator != "implicit")
+    throw InputError("--integrator: '" + integrator + "' (accepted: explicit, implicit)");
+  s.integrator = integrator == "explicit" ? th::Integrator::explicit_euler
+                                          : th::Integrator::implicit_euler;
+  if (vm.count("dt")) {
+    s.dt = vm["dt"].as<double>();
+    if (!(s.dt > 0)) throw InputError("--dt: " + std::to_string(s.dt) + " (accepted: dt > 0 s)");
+  }
+  s.safety = vm["time.safety"].as<double>();
+  if (vm.count("t-end")) s.t_end = vm["t-end"].as<double>();
+  s.effects = 0;
+  for (unsigned bit = 1; bit < (1u << th::kSinterEffectCount); bit <<= 1)
+    if (vm[std::string("effects.") + th::sinter_effect_name(bit)].as<bool>()) s.effects |= bit;
+  return s;
+}
+
+// "[#####.....]  45 %  t = 2.5e-04 s  T_max = 2310 K  ETA 12 s" on stderr, redrawn in place.
+void show_progress(const th::SinterProgress& p, std::chrono::steady_clock::time_point start) {
+  const double fraction = std::min(1.0, p.time / p.t_end);
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
+  const int filled = static_cast<int>(30 * fraction);
+  std::fprintf(stderr, "\r[%s%s] %3d %%  t = %.3e s  T_max(particles) = %.0f K  ETA %.0f s ",
+               std::string(static_cast<std::size_t>(filled), '#').c_str(),
+               std::string(static_cast<std::size_t>(30 - filled), '.').c_str(),
+               static_cast<int>(100 * fraction), p.time, p.max_temperature, eta);
+}
+
+int run(int argc, char** argv) {
+  po::options_description desc("sinter options (SI units)");
+  add_options(desc);
+  po::variables_map vm;
+  if (!app::parse_options("sinter", kUsage, desc, {}, argc, argv, vm)) return 0;
+  const std::string bed_path = required<std::string>(vm, "bed");
+  const bool explain_only = vm["explain"].as<bool>();
+  const std::string out = explain_only && !vm.count("out") ? "" : required<std::string>(vm, "out");
+  if (const int threads = vm["threads"].as<int>(); threads > 0) omp_set_num_threads(threads);
+
+  bed::Bed bed = bed::read_bed_any(bed_path);
+  th::SinterScene scene = make_scene(vm, bed.domain.length(0), bed.domain.length(1));
+  scene.unsafe_dt = vm["unsafe-dt"].as<bool>();
+  const th::MaterialTable table = th::read_material_table(scene.material_table);
+  th::Sinter sinter(bed, scene, table);
+  if (scene.unsafe_dt && scene.dt > sinter.stable_steps().grid &&
+      scene.integrator == th::Integrator::explicit_euler) {
+    std::cerr << "sinter: warning: --dt " << scene.dt << " s is above the stable bound "
+              << sinter.stable_steps().grid << " s (--unsafe-dt)\n";
+  }
+  if (explain_only) {
+    std::cout << th::explain(bed, scene, sinter).text;
+    return 0;
+  }
+
+  bed.provenance.created_by = app::version_string("sinter");
+  bed.provenance.command_line = app::command_line(argc, argv);
+  bed.provenance.stage = "sinter";
+  bed.provenance.scene = app::scene_text(vm);
+  th::RunWriter writer(out, bed, sinter, vm["full-fields"].as<bool>());
+  const auto steps_total =
+      static_cast<std::uint64_t>(std::ceil(sinter.t_end() / sinter.dt() * (1 - 1e-12)));
+  const std::size_t snapshots = vm["snapshots"].as<std::size_t>();
+  const std::uint64_t every = snapshots > 0 ? std::max<std::uint64_t>(1, steps_total / snapshots) : 0;
+  const auto start = std::chrono::steady_clock::now();
+  std::function<void(const th::SinterProgress&)> progress;
+  if (::isatty(STDERR_FILENO))
+    progress = [start](const th::SinterProgress& p) { show_progress(p, start); };
+  const th::SinterResult r = sinter.run(
+      [&](const th::Sinter& s) { writer.snapshot(s); }, every, progress);
+  if (progress) std::fputc('\n', stderr);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const std::vector<std::pair<std::string, double>> summary{
+      {"melt_pool_height", r.melt_pool.height}, {"melt_pool_width", r.melt_pool.width},
+      {"melt_pool_depth", r.melt_pool.depth}, {"max_temperature", r.max_temperature},
+      {"particles_molten", static_cast<double>(r.particles_molten)},
+      {"particles_vaporised", static_cast<double>(r.particles_vaporised)},
+      {"energy_balance_error", r.energy.relative_error()},
+      {"laser_absorbed", r.energy.absorbed()}, {"steps", static_cast<double>(r.steps)},
+      {"dt", r.dt_grid}, {"wall_time", wall}};
+  writer.finish(sinter, r, summary);
+
+  if (vm.count("json")) {
+    bed::JsonWriter j;
+    j.begin_object()
+        .begin_object("melt_pool")
+        .value("height", r.melt_pool.height)
+        .value("width", r.melt_pool.width)
+        .value("depth", r.melt_pool.depth)
+        .end_object()
+        .value("max_temperature", r.max_temperature)
+        .value("particles", static_cast<std::uint64_t>(bed.n()))
+        .value("particles_molten", static_cast<std::uint64_t>(r.particles_molten))
+        .value("particles_vaporised", static_cast<std::uint64_t>(r.particles_vaporised))
+        .value("energy_balance_error", r.energy.relative_error())
+        .begin_object("energy")
+        .value("laser_particles", r.energy.laser_particles)
+        .value("laser_substrate", r.energy.laser_substrate)
+        .value("convection", r.energy.convection)
+        .value("radiation", r.energy.radiation)
+        .value("boundary", r.energy.boundary)
+        .value("internal_particles", r.energy.internal_particles)
+        .value("internal_substrate", r.energy.internal_substrate)
+        .end_object()
+        .value("steps", r.steps)
+        .value("particle_steps", r.particle_steps)
+        .value("dt", r.dt_grid)
+        .value("dt_particle", r.dt_particle)
+        .value("dt_stable_grid", sinter.stable_steps().grid)
+        .value("dt_stable_particle", sinter.stable_steps().particle)
+        .value("t_end", r.t_end)
+        .value("integrator", vm["integrator"].as<std::string>())
+        .value("nodes", static_cast<std::uint64_t>(sinter.grid().size()))
+        .value("extinction", sinter.extinction())
+        .value("porosity", sinter.surface().porosity)
+        .value("layer_height", sinter.surface().layer_height)
+        .value("wall_time", wall)
+        .value("out", out)
+        .end_object();
+    std::cout << j.str() << '\n';
+  } else {
+    std::printf("sinter: melt pool height %.1f um, width %.1f um, depth %.1f um; T_max %.0f K; "
+                "%zu of %zu particles molten, %zu vaporised; energy balance %.1e; %llu steps of "
+                "%.3g s, %.1f s wall -> %s\n",
+                r.melt_pool.height * 1e6, r.melt_pool.width * 1e6, r.melt_pool.depth * 1e6,
+                r.max_temperature, r.particles_molten, bed.n(), r.particles_vaporised,
+                r.energy.relative_error(), static_cast<unsigned long long>(r.steps), r.dt_grid,
+                wall, out.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return app::run_app("sinter", argc, argv, [&] { return run(argc, argv); });
+}

@@ -1,0 +1,51 @@
+#pragma once
+// A results file in HDF5 for the stages' time series (sinter runs, trajectories): datasets and
+// attributes by path, intermediate groups created on the way. Written under a temporary name
+// and renamed by commit(), so a failed run never leaves half a file under the requested name
+// (DESIGN.md "Command-line programs"). The HDF5 C API stays behind this interface.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace powderbed::bed {
+
+class H5Output {
+ public:
+  // Creates `<path>.tmp.<pid>`; throws InputError naming `path` when it cannot.
+  explicit H5Output(const std::string& path);
+  ~H5Output();  // removes the temporary unless commit() succeeded
+  H5Output(const H5Output&) = delete;
+  H5Output& operator=(const H5Output&) = delete;
+
+  // Dataset at `name` ("/a/b/c") with shape `dims` (row-major; the product must equal the size
+  // of `data`). Throws InputError naming the file and dataset on failure.
+  void write(const std::string& name, const std::vector<double>& data,
+             const std::vector<std::size_t>& dims);
+  void write(const std::string& name, const std::vector<float>& data,
+             const std::vector<std::size_t>& dims);
+  void write(const std::string& name, const std::vector<std::uint8_t>& data,
+             const std::vector<std::size_t>& dims);
+  void write(const std::string& name, const std::vector<std::uint64_t>& data,
+             const std::vector<std::size_t>& dims);
+  // Attributes of the group or dataset `object` (created as a group when missing).
+  void attribute(const std::string& object, const std::string& name, double value);
+  void attribute(const std::string& object, const std::string& name,
+                 const std::vector<double>& values);
+  void attribute(const std::string& object, const std::string& name, std::uint64_t value);
+  void attribute(const std::string& object, const std::string& name, const std::string& value);
+
+  // Closes the file and renames it into place; throws InputError on failure.
+  void commit();
+  const std::string& path() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Writes `text` to `path` atomically (temporary file + rename); throws InputError naming `path`.
+void write_text_file(const std::string& path, std::string_view text);
+
+}  // namespace powderbed::bed

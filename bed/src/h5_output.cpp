@@ -1,0 +1,122 @@
+#include "powderbed/bed/h5_output.hpp"
+
+#include "io_detail.hpp"
+#include "io_hdf5_handle.hpp"
+#include "powderbed/bed/errors.hpp"
+
+namespace powderbed::bed {
+
+using detail::H5Attr;
+using detail::H5Dataset;
+using detail::H5File;
+using detail::H5Group;
+using detail::H5Space;
+using detail::H5Type;
+using H5Plist = detail::H5Handle<H5Pclose>;
+
+struct H5Output::Impl {
+  detail::AtomicFile atomic;
+  H5File file;
+  H5Plist make_groups{H5Pcreate(H5P_LINK_CREATE)};
+
+  explicit Impl(const std::string& path) : atomic(path) {
+    detail::silence_hdf5_errors();
+    file = H5File(H5Fcreate(atomic.temp_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+    if (!file.valid()) fail("/", "cannot create HDF5 file");
+    H5Pset_create_intermediate_group(make_groups, 1);
+  }
+
+  [[noreturn]] void fail(const std::string& object, const std::string& what) const {
+    throw InputError(atomic.path() + ": " + object + ": " + what);
+  }
+
+  void dataset(const std::string& name, hid_t file_type, hid_t mem_type, const void* data,
+               std::size_t size, const std::vector<std::size_t>& dims) {
+    std::vector<hsize_t> shape(dims.begin(), dims.end());
+    std::size_t count = 1;
+    for (const auto d : dims) count *= d;
+    if (count != size || dims.empty()) fail(name, "shape does not match the data size");
+    H5Space space(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr));
+    H5Dataset set(H5Dcreate2(file, name.c_str(), file_type, space, make_groups, H5P_DEFAULT,
+                             H5P_DEFAULT));
+    if (!set.valid()) fail(name, "cannot create dataset");
+    if (size > 0 && H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+      fail(name, "cannot write dataset (disk full?)");
+  }
+
+  // The object `name`, opened (a group is created when nothing exists there yet).
+  hid_t open_object(const std::string& name) {
+    if (name != "/" && H5Lexists(file, name.c_str(), H5P_DEFAULT) <= 0) {
+      H5Group created(H5Gcreate2(file, name.c_str(), make_groups, H5P_DEFAULT, H5P_DEFAULT));
+      if (!created.valid()) fail(name, "cannot create group");
+    }
+    const hid_t id = H5Oopen(file, name.c_str(), H5P_DEFAULT);
+    if (id < 0) fail(name, "cannot open object");
+    return id;
+  }
+
+  void attribute(const std::string& object, const std::string& name, hid_t file_type,
+                 hid_t mem_type, const void* data, hsize_t count) {
+    detail::H5Handle<H5Oclose> where(open_object(object));
+    H5Space space(count == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &count, nullptr));
+    H5Attr attr(H5Acreate2(where, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT));
+    if (!attr.valid() || H5Awrite(attr, mem_type, data) < 0)
+      fail(object, "cannot write attribute " + name);
+  }
+};
+
+H5Output::H5Output(const std::string& path) : impl_(std::make_unique<Impl>(path)) {}
+H5Output::~H5Output() = default;
+
+void H5Output::write(const std::string& name, const std::vector<double>& data,
+                     const std::vector<std::size_t>& dims) {
+  impl_->dataset(name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data.data(), data.size(), dims);
+}
+void H5Output::write(const std::string& name, const std::vector<float>& data,
+                     const std::vector<std::size_t>& dims) {
+  impl_->dataset(name, H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, data.data(), data.size(), dims);
+}
+void H5Output::write(const std::string& name, const std::vector<std::uint8_t>& data,
+                     const std::vector<std::size_t>& dims) {
+  impl_->dataset(name, H5T_STD_U8LE, H5T_NATIVE_UINT8, data.data(), data.size(), dims);
+}
+void H5Output::write(const std::string& name, const std::vector<std::uint64_t>& data,
+                     const std::vector<std::size_t>& dims) {
+  impl_->dataset(name, H5T_STD_U64LE, H5T_NATIVE_UINT64, data.data(), data.size(), dims);
+}
+
+void H5Output::attribute(const std::string& object, const std::string& name, double value) {
+  impl_->attribute(object, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value, 1);
+}
+void H5Output::attribute(const std::string& object, const std::string& name,
+                         const std::vector<double>& values) {
+  impl_->attribute(object, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, values.data(), values.size());
+}
+void H5Output::attribute(const std::string& object, const std::string& name,
+                         std::uint64_t value) {
+  impl_->attribute(object, name, H5T_STD_U64LE, H5T_NATIVE_UINT64, &value, 1);
+}
+void H5Output::attribute(const std::string& object, const std::string& name,
+                         const std::string& value) {
+  // Variable-length UTF-8 (h5py reads it as str, not bytes).
+  H5Type type(H5Tcopy(H5T_C_S1));
+  H5Tset_size(type, H5T_VARIABLE);
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  const char* text = value.c_str();
+  impl_->attribute(object, name, type, type, &text, 1);
+}
+
+void H5Output::commit() {
+  if (!impl_->file.close()) impl_->fail("/", "cannot close HDF5 file (disk full?)");
+  impl_->atomic.commit();
+}
+
+const std::string& H5Output::path() const { return impl_->atomic.path(); }
+
+void write_text_file(const std::string& path, std::string_view text) {
+  detail::AtomicFile atomic(path);
+  detail::write_text(atomic.temp_path(), path, text);
+  atomic.commit();
+}
+
+}  // namespace powderbed::bed

@@ -1,0 +1,26 @@
+#pragma once
+// What the laser and the surroundings see of a bed (SPEC.md §5): which particles are exposed at
+// the top (they alone convect and radiate), how deep each particle lies below the top surface
+// (Beer–Lambert), and the layer height, porosity and mean diameter that give beta.
+#include <cstdint>
+#include <vector>
+
+#include "powderbed/bed/bed.hpp"
+
+namespace powderbed::thermal {
+
+struct BedSurface {
+  std::vector<std::uint8_t> exposed;  // 1: visible from above at some point of the height map
+  std::vector<double> depth;          // top surface above the particle's column minus its top, m
+  double layer_height = 0;            // median particle top above the substrate, m (0: no bed)
+  double porosity = 1;                // 1 - packing density of [substrate, layer_height]
+  double mean_diameter = 0;           // m
+  double sample_spacing = 0;          // of the height map, m
+};
+
+// Height map on a square raster of spacing min(smallest radius / 2, mean diameter / 8) (at most
+// 4e6 samples): each sample holds the highest sphere surface above it and its owner. A particle
+// is exposed when it owns a sample or lies at the surface over its own centre.
+BedSurface analyse_surface(const bed::Bed& bed, double substrate_top);
+
+}  // namespace powderbed::thermal

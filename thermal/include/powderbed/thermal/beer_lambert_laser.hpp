@@ -1,0 +1,32 @@
+#pragma once
+// Moving Gaussian laser with Beer–Lambert penetration (SPEC.md §5):
+//   I(r, z) = I0 exp(-beta z) exp(-2 r^2 / w^2),  I0 = 2 P / (π w^2),
+// absorbed power of a particle H_i = alpha I A_i with A_i = π r_i^2; beta from Gusarov:
+//   beta = 3 (1 - gamma) / (2 gamma D), gamma the porosity, D the mean diameter.
+#include <cmath>
+
+namespace powderbed::thermal {
+
+struct LaserParams {
+  double power;         // P, W
+  double spot_radius;   // w, m (1/e^2 radius)
+  double absorptivity;  // alpha
+  double extinction;    // beta, 1/m
+};
+
+inline double peak_intensity(const LaserParams& p) {
+  return 2 * p.power / (M_PI * p.spot_radius * p.spot_radius);
+}
+
+// Absorbed flux alpha I (W/m^2) at horizontal distance^2 `r2` from the beam axis, `depth` below
+// the bed's top surface.
+inline double absorbed_flux(const LaserParams& p, double r2, double depth) {
+  return p.absorptivity * peak_intensity(p) * std::exp(-p.extinction * depth) *
+         std::exp(-2 * r2 / (p.spot_radius * p.spot_radius));
+}
+
+inline double gusarov_extinction(double porosity, double mean_diameter) {
+  return 3 * (1 - porosity) / (2 * porosity * mean_diameter);
+}
+
+}  // namespace powderbed::thermal

@@ -1,0 +1,29 @@
+#pragma once
+// `sinter --explain` (DESIGN.md "Effects a scene calls for"): the scale analysis of [GZ]
+// (SPEC.md §5) for this scene and bed — each heat path's flux relative to the absorbed laser
+// flux alpha I0 while a particle heats towards melting, the lumped-capacitance Biot numbers —
+// and which effects matter (ratio >= 1e-3) or could be switched off.
+#include <string>
+
+#include "powderbed/bed/bed.hpp"
+#include "powderbed/thermal/solver.hpp"
+
+namespace powderbed::thermal {
+
+struct ExplainReport {
+  double laser_flux = 0;            // alpha I0, W/m^2
+  double conduction_ratio = 0;      // particle–particle contacts, mean over connected particles
+  double substrate_ratio = 0;       // particle–substrate contacts
+  double convection_ratio = 0;      // h (T_v - T_env) / (alpha I0)
+  double radiation_ratio = 0;       // eps sigma (T_v^4 - T_env^4) / (alpha I0)
+  double biot_surface = 0;          // (h + 4 eps sigma T_v^3) (r/3) / k
+  double biot_laser = 0;            // alpha I0 (r/3) / (k (T_m - T0))
+  double optical_thickness = 0;     // beta H_layer
+  double dwell_time = 0;            // w / v, s
+  double heating_time = 0;          // m c (T_m - T0) / (alpha I0 pi r^2), mean particle, s
+  std::string text;                 // the printed report
+};
+
+ExplainReport explain(const bed::Bed& bed, const SinterScene& scene, const Sinter& sinter);
+
+}  // namespace powderbed::thermal

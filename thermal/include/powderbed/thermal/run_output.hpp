@@ -1,0 +1,43 @@
+#pragma once
+// The sinter run file (HDF5 time series + XDMF for ParaView):
+//   /                      attrs format = "powderbed.sinter-run", version = 1, created_by,
+//                          command_line; /provenance attr scene (the resolved configuration)
+//   /particles             position N×3, radius N, id N
+//   /substrate             attrs origin (x0, y0, z_top), spacing (dx, dy, dz), nodes (nx, ny, nz)
+//   /steps/<k>             attrs time, step; particle_temperature N, particle_phase N (0 solid,
+//                          1 liquid, 2 gas), section_y nz×nx (substrate T on y = Ly/2),
+//                          top ny×nx (substrate T on the top face), substrate nz×ny×nx
+//                          (float32, only with full fields)
+//   /melt                  peak temperatures: particle N, section_x nz×ny (x = Lx/2),
+//                          section_y nz×nx, top ny×nx; attrs height, width, depth, x_plane,
+//                          melting_point
+//   /summary               attrs: the numbers `sinter --json` prints
+// Arrays are row-major with x fastest. Written under a temporary name, renamed by finish().
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "powderbed/bed/bed.hpp"
+#include "powderbed/thermal/solver.hpp"
+
+namespace powderbed::thermal {
+
+class RunWriter {
+ public:
+  RunWriter(const std::string& path, const bed::Bed& bed, const Sinter& sinter,
+            bool full_fields);
+  ~RunWriter();
+  RunWriter(const RunWriter&) = delete;
+  RunWriter& operator=(const RunWriter&) = delete;
+
+  void snapshot(const Sinter& sinter);
+  // Writes /melt and /summary (name -> value), commits the file and its .xmf sidecar.
+  void finish(const Sinter& sinter, const SinterResult& result,
+              const std::vector<std::pair<std::string, double>>& summary);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace powderbed::thermal

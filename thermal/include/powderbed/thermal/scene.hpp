@@ -1,0 +1,65 @@
+#pragma once
+// What a sinter scene specifies (SPEC.md §5, [GZ] Table 2 defaults): material, environment,
+// laser path, substrate grid, time stepping and the set of effects switched on. The solver
+// composes the chosen effects once, at start.
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "powderbed/thermal/material.hpp"
+
+namespace powderbed::thermal {
+
+// The effects of DESIGN.md "Effects a scene calls for", one bit each.
+enum SinterEffect : unsigned {
+  kConduction = 1u << 0,          // particle–particle contact conduction
+  kSubstrateContact = 1u << 1,    // particle–substrate contact conduction
+  kConvection = 1u << 2,          // exposed top particles
+  kRadiation = 1u << 3,           // exposed top particles
+  kLaser = 1u << 4,               // laser heating of the particles
+  kPenetration = 1u << 5,         // Beer–Lambert attenuation with depth (off: beta = 0)
+  kLaserSubstrate = 1u << 6,      // the part of the laser that passes the powder
+  kPhaseChange = 1u << 7,         // latent heats in the apparent heat capacity
+  kVariableProperties = 1u << 8,  // c, k, rho from the table (off: held at T0)
+};
+constexpr unsigned kSinterEffectCount = 9;
+constexpr unsigned kAllSinterEffects = (1u << kSinterEffectCount) - 1;
+const char* sinter_effect_name(unsigned effect);
+
+enum class Integrator { explicit_euler, implicit_euler };
+
+struct SinterScene {
+  // Material ([GZ] Tables 1–2).
+  std::string material_table = "data/materials/316L.csv";
+  PhaseChange phase_change;
+  double hold_from = 1400;  // K: solid table extrapolated to here, then held
+  LiquidConductivity liquid_conductivity = LiquidConductivity::solid;
+  // Environment.
+  double convection = 40;             // h, W/m^2K
+  double emissivity = 0.33;           // eps
+  double environment_temperature = 363;  // T_env, K
+  double initial_temperature = 363;   // T0 of particles and substrate, and the Dirichlet value
+  // Laser along x on the line y = laser_y; NaN: the defaults of [GZ] (y = Ly/2, from one spot
+  // radius before the domain to one after it).
+  double power = 200;          // P, W
+  double speed = 2.0;          // v, m/s
+  double spot_radius = 54e-6;  // w, m
+  double absorptivity = 0.33;  // alpha
+  double laser_y = NAN, start_x = NAN, end_x = NAN;
+  // Substrate under the bed: x, y extents are the bed's domain; depth and node counts here.
+  double substrate_depth = 0.3e-3;
+  std::array<std::size_t, 3> nodes{201, 101, 61};
+  // Time stepping: dt <= 0 means the computed stable bound times `safety`.
+  Integrator integrator = Integrator::explicit_euler;
+  double dt = 0;
+  bool unsafe_dt = false;  // accept a dt above the explicit bound (the run may blow up)
+  double safety = 0.9;
+  double t_end = NAN;          // NaN: when the laser reaches end_x
+  unsigned effects = kAllSinterEffects;
+
+  bool has(unsigned effect) const { return (effects & effect) != 0; }
+  // Throws InputError naming the field, the value and the accepted range.
+  void validate() const;
+};
+
+}  // namespace powderbed::thermal

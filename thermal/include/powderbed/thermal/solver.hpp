@@ -1,0 +1,109 @@
+#pragma once
+// The DE–FD laser thermal solver (SPEC.md §5): lumped particle enthalpies on a fixed bed
+// coupled to the finite-difference substrate, under a Gaussian laser moving along x.
+//
+// Time integration (explicit): each grid step dt_grid holds `substeps` particle steps
+// (multirate: the particles' stable step and the grid's differ by orders of magnitude, so the
+// smaller one subcycles); particles see the substrate temperatures of the start of the grid
+// step and the energy they exchange with it is handed to the grid as a source, so the coupling
+// conserves energy exactly. Implicit (backward Euler) solves particles and free nodes together.
+// State variables are enthalpies (enthalpy.hpp); every joule is booked in an EnergyLedger.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "powderbed/bed/bed.hpp"
+#include "powderbed/thermal/bed_surface.hpp"
+#include "powderbed/thermal/enthalpy.hpp"
+#include "powderbed/thermal/material.hpp"
+#include "powderbed/thermal/network.hpp"
+#include "powderbed/thermal/scene.hpp"
+#include "powderbed/thermal/substrate.hpp"
+
+namespace powderbed::thermal {
+
+// Energy booked over a run, J. Gains are positive into the bed + substrate.
+struct EnergyLedger {
+  double laser_particles = 0, laser_substrate = 0;
+  double convection = 0, radiation = 0;  // into the particles (negative: losses)
+  double boundary = 0;                   // into the Dirichlet sides and bottom (outflow)
+  double internal_particles = 0, internal_substrate = 0;  // change, from the final temperatures
+  double absorbed() const { return laser_particles + laser_substrate; }
+  // |absorbed + surface gains - internal change - boundary outflow| / absorbed.
+  double relative_error() const;
+};
+
+struct MeltPool {  // on the plane x = Lx/2 (melt_pool.hpp says how)
+  double height = 0, width = 0, depth = 0;  // m
+};
+
+struct StableSteps {
+  double grid = 0;      // forward-Euler bound of the substrate, s
+  double particle = 0;  // forward-Euler bound of the particles (inf: none)
+  std::size_t grid_node = 0;       // where the grid bound is set
+  std::size_t particle_index = 0;  // where the particle bound is set
+};
+
+struct SinterProgress {
+  double time, t_end, max_temperature;
+  std::uint64_t step;
+};
+
+struct SinterResult {
+  MeltPool melt_pool;
+  double max_temperature = 0;
+  std::size_t particles_molten = 0, particles_vaporised = 0;
+  EnergyLedger energy;
+  std::uint64_t steps = 0, particle_steps = 0;
+  double dt_grid = 0, dt_particle = 0, t_end = 0;
+  std::size_t implicit_iterations = 0;  // total linear-solver iterations (implicit only)
+};
+
+class Sinter {
+ public:
+  // Checks the bed against the substrate (3D, resting on its floor, nothing below it) and the
+  // scene; throws InputError naming what is wrong.
+  Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTable& table);
+  ~Sinter();
+  Sinter(const Sinter&) = delete;
+  Sinter& operator=(const Sinter&) = delete;
+
+  const StableSteps& stable_steps() const;
+  double dt() const;          // the grid step the run takes
+  std::size_t substeps() const;  // particle steps per grid step
+  double t_end() const;
+  const SubstrateGeometry& grid() const;
+  const BedSurface& surface() const;
+  const ConductionNetwork& network() const;
+  const Material& material() const;
+  double extinction() const;  // beta, 1/m
+
+  // Runs to t_end. `snapshot` is called at t = 0, every `every` grid steps and at the end;
+  // `progress` about once a second of wall time. Throws NumericalError naming the particle or
+  // node and the step if a temperature goes non-finite.
+  SinterResult run(const std::function<void(const Sinter&)>& snapshot, std::uint64_t every,
+                   const std::function<void(const SinterProgress&)>& progress);
+
+  // State, for snapshots and tests.
+  double time() const;
+  std::uint64_t step() const;
+  const std::vector<double>& particle_temperature() const;
+  const std::vector<double>& particle_max_temperature() const;
+  std::vector<std::uint8_t> particle_phase() const;
+  const std::vector<double>& substrate_temperature() const;
+  // Peak node temperatures on the planes x = Lx/2 (i = nx/2), y = Ly/2 (j = ny/2) and the top
+  // face; T0 elsewhere (not tracked, to keep a step's memory traffic down).
+  const std::vector<double>& substrate_peak_planes() const;
+  // Sets every particle and free node to `t` (tests: initial conditions other than T0).
+  void set_particle_temperature(std::size_t i, double t);
+  void set_substrate_temperature(std::size_t node, double t);
+
+ // Opaque: defined inside libthermal, where the step routines share it.
+  struct State;
+
+ private:
+  std::unique_ptr<State> s_;
+};
+
+}  // namespace powderbed::thermal

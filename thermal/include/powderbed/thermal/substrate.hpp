@@ -1,0 +1,44 @@
+#pragma once
+// The finite-difference substrate under the bed (SPEC.md §5): a box of nx × ny × nz nodes,
+// z from -depth (bottom, k = 0) to the bed's floor (top, k = nz - 1). Node-centred finite
+// volumes: interior nodes own dx dy dz, top nodes the half cell below the surface (the half-cell
+// balance SPEC.md accepts for the top flux). Dirichlet T = T0 on the four sides and the bottom.
+// Face conductivity K_face = (K_a + K_b) / 2; second-order central differences.
+#include <cstddef>
+#include <vector>
+
+namespace powderbed::thermal {
+
+struct SubstrateGeometry {
+  std::size_t nx = 0, ny = 0, nz = 0;
+  double x0 = 0, y0 = 0, z_top = 0;  // lower corner of the top face
+  double dx = 0, dy = 0, dz = 0;
+
+  std::size_t index(std::size_t i, std::size_t j, std::size_t k) const {
+    return i + nx * (j + ny * k);
+  }
+  std::size_t size() const { return nx * ny * nz; }
+  double x(std::size_t i) const { return x0 + dx * static_cast<double>(i); }
+  double y(std::size_t j) const { return y0 + dy * static_cast<double>(j); }
+  double z(std::size_t k) const { return z_top - dz * static_cast<double>(nz - 1 - k); }
+  bool fixed(std::size_t i, std::size_t j, std::size_t k) const {
+    return i == 0 || j == 0 || k == 0 || i + 1 == nx || j + 1 == ny;
+  }
+  // Whether a node of the top face is a Dirichlet node.
+  bool fixed_top(std::size_t node) const {
+    const std::size_t i = node % nx, j = (node / nx) % ny;
+    return i == 0 || j == 0 || i + 1 == nx || j + 1 == ny;
+  }
+  // Control volume of a free node (half a cell at the top).
+  double volume(std::size_t k) const { return dx * dy * dz * (k + 1 == nz ? 0.5 : 1.0); }
+};
+
+// The substrate's four corner nodes around (x, y) on the top face with bilinear weights
+// (summing to 1): how a particle contact is spread over the grid cell under it.
+struct TopStencil {
+  std::size_t node[4];
+  double weight[4];
+};
+TopStencil top_stencil(const SubstrateGeometry& g, double x, double y);
+
+}  // namespace powderbed::thermal

@@ -1,0 +1,27 @@
+#pragma once
+// Losses of an exposed top particle (SPEC.md §5) over its projected area A = π r^2:
+//   convection h (T_env - T) A,  radiation eps sigma (T_env^4 - T^4) A.
+namespace powderbed::thermal {
+
+constexpr double kStefanBoltzmann = 5.670374419e-8;  // W/m^2K^4
+
+struct SurfaceParams {
+  double convection;   // h, W/m^2K
+  double emissivity;   // eps
+  double environment;  // T_env, K
+};
+
+// Heat into the particle (W; negative when it loses heat).
+inline double convection_gain(const SurfaceParams& p, double t, double area) {
+  return p.convection * (p.environment - t) * area;
+}
+inline double radiation_gain(const SurfaceParams& p, double t, double area) {
+  const double te2 = p.environment * p.environment, t2 = t * t;
+  return p.emissivity * kStefanBoltzmann * (te2 * te2 - t2 * t2) * area;
+}
+// d(loss)/dT: the conductance that bounds the stable step (and linearises the implicit step).
+inline double radiation_conductance(const SurfaceParams& p, double t, double area) {
+  return 4 * p.emissivity * kStefanBoltzmann * t * t * t * area;
+}
+
+}  // namespace powderbed::thermal

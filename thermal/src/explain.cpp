@@ -1,0 +1,104 @@
+#include "powderbed/thermal/explain.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "powderbed/thermal/beer_lambert_laser.hpp"
+#include "powderbed/thermal/surface_losses.hpp"
+
+namespace powderbed::thermal {
+
+namespace {
+
+constexpr double kMatters = 1e-3;  // below this fraction of the laser flux a path is negligible
+
+std::string verdict(double ratio, bool on) {
+  const bool matters = ratio >= kMatters;
+  if (matters) return on ? "matters (on)" : "MATTERS but is off: switch it on";
+  return on ? "negligible: switching it off saves time" : "negligible (off)";
+}
+
+}  // namespace
+
+ExplainReport explain(const bed::Bed& bed, const SinterScene& scene, const Sinter& sinter) {
+  ExplainReport r;
+  const Material& m = sinter.material();
+  const PhaseChange& pc = m.phase_change();
+  const double t0 = scene.initial_temperature, t_m = pc.melting_point, t_v = pc.boiling_point;
+  const double k = m.conductivity(t_m - pc.window);
+  r.laser_flux = scene.absorptivity * 2 * scene.power / (M_PI * scene.spot_radius * scene.spot_radius);
+  const std::size_t n = bed.n();
+  double r_mean = 0;
+  for (const double radius : bed.radius) r_mean += radius / static_cast<double>(n > 0 ? n : 1);
+
+  // Conduction: Σ k A/L (T_m - T0) over a particle's contacts, per projected area.
+  std::vector<double> pair_shape(n, 0.0), floor_shape(n, 0.0);
+  for (const auto& p : sinter.network().pairs) {
+    pair_shape[p.i] += p.shape;
+    pair_shape[p.j] += p.shape;
+  }
+  for (const auto& c : sinter.network().substrate) floor_shape[c.particle] += c.shape;
+  const auto mean_ratio = [&](const std::vector<double>& shape) {
+    double sum = 0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (shape[i] <= 0) continue;
+      sum += k * shape[i] * (t_m - t0) / (M_PI * bed.radius[i] * bed.radius[i]);
+      ++count;
+    }
+    return count > 0 ? sum / static_cast<double>(count) / r.laser_flux : 0.0;
+  };
+  r.conduction_ratio = mean_ratio(pair_shape);
+  r.substrate_ratio = mean_ratio(floor_shape);
+  const double te = scene.environment_temperature;
+  r.convection_ratio = scene.convection * (t_v - te) / r.laser_flux;
+  r.radiation_ratio =
+      scene.emissivity * kStefanBoltzmann * (std::pow(t_v, 4) - std::pow(te, 4)) / r.laser_flux;
+  const double h_surface =
+      scene.convection + 4 * scene.emissivity * kStefanBoltzmann * t_v * t_v * t_v;
+  r.biot_surface = h_surface * r_mean / 3 / k;
+  r.biot_laser = r.laser_flux * r_mean / 3 / (k * (t_m - t0));
+  r.optical_thickness = sinter.extinction() * sinter.surface().layer_height;
+  r.dwell_time = scene.spot_radius / scene.speed;
+  const double c_mean = m.solid_specific_heat(0.5 * (t0 + t_m));
+  r.heating_time = m.density(t0) * 4.0 / 3.0 * r_mean * c_mean * (t_m - t0) / r.laser_flux;
+
+  std::ostringstream out;
+  char line[200];
+  const auto row = [&](const char* name, double value, const std::string& note) {
+    std::snprintf(line, sizeof line, "  %-34s %10.3g   %s\n", name, value, note.c_str());
+    out << line;
+  };
+  out << "Scale analysis of the scene (SPEC.md §5; [GZ]: conduction ~1e-1, convection ~1e-5,\n"
+         "radiation ~1e-4 of the laser flux during heating)\n";
+  row("absorbed laser flux alpha I0 (W/m^2)", r.laser_flux, "");
+  row("conduction (particle pairs) / laser", r.conduction_ratio,
+      verdict(r.conduction_ratio, scene.has(kConduction)));
+  row("conduction (to substrate) / laser", r.substrate_ratio,
+      verdict(r.substrate_ratio, scene.has(kSubstrateContact)));
+  row("convection / laser", r.convection_ratio, verdict(r.convection_ratio, scene.has(kConvection)));
+  row("radiation / laser", r.radiation_ratio, verdict(r.radiation_ratio, scene.has(kRadiation)));
+  row("Biot number of surface losses", r.biot_surface,
+      r.biot_surface < 0.1 ? "< 0.1: lumped particle temperatures are sound"
+                           : ">= 0.1: lumped temperatures are questionable");
+  row("Biot number of the laser flux", r.biot_laser,
+      r.biot_laser < 0.1 ? "< 0.1: lumped heating is sound"
+                         : ">= 0.1: a lit particle is hotter on top than the lumped value");
+  row("optical thickness beta H_layer", r.optical_thickness,
+      "laser reaching the substrate: exp(-beta H) = " +
+          std::to_string(std::exp(-r.optical_thickness)));
+  row("laser dwell time w/v (s)", r.dwell_time, "");
+  row("time to heat a mean particle to T_m (s)", r.heating_time,
+      r.heating_time < r.dwell_time ? "shorter than the dwell: lit particles melt"
+                                    : "longer than the dwell: particles may not melt");
+  row("phase change window (K)", pc.window,
+      scene.has(kPhaseChange) ? "phase change on" : "phase change OFF: no latent heat");
+  out << "Time steps: grid bound " << sinter.stable_steps().grid << " s, particle bound "
+      << sinter.stable_steps().particle << " s, run step " << sinter.dt() << " s with "
+      << sinter.substeps() << " particle step(s) per grid step.\n";
+  r.text = out.str();
+  return r;
+}
+
+}  // namespace powderbed::thermal

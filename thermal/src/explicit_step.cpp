@@ -1,0 +1,289 @@
+// Forward Euler on enthalpies (SPEC.md §5 "Time integration"), the effects composed once:
+// a particle kernel instantiated for each combination of the particle effects and a grid kernel
+// for constant or temperature-dependent conductivity, chosen through a table of function
+// pointers, so an effect that is off is absent from the loop (DESIGN.md "Effects").
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include "powderbed/thermal/beer_lambert_laser.hpp"
+#include "powderbed/thermal/surface_losses.hpp"
+#include "solver_state.hpp"
+
+namespace powderbed::thermal {
+
+namespace {
+
+// The particle effects that shape the kernel, as bits of its template mask.
+enum ParticleBit : unsigned {
+  kBitConduction = 1,
+  kBitSubstrate = 2,
+  kBitConvection = 4,
+  kBitRadiation = 8,
+  kBitLaser = 16,
+  kBitVariable = 32,
+};
+constexpr unsigned kParticleMasks = 64;
+
+// Beyond this many spot radii the beam's intensity is below 1e-16 of its peak.
+constexpr double kBeamCutoff2 = 18.5;
+
+template <unsigned Mask>
+void particle_step(Sinter::State& s, double t, double dt) {
+  const std::size_t n = s.x.size();
+  auto& q = s.heat;
+  std::fill(q.begin(), q.end(), 0.0);
+  const double k_const = s.k_fixed;
+  const auto k_of = [&](double temp) {
+    if constexpr ((Mask & kBitVariable) != 0) return s.conductivity(temp);
+    else return k_const;
+  };
+  if constexpr ((Mask & kBitConduction) != 0) {
+    for (const auto& p : s.net.pairs) {
+      if (s.gone[p.i] || s.gone[p.j]) continue;
+      const double ti = s.temperature[p.i], tj = s.temperature[p.j];
+      double k = k_const;
+      if constexpr ((Mask & kBitVariable) != 0) k = 0.5 * (k_of(ti) + k_of(tj));
+      const double f = k * p.shape * (tj - ti);
+      q[p.i] += f;
+      q[p.j] -= f;
+    }
+  }
+  if constexpr ((Mask & kBitSubstrate) != 0) {
+    for (const auto& c : s.net.substrate) {
+      if (s.gone[c.particle]) continue;
+      double ts = 0;
+      for (int w = 0; w < 4; ++w) ts += c.stencil.weight[w] * s.node_temperature[c.stencil.node[w]];
+      const double ti = s.temperature[c.particle];
+      double k = k_const;
+      if constexpr ((Mask & kBitVariable) != 0) k = 0.5 * (k_of(ti) + k_of(ts));
+      const double f = k * c.shape * (ts - ti);
+      q[c.particle] += f;
+      for (int w = 0; w < 4; ++w) {
+        const double energy = c.stencil.weight[w] * f * dt;
+        if (s.g.fixed_top(c.stencil.node[w])) s.ledger.boundary -= energy;  // from the reservoir
+        else s.sources.push_back({c.stencil.node[w], -energy});
+      }
+    }
+  }
+  if constexpr ((Mask & (kBitConvection | kBitRadiation)) != 0) {
+    double convection = 0, radiation = 0;
+    for (const auto i : s.exposed) {
+      if (s.gone[i]) continue;
+      if constexpr ((Mask & kBitConvection) != 0) {
+        const double f = convection_gain(s.environment, s.temperature[i], s.area[i]);
+        q[i] += f;
+        convection += f;
+      }
+      if constexpr ((Mask & kBitRadiation) != 0) {
+        const double f = radiation_gain(s.environment, s.temperature[i], s.area[i]);
+        q[i] += f;
+        radiation += f;
+      }
+    }
+    s.ledger.convection += convection * dt;
+    s.ledger.radiation += radiation * dt;
+  }
+  if constexpr ((Mask & kBitLaser) != 0) {
+    const double xl = laser_x(s, t), yl = s.laser_y;
+    const double w2 = s.laser.spot_radius * s.laser.spot_radius;
+    const double i0 = peak_intensity(s.laser);
+    double absorbed = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double dx = s.x[i] - xl, dy = s.y[i] - yl;
+      const double r2 = dx * dx + dy * dy;
+      if (r2 > kBeamCutoff2 * w2 || s.gone[i]) continue;
+      const double f = s.laser_factor[i] * i0 * std::exp(-2 * r2 / w2);
+      q[i] += f;
+      absorbed += f;
+    }
+    s.ledger.laser_particles += absorbed * dt;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (s.gone[i]) continue;
+    s.h[i] += dt * q[i] / s.mass[i];
+    const double temp = s.per_kg.temperature(s.h[i]);
+    s.temperature[i] = temp;
+    if (temp > s.peak[i]) s.peak[i] = temp;
+    if (temp >= s.vaporised_temperature) s.gone[i] = 1;  // left the bed as vapour
+  }
+}
+
+using ParticleKernel = void (*)(Sinter::State&, double, double);
+
+template <std::size_t... M>
+constexpr std::array<ParticleKernel, sizeof...(M)> particle_kernels(std::index_sequence<M...>) {
+  return {&particle_step<static_cast<unsigned>(M)>...};
+}
+constexpr auto kParticleKernels = particle_kernels(std::make_index_sequence<kParticleMasks>{});
+
+unsigned particle_mask(const SinterScene& scene) {
+  unsigned mask = 0;
+  if (scene.has(kConduction)) mask |= kBitConduction;
+  if (scene.has(kSubstrateContact)) mask |= kBitSubstrate;
+  if (scene.has(kConvection)) mask |= kBitConvection;
+  if (scene.has(kRadiation)) mask |= kBitRadiation;
+  if (scene.has(kLaser)) mask |= kBitLaser;
+  if (scene.has(kVariableProperties)) mask |= kBitVariable;
+  return mask;
+}
+
+// Laser power that passes the powder onto the free top nodes (SPEC.md §5 top-face flux).
+void substrate_laser(Sinter::State& s, double t, double dt) {
+  const SubstrateGeometry& g = s.g;
+  const double xl = laser_x(s, t), yl = s.laser_y;
+  const double reach = std::sqrt(kBeamCutoff2) * s.laser.spot_radius;
+  const double depth = s.scene.has(kPenetration) ? s.layer_height : 0.0;
+  const auto first = [](double lo, double spacing, std::size_t count, double v) {
+    const double f = std::ceil((v - lo) / spacing);
+    return static_cast<std::size_t>(std::clamp(f, 1.0, static_cast<double>(count - 1)));
+  };
+  const std::size_t i0 = first(g.x0, g.dx, g.nx, xl - reach);
+  const std::size_t i1 = first(g.x0, g.dx, g.nx, xl + reach);
+  const std::size_t j0 = first(g.y0, g.dy, g.ny, yl - reach);
+  const std::size_t j1 = first(g.y0, g.dy, g.ny, yl + reach);
+  const std::size_t k = g.nz - 1;
+  double absorbed = 0;
+  for (std::size_t j = j0; j < j1 && j + 1 < g.ny; ++j) {
+    const double dy = g.y(j) - yl;
+    for (std::size_t i = i0; i < i1 && i + 1 < g.nx; ++i) {
+      const double dx = g.x(i) - xl;
+      const double energy = absorbed_flux(s.laser, dx * dx + dy * dy, depth) * g.dx * g.dy * dt;
+      s.sources.push_back({g.index(i, j, k), energy});
+      absorbed += energy;
+    }
+  }
+  s.ledger.laser_substrate += absorbed;
+}
+
+// Heat from the free nodes into the Dirichlet sides and bottom over dt, with the face fluxes
+// the grid step uses.
+void boundary_outflow(Sinter::State& s, double dt) {
+  const SubstrateGeometry& g = s.g;
+  const auto& t = s.node_temperature;
+  const auto& k = s.node_k;
+  const double gx = g.dy * g.dz / g.dx, gy = g.dx * g.dz / g.dy, gz = g.dx * g.dy / g.dz;
+  const auto flux = [&](std::size_t free, std::size_t fixed, double shape) {
+    return 0.5 * (k[free] + k[fixed]) * shape * (t[free] - t[fixed]);
+  };
+  std::vector<double> plane(g.nz, 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::size_t kk = 1; kk < g.nz; ++kk) {
+    const double half = kk + 1 == g.nz ? 0.5 : 1.0;  // top nodes own half a cell
+    double sum = 0;
+    for (std::size_t j = 1; j + 1 < g.ny; ++j) {
+      sum += flux(g.index(1, j, kk), g.index(0, j, kk), gx * half);
+      sum += flux(g.index(g.nx - 2, j, kk), g.index(g.nx - 1, j, kk), gx * half);
+    }
+    for (std::size_t i = 1; i + 1 < g.nx; ++i) {
+      sum += flux(g.index(i, 1, kk), g.index(i, 0, kk), gy * half);
+      sum += flux(g.index(i, g.ny - 2, kk), g.index(i, g.ny - 1, kk), gy * half);
+    }
+    if (kk == 1) {
+      for (std::size_t j = 1; j + 1 < g.ny; ++j)
+        for (std::size_t i = 1; i + 1 < g.nx; ++i)
+          sum += flux(g.index(i, j, 1), g.index(i, j, 0), gz);
+    }
+    plane[kk] = sum;
+  }
+  double total = 0;
+  for (const double p : plane) total += p;  // fixed order: the same sum for any thread count
+  s.ledger.boundary += total * dt;
+}
+
+// Peak temperatures are kept where the melt pool is measured and drawn: the planes x = Lx/2
+// (nodes i = nx/2), y = Ly/2 (j = ny/2) and the top face; a full-field peak would double the
+// memory traffic of a step.
+void update_peak_planes(Sinter::State& s) {
+  const SubstrateGeometry& g = s.g;
+  const auto keep = [&](std::size_t c) {
+    s.node_peak[c] = std::max(s.node_peak[c], s.node_temperature[c]);
+  };
+  for (std::size_t k = 0; k < g.nz; ++k) {
+    for (std::size_t j = 0; j < g.ny; ++j) keep(g.index(g.nx / 2, j, k));
+    for (std::size_t i = 0; i < g.nx; ++i) keep(g.index(i, g.ny / 2, k));
+  }
+  for (std::size_t c = g.index(0, 0, g.nz - 1); c < g.size(); ++c) keep(c);
+}
+
+// Finite-volume update of every free node, then T = T(e) and, if properties vary, K = K(T).
+template <bool Variable>
+void grid_step(Sinter::State& s, double dt) {
+  const SubstrateGeometry& g = s.g;
+  const double gx = g.dy * g.dz / g.dx, gy = g.dx * g.dz / g.dy, gz = g.dx * g.dy / g.dz;
+  const std::size_t sx = 1, sy = g.nx, sz = g.nx * g.ny;
+  double* e = s.e.data();
+  double* t = s.node_temperature.data();
+  double* kk = s.node_k.data();
+  const double k0 = s.k_fixed;
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 1; k < g.nz; ++k) {
+    const bool top = k + 1 == g.nz;
+    const double half = top ? 0.5 : 1.0;
+    const double cx = 0.5 * gx * half * dt, cy = 0.5 * gy * half * dt, cz = 0.5 * gz * dt;
+    const double inv_volume = 1 / g.volume(k);
+    for (std::size_t j = 1; j + 1 < g.ny; ++j) {
+      const std::size_t row = g.index(0, j, k);
+      for (std::size_t i = 1; i + 1 < g.nx; ++i) {
+        const std::size_t c = row + i;
+        const double tc = t[c];
+        double energy;
+        if constexpr (Variable) {
+          const double kc = kk[c];
+          energy = cx * ((kc + kk[c - sx]) * (t[c - sx] - tc) + (kc + kk[c + sx]) * (t[c + sx] - tc)) +
+                   cy * ((kc + kk[c - sy]) * (t[c - sy] - tc) + (kc + kk[c + sy]) * (t[c + sy] - tc)) +
+                   cz * (kc + kk[c - sz]) * (t[c - sz] - tc);
+          if (!top) energy += cz * (kc + kk[c + sz]) * (t[c + sz] - tc);
+        } else {
+          energy = 2 * k0 *
+                   (cx * (t[c - sx] + t[c + sx] - 2 * tc) + cy * (t[c - sy] + t[c + sy] - 2 * tc) +
+                    cz * (t[c - sz] - tc));
+          if (!top) energy += 2 * k0 * cz * (t[c + sz] - tc);
+        }
+        e[c] += energy * inv_volume;
+      }
+    }
+  }
+  // Energy from the laser and the particles (free nodes only, booked when it was produced).
+  const double top_volume = g.volume(g.nz - 1);
+  for (const auto& [node, energy] : s.sources) e[node] += energy / top_volume;
+  s.sources.clear();
+  // Second pass: the update above read only the old temperatures.
+  double hottest = s.node_max;
+#pragma omp parallel for schedule(static) reduction(max : hottest)
+  for (std::size_t k = 1; k < g.nz; ++k) {
+    for (std::size_t j = 1; j + 1 < g.ny; ++j) {
+      const std::size_t row = g.index(0, j, k);
+      for (std::size_t i = 1; i + 1 < g.nx; ++i) {
+        const std::size_t c = row + i;
+        const double tc = s.per_m3.temperature(e[c]);
+        t[c] = tc;
+        if constexpr (Variable) kk[c] = s.conductivity(tc);
+        hottest = std::max(hottest, tc);
+      }
+    }
+  }
+  s.node_max = hottest;
+  update_peak_planes(s);
+}
+
+}  // namespace
+
+void explicit_step(Sinter::State& s, double dt) {
+  const ParticleKernel particles = kParticleKernels[particle_mask(s.scene)];
+  if (!s.x.empty()) {
+    const double dt_p = dt / static_cast<double>(s.substeps);
+    for (std::size_t sub = 0; sub < s.substeps; ++sub)
+      particles(s, s.time + dt_p * static_cast<double>(sub), dt_p);
+    s.particle_steps += s.substeps;
+  }
+  if (s.scene.has(kLaserSubstrate)) substrate_laser(s, s.time, dt);
+  boundary_outflow(s, dt);
+  if (s.scene.has(kVariableProperties)) grid_step<true>(s, dt);
+  else grid_step<false>(s, dt);
+}
+
+}  // namespace powderbed::thermal

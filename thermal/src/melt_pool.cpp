@@ -1,0 +1,57 @@
+#include "powderbed/thermal/melt_pool.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace powderbed::thermal {
+
+namespace {
+
+// Where between two nodes (a molten, b not) the peak temperature crosses t_m, as a fraction of
+// the spacing from a.
+double crossing(double peak_a, double peak_b, double t_m) {
+  if (peak_a <= peak_b) return 0;
+  return std::clamp((peak_a - t_m) / (peak_a - peak_b), 0.0, 1.0);
+}
+
+}  // namespace
+
+MeltPool measure_melt_pool(const MeltPoolInput& in) {
+  const SubstrateGeometry& g = *in.grid;
+  const auto& peak = *in.node_peak;
+  const double t_m = in.melting_point;
+  const auto i = static_cast<std::size_t>(
+      std::clamp(std::round((in.x_plane - g.x0) / g.dx), 0.0, static_cast<double>(g.nx - 1)));
+  MeltPool pool;
+  double y_lo = std::numeric_limits<double>::infinity(), y_hi = -y_lo;
+  const std::size_t top = g.nz - 1;
+  for (std::size_t j = 0; j < g.ny; ++j) {
+    if (peak[g.index(i, j, top)] < t_m) continue;
+    std::size_t k = top;
+    while (k > 0 && peak[g.index(i, j, k - 1)] >= t_m) --k;
+    double depth = g.z_top - g.z(k);
+    if (k > 0) depth += g.dz * crossing(peak[g.index(i, j, k)], peak[g.index(i, j, k - 1)], t_m);
+    pool.depth = std::max(pool.depth, depth);
+    double lo = g.y(j), hi = g.y(j);
+    if (j > 0 && peak[g.index(i, j - 1, top)] < t_m)
+      lo -= g.dy * crossing(peak[g.index(i, j, top)], peak[g.index(i, j - 1, top)], t_m);
+    if (j + 1 < g.ny && peak[g.index(i, j + 1, top)] < t_m)
+      hi += g.dy * crossing(peak[g.index(i, j, top)], peak[g.index(i, j + 1, top)], t_m);
+    y_lo = std::min(y_lo, lo);
+    y_hi = std::max(y_hi, hi);
+  }
+  const auto& x = *in.x;
+  for (std::size_t p = 0; p < x.size(); ++p) {
+    const double r = (*in.radius)[p], dx = x[p] - in.x_plane;
+    if ((*in.particle_peak)[p] < t_m || std::abs(dx) >= r) continue;
+    const double cut = std::sqrt(r * r - dx * dx);
+    pool.height = std::max(pool.height, (*in.z)[p] + cut - g.z_top);
+    y_lo = std::min(y_lo, (*in.y)[p] - cut);
+    y_hi = std::max(y_hi, (*in.y)[p] + cut);
+  }
+  if (y_hi > y_lo) pool.width = y_hi - y_lo;
+  return pool;
+}
+
+}  // namespace powderbed::thermal

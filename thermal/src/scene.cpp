@@ -1,0 +1,66 @@
+#include "powderbed/thermal/scene.hpp"
+
+#include <sstream>
+
+#include "powderbed/bed/errors.hpp"
+
+namespace powderbed::thermal {
+
+const char* sinter_effect_name(unsigned effect) {
+  switch (effect) {
+    case kConduction: return "conduction";
+    case kSubstrateContact: return "substrate-contact";
+    case kConvection: return "convection";
+    case kRadiation: return "radiation";
+    case kLaser: return "laser";
+    case kPenetration: return "penetration";
+    case kLaserSubstrate: return "laser-substrate";
+    case kPhaseChange: return "phase-change";
+    case kVariableProperties: return "variable-properties";
+    default: return "unknown";
+  }
+}
+
+namespace {
+
+void require(bool ok, const char* field, double value, const char* accepted) {
+  if (ok) return;
+  std::ostringstream msg;
+  msg << field << ": " << value << " is out of range (accepted: " << accepted << ")";
+  throw InputError(msg.str());
+}
+
+bool positive(double v) { return std::isfinite(v) && v > 0; }
+
+}  // namespace
+
+void SinterScene::validate() const {
+  require(convection >= 0 && std::isfinite(convection), "environment.convection", convection,
+          "h >= 0 W/m^2K");
+  require(emissivity >= 0 && emissivity <= 1, "environment.emissivity", emissivity,
+          "0 <= eps <= 1");
+  require(positive(environment_temperature), "environment.temperature", environment_temperature,
+          "T_env > 0 K");
+  require(positive(initial_temperature), "environment.initial-temperature", initial_temperature,
+          "T0 > 0 K");
+  require(power >= 0 && std::isfinite(power), "laser.power", power, "P >= 0 W");
+  require(positive(speed), "laser.speed", speed, "v > 0 m/s");
+  require(positive(spot_radius), "laser.spot", spot_radius, "w > 0 m");
+  require(absorptivity >= 0 && absorptivity <= 1, "laser.absorptivity", absorptivity,
+          "0 <= alpha <= 1");
+  require(positive(substrate_depth), "substrate.depth", substrate_depth, "depth > 0 m");
+  static const char* axis[] = {"x", "y", "z"};
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (nodes[a] < 3) {
+      std::ostringstream msg;
+      msg << "substrate.nodes: " << nodes[a] << " nodes along " << axis[a]
+          << " (accepted: at least 3 per direction, so that one node is free)";
+      throw InputError(msg.str());
+    }
+  }
+  require(dt >= 0 && std::isfinite(dt), "dt", dt, "dt > 0 s, or 0 for the stable bound");
+  require(safety > 0 && safety <= 1, "time.safety", safety, "0 < safety <= 1");
+  require(std::isnan(t_end) || positive(t_end), "t-end", t_end, "t_end > 0 s");
+}
+
+}  // namespace powderbed::thermal

@@ -1,0 +1,388 @@
+#include "powderbed/thermal/solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/thermal/contact_conduction.hpp"
+#include "powderbed/thermal/melt_pool.hpp"
+#include "solver_state.hpp"
+
+namespace powderbed::thermal {
+
+namespace {
+
+// The enthalpy and conductivity tables span from below T0 to far past vaporisation.
+double table_low(const SinterScene& s) {
+  return 0.5 * std::min(s.initial_temperature, s.environment_temperature);
+}
+double table_high(const SinterScene& s) {
+  return s.phase_change.boiling_point + s.phase_change.window + 5000;
+}
+
+// The material with the scene's effects applied: properties held at T0 without
+// variable-properties, no latent heat without phase-change.
+Material scene_material(const SinterScene& scene, const MaterialTable& table) {
+  PhaseChange phase = scene.phase_change;
+  if (!scene.has(kPhaseChange)) phase.latent_melt = phase.latent_vapour = 0;
+  if (scene.has(kVariableProperties))
+    return Material(table, phase, scene.hold_from, scene.liquid_conductivity);
+  const Material full(table, scene.phase_change, scene.hold_from, scene.liquid_conductivity);
+  const double t0 = scene.initial_temperature;
+  MaterialTable constant;
+  constant.temperature = {t0 - 1, t0};
+  constant.specific_heat.assign(2, full.solid_specific_heat(t0));
+  constant.conductivity.assign(2, full.solid_conductivity(t0));
+  constant.density.assign(2, full.solid_density(t0));
+  constant.liquid_specific_heat = constant.specific_heat[0];
+  constant.liquid_conductivity = constant.conductivity[0];
+  constant.liquid_density = constant.density[0];
+  return Material(constant, phase, t0, LiquidConductivity::table);
+}
+
+[[noreturn]] void refuse_bed(const std::string& what) {
+  throw InputError("--bed: " + what);
+}
+
+// SPEC.md §5: the bed rests on the substrate's top face, which is the bed domain's floor.
+void check_bed(const bed::Bed& bed) {
+  if (bed.domain.dimension != 3) refuse_bed("a 2D bed (accepted: a 3D bed)");
+  const double floor = bed.domain.lower[2];
+  double lowest_bottom = std::numeric_limits<double>::infinity();
+  double smallest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    if (bed.z[i] <= floor) {
+      std::ostringstream msg;
+      msg << "particle " << bed.id[i] << " has its centre at z = " << bed.z[i]
+          << " m, at or below the substrate plane z = " << floor
+          << " m (accepted: every centre above the bed domain's floor)";
+      refuse_bed(msg.str());
+    }
+    lowest_bottom = std::min(lowest_bottom, bed.z[i] - bed.radius[i]);
+    smallest = std::min(smallest, bed.radius[i]);
+  }
+  // A bed that floats (e.g. packed in a box whose floor is not the substrate) has no substrate
+  // plane under it; a settled bed touches its floor within round-off of its smallest particle.
+  if (bed.n() > 0 && lowest_bottom - floor > 0.01 * smallest) {
+    std::ostringstream msg;
+    msg << "the lowest particle's bottom is at z = " << lowest_bottom
+        << " m, above the substrate plane z = " << floor
+        << " m (the domain floor): no particle rests on the substrate (accepted: a bed settled "
+           "on its floor, e.g. from deposit)";
+    refuse_bed(msg.str());
+  }
+}
+
+SubstrateGeometry make_grid(const bed::Bed& bed, const SinterScene& scene) {
+  SubstrateGeometry g;
+  g.nx = scene.nodes[0];
+  g.ny = scene.nodes[1];
+  g.nz = scene.nodes[2];
+  g.x0 = bed.domain.lower[0];
+  g.y0 = bed.domain.lower[1];
+  g.z_top = bed.domain.lower[2];
+  g.dx = bed.domain.length(0) / static_cast<double>(g.nx - 1);
+  g.dy = bed.domain.length(1) / static_cast<double>(g.ny - 1);
+  g.dz = scene.substrate_depth / static_cast<double>(g.nz - 1);
+  return g;
+}
+
+// Forward-Euler bounds (Gershgorin): dt <= C / Σ G per node and per particle, with the
+// smallest capacity over the temperatures a run can reach and the largest conductivity any
+// neighbour can have, so the bound holds in every state.
+StableSteps compute_stable_steps(const Sinter::State& s) {
+  StableSteps out;
+  const SubstrateGeometry& g = s.g;
+  const double t_lo = s.scene.initial_temperature, t_hi = s.vaporised_temperature;
+  double k_max = 0, capacity_over_k = std::numeric_limits<double>::infinity();
+  for (double t = t_lo; t <= t_hi; t += 0.25) k_max = std::max(k_max, s.conductivity(t));
+  for (double t = t_lo; t <= t_hi; t += 0.25) {
+    const double face_k = 0.5 * (s.conductivity(t) + k_max);
+    capacity_over_k = std::min(capacity_over_k, s.per_m3.capacity(t) / face_k);
+  }
+  const double stencil = 2 * (1 / (g.dx * g.dx) + 1 / (g.dy * g.dy) + 1 / (g.dz * g.dz));
+  out.grid = capacity_over_k / stencil;
+  out.grid_node = g.index(g.nx / 2, g.ny / 2, g.nz / 2);
+  // Top nodes carry particle contacts too: C = (rho c)_min V/2, Σ G adds k_max A/h w.
+  const double rho_c_min = s.per_m3.min_capacity();
+  std::vector<double> contact(g.size(), 0.0);
+  for (const auto& c : s.net.substrate)
+    for (int w = 0; w < 4; ++w) contact[c.stencil.node[w]] += c.stencil.weight[w] * k_max * c.shape;
+  const std::size_t top = g.nz - 1;
+  const double grid_g = k_max * (g.dy * g.dz / g.dx + g.dx * g.dz / g.dy + g.dx * g.dy / g.dz);
+  for (const auto& c : s.net.substrate) {
+    for (const auto node : c.stencil.node) {
+      const double bound = rho_c_min * g.volume(top) / (grid_g + contact[node]);
+      if (bound < out.grid) {
+        out.grid = bound;
+        out.grid_node = node;
+      }
+    }
+  }
+  // Particles: m c_min / (Σ contacts k_max shape + h A + 4 eps sigma T^3 A).
+  out.particle = std::numeric_limits<double>::infinity();
+  std::vector<double> conductance(s.x.size(), 0.0);
+  if (s.scene.has(kConduction))
+    for (const auto& p : s.net.pairs) {
+      conductance[p.i] += k_max * p.shape;
+      conductance[p.j] += k_max * p.shape;
+    }
+  if (s.scene.has(kSubstrateContact))
+    for (const auto& c : s.net.substrate) conductance[c.particle] += k_max * c.shape;
+  for (const auto i : s.exposed) {
+    if (s.scene.has(kConvection)) conductance[i] += s.environment.convection * s.area[i];
+    if (s.scene.has(kRadiation)) conductance[i] += radiation_conductance(s.environment, t_hi, s.area[i]);
+  }
+  const double c_min = s.per_kg.min_capacity();
+  for (std::size_t i = 0; i < s.x.size(); ++i) {
+    if (conductance[i] <= 0) continue;
+    const double bound = s.mass[i] * c_min / conductance[i];
+    if (bound < out.particle) {
+      out.particle = bound;
+      out.particle_index = i;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+double EnergyLedger::relative_error() const {
+  const double in = absorbed() + convection + radiation;
+  const double out = internal_particles + internal_substrate + boundary;
+  const double scale = std::max({std::abs(absorbed()), std::abs(in), std::abs(out)});
+  return scale > 0 ? std::abs(in - out) / scale : 0.0;
+}
+
+Sinter::State::State(const SinterScene& sc, Material m)
+    : scene(sc),
+      material(std::move(m)),
+      per_kg(material, EnthalpyCurve::Per::kilogram, sc.initial_temperature, table_low(sc),
+             table_high(sc)),
+      per_m3(material, EnthalpyCurve::Per::cubic_metre, sc.initial_temperature, table_low(sc),
+             table_high(sc)),
+      conductivity([this](double t) { return material.conductivity(t); }, table_low(sc),
+                   table_high(sc), std::min(1.0, sc.phase_change.window / 8)) {}
+
+Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTable& table) {
+  scene.validate();
+  check_bed(bed);
+  s_ = std::make_unique<State>(scene, scene_material(scene, table));
+  State& s = *s_;
+  s.g = make_grid(bed, scene);
+  const SubstrateGeometry& g = s.g;
+  const double lx = bed.domain.length(0), ly = bed.domain.length(1);
+  s.laser_y = std::isnan(scene.laser_y) ? g.y0 + 0.5 * ly : scene.laser_y;
+  s.start_x = std::isnan(scene.start_x) ? g.x0 - scene.spot_radius : scene.start_x;
+  const double end_x = std::isnan(scene.end_x) ? g.x0 + lx + scene.spot_radius : scene.end_x;
+  if (!(s.laser_y >= g.y0 && s.laser_y <= g.y0 + ly)) {
+    std::ostringstream msg;
+    msg << "laser.y: " << s.laser_y << " m is outside the bed (accepted: " << g.y0 << " to "
+        << g.y0 + ly << " m)";
+    throw InputError(msg.str());
+  }
+  if (!(end_x > s.start_x && end_x > g.x0 && s.start_x < g.x0 + lx)) {
+    std::ostringstream msg;
+    msg << "laser.start-x, laser.end-x: " << s.start_x << " to " << end_x
+        << " m never crosses the bed (accepted: start < end, overlapping " << g.x0 << " to "
+        << g.x0 + lx << " m)";
+    throw InputError(msg.str());
+  }
+  s.t_end = std::isnan(scene.t_end) ? (end_x - s.start_x) / scene.speed : scene.t_end;
+  s.vaporised_temperature = scene.phase_change.boiling_point + 0.5 * scene.phase_change.window;
+
+  s.surface = analyse_surface(bed, g.z_top);
+  s.net = build_network(bed, g);
+  s.layer_height = s.surface.layer_height;
+  s.beta = bed.n() > 0 && scene.has(kPenetration)
+               ? gusarov_extinction(s.surface.porosity, s.surface.mean_diameter)
+               : 0.0;
+  s.laser = {scene.power, scene.spot_radius, scene.absorptivity, s.beta};
+  s.environment = {scene.convection, scene.emissivity, scene.environment_temperature};
+
+  const std::size_t n = bed.n();
+  const double t0 = scene.initial_temperature;
+  s.x = bed.x;
+  s.y = bed.y;
+  s.z = bed.z;
+  s.radius = bed.radius;
+  s.mass.resize(n);
+  s.area.resize(n);
+  s.laser_factor.resize(n);
+  const double rho0 = s.material.density(t0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double r = bed.radius[i];
+    s.mass[i] = rho0 * 4.0 / 3.0 * M_PI * r * r * r;
+    s.area[i] = M_PI * r * r;
+    s.laser_factor[i] = scene.absorptivity * s.area[i] * std::exp(-s.beta * s.surface.depth[i]);
+    if (s.surface.exposed[i]) s.exposed.push_back(static_cast<std::uint32_t>(i));
+  }
+  s.h.assign(n, 0.0);  // enthalpies are measured from T0
+  s.temperature.assign(n, t0);
+  s.peak.assign(n, t0);
+  s.heat.assign(n, 0.0);
+  s.gone.assign(n, 0);
+
+  s.e.assign(g.size(), 0.0);
+  s.node_temperature.assign(g.size(), t0);
+  s.node_peak.assign(g.size(), t0);
+  s.node_max = t0;
+  s.k_fixed = s.material.conductivity(t0);
+  s.node_k.assign(g.size(), s.k_fixed);
+
+  s.stable = compute_stable_steps(s);
+  const double bound = s.stable.grid;
+  if (scene.dt > 0) {
+    if (scene.integrator == Integrator::explicit_euler && scene.dt > bound && !scene.unsafe_dt) {
+      std::ostringstream msg;
+      msg << "--dt: " << scene.dt << " s is above the forward-Euler stable bound " << bound
+          << " s of the substrate grid (accepted: dt <= " << bound
+          << " s, --unsafe-dt, or --integrator implicit)";
+      throw InputError(msg.str());
+    }
+    s.dt = scene.dt;
+  } else {
+    s.dt = scene.integrator == Integrator::explicit_euler
+               ? scene.safety * bound
+               : scene.spot_radius / (20 * scene.speed);  // the beam moves w/20 per step
+  }
+  s.dt = std::min(s.dt, s.t_end);
+  if (scene.integrator == Integrator::explicit_euler && std::isfinite(s.stable.particle))
+    s.substeps = static_cast<std::size_t>(std::ceil(s.dt / (scene.safety * s.stable.particle)));
+}
+
+Sinter::~Sinter() = default;
+
+void check_finite(const Sinter::State& s) {
+  for (std::size_t i = 0; i < s.temperature.size(); ++i) {
+    if (!std::isfinite(s.temperature[i])) {
+      std::ostringstream msg;
+      msg << "particle " << i << " reached a non-finite temperature at step " << s.step
+          << " (t = " << s.time << " s); the time step is beyond the stable bound";
+      throw NumericalError(msg.str());
+    }
+  }
+  double peak = 0;
+  for (const double t : s.node_temperature) peak = std::max(peak, std::isfinite(t) ? t : INFINITY);
+  if (std::isfinite(peak)) return;
+  for (std::size_t c = 0; c < s.node_temperature.size(); ++c) {
+    if (std::isfinite(s.node_temperature[c])) continue;
+    const SubstrateGeometry& g = s.g;
+    std::ostringstream msg;
+    msg << "substrate node (" << c % g.nx << ", " << (c / g.nx) % g.ny << ", " << c / (g.nx * g.ny)
+        << ") reached a non-finite temperature at step " << s.step << " (t = " << s.time
+        << " s); the time step is beyond the stable bound";
+    throw NumericalError(msg.str());
+  }
+}
+
+SinterResult Sinter::run(const std::function<void(const Sinter&)>& snapshot, std::uint64_t every,
+                         const std::function<void(const SinterProgress&)>& progress) {
+  State& s = *s_;
+  const auto started = std::chrono::steady_clock::now();
+  auto last_report = started;
+  if (snapshot) snapshot(*this);
+  const double t_end = s.t_end;
+  while (s.time < t_end * (1 - 1e-12)) {
+    const double dt = std::min(s.dt, t_end - s.time);
+    if (s.scene.integrator == Integrator::explicit_euler) explicit_step(s, dt);
+    else implicit_step(s, dt);
+    s.time += dt;
+    ++s.step;
+    // Cheap watch on the particles every step; the grid every 64 steps and at the end.
+    if (s.step % 64 == 0 || s.time >= t_end * (1 - 1e-12)) check_finite(s);
+    if (snapshot && every > 0 && s.step % every == 0) snapshot(*this);
+    const auto now = std::chrono::steady_clock::now();
+    if (progress && now - last_report > std::chrono::seconds(1)) {
+      last_report = now;
+      double hottest = 0;
+      for (const double t : s.temperature) hottest = std::max(hottest, t);
+      progress({s.time, t_end, hottest, s.step});
+    }
+  }
+  check_finite(s);
+  if (snapshot && (every == 0 || s.step % every != 0)) snapshot(*this);
+
+  SinterResult r;
+  r.steps = s.step;
+  r.particle_steps = s.particle_steps;
+  r.dt_grid = s.dt;
+  r.dt_particle = s.dt / static_cast<double>(s.substeps);
+  r.t_end = t_end;
+  r.implicit_iterations = s.implicit_iterations;
+  // Internal energy from the final temperatures through the exact forward curves: an
+  // independent check of the booked fluxes (the state itself is the enthalpy).
+  s.ledger.internal_particles = 0;
+  for (std::size_t i = 0; i < s.x.size(); ++i)
+    s.ledger.internal_particles += s.mass[i] * s.per_kg.enthalpy(s.temperature[i]);
+  double substrate = 0;
+  const SubstrateGeometry& g = s.g;
+  for (std::size_t k = 1; k < g.nz; ++k)
+    for (std::size_t j = 1; j + 1 < g.ny; ++j)
+      for (std::size_t i = 1; i + 1 < g.nx; ++i)
+        substrate += g.volume(k) * s.per_m3.enthalpy(s.node_temperature[g.index(i, j, k)]);
+  s.ledger.internal_substrate = substrate;
+  r.energy = s.ledger;
+  const double t_m = s.scene.phase_change.melting_point;
+  for (std::size_t i = 0; i < s.x.size(); ++i) {
+    r.max_temperature = std::max(r.max_temperature, s.peak[i]);
+    if (s.peak[i] >= t_m) ++r.particles_molten;
+    if (s.peak[i] >= s.scene.phase_change.boiling_point) ++r.particles_vaporised;
+  }
+  r.max_temperature = std::max(r.max_temperature, s.node_max);
+  MeltPoolInput in{&g, &s.node_peak, &s.x, &s.y, &s.z, &s.radius, &s.peak, t_m,
+                   g.x0 + 0.5 * static_cast<double>(g.nx - 1) * g.dx};
+  r.melt_pool = measure_melt_pool(in);
+  return r;
+}
+
+const StableSteps& Sinter::stable_steps() const { return s_->stable; }
+double Sinter::dt() const { return s_->dt; }
+std::size_t Sinter::substeps() const { return s_->substeps; }
+double Sinter::t_end() const { return s_->t_end; }
+const SubstrateGeometry& Sinter::grid() const { return s_->g; }
+const BedSurface& Sinter::surface() const { return s_->surface; }
+const ConductionNetwork& Sinter::network() const { return s_->net; }
+const Material& Sinter::material() const { return s_->material; }
+double Sinter::extinction() const { return s_->beta; }
+double Sinter::time() const { return s_->time; }
+std::uint64_t Sinter::step() const { return s_->step; }
+const std::vector<double>& Sinter::particle_temperature() const { return s_->temperature; }
+const std::vector<double>& Sinter::particle_max_temperature() const { return s_->peak; }
+const std::vector<double>& Sinter::substrate_temperature() const {
+  return s_->node_temperature;
+}
+const std::vector<double>& Sinter::substrate_peak_planes() const { return s_->node_peak; }
+
+std::vector<std::uint8_t> Sinter::particle_phase() const {
+  std::vector<std::uint8_t> phase(s_->x.size());
+  for (std::size_t i = 0; i < phase.size(); ++i)
+    phase[i] = s_->gone[i] ? 2 : static_cast<std::uint8_t>(s_->material.phase(s_->temperature[i]));
+  return phase;
+}
+
+void Sinter::set_particle_temperature(std::size_t i, double t) {
+  s_->temperature.at(i) = t;
+  s_->h[i] = s_->per_kg.enthalpy(t);
+  s_->peak[i] = std::max(s_->peak[i], t);
+}
+
+void Sinter::set_substrate_temperature(std::size_t node, double t) {
+  State& s = *s_;
+  const SubstrateGeometry& g = s.g;
+  if (g.fixed(node % g.nx, (node / g.nx) % g.ny, node / (g.nx * g.ny))) {
+    // A Dirichlet node: its value is a boundary condition, not state.
+    s.node_temperature.at(node) = t;
+  } else {
+    s.node_temperature.at(node) = t;
+    s.e[node] = s.per_m3.enthalpy(t);
+  }
+  s.node_k[node] = s.conductivity(t);
+  s.node_peak[node] = std::max(s.node_peak[node], t);
+  s.node_max = std::max(s.node_max, t);
+}
+
+}  // namespace powderbed::thermal

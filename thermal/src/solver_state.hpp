@@ -1,0 +1,63 @@
+#pragma once
+// The solver's state (private to libthermal): what setup computes once and the steps update.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "powderbed/thermal/beer_lambert_laser.hpp"
+#include "powderbed/thermal/solver.hpp"
+#include "powderbed/thermal/surface_losses.hpp"
+
+namespace powderbed::thermal {
+
+struct Sinter::State {
+  SinterScene scene;
+  Material material;
+  EnthalpyCurve per_kg, per_m3;  // particles: h (J/kg); nodes: e (J/m^3)
+  UniformTable conductivity;
+  SubstrateGeometry g;
+  BedSurface surface;
+  ConductionNetwork net;
+  LaserParams laser{};
+  SurfaceParams environment{};
+  double beta = 0, layer_height = 0, laser_y = 0, start_x = 0, t_end = 0;
+  double vaporised_temperature = 0;  // T_v + ΔT/2: beyond it a particle has left the bed
+
+  // Particles (structure of arrays).
+  std::vector<double> x, y, z, radius, mass, area, laser_factor;
+  std::vector<double> h, temperature, peak, heat;  // heat: W, scratch of one step
+  std::vector<std::uint8_t> gone;                  // vaporised: out of the network
+  std::vector<std::uint32_t> exposed;
+
+  // Substrate nodes.
+  std::vector<double> e, node_temperature, node_k;
+  std::vector<double> node_peak;  // peak T on the planes update_peak_planes keeps, else T0
+  double node_max = 0;            // highest node temperature so far
+  struct Source {
+    std::size_t node;
+    double energy;  // J over the current grid step
+  };
+  std::vector<Source> sources;  // laser and particle contacts into free top nodes
+  double k_fixed = 0;  // conductivity of the Dirichlet nodes (at T0)
+
+  StableSteps stable;
+  double dt = 0;
+  std::size_t substeps = 1;
+  EnergyLedger ledger;
+  double time = 0;
+  std::uint64_t step = 0, particle_steps = 0;
+  std::size_t implicit_iterations = 0;
+
+  State(const SinterScene& scene, Material material);
+};
+
+// One grid step of forward Euler (explicit_step.cpp): particles subcycle, then the grid.
+void explicit_step(Sinter::State& s, double dt);
+// One backward-Euler step of particles and free nodes together (implicit_step.cpp).
+void implicit_step(Sinter::State& s, double dt);
+// Laser centre at time t.
+inline double laser_x(const Sinter::State& s, double t) { return s.start_x + s.scene.speed * t; }
+// Throws NumericalError if any temperature is non-finite, naming the particle or node.
+void check_finite(const Sinter::State& s);
+
+}  // namespace powderbed::thermal
