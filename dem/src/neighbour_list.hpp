@@ -32,10 +32,16 @@ class NeighbourList {
   // Whether some particle moved more than `limit` since the last build (minimum image).
   bool moved_more_than(const ParticleView& p, double limit, int threads) const;
   double skin() const { return skin_; }
+  // Positions at the last build along `axis` (moved_more_than's reference).
+  const double* reference(int axis) const { return (axis == 0 ? x0_ : axis == 1 ? y0_ : z0_).data(); }
 
   const std::uint32_t* begin(std::size_t i) const { return partners_.data() + offset_[i]; }
   const std::uint32_t* end(std::size_t i) const { return partners_.data() + offset_[i + 1]; }
   std::size_t pair_entries() const { return partners_.size(); }
+  // Pair k as (owner(k), partner(k)): the lower and the upper index, for loops over all pairs
+  // with no inner loop per particle (whose varying trip counts the branch predictor misses).
+  const std::uint32_t* owners() const { return owners_.data(); }
+  const std::uint32_t* partners() const { return partners_.data(); }
   // Index of i's first pair: begin(i)[m] is pair offset(i) + m (per-pair tables use it).
   std::size_t offset(std::size_t i) const { return offset_[i]; }
   // Incident pairs of particle i: 2 k + 1 when i is the pair's lower index (force on i is +F_k),
@@ -57,6 +63,7 @@ class NeighbourList {
   std::vector<std::uint32_t> particle_cell_;  // flat cell index per particle
   std::vector<std::uint32_t> offset_;         // size n + 1
   std::vector<std::uint32_t> partners_;
+  std::vector<std::uint32_t> owners_;         // per pair: its lower index
   std::vector<std::uint32_t> incident_offset_;  // size n + 1 (with_incident)
   std::vector<std::uint32_t> incident_;
   std::vector<double> x0_, y0_, z0_;          // positions at the last build

@@ -57,12 +57,12 @@ void CellGrid::insert(std::uint32_t i) {
   level.r_max_inserted = std::max(level.r_max_inserted, p_.r[i]);
 }
 
-bool CellGrid::fits(double x, double y, double z, double r) const {
+bool CellGrid::fits(double x, double y, double z, double r, std::int64_t after) const {
   for (const Level& level : levels_) {
     if (level.r_max_inserted == 0) continue;
     const bool hit = scan(level, x, y, z, r + level.r_max_inserted, [&](std::uint32_t j) {
       return overlaps(p_.x[j] - x, p_.y[j] - y, p_.z[j] - z, p_.r[j] + r);
-    });
+    }, after);
     if (hit) return false;
   }
   return true;

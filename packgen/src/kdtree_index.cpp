@@ -29,12 +29,14 @@ struct FirstOverlap {
   using IndexType = std::size_t;
   const Particles& p;
   double x, y, z, r, reach2;
+  std::int64_t after;
   bool found = false;
   std::size_t size() const { return found ? 1 : 0; }
   bool full() const { return found; }
   // Once an overlap is found, a negative radius prunes every remaining branch and tree.
   double worstDist() const { return found ? -1.0 : reach2; }
   bool addPoint(double, std::size_t j) {
+    if (static_cast<std::int64_t>(j) <= after) return true;
     found = overlaps(p.x[j] - x, p.y[j] - y, p.z[j] - z, p.r[j] + r);
     return !found;
   }
@@ -62,10 +64,10 @@ void KdTreeIndex::insert(std::uint32_t i) {
   impl_->tree.addPoints(i, i);
 }
 
-bool KdTreeIndex::fits(double x, double y, double z, double r) const {
+bool KdTreeIndex::fits(double x, double y, double z, double r, std::int64_t after) const {
   // Search radius r + r_max with a relative margin so no candidate at the edge is missed.
   const double reach = (r + impl_->r_max) * (1 + 1e-9);
-  FirstOverlap result{impl_->cloud.p, x, y, z, r, reach * reach};
+  FirstOverlap result{impl_->cloud.p, x, y, z, r, reach * reach, after};
   const double query[3] = {x, y, z};
   impl_->tree.findNeighbors(result, query, nanoflann::SearchParams());
   return !result.found;

@@ -23,8 +23,9 @@ bed::Domain box(int dim, double l) {
   return d;
 }
 
-bool brute_fits(const Particles& p, double x, double y, double z, double r) {
-  for (std::uint32_t j = 0; j < p.size(); ++j) {
+bool brute_fits(const Particles& p, double x, double y, double z, double r,
+                std::int64_t after = -1) {
+  for (std::uint32_t j = static_cast<std::uint32_t>(after + 1); j < p.size(); ++j) {
     if (overlaps(p.x[j] - x, p.y[j] - y, p.z[j] - z, p.r[j] + r)) return false;
   }
   return true;
@@ -69,6 +70,11 @@ void check_against_brute_force(int dim) {
     const bool exact = brute_fits(p, x, y, z, r);
     EXPECT_EQ(grid.fits(x, y, z, r), exact);
     EXPECT_EQ(tree.fits(x, y, z, r), exact);
+    // Only the particles after a given one (lowest-site growth re-tests a stored site so).
+    const auto after = static_cast<std::int64_t>(uniform(rng, -1, count - 1));
+    const bool newer = brute_fits(p, x, y, z, r, after);
+    EXPECT_EQ(grid.fits(x, y, z, r, after), newer);
+    EXPECT_EQ(tree.fits(x, y, z, r, after), newer);
     // Raster: a refusal means a grid point lies inside both, so the pair overlaps; an overlap
     // deeper than one grid cell diagonal (h sqrt(dim)) always contains a grid point.
     const bool raster_fits = raster.fits(x, y, z, r);

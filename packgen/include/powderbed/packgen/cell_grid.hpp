@@ -24,8 +24,10 @@ class CellGrid {
            std::size_t max_cells = std::size_t{1} << 24);
 
   void insert(std::uint32_t i);
-  // True when a sphere (disk) of radius r at (x, y, z) overlaps no inserted particle.
-  bool fits(double x, double y, double z, double r) const;
+  // True when a sphere (disk) of radius r at (x, y, z) overlaps no inserted particle with an
+  // index above `after` (-1: every particle). A cell's list runs newest first, so its walk
+  // stops at the first particle at or below `after`.
+  bool fits(double x, double y, double z, double r, std::int64_t after = -1) const;
   // Calls f(j) for every inserted j with |c_j - c| <= r_j + extra; f returns true to stop.
   template <class F>
   void for_each_within(double x, double y, double z, double extra, F&& f) const;
@@ -39,10 +41,11 @@ class CellGrid {
     std::vector<std::int32_t> head;  // first particle per cell, -1 when empty
     double r_max_inserted = 0;       // 0 while empty
   };
-  // Calls f(j) for the particles of every cell of `level` meeting the box c +- reach, until
-  // f returns true; returns true when stopped.
+  // Calls f(j) for the particles j > after of every cell of `level` meeting the box c +- reach,
+  // until f returns true; returns true when stopped.
   template <class F>
-  bool scan(const Level& level, double x, double y, double z, double reach, F&& f) const;
+  bool scan(const Level& level, double x, double y, double z, double reach, F&& f,
+            std::int64_t after = -1) const;
   int cell_range(const Level& level, int axis, double c, double reach, int& hi) const;
 
   const Particles& p_;
@@ -62,8 +65,8 @@ inline int CellGrid::cell_range(const Level& level, int axis, double c, double r
 }
 
 template <class F>
-bool CellGrid::scan(const Level& level, double x, double y, double z, double reach,
-                    F&& f) const {
+bool CellGrid::scan(const Level& level, double x, double y, double z, double reach, F&& f,
+                    std::int64_t after) const {
   int x1 = 0, y1 = 0, z1 = 0;
   const int x0 = cell_range(level, 0, x, reach, x1);
   const int y0 = cell_range(level, 1, y, reach, y1);
@@ -75,7 +78,9 @@ bool CellGrid::scan(const Level& level, double x, double y, double z, double rea
     for (int j = y0; j <= y1; ++j) {
       const std::size_t row = static_cast<std::size_t>(k) * nxy + static_cast<std::size_t>(j) * nx;
       for (int i = x0; i <= x1; ++i) {
-        for (std::int32_t q = level.head[row + static_cast<std::size_t>(i)]; q >= 0; q = next_[q]) {
+        // The list ends with -1, which is never above `after` (>= -1).
+        for (std::int32_t q = level.head[row + static_cast<std::size_t>(i)]; q > after;
+             q = next_[q]) {
           if (f(static_cast<std::uint32_t>(q))) return true;
         }
       }

@@ -17,7 +17,8 @@ class KdTreeIndex {
   KdTreeIndex& operator=(const KdTreeIndex&) = delete;
 
   void insert(std::uint32_t i);
-  bool fits(double x, double y, double z, double r) const;
+  // As CellGrid::fits: only the particles with an index above `after` (-1: all) count.
+  bool fits(double x, double y, double z, double r, std::int64_t after = -1) const;
 
  private:
   struct Impl;  // keeps nanoflann out of the public headers

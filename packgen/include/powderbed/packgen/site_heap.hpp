@@ -9,6 +9,8 @@
 // skips the re-evaluation.
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -27,20 +29,40 @@ struct Site {
   std::uint8_t found_for = 0;  // the centre is for the PSD's smallest (0) or largest (1) size
 };
 
-// A binary min-heap on (key, tie); inline, as lowest-site growth pushes and pops ~7 sites per
-// particle. (A 4-ary heap of 16-byte entries over a pool of sites measured no faster at 1e6.)
+// A min-priority queue on (key, tie) with exact order, as lowest-site growth pushes and pops
+// ~7 sites per particle. Keys (heights) are binned into slabs of a fixed width: the slab being
+// emptied is a binary heap, later slabs are unsorted lists heapified when reached, and a key
+// pushed below the current slab joins its heap (a slab's keys are all below the next slab's, so
+// pops come out in exactly the order of one heap over all sites). Growth from the floor keeps
+// the live sites within a few diameters of the front, so the heap touched per pop holds a few
+// slabs' worth instead of the whole front (1e6 spheres: ~1e5 sites, 5 MB, mostly out of cache).
 class SiteHeap {
  public:
-  bool empty() const { return heap_.empty(); }
-  std::size_t size() const { return heap_.size(); }
+  // Keys are expected in [lo, hi] (others go to the first or last slab); `width` > 0.
+  SiteHeap(double lo = 0, double hi = 1, double width = 1)
+      : lo_(lo), inv_width_(1 / width),
+        slabs_(static_cast<std::size_t>(std::max(1.0, std::ceil((hi - lo) * inv_width_) + 1))) {}
+  bool empty() const { return size_ == 0; }
+  std::size_t size() const { return size_; }
   void push(const Site& s) {
-    heap_.push_back(s);
-    std::push_heap(heap_.begin(), heap_.end(), Later{});
+    ++size_;
+    const std::size_t b = slab(s.key);
+    if (b <= current_) {
+      heap_.push_back(s);
+      std::push_heap(heap_.begin(), heap_.end(), Later{});
+    } else {
+      slabs_[b].push_back(s);
+    }
   }
   Site pop() {  // the lowest (key, tie); requires !empty()
+    while (heap_.empty()) {  // the next non-empty slab becomes the heap
+      heap_.swap(slabs_[++current_]);
+      std::make_heap(heap_.begin(), heap_.end(), Later{});
+    }
     std::pop_heap(heap_.begin(), heap_.end(), Later{});
     const Site s = heap_.back();
     heap_.pop_back();
+    --size_;
     return s;
   }
 
@@ -51,7 +73,14 @@ class SiteHeap {
       return s.key > t.key || (s.key == t.key && s.tie > t.tie);
     }
   };
-  std::vector<Site> heap_;
+  std::size_t slab(double key) const {
+    const double f = std::floor((key - lo_) * inv_width_);
+    return static_cast<std::size_t>(std::min(std::max(f, 0.0), double(slabs_.size() - 1)));
+  }
+  double lo_, inv_width_;
+  std::vector<std::vector<Site>> slabs_;
+  std::vector<Site> heap_;  // every site of slabs <= current_
+  std::size_t current_ = 0, size_ = 0;
 };
 
 // The centre on `side` touching a, b and c for a new particle of radius r; false when that
