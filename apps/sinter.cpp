@@ -57,6 +57,9 @@ void add_options(po::options_description& desc) {
       ("laser.y", po::value<double>(), "track line y (m); default Ly/2")
       ("laser.start-x", po::value<double>(), "track start x (m); default one spot radius before")
       ("laser.end-x", po::value<double>(), "track end x (m); default one spot radius past")
+      ("laser.substrate-shading", po::value<std::string>()->default_value("layer"),
+       "beam reaching the substrate: layer (exp(-beta H_layer) everywhere, SPEC) or column "
+       "(exp(-beta H) with H the bed height above each node; bare spots get the full beam)")
       ("material.table", po::value<std::string>()->default_value(d.material_table),
        "CSV of solid rows + one liquid row (relative paths: to the scene file's folder too)")
       ("material.melting-point", po::value<double>()->default_value(d.phase_change.melting_point), "T_m (K)")
@@ -123,6 +126,11 @@ th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
   if (vm.count("laser.y")) s.laser_y = vm["laser.y"].as<double>();
   if (vm.count("laser.start-x")) s.start_x = vm["laser.start-x"].as<double>();
   if (vm.count("laser.end-x")) s.end_x = vm["laser.end-x"].as<double>();
+  const std::string shading = vm["laser.substrate-shading"].as<std::string>();
+  if (shading != "layer" && shading != "column")
+    throw InputError("laser.substrate-shading: '" + shading + "' (accepted: layer, column)");
+  s.substrate_shading =
+      shading == "layer" ? th::SubstrateShading::layer : th::SubstrateShading::column;
   s.substrate_depth = vm["substrate.depth"].as<double>();
   const auto nodes = app::parse_number_list(vm["substrate.nodes"].as<std::string>(), 3, 3,
                                             "substrate.nodes");

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The README's main job on the [GZ] 2016 powder (600 316L particles, diameters N(27, 4.25) um,
 # 1 mm x 0.5 mm floor): a geometric layer with packgen, a DEM-settled layer with deposit from the
-# paper's scene, both compared side by side with bedstat and drawn.
+# paper's scene, both compared side by side with bedstat and drawn; then the paper's laser track
+# with sinter on the deposited bed, its melt pool beside the paper's.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mkdir -p out
@@ -15,5 +16,17 @@ echo "== bedstat: side by side; the paper reports about 0.45 in the bottom 30 um
 build/apps/bedstat out/packgen.h5 out/deposit.h5 --layer 0,30e-6 --psd "$psd"
 /usr/bin/python3 scripts/plot_bed.py out/packgen.h5 out/packgen.png --title "packgen, [GZ] powder"
 /usr/bin/python3 scripts/plot_bed.py out/deposit.h5 out/deposit.png --title "deposit, [GZ] scene"
-echo "beds: out/packgen.h5, out/deposit.h5 (ParaView: open the .xmf, see docs/bed-format.md);" \
-  "pictures: out/packgen.png, out/deposit.png"
+echo "== sinter: 200 W at 2 m/s over the deposited bed (data/scenes/gz2016-sinter.ini, under a minute)"
+build/apps/sinter --config data/scenes/gz2016-sinter.ini --bed out/deposit.h5 --out out/sinter.h5
+/usr/bin/python3 - out/sinter.h5 <<'PY'
+import sys, h5py
+m = h5py.File(sys.argv[1], "r")["melt"].attrs
+print("melt pool on x = Lx/2 (um)     height  width  depth")
+print("  sinter, this bed          %8.1f %6.1f %6.1f" % tuple(m[k] * 1e6 for k in ("height", "width", "depth")))
+print("  [GZ] 2016 model               30.0   85.0   20.0")
+print("  [GZ] 2016 experiment          26.0   75.0   30.0")
+PY
+/usr/bin/python3 scripts/plot_sinter.py out/sinter.h5 out/sinter --title "sinter, [GZ] scene, 200 W, 2 m/s"
+echo "beds: out/packgen.h5, out/deposit.h5; laser run: out/sinter.h5 (ParaView: open the .xmf," \
+  "see docs/bed-format.md); pictures: out/packgen.png, out/deposit.png, out/sinter-top.png," \
+  "out/sinter-section.png"

@@ -63,6 +63,13 @@ BedSurface analyse_surface(const bed::Bed& bed, double substrate_top) {
   }
   for (const auto o : owner)
     if (o < n) s.exposed[o] = 1;
+  s.samples_x = nx;
+  s.samples_y = ny;
+  s.x0 = x0;
+  s.y0 = y0;
+  s.column.resize(nx * ny);
+  for (std::size_t k = 0; k < nx * ny; ++k)
+    s.column[k] = height[k] == lowest ? 0.0 : std::max(0.0, height[k] - substrate_top);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t k = clamp_index(std::round((bed.x[i] - x0) / h), nx);
     const std::size_t j = clamp_index(std::round((bed.y[i] - y0) / h), ny);
@@ -71,6 +78,16 @@ BedSurface analyse_surface(const bed::Bed& bed, double substrate_top) {
     if (s.depth[i] == 0) s.exposed[i] = 1;
   }
   return s;
+}
+
+double BedSurface::column_height(double x, double y) const {
+  if (column.empty()) return 0;
+  const double fx = std::round((x - x0) / sample_spacing);
+  const double fy = std::round((y - y0) / sample_spacing);
+  if (fx < 0 || fy < 0 || fx >= static_cast<double>(samples_x) ||
+      fy >= static_cast<double>(samples_y))
+    return 0;
+  return column[static_cast<std::size_t>(fy) * samples_x + static_cast<std::size_t>(fx)];
 }
 
 }  // namespace powderbed::thermal

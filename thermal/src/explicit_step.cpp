@@ -136,7 +136,6 @@ void substrate_laser(Sinter::State& s, double t, double dt) {
   const SubstrateGeometry& g = s.g;
   const double xl = laser_x(s, t), yl = s.laser_y;
   const double reach = std::sqrt(kBeamCutoff2) * s.laser.spot_radius;
-  const double depth = s.scene.has(kPenetration) ? s.layer_height : 0.0;
   const auto first = [](double lo, double spacing, std::size_t count, double v) {
     const double f = std::ceil((v - lo) / spacing);
     return static_cast<std::size_t>(std::clamp(f, 1.0, static_cast<double>(count - 1)));
@@ -151,7 +150,8 @@ void substrate_laser(Sinter::State& s, double t, double dt) {
     const double dy = g.y(j) - yl;
     for (std::size_t i = i0; i < i1 && i + 1 < g.nx; ++i) {
       const double dx = g.x(i) - xl;
-      const double energy = absorbed_flux(s.laser, dx * dx + dy * dy, depth) * g.dx * g.dy * dt;
+      const double energy = absorbed_flux(s.laser, dx * dx + dy * dy, 0.0) *
+                            s.transmission[i + g.nx * j] * g.dx * g.dy * dt;
       s.sources.push_back({g.index(i, j, k), energy});
       absorbed += energy;
     }

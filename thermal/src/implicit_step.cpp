@@ -129,7 +129,6 @@ void implicit_step(Sinter::State& s, double dt) {
   }
   const double gx = g.dy * g.dz / g.dx, gy = g.dx * g.dz / g.dy, gz = g.dx * g.dy / g.dz;
   const double xl = laser_x(s, t);
-  const double depth = s.scene.has(kPenetration) ? s.layer_height : 0.0;
   for (std::size_t k = 1; k < g.nz; ++k) {
     const double half = k + 1 == g.nz ? 0.5 : 1.0;
     for (std::size_t j = 1; j + 1 < g.ny; ++j) {
@@ -154,7 +153,8 @@ void implicit_step(Sinter::State& s, double dt) {
         if (k == 1) face(c - g.nx * g.ny, gz);
         if (k + 1 == g.nz && s.scene.has(kLaserSubstrate)) {
           const double dx = g.x(i) - xl, dy = g.y(j) - s.laser_y;
-          sys.rhs[u] += absorbed_flux(s.laser, dx * dx + dy * dy, depth) * g.dx * g.dy;
+          sys.rhs[u] += absorbed_flux(s.laser, dx * dx + dy * dy, 0.0) *
+                        s.transmission[i + g.nx * j] * g.dx * g.dy;
         }
       }
     }

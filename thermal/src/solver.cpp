@@ -230,6 +230,16 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
   s.node_temperature.assign(g.size(), t0);
   s.node_peak.assign(g.size(), t0);
   s.node_max = t0;
+  // Beer–Lambert through the bed above each top node (1 without penetration or particles).
+  s.transmission.assign(g.nx * g.ny, 1.0);
+  for (std::size_t j = 0; j < g.ny; ++j) {
+    for (std::size_t i = 0; i < g.nx; ++i) {
+      const double above = scene.substrate_shading == SubstrateShading::layer
+                               ? s.layer_height
+                               : s.surface.column_height(g.x(i), g.y(j));
+      s.transmission[i + g.nx * j] = std::exp(-s.beta * above);
+    }
+  }
   s.k_fixed = s.material.conductivity(t0);
   s.node_k.assign(g.size(), s.k_fixed);
 

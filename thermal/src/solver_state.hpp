@@ -31,6 +31,7 @@ struct Sinter::State {
 
   // Substrate nodes.
   std::vector<double> e, node_temperature, node_k;
+  std::vector<double> transmission;  // per top-face node (i + nx j): laser fraction that arrives
   std::vector<double> node_peak;  // peak T on the planes update_peak_planes keeps, else T0
   double node_max = 0;            // highest node temperature so far
   struct Source {

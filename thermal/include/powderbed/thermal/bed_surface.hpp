@@ -16,6 +16,13 @@ struct BedSurface {
   double porosity = 1;                // 1 - packing density of [substrate, layer_height]
   double mean_diameter = 0;           // m
   double sample_spacing = 0;          // of the height map, m
+  // The height map: highest sphere surface above each sample, relative to the substrate
+  // (0 where no particle covers the sample), samples at x0 + k h, y0 + j h, row-major in y.
+  std::size_t samples_x = 0, samples_y = 0;
+  double x0 = 0, y0 = 0;
+  std::vector<double> column;
+  // Height of the bed's column over (x, y): the nearest sample (0 outside the map).
+  double column_height(double x, double y) const;
 };
 
 // Height map on a square raster of spacing min(smallest radius / 2, mean diameter / 8) (at most

@@ -12,6 +12,7 @@ namespace powderbed::thermal {
 
 struct ExplainReport {
   double laser_flux = 0;            // alpha I0, W/m^2
+  double conduction_scale = 0;      // [GZ]'s estimate k (T_m - T0) / D / (alpha I0): full contact
   double conduction_ratio = 0;      // particle–particle contacts, mean over connected particles
   double substrate_ratio = 0;       // particle–substrate contacts
   double convection_ratio = 0;      // h (T_v - T_env) / (alpha I0)

@@ -28,6 +28,11 @@ const char* sinter_effect_name(unsigned effect);
 
 enum class Integrator { explicit_euler, implicit_euler };
 
+// What the laser crosses before it reaches the substrate (SPEC.md §5 writes exp(-beta H_layer)):
+// `layer`: the bed's layer height everywhere; `column`: the height of the bed above each top
+// node from the height map (bare spots between particles get the full beam).
+enum class SubstrateShading { layer, column };
+
 struct SinterScene {
   // Material ([GZ] Tables 1–2).
   std::string material_table = "data/materials/316L.csv";
@@ -46,6 +51,7 @@ struct SinterScene {
   double spot_radius = 54e-6;  // w, m
   double absorptivity = 0.33;  // alpha
   double laser_y = NAN, start_x = NAN, end_x = NAN;
+  SubstrateShading substrate_shading = SubstrateShading::layer;
   // Substrate under the bed: x, y extents are the bed's domain; depth and node counts here.
   double substrate_depth = 0.3e-3;
   std::array<std::size_t, 3> nodes{201, 101, 61};
