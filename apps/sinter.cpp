@@ -261,6 +261,7 @@ int run(int argc, char** argv) {
         .value("dt_stable_particle", sinter.stable_steps().particle)
         .value("t_end", r.t_end)
         .value("integrator", vm["integrator"].as<std::string>())
+        .value("implicit_iterations", static_cast<std::uint64_t>(r.implicit_iterations))
         .value("nodes", static_cast<std::uint64_t>(sinter.grid().size()))
         .value("extinction", sinter.extinction())
         .value("porosity", sinter.surface().porosity)

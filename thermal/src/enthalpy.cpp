@@ -34,12 +34,20 @@ EnthalpyCurve::EnthalpyCurve(const Material& material, Per per, double reference
   // The inverse table: walk the intervals once, solving enthalpy(T) = e by Newton inside the
   // interval (the integrand is smooth there), bisection as a safeguard.
   temps_.resize(table_size);
-  const double step = (e_high_ - e_low_) / static_cast<double>(table_size - 1);
+  const double step = (e_high_ - e_low_) / static_cast<double>(table_size - 2);
+  // Start the table on a whole number of steps below 0, so that e = 0 is a table point and
+  // maps back to the reference temperature exactly (untouched nodes stay exactly at T0).
+  table_low_ = -std::ceil(-e_low_ / step) * step;
   inv_step_ = 1 / step;
   last_ = static_cast<double>(table_size - 1);
   std::size_t seg = 0;
   for (std::size_t k = 0; k < table_size; ++k) {
-    const double target = k + 1 == table_size ? e_high_ : e_low_ + step * static_cast<double>(k);
+    const double target = table_low_ + step * static_cast<double>(k);
+    if (target <= e_low_ || target >= e_high_) {  // beyond the ends: the held capacities
+      temps_[k] = target <= e_low_ ? t_low_ + (target - e_low_) / capacity_low_
+                                   : t_high_ + (target - e_high_) / capacity_high_;
+      continue;
+    }
     while (seg + 2 < nodes_.size() && cumulative_[seg + 1] < target) ++seg;
     double lo = nodes_[seg], hi = nodes_[seg + 1];
     double t = lo + (hi - lo) * std::clamp((target - cumulative_[seg]) /

@@ -7,6 +7,7 @@
 // conserved whatever dt is; T* is only the temperature at which the fluxes are evaluated.
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -21,12 +22,35 @@ namespace {
 
 using Triplet = Eigen::Triplet<double>;
 
-struct System {
-  std::vector<Triplet> entries;
-  Eigen::VectorXd rhs, guess;
+// The matrix pattern is the same every step (every coupling is emitted, with conductance 0 once a
+// particle has vaporised), so the first step records triplets and builds the compressed matrix,
+// and later steps add each value straight into its slot: assembly stays O(nonzeros).
+struct Assembler {
+  bool first = true;
+  std::vector<Triplet> triplets;
+  std::vector<std::ptrdiff_t> slot;  // position in the matrix's value array per emitted entry
+  std::size_t next = 0;
+  double* values = nullptr;
+
+  void add(std::ptrdiff_t r, std::ptrdiff_t c, double v) {
+    if (first) triplets.emplace_back(r, c, v);
+    else values[slot[next]] += v;
+    ++next;
+  }
 };
 
 }  // namespace
+
+struct ImplicitSystem {
+  std::vector<std::ptrdiff_t> unknown;  // per node: index of its unknown, -1 when fixed
+  std::ptrdiff_t count = 0;
+  Eigen::SparseMatrix<double> matrix;
+  Assembler assembler;
+  Eigen::VectorXd rhs, guess, solution;
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
+};
+
+void ImplicitSystemDeleter::operator()(ImplicitSystem* p) const { delete p; }
 
 void implicit_step(Sinter::State& s, double dt) {
   const SubstrateGeometry& g = s.g;
@@ -34,21 +58,32 @@ void implicit_step(Sinter::State& s, double dt) {
   const bool variable = s.scene.has(kVariableProperties);
   const auto k_of = [&](double t) { return variable ? s.conductivity(t) : s.k_fixed; };
 
-  // Unknowns: particles first, then free nodes in index order.
-  std::vector<std::ptrdiff_t> unknown(g.size(), -1);
-  std::ptrdiff_t count = static_cast<std::ptrdiff_t>(n);
-  for (std::size_t k = 1; k < g.nz; ++k)
-    for (std::size_t j = 1; j + 1 < g.ny; ++j)
-      for (std::size_t i = 1; i + 1 < g.nx; ++i) unknown[g.index(i, j, k)] = count++;
-
-  System sys;
-  sys.rhs = Eigen::VectorXd::Zero(count);
-  sys.guess.resize(count);
-  sys.entries.reserve(static_cast<std::size_t>(count) * 7 + s.net.pairs.size() * 4 +
-                      s.net.substrate.size() * 25);
-  const auto add = [&](std::ptrdiff_t r, std::ptrdiff_t c, double v) {
-    sys.entries.emplace_back(r, c, v);
-  };
+  if (!s.implicit) {
+    s.implicit.reset(new ImplicitSystem);
+    // Unknowns: particles first, then free nodes in index order.
+    s.implicit->unknown.assign(g.size(), -1);
+    std::ptrdiff_t count = static_cast<std::ptrdiff_t>(n);
+    for (std::size_t k = 1; k < g.nz; ++k)
+      for (std::size_t j = 1; j + 1 < g.ny; ++j)
+        for (std::size_t i = 1; i + 1 < g.nx; ++i) s.implicit->unknown[g.index(i, j, k)] = count++;
+    s.implicit->count = count;
+  }
+  ImplicitSystem& sys = *s.implicit;
+  const std::vector<std::ptrdiff_t>& unknown = sys.unknown;
+  const std::ptrdiff_t count = sys.count;
+  if (sys.rhs.size() != count) {
+    sys.rhs.resize(count);
+    sys.guess.resize(count);
+    sys.solution.resize(count);
+  }
+  sys.rhs.setZero();
+  Assembler& assembler = sys.assembler;
+  assembler.next = 0;
+  if (!assembler.first) {
+    std::fill(sys.matrix.valuePtr(), sys.matrix.valuePtr() + sys.matrix.nonZeros(), 0.0);
+    assembler.values = sys.matrix.valuePtr();
+  }
+  const auto add = [&](std::ptrdiff_t r, std::ptrdiff_t c, double v) { assembler.add(r, c, v); };
   // A coupling of conductance G between unknown-or-fixed a and b.
   const auto couple = [&](std::ptrdiff_t a, double t_a, std::ptrdiff_t b, double t_b, double G) {
     if (a >= 0) {
@@ -66,24 +101,25 @@ void implicit_step(Sinter::State& s, double dt) {
   const double t = s.time;
   for (std::size_t i = 0; i < n; ++i) {
     const auto r = static_cast<std::ptrdiff_t>(i);
-    const double capacity = s.mass[i] * s.per_kg.capacity(s.temperature[i]) / dt;
+    const double capacity = s.mass[i] * s.capacity_per_kg(s.temperature[i]) / dt;
     add(r, r, capacity);
     sys.rhs[r] += capacity * s.temperature[i];
     sys.guess[r] = s.temperature[i];
   }
   if (s.scene.has(kConduction)) {
     for (const auto& p : s.net.pairs) {
-      if (s.gone[p.i] || s.gone[p.j]) continue;
-      const double G = 0.5 * (k_of(s.temperature[p.i]) + k_of(s.temperature[p.j])) * p.shape;
+      const bool off = s.gone[p.i] || s.gone[p.j];
+      const double G =
+          off ? 0.0 : 0.5 * (k_of(s.temperature[p.i]) + k_of(s.temperature[p.j])) * p.shape;
       couple(p.i, s.temperature[p.i], p.j, s.temperature[p.j], G);
     }
   }
   if (s.scene.has(kSubstrateContact)) {
     for (const auto& c : s.net.substrate) {
-      if (s.gone[c.particle]) continue;
       double ts = 0;
       for (int w = 0; w < 4; ++w) ts += c.stencil.weight[w] * s.node_temperature[c.stencil.node[w]];
-      const double G = 0.5 * (k_of(s.temperature[c.particle]) + k_of(ts)) * c.shape;
+      const double G =
+          s.gone[c.particle] ? 0.0 : 0.5 * (k_of(s.temperature[c.particle]) + k_of(ts)) * c.shape;
       // Q = G (Σ w_l T_l - T_i) into the particle, w_k Q out of node k: symmetric in (i, nodes).
       const auto pi = static_cast<std::ptrdiff_t>(c.particle);
       add(pi, pi, G);
@@ -105,16 +141,16 @@ void implicit_step(Sinter::State& s, double dt) {
     }
   }
   for (const auto i : s.exposed) {
-    if (s.gone[i]) continue;
     const auto r = static_cast<std::ptrdiff_t>(i);
+    const double on = s.gone[i] ? 0.0 : 1.0;
     if (s.scene.has(kConvection)) {
-      add(r, r, s.environment.convection * s.area[i]);
-      sys.rhs[r] += s.environment.convection * s.area[i] * s.environment.environment;
+      add(r, r, on * s.environment.convection * s.area[i]);
+      sys.rhs[r] += on * s.environment.convection * s.area[i] * s.environment.environment;
     }
     if (s.scene.has(kRadiation)) {
-      const double G = radiation_conductance(s.environment, s.temperature[i], s.area[i]);
+      const double G = on * radiation_conductance(s.environment, s.temperature[i], s.area[i]);
       add(r, r, G);
-      sys.rhs[r] += radiation_gain(s.environment, s.temperature[i], s.area[i]) +
+      sys.rhs[r] += on * radiation_gain(s.environment, s.temperature[i], s.area[i]) +
                     G * s.temperature[i];
     }
   }
@@ -136,7 +172,7 @@ void implicit_step(Sinter::State& s, double dt) {
         const std::size_t c = g.index(i, j, k);
         const std::ptrdiff_t u = unknown[c];
         const double tc = s.node_temperature[c];
-        const double capacity = g.volume(k) * s.per_m3.capacity(tc) / dt;
+        const double capacity = g.volume(k) * s.capacity_per_m3(tc) / dt;
         add(u, u, capacity);
         sys.rhs[u] += capacity * tc;
         sys.guess[u] = tc;
@@ -159,15 +195,30 @@ void implicit_step(Sinter::State& s, double dt) {
       }
     }
   }
-  // The `couple` lambda adds a fixed node's side only once; entries towards fixed nodes on the
-  // +x/+y sides were handled by face(c + 1 ...) when that neighbour is fixed.
 
-  Eigen::SparseMatrix<double> a(count, count);
-  a.setFromTriplets(sys.entries.begin(), sys.entries.end());
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
-  cg.setTolerance(1e-12);
-  cg.compute(a);
-  const Eigen::VectorXd solution = cg.solveWithGuess(sys.rhs, sys.guess);
+  if (assembler.first) {
+    sys.matrix.resize(count, count);
+    sys.matrix.setFromTriplets(assembler.triplets.begin(), assembler.triplets.end());
+    sys.matrix.makeCompressed();
+    // Slot of each emitted entry: its (row, column) in the compressed column's row indices.
+    assembler.slot.resize(assembler.triplets.size());
+    const auto* outer = sys.matrix.outerIndexPtr();
+    const auto* inner = sys.matrix.innerIndexPtr();
+    for (std::size_t q = 0; q < assembler.triplets.size(); ++q) {
+      const auto& entry = assembler.triplets[q];
+      const auto* begin = inner + outer[entry.col()];
+      const auto* end = inner + outer[entry.col() + 1];
+      assembler.slot[q] = std::lower_bound(begin, end, static_cast<int>(entry.row())) - inner;
+    }
+    assembler.triplets = {};
+    assembler.first = false;
+    sys.cg.setTolerance(1e-12);
+    sys.cg.analyzePattern(sys.matrix);
+  }
+  auto& cg = sys.cg;
+  cg.factorize(sys.matrix);
+  sys.solution = cg.solveWithGuess(sys.rhs, sys.guess);
+  const Eigen::VectorXd& solution = sys.solution;
   if (cg.info() != Eigen::Success) {
     throw NumericalError("implicit step " + std::to_string(s.step) +
                          ": conjugate gradients did not converge (" +

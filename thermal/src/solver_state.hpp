@@ -1,6 +1,7 @@
 #pragma once
 // The solver's state (private to libthermal): what setup computes once and the steps update.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -10,11 +11,18 @@
 
 namespace powderbed::thermal {
 
+// The implicit integrator's matrix and solver, built on its first step (implicit_step.cpp).
+struct ImplicitSystem;
+struct ImplicitSystemDeleter {
+  void operator()(ImplicitSystem* p) const;
+};
+
 struct Sinter::State {
   SinterScene scene;
   Material material;
   EnthalpyCurve per_kg, per_m3;  // particles: h (J/kg); nodes: e (J/m^3)
   UniformTable conductivity;
+  UniformTable capacity_per_kg, capacity_per_m3;  // c(T) and rho c(T) for the implicit matrix
   SubstrateGeometry g;
   BedSurface surface;
   ConductionNetwork net;
@@ -48,6 +56,7 @@ struct Sinter::State {
   double time = 0;
   std::uint64_t step = 0, particle_steps = 0;
   std::size_t implicit_iterations = 0;
+  std::unique_ptr<ImplicitSystem, ImplicitSystemDeleter> implicit;
 
   State(const SinterScene& scene, Material material);
 };
@@ -58,7 +67,8 @@ void explicit_step(Sinter::State& s, double dt);
 void implicit_step(Sinter::State& s, double dt);
 // Laser centre at time t.
 inline double laser_x(const Sinter::State& s, double t) { return s.start_x + s.scene.speed * t; }
-// Throws NumericalError if any temperature is non-finite, naming the particle or node.
-void check_finite(const Sinter::State& s);
+// Throws NumericalError if any temperature is non-finite, naming the particle or node; the
+// substrate nodes only when `grid` is set (the particles are few, the grid is not).
+void check_finite(const Sinter::State& s, bool grid = true);
 
 }  // namespace powderbed::thermal

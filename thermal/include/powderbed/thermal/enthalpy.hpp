@@ -21,11 +21,11 @@ class EnthalpyCurve {
   // Exact integral (two-point Gauss–Legendre on each interval between breakpoints, where the
   // integrand is a polynomial of degree <= 2).
   double enthalpy(double t) const;
-  // Inverse by the table: linear interpolation between exact points.
+  // Inverse by the table: linear interpolation between exact points (e = 0 is one of them).
   double temperature(double e) const {
-    const double x = (e - e_low_) * inv_step_;
-    if (x <= 0) return t_low_ + (e - e_low_) / capacity_low_;
-    if (x >= last_) return t_high_ + (e - e_high_) / capacity_high_;
+    const double x = (e - table_low_) * inv_step_;
+    if (x <= 0) return temps_.front() + (e - table_low_) / capacity_low_;
+    if (x >= last_) return temps_.back() + (e - table_low_ - last_ / inv_step_) / capacity_high_;
     const auto k = static_cast<std::size_t>(x);
     const double f = x - static_cast<double>(k);
     return temps_[k] + f * (temps_[k + 1] - temps_[k]);
@@ -43,6 +43,7 @@ class EnthalpyCurve {
   std::vector<double> nodes_;       // breakpoints within [t_low, t_high] and both ends
   std::vector<double> cumulative_;  // enthalpy at nodes_
   double t_low_, t_high_, e_low_, e_high_, capacity_low_, capacity_high_;
+  double table_low_ = 0;  // enthalpy of temps_[0]
   double inv_step_, last_, min_capacity_;
   std::vector<double> temps_;  // T at e_low + k * step
 };

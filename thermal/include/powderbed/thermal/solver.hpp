@@ -28,7 +28,7 @@ struct EnergyLedger {
   double laser_particles = 0, laser_substrate = 0;
   double convection = 0, radiation = 0;  // into the particles (negative: losses)
   double boundary = 0;                   // into the Dirichlet sides and bottom (outflow)
-  double internal_particles = 0, internal_substrate = 0;  // change, from the final temperatures
+  double internal_particles = 0, internal_substrate = 0;  // change, from the state enthalpies
   double absorbed() const { return laser_particles + laser_substrate; }
   // |absorbed + surface gains - internal change - boundary outflow| / absorbed.
   double relative_error() const;
