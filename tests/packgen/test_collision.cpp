@@ -143,6 +143,8 @@ TEST(Collision, GridAndKdTreeGiveTheSameBed) {
     SCOPED_TRACE(approach);
     expect_same_beds(3, approach, wide);
   }
+  // Monodisperse lowest-site growth re-tests stored sites against the newer particles only.
+  expect_same_beds(3, 3, "mono:r=1e-6");
 }
 
 }  // namespace
