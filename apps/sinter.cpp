@@ -79,7 +79,9 @@ void add_options(po::options_description& desc) {
        "T0 of bed and substrate, and the substrate's Dirichlet value (K)")
       ("substrate.depth", po::value<double>()->default_value(d.substrate_depth), "depth (m)")
       ("substrate.nodes", po::value<std::string>()->default_value("201,101,61"), "NX,NY,NZ")
-      ("time.safety", po::value<double>()->default_value(d.safety), "fraction of the stable step");
+      ("time.safety", po::value<double>()->default_value(d.safety), "fraction of the stable step")
+      ("time.max-particle-rise", po::value<double>()->default_value(d.max_particle_rise),
+       "particle steps subcycle so the laser raises no particle more than this per step (K)");
   for (unsigned bit = 1; bit < (1u << th::kSinterEffectCount); bit <<= 1) {
     const std::string name = std::string("effects.") + th::sinter_effect_name(bit);
     desc.add_options()(name.c_str(), po::value<bool>()->default_value(true), "effect on/off");
@@ -158,6 +160,7 @@ th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
     if (!(s.dt > 0)) throw InputError("--dt: " + std::to_string(s.dt) + " (accepted: dt > 0 s)");
   }
   s.safety = vm["time.safety"].as<double>();
+  s.max_particle_rise = vm["time.max-particle-rise"].as<double>();
   if (vm.count("t-end")) s.t_end = vm["t-end"].as<double>();
   s.effects = 0;
   for (unsigned bit = 1; bit < (1u << th::kSinterEffectCount); bit <<= 1)

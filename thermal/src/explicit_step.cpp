@@ -28,8 +28,12 @@ enum ParticleBit : unsigned {
 };
 constexpr unsigned kParticleMasks = 64;
 
-// Beyond this many spot radii the beam's intensity is below 1e-16 of its peak.
-constexpr double kBeamCutoff2 = 18.5;
+
+// Grids below this many nodes run their loops on one thread: a step's work is then tens of
+// microseconds, less than a team's fork and barrier, and on a loaded machine a barrier that
+// waits for a descheduled thread costs milliseconds (the small-grid tests ran 40-150x slower
+// with two threads than with one).
+constexpr std::size_t kParallelNodes = 1u << 16;
 
 template <unsigned Mask>
 void particle_step(Sinter::State& s, double t, double dt) {
@@ -170,7 +174,7 @@ void boundary_outflow(Sinter::State& s, double dt) {
     return 0.5 * (k[free] + k[fixed]) * shape * (t[free] - t[fixed]);
   };
   std::vector<double> plane(g.nz, 0.0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (g.size() >= kParallelNodes)
   for (std::size_t kk = 1; kk < g.nz; ++kk) {
     const double half = kk + 1 == g.nz ? 0.5 : 1.0;  // top nodes own half a cell
     double sum = 0;
@@ -219,7 +223,7 @@ void grid_step(Sinter::State& s, double dt) {
   double* t = s.node_temperature.data();
   double* kk = s.node_k.data();
   const double k0 = s.k_fixed;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (g.size() >= kParallelNodes)
   for (std::size_t k = 1; k < g.nz; ++k) {
     const bool top = k + 1 == g.nz;
     const double half = top ? 0.5 : 1.0;
@@ -253,7 +257,7 @@ void grid_step(Sinter::State& s, double dt) {
   s.sources.clear();
   // Second pass: the update above read only the old temperatures.
   double hottest = s.node_max;
-#pragma omp parallel for schedule(static) reduction(max : hottest)
+#pragma omp parallel for schedule(static) reduction(max : hottest) if (g.size() >= kParallelNodes)
   for (std::size_t k = 1; k < g.nz; ++k) {
     for (std::size_t j = 1; j + 1 < g.ny; ++j) {
       const std::size_t row = g.index(0, j, k);

@@ -60,6 +60,8 @@ void SinterScene::validate() const {
   }
   require(dt >= 0 && std::isfinite(dt), "dt", dt, "dt > 0 s, or 0 for the stable bound");
   require(safety > 0 && safety <= 1, "time.safety", safety, "0 < safety <= 1");
+  require(positive(max_particle_rise), "time.max-particle-rise", max_particle_rise,
+          "a rise > 0 K per particle step");
   require(std::isnan(t_end) || positive(t_end), "t-end", t_end, "t_end > 0 s");
 }
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/thermal/beer_lambert_laser.hpp"
 #include "powderbed/thermal/contact_conduction.hpp"
 #include "powderbed/thermal/melt_pool.hpp"
 #include "solver_state.hpp"
@@ -264,8 +265,20 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
                : scene.spot_radius / (20 * scene.speed);  // the beam moves w/20 per step
   }
   s.dt = std::min(s.dt, s.t_end);
-  if (scene.integrator == Integrator::explicit_euler && std::isfinite(s.stable.particle))
-    s.substeps = static_cast<std::size_t>(std::ceil(s.dt / (scene.safety * s.stable.particle)));
+  // Particle step: the stable bound, and the accuracy limit of the laser's heating rate
+  // (alpha I0 A_i / (m_i c_min) at the beam's peak) for particles the track can reach.
+  double particle_dt = scene.safety * s.stable.particle;
+  if (scene.has(kLaser) && scene.power > 0) {
+    const double i0 = peak_intensity(s.laser), c_min = s.per_kg.min_capacity();
+    const double reach = std::sqrt(kBeamCutoff2) * scene.spot_radius;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (std::abs(s.y[i] - s.laser_y) > reach) continue;
+      const double rate = s.laser_factor[i] * i0 / (s.mass[i] * c_min);
+      particle_dt = std::min(particle_dt, scene.max_particle_rise / rate);
+    }
+  }
+  if (scene.integrator == Integrator::explicit_euler && std::isfinite(particle_dt))
+    s.substeps = static_cast<std::size_t>(std::ceil(s.dt / particle_dt));
 }
 
 Sinter::~Sinter() = default;

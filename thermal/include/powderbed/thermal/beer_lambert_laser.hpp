@@ -14,6 +14,10 @@ struct LaserParams {
   double extinction;    // beta, 1/m
 };
 
+// Squared distance from the axis in spot radii squared beyond which the beam is below 1e-16
+// of its peak (exp(-2 x 18.5) = 8.5e-17): the solver cuts it there.
+constexpr double kBeamCutoff2 = 18.5;
+
 inline double peak_intensity(const LaserParams& p) {
   return 2 * p.power / (M_PI * p.spot_radius * p.spot_radius);
 }

@@ -60,6 +60,9 @@ struct SinterScene {
   double dt = 0;
   bool unsafe_dt = false;  // accept a dt above the explicit bound (the run may blow up)
   double safety = 0.9;
+  // Accuracy limit of a particle step: the laser alone raises no particle by more than this
+  // per step (K), so tiny particles under the beam subcycle instead of overshooting T_v.
+  double max_particle_rise = 50;
   double t_end = NAN;          // NaN: when the laser reaches end_x
   unsigned effects = kAllSinterEffects;
 

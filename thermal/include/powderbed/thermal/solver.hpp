@@ -95,7 +95,8 @@ class Sinter {
   // Peak node temperatures on the planes x = Lx/2 (i = nx/2), y = Ly/2 (j = ny/2) and the top
   // face; T0 elsewhere (not tracked, to keep a step's memory traffic down).
   const std::vector<double>& substrate_peak_planes() const;
-  // Sets every particle and free node to `t` (tests: initial conditions other than T0).
+  // Sets one particle's or one node's temperature (tests: initial conditions other than T0; on
+  // a Dirichlet node it sets the boundary value).
   void set_particle_temperature(std::size_t i, double t);
   void set_substrate_temperature(std::size_t node, double t);
 

@@ -1,0 +1,275 @@
+// End-to-end tests of the sinter program (issue 5): a small run prints its JSON summary and
+// writes the run file; --explain prints the scale analysis; each bad input of the issue exits 2
+// with one line and leaves no file; the hard cases end without NaN; thread count does not
+// change the answer.
+#include <hdf5.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+#include <string>
+
+#include "powderbed/bed/bed.hpp"
+#include "powderbed/bed/io.hpp"
+#include "run_command.hpp"
+
+using namespace powderbed;
+
+namespace {
+
+// The substrate of the tests: 0.2 x 0.1 mm under the bed, 0.1 mm deep, 10 um spacing, so a run
+// takes about a second; the rest of the scene is the paper's.
+const std::string kScene = std::string(POWDERBED_SOURCE_DIR) + "/data/scenes/gz2016-sinter.ini";
+const std::string kTable = std::string(POWDERBED_SOURCE_DIR) + "/data/materials/316L.csv";
+const std::string kSmallGrid = " --substrate.nodes 21,11,11 --substrate.depth 0.1e-3";
+
+// Two rows of six 15 um particles along the track, `lift` above resting on the floor. Resting
+// particles overlap the floor by 1e-4 r, as a settled bed does, so they conduct into it.
+bed::Bed small_bed(double lift = 0) {
+  bed::Bed b;
+  b.domain.upper = {0.2e-3, 0.1e-3, 0.1e-3};
+  const double r = 15e-6;
+  for (int row = 0; row < 2; ++row)
+    for (int i = 0; i < 6; ++i)  // 29.9 um apart: neighbours overlap slightly and conduct
+      b.add(25e-6 + i * 29.9e-6, 35e-6 + row * 29.9e-6, r * (1 - 1e-4) + lift, r);
+  return b;
+}
+
+std::string write_bed(const bed::Bed& b, const std::string& dir) {
+  const std::string path = dir + "/bed.h5";
+  bed::write_bed_h5(b, path);
+  return path;
+}
+
+// `--config <paper scene> --bed BED --out DIR/out.h5` on the small grid, plus `extra`.
+std::string args(const std::string& bed_path, const std::string& dir, const std::string& extra) {
+  return "--config " + kScene + " --bed " + bed_path + kSmallGrid + " --out " + dir + "/out.h5 " +
+         extra;
+}
+
+// The number after "key": in the JSON line (NaN when the key is missing or the value is null).
+double json_number(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\":");
+  if (at == std::string::npos) return NAN;
+  const char* start = json.c_str() + at + key.size() + 3;
+  char* end = nullptr;
+  const double v = std::strtod(start, &end);
+  return end == start ? NAN : v;
+}
+
+// The literal text of the value after "key": (bit-identical comparison of printed numbers).
+std::string json_text(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\":");
+  if (at == std::string::npos) return "";
+  const auto start = at + key.size() + 3;
+  return json.substr(start, json.find_first_of(",}", start) - start);
+}
+
+// Nothing named out.h5* or out.xmf* (the run file, its sidecar, or a temporary) in `dir`.
+bool left_output(const std::string& dir) {
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    if (entry.path().filename().string().rfind("out.", 0) == 0) return true;
+  return false;
+}
+
+// Exit 2, exactly one line on stderr containing every part, nothing on stdout, no file.
+void expect_refused(const test::CommandResult& r, const std::string& dir,
+                    std::initializer_list<std::string> parts) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  for (const auto& part : parts)
+    EXPECT_NE(r.err.find(part), std::string::npos) << part << " in " << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_FALSE(left_output(dir));
+}
+
+// The summary keys issue 5 asks of --json, each a finite number.
+void expect_finite_summary(const std::string& json) {
+  for (const char* key : {"height", "width", "depth", "max_temperature", "particles_molten",
+                          "particles_vaporised", "energy_balance_error", "steps", "wall_time"})
+    EXPECT_TRUE(std::isfinite(json_number(json, key))) << key << " in " << json;
+}
+
+// Energy balance of a run: the ledger closes to round-off, far below the 0.5 % of issue 5
+// (every joule exchanged is booked on both sides, solver.hpp).
+constexpr double kBalance = 1e-6;
+
+}  // namespace
+
+TEST(SinterCli, SmallRunPrintsJsonAndWritesRunFile) {
+  const std::string dir = test::scratch_dir("sinter_run");
+  const auto r = test::run_app("sinter", args(write_bed(small_bed(), dir), dir, "--json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find('\n'), r.out.size() - 1) << r.out;  // one JSON line
+  EXPECT_EQ(r.out.rfind("{\"melt_pool\":{\"height\":", 0), 0u) << r.out;
+  expect_finite_summary(r.out);
+  EXPECT_EQ(json_number(r.out, "particles"), 12);
+  EXPECT_LT(json_number(r.out, "energy_balance_error"), kBalance) << r.out;
+  // The paper's 200 W at 2 m/s melts the particles under the beam.
+  EXPECT_GT(json_number(r.out, "particles_molten"), 0) << r.out;
+  EXPECT_GT(json_number(r.out, "height"), 0) << r.out;
+  EXPECT_GT(json_number(r.out, "steps"), 0) << r.out;
+
+  EXPECT_GT(std::filesystem::file_size(dir + "/out.xmf"), 0u);
+  // The run file opens and carries the melt pool report.
+  const hid_t file = H5Fopen((dir + "/out.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  for (const char* attr : {"height", "width", "depth", "x_plane", "melting_point"})
+    EXPECT_GT(H5Aexists_by_name(file, "/melt", attr, H5P_DEFAULT), 0) << attr;
+  EXPECT_GT(H5Aexists_by_name(file, "/summary", "energy_balance_error", H5P_DEFAULT), 0);
+  H5Fclose(file);
+  std::size_t temporaries = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    temporaries += entry.path().filename().string().find(".tmp.") != std::string::npos;
+  EXPECT_EQ(temporaries, 0u);
+}
+
+TEST(SinterCli, ExplainPrintsScaleAnalysisWithoutOut) {
+  const std::string dir = test::scratch_dir("sinter_explain");
+  const std::string bed_path = write_bed(small_bed(), dir);
+  const auto r = test::run_app("sinter", "--config " + kScene + " --bed " + bed_path + kSmallGrid +
+                                             " --explain");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* line : {"convection / laser", "radiation / laser", "Biot number",
+                           "conduction (particle pairs) / laser", "grid bound"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << " in " << r.out;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
+TEST(SinterCli, FloatingBedExits2) {
+  const std::string dir = test::scratch_dir("sinter_float");
+  const auto r = test::run_app("sinter", args(write_bed(small_bed(50e-6), dir), dir, "--json"));
+  expect_refused(r, dir, {"--bed", "substrate plane"});
+}
+
+TEST(SinterCli, MaterialTableNotIncreasingExits2) {
+  const std::string dir = test::scratch_dir("sinter_table_order");
+  const std::string table = dir + "/table.csv";
+  std::ofstream(table) << "temperature_K,specific_heat_J_per_kgK,conductivity_W_per_mK,"
+                          "density_kg_per_m3,phase\n"
+                          "293,452,13.3,7952,solid\n"
+                          "700,565,19.0,7786,solid\n"
+                          "600,548,17.5,7831,solid\n"
+                          "1700,815,32.4,7300,liquid\n";
+  const auto r = test::run_app("sinter", args(write_bed(small_bed(), dir), dir,
+                                              "--material.table " + table));
+  expect_refused(r, dir, {table + ":4", "does not increase"});
+}
+
+TEST(SinterCli, MaterialTableNegativeValueExits2) {
+  const std::string dir = test::scratch_dir("sinter_table_sign");
+  const std::string table = dir + "/table.csv";
+  std::ofstream(table) << "temperature_K,specific_heat_J_per_kgK,conductivity_W_per_mK,"
+                          "density_kg_per_m3,phase\n"
+                          "293,452,13.3,7952,solid\n"
+                          "700,565,-19.0,7786,solid\n"
+                          "1700,815,32.4,7300,liquid\n";
+  const auto r = test::run_app("sinter", args(write_bed(small_bed(), dir), dir,
+                                              "--material.table " + table));
+  expect_refused(r, dir, {table + ":3", "conductivity", "-19.0"});
+}
+
+TEST(SinterCli, LaserOutsideTheDomainExits2) {
+  const std::string dir = test::scratch_dir("sinter_laser");
+  const std::string bed_path = write_bed(small_bed(), dir);
+  expect_refused(test::run_app("sinter", args(bed_path, dir, "--laser.y 0.15e-3")), dir,
+                 {"laser.y", "outside"});
+  expect_refused(test::run_app("sinter", args(bed_path, dir, "--laser.start-x 0.3e-3")), dir,
+                 {"laser.start-x", "never crosses"});
+}
+
+TEST(SinterCli, GridWithTwoNodesExits2) {
+  const std::string dir = test::scratch_dir("sinter_nodes");
+  const auto r = test::run_app("sinter", "--config " + kScene + " --bed " +
+                                             write_bed(small_bed(), dir) +
+                                             " --substrate.nodes 2,11,11 --out " + dir + "/out.h5");
+  expect_refused(r, dir, {"substrate.nodes", "along x", "at least 3"});
+}
+
+TEST(SinterCli, DtAboveBoundAndBadIntegratorAndUnknownEffectExit2) {
+  const std::string dir = test::scratch_dir("sinter_options");
+  const std::string bed_path = write_bed(small_bed(), dir);
+  expect_refused(test::run_app("sinter", args(bed_path, dir, "--dt 1e-3")), dir,
+                 {"--dt", "stable bound", "--unsafe-dt"});
+  expect_refused(test::run_app("sinter", args(bed_path, dir, "--integrator bogus")), dir,
+                 {"--integrator", "bogus"});
+  // An effect the program does not know is an unknown option of the scene file.
+  const std::string scene = dir + "/scene.ini";
+  std::ofstream(scene) << "[material]\ntable = " << kTable << "\n[effects]\nfrobnicate = true\n";
+  expect_refused(test::run_app("sinter", "--config " + scene + " --bed " + bed_path + kSmallGrid +
+                                             " --out " + dir + "/out.h5"),
+                 dir, {"effects.frobnicate"});
+}
+
+TEST(SinterCli, HighPowerSlowScanVaporisesWithFiniteTemperatures) {
+  const std::string dir = test::scratch_dir("sinter_vapour");
+  const auto r = test::run_app("sinter", args(write_bed(small_bed(), dir), dir,
+                                              "--power 400 --speed 0.4 --json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_finite_summary(r.out);
+  EXPECT_GT(json_number(r.out, "particles_vaporised"), 0) << r.out;
+  EXPECT_LT(json_number(r.out, "energy_balance_error"), kBalance) << r.out;
+}
+
+TEST(SinterCli, BareSubstrateMelts) {
+  const std::string dir = test::scratch_dir("sinter_bare");
+  bed::Bed bare;
+  bare.domain.upper = {0.2e-3, 0.1e-3, 0.1e-3};
+  const auto r = test::run_app("sinter", args(write_bed(bare, dir), dir, "--power 400 --json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_finite_summary(r.out);
+  EXPECT_EQ(json_number(r.out, "particles"), 0);
+  EXPECT_GT(json_number(r.out, "depth"), 0) << r.out;
+  EXPECT_LT(json_number(r.out, "energy_balance_error"), kBalance) << r.out;
+}
+
+TEST(SinterCli, UnsafeDtTenTimesTheBoundFailsCleanlyOrStaysFinite) {
+  const std::string dir = test::scratch_dir("sinter_unsafe");
+  const std::string bed_path = write_bed(small_bed(), dir);
+  const auto probe = test::run_app("sinter", args(bed_path, dir, "--explain"));
+  ASSERT_EQ(probe.status, 0) << probe.err;
+  // The explain text names the grid bound: "grid bound <dt> s".
+  const auto at = probe.out.find("grid bound ");
+  ASSERT_NE(at, std::string::npos) << probe.out;
+  const double bound = std::stod(probe.out.substr(at + 11));
+  ASSERT_GT(bound, 0);
+  // 1 ms is about 50 steps: long enough for forward Euler at 10x its bound to overflow.
+  std::ostringstream dt;
+  dt.precision(17);
+  dt << 10 * bound;
+  const auto r = test::run_app(
+      "sinter", args(bed_path, dir, "--unsafe-dt --t-end 1e-3 --dt " + dt.str() + " --json"));
+  ASSERT_TRUE(r.status == 0 || r.status == 3) << r.status << ": " << r.err;
+  if (r.status == 3) {
+    // A warning for --unsafe-dt, then one line naming where and when it went non-finite.
+    EXPECT_NE(r.err.find("--unsafe-dt"), std::string::npos) << r.err;
+    const auto failure = r.err.find("numerical failure: ");
+    ASSERT_NE(failure, std::string::npos) << r.err;
+    const std::string line = r.err.substr(failure);
+    EXPECT_EQ(line.find('\n'), line.size() - 1) << r.err;
+    EXPECT_TRUE(line.find("particle ") != std::string::npos ||
+                line.find("substrate node (") != std::string::npos) << line;
+    EXPECT_NE(line.find("at step "), std::string::npos) << line;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_FALSE(left_output(dir));
+  } else {
+    expect_finite_summary(r.out);
+  }
+}
+
+TEST(SinterCli, OneAndTwoThreadsGiveIdenticalResults) {
+  const std::string dir = test::scratch_dir("sinter_threads");
+  const std::string bed_path = write_bed(small_bed(), dir);
+  const auto one = test::run_app("sinter", args(bed_path, dir, "--threads 1 --json"));
+  const auto two = test::run_app("sinter", args(bed_path, dir, "--threads 2 --json"));
+  ASSERT_EQ(one.status, 0) << one.err;
+  ASSERT_EQ(two.status, 0) << two.err;
+  // Bit-identical: the grid update is per node and the particle step serial, so the order of
+  // every floating-point sum is the same whatever the thread count.
+  for (const char* key : {"height", "width", "depth", "max_temperature", "particles_molten"})
+    EXPECT_EQ(json_text(one.out, key), json_text(two.out, key)) << key;
+}
