@@ -48,13 +48,14 @@ struct ForceArrays {
   std::size_t n;
 };
 
-// The pair forces in three passes, so that the costly part runs without branches: (1) a reject
-// pass over the list entries of particles [begin, end) that stores, for every entry, its
-// separation, velocity difference and constants at slot m and advances m only when the pair
-// touches (branch-free compaction: ~3 of 4 entries of a settled bed are not in contact, and a
-// branch on that is a coin toss for the predictor); (2) the contact laws over the m compacted
-// contacts, a straight loop over contiguous arrays that the compiler vectorises (square roots
-// and divisions two or four at a time); (3) the sums (serial or gathered, see compute_forces).
+// The pair forces in three passes over a block of particles, so that the costly part runs
+// without branches: (1) one flat loop over the block's list entries that writes each entry's
+// index at slot m and advances m only when the pair touches (branch-free compaction: ~3 of 4
+// entries of a settled bed are not in contact, a coin toss for a branch predictor, and a loop
+// per particle mispredicts its varying trip count), then gathers the m contacts' separations,
+// velocity differences and constants into contiguous arrays; (2) the contact law over them, a
+// straight loop that the compiler vectorises (square roots and divisions two at a time with
+// SSE2); (3) the sums (serial or gathered, see compute_forces).
 struct ContactBuffer {
   std::vector<std::uint32_t> i, j, k;
   std::vector<double> dx, dy, dz, reach, elastic, damping, wx, wy, wz, fx, fy, fz;
@@ -64,7 +65,9 @@ struct ContactBuffer {
     const std::size_t size = entries + 1;  // pass 1 writes slot m even for the last entry
     if (i.size() >= size) return;
     for (auto* v : {&i, &j, &k}) v->resize(size);
-    for (auto* v : {&dx, &dy, &dz, &reach, &elastic, &damping, &wx, &wy, &wz, &fx, &fy, &fz}) v->resize(size);
+    for (auto* v : {&dx, &dy, &dz, &reach, &elastic, &damping, &wx, &wy, &wz, &fx, &fy, &fz}) {
+      v->resize(size);
+    }
   }
 };
 
@@ -122,7 +125,9 @@ inline void tabulate_contacts(ContactTables& t, const ForceArrays& a, const Forc
   for (std::size_t face = 0; face < 6; ++face) {
     t.face_particles[face].clear();
     for (std::size_t i = 0; i < a.n; ++i) {
-      if ((t.wall_faces[i] & (1u << face)) != 0) t.face_particles[face].push_back(static_cast<std::uint32_t>(i));
+      if ((t.wall_faces[i] & (1u << face)) != 0) {
+        t.face_particles[face].push_back(static_cast<std::uint32_t>(i));
+      }
     }
   }
 }
@@ -155,12 +160,16 @@ inline void wall_face(const ForceParams& p, const ContactTables& t, std::size_t 
   }
 }
 
-// Contacts with face (Axis, Side) of the particles that may touch it, added to their forces.
+// Contacts with face (Axis, Side) of the particles of [begin, end) that may touch it, added to
+// their forces.
 template <unsigned E, int Axis, int Side>
-void face_forces(const ForceArrays& a, const ForceParams& p, const ContactTables& t, int threads) {
-  const std::vector<std::uint32_t>& near = t.face_particles[2 * Axis + Side];
-  for_each_particle(near.size(), threads, [&](std::size_t w) {
-    const std::uint32_t i = near[w];
+void face_forces(const ForceArrays& a, const ForceParams& p, const ContactTables& t,
+                 std::size_t begin, std::size_t end) {
+  const std::vector<std::uint32_t>& near = t.face_particles[2 * Axis + Side];  // i ascending
+  const auto first = std::lower_bound(near.begin(), near.end(), begin);
+  const auto last = std::lower_bound(first, near.end(), end);
+  for (auto it = first; it != last; ++it) {
+    const std::uint32_t i = *it;
     const double v[3] = {a.vx[i], a.vy[i], a.vz[i]};
     const double pos[3] = {a.x[i], a.y[i], a.z[i]};
     double f[3] = {a.fx[i], a.fy[i], a.fz[i]};
@@ -168,7 +177,7 @@ void face_forces(const ForceArrays& a, const ForceParams& p, const ContactTables
     a.fx[i] = f[0];
     a.fy[i] = f[1];
     a.fz[i] = f[2];
-  });
+  }
 }
 
 // Separation along `axis`, with the minimum image only when some axis is periodic (the
@@ -283,8 +292,8 @@ void contact_forces(const ForceParams& p, ContactBuffer& b) {
                     b.fx.data(), b.fy.data(), b.fz.data());
 }
 
-// Gravity and drag on particles [begin, end): plain loops the compiler vectorises; the same
-// additions as particle_forces (0 + G - c v is G - c v exactly).
+// Gravity and drag on particles [begin, end), starting each particle's force from 0: a plain
+// loop the compiler vectorises.
 template <unsigned E>
 void body_forces(const ForceArrays& a, const ForceParams& p, std::size_t begin, std::size_t end) {
   double* __restrict fx = a.fx;
@@ -318,16 +327,19 @@ constexpr std::size_t kContactBlock = 256;
 template <unsigned E>
 void compute_forces(const ForceArrays& a, const ForceParams& p, const NeighbourList& list,
                     ContactTables& t, int threads) {
-  for_each_chunk(a.n, threads, [&](std::size_t begin, std::size_t end) { body_forces<E>(a, p, begin, end); });
-  if constexpr ((E & kWalls) != 0) {
-    // Face by face, so every particle adds its faces in the same order.
-    face_forces<E, 0, 0>(a, p, t, threads);
-    face_forces<E, 0, 1>(a, p, t, threads);
-    face_forces<E, 1, 0>(a, p, t, threads);
-    face_forces<E, 1, 1>(a, p, t, threads);
-    face_forces<E, 2, 0>(a, p, t, threads);
-    face_forces<E, 2, 1>(a, p, t, threads);
-  }
+  // Body forces, then walls face by face, so every particle adds its faces in the same order;
+  // one parallel region (each fork and barrier costs microseconds, far more on a busy machine).
+  for_each_chunk(a.n, threads, [&](std::size_t begin, std::size_t end) {
+    body_forces<E>(a, p, begin, end);
+    if constexpr ((E & kWalls) != 0) {
+      face_forces<E, 0, 0>(a, p, t, begin, end);
+      face_forces<E, 0, 1>(a, p, t, begin, end);
+      face_forces<E, 1, 0>(a, p, t, begin, end);
+      face_forces<E, 1, 1>(a, p, t, begin, end);
+      face_forces<E, 2, 0>(a, p, t, begin, end);
+      face_forces<E, 2, 1>(a, p, t, begin, end);
+    }
+  });
   if constexpr ((E & kHertz) != 0) {
     if (threads <= 1) {
       ContactBuffer& b = t.buffers[0];

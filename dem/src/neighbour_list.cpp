@@ -111,7 +111,8 @@ void NeighbourList::build(const ParticleView& p, int threads, bool with_incident
   for_each_particle(n, threads, [&](std::size_t i) {
     std::uint32_t* out = partners_.data() + offset_[i];
     for_each_candidate(p, i, [&](std::uint32_t j) { *out++ = j; });
-    std::fill(owners_.begin() + offset_[i], owners_.begin() + offset_[i + 1], static_cast<std::uint32_t>(i));
+    std::fill(owners_.begin() + offset_[i], owners_.begin() + offset_[i + 1],
+              static_cast<std::uint32_t>(i));
   });
   if (with_incident) {
     // Serial fill in increasing i: a particle's pairs under lower indices arrive first, in the

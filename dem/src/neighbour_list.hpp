@@ -32,8 +32,6 @@ class NeighbourList {
   // Whether some particle moved more than `limit` since the last build (minimum image).
   bool moved_more_than(const ParticleView& p, double limit, int threads) const;
   double skin() const { return skin_; }
-  // Positions at the last build along `axis` (moved_more_than's reference).
-  const double* reference(int axis) const { return (axis == 0 ? x0_ : axis == 1 ? y0_ : z0_).data(); }
 
   const std::uint32_t* begin(std::size_t i) const { return partners_.data() + offset_[i]; }
   const std::uint32_t* end(std::size_t i) const { return partners_.data() + offset_[i + 1]; }

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -108,9 +107,8 @@ struct Context {
     list.build(view(), threads, threads > 1);
     detail::tabulate_contacts(tables, arrays(), params, list, list.skin(), threads);
   }
-  void rebuild_if_needed() { rebuild_if(list.moved_more_than(view(), 0.5 * list.skin(), threads)); }
-  void rebuild_if(bool moved) {
-    if (moved) {
+  void rebuild_if_needed() {
+    if (list.moved_more_than(view(), 0.5 * list.skin(), threads)) {
       rebuild();
       ++rebuilds;
     }
@@ -120,22 +118,19 @@ struct Context {
 // True when every value is finite: a branch-free test of the 11 exponent bits (all ones for
 // inf and NaN: adding 1 carries into bit 11), shifts, masks and adds that the compiler
 // vectorises even with SSE2's lack of 64-bit compares; cheap enough for every step.
-inline std::uint64_t non_finite_bit(double v) {
-  return (((std::bit_cast<std::uint64_t>(v) >> 52) & 0x7ffu) + 1) >> 11;
-}
 bool all_finite(const std::vector<double>& values) {
   std::uint64_t bad = 0;
-  for (const double v : values) bad |= non_finite_bit(v);
+  for (const double v : values) bad |= (((std::bit_cast<std::uint64_t>(v) >> 52) & 0x7ffu) + 1) >> 11;
   return bad == 0;
 }
 
-// A vectorised test of the velocities first (or the answer of kick_checked), then (only on
-// failure) a serial scan so that the first bad particle is reported. Velocities suffice: positions are sums of finite positions
+// A vectorised test of the velocities first, then (only on failure) a serial scan so that the
+// first bad particle is reported. Velocities suffice: positions are sums of finite positions
 // and dt times velocities, so a non-finite position needs a non-finite (or ~1e300 m/s)
 // velocity, which this or the next step's test catches.
-void check_finite(const Context& c, std::uint64_t step, bool known_finite = false) {
+void check_finite(const Context& c, std::uint64_t step) {
   const bed::Bed& b = c.bed;
-  if (known_finite || (all_finite(b.vx) && all_finite(b.vy) && all_finite(b.vz))) return;
+  if (all_finite(b.vx) && all_finite(b.vy) && all_finite(b.vz)) return;
   for (std::size_t i = 0; i < c.n; ++i) {
     if (std::isfinite(b.x[i] + b.y[i] + b.z[i] + b.vx[i] + b.vy[i] + b.vz[i])) continue;
     std::ostringstream msg;
@@ -157,73 +152,12 @@ void drift(std::size_t begin, std::size_t end, double dt, const double* __restri
   for (std::size_t i = begin; i < end; ++i) x[i] += dt * v[i];
 }
 
-// The passes of a Verlet step fused, for a box with no periodic axis (one sweep over the arrays
-// instead of three): kick and drift on all three axes, answering whether some particle is now
-// more than sqrt(limit2) from the list's reference position (x0, y0, z0)...
-bool kick_drift_moved(std::size_t begin, std::size_t end, double h, double dt, double limit2,
-                      const double* __restrict fx, const double* __restrict fy,
-                      const double* __restrict fz, const double* __restrict inv_mass,
-                      double* __restrict vx, double* __restrict vy, double* __restrict vz,
-                      double* __restrict x, double* __restrict y, double* __restrict z,
-                      const double* __restrict x0, const double* __restrict y0,
-                      const double* __restrict z0) {
-  unsigned moved = 0;
-  for (std::size_t i = begin; i < end; ++i) {
-    vx[i] += h * fx[i] * inv_mass[i];
-    vy[i] += h * fy[i] * inv_mass[i];
-    vz[i] += h * fz[i] * inv_mass[i];
-    x[i] += dt * vx[i];
-    y[i] += dt * vy[i];
-    z[i] += dt * vz[i];
-    const double ex = x[i] - x0[i], ey = y[i] - y0[i], ez = z[i] - z0[i];
-    moved |= static_cast<unsigned>(ex * ex + ey * ey + ez * ez > limit2);
-  }
-  return moved != 0;
-}
-
-// ... and the closing kick with the finiteness test of check_finite: true when all are finite.
-bool kick_checked(std::size_t begin, std::size_t end, double h, const double* __restrict fx,
-                  const double* __restrict fy, const double* __restrict fz,
-                  const double* __restrict inv_mass, double* __restrict vx,
-                  double* __restrict vy, double* __restrict vz) {
-  std::uint64_t bad = 0;
-  for (std::size_t i = begin; i < end; ++i) {
-    vx[i] += h * fx[i] * inv_mass[i];
-    vy[i] += h * fy[i] * inv_mass[i];
-    vz[i] += h * fz[i] * inv_mass[i];
-    bad |= non_finite_bit(vx[i]) | non_finite_bit(vy[i]) | non_finite_bit(vz[i]);
-  }
-  return bad == 0;
-}
-
 // Velocity Verlet (kick–drift–kick); velocity-dependent forces see the half-step velocity.
 template <unsigned E>
 void step_verlet(Context& c, std::uint64_t step) {
   const double dt = c.dt, half = 0.5 * c.dt;
   bed::Bed& b = c.bed;
   const Box& box = c.params.box;
-  if (!box.any_periodic()) {
-    const double limit = 0.5 * c.list.skin();
-    std::atomic<bool> moved{false}, finite{true};
-    detail::for_each_chunk(c.n, c.threads, [&](std::size_t begin, std::size_t end) {
-      if (kick_drift_moved(begin, end, half, dt, limit * limit, c.fx.data(), c.fy.data(),
-                           c.fz.data(), c.inv_mass.data(), b.vx.data(), b.vy.data(), b.vz.data(),
-                           b.x.data(), b.y.data(), b.z.data(), c.list.reference(0),
-                           c.list.reference(1), c.list.reference(2))) {
-        moved.store(true, std::memory_order_relaxed);
-      }
-    });
-    c.rebuild_if(moved.load(std::memory_order_relaxed));
-    detail::compute_forces<E>(c.arrays(), c.params, c.list, c.tables, c.threads);
-    detail::for_each_chunk(c.n, c.threads, [&](std::size_t begin, std::size_t end) {
-      if (!kick_checked(begin, end, half, c.fx.data(), c.fy.data(), c.fz.data(),
-                        c.inv_mass.data(), b.vx.data(), b.vy.data(), b.vz.data())) {
-        finite.store(false, std::memory_order_relaxed);
-      }
-    });
-    check_finite(c, step, finite.load(std::memory_order_relaxed));
-    return;
-  }
   const auto kick_all = [&](std::size_t begin, std::size_t end) {
     kick(begin, end, half, c.fx.data(), c.inv_mass.data(), b.vx.data());
     kick(begin, end, half, c.fy.data(), c.inv_mass.data(), b.vy.data());
@@ -234,6 +168,7 @@ void step_verlet(Context& c, std::uint64_t step) {
     drift(begin, end, dt, b.vx.data(), b.x.data());
     drift(begin, end, dt, b.vy.data(), b.y.data());
     drift(begin, end, dt, b.vz.data(), b.z.data());
+    if (!box.any_periodic()) return;
     for (std::size_t i = begin; i < end; ++i) {
       b.x[i] = box.wrap(0, b.x[i]);
       b.y[i] = box.wrap(1, b.y[i]);
