@@ -38,24 +38,31 @@ const thermal::MaterialTable& table() {
   return t;
 }
 
-void particles(benchmark::State& state, unsigned effects_off) {
-  static const bed::Bed bed = lattice_bed(141);
-  thermal::SinterScene scene;
-  scene.nodes = {3, 3, 3};
-  scene.effects = thermal::kAllSinterEffects & ~effects_off;
-  thermal::Sinter probe(bed, [&] { auto s = scene; s.t_end = 1; return s; }(), table());
-  scene.dt = probe.dt();
-  scene.t_end = 20 * probe.dt();  // 20 grid steps per iteration
+// Times 20 grid steps of `bed` under `scene` (its step set to the scene's stable default).
+void time_steps(benchmark::State& state, const bed::Bed& bed, thermal::SinterScene scene,
+                std::int64_t items_per_step) {
   scene.laser_y = 0.5 * bed.domain.length(1);
   scene.start_x = 0;
-  scene.speed = 1e-6;
+  scene.speed = 1e-6;  // the beam stays on the bed
+  scene.t_end = 1;
+  const thermal::Sinter probe(bed, scene, table());
+  scene.dt = probe.dt();
+  scene.t_end = 20 * probe.dt();
   for (auto _ : state) {
     state.PauseTiming();
     thermal::Sinter sinter(bed, scene, table());
     state.ResumeTiming();
     sinter.run(nullptr, 0, nullptr);
   }
-  state.SetItemsProcessed(state.iterations() * 20 * static_cast<std::int64_t>(bed.n()));
+  state.SetItemsProcessed(state.iterations() * 20 * items_per_step);
+}
+
+void particles(benchmark::State& state, unsigned effects_off) {
+  static const bed::Bed bed = lattice_bed(141);
+  thermal::SinterScene scene;
+  scene.nodes = {3, 3, 3};
+  scene.effects = thermal::kAllSinterEffects & ~effects_off;
+  time_steps(state, bed, scene, static_cast<std::int64_t>(bed.n()));
 }
 
 void grid(benchmark::State& state, unsigned effects_off) {
@@ -66,19 +73,7 @@ void grid(benchmark::State& state, unsigned effects_off) {
   scene.nodes = {101, 51, 31};
   scene.substrate_depth = 0.15e-3;
   scene.effects = thermal::kAllSinterEffects & ~effects_off;
-  thermal::Sinter probe(bed, [&] { auto s = scene; s.t_end = 1; return s; }(), table());
-  scene.dt = probe.dt();
-  scene.t_end = 20 * probe.dt();
-  scene.laser_y = 0.5 * bed.domain.length(1);
-  scene.start_x = 0;
-  scene.speed = 1e-6;
-  for (auto _ : state) {
-    state.PauseTiming();
-    thermal::Sinter sinter(bed, scene, table());
-    state.ResumeTiming();
-    sinter.run(nullptr, 0, nullptr);
-  }
-  state.SetItemsProcessed(state.iterations() * 20 * 101 * 51 * 31);
+  time_steps(state, bed, scene, 101 * 51 * 31);
 }
 
 }  // namespace

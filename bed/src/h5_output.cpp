@@ -113,6 +113,13 @@ void H5Output::commit() {
 
 const std::string& H5Output::path() const { return impl_->atomic.path(); }
 
+std::string xdmf_sidecar_path(const std::string& h5_path) { return detail::xdmf_path(h5_path); }
+
+std::string file_name_of(const std::string& path) {
+  const auto slash = path.rfind('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
 void write_text_file(const std::string& path, std::string_view text) {
   detail::AtomicFile atomic(path);
   detail::write_text(atomic.temp_path(), path, text);

@@ -1,7 +1,6 @@
 #include "powderbed/dem/scene.hpp"
 
 #include <cmath>
-#include <sstream>
 
 #include "powderbed/bed/errors.hpp"
 
@@ -19,18 +18,8 @@ const char* effect_name(unsigned effect) {
   }
 }
 
-namespace {
-
-void require(bool ok, const char* field, double value, const char* accepted) {
-  if (ok) return;
-  std::ostringstream msg;
-  msg << field << ": " << value << " is out of range (accepted: " << accepted << ")";
-  throw InputError(msg.str());
-}
-
-}  // namespace
-
 void Scene::validate() const {
+  const auto require = require_in_range;  // bed/errors.hpp
   const auto finite_positive = [](double v) { return std::isfinite(v) && v > 0; };
   require(finite_positive(material.young), "material.young", material.young, "E > 0 Pa");
   require(material.poisson >= 0 && material.poisson < 0.5, "material.poisson", material.poisson,

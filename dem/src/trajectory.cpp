@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/h5_output.hpp"
 
 namespace powderbed::dem {
 
@@ -63,15 +64,6 @@ void write_string_attribute(hid_t where, const char* name, const std::string& va
   check(attr.valid() && H5Awrite(attr, type, value.data()) >= 0, path, name);
 }
 
-std::string xdmf_path(const std::string& path) {
-  const auto dot = path.rfind(".h5");
-  return (dot != std::string::npos && dot + 3 == path.size() ? path.substr(0, dot) : path) + ".xmf";
-}
-
-std::string base_name(const std::string& path) {
-  const auto slash = path.rfind('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
 
 }  // namespace
 
@@ -139,7 +131,7 @@ void TrajectoryWriter::close() {
   s.file = -1;
   check(closed && std::rename(s.temp.c_str(), s.path.c_str()) == 0, s.path, "the file");
   // XDMF temporal collection: one Polyvertex grid per snapshot, radius shared.
-  const std::string h5 = base_name(s.path);
+  const std::string h5 = bed::file_name_of(s.path);
   std::ostringstream x;
   x.precision(17);
   x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
@@ -163,7 +155,7 @@ void TrajectoryWriter::close() {
       << "   </Grid>\n";
   }
   x << "  </Grid>\n </Domain>\n</Xdmf>\n";
-  const std::string xmf = xdmf_path(s.path);
+  const std::string xmf = bed::xdmf_sidecar_path(s.path);
   const std::string xmf_temp = xmf + ".tmp";
   {
     std::ofstream out(xmf_temp);

@@ -4,24 +4,18 @@
 
 #include <cmath>
 #include <numbers>
-#include <regex>
 
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/lattice.hpp"
 #include "run_command.hpp"
+
+using powderbed::test::json_number;
 
 namespace {
 
 using powderbed::test::run_app;
 
 // Pulls a top-level number out of the one-line JSON object (keys are unique in our output).
-double json_number(const std::string& json, const std::string& key) {
-  const std::regex re("\"" + key + "\":(-?[0-9.eE+-]+)");
-  std::smatch m;
-  if (!std::regex_search(json, m, re)) return NAN;
-  return std::stod(m[1]);
-}
-
 class BedstatTest : public ::testing::Test {
  protected:
   void SetUp() override {

@@ -19,6 +19,8 @@
 
 using namespace powderbed;
 
+using powderbed::test::json_number;
+
 namespace {
 
 // The substrate of the tests: 0.2 x 0.1 mm under the bed, 0.1 mm deep, 10 um spacing, so a run
@@ -49,16 +51,6 @@ std::string write_bed(const bed::Bed& b, const std::string& dir) {
 std::string args(const std::string& bed_path, const std::string& dir, const std::string& extra) {
   return "--config " + kScene + " --bed " + bed_path + kSmallGrid + " --out " + dir + "/out.h5 " +
          extra;
-}
-
-// The number after "key": in the JSON line (NaN when the key is missing or the value is null).
-double json_number(const std::string& json, const std::string& key) {
-  const auto at = json.find("\"" + key + "\":");
-  if (at == std::string::npos) return NAN;
-  const char* start = json.c_str() + at + key.size() + 3;
-  char* end = nullptr;
-  const double v = std::strtod(start, &end);
-  return end == start ? NAN : v;
 }
 
 // The literal text of the value after "key": (bit-identical comparison of printed numbers).

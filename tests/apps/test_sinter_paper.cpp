@@ -12,13 +12,9 @@
 
 #include "run_command.hpp"
 
-namespace {
+using powderbed::test::json_number;
 
-double json_number(const std::string& json, const std::string& key) {
-  const auto at = json.find("\"" + key + "\":");
-  if (at == std::string::npos) return NAN;
-  return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
-}
+namespace {
 
 TEST(SinterPaper, MeltPoolAndEnergyBalanceOnThePapersScene) {
   const std::string src = POWDERBED_SOURCE_DIR;

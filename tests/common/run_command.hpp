@@ -1,5 +1,6 @@
 #pragma once
 // Runs a program of the build end to end and captures its exit status, stdout and stderr.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -49,6 +50,17 @@ inline std::string scratch_dir(const std::string& name) {
   const std::string cmd = "rm -rf '" + dir + "' && mkdir -p '" + dir + "'";
   if (std::system(cmd.c_str()) != 0) return "/tmp";
   return dir;
+}
+
+// The number after the first "key": in a one-line JSON summary (NaN when the key is missing
+// or its value is null, which is how the writer prints a non-finite number).
+inline double json_number(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\":");
+  if (at == std::string::npos) return NAN;
+  const char* start = json.c_str() + at + key.size() + 3;
+  char* end = nullptr;
+  const double v = std::strtod(start, &end);
+  return end == start ? NAN : v;
 }
 
 }  // namespace powderbed::test

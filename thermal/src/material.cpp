@@ -102,26 +102,21 @@ MaterialTable read_material_table(const std::string& path) {
 
 void validate(const PhaseChange& phase, double hold_from, const MaterialTable& table) {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0; };
-  const auto fail = [](const std::string& field, double value, const std::string& accepted) {
-    std::ostringstream msg;
-    msg << field << ": " << value << " is out of range (accepted: " << accepted << ")";
-    throw InputError(msg.str());
-  };
-  if (!positive(phase.window)) fail("material.window", phase.window, "ΔT > 0 K");
   const auto non_negative = [](double v) { return std::isfinite(v) && v >= 0; };
-  if (!non_negative(phase.latent_melt))
-    fail("material.latent-melt", phase.latent_melt, "L_m >= 0 J/kg");
-  if (!non_negative(phase.latent_vapour))
-    fail("material.latent-vapour", phase.latent_vapour, "L_v >= 0 J/kg");
   const double half = 0.5 * phase.window;
-  if (!positive(phase.melting_point) ||
-      phase.melting_point - half <= table.temperature.back())
-    fail("material.melting-point", phase.melting_point,
-         "T_m - ΔT/2 above the last solid row of the table");
-  if (!(phase.boiling_point - half > phase.melting_point + half))
-    fail("material.boiling-point", phase.boiling_point, "T_v - ΔT/2 > T_m + ΔT/2");
-  if (!(hold_from >= table.temperature.back() && hold_from <= phase.melting_point - half))
-    fail("material.hold-from", hold_from, "between the last solid row and T_m - ΔT/2");
+  require_in_range(positive(phase.window), "material.window", phase.window, "ΔT > 0 K");
+  require_in_range(non_negative(phase.latent_melt), "material.latent-melt", phase.latent_melt,
+                   "L_m >= 0 J/kg");
+  require_in_range(non_negative(phase.latent_vapour), "material.latent-vapour",
+                   phase.latent_vapour, "L_v >= 0 J/kg");
+  require_in_range(positive(phase.melting_point) &&
+                       phase.melting_point - half > table.temperature.back(),
+                   "material.melting-point", phase.melting_point,
+                   "T_m - ΔT/2 above the last solid row of the table");
+  require_in_range(phase.boiling_point - half > phase.melting_point + half,
+                   "material.boiling-point", phase.boiling_point, "T_v - ΔT/2 > T_m + ΔT/2");
+  require_in_range(hold_from >= table.temperature.back() && hold_from <= phase.melting_point - half,
+                   "material.hold-from", hold_from, "between the last solid row and T_m - ΔT/2");
 }
 
 Material::Material(MaterialTable table, PhaseChange phase, double hold_from,

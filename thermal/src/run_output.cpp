@@ -8,31 +8,17 @@ namespace powderbed::thermal {
 
 namespace {
 
-std::string xdmf_path(const std::string& path) {
-  const auto dot = path.rfind(".h5");
-  return (dot != std::string::npos && dot + 3 == path.size() ? path.substr(0, dot) : path) + ".xmf";
-}
 
-std::string base_name(const std::string& path) {
-  const auto slash = path.rfind('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
-// Nodes of the substrate plane j (y section: nz × nx) or k = top (ny × nx).
-std::vector<double> section_y(const SubstrateGeometry& g, const std::vector<double>& f) {
+// The nodes of the mid plane across `axis`: x = Lx/2 (axis 0, nz × ny) or y = Ly/2 (axis 1,
+// nz × nx), z slowest.
+std::vector<double> mid_section(const SubstrateGeometry& g, const std::vector<double>& f,
+                                int axis) {
+  const std::size_t across = axis == 0 ? g.ny : g.nx;
   std::vector<double> out;
-  out.reserve(g.nz * g.nx);
-  const std::size_t j = g.ny / 2;
+  out.reserve(g.nz * across);
   for (std::size_t k = 0; k < g.nz; ++k)
-    for (std::size_t i = 0; i < g.nx; ++i) out.push_back(f[g.index(i, j, k)]);
-  return out;
-}
-std::vector<double> section_x(const SubstrateGeometry& g, const std::vector<double>& f) {
-  std::vector<double> out;
-  out.reserve(g.nz * g.ny);
-  const std::size_t i = g.nx / 2;
-  for (std::size_t k = 0; k < g.nz; ++k)
-    for (std::size_t j = 0; j < g.ny; ++j) out.push_back(f[g.index(i, j, k)]);
+    for (std::size_t a = 0; a < across; ++a)
+      out.push_back(f[axis == 0 ? g.index(g.nx / 2, a, k) : g.index(a, g.ny / 2, k)]);
   return out;
 }
 std::vector<double> top_face(const SubstrateGeometry& g, const std::vector<double>& f) {
@@ -88,7 +74,7 @@ void RunWriter::snapshot(const Sinter& sinter) {
   s.out.write(group + "/particle_temperature", sinter.particle_temperature(), {s.n});
   s.out.write(group + "/particle_phase", sinter.particle_phase(), {s.n});
   const auto& t = sinter.substrate_temperature();
-  s.out.write(group + "/section_y", section_y(s.g, t), {s.g.nz, s.g.nx});
+  s.out.write(group + "/section_y", mid_section(s.g, t, 1), {s.g.nz, s.g.nx});
   s.out.write(group + "/top", top_face(s.g, t), {s.g.ny, s.g.nx});
   if (s.full) {
     const std::vector<float> field(t.begin(), t.end());
@@ -103,8 +89,8 @@ void RunWriter::finish(const Sinter& sinter, const SinterResult& result,
   const SubstrateGeometry& g = s.g;
   const auto& peak = sinter.substrate_peak_planes();
   s.out.write("/melt/particle", sinter.particle_max_temperature(), {s.n});
-  s.out.write("/melt/section_x", section_x(g, peak), {g.nz, g.ny});
-  s.out.write("/melt/section_y", section_y(g, peak), {g.nz, g.nx});
+  s.out.write("/melt/section_x", mid_section(g, peak, 0), {g.nz, g.ny});
+  s.out.write("/melt/section_y", mid_section(g, peak, 1), {g.nz, g.nx});
   s.out.write("/melt/top", top_face(g, peak), {g.ny, g.nx});
   s.out.attribute("/melt", "height", result.melt_pool.height);
   s.out.attribute("/melt", "width", result.melt_pool.width);
@@ -114,7 +100,7 @@ void RunWriter::finish(const Sinter& sinter, const SinterResult& result,
   for (const auto& [name, value] : summary) s.out.attribute("/summary", name, value);
 
   // XDMF: per step a spatial collection of the particles, the top face and the y section.
-  const std::string h5 = base_name(s.out.path());
+  const std::string h5 = bed::file_name_of(s.out.path());
   std::ostringstream x;
   x.precision(17);
   const auto item = [&](const std::string& dims, const std::string& path, int precision = 8) {
@@ -161,7 +147,7 @@ void RunWriter::finish(const Sinter& sinter, const SinterResult& result,
   }
   x << "  </Grid>\n </Domain>\n</Xdmf>\n";
   s.out.commit();
-  bed::write_text_file(xdmf_path(s.out.path()), x.str());
+  bed::write_text_file(bed::xdmf_sidecar_path(s.out.path()), x.str());
 }
 
 }  // namespace powderbed::thermal

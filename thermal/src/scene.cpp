@@ -23,18 +23,12 @@ const char* sinter_effect_name(unsigned effect) {
 
 namespace {
 
-void require(bool ok, const char* field, double value, const char* accepted) {
-  if (ok) return;
-  std::ostringstream msg;
-  msg << field << ": " << value << " is out of range (accepted: " << accepted << ")";
-  throw InputError(msg.str());
-}
-
 bool positive(double v) { return std::isfinite(v) && v > 0; }
 
 }  // namespace
 
 void SinterScene::validate() const {
+  const auto require = require_in_range;  // bed/errors.hpp
   require(convection >= 0 && std::isfinite(convection), "environment.convection", convection,
           "h >= 0 W/m^2K");
   require(emissivity >= 0 && emissivity <= 1, "environment.emissivity", emissivity,

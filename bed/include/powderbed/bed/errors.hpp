@@ -1,5 +1,6 @@
 #pragma once
 // The two error kinds of DESIGN.md "House style": every app's main maps them to exit 2 / 3.
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -17,5 +18,14 @@ class NumericalError : public std::runtime_error {
  public:
   explicit NumericalError(const std::string& message) : std::runtime_error(message) {}
 };
+
+// The scene check shared by the stages: throws "<field>: <value> is out of range (accepted:
+// <accepted>)" unless `ok`.
+inline void require_in_range(bool ok, const char* field, double value, const char* accepted) {
+  if (ok) return;
+  std::ostringstream msg;
+  msg << field << ": " << value << " is out of range (accepted: " << accepted << ")";
+  throw InputError(msg.str());
+}
 
 }  // namespace powderbed

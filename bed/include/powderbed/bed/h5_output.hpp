@@ -45,6 +45,11 @@ class H5Output {
   std::unique_ptr<Impl> impl_;
 };
 
+// The XDMF sidecar of an HDF5 file: `<path minus .h5>.xmf` (docs/bed-format.md).
+std::string xdmf_sidecar_path(const std::string& h5_path);
+// The last component of a path: how an XDMF file names the HDF5 file beside it.
+std::string file_name_of(const std::string& path);
+
 // Writes `text` to `path` atomically (temporary file + rename); throws InputError naming `path`.
 void write_text_file(const std::string& path, std::string_view text);
 
