@@ -1,0 +1,101 @@
+// End-to-end tests of the keff program (issue 6): a column of touching spheres prints the JSON
+// summary the issue asks for with the closed-form k_eff, writes the temperatures as a bed, and
+// each bad input exits 2 with one line and writes nothing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <initializer_list>
+#include <string>
+
+#include "powderbed/bed/bed.hpp"
+#include "powderbed/bed/io.hpp"
+#include "run_command.hpp"
+
+using namespace powderbed;
+
+using powderbed::test::json_number;
+
+namespace {
+
+const std::string kScene = std::string(POWDERBED_SOURCE_DIR) + "/data/scenes/ke2016-steel-1mm.ini";
+
+// Four 1 mm steel spheres stacked on z, overlapping each other and the walls by 1e-3 r.
+bed::Bed column() {
+  bed::Bed b;
+  const double r = 0.5e-3, overlap = 1e-3 * r, pitch = 2 * r - overlap;
+  for (int k = 0; k < 4; ++k) b.add(r, r, r - overlap + k * pitch, r);
+  b.domain.upper = {2 * r, 2 * r, 3 * pitch + 2 * (r - overlap)};
+  return b;
+}
+
+std::string write_bed(const bed::Bed& b, const std::string& dir) {
+  const std::string path = dir + "/bed.h5";
+  bed::write_bed_h5(b, path);
+  return path;
+}
+
+void expect_refused(const test::CommandResult& r, const std::string& dir,
+                    std::initializer_list<std::string> parts) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  for (const auto& part : parts)
+    EXPECT_NE(r.err.find(part), std::string::npos) << part << " in " << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out.h5"));
+}
+
+}  // namespace
+
+TEST(KeffCli, ColumnPrintsJsonAndWritesTemperatures) {
+  const std::string dir = test::scratch_dir("keff_run");
+  const std::string bed_path = write_bed(column(), dir);
+  const auto r = test::run_app("keff", "--config " + kScene + " --bed " + bed_path +
+                                           " --effects.gas false --json --out " + dir + "/out.h5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find('\n'), r.out.size() - 1) << r.out;  // one JSON line
+  for (const char* key : {"k_eff", "heat_flow_hot", "heat_flow_cold", "contact", "gas",
+                          "radiation", "rattlers", "newton_iterations", "wall_time"})
+    EXPECT_TRUE(std::isfinite(json_number(r.out, key))) << key << " in " << r.out;
+  EXPECT_NE(r.out.find("\"share\":{"), std::string::npos) << r.out;
+  EXPECT_EQ(json_number(r.out, "newton_iterations"), 1);
+  EXPECT_EQ(json_number(r.out, "rattlers"), 0);
+  EXPECT_EQ(json_number(r.out, "contact"), 1);
+  // Closed form: five contacts 2 k_s a in series (two wall, three pair contacts); the JSON
+  // prints shortest round-trip numbers, so the program's value comes through to round-off.
+  const double r_p = 0.5e-3, overlap = 1e-3 * r_p, k_s = 28.555;  // the scene's k_s
+  const double a_pair = std::sqrt(r_p * r_p - (r_p - overlap / 2) * (r_p - overlap / 2));
+  const double a_wall = std::sqrt(r_p * r_p - (r_p - overlap) * (r_p - overlap));
+  const double g = 1 / (2 / (2 * k_s * a_wall) + 3 / (2 * k_s * a_pair));
+  const bed::Bed b = column();
+  const double expected = g * b.domain.length(2) / (b.domain.length(0) * b.domain.length(1));
+  EXPECT_NEAR(json_number(r.out, "k_eff"), expected, 1e-10 * expected);  // as the library test
+
+  const bed::Bed out = bed::read_bed_any(dir + "/out.h5");
+  ASSERT_EQ(out.temperature.size(), 4u);
+  EXPECT_GT(out.temperature[3], out.temperature[0]);  // hot wall on top
+  EXPECT_EQ(out.provenance.stage, "keff");
+}
+
+TEST(KeffCli, BadInputExitsTwoWithOneLine) {
+  const std::string dir = test::scratch_dir("keff_bad");
+  const std::string bed_path = write_bed(column(), dir);
+  const std::string base = "--config " + kScene + " --out " + dir + "/out.h5 ";
+  expect_refused(test::run_app("keff", base), dir, {"--bed"});
+  expect_refused(test::run_app("keff", base + "--bed " + dir + "/missing.h5"), dir, {"missing.h5"});
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --axis w"), dir,
+                 {"--axis", "w"});
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --t-hot 300 --t-cold 300"),
+                 dir, {"t-hot"});
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --t-hot 290 --t-cold 300"),
+                 dir, {"t-hot"});
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --solid.conductivity -3"),
+                 dir, {"solid.conductivity"});
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --gas.lens-region all"),
+                 dir, {"gas.lens-region", "all"});
+  // The column touches neither x face: along x there is no path to a wall.
+  expect_refused(
+      test::run_app("keff", base + "--bed " + bed_path + " --axis x --effects.gas false"), dir,
+      {"hot wall"});
+}

@@ -1,0 +1,37 @@
+#pragma once
+// The heat-path network of a bed between two isothermal walls (SPEC.md §6): one link per heat
+// path and particle pair (or particle and wall), each a constant conductance (W/K) while the
+// network has no radiation.
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "powderbed/bed/bed.hpp"
+#include "powderbed/thermal/keff_scene.hpp"
+
+namespace powderbed::thermal {
+
+enum class HeatPath : std::uint8_t { contact, gas };
+
+// `j` is a particle, or one of the walls below.
+inline constexpr std::uint32_t kHotWall = std::numeric_limits<std::uint32_t>::max();
+inline constexpr std::uint32_t kColdWall = kHotWall - 1;
+
+struct KeffLink {
+  std::uint32_t i, j;
+  double conductance;  // W/K, > 0
+  HeatPath path;
+};
+
+struct KeffNetwork {
+  std::vector<KeffLink> links;
+  double wall_area = 0;  // A_wall: the domain's cross-section normal to the axis, m²
+  double height = 0;     // H: the distance between the walls, m
+};
+
+// Links of every path the scene switches on; pairs come from the bed's cell list with a gap
+// that covers the gas lenses. Throws InputError for a 2D bed, an axis that is periodic, or a
+// particle centre outside the walls (naming its id).
+KeffNetwork build_keff_network(const bed::Bed& bed, const KeffScene& scene);
+
+}  // namespace powderbed::thermal

@@ -1,0 +1,49 @@
+#pragma once
+// Conduction kernels of the effective-conductivity network (SPEC.md §6): gas conductivity,
+// Batchelor–O'Brien contact conductance and the Hertz correction of the contact radius for beds
+// settled with a softened modulus. Each returns a conductance (W/K) or a length.
+#include <cmath>
+
+#include "powderbed/thermal/contact_conduction.hpp"
+
+namespace powderbed::thermal {
+
+// Air conductivity of [KE] (SPEC.md §6), W/mK, fitted over 175–1900 K.
+inline double air_conductivity(double t) {
+  return ((6.566e-12 * t - 3.386e-8) * t + 9.426e-5) * t + 7.505e-4;
+}
+
+// Batchelor–O'Brien contact conductance Q / ΔT = 2 k_s a (SPEC.md §6), with the calibration
+// factor A_c scaling the contact radius a.
+inline double contact_conductance(double solid_conductivity, double calibration, double radius) {
+  return 2 * solid_conductivity * calibration * radius;
+}
+
+// A bed settled with Hertz contacts at E / S (S = young_scale, the DEM's softening) has overlaps
+// δ_s too large. Equating the soft force (4/3)(E*/S)√R* δ_s^{3/2} with the true Hertz force
+// (4/3) E* √R* δ_h^{3/2} (SPEC.md §6) gives δ_h = δ_s S^{-2/3}, and the Hertz contact radius is
+// a = √(R* δ_h). For a wall R* = r (the wall's radius is infinite).
+inline double hertz_contact_radius(double reduced_radius, double soft_overlap, double young_scale) {
+  if (soft_overlap <= 0) return 0;
+  return std::sqrt(reduced_radius * soft_overlap * std::pow(young_scale, -2.0 / 3.0));
+}
+
+// How a contact radius is taken from the bed's geometry.
+struct ContactRadiusParams {
+  bool hertz_correction = false;  // false: the geometric circle where the spheres intersect
+  double young_scale = 1;         // S of the bed's DEM run (E used = E / S)
+};
+
+// Particle–particle contact radius at centre distance d (0 when apart).
+inline double pair_contact_radius(const ContactRadiusParams& p, double r_i, double r_j, double d) {
+  if (!p.hertz_correction) return contact_radius(r_i, r_j, d);
+  return hertz_contact_radius(r_i * r_j / (r_i + r_j), r_i + r_j - d, p.young_scale);
+}
+
+// Particle–wall contact radius, the centre `h` from the wall plane: a = √(r² − h²) geometric.
+inline double wall_contact_radius(const ContactRadiusParams& p, double r, double h) {
+  if (!p.hertz_correction) return plane_contact_radius(r, h);
+  return hertz_contact_radius(r, r - h, p.young_scale);
+}
+
+}  // namespace powderbed::thermal

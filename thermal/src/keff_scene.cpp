@@ -1,0 +1,42 @@
+#include "powderbed/thermal/keff_scene.hpp"
+
+#include <cmath>
+
+#include "powderbed/bed/errors.hpp"
+
+namespace powderbed::thermal {
+namespace {
+
+bool positive(double v) { return std::isfinite(v) && v > 0; }
+
+}  // namespace
+
+double KeffScene::gas_conductivity_used() const {
+  return gas_model == GasModel::constant
+             ? gas_conductivity
+             : air_conductivity((hot_temperature + cold_temperature) / 2);
+}
+
+void KeffScene::validate() const {
+  const auto require = require_in_range;  // bed/errors.hpp
+  require(axis >= 0 && axis <= 2, "axis", axis, "x, y or z");
+  require(positive(cold_temperature), "t-cold", cold_temperature, "T_cold > 0 K");
+  require(std::isfinite(hot_temperature) && hot_temperature > cold_temperature, "t-hot",
+          hot_temperature, "T_hot > T_cold");
+  if (gas_model == GasModel::air) {
+    const double mean = (hot_temperature + cold_temperature) / 2;
+    require(mean >= 175 && mean <= 1900, "gas.model = air: mean wall temperature", mean,
+            "175-1900 K, the range of the [KE] fit");
+  }
+  require(positive(solid_conductivity), "solid.conductivity", solid_conductivity, "k_s > 0 W/mK");
+  require(gas_conductivity >= 0 && std::isfinite(gas_conductivity), "gas.conductivity",
+          gas_conductivity, "k_g >= 0 W/mK");
+  require(positive(calibration), "contact.calibration", calibration, "A_c > 0");
+  require(positive(contact.young_scale), "contact.young-scale", contact.young_scale, "S > 0");
+  require(positive(lens.lens), "gas.lens", lens.lens, "lens thickness / radius > 0");
+  require(positive(lens.min_gap), "gas.min-gap", lens.min_gap, "l_min > 0 m");
+  if (!contact_path && !gas_path)
+    throw InputError("effects: contact and gas are both off (accepted: at least one heat path)");
+}
+
+}  // namespace powderbed::thermal
