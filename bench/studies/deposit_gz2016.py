@@ -150,8 +150,9 @@ def main():
         "0.1 s) and it is justified by the table: a further 10x softening changes the layer "
         "density by the amount shown in the next row, and the overlap at full stiffness would be "
         "softened-overlap x scale^(-2/3). docs/results/deposit-accuracy.md compares "
-        "softenings from 10 to 1e4, time steps and RK4 on this scene (full stiffness was too "
-        "long to run on the shared machine).",
+        "softenings from full stiffness to 1e4, time steps and RK4 on this scene: at rest, "
+        "--young-scale 1000 is within 0.34 % of full stiffness in layer density at 86x less "
+        "time.",
         "",
         *rows,
         "",
