@@ -57,7 +57,8 @@ def main():
               "",
               "Where the time goes: each grid step updates every free node twice (the "
               "finite-volume flux pass, then T(e) and k(T) from tables); the 600 particles cost "
-              "almost nothing (their stable step is ~1e-2 s, so one particle step per grid step). "
+              "little (their stable step is ~1e-2 s; the limit on the laser's heating per step, "
+              "50 K, gives 5 particle steps per grid step). "
               "The step is 0.9 x the forward-Euler bound of the grid, ~4.8e-7 s: 95x the paper's "
               "5e-9 s, which is where most of the factor against [GZ] comes from; "
               "docs/results/sinter-accuracy.md shows the melt pool does not move when the step "
