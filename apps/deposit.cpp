@@ -3,6 +3,7 @@
 // scene's effects and settle; the settled bed is written with velocities.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
 #include "powderbed/bed/psd.hpp"
+#include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/scene.hpp"
 #include "powderbed/dem/solver.hpp"
 #include "powderbed/dem/time_step.hpp"
@@ -31,11 +33,13 @@ const char* const kUsage =
     "deposit [--config SCENE.ini] [--in BED.h5 | --psd SPEC --count N] --domain LX,LY,LZ "
     "[--insert-z Z0,Z1] [--t-end T | --until-rest] [--dt DT] [--unsafe-dt] "
     "[--integrator verlet|rk4] [--young-scale S] --seed S --out BED.h5 "
-    "[--trajectory RUN.h5 --every K] [--json]";
+    "[--trajectory RUN.h5 --every K] [--lid [--lid.pressure P] [--lid.travel L] [--lid.speed V] "
+    "[--lid.hold T] [--lid.relax T]] [--crop-top true] [--core-margin M] [--json]";
 
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
   const dem::Scene d;
+  const dem::LidSettings l;
   desc.add_options()
       ("in", po::value<std::string>(), "start from this bed (HDF5, CSV needs --domain)")
       ("psd", po::value<std::string>(), "particle size distribution (see bed/psd.hpp syntax), m")
@@ -71,7 +75,24 @@ void add_options(po::options_description& desc) {
       ("fluid.viscosity", po::value<double>()->default_value(d.fluid_viscosity), "mu_f (Pa s)")
       ("wall.young", po::value<double>()->default_value(d.wall.young), "wall E (Pa)")
       ("wall.poisson", po::value<double>()->default_value(d.wall.poisson), "wall nu")
-      ("gravity", po::value<double>()->default_value(d.gravity), "g (m/s^2)");
+      ("gravity", po::value<double>()->default_value(d.gravity), "g (m/s^2)")
+      ("lid", po::bool_switch(), "consolidate the settled bed with the lid (as lid.enabled)")
+      ("lid.enabled", po::value<bool>()->default_value(false),
+       "lid: after the settle, lower the box's top wall onto the bed, hold it, release it")
+      ("lid.speed", po::value<double>()->default_value(l.speed), "lid: lowering speed (m/s)")
+      ("lid.pressure", po::value<double>()->default_value(l.pressure),
+       "lid: stop lowering when the bed pushes on it with this pressure (Pa; 0: no target)")
+      ("lid.travel", po::value<double>()->default_value(l.travel),
+       "lid: stop lowering after this travel from the highest particle top (m; 0: no limit)")
+      ("lid.hold", po::value<double>()->default_value(l.hold), "lid: time held in place (s)")
+      ("lid.relax", po::value<double>()->default_value(l.relax),
+       "lid: cap on the relaxation after the release (s; it ends earlier at rest)")
+      ("crop-top", po::value<bool>()->default_value(false),
+       "write the bed with the box's top at the highest particle top (z + r), so that a top "
+       "wall touches the bed (keff's wall)")
+      ("core-margin", po::value<double>(),
+       "core density: margin from the floor, side walls and surface (m); default 2 mean "
+       "diameters");
   for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
     const std::string name = std::string("effects.") + dem::effect_name(bit);
     desc.add_options()(name.c_str(), po::value<bool>()->default_value(true),
@@ -219,11 +240,30 @@ int run(int argc, char** argv) {
                 << bound.stable << " s (--unsafe-dt)\n";
     }
   }
+  s.lid.enabled = vm["lid"].as<bool>() || vm["lid.enabled"].as<bool>();
+  s.lid.speed = vm["lid.speed"].as<double>();
+  s.lid.pressure = vm["lid.pressure"].as<double>();
+  s.lid.travel = vm["lid.travel"].as<double>();
+  s.lid.hold = vm["lid.hold"].as<double>();
+  s.lid.relax = vm["lid.relax"].as<double>();
+  double mean_diameter = 0;
+  for (const double r : bed.radius) mean_diameter += 2 * r;
+  mean_diameter /= static_cast<double>(std::max<std::size_t>(1, bed.n()));
+  const double margin = vm.count("core-margin") ? vm["core-margin"].as<double>() : 2 * mean_diameter;
+  if (!(margin >= 0) || !std::isfinite(margin)) {
+    throw InputError("--core-margin: " + std::to_string(margin) + " (accepted: M >= 0 m)");
+  }
   ProgressBar bar;
   if (::isatty(STDERR_FILENO)) s.progress = std::ref(bar);
 
   const dem::RunSummary r = dem::run_deposition(bed, scene, s);
   const std::size_t removed = dem::remove_lost_particles(bed);
+  if (vm["crop-top"].as<bool>() && bed.n() > 0) {
+    double top = bed.domain.lower[2];
+    for (std::size_t i = 0; i < bed.n(); ++i) top = std::max(top, bed.z[i] + bed.radius[i]);
+    bed.domain.upper[2] = top;
+  }
+  const dem::CoreDensity core = dem::core_density(bed, margin);
 
   bed.provenance.created_by = app::version_string("deposit");
   bed.provenance.command_line = app::command_line(argc, argv);
@@ -252,14 +292,35 @@ int run(int argc, char** argv) {
         .value("lost", static_cast<std::uint64_t>(removed))
         .value("at_rest", r.at_rest)
         .value("neighbour_rebuilds", r.neighbour_rebuilds)
-        .value("out", out)
-        .end_object();
+        .value("core_density", core.density)
+        .value("core_margin", margin)
+        .value("domain_top", bed.domain.upper[2]);
+    if (r.lid_used) {
+      j.begin_object("lid")
+          .value("start_z", r.lid.start_z)
+          .value("stop_z", r.lid.stop_z)
+          .value("travel", r.lid.start_z - r.lid.stop_z)
+          .value("target_force", r.lid.target_force)
+          .value("stop_force", r.lid.stop_force)
+          .value("max_force", r.lid.max_force)
+          .value("hold_end_force", r.lid.hold_end_force)
+          .value("stopped_by", r.lid.stopped_by)
+          .value("release_time", r.lid.release_time)
+          .end_object();
+    }
+    j.value("out", out).end_object();
     std::cout << j.str() << '\n';
   } else {
     std::cout << "deposit: " << bed.n() << " particles (" << removed << " lost), " << r.steps
               << " steps of " << r.dt << " s to t = " << r.sim_time << " s, " << r.wall_time
               << " s wall, " << r.particle_steps_per_s << " particle-steps/s, max overlap "
-              << r.max_overlap << " r" << (r.at_rest ? ", at rest" : "") << " -> " << out << '\n';
+              << r.max_overlap << " r" << (r.at_rest ? ", at rest" : "") << ", core density "
+              << core.density;
+    if (r.lid_used) {
+      std::cout << ", lid " << r.lid.start_z << " -> " << r.lid.stop_z << " m (" << r.lid.stopped_by
+                << ", max force " << r.lid.max_force << " N)";
+    }
+    std::cout << " -> " << out << '\n';
   }
   return 0;
 }

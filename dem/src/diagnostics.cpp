@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
 #include <numbers>
 
 #include "box.hpp"
@@ -134,6 +137,77 @@ Overlap max_overlap(const bed::Bed& bed, const Scene& scene) {
     });
   }
   return o;
+}
+
+CoreDensity core_density(const bed::Bed& bed, double margin) {
+  CoreDensity core;
+  const Box box = Box::from(bed.domain);
+  std::vector<double> tops(bed.n());
+  for (std::size_t i = 0; i < bed.n(); ++i) tops[i] = bed.z[i] + bed.radius[i];
+  double surface = box.lower[2];
+  if (!tops.empty()) {
+    const auto k = tops.begin() + static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(tops.size() - 1));
+    std::nth_element(tops.begin(), k, tops.end());
+    surface = *k;
+  }
+  for (int a = 0; a < 3; ++a) {
+    core.lower[a] = box.lower[a] + (box.periodic[a] ? 0.0 : margin);
+    core.upper[a] = box.upper[a] - (box.periodic[a] ? 0.0 : margin);
+  }
+  core.upper[2] = std::min(core.upper[2], surface - margin);
+  double volume = 1;
+  for (int a = 0; a < 3; ++a) volume *= std::max(0.0, core.upper[a] - core.lower[a]);
+  if (!(volume > 0) || bed.n() == 0) {
+    core.density = std::numeric_limits<double>::quiet_NaN();
+    return core;
+  }
+  const double r_min = *std::min_element(bed.radius.begin(), bed.radius.end());
+  const double h = std::max(r_min / 10, std::cbrt(volume / 2e7));
+  std::size_t cells[3];
+  double step[3];
+  for (int a = 0; a < 3; ++a) {
+    cells[a] = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil((core.upper[a] - core.lower[a]) / h)));
+    step[a] = (core.upper[a] - core.lower[a]) / static_cast<double>(cells[a]);
+  }
+  std::vector<std::uint8_t> solid(cells[0] * cells[1] * cells[2], 0);
+  // Index range of the cell centres lower + (k + 1/2) step within [lo, hi] along axis a.
+  const auto range = [&](int a, double lo, double hi, std::ptrdiff_t& first, std::ptrdiff_t& last) {
+    first = std::max<std::ptrdiff_t>(0, static_cast<std::ptrdiff_t>(std::ceil((lo - core.lower[a]) / step[a] - 0.5)));
+    last = std::min<std::ptrdiff_t>(static_cast<std::ptrdiff_t>(cells[a]) - 1,
+                                    static_cast<std::ptrdiff_t>(std::floor((hi - core.lower[a]) / step[a] - 0.5)));
+  };
+  const auto mark = [&](double cx, double cy, double cz, double r) {
+    std::ptrdiff_t x0, x1, y0, y1;
+    range(0, cx - r, cx + r, x0, x1);
+    range(1, cy - r, cy + r, y0, y1);
+    for (std::ptrdiff_t ix = x0; ix <= x1; ++ix) {
+      const double dx = core.lower[0] + (static_cast<double>(ix) + 0.5) * step[0] - cx;
+      for (std::ptrdiff_t iy = y0; iy <= y1; ++iy) {
+        const double dy = core.lower[1] + (static_cast<double>(iy) + 0.5) * step[1] - cy;
+        const double chord2 = r * r - dx * dx - dy * dy;
+        if (chord2 < 0) continue;
+        const double half = std::sqrt(chord2);
+        std::ptrdiff_t z0, z1;
+        range(2, cz - half, cz + half, z0, z1);
+        const std::size_t column = (static_cast<std::size_t>(ix) * cells[1] + static_cast<std::size_t>(iy)) * cells[2];
+        for (std::ptrdiff_t iz = z0; iz <= z1; ++iz) solid[column + static_cast<std::size_t>(iz)] = 1;
+      }
+    }
+  };
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    // Periodic images of spheres that cross a periodic face.
+    for (int sx = -1; sx <= 1; ++sx) {
+      if (sx != 0 && !box.periodic[0]) continue;
+      for (int sy = -1; sy <= 1; ++sy) {
+        if (sy != 0 && !box.periodic[1]) continue;
+        mark(bed.x[i] + sx * box.length[0], bed.y[i] + sy * box.length[1], bed.z[i], bed.radius[i]);
+      }
+    }
+  }
+  std::size_t count = 0;
+  for (const std::uint8_t v : solid) count += v;
+  core.density = static_cast<double>(count) / static_cast<double>(solid.size());
+  return core;
 }
 
 }  // namespace powderbed::dem

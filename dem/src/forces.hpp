@@ -29,6 +29,9 @@ struct ForceParams {
   SlidingFrictionParams friction;
   GravityParams gravity;
   Box box;
+  // z velocity of the box's top face: the lid while it is lowered (solver.hpp LidSettings);
+  // 0 otherwise, when the subtraction below leaves every approach rate bit for bit unchanged.
+  double top_velocity = 0;
 };
 
 // Positions and velocities in (the current RK4 stage or the Verlet half step), forces out.
@@ -138,14 +141,17 @@ inline void tabulate_contacts(ContactTables& t, const ForceArrays& a, const Forc
 template <unsigned E, int Axis, int Side>
 inline void wall_face(const ForceParams& p, const ContactTables& t, std::size_t i,
                       const double pos[3], const double v[3], double radius, double f[3]) {
-  // Lower face: overlap r - (x - lo), approach rate -v; upper: r - (hi - x), rate +v.
+  // Lower face: overlap r - (x - lo), approach rate -v; upper: r - (hi - x), rate +v (the top
+  // face's rate relative to the face, which moves while it is the lid).
   const double gap = Side == 0 ? pos[Axis] - p.box.lower[Axis] : p.box.upper[Axis] - pos[Axis];
   const double delta = radius - gap;
   if (delta <= 0) return;
   constexpr double sign = Side == 0 ? 1.0 : -1.0;  // direction of the push along the axis
   double fn;
   if constexpr ((E & kDamping) != 0) {
-    fn = hertz_damped_force(t.wall[i], delta, -sign * v[Axis]);
+    double rate = -sign * v[Axis];
+    if constexpr (Axis == 2 && Side == 1) rate -= p.top_velocity;
+    fn = hertz_damped_force(t.wall[i], delta, rate);
   } else {
     fn = hertz_elastic_force(t.wall[i], delta);
   }

@@ -9,6 +9,7 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -316,6 +317,40 @@ void check_inputs(const bed::Bed& bed, const RunSettings& s) {
   }
 }
 
+// Force (N) of the bed on the lid (the box's top face): the wall law of forces.hpp's wall_face,
+// summed over the particles the face tables list near it.
+double lid_force(const Context& c, bool damping) {
+  double total = 0;
+  const double top = c.params.box.upper[2];
+  for (const std::uint32_t i : c.tables.face_particles[5]) {
+    const double delta = c.bed.radius[i] - (top - c.bed.z[i]);
+    if (delta <= 0) continue;
+    total += damping ? hertz_damped_force(c.tables.wall[i], delta,
+                                          c.bed.vz[i] - c.params.top_velocity)
+                     : hertz_elastic_force(c.tables.wall[i], delta);
+  }
+  return total;
+}
+
+void check_lid(const LidSettings& lid, const Scene& scene) {
+  if (!lid.enabled) return;
+  const auto require = require_in_range;  // bed/errors.hpp
+  const auto finite = [](double v) { return std::isfinite(v); };
+  require(finite(lid.speed) && lid.speed > 0, "lid.speed", lid.speed, "speed > 0 m/s");
+  require(finite(lid.pressure) && lid.pressure >= 0, "lid.pressure", lid.pressure, "P >= 0 Pa");
+  require(finite(lid.travel) && lid.travel >= 0, "lid.travel", lid.travel, "travel >= 0 m");
+  require(finite(lid.hold) && lid.hold >= 0, "lid.hold", lid.hold, "hold >= 0 s");
+  require(finite(lid.relax) && lid.relax >= 0, "lid.relax", lid.relax, "relax >= 0 s");
+  if (!(lid.pressure > 0 || lid.travel > 0)) {
+    throw InputError("lid.pressure / lid.travel: neither set (accepted: a pressure > 0 Pa, a "
+                     "travel > 0 m, or both)");
+  }
+  if (!scene.has(kWalls)) {
+    throw InputError("lid: on with effects.walls off (accepted: the lid is the box's top wall; "
+                     "turn effects.walls on)");
+  }
+}
+
 }  // namespace
 
 RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
@@ -323,6 +358,7 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   scene.validate();
   bed.validate("deposit input bed");
   check_inputs(bed, settings);
+  check_lid(settings.lid, scene);
   const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
 
   Context c(bed, settings);
@@ -402,7 +438,6 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
       std::clamp(std::floor(settings.rest.window / c.dt / 10.0), 1.0, 100.0));
   const auto window_steps = static_cast<std::uint64_t>(std::ceil(settings.rest.window / c.dt));
   constexpr std::uint64_t kNotQuiet = ~std::uint64_t{0};
-  std::uint64_t quiet_since = kNotQuiet;  // first step of the current quiet stretch
 
   std::optional<TrajectoryWriter> trajectory;
   if (!settings.trajectory.empty()) {
@@ -412,36 +447,127 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
 
   RunSummary summary;
   std::uint64_t step = 0;
-  while (step < total_steps) {
-    steppers.step(c, step + 1);
-    ++step;
-    const double time = static_cast<double>(step) * c.dt;
-    if (trajectory && step % settings.trajectory_every == 0) trajectory->write(step, time, bed);
-    if (settings.observer && step % settings.observe_every == 0 &&
-        settings.observer(step, time, bed)) {
-      break;
-    }
-    const bool report = settings.progress && step % settings.progress_every == 0;
-    if (settings.until_rest && step % rest_every == 0) {
-      double ke, vmax;
-      kinetic_state(c, ke, vmax);
-      if (ke < rest_energy && vmax < settings.rest.max_speed) {
-        if (quiet_since == kNotQuiet) quiet_since = step;
-        if (step - quiet_since >= window_steps) {
-          summary.at_rest = true;
-          break;
+  // Steps until `last_step`, rest (with until_rest) or the observer's stop; `before` runs before
+  // each step, `after` after it (true ends the phase). Returns true when the phase ended at rest.
+  bool stopped = false;  // by the observer: no later phase runs
+  const auto advance = [&](std::uint64_t last_step, bool until_rest, double progress_end,
+                           auto&& before, auto&& after) {
+    std::uint64_t quiet_since = kNotQuiet;  // first step of the current quiet stretch
+    while (step < last_step) {
+      before();
+      steppers.step(c, step + 1);
+      ++step;
+      const double time = static_cast<double>(step) * c.dt;
+      if (trajectory && step % settings.trajectory_every == 0) trajectory->write(step, time, bed);
+      if (settings.observer && step % settings.observe_every == 0 &&
+          settings.observer(step, time, bed)) {
+        stopped = true;
+        return false;
+      }
+      if (after()) return false;
+      const bool report = settings.progress && step % settings.progress_every == 0;
+      if (until_rest && step % rest_every == 0) {
+        double ke, vmax;
+        kinetic_state(c, ke, vmax);
+        if (ke < rest_energy && vmax < settings.rest.max_speed) {
+          if (quiet_since == kNotQuiet) quiet_since = step;
+          if (step - quiet_since >= window_steps) return true;
+        } else {
+          quiet_since = kNotQuiet;
         }
-      } else {
-        quiet_since = kNotQuiet;
+      }
+      if (report) {
+        Progress p;
+        p.step = step;
+        p.time = time;
+        p.t_end = progress_end;
+        kinetic_state(c, p.kinetic_energy, p.max_speed);
+        settings.progress(p);
       }
     }
-    if (report) {
-      Progress p;
-      p.step = step;
-      p.time = time;
-      p.t_end = t_end;
-      kinetic_state(c, p.kinetic_energy, p.max_speed);
-      settings.progress(p);
+    return false;
+  };
+  const auto nothing = [] {};
+  const auto never = [] { return false; };
+  summary.at_rest = advance(total_steps, settings.until_rest, t_end, nothing, never);
+  if (settings.lid.enabled && !stopped) {
+    // The lid (solver.hpp LidSettings): the box's top face, moved between steps.
+    const LidSettings& lid = settings.lid;
+    LidSummary& out = summary.lid;
+    summary.lid_used = true;
+    Box& box = c.params.box;
+    const double top = box.upper[2];
+    double highest = box.lower[2], r_min = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < n; ++i) {
+      highest = std::max(highest, bed.z[i] + bed.radius[i]);
+      r_min = std::min(r_min, bed.radius[i]);
+    }
+    out.start_z = std::min(top, highest);
+    out.target_force = lid.pressure * box.length[0] * box.length[1];
+    // No bed is thinner than one particle: the lid stops one smallest diameter above the floor.
+    const double floor_travel = std::max(0.0, out.start_z - (box.lower[2] + 2 * r_min));
+    const double travel = lid.travel > 0 ? std::min(lid.travel, floor_travel) : floor_travel;
+    const double per_step = lid.speed * c.dt;
+    const bool damping = scene.has(kDamping);
+    box.upper[2] = out.start_z;
+    c.rebuild();
+    ++c.rebuilds;
+    // The face tables list the particles within r + skin of the lid at a build; particles move
+    // at most skin/2 before the next one, so a rebuild whenever the lid has moved skin/2 keeps
+    // every particle that can touch it listed.
+    double lid_at_build = box.upper[2];
+    std::uint64_t builds = c.rebuilds, lowered = 0;
+    const auto lower = [&] {
+      ++lowered;
+      box.upper[2] = out.start_z - std::min(travel, static_cast<double>(lowered) * per_step);
+      if (lid_at_build - box.upper[2] > 0.5 * c.list.skin()) {
+        c.rebuild();
+        ++c.rebuilds;
+      }
+    };
+    const auto record = [&] {
+      if (c.rebuilds != builds) {  // here or in the step's own rebuild_if_needed
+        builds = c.rebuilds;
+        lid_at_build = box.upper[2];
+      }
+      const double force = lid_force(c, damping);
+      out.max_force = std::max(out.max_force, force);
+      return force;
+    };
+    const auto lowered_enough = [&] {
+      out.stop_force = record();
+      if (out.target_force > 0 && out.stop_force >= out.target_force) {
+        out.stopped_by = "force";
+      } else if (static_cast<double>(lowered) * per_step >= travel) {
+        out.stopped_by = lid.travel > 0 && lid.travel <= floor_travel ? "travel" : "floor";
+      }
+      return !out.stopped_by.empty();
+    };
+    c.params.top_velocity = -lid.speed;
+    const auto lowering_steps = static_cast<std::uint64_t>(std::ceil(travel / per_step)) + 1;
+    advance(step + lowering_steps, false, static_cast<double>(step + lowering_steps) * c.dt,
+            lower, lowered_enough);
+    if (out.stopped_by.empty()) out.stopped_by = "floor";  // travel 0: the lid could not move
+    out.stop_z = box.upper[2];
+    c.params.top_velocity = 0;
+    if (!stopped) {
+      const auto hold_steps = static_cast<std::uint64_t>(std::ceil(lid.hold / c.dt - 1e-9));
+      const auto track = [&] {
+        out.hold_end_force = record();
+        return false;
+      };
+      out.hold_end_force = out.stop_force;
+      advance(step + hold_steps, false, static_cast<double>(step + hold_steps) * c.dt, nothing,
+              track);
+    }
+    box.upper[2] = top;  // the release
+    out.release_time = static_cast<double>(step) * c.dt;
+    if (!stopped) {
+      c.rebuild();
+      ++c.rebuilds;
+      const auto relax_steps = static_cast<std::uint64_t>(std::ceil(lid.relax / c.dt - 1e-9));
+      summary.at_rest = advance(step + relax_steps, true,
+                                static_cast<double>(step + relax_steps) * c.dt, nothing, never);
     }
   }
   if (trajectory) {

@@ -2,6 +2,7 @@
 // a bed and a JSON summary.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <string>
 
@@ -110,4 +111,60 @@ TEST(DepositCli, ParticleOutsideTheDomainExits2) {
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_EQ(r.err_lines(), 1) << r.err;
   EXPECT_FALSE(std::ifstream(dir + "/out.h5").good());
+}
+
+TEST(DepositCli, KeBedSceneInsertsElevenHundredInTheTenDiameterBox) {
+  // Issue 6: the [KE] beds, 1,100 spheres of 1 mm in a box 10 x 10 diameters (30 tall for the
+  // 0-contact insertion); one step of 3.4e-6 s checks the insertion, not the settle.
+  const std::string dir = test::scratch_dir("deposit_ke_bed");
+  const std::string scene =
+      std::string(POWDERBED_SOURCE_DIR) + "/data/scenes/ke2016-steel-1mm-bed.ini";
+  const auto r = test::run_app("deposit", "--config " + scene + " --t-end 1e-6 --lid.enabled "
+                                          "false --crop-top false --seed 1 --json --out " +
+                                              dir + "/out.h5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"n\":1100"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("\"lid\""), std::string::npos) << r.out;  // the command line wins
+  const bed::Bed out = bed::read_bed_h5(dir + "/out.h5");
+  EXPECT_EQ(out.n(), 1100u);
+  EXPECT_DOUBLE_EQ(out.domain.upper[0], 10e-3);
+  EXPECT_DOUBLE_EQ(out.domain.upper[2], 30e-3);
+}
+
+TEST(DepositCli, LidConsolidatesAndReportsItself) {
+  // 60 spheres of 0.5 mm in a 2.5 mm box, softened 1e4 (dt ~1e-5 s): settle 0.1 s, then the lid
+  // at 1 kPa; about 2e4 steps in all.
+  const std::string dir = test::scratch_dir("deposit_lid");
+  const std::string common = "--psd mono:d=0.5e-3 --count 60 --domain 2.5e-3,2.5e-3,6e-3 "
+                             "--young-scale 1e4 --material.friction 0.3 --material.damping 0.5 "
+                             "--t-end 0.1 --seed 3 --json ";
+  const auto r = test::run_app("deposit", common + "--lid --lid.pressure 1e3 --lid.speed 5e-3 "
+                                                   "--lid.hold 0.01 --lid.relax 0.05 "
+                                                   "--crop-top true --out " + dir + "/lid.h5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* key : {"\"lid\":{", "\"start_z\"", "\"stop_z\"", "\"max_force\"",
+                          "\"stopped_by\":\"force\"", "\"core_density\"", "\"lost\":0"}) {
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
+  }
+  // --crop-top: the written box ends at the highest particle top.
+  const bed::Bed out = bed::read_bed_h5(dir + "/lid.h5");
+  double top = 0;
+  for (std::size_t i = 0; i < out.n(); ++i) top = std::max(top, out.z[i] + out.radius[i]);
+  EXPECT_DOUBLE_EQ(out.domain.upper[2], top);
+}
+
+TEST(DepositCli, BadLidExits2WithOneLine) {
+  const std::string dir = test::scratch_dir("deposit_bad_lid");
+  const std::string in = small_bed(dir);
+  const std::string common = "--in " + in + " --young-scale 1e3 --t-end 1e-6 --seed 1 --out " +
+                             dir + "/out.h5 --lid ";
+  for (const std::string& bad : {std::string(""), std::string("--lid.pressure -1"),
+                                 std::string("--lid.pressure 1e3 --lid.speed 0"),
+                                 std::string("--lid.travel 1e-5 --effects.walls false")}) {
+    const auto r = test::run_app("deposit", common + bad);
+    EXPECT_EQ(r.status, 2) << bad << ": " << r.err;
+    EXPECT_EQ(r.err_lines(), 1) << bad << ": " << r.err;
+    EXPECT_NE(r.err.find("lid"), std::string::npos) << bad << ": " << r.err;
+    EXPECT_FALSE(std::ifstream(dir + "/out.h5").good());
+  }
 }

@@ -22,6 +22,22 @@ struct RestCriteria {
   double window = 1e-3;           // s
 };
 
+// The lid of the consolidation step ([KE], SPEC.md §6: "lower the lid onto the bed and release
+// it"). After the settle, the box's top face comes down to the highest particle top and moves
+// down at `speed` until the bed pushes on it with pressure x (top area) or it has travelled
+// `travel` (whichever comes first; at least one must be set), stays there for `hold`, and goes
+// back to the top of the box; the bed then relaxes until rest or for `relax` at most. The lid
+// is the top face of the box with the wall law of walls.hpp (the approach rate counts its
+// velocity), so it needs effects.walls; it moves between steps and costs nothing when off.
+struct LidSettings {
+  bool enabled = false;
+  double speed = 0.01;   // m/s
+  double pressure = 0;   // Pa; 0: no force target
+  double travel = 0;     // m; 0: no travel limit
+  double hold = 0;       // s
+  double relax = 0.1;    // s, the cap on the relaxation after the release
+};
+
 struct Progress {
   std::uint64_t step = 0;
   double time = 0;      // simulated, s
@@ -54,6 +70,20 @@ struct RunSettings {
   // up to date); returning true stops the run. For tests and diagnostics.
   std::function<bool(std::uint64_t step, double time, const bed::Bed& bed)> observer;
   std::uint64_t observe_every = 1;
+  LidSettings lid;
+};
+
+struct LidSummary {
+  double start_z = 0;          // m: the lid when it began to move (highest particle top)
+  double stop_z = 0;           // m: where it stopped (its lowest position)
+  double target_force = 0;     // N: pressure x top area (0 without a pressure)
+  double stop_force = 0;       // N: force of the bed on the lid when it stopped
+  double max_force = 0;        // N: largest force on the lid (lowering and hold)
+  double hold_end_force = 0;   // N: force at the end of the hold
+  // How the lowering ended: "force" (target reached), "travel", or "floor" (the lid came within
+  // one smallest diameter of the floor with neither reached).
+  std::string stopped_by;
+  double release_time = 0;     // s: simulated time of the release
 };
 
 struct RunSummary {
@@ -73,14 +103,18 @@ struct RunSummary {
   std::size_t lost = 0;            // particles whose centre left the box (non-periodic axes)
   bool at_rest = false;
   std::uint64_t neighbour_rebuilds = 0;
+  bool lid_used = false;
+  LidSummary lid;               // when lid_used; at_rest then says whether the relaxation ended at rest
 };
 
 // Integrates the bed in place (positions and velocities; velocities are created at zero when
-// the bed has none). The domain's periodic x/y flags make those axes periodic. Throws
-// InputError for a bad scene/settings (dt above the stable bound without unsafe_dt, a particle
-// centre outside the domain, a 2D bed, a periodic axis shorter than 3 neighbour cells) and
-// NumericalError naming the particle id and step when the state goes non-finite. Deterministic:
-// the same input gives bit-identical output for any thread count.
+// the bed has none), then, with settings.lid.enabled, consolidates it with the lid. The
+// domain's periodic x/y flags make those axes periodic. Throws InputError for a bad
+// scene/settings (dt above the stable bound without unsafe_dt, a particle centre outside the
+// domain, a 2D bed, a periodic axis shorter than 3 neighbour cells, a lid without
+// effects.walls, with neither pressure nor travel or a non-positive speed) and NumericalError
+// naming the particle id and step when the state goes non-finite. Deterministic: the same
+// input gives bit-identical output for any thread count.
 RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& settings);
 
 // Removes particles whose centre lies outside the domain on a non-periodic axis; returns how
