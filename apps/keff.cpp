@@ -1,6 +1,8 @@
 // keff: the effective thermal conductivity of a bed between two isothermal walls (SPEC.md §6):
-// the steady state of the particles' heat-path network (contact and gas conduction).
+// the steady state of the particles' heat-path network (contact and gas conduction, grey-body
+// radiation with Monte-Carlo view factors).
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -19,8 +21,8 @@ namespace po = app::po;
 namespace th = thermal;
 
 const char* const kUsage =
-    "keff --config SCENE.ini --bed BED.h5 [--axis x|y|z] [--t-hot K --t-cold K] [--json] "
-    "[--out RUN.h5]";
+    "keff --config SCENE.ini --bed BED.h5 [--axis x|y|z] [--t-hot K --t-cold K] [--rays N] "
+    "[--json] [--out RUN.h5]";
 
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
@@ -49,7 +51,17 @@ void add_options(po::options_description& desc) {
       ("contact.young-scale", po::value<double>()->default_value(d.contact.young_scale),
        "S of the DEM run that made the bed (E used = E / S)")
       ("effects.contact", po::value<bool>()->default_value(true), "contact conduction on/off")
-      ("effects.gas", po::value<bool>()->default_value(true), "gas-lens conduction on/off");
+      ("rays", po::value<std::size_t>()->default_value(d.rays),
+       "Monte-Carlo view-factor rays per particle (radiation)")
+      ("radiation.seed", po::value<std::uint64_t>()->default_value(d.seed),
+       "seed of the view-factor rays (each particle its own stream: any thread count agrees)")
+      ("radiation.emissivity", po::value<double>()->default_value(d.emissivity),
+       "grey emissivity of the particles")
+      ("radiation.wall-emissivity", po::value<double>()->default_value(d.wall_emissivity),
+       "grey emissivity of the hot and cold walls")
+      ("effects.gas", po::value<bool>()->default_value(true), "gas-lens conduction on/off")
+      ("effects.radiation", po::value<bool>()->default_value(d.radiation_path),
+       "grey-body radiation on/off (needs absolute wall temperatures)");
 }
 
 int axis_index(const std::string& name) {
@@ -82,6 +94,11 @@ th::KeffScene make_scene(const po::variables_map& vm) {
   s.contact.young_scale = vm["contact.young-scale"].as<double>();
   s.contact_path = vm["effects.contact"].as<bool>();
   s.gas_path = vm["effects.gas"].as<bool>();
+  s.radiation_path = vm["effects.radiation"].as<bool>();
+  s.rays = vm["rays"].as<std::size_t>();
+  s.seed = vm["radiation.seed"].as<std::uint64_t>();
+  s.emissivity = vm["radiation.emissivity"].as<double>();
+  s.wall_emissivity = vm["radiation.wall-emissivity"].as<double>();
   s.validate();
   return s;
 }
@@ -117,23 +134,29 @@ int run(int argc, char** argv) {
         .begin_object("share")
         .value("contact", r.share_contact)
         .value("gas", r.share_gas)
-        .value("radiation", 0.0)  // no radiation path in this network yet
+        .value("radiation", r.share_radiation)
         .end_object()
         .value("rattlers", static_cast<std::uint64_t>(r.rattlers.size()))
-        .value("newton_iterations", 1)  // the network is linear: one linear solve
+        .value("newton_iterations", static_cast<std::uint64_t>(r.newton_iterations))
+        .value("newton_residual", r.residual)
         .value("solver_iterations", static_cast<std::uint64_t>(r.solver_iterations))
         .value("particles", static_cast<std::uint64_t>(bed.n()))
         .value("contact_links", static_cast<std::uint64_t>(r.contact_links))
         .value("gas_links", static_cast<std::uint64_t>(r.gas_links))
+        .value("radiation_links", static_cast<std::uint64_t>(r.radiation_links))
+        .value("rays", static_cast<std::uint64_t>(scene.radiation_path ? scene.rays : 0))
+        .value("lost_rays", static_cast<std::uint64_t>(r.lost_rays))
         .value("gas_conductivity", scene.gas_path ? scene.gas_conductivity_used() : 0.0)
         .value("wall_time", wall)
         .end_object();
     std::cout << j.str() << '\n';
   } else {
     std::printf("keff: k_eff = %.6g W/mK; wall flows %.6g / %.6g W (hot / cold); contact %.1f %%, "
-                "gas %.1f %%; %zu rattlers of %zu particles; %.3g s\n",
+                "gas %.1f %%, radiation %.1f %%; %zu rattlers of %zu particles; %zu Newton "
+                "steps; %.3g s\n",
                 r.k_eff, r.heat_flow_hot, r.heat_flow_cold, 100 * r.share_contact,
-                100 * r.share_gas, r.rattlers.size(), bed.n(), wall);
+                100 * r.share_gas, 100 * r.share_radiation, r.rattlers.size(), bed.n(),
+                r.newton_iterations, wall);
   }
   return 0;
 }

@@ -78,6 +78,24 @@ TEST(KeffCli, ColumnPrintsJsonAndWritesTemperatures) {
   EXPECT_EQ(out.provenance.stage, "keff");
 }
 
+TEST(KeffCli, RadiationTakesAShareThroughNewton) {
+  const std::string dir = test::scratch_dir("keff_radiation");
+  const std::string bed_path = write_bed(column(), dir);
+  const auto r = test::run_app("keff", "--config " + kScene + " --bed " + bed_path +
+                                           " --effects.radiation true --rays 500 --t-hot 1300"
+                                           " --t-cold 1100 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_GT(json_number(r.out, "radiation"), 0) << r.out;
+  EXPECT_GE(json_number(r.out, "newton_iterations"), 1) << r.out;
+  EXPECT_EQ(json_number(r.out, "rays"), 500) << r.out;
+  EXPECT_EQ(json_number(r.out, "lost_rays"), 0) << r.out;
+  const double hot = json_number(r.out, "heat_flow_hot");
+  EXPECT_NEAR(json_number(r.out, "heat_flow_cold"), hot, 1e-8 * hot);  // the bound
+  EXPECT_NEAR(json_number(r.out, "contact") + json_number(r.out, "gas") +
+                  json_number(r.out, "radiation"),
+              1, 1e-12);  // shares of one Tellegen sum
+}
+
 TEST(KeffCli, BadInputExitsTwoWithOneLine) {
   const std::string dir = test::scratch_dir("keff_bad");
   const std::string bed_path = write_bed(column(), dir);
@@ -94,6 +112,12 @@ TEST(KeffCli, BadInputExitsTwoWithOneLine) {
                  dir, {"solid.conductivity"});
   expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --gas.lens-region all"),
                  dir, {"gas.lens-region", "all"});
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --radiation.emissivity 0"),
+                 dir, {"radiation.emissivity"});
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --rays 0"), dir,
+                 {"radiation.rays"});
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --rays -5"), dir,
+                 {"rays"});
   // The column touches neither x face: along x there is no path to a wall.
   expect_refused(
       test::run_app("keff", base + "--bed " + bed_path + " --axis x --effects.gas false"), dir,

@@ -5,6 +5,8 @@
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/neighbours.hpp"
+#include "powderbed/thermal/keff_radiation.hpp"
+#include "powderbed/thermal/keff_view_factors.hpp"
 
 namespace powderbed::thermal {
 namespace {
@@ -71,6 +73,11 @@ KeffNetwork build_keff_network(const bed::Bed& bed, const KeffScene& scene) {
             HeatPath::contact);
       if (gas) add(i, wall, k_g * gas_wall_factor(scene.lens, r, h), HeatPath::gas);
     }
+  }
+  if (scene.radiation_path) {
+    const ViewFactors vf = view_factors(bed, {scene.rays, scene.seed, scene.axis});
+    net.lost_rays = vf.lost_rays;
+    for (const KeffLink& l : radiation_links(bed, scene, vf)) net.links.push_back(l);
   }
   return net;
 }

@@ -35,8 +35,16 @@ void KeffScene::validate() const {
   require(positive(contact.young_scale), "contact.young-scale", contact.young_scale, "S > 0");
   require(positive(lens.lens), "gas.lens", lens.lens, "lens thickness / radius > 0");
   require(positive(lens.min_gap), "gas.min-gap", lens.min_gap, "l_min > 0 m");
-  if (!contact_path && !gas_path)
-    throw InputError("effects: contact and gas are both off (accepted: at least one heat path)");
+  require(emissivity > 0 && emissivity <= 1, "radiation.emissivity", emissivity, "0 < e <= 1");
+  require(wall_emissivity > 0 && wall_emissivity <= 1, "radiation.wall-emissivity",
+          wall_emissivity, "0 < e <= 1");
+  // The upper bound keeps the per-particle hit counts (32-bit) exact and catches a negative
+  // number wrapped by the option parser.
+  require(rays >= 1 && rays <= 1000000000, "radiation.rays", static_cast<double>(rays),
+          "1 to 1e9 rays per particle");
+  if (!contact_path && !gas_path && !radiation_path)
+    throw InputError(
+        "effects: contact, gas and radiation are all off (accepted: at least one heat path)");
 }
 
 }  // namespace powderbed::thermal

@@ -1,7 +1,9 @@
 #pragma once
 // The heat-path network of a bed between two isothermal walls (SPEC.md §6): one link per heat
-// path and particle pair (or particle and wall), each a constant conductance (W/K) while the
-// network has no radiation.
+// path and particle pair (or particle and wall). Conduction links carry G (T_j − T_i) with a
+// constant conductance G (W/K); radiation links carry σ G_r (T_j⁴ − T_i⁴) with the grey-body
+// exchange area G_r (m²) of SPEC.md §6.
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -11,7 +13,7 @@
 
 namespace powderbed::thermal {
 
-enum class HeatPath : std::uint8_t { contact, gas };
+enum class HeatPath : std::uint8_t { contact, gas, radiation };
 
 // `j` is a particle, or one of the walls below.
 inline constexpr std::uint32_t kHotWall = std::numeric_limits<std::uint32_t>::max();
@@ -19,7 +21,7 @@ inline constexpr std::uint32_t kColdWall = kHotWall - 1;
 
 struct KeffLink {
   std::uint32_t i, j;
-  double conductance;  // W/K, > 0
+  double conductance;  // > 0: W/K for contact and gas, the exchange area G_r (m²) for radiation
   HeatPath path;
 };
 
@@ -27,10 +29,15 @@ struct KeffNetwork {
   std::vector<KeffLink> links;
   double wall_area = 0;  // A_wall: the domain's cross-section normal to the axis, m²
   double height = 0;     // H: the distance between the walls, m
+  std::size_t lost_rays = 0;  // view-factor rays still bouncing in the side mirrors at the cap
 };
 
+// Stefan–Boltzmann constant, W/(m² K⁴).
+inline constexpr double kStefanBoltzmann = 5.670374419e-8;
+
 // Links of every path the scene switches on; pairs come from the bed's cell list with a gap
-// that covers the gas lenses. Throws InputError for a 2D bed, an axis that is periodic, or a
+// that covers the gas lenses; radiation links from Monte-Carlo view factors (keff_radiation.hpp).
+// Throws InputError for a 2D bed, an axis that is periodic, or a
 // particle centre outside the walls (naming its id).
 KeffNetwork build_keff_network(const bed::Bed& bed, const KeffScene& scene);
 

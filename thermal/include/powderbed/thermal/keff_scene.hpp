@@ -1,7 +1,9 @@
 #pragma once
 // What an effective-conductivity scene specifies (SPEC.md §6): the walls, the solid and gas
-// conductivities and the heat paths switched on. Radiation is not part of this network yet
-// (docs/keff.md), so a scene cannot ask for it.
+// conductivities, the grey-body radiation settings and the heat paths switched on.
+#include <cstddef>
+#include <cstdint>
+
 #include "powderbed/thermal/keff_gas_lens.hpp"
 #include "powderbed/thermal/keff_paths.hpp"
 
@@ -20,7 +22,12 @@ struct KeffScene {
   double calibration = 1;            // A_c: scales the contact radius (metals: 1)
   ContactRadiusParams contact;
   GasLensParams lens;
-  bool contact_path = true, gas_path = true;
+  bool contact_path = true, gas_path = true, radiation_path = false;
+  // Grey opaque spheres and walls (SPEC.md §6): one emissivity for every particle, one for both
+  // walls; view factors from `rays` Monte-Carlo rays per particle, random streams from `seed`.
+  double emissivity = 0.5, wall_emissivity = 0.5;
+  std::size_t rays = 1000;
+  std::uint64_t seed = 1;
 
   // k_g of the (linear) network: the constant, or the air polynomial at the mean wall temperature.
   double gas_conductivity_used() const;
