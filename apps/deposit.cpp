@@ -34,7 +34,7 @@ const char* const kUsage =
     "[--insert-z Z0,Z1] [--t-end T | --until-rest] [--dt DT] [--unsafe-dt] "
     "[--integrator verlet|rk4] [--young-scale S] --seed S --out BED.h5 "
     "[--trajectory RUN.h5 --every K] [--lid [--lid.pressure P] [--lid.travel L] [--lid.speed V] "
-    "[--lid.hold T] [--lid.relax T]] [--crop-top true] [--core-margin M] [--json]";
+    "[--lid.hold T] [--lid.relax T] [--lid.release false]] [--crop-top true] [--core-margin M] [--json]";
 
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
@@ -85,6 +85,9 @@ void add_options(po::options_description& desc) {
       ("lid.travel", po::value<double>()->default_value(l.travel),
        "lid: stop lowering after this travel from the highest particle top (m; 0: no limit)")
       ("lid.hold", po::value<double>()->default_value(l.hold), "lid: time held in place (s)")
+      ("lid.release", po::value<bool>()->default_value(l.release),
+       "lid: true releases it after the hold; false keeps it as the bed's top face (the bed's "
+       "domain ends at the lid, for keff's hot wall)")
       ("lid.relax", po::value<double>()->default_value(l.relax),
        "lid: cap on the relaxation after the release (s; it ends earlier at rest)")
       ("crop-top", po::value<bool>()->default_value(false),
@@ -246,6 +249,7 @@ int run(int argc, char** argv) {
   s.lid.travel = vm["lid.travel"].as<double>();
   s.lid.hold = vm["lid.hold"].as<double>();
   s.lid.relax = vm["lid.relax"].as<double>();
+  s.lid.release = vm["lid.release"].as<bool>();
   double mean_diameter = 0;
   for (const double r : bed.radius) mean_diameter += 2 * r;
   mean_diameter /= static_cast<double>(std::max<std::size_t>(1, bed.n()));
@@ -305,6 +309,7 @@ int run(int argc, char** argv) {
           .value("max_force", r.lid.max_force)
           .value("hold_end_force", r.lid.hold_end_force)
           .value("stopped_by", r.lid.stopped_by)
+          .value("released", s.lid.release)
           .value("release_time", r.lid.release_time)
           .end_object();
     }

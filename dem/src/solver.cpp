@@ -560,9 +560,14 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
       advance(step + hold_steps, false, static_cast<double>(step + hold_steps) * c.dt, nothing,
               track);
     }
-    box.upper[2] = top;  // the release
-    out.release_time = static_cast<double>(step) * c.dt;
-    if (!stopped) {
+    if (!lid.release) {  // the lid stays: it is the bed's top face from now on
+      bed.domain.upper[2] = box.upper[2];
+      summary.at_rest = false;
+    } else {
+      box.upper[2] = top;  // the release
+      out.release_time = static_cast<double>(step) * c.dt;
+    }
+    if (!stopped && lid.release) {
       c.rebuild();
       ++c.rebuilds;
       const auto relax_steps = static_cast<std::uint64_t>(std::ceil(lid.relax / c.dt - 1e-9));

@@ -147,6 +147,30 @@ TEST(Lid, TravelLimitStopsItExactly) {
   EXPECT_EQ(r.lost, 0u);
 }
 
+TEST(Lid, KeptLidBecomesTheBedsTopFace) {
+  const dem::Scene scene = lid_scene();
+  bed::Bed b = drop_bed();
+  dem::RunSettings s = settle_settings();
+  s.lid.enabled = true;
+  s.lid.pressure = 2e3;  // Pa
+  s.lid.speed = 5e-3;
+  s.lid.hold = 0.01;
+  s.lid.release = false;
+  const auto r = dem::run_deposition(b, scene, s);
+  ASSERT_EQ(r.lid.stopped_by, "force");
+  // The written bed ends at the lid, and the bed presses on it: centres below, some spheres
+  // overlapping it (the hold ends with a force on the lid).
+  EXPECT_EQ(b.domain.upper[2], r.lid.stop_z);
+  std::size_t touching = 0;
+  for (std::size_t i = 0; i < b.n(); ++i) {
+    EXPECT_LT(b.z[i], b.domain.upper[2]) << i;
+    if (b.z[i] + b.radius[i] > b.domain.upper[2]) ++touching;
+  }
+  EXPECT_GT(touching, 0u);
+  EXPECT_GT(r.lid.hold_end_force, 0.0);
+  EXPECT_EQ(r.lost, 0u);
+}
+
 TEST(Lid, BadSettingsAreRefused) {
   dem::Scene scene = lid_scene();
   bed::Bed b = drop_bed();

@@ -36,6 +36,9 @@ struct LidSettings {
   double travel = 0;     // m; 0: no travel limit
   double hold = 0;       // s
   double relax = 0.1;    // s, the cap on the relaxation after the release
+  // false: the lid stays where it stopped and the bed's domain ends there, so the bed is
+  // written pressed against its top face (keff's hot wall touches it as [KE]'s lid does).
+  bool release = true;
 };
 
 struct Progress {
