@@ -14,6 +14,7 @@
 
 #include "common/app_main.hpp"
 #include "common/options.hpp"
+#include "common/progress.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
@@ -103,16 +104,10 @@ void add_options(po::options_description& desc) {
   }
 }
 
-template <class T>
-T required(const po::variables_map& vm, const char* name) {
-  if (!vm.count(name)) throw InputError(std::string("--") + name + ": missing (required)");
-  return vm[name].as<T>();
-}
-
 bed::Bed insert_from_psd(const po::variables_map& vm, const bed::Domain& domain,
                          std::uint64_t seed) {
-  const bed::Psd psd = bed::Psd::parse(required<std::string>(vm, "psd"), "--psd");
-  const std::size_t count = required<std::size_t>(vm, "count");
+  const bed::Psd psd = bed::Psd::parse(app::required<std::string>(vm, "psd"), "--psd");
+  const std::size_t count = app::required<std::size_t>(vm, "count");
   if (count == 0) throw InputError("--count: 0 (accepted: N >= 1)");
   bed::Domain region = domain;
   if (vm.count("insert-z")) {
@@ -144,34 +139,14 @@ bed::Bed insert_from_psd(const po::variables_map& vm, const bed::Domain& domain,
   return placed.bed;
 }
 
-// "[#####.....]  45 %  t = 4.5e-02 s  ETA 12 s" on stderr, redrawn in place.
-class ProgressBar {
- public:
-  void operator()(const dem::Progress& p) {
-    const double fraction = p.t_end > 0 ? std::min(1.0, p.time / p.t_end) : 1.0;
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
-    const int filled = static_cast<int>(30 * fraction);
-    std::fprintf(stderr, "\r[%s%s] %3d %%  t = %.3e s  KE = %.2e J  ETA %.0f s ",
-                 std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                 std::string(static_cast<std::size_t>(30 - filled), '.').c_str(),
-                 static_cast<int>(100 * fraction), p.time, p.kinetic_energy, eta);
-    if (fraction >= 1) std::fputc('\n', stderr);
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
-
 int run(int argc, char** argv) {
   po::options_description desc("deposit options (SI units)");
   add_options(desc);
   po::variables_map vm;
   if (!app::parse_options("deposit", kUsage, desc, {}, argc, argv, vm)) return 0;
 
-  const std::string out = required<std::string>(vm, "out");
-  const auto seed = required<std::uint64_t>(vm, "seed");
+  const std::string out = app::required<std::string>(vm, "out");
+  const auto seed = app::required<std::uint64_t>(vm, "seed");
   if (vm.count("in") && vm.count("psd")) {
     throw InputError("--in and --psd: both given (accepted: one source of particles)");
   }
@@ -187,7 +162,7 @@ int run(int argc, char** argv) {
     if (domain) bed.domain = *domain;
   } else {
     const bed::Domain domain =
-        app::parse_domain_lengths(required<std::string>(vm, "domain"), "--domain");
+        app::parse_domain_lengths(app::required<std::string>(vm, "domain"), "--domain");
     if (domain.dimension != 3) throw InputError("--domain: 2D box (accepted: LX,LY,LZ)");
     bed = insert_from_psd(vm, domain, seed);
   }
@@ -257,8 +232,14 @@ int run(int argc, char** argv) {
   if (!(margin >= 0) || !std::isfinite(margin)) {
     throw InputError("--core-margin: " + std::to_string(margin) + " (accepted: M >= 0 m)");
   }
-  ProgressBar bar;
-  if (::isatty(STDERR_FILENO)) s.progress = std::ref(bar);
+  const app::ProgressBar bar;
+  if (::isatty(STDERR_FILENO)) {
+    s.progress = [&bar](const dem::Progress& p) {
+      char detail[64];
+      std::snprintf(detail, sizeof detail, "t = %.3e s  KE = %.2e J", p.time, p.kinetic_energy);
+      bar.draw(p.t_end > 0 ? p.time / p.t_end : 1.0, detail);
+    };
+  }
 
   const dem::RunSummary r = dem::run_deposition(bed, scene, s);
   const std::size_t removed = dem::remove_lost_particles(bed);

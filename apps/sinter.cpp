@@ -14,6 +14,7 @@
 
 #include "common/app_main.hpp"
 #include "common/options.hpp"
+#include "common/progress.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
@@ -86,12 +87,6 @@ void add_options(po::options_description& desc) {
     const std::string name = std::string("effects.") + th::sinter_effect_name(bit);
     desc.add_options()(name.c_str(), po::value<bool>()->default_value(true), "effect on/off");
   }
-}
-
-template <class T>
-T required(const po::variables_map& vm, const char* name) {
-  if (!vm.count(name)) throw InputError(std::string("--") + name + ": missing (required)");
-  return vm[name].as<T>();
 }
 
 // A relative table path is tried from the working folder, then from the scene file's folder.
@@ -168,27 +163,14 @@ th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
   return s;
 }
 
-// "[#####.....]  45 %  t = 2.5e-04 s  T_max = 2310 K  ETA 12 s" on stderr, redrawn in place.
-void show_progress(const th::SinterProgress& p, std::chrono::steady_clock::time_point start) {
-  const double fraction = std::min(1.0, p.time / p.t_end);
-  const double elapsed =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
-  const int filled = static_cast<int>(30 * fraction);
-  std::fprintf(stderr, "\r[%s%s] %3d %%  t = %.3e s  T_max(particles) = %.0f K  ETA %.0f s ",
-               std::string(static_cast<std::size_t>(filled), '#').c_str(),
-               std::string(static_cast<std::size_t>(30 - filled), '.').c_str(),
-               static_cast<int>(100 * fraction), p.time, p.max_temperature, eta);
-}
-
 int run(int argc, char** argv) {
   po::options_description desc("sinter options (SI units)");
   add_options(desc);
   po::variables_map vm;
   if (!app::parse_options("sinter", kUsage, desc, {}, argc, argv, vm)) return 0;
-  const std::string bed_path = required<std::string>(vm, "bed");
+  const std::string bed_path = app::required<std::string>(vm, "bed");
   const bool explain_only = vm["explain"].as<bool>();
-  const std::string out = explain_only && !vm.count("out") ? "" : required<std::string>(vm, "out");
+  const std::string out = explain_only && !vm.count("out") ? "" : app::required<std::string>(vm, "out");
   if (const int threads = vm["threads"].as<int>(); threads > 0) omp_set_num_threads(threads);
 
   bed::Bed bed = bed::read_bed_any(bed_path);
@@ -216,9 +198,16 @@ int run(int argc, char** argv) {
   const std::size_t snapshots = vm["snapshots"].as<std::size_t>();
   const std::uint64_t every = snapshots > 0 ? std::max<std::uint64_t>(1, steps_total / snapshots) : 0;
   const auto start = std::chrono::steady_clock::now();
+  const app::ProgressBar bar;
   std::function<void(const th::SinterProgress&)> progress;
-  if (::isatty(STDERR_FILENO))
-    progress = [start](const th::SinterProgress& p) { show_progress(p, start); };
+  if (::isatty(STDERR_FILENO)) {
+    progress = [&bar](const th::SinterProgress& p) {
+      char detail[64];
+      std::snprintf(detail, sizeof detail, "t = %.3e s  T_max(particles) = %.0f K", p.time,
+                    p.max_temperature);
+      bar.draw(p.time / p.t_end, detail);
+    };
+  }
   const th::SinterResult r = sinter.run(
       [&](const th::Sinter& s) { writer.snapshot(s); }, every, progress);
   if (progress) std::fputc('\n', stderr);

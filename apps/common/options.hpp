@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "powderbed/bed/domain.hpp"
+#include "powderbed/bed/errors.hpp"
 
 namespace powderbed::app {
 
@@ -19,6 +20,13 @@ void add_common_options(po::options_description& desc);
 bool parse_options(const char* app, const std::string& usage, po::options_description& desc,
                    const po::positional_options_description& positional, int argc, char** argv,
                    po::variables_map& vm);
+
+// The value of a required option; throws InputError "--<name>: missing (required)".
+template <class T>
+T required(const po::variables_map& vm, const char* name) {
+  if (!vm.count(name)) throw InputError(std::string("--") + name + ": missing (required)");
+  return vm[name].as<T>();
+}
 
 // "a,b,c" -> numbers; throws InputError naming `option` unless there are between min_count
 // and max_count finite numbers.

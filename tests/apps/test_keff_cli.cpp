@@ -11,10 +11,12 @@
 
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/bed/io.hpp"
+#include "cli_checks.hpp"
 #include "run_command.hpp"
 
 using namespace powderbed;
 
+using powderbed::test::expect_refused;
 using powderbed::test::json_number;
 
 namespace {
@@ -36,15 +38,6 @@ std::string write_bed(const bed::Bed& b, const std::string& dir) {
   return path;
 }
 
-void expect_refused(const test::CommandResult& r, const std::string& dir,
-                    std::initializer_list<std::string> parts) {
-  EXPECT_EQ(r.status, 2) << r.err;
-  EXPECT_EQ(r.err_lines(), 1) << r.err;
-  for (const auto& part : parts)
-    EXPECT_NE(r.err.find(part), std::string::npos) << part << " in " << r.err;
-  EXPECT_TRUE(r.out.empty()) << r.out;
-  EXPECT_FALSE(std::filesystem::exists(dir + "/out.h5"));
-}
 
 }  // namespace
 

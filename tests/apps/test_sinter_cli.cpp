@@ -15,11 +15,14 @@
 
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/bed/io.hpp"
+#include "cli_checks.hpp"
 #include "run_command.hpp"
 
 using namespace powderbed;
 
+using powderbed::test::expect_refused;
 using powderbed::test::json_number;
+using powderbed::test::left_output;
 
 namespace {
 
@@ -61,23 +64,6 @@ std::string json_text(const std::string& json, const std::string& key) {
   return json.substr(start, json.find_first_of(",}", start) - start);
 }
 
-// Nothing named out.h5* or out.xmf* (the run file, its sidecar, or a temporary) in `dir`.
-bool left_output(const std::string& dir) {
-  for (const auto& entry : std::filesystem::directory_iterator(dir))
-    if (entry.path().filename().string().rfind("out.", 0) == 0) return true;
-  return false;
-}
-
-// Exit 2, exactly one line on stderr containing every part, nothing on stdout, no file.
-void expect_refused(const test::CommandResult& r, const std::string& dir,
-                    std::initializer_list<std::string> parts) {
-  EXPECT_EQ(r.status, 2) << r.err;
-  EXPECT_EQ(r.err_lines(), 1) << r.err;
-  for (const auto& part : parts)
-    EXPECT_NE(r.err.find(part), std::string::npos) << part << " in " << r.err;
-  EXPECT_TRUE(r.out.empty()) << r.out;
-  EXPECT_FALSE(left_output(dir));
-}
 
 // The summary keys issue 5 asks of --json, each a finite number.
 void expect_finite_summary(const std::string& json) {

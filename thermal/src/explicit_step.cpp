@@ -173,7 +173,8 @@ void boundary_outflow(Sinter::State& s, double dt) {
   const auto flux = [&](std::size_t free, std::size_t fixed, double shape) {
     return 0.5 * (k[free] + k[fixed]) * shape * (t[free] - t[fixed]);
   };
-  std::vector<double> plane(g.nz, 0.0);
+  std::vector<double>& plane = s.plane_sums;  // reused: no allocation per step
+  plane.assign(g.nz, 0.0);
 #pragma omp parallel for schedule(static) if (g.size() >= kParallelNodes)
   for (std::size_t kk = 1; kk < g.nz; ++kk) {
     const double half = kk + 1 == g.nz ? 0.5 : 1.0;  // top nodes own half a cell

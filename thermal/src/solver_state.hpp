@@ -47,6 +47,7 @@ struct Sinter::State {
     double energy;  // J over the current grid step
   };
   std::vector<Source> sources;  // laser and particle contacts into free top nodes
+  std::vector<double> plane_sums;  // scratch of the boundary-flux sum, one per z plane
   double k_fixed = 0;  // conductivity of the Dirichlet nodes (at T0)
 
   StableSteps stable;
