@@ -2,6 +2,7 @@
 // the steady state of the particles' heat-path network (contact and gas conduction, grey-body
 // radiation with Monte-Carlo view factors).
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
@@ -11,7 +12,9 @@
 #include "common/options.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
+#include "powderbed/bed/h5_output.hpp"
 #include "powderbed/bed/json.hpp"
+#include "powderbed/thermal/keff_profile.hpp"
 #include "powderbed/thermal/keff_solve.hpp"
 
 namespace {
@@ -21,8 +24,13 @@ namespace po = app::po;
 namespace th = thermal;
 
 const char* const kUsage =
-    "keff --config SCENE.ini --bed BED.h5 [--axis x|y|z] [--t-hot K --t-cold K] [--rays N] "
-    "[--json] [--out RUN.h5]";
+    "keff --config SCENE.ini --bed BED.h5 [--axis x|y|z] [--t-hot K --t-cold K | --temperature K] "
+    "[--rays N] [--json] [--out RUN.h5]";
+
+// --temperature T puts the walls at T ± kSpan / 2: k_eff at T, linearised. The nonlinear paths
+// (T⁴, k_g(T)) change over 1 K by ~4/T relative, so the difference from the tangent is
+// O((1 K / T)²), below 1e-5 from 300 K up.
+constexpr double kSpan = 1;
 
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
@@ -34,9 +42,15 @@ void add_options(po::options_description& desc) {
        "axis of the heat flow: hot wall at its upper face, cold wall at its lower face")
       ("t-hot", po::value<double>()->default_value(d.hot_temperature), "T_hot (K)")
       ("t-cold", po::value<double>()->default_value(d.cold_temperature), "T_cold (K)")
+      ("temperature", po::value<double>(),
+       "bed temperature T (K): the walls at T +- 0.5 K, k_eff at T (instead of --t-hot/--t-cold)")
+      ("newton-tolerance", po::value<double>()->default_value(d.newton_tolerance),
+       "Newton stops at |net flows| / |flows| below this (radiation, gas.model = air)")
+      ("profile-bins", po::value<std::size_t>()->default_value(0),
+       "bins of the temperature profile written beside --out (0: one per mean diameter)")
       ("solid.conductivity", po::value<double>()->default_value(d.solid_conductivity), "k_s (W/mK)")
       ("gas.model", po::value<std::string>()->default_value("constant"),
-       "constant (gas.conductivity) or air (the [KE] polynomial at the mean wall temperature)")
+       "constant (gas.conductivity) or air (the [KE] polynomial at each gas link's temperature)")
       ("gas.conductivity", po::value<double>()->default_value(d.gas_conductivity), "k_g (W/mK)")
       ("gas.lens", po::value<double>()->default_value(d.lens.lens),
        "gas lens thickness over the particle radius (Rong-Horio)")
@@ -71,11 +85,41 @@ int axis_index(const std::string& name) {
   throw InputError("--axis: '" + name + "' (accepted: x, y, z)");
 }
 
-th::KeffScene make_scene(const po::variables_map& vm) {
-  th::KeffScene s;
-  s.axis = axis_index(vm["axis"].as<std::string>());
+// The wall temperatures: --temperature or --t-hot/--t-cold, whichever the command line gives
+// (it wins over the scene, DESIGN.md); both on the command line, or both in the scene, is refused.
+void set_walls(const po::variables_map& vm, const po::variables_map& command_line,
+               th::KeffScene& s) {
+  const auto walls_given = [](const po::variables_map& m) {
+    return (m.count("t-hot") && !m["t-hot"].defaulted()) ||
+           (m.count("t-cold") && !m["t-cold"].defaulted());
+  };
+  const bool cli_temperature = command_line.count("temperature") > 0;
+  const bool cli_walls = walls_given(command_line);
+  if (cli_temperature && cli_walls)
+    throw InputError("--temperature: given with --t-hot/--t-cold (accepted: one or the other)");
+  bool use_temperature = cli_temperature;
+  if (!cli_temperature && !cli_walls && vm.count("temperature")) {
+    if (walls_given(vm))
+      throw InputError("temperature: the scene sets it and t-hot/t-cold (accepted: one or the "
+                       "other)");
+    use_temperature = true;
+  }
+  if (use_temperature) {
+    const double t = vm["temperature"].as<double>();
+    if (!(std::isfinite(t) && t > kSpan))
+      throw InputError("--temperature: " + std::to_string(t) + " K (accepted: T > 1 K)");
+    s.hot_temperature = t + kSpan / 2;
+    s.cold_temperature = t - kSpan / 2;
+    return;
+  }
   s.hot_temperature = vm["t-hot"].as<double>();
   s.cold_temperature = vm["t-cold"].as<double>();
+}
+
+th::KeffScene make_scene(const po::variables_map& vm, const po::variables_map& command_line) {
+  th::KeffScene s;
+  s.axis = axis_index(vm["axis"].as<std::string>());
+  set_walls(vm, command_line, s);
   s.solid_conductivity = vm["solid.conductivity"].as<double>();
   const std::string model = vm["gas.model"].as<std::string>();
   if (model != "constant" && model != "air")
@@ -99,8 +143,33 @@ th::KeffScene make_scene(const po::variables_map& vm) {
   s.seed = vm["radiation.seed"].as<std::uint64_t>();
   s.emissivity = vm["radiation.emissivity"].as<double>();
   s.wall_emissivity = vm["radiation.wall-emissivity"].as<double>();
+  s.newton_tolerance = vm["newton-tolerance"].as<double>();
   s.validate();
   return s;
+}
+
+// RUN.h5 → RUN-profile.csv beside it.
+std::string profile_path_of(const std::string& out) {
+  const std::string suffix = ".h5";
+  const bool h5 = out.size() > suffix.size() &&
+                  out.compare(out.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return (h5 ? out.substr(0, out.size() - suffix.size()) : out) + "-profile.csv";
+}
+
+std::string profile_csv(const th::TemperatureProfile& p, const th::KeffScene& scene) {
+  const char* const axis = scene.axis == 0 ? "x" : scene.axis == 1 ? "y" : "z";
+  std::string text = "# keff temperature profile along " + std::string(axis) +
+                     ": particles binned by centre, cold wall " +
+                     std::to_string(scene.cold_temperature) + " K at the lower face, hot wall " +
+                     std::to_string(scene.hot_temperature) + " K at the upper face; rattlers left out\n";
+  text += std::string(axis) + "_m,mean_K,min_K,max_K,particles\n";
+  char line[160];
+  for (std::size_t b = 0; b < p.position.size(); ++b) {
+    std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.9g,%llu\n", p.position[b], p.mean[b],
+                  p.min[b], p.max[b], static_cast<unsigned long long>(p.particles[b]));
+    text += line;
+  }
+  return text;
 }
 
 int run(int argc, char** argv) {
@@ -109,7 +178,9 @@ int run(int argc, char** argv) {
   po::variables_map vm;
   if (!app::parse_options("keff", kUsage, desc, {}, argc, argv, vm)) return 0;
   if (!vm.count("bed")) throw InputError("--bed: missing (required)");
-  const th::KeffScene scene = make_scene(vm);
+  po::variables_map command_line;  // what the command line alone says (walls)
+  po::store(po::command_line_parser(argc, argv).options(desc).run(), command_line);
+  const th::KeffScene scene = make_scene(vm, command_line);
   bed::Bed bed = bed::read_bed_any(vm["bed"].as<std::string>());
 
   const auto start = std::chrono::steady_clock::now();
@@ -117,13 +188,19 @@ int run(int argc, char** argv) {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
+  std::string profile_path;
   if (vm.count("out")) {
+    const std::string out = vm["out"].as<std::string>();
+    profile_path = profile_path_of(out);
+    const th::TemperatureProfile profile = th::temperature_profile(
+        bed, scene.axis, r.temperature, r.rattlers, vm["profile-bins"].as<std::size_t>());
     bed.temperature = r.temperature;
     bed.provenance.created_by = app::version_string("keff");
     bed.provenance.command_line = app::command_line(argc, argv);
     bed.provenance.stage = "keff";
     bed.provenance.scene = app::scene_text(vm);
-    bed::write_bed_h5(bed, vm["out"].as<std::string>());
+    bed::write_bed_h5(bed, out);
+    bed::write_text_file(profile_path, profile_csv(profile, scene));
   }
   if (vm.count("json")) {
     bed::JsonWriter j;
@@ -147,8 +224,11 @@ int run(int argc, char** argv) {
         .value("rays", static_cast<std::uint64_t>(scene.radiation_path ? scene.rays : 0))
         .value("lost_rays", static_cast<std::uint64_t>(r.lost_rays))
         .value("gas_conductivity", scene.gas_path ? scene.gas_conductivity_used() : 0.0)
-        .value("wall_time", wall)
-        .end_object();
+        .value("t_hot", scene.hot_temperature)
+        .value("t_cold", scene.cold_temperature)
+        .value("wall_time", wall);
+    if (!profile_path.empty()) j.value("profile", profile_path);
+    j.end_object();
     std::cout << j.str() << '\n';
   } else {
     std::printf("keff: k_eff = %.6g W/mK; wall flows %.6g / %.6g W (hot / cold); contact %.1f %%, "
@@ -157,6 +237,7 @@ int run(int argc, char** argv) {
                 r.k_eff, r.heat_flow_hot, r.heat_flow_cold, 100 * r.share_contact,
                 100 * r.share_gas, 100 * r.share_radiation, r.rattlers.size(), bed.n(),
                 r.newton_iterations, wall);
+    if (!profile_path.empty()) std::printf("keff: temperature profile in %s\n", profile_path.c_str());
   }
   return 0;
 }

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <initializer_list>
 #include <string>
 
@@ -44,8 +46,10 @@ std::string write_bed(const bed::Bed& b, const std::string& dir) {
 TEST(KeffCli, ColumnPrintsJsonAndWritesTemperatures) {
   const std::string dir = test::scratch_dir("keff_run");
   const std::string bed_path = write_bed(column(), dir);
+  // Geometric contact radius: the closed form below is that of the intersection circles.
   const auto r = test::run_app("keff", "--config " + kScene + " --bed " + bed_path +
-                                           " --effects.gas false --json --out " + dir + "/out.h5");
+                                           " --effects.gas false --contact.hertz-correction false"
+                                           " --json --out " + dir + "/out.h5");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out.find('\n'), r.out.size() - 1) << r.out;  // one JSON line
   for (const char* key : {"k_eff", "heat_flow_hot", "heat_flow_cold", "contact", "gas",
@@ -69,6 +73,45 @@ TEST(KeffCli, ColumnPrintsJsonAndWritesTemperatures) {
   ASSERT_EQ(out.temperature.size(), 4u);
   EXPECT_GT(out.temperature[3], out.temperature[0]);  // hot wall on top
   EXPECT_EQ(out.provenance.stage, "keff");
+
+  // The profile beside it: one bin per diameter here (the column is four diameters tall less
+  // the overlaps), one particle each, its mean the particle's temperature.
+  std::ifstream profile(dir + "/out-profile.csv");
+  ASSERT_TRUE(profile.good());
+  std::string line;
+  std::getline(profile, line);  // comment
+  std::getline(profile, line);
+  EXPECT_EQ(line, "z_m,mean_K,min_K,max_K,particles");
+  for (std::size_t k = 0; k < 4; ++k) {
+    ASSERT_TRUE(std::getline(profile, line));
+    const std::size_t c1 = line.find(','), c2 = line.find(',', c1 + 1);
+    EXPECT_NEAR(std::stod(line.substr(c1 + 1, c2 - c1 - 1)), out.temperature[k], 1e-6);  // %.9g
+    EXPECT_EQ(line.substr(line.rfind(',') + 1), "1");
+  }
+  EXPECT_FALSE(std::getline(profile, line));
+}
+
+TEST(KeffCli, TemperatureOptionPutsTheWallsAroundIt) {
+  const std::string dir = test::scratch_dir("keff_temperature");
+  const std::string bed_path = write_bed(column(), dir);
+  const std::string base = "--config " + kScene + " --bed " + bed_path + " --json ";
+  const auto r = test::run_app("keff", base + "--temperature 1000");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json_number(r.out, "t_hot"), 1000.5);
+  EXPECT_EQ(json_number(r.out, "t_cold"), 999.5);
+  // With the air polynomial k_g follows each link's temperature: at T ± 0.5 K the network is
+  // the constant-k_g one at k_g(1000 K) to second order in β ΔT = k_g'/k_g · 0.5 K ≈ 4e-4
+  // (measured 1.6e-8 relative, 1.6e-6 at ± 5 K); 1e-6 bounds it.
+  const auto air = test::run_app("keff", base + "--temperature 1000 --gas.model air");
+  ASSERT_EQ(air.status, 0) << air.err;
+  char k_air[32];
+  std::snprintf(k_air, sizeof k_air, "%.17g", json_number(air.out, "gas_conductivity"));
+  const auto constant =
+      test::run_app("keff", base + "--temperature 1000 --gas.conductivity " + k_air);
+  ASSERT_EQ(constant.status, 0) << constant.err;
+  EXPECT_NEAR(json_number(air.out, "k_eff"), json_number(constant.out, "k_eff"),
+              1e-6 * json_number(constant.out, "k_eff"));
+  EXPECT_GE(json_number(air.out, "newton_iterations"), 1);
 }
 
 TEST(KeffCli, RadiationTakesAShareThroughNewton) {
@@ -101,6 +144,14 @@ TEST(KeffCli, BadInputExitsTwoWithOneLine) {
                  dir, {"t-hot"});
   expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --t-hot 290 --t-cold 300"),
                  dir, {"t-hot"});
+  expect_refused(
+      test::run_app("keff", base + "--bed " + bed_path + " --temperature 800 --t-hot 900"), dir,
+      {"--temperature", "--t-hot"});
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --temperature -4"), dir,
+                 {"--temperature"});
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path +
+                                           " --gas.model air --t-hot 2500 --t-cold 300"),
+                 dir, {"t-hot", "1900"});
   expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --solid.conductivity -3"),
                  dir, {"solid.conductivity"});
   expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --gas.lens-region all"),

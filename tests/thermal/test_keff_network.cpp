@@ -139,8 +139,7 @@ TEST(Keff, DisorderedBedWallFlowsAgreeAndTellegenHolds) {
         b.add(kR + i * pitch + jitter(rng), kR + j * pitch + jitter(rng),
               0.98 * kR + k * pitch + jitter(rng), size(rng));
   b.domain.upper = {4 * pitch + 0.1 * kR, 4 * pitch + 0.1 * kR, 5 * pitch + 1.96 * kR};
-  th::KeffScene s;
-  s.gas_model = th::GasModel::air;
+  th::KeffScene s;  // constant k_g: a linear network, whose links' G the Tellegen sum uses
   const th::KeffNetwork net = th::build_keff_network(b, s);
   const th::KeffResult r = th::solve_keff(b, s, net);
   // Issue 6: the two wall flows agree to 1e-8 relative (the direct solve reaches ~1e-14).

@@ -42,6 +42,8 @@ KeffNetwork build_keff_network(const bed::Bed& bed, const KeffScene& scene) {
                   bed.domain.length(static_cast<int>((a + 2) % 3));
   const double k_g = scene.gas_path ? scene.gas_conductivity_used() : 0;
   const bool gas = k_g > 0;
+  net.gas_reference = k_g;
+  net.gas_follows_temperature = gas && scene.gas_model == GasModel::air;
   const auto add = [&](std::uint32_t i, std::uint32_t j, double g, HeatPath path) {
     if (g > 0) net.links.push_back({i, j, g, path});
   };

@@ -24,8 +24,10 @@ void KeffScene::validate() const {
   require(std::isfinite(hot_temperature) && hot_temperature > cold_temperature, "t-hot",
           hot_temperature, "T_hot > T_cold");
   if (gas_model == GasModel::air) {
-    const double mean = (hot_temperature + cold_temperature) / 2;
-    require(mean >= 175 && mean <= 1900, "gas.model = air: mean wall temperature", mean,
+    // Every gas link lies between the wall temperatures at the steady state.
+    require(cold_temperature >= 175, "gas.model = air: t-cold", cold_temperature,
+            "175-1900 K, the range of the [KE] fit");
+    require(hot_temperature <= 1900, "gas.model = air: t-hot", hot_temperature,
             "175-1900 K, the range of the [KE] fit");
   }
   require(positive(solid_conductivity), "solid.conductivity", solid_conductivity, "k_s > 0 W/mK");
@@ -42,6 +44,8 @@ void KeffScene::validate() const {
   // number wrapped by the option parser.
   require(rays >= 1 && rays <= 1000000000, "radiation.rays", static_cast<double>(rays),
           "1 to 1e9 rays per particle");
+  require(newton_tolerance > 0 && newton_tolerance < 1e-2, "newton-tolerance", newton_tolerance,
+          "0 < tolerance < 1e-2");
   if (!contact_path && !gas_path && !radiation_path)
     throw InputError(
         "effects: contact, gas and radiation are all off (accepted: at least one heat path)");

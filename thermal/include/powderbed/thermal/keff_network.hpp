@@ -30,6 +30,10 @@ struct KeffNetwork {
   double wall_area = 0;  // A_wall: the domain's cross-section normal to the axis, m²
   double height = 0;     // H: the distance between the walls, m
   std::size_t lost_rays = 0;  // view-factor rays still bouncing in the side mirrors at the cap
+  // Gas links were built with k_g = gas_reference (W/mK). With gas_follows_temperature (the air
+  // model) each carries G k_g(T̄) / gas_reference, T̄ the mean of its two ends' temperatures.
+  double gas_reference = 0;
+  bool gas_follows_temperature = false;
 };
 
 // Stefan–Boltzmann constant, W/(m² K⁴).

@@ -12,6 +12,10 @@ namespace powderbed::thermal {
 inline double air_conductivity(double t) {
   return ((6.566e-12 * t - 3.386e-8) * t + 9.426e-5) * t + 7.505e-4;
 }
+// Its derivative dk_g/dT, W/(m K²): the Newton Jacobian of gas links that follow temperature.
+inline double air_conductivity_slope(double t) {
+  return (3 * 6.566e-12 * t - 2 * 3.386e-8) * t + 9.426e-5;
+}
 
 // Batchelor–O'Brien contact conductance Q / ΔT = 2 k_s a (SPEC.md §6), with the calibration
 // factor A_c scaling the contact radius a.

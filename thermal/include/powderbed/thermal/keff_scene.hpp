@@ -9,7 +9,8 @@
 
 namespace powderbed::thermal {
 
-// constant: k_g as given; air: the [KE] polynomial at the mean wall temperature.
+// constant: k_g as given; air: the [KE] polynomial of SPEC.md §6, each gas link at the mean
+// temperature of its two ends (the network is then nonlinear and solved by Newton).
 enum class GasModel { constant, air };
 
 struct KeffScene {
@@ -28,8 +29,12 @@ struct KeffScene {
   double emissivity = 0.5, wall_emissivity = 0.5;
   std::size_t rays = 1000;
   std::uint64_t seed = 1;
+  // Newton stops at ‖R‖ / ‖Σ|q|‖ ≤ newton_tolerance: each particle's net heat flow against the
+  // flows it balances (keff_solve.cpp); docs/results/keff-accuracy.md measures what it costs.
+  double newton_tolerance = 1e-10;
 
-  // k_g of the (linear) network: the constant, or the air polynomial at the mean wall temperature.
+  // k_g of the linear start (and of every gas link when gas_model = constant): the constant, or
+  // the air polynomial at the mean wall temperature.
   double gas_conductivity_used() const;
   // Throws InputError naming the field, the value and the accepted range.
   void validate() const;

@@ -1,8 +1,8 @@
 #pragma once
 // Steady state of the heat-path network between the walls and the effective conductivity
-// k_eff = (Q_wall / A_wall) · H / (T_hot − T_cold) (SPEC.md §6). Contact and gas links are
-// linear (one conjugate-gradient solve); radiation links make it nonlinear through T⁴, solved by
-// Newton with the analytic Jacobian (keff_solve.cpp).
+// k_eff = (Q_wall / A_wall) · H / (T_hot − T_cold) (SPEC.md §6). Contact and constant-k_g gas
+// links are linear (one conjugate-gradient solve); radiation links (T⁴) and gas links that follow
+// temperature make it nonlinear, solved by Newton with the analytic Jacobian (keff_solve.cpp).
 #include <cstdint>
 #include <vector>
 
@@ -23,8 +23,8 @@ struct KeffResult {
   std::vector<std::uint32_t> rattlers;  // particle indices, ascending
   std::vector<double> temperature;      // K, one per particle
   std::size_t links = 0, contact_links = 0, gas_links = 0, radiation_links = 0;
-  // Newton steps: 1 for a network without radiation (a linear network is one step from any
-  // start); with radiation, the steps after the linearised start to the 1e-10 residual.
+  // Newton steps: 1 for a linear network (one step from any start); with radiation or gas that
+  // follows temperature, the steps after the linearised start to scene.newton_tolerance.
   std::size_t newton_iterations = 0;
   std::size_t solver_iterations = 0;  // inner iterations (CG, then BiCGSTAB), all steps together
   double residual = 0;  // final ‖R‖ / ‖Σ|q|‖ over the particles (0 for the linear network)
