@@ -2,7 +2,8 @@
 # The README's main job on the [GZ] 2016 powder (600 316L particles, diameters N(27, 4.25) um,
 # 1 mm x 0.5 mm floor): a geometric layer with packgen, a DEM-settled layer with deposit from the
 # paper's scene, both compared side by side with bedstat and drawn; then the paper's laser track
-# with sinter on the deposited bed, its melt pool beside the paper's.
+# with sinter on the deposited bed, its melt pool beside the paper's. Last, a [KE] bed of 1 mm
+# steel spheres pressed by a lid, and its effective conductivity with keff.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mkdir -p out
@@ -27,6 +28,15 @@ print("  [GZ] 2016 model               30.0   85.0   20.0")
 print("  [GZ] 2016 experiment          26.0   75.0   30.0")
 PY
 /usr/bin/python3 scripts/plot_sinter.py out/sinter.h5 out/sinter --title "sinter, [GZ] scene, 200 W, 2 m/s"
-echo "beds: out/packgen.h5, out/deposit.h5; laser run: out/sinter.h5 (ParaView: open the .xmf," \
-  "see docs/bed-format.md); pictures: out/packgen.png, out/deposit.png, out/sinter-top.png," \
-  "out/sinter-section.png"
+echo "== deposit + keff: the [KE] steel 1 mm bed (1,100 spheres, lid kept as the hot wall; ~15 s)"
+build/apps/deposit --config data/scenes/ke2016-steel-1mm-bed.ini --seed 1 --out out/ke-steel-1mm.h5
+echo "   its conductivity at room temperature (air, contact + gas), then at 1000 K with radiation"
+build/apps/keff --config data/scenes/ke2016-steel-1mm.ini --bed out/ke-steel-1mm.h5 \
+  --out out/keff-300K.h5
+build/apps/keff --config data/scenes/ke2016-steel-1mm.ini --bed out/ke-steel-1mm.h5 \
+  --temperature 1000 --gas.model air --effects.radiation true --out out/keff-1000K.h5
+/usr/bin/python3 scripts/plot_keff_profile.py out/keff-300K-profile.csv out/keff-1000K-profile.csv \
+  out/keff-profile.png --label "300 K, contact + gas" --label "1000 K, + radiation"
+echo "beds: out/packgen.h5, out/deposit.h5, out/ke-steel-1mm.h5; laser run: out/sinter.h5" \
+  "(ParaView: open the .xmf, see docs/bed-format.md); pictures: out/packgen.png," \
+  "out/deposit.png, out/sinter-top.png, out/sinter-section.png, out/keff-profile.png"
