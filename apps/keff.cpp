@@ -5,11 +5,15 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <string>
 
+#include <unistd.h>
+
 #include "common/app_main.hpp"
 #include "common/options.hpp"
+#include "common/progress.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/h5_output.hpp"
@@ -161,7 +165,8 @@ std::string profile_csv(const th::TemperatureProfile& p, const th::KeffScene& sc
   std::string text = "# keff temperature profile along " + std::string(axis) +
                      ": particles binned by centre, cold wall " +
                      std::to_string(scene.cold_temperature) + " K at the lower face, hot wall " +
-                     std::to_string(scene.hot_temperature) + " K at the upper face; rattlers left out\n";
+                     std::to_string(scene.hot_temperature) +
+                     " K at the upper face; rattlers left out\n";
   text += std::string(axis) + "_m,mean_K,min_K,max_K,particles\n";
   char line[160];
   for (std::size_t b = 0; b < p.position.size(); ++b) {
@@ -184,7 +189,11 @@ int run(int argc, char** argv) {
   bed::Bed bed = bed::read_bed_any(vm["bed"].as<std::string>());
 
   const auto start = std::chrono::steady_clock::now();
-  const th::KeffResult r = th::solve_keff(bed, scene);
+  const app::ProgressBar bar;
+  std::function<void(double)> progress;
+  if (scene.radiation_path && ::isatty(STDERR_FILENO))
+    progress = [&bar](double fraction) { bar.draw(fraction, "view factors"); };
+  const th::KeffResult r = th::solve_keff(bed, scene, th::build_keff_network(bed, scene, progress));
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -237,7 +246,8 @@ int run(int argc, char** argv) {
                 r.k_eff, r.heat_flow_hot, r.heat_flow_cold, 100 * r.share_contact,
                 100 * r.share_gas, 100 * r.share_radiation, r.rattlers.size(), bed.n(),
                 r.newton_iterations, wall);
-    if (!profile_path.empty()) std::printf("keff: temperature profile in %s\n", profile_path.c_str());
+    if (!profile_path.empty())
+      std::printf("keff: temperature profile in %s\n", profile_path.c_str());
   }
   return 0;
 }

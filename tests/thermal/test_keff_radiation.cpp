@@ -104,7 +104,7 @@ TEST(KeffViewFactors, SphereRestingOnPlaneSeesHalf) {
   b.add(200 * kR, 200 * kR, kR, kR);
   b.domain.upper = {400 * kR, 400 * kR, 4 * kR};
   const std::size_t rays = 100000;
-  const th::ViewFactors vf = th::view_factors(b, {rays, 7, 2});
+  const th::ViewFactors vf = th::view_factors(b, {rays, 7, 2, {}});
   double f = 0;
   for (const auto& e : vf.entries)
     if (e.j == th::kColdWall) f = e.f;
@@ -116,7 +116,7 @@ TEST(KeffViewFactors, SphereRestingOnPlaneSeesHalf) {
 
 TEST(KeffViewFactors, RowsSumToOneInAClosedBox) {
   const bed::Bed b = loose_lattice(4, 3);
-  const th::ViewFactors vf = th::view_factors(b, {500, 1, 2});
+  const th::ViewFactors vf = th::view_factors(b, {500, 1, 2, {}});
   EXPECT_EQ(vf.lost_rays, 0u);
   // Walls and mirrors close the box: every ray hits something, and a row is a sum of 500 counts
   // over 500, exact but for the round-off of the division.
@@ -125,8 +125,9 @@ TEST(KeffViewFactors, RowsSumToOneInAClosedBox) {
 
 TEST(KeffViewFactors, ReciprocityWithinMonteCarloErrorShrinkingAsOneOverRootRays) {
   const bed::Bed b = loose_lattice(3, 5);
-  const auto [raw_coarse, scaled_coarse] = reciprocity_rms(b, th::view_factors(b, {1000, 2, 2}));
-  const auto [raw_fine, scaled_fine] = reciprocity_rms(b, th::view_factors(b, {100000, 2, 2}));
+  const auto [raw_coarse, scaled_coarse] =
+      reciprocity_rms(b, th::view_factors(b, {1000, 2, 2, {}}));
+  const auto [raw_fine, scaled_fine] = reciprocity_rms(b, th::view_factors(b, {100000, 2, 2, {}}));
   // The errors are sampling noise: RMS over the standard error ≈ 1 (a systematic error, e.g. a
   // wrong emission law or a missed hit, would grow with the rays). 1.5 allows for the RMS of
   // ~100 pairs (±10 %) and the pairs sharing rays.
@@ -142,9 +143,9 @@ TEST(KeffViewFactors, SameForAnyThreadCount) {
   const bed::Bed b = loose_lattice(3, 9);
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
-  const th::ViewFactors one = th::view_factors(b, {300, 4, 2});
+  const th::ViewFactors one = th::view_factors(b, {300, 4, 2, {}});
   omp_set_num_threads(3);
-  const th::ViewFactors three = th::view_factors(b, {300, 4, 2});
+  const th::ViewFactors three = th::view_factors(b, {300, 4, 2, {}});
   omp_set_num_threads(threads);
   ASSERT_EQ(one.entries.size(), three.entries.size());
   for (std::size_t k = 0; k < one.entries.size(); ++k) {

@@ -32,7 +32,8 @@ void check(const bed::Bed& bed, int axis) {
 
 }  // namespace
 
-KeffNetwork build_keff_network(const bed::Bed& bed, const KeffScene& scene) {
+KeffNetwork build_keff_network(const bed::Bed& bed, const KeffScene& scene,
+                               const std::function<void(double)>& progress) {
   scene.validate();
   check(bed, scene.axis);
   const auto a = static_cast<std::size_t>(scene.axis);
@@ -77,7 +78,7 @@ KeffNetwork build_keff_network(const bed::Bed& bed, const KeffScene& scene) {
     }
   }
   if (scene.radiation_path) {
-    const ViewFactors vf = view_factors(bed, {scene.rays, scene.seed, scene.axis});
+    const ViewFactors vf = view_factors(bed, {scene.rays, scene.seed, scene.axis, progress});
     net.lost_rays = vf.lost_rays;
     for (const KeffLink& l : radiation_links(bed, scene, vf)) net.links.push_back(l);
   }

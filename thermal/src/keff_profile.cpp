@@ -28,7 +28,8 @@ TemperatureProfile temperature_profile(const bed::Bed& bed, int axis,
   p.max.assign(bins, -std::numeric_limits<double>::infinity());
   p.particles.assign(bins, 0);
   const double width = height / static_cast<double>(bins);
-  for (std::size_t b = 0; b < bins; ++b) p.position[b] = lower + (static_cast<double>(b) + 0.5) * width;
+  for (std::size_t b = 0; b < bins; ++b)
+    p.position[b] = lower + (static_cast<double>(b) + 0.5) * width;
 
   const std::vector<double>& centre = a == 0 ? bed.x : a == 1 ? bed.y : bed.z;
   auto next_excluded = excluded.begin();

@@ -1,7 +1,10 @@
 #include "powderbed/thermal/keff_view_factors.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -206,9 +209,13 @@ ViewFactors view_factors(const bed::Bed& bed, const ViewFactorParams& params) {
   std::vector<std::vector<ViewFactorEntry>> rows(n);
   std::size_t lost = 0;
   const double per_ray = 1.0 / static_cast<double>(params.rays);
+  std::atomic<std::size_t> traced{0};
+  const std::size_t report_every = std::max<std::size_t>(1, n / 100);  // about every 1 %
 
 #pragma omp parallel reduction(+ : lost)
   {
+    const bool reporter = params.progress && omp_get_thread_num() == 0;
+    std::size_t next_report = report_every;
     // Hit counts of the current particle: particles, then the two walls.
     std::vector<std::uint32_t> hits(n + 2, 0);
     std::vector<std::uint32_t> touched;
@@ -240,8 +247,14 @@ ViewFactors view_factors(const bed::Bed& bed, const ViewFactorParams& params) {
       if (hits[n]) row.push_back({i, kHotWall, hits[n] * per_ray});
       for (const std::uint32_t slot : touched) hits[slot] = 0;
       touched.clear();
+      const std::size_t done = traced.fetch_add(1, std::memory_order_relaxed) + 1;
+      if (reporter && done >= next_report) {
+        params.progress(static_cast<double>(done) / static_cast<double>(n));
+        next_report = done + report_every;
+      }
     }
   }
+  if (params.progress) params.progress(1.0);
 
   vf.lost_rays = lost;
   std::size_t total = 0;

@@ -5,6 +5,7 @@
 // exchange area G_r (m²) of SPEC.md §6.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -42,7 +43,9 @@ inline constexpr double kStefanBoltzmann = 5.670374419e-8;
 // Links of every path the scene switches on; pairs come from the bed's cell list with a gap
 // that covers the gas lenses; radiation links from Monte-Carlo view factors (keff_radiation.hpp).
 // Throws InputError for a 2D bed, an axis that is periodic, or a
-// particle centre outside the walls (naming its id).
-KeffNetwork build_keff_network(const bed::Bed& bed, const KeffScene& scene);
+// particle centre outside the walls (naming its id). `progress`, when set, hears the fraction of
+// the view-factor tracing done (ViewFactorParams::progress).
+KeffNetwork build_keff_network(const bed::Bed& bed, const KeffScene& scene,
+                               const std::function<void(double)>& progress = {});
 
 }  // namespace powderbed::thermal

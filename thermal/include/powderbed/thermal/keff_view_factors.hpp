@@ -15,6 +15,7 @@
 // result does not depend on the number of OpenMP threads.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "powderbed/bed/bed.hpp"
@@ -26,6 +27,9 @@ struct ViewFactorParams {
   std::size_t rays = 1000;  // rays per particle
   std::uint64_t seed = 1;
   int axis = 2;             // the walls are the faces of this axis: hot upper, cold lower
+  // Called now and then with the fraction of particles traced (from one thread only); empty:
+  // no calls. The tracing is the long part of a keff run with radiation.
+  std::function<void(double)> progress;
 };
 
 struct ViewFactorEntry {
