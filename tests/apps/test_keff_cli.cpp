@@ -162,6 +162,14 @@ TEST(KeffCli, BadInputExitsTwoWithOneLine) {
                  {"radiation.rays"});
   expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --rays -5"), dir,
                  {"rays"});
+  bed::Bed flat = column();  // the column as disks along y in a 2D bed: keff needs spheres
+  flat.domain.dimension = 2;
+  flat.y = flat.z;
+  flat.z.assign(flat.n(), 0.0);
+  flat.domain.upper[1] = flat.domain.upper[2];
+  bed::write_bed_h5(flat, dir + "/flat.h5");
+  expect_refused(test::run_app("keff", base + "--bed " + dir + "/flat.h5 --axis y"), dir,
+                 {"axis", "2D"});
   // The column touches neither x face: along x there is no path to a wall.
   expect_refused(
       test::run_app("keff", base + "--bed " + bed_path + " --axis x --effects.gas false"), dir,

@@ -15,7 +15,8 @@ const char* const kAxisName[3] = {"x", "y", "z"};
 
 void check(const bed::Bed& bed, int axis) {
   if (bed.domain.dimension != 3)
-    throw InputError("bed: a 2D bed (accepted: a 3D bed of spheres)");
+    throw InputError(std::string("axis: ") + kAxisName[axis] +
+                     " in a 2D bed (accepted: a 3D bed of spheres, whose axes are x, y and z)");
   if (bed.domain.periodic[static_cast<std::size_t>(axis)])
     throw InputError(std::string("axis: ") + kAxisName[axis] +
                      " is periodic in the bed (accepted: an axis with walls at both faces)");
