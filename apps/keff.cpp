@@ -73,6 +73,9 @@ void add_options(po::options_description& desc) {
        "Monte-Carlo view-factor rays per particle (radiation)")
       ("radiation.seed", po::value<std::uint64_t>()->default_value(d.seed),
        "seed of the view-factor rays (each particle its own stream: any thread count agrees)")
+      ("radiation.model", po::value<std::string>()->default_value("pair"),
+       "pair (SPEC's per-pair grey formula) or radiosity (the grey enclosure: one radiosity node "
+       "per surface, docs/keff.md)")
       ("radiation.emissivity", po::value<double>()->default_value(d.emissivity),
        "grey emissivity of the particles")
       ("radiation.wall-emissivity", po::value<double>()->default_value(d.wall_emissivity),
@@ -144,6 +147,11 @@ th::KeffScene make_scene(const po::variables_map& vm, const po::variables_map& c
   s.gas_path = vm["effects.gas"].as<bool>();
   s.radiation_path = vm["effects.radiation"].as<bool>();
   s.rays = vm["rays"].as<std::size_t>();
+  const std::string radiation = vm["radiation.model"].as<std::string>();
+  if (radiation != "pair" && radiation != "radiosity")
+    throw InputError("radiation.model: '" + radiation + "' (accepted: pair, radiosity)");
+  s.radiation_model =
+      radiation == "radiosity" ? th::RadiationModel::radiosity : th::RadiationModel::pair;
   s.seed = vm["radiation.seed"].as<std::uint64_t>();
   s.emissivity = vm["radiation.emissivity"].as<double>();
   s.wall_emissivity = vm["radiation.wall-emissivity"].as<double>();
@@ -231,6 +239,9 @@ int run(int argc, char** argv) {
         .value("gas_links", static_cast<std::uint64_t>(r.gas_links))
         .value("radiation_links", static_cast<std::uint64_t>(r.radiation_links))
         .value("rays", static_cast<std::uint64_t>(scene.radiation_path ? scene.rays : 0))
+        .value("radiation_model", scene.radiation_model == th::RadiationModel::radiosity
+                                      ? "radiosity"
+                                      : "pair")
         .value("lost_rays", static_cast<std::uint64_t>(r.lost_rays))
         .value("gas_conductivity", scene.gas_path ? scene.gas_conductivity_used() : 0.0)
         .value("t_hot", scene.hot_temperature)

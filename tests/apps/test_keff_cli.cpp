@@ -158,6 +158,8 @@ TEST(KeffCli, BadInputExitsTwoWithOneLine) {
                  dir, {"gas.lens-region", "all"});
   expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --radiation.emissivity 0"),
                  dir, {"radiation.emissivity"});
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --radiation.model grey"),
+                 dir, {"radiation.model", "grey", "radiosity"});
   expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --rays 0"), dir,
                  {"radiation.rays"});
   expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --rays -5"), dir,

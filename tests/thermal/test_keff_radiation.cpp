@@ -157,7 +157,8 @@ TEST(KeffViewFactors, SameForAnyThreadCount) {
 
 TEST(KeffRadiation, OneSphereMatchesItsClosedForm) {
   // A sphere between the walls exchanges with each through a grey link: in steady state
-  // Q = σ (T_h⁴ − T_c⁴) / (1/G_h + 1/G_c), and T⁴ = (G_h T_h⁴ + G_c T_c⁴) / (G_h + G_c).
+  // Q = σ (T_h⁴ − T_c⁴) / (1/G_h + 1/G_c), and T⁴ = (G_h T_h⁴ + G_c T_c⁴) / (G_h + G_c); the
+  // walls see each other past it through G_w, which adds σ G_w (T_h⁴ − T_c⁴) to both flows.
   bed::Bed b;
   b.add(2 * kR, 2 * kR, 1.7 * kR, kR);
   b.domain.upper = {4 * kR, 4 * kR, 3 * kR};
@@ -169,7 +170,9 @@ TEST(KeffRadiation, OneSphereMatchesItsClosedForm) {
   for (const auto& l : net.links) (l.j == th::kHotWall ? g_hot : g_cold) += l.conductance;
   const th::KeffResult r = th::solve_keff(b, s, net);
   const double h4 = std::pow(900.0, 4), c4 = std::pow(600.0, 4);
-  const double q = th::kStefanBoltzmann * (h4 - c4) / (1 / g_hot + 1 / g_cold);
+  EXPECT_GT(net.wall_exchange, 0);  // the sphere covers π/16 of the walls
+  const double q = th::kStefanBoltzmann * (h4 - c4) * (1 / (1 / g_hot + 1 / g_cold) +
+                                                      net.wall_exchange);
   // Newton stops at a relative residual of 1e-10, one unknown: the flows to ~1e-10.
   EXPECT_NEAR(r.heat_flow_hot, q, 1e-9 * q);
   EXPECT_NEAR(r.heat_flow_cold, q, 1e-9 * q);
@@ -220,4 +223,82 @@ TEST(KeffRadiation, NewtonConvergesInAFewStepsWithAllPaths) {
   th::KeffScene conduction = s;
   conduction.radiation_path = false;
   EXPECT_GT(r.k_eff, th::solve_keff(b, conduction).k_eff);
+}
+
+TEST(KeffRadiation, ParallelPlatesPastATinySphere) {
+  // A sphere of 1e-3 of the gap, radiation only: the walls see each other (F = 1 less the
+  // sphere's shadow, ~1e-6) and exchange σ (T_h⁴ − T_c⁴) A / (2/ε_w − 1), grey parallel plates.
+  // Both models give it: the pair model's wall link is that formula, the radiosity model's walls
+  // are two radiosity nodes.
+  bed::Bed b;
+  const double gap = 1e-2, r = 1e-3 * gap;
+  b.add(gap / 2, gap / 2, gap / 2, r);
+  b.domain.upper = {gap, gap, gap};
+  for (const th::RadiationModel model : {th::RadiationModel::pair, th::RadiationModel::radiosity}) {
+    th::KeffScene s = radiation_only(900, 500);
+    s.radiation_model = model;
+    s.wall_emissivity = 0.6;
+    s.rays = 200;
+    const th::KeffResult res = th::solve_keff(b, s);
+    const double plates = th::kStefanBoltzmann * (std::pow(900.0, 4) - std::pow(500.0, 4)) *
+                          gap * gap / (2 / 0.6 - 1);
+    // The shadow and the sphere's own path are O((r/gap)²) = 1e-6 of the flow; the wall-to-wall
+    // F is counted from 1e6 rays per wall, nearly all of which cross (binomial error ~0).
+    EXPECT_NEAR(res.heat_flow_hot, plates, 1e-4 * plates);
+    EXPECT_NEAR(res.heat_flow_cold, res.heat_flow_hot, 1e-8 * plates);
+  }
+}
+
+TEST(KeffRadiation, RadiosityModelLetsARadiationOnlySphereIgnoreItsEmissivity) {
+  // A sphere that carries heat by radiation alone has no net exchange of its own: in the grey
+  // enclosure its radiosity equals its blackbody power and its surface resistance carries
+  // nothing, so the heat it passes between black walls is σ (T_h⁴ − T_c⁴) / (1/S_h + 1/S_c)
+  // whatever its ε (a re-radiating surface). SPEC's pair formula instead puts (1−ε)/(εA) in
+  // each of its two links, and its flow falls with ε.
+  bed::Bed b;
+  b.add(2 * kR, 2 * kR, 1.7 * kR, kR);
+  b.domain.upper = {4 * kR, 4 * kR, 3 * kR};
+  th::KeffScene s = radiation_only(900, 600);
+  s.wall_emissivity = 1;
+  s.radiation_model = th::RadiationModel::radiosity;
+  const auto flow = [&](double eps, th::RadiationModel model) {
+    th::KeffScene t = s;
+    t.emissivity = eps;
+    t.radiation_model = model;
+    return th::solve_keff(b, t).heat_flow_hot;
+  };
+  const double black = flow(1, th::RadiationModel::radiosity);
+  // Same rays, same exchange areas: the grey sphere's radiosity node removes its surface
+  // resistance from the path exactly, to Newton's 1e-10.
+  EXPECT_NEAR(flow(0.3, th::RadiationModel::radiosity), black, 1e-9 * black);
+  EXPECT_NEAR(flow(1, th::RadiationModel::pair), black, 1e-12 * black);  // black: one network
+  EXPECT_LT(flow(0.3, th::RadiationModel::pair), 0.9 * black);
+}
+
+TEST(KeffRadiation, RadiosityNetworkOnABedConservesEnergy) {
+  const bed::Bed b = loose_lattice(4, 5);
+  th::KeffScene s = radiation_only(1300, 1100);
+  s.radiation_model = th::RadiationModel::radiosity;
+  s.emissivity = 0.3;
+  s.wall_emissivity = 0.5;
+  const th::KeffNetwork net = th::build_keff_network(b, s);
+  EXPECT_EQ(net.node_count, 2 * b.n() + 2);  // a radiosity node per sphere and per wall
+  const th::KeffResult r = th::solve_keff(b, s, net);
+  ASSERT_EQ(r.temperature.size(), b.n());
+  EXPECT_NEAR(r.heat_flow_hot, r.heat_flow_cold, 1e-8 * r.heat_flow_hot);  // the bound
+  EXPECT_LE(r.residual, s.newton_tolerance);
+  for (const double t : r.temperature) {
+    EXPECT_GT(t, 1100);
+    EXPECT_LT(t, 1300);
+  }
+  // With black walls and no conduction every sphere's net exchange is zero, so its radiosity
+  // is its blackbody power and the grey network is the black one (as for the single sphere
+  // above); the pair formula's per-link surface resistances lower the flow instead.
+  s.wall_emissivity = 1;
+  th::KeffScene black = s, pair = s;
+  black.emissivity = 1;
+  pair.radiation_model = th::RadiationModel::pair;
+  const double k_black = th::solve_keff(b, black).k_eff;
+  EXPECT_NEAR(th::solve_keff(b, s).k_eff, k_black, 1e-8 * k_black);  // Newton's 1e-10, summed
+  EXPECT_LT(th::solve_keff(b, pair).k_eff, 0.9 * k_black);
 }

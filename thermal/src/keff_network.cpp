@@ -39,6 +39,7 @@ KeffNetwork build_keff_network(const bed::Bed& bed, const KeffScene& scene,
   check(bed, scene.axis);
   const auto a = static_cast<std::size_t>(scene.axis);
   KeffNetwork net;
+  net.node_count = bed.n();
   net.height = bed.domain.length(scene.axis);
   net.wall_area = bed.domain.length(static_cast<int>((a + 1) % 3)) *
                   bed.domain.length(static_cast<int>((a + 2) % 3));
@@ -81,7 +82,7 @@ KeffNetwork build_keff_network(const bed::Bed& bed, const KeffScene& scene,
   if (scene.radiation_path) {
     const ViewFactors vf = view_factors(bed, {scene.rays, scene.seed, scene.axis, progress});
     net.lost_rays = vf.lost_rays;
-    for (const KeffLink& l : radiation_links(bed, scene, vf)) net.links.push_back(l);
+    add_radiation_links(bed, scene, vf, net);
   }
   return net;
 }

@@ -3,46 +3,108 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace powderbed::thermal {
+namespace {
 
-std::vector<KeffLink> radiation_links(const bed::Bed& bed, const KeffScene& scene,
-                                      const ViewFactors& vf) {
+// A pair's exchange area S_ij = (A_i F_ij + A_j F_ji) / 2, and each particle's with the walls.
+struct Exchange {
+  std::uint32_t a, b;  // a < b: particles; or a particle and kHotWall / kColdWall
+  double area;         // m²
+};
+
+std::vector<Exchange> exchange_areas(const bed::Bed& bed, const ViewFactors& vf) {
+  const auto area = [&](std::uint32_t p) {
+    return 4 * std::numbers::pi * bed.radius[p] * bed.radius[p];
+  };
+  std::vector<Exchange> walls, halves;
+  for (const ViewFactorEntry& e : vf.entries) {
+    const double s = area(e.i) * e.f;
+    if (e.j == kHotWall || e.j == kColdWall)
+      walls.push_back({e.i, e.j, s});
+    else if (e.j != e.i)
+      halves.push_back({std::min(e.i, e.j), std::max(e.i, e.j), s});
+  }
+  std::sort(halves.begin(), halves.end(), [](const Exchange& x, const Exchange& y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  });
+  std::vector<Exchange> out = std::move(walls);
+  for (std::size_t k = 0; k < halves.size();) {
+    double sum = halves[k].area;
+    std::size_t next = k + 1;
+    if (next < halves.size() && halves[next].a == halves[k].a && halves[next].b == halves[k].b)
+      sum += halves[next++].area;
+    // A pair seen from one side only has A F = 0 from the other: the mean is half the sum.
+    out.push_back({halves[k].a, halves[k].b, sum / 2});
+    k = next;
+  }
+  return out;
+}
+
+void add_pair_links(const bed::Bed& bed, const KeffScene& scene,
+                    const std::vector<Exchange>& exchanges, double wall_area, double f_wall,
+                    KeffNetwork& net) {
   const auto area = [&](std::uint32_t p) {
     return 4 * std::numbers::pi * bed.radius[p] * bed.radius[p];
   };
   const double eps = scene.emissivity, eps_w = scene.wall_emissivity;
-  std::vector<KeffLink> links;
-  // Pair halves keyed by (min, max): A_i F_ij from each side.
-  struct Half {
-    std::uint32_t a, b;
-    double exchange;
-  };
-  std::vector<Half> halves;
-  for (const ViewFactorEntry& e : vf.entries) {
-    const double exchange = area(e.i) * e.f;
-    if (e.j == kHotWall || e.j == kColdWall)
-      links.push_back(
-          {e.i, e.j, grey_exchange_area(eps, area(e.i), exchange, eps_w, area(e.i)),
-           HeatPath::radiation});
-    else if (e.j != e.i)
-      halves.push_back({std::min(e.i, e.j), std::max(e.i, e.j), exchange});
+  for (const Exchange& x : exchanges) {
+    const bool wall = x.b == kHotWall || x.b == kColdWall;
+    const double g = wall ? grey_exchange_area(eps, area(x.a), x.area, eps_w, area(x.a))
+                          : grey_exchange_area(eps, area(x.a), x.area, eps, area(x.b));
+    net.links.push_back({x.a, x.b, g, HeatPath::radiation});
   }
-  std::sort(halves.begin(), halves.end(), [](const Half& x, const Half& y) {
-    return x.a != y.a ? x.a < y.a : x.b < y.b;
-  });
-  for (std::size_t k = 0; k < halves.size();) {
-    double sum = halves[k].exchange;
-    std::size_t next = k + 1;
-    if (next < halves.size() && halves[next].a == halves[k].a && halves[next].b == halves[k].b)
-      sum += halves[next++].exchange;
-    // A pair seen from one side only has A F = 0 from the other: the mean is half the sum.
-    const std::uint32_t a = halves[k].a, b = halves[k].b;
-    links.push_back(
-        {a, b, grey_exchange_area(eps, area(a), sum / 2, eps, area(b)), HeatPath::radiation});
-    k = next;
+  if (f_wall > 0)
+    net.wall_exchange =
+        grey_exchange_area(eps_w, wall_area, wall_area * f_wall, eps_w, wall_area);
+}
+
+void add_radiosity_links(const bed::Bed& bed, const KeffScene& scene,
+                         const std::vector<Exchange>& exchanges, double wall_area, double f_wall,
+                         KeffNetwork& net) {
+  const std::size_t n = bed.n();
+  const double eps = scene.emissivity, eps_w = scene.wall_emissivity;
+  // Radiosity node of each particle (itself when black) and of each wall.
+  const auto next_node = [&] { return static_cast<std::uint32_t>(net.node_count++); };
+  std::vector<std::uint32_t> j_node(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    const auto i = static_cast<std::uint32_t>(p);
+    j_node[p] = i;
+    if (eps == 1) continue;
+    j_node[p] = next_node();
+    const double a = 4 * std::numbers::pi * bed.radius[p] * bed.radius[p];
+    net.links.push_back({j_node[p], i, eps * a / (1 - eps), HeatPath::radiation});
   }
-  return links;
+  std::uint32_t j_hot = kHotWall, j_cold = kColdWall;
+  if (eps_w < 1) {
+    j_hot = next_node();
+    j_cold = next_node();
+    const double g = eps_w * wall_area / (1 - eps_w);
+    net.links.push_back({j_hot, kHotWall, g, HeatPath::radiation});
+    net.links.push_back({j_cold, kColdWall, g, HeatPath::radiation});
+  }
+  for (const Exchange& x : exchanges) {
+    const std::uint32_t other =
+        x.b == kHotWall ? j_hot : x.b == kColdWall ? j_cold : j_node[x.b];
+    net.links.push_back({j_node[x.a], other, x.area, HeatPath::radiation});
+  }
+  if (f_wall <= 0) return;
+  if (eps_w < 1)
+    net.links.push_back({j_hot, j_cold, wall_area * f_wall, HeatPath::radiation});
+  else
+    net.wall_exchange = wall_area * f_wall;  // black walls: a link between the fixed walls
+}
+
+}  // namespace
+
+void add_radiation_links(const bed::Bed& bed, const KeffScene& scene, const ViewFactors& vf,
+                         KeffNetwork& net) {
+  const std::vector<Exchange> exchanges = exchange_areas(bed, vf);
+  if (scene.radiation_model == RadiationModel::pair)
+    add_pair_links(bed, scene, exchanges, net.wall_area, vf.wall_to_wall, net);
+  else
+    add_radiosity_links(bed, scene, exchanges, net.wall_area, vf.wall_to_wall, net);
 }
 
 }  // namespace powderbed::thermal

@@ -17,6 +17,7 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -38,7 +39,7 @@ constexpr int kMaxNewton = 50, kMaxHalvings = 30;
 // Networks below this many unknowns use the Lower-only solver, whose product is serial.
 constexpr std::ptrdiff_t kParallelUnknowns = 1 << 16;
 
-// Union–find over the particles plus two wall nodes (n: hot, n + 1: cold).
+// Union–find over the nodes plus the two walls (nodes: hot, nodes + 1: cold).
 class Components {
  public:
   explicit Components(std::size_t count) : parent_(count) {
@@ -54,8 +55,8 @@ class Components {
   std::vector<std::size_t> parent_;
 };
 
-std::size_t node(std::uint32_t j, std::size_t n) {
-  return j == kHotWall ? n : j == kColdWall ? n + 1 : j;
+std::size_t node(std::uint32_t j, std::size_t nodes) {
+  return j == kHotWall ? nodes : j == kColdWall ? nodes + 1 : j;
 }
 
 bool is_wall(std::uint32_t j) { return j == kHotWall || j == kColdWall; }
@@ -156,7 +157,7 @@ Eigen::VectorXd conjugate_gradients(const Matrix& matrix, const Eigen::VectorXd&
 
 // The linear start: conduction links as they are, radiation links by their secant conductance;
 // returns the temperatures and adds the CG iterations to `iterations`.
-std::vector<double> linear_solve(const State& s, std::ptrdiff_t count, std::size_t n,
+std::vector<double> linear_solve(const State& s, std::ptrdiff_t count, std::size_t nodes,
                                  std::size_t& iterations) {
   const double th = s.t_hot, tc = s.t_cold;
   const double secant = kStefanBoltzmann * (th * th + tc * tc) * (th + tc);
@@ -183,8 +184,8 @@ std::vector<double> linear_solve(const State& s, std::ptrdiff_t count, std::size
       count >= kParallelUnknowns
           ? conjugate_gradients<Eigen::Lower | Eigen::Upper>(matrix, rhs, iterations)
           : conjugate_gradients<Eigen::Lower>(matrix, rhs, iterations);
-  std::vector<double> t(n, (th + tc) / 2);
-  for (std::size_t p = 0; p < n; ++p)
+  std::vector<double> t(nodes, (th + tc) / 2);
+  for (std::size_t p = 0; p < nodes; ++p)
     if (s.unknown[p] >= 0) t[p] = tc + (th - tc) * theta[s.unknown[p]];
   return t;
 }
@@ -242,15 +243,15 @@ KeffResult solve_keff(const bed::Bed& bed, const KeffScene& scene) {
 }
 
 KeffResult solve_keff(const bed::Bed& bed, const KeffScene& scene, const KeffNetwork& network) {
-  const std::size_t n = bed.n();
+  const std::size_t n = bed.n(), nodes = std::max(n, network.node_count);
   const double t_hot = scene.hot_temperature, t_cold = scene.cold_temperature;
   KeffResult r;
   r.links = network.links.size();
   r.lost_rays = network.lost_rays;
-  Components comp(n + 2);
+  Components comp(nodes + 2);
   bool touches_hot = false, touches_cold = false;
   for (const KeffLink& l : network.links) {
-    comp.join(l.i, node(l.j, n));
+    comp.join(l.i, node(l.j, nodes));
     touches_hot |= l.j == kHotWall;
     touches_cold |= l.j == kColdWall;
     (l.path == HeatPath::contact ? r.contact_links
@@ -265,20 +266,20 @@ KeffResult solve_keff(const bed::Bed& bed, const KeffScene& scene, const KeffNet
                      "seeing it)");
   }
 
-  // Unknowns: particles connected to a wall; the rest are rattlers.
-  const std::size_t hot_root = comp.find(n), cold_root = comp.find(n + 1);
-  std::vector<std::ptrdiff_t> unknown(n, -1);
+  // Unknowns: nodes connected to a wall; the particles among the rest are rattlers.
+  const std::size_t hot_root = comp.find(nodes), cold_root = comp.find(nodes + 1);
+  std::vector<std::ptrdiff_t> unknown(nodes, -1);
   std::ptrdiff_t count = 0;
-  for (std::size_t p = 0; p < n; ++p) {
+  for (std::size_t p = 0; p < nodes; ++p) {
     const std::size_t root = comp.find(p);
     if (root == hot_root || root == cold_root)
       unknown[p] = count++;
-    else
+    else if (p < n)
       r.rattlers.push_back(static_cast<std::uint32_t>(p));
   }
 
   const State state{network, unknown, t_hot, t_cold};
-  r.temperature = linear_solve(state, count, n, r.solver_iterations);
+  r.temperature = linear_solve(state, count, nodes, r.solver_iterations);
   if (state.nonlinear())
     newton(state, count, scene.newton_tolerance, r.temperature, r);
   else
@@ -293,6 +294,13 @@ KeffResult solve_keff(const bed::Bed& bed, const KeffScene& scene, const KeffNet
     dissipation[static_cast<int>(l.path)] += q * (state.temperature(r.temperature, l.j) -
                                                   r.temperature[l.i]);
   }
+  // Wall to wall through the gaps: the same flow leaves the hot wall and enters the cold one.
+  const double direct = kStefanBoltzmann * network.wall_exchange *
+                        (t_hot * t_hot * t_hot * t_hot - t_cold * t_cold * t_cold * t_cold);
+  r.heat_flow_hot += direct;
+  r.heat_flow_cold += direct;
+  dissipation[static_cast<int>(HeatPath::radiation)] += direct * (t_hot - t_cold);
+  r.temperature.resize(n);  // the radiosity nodes' τ are not particle temperatures
   const double total = dissipation[0] + dissipation[1] + dissipation[2];
   if (total > 0) {
     r.share_contact = dissipation[0] / total;

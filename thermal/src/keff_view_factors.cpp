@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "powderbed/bed/errors.hpp"
 
@@ -194,6 +195,39 @@ std::uint32_t trace(const bed::Bed& bed, const Grid& grid, int axis, std::uint32
   return kNone;
 }
 
+// F between the walls (see the header); returns the rays lost in the mirrors. Each wall draws
+// from the streams of particle indices n and n + 1, after the particles'.
+std::size_t wall_rays(const bed::Bed& bed, const Grid& grid, const ViewFactorParams& params,
+                      double& wall_to_wall) {
+  const auto a = static_cast<std::size_t>(params.axis);
+  const std::size_t u = (a + 1) % 3, v = (a + 2) % 3;
+  double mean_radius = 0;
+  for (const double r : bed.radius) mean_radius += r / static_cast<double>(bed.n());
+  const double wall_area = bed.domain.length(static_cast<int>(u)) *
+                           bed.domain.length(static_cast<int>(v));
+  const double spheres = std::ceil(wall_area / (4 * std::numbers::pi * mean_radius * mean_radius));
+  const auto per_wall = static_cast<std::size_t>(
+      std::min(static_cast<double>(params.rays) * spheres, kMaxWallRays));
+  std::size_t lost = 0, crossed = 0;
+  for (const bool hot : {true, false}) {
+    Stream rng(params.seed, bed.n() + (hot ? 0 : 1));
+    Vec normal = {0, 0, 0};
+    normal[a] = hot ? -1 : 1;  // into the box
+    const std::uint32_t other = hot ? kColdWall : kHotWall;
+    for (std::size_t ray = 0; ray < per_wall; ++ray) {
+      Vec o;
+      o[a] = hot ? bed.domain.upper[a] : bed.domain.lower[a];
+      o[u] = bed.domain.lower[u] + rng.uniform() * bed.domain.length(static_cast<int>(u));
+      o[v] = bed.domain.lower[v] + rng.uniform() * bed.domain.length(static_cast<int>(v));
+      const std::uint32_t j = trace(bed, grid, params.axis, kNone, o, cosine_direction(normal, rng));
+      lost += j == kNone;
+      crossed += j == other;
+    }
+  }
+  wall_to_wall = static_cast<double>(crossed) / static_cast<double>(2 * per_wall);
+  return lost;
+}
+
 }  // namespace
 
 ViewFactors view_factors(const bed::Bed& bed, const ViewFactorParams& params) {
@@ -256,7 +290,7 @@ ViewFactors view_factors(const bed::Bed& bed, const ViewFactorParams& params) {
   }
   if (params.progress) params.progress(1.0);
 
-  vf.lost_rays = lost;
+  vf.lost_rays = lost + wall_rays(bed, grid, params, vf.wall_to_wall);
   std::size_t total = 0;
   for (const auto& row : rows) total += row.size();
   vf.entries.reserve(total);

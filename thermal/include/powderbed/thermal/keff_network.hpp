@@ -21,12 +21,16 @@ inline constexpr std::uint32_t kHotWall = std::numeric_limits<std::uint32_t>::ma
 inline constexpr std::uint32_t kColdWall = kHotWall - 1;
 
 struct KeffLink {
-  std::uint32_t i, j;
+  std::uint32_t i, j;  // i: a node (particle or radiosity node); j: a node or a wall
   double conductance;  // > 0: W/K for contact and gas, the exchange area G_r (m²) for radiation
   HeatPath path;
 };
 
 struct KeffNetwork {
+  // Nodes 0 … n−1 are the particles; the radiosity model adds its radiosity nodes after them
+  // (node_count > n), whose "temperature" τ = (J/σ)^(1/4) makes every radiosity link a
+  // radiation link σ G (τ_j⁴ − τ_i⁴).
+  std::size_t node_count = 0;
   std::vector<KeffLink> links;
   double wall_area = 0;  // A_wall: the domain's cross-section normal to the axis, m²
   double height = 0;     // H: the distance between the walls, m
@@ -35,6 +39,9 @@ struct KeffNetwork {
   // model) each carries G k_g(T̄) / gas_reference, T̄ the mean of its two ends' temperatures.
   double gas_reference = 0;
   bool gas_follows_temperature = false;
+  // Radiation straight from wall to wall through the bed's gaps, G_r (m²): a link between the
+  // two fixed walls, so it adds σ G_r (T_hot⁴ − T_cold⁴) to both wall flows.
+  double wall_exchange = 0;
 };
 
 // Stefan–Boltzmann constant, W/(m² K⁴).

@@ -13,6 +13,10 @@ namespace powderbed::thermal {
 // temperature of its two ends (the network is then nonlinear and solved by Newton).
 enum class GasModel { constant, air };
 
+// pair: SPEC.md §6's formula, one link per pair carrying both surface resistances; radiosity:
+// the grey enclosure's network, one radiosity node per surface (keff_radiation.hpp).
+enum class RadiationModel { pair, radiosity };
+
 struct KeffScene {
   // The hot wall is the upper face of `axis` (domain.upper), the cold wall the lower face.
   int axis = 2;
@@ -29,6 +33,7 @@ struct KeffScene {
   double emissivity = 0.5, wall_emissivity = 0.5;
   std::size_t rays = 1000;
   std::uint64_t seed = 1;
+  RadiationModel radiation_model = RadiationModel::pair;
   // Newton stops at ‖R‖ / ‖Σ|q|‖ ≤ newton_tolerance: each particle's net heat flow against the
   // flows it balances (keff_solve.cpp); docs/results/keff-accuracy.md measures what it costs.
   double newton_tolerance = 1e-10;
