@@ -289,6 +289,8 @@ int run(int argc, char** argv) {
           .value("stop_force", r.lid.stop_force)
           .value("max_force", r.lid.max_force)
           .value("hold_end_force", r.lid.hold_end_force)
+          .value("hold_end_z", r.lid.hold_end_z)
+          .value("hold_late_force", r.lid.hold_late_force)
           .value("stopped_by", r.lid.stopped_by)
           .value("released", s.lid.release)
           .value("release_time", r.lid.release_time)

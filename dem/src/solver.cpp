@@ -319,6 +319,8 @@ void check_inputs(const bed::Bed& bed, const RunSettings& s) {
 
 // Force (N) of the bed on the lid (the box's top face): the wall law of forces.hpp's wall_face,
 // summed over the particles the face tables list near it.
+constexpr double kServoGain = 10;
+
 double lid_force(const Context& c, bool damping) {
   double total = 0;
   const double top = c.params.box.upper[2];
@@ -552,13 +554,36 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
     c.params.top_velocity = 0;
     if (!stopped) {
       const auto hold_steps = static_cast<std::uint64_t>(std::ceil(lid.hold / c.dt - 1e-9));
+      double late_sum = 0;
+      std::uint64_t late = 0;
+      const std::uint64_t hold_start = step;
       const auto track = [&] {
         out.hold_end_force = record();
+        if (2 * (step - hold_start) >= hold_steps) late_sum += out.hold_end_force, ++late;
         return false;
       };
+      // Pressure held: the servo of LidSettings::hold, never below the floor limit; the face
+      // tables are rebuilt once it has moved skin/2 either way since the last build.
+      const double lowest = out.start_z - floor_travel;
+      const auto servo = [&] {
+        const double error = (out.target_force - out.hold_end_force) / out.target_force;
+        const double v = lid.speed * std::clamp(kServoGain * error, -1.0, 1.0);
+        box.upper[2] = std::clamp(box.upper[2] - v * c.dt, lowest, top);
+        c.params.top_velocity = -v;
+        if (std::abs(lid_at_build - box.upper[2]) > 0.5 * c.list.skin()) {
+          c.rebuild();
+          ++c.rebuilds;
+        }
+      };
       out.hold_end_force = out.stop_force;
-      advance(step + hold_steps, false, static_cast<double>(step + hold_steps) * c.dt, nothing,
-              track);
+      const double last = static_cast<double>(step + hold_steps) * c.dt;
+      if (out.target_force > 0)
+        advance(step + hold_steps, false, last, servo, track);
+      else
+        advance(step + hold_steps, false, last, nothing, track);
+      c.params.top_velocity = 0;
+      out.hold_end_z = box.upper[2];
+      out.hold_late_force = late ? late_sum / static_cast<double>(late) : out.hold_end_force;
     }
     if (!lid.release) {  // the lid stays: it is the bed's top face from now on
       bed.domain.upper[2] = box.upper[2];

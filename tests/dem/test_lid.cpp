@@ -110,9 +110,11 @@ TEST(Lid, StopsAtTheTargetForceAndDensifiesTheBed) {
   EXPECT_LE(r.lid.stop_force, 1.02 * target);
   EXPECT_GE(r.lid.max_force, r.lid.stop_force);
   EXPECT_LT(r.lid.stop_z, r.lid.start_z);
-  // Held in place the bed relaxes (creeps into the pores) and pushes less, never more than the
-  // largest force seen.
-  EXPECT_LE(r.lid.hold_end_force, r.lid.max_force);
+  // Held at the pressure: the servo follows the bed as it creeps into its pores. A proportional
+  // servo of gain 10 leaves a steady error of the creep rate over the gain (6 % on the [KE]
+  // beds); 10 % bounds the mean force over the second half of the hold.
+  EXPECT_NEAR(r.lid.hold_late_force, target, 0.1 * target);
+  EXPECT_LE(r.lid.hold_end_z, r.lid.stop_z + 1e-3 * kRadius);  // it follows, never backs off far
   EXPECT_TRUE(r.at_rest);
   // No particle escapes the box, none is above where the lid started.
   EXPECT_EQ(r.lost, 0u);
@@ -160,7 +162,7 @@ TEST(Lid, KeptLidBecomesTheBedsTopFace) {
   ASSERT_EQ(r.lid.stopped_by, "force");
   // The written bed ends at the lid, and the bed presses on it: centres below, some spheres
   // overlapping it (the hold ends with a force on the lid).
-  EXPECT_EQ(b.domain.upper[2], r.lid.stop_z);
+  EXPECT_EQ(b.domain.upper[2], r.lid.hold_end_z);
   std::size_t touching = 0;
   for (std::size_t i = 0; i < b.n(); ++i) {
     EXPECT_LT(b.z[i], b.domain.upper[2]) << i;

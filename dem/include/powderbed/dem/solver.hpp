@@ -34,7 +34,10 @@ struct LidSettings {
   double speed = 0.01;   // m/s
   double pressure = 0;   // Pa; 0: no force target
   double travel = 0;     // m; 0: no travel limit
-  double hold = 0;       // s
+  // s. With a pressure the lid holds it while held: it moves at up to `speed` against the force
+  // error, v = speed · clamp((F_target − F) / F_target, −1, 1) (a proportional servo, as a
+  // stress-controlled wall in DEM codes); with a travel only it holds its position.
+  double hold = 0;
   double relax = 0.1;    // s, the cap on the relaxation after the release
   // false: the lid stays where it stopped and the bed's domain ends there, so the bed is
   // written pressed against its top face (keff's hot wall touches it as [KE]'s lid does).
@@ -83,6 +86,8 @@ struct LidSummary {
   double stop_force = 0;       // N: force of the bed on the lid when it stopped
   double max_force = 0;        // N: largest force on the lid (lowering and hold)
   double hold_end_force = 0;   // N: force at the end of the hold
+  double hold_end_z = 0;       // m: where the lid is at the end of the hold
+  double hold_late_force = 0;  // N: mean force over the second half of the hold
   // How the lowering ended: "force" (target reached), "travel", or "floor" (the lid came within
   // one smallest diameter of the floor with neither reached).
   std::string stopped_by;
