@@ -201,7 +201,8 @@ int run(int argc, char** argv) {
   std::function<void(double)> progress;
   if (scene.radiation_path && ::isatty(STDERR_FILENO))
     progress = [&bar](double fraction) { bar.draw(fraction, "view factors"); };
-  const th::KeffResult r = th::solve_keff(bed, scene, th::build_keff_network(bed, scene, progress));
+  const th::KeffNetwork network = th::build_keff_network(bed, scene, progress);
+  const th::KeffResult r = th::solve_keff(bed, scene, network);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -243,6 +244,7 @@ int run(int argc, char** argv) {
                                       ? "radiosity"
                                       : "pair")
         .value("lost_rays", static_cast<std::uint64_t>(r.lost_rays))
+        .value("view_factor_error", network.reciprocity_error)
         .value("gas_conductivity", scene.gas_path ? scene.gas_conductivity_used() : 0.0)
         .value("t_hot", scene.hot_temperature)
         .value("t_cold", scene.cold_temperature)

@@ -302,3 +302,16 @@ TEST(KeffRadiation, RadiosityNetworkOnABedConservesEnergy) {
   EXPECT_NEAR(th::solve_keff(b, s).k_eff, k_black, 1e-8 * k_black);  // Newton's 1e-10, summed
   EXPECT_LT(th::solve_keff(b, pair).k_eff, 0.9 * k_black);
 }
+
+TEST(KeffRadiation, NetworkReportsTheViewFactorErrorShrinkingAsOneOverRootRays) {
+  const bed::Bed b = loose_lattice(3, 9);
+  th::KeffScene s = radiation_only(1000, 900);
+  s.rays = 1000;
+  const double coarse = th::build_keff_network(b, s).reciprocity_error;
+  s.rays = 10000;
+  const double fine = th::build_keff_network(b, s).reciprocity_error;
+  EXPECT_GT(coarse, 0);
+  // 10x the rays: √10 = 3.16 less error; 2-5 allows the error's own scatter over ~100 pairs.
+  EXPECT_GT(coarse / fine, 2.0);
+  EXPECT_LT(coarse / fine, 5.0);
+}

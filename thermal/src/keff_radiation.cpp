@@ -14,7 +14,8 @@ struct Exchange {
   double area;         // m²
 };
 
-std::vector<Exchange> exchange_areas(const bed::Bed& bed, const ViewFactors& vf) {
+std::vector<Exchange> exchange_areas(const bed::Bed& bed, const ViewFactors& vf,
+                                     double& reciprocity_error) {
   const auto area = [&](std::uint32_t p) {
     return 4 * std::numbers::pi * bed.radius[p] * bed.radius[p];
   };
@@ -30,15 +31,19 @@ std::vector<Exchange> exchange_areas(const bed::Bed& bed, const ViewFactors& vf)
     return x.a != y.a ? x.a < y.a : x.b < y.b;
   });
   std::vector<Exchange> out = std::move(walls);
+  double mismatch = 0, scale = 0;
   for (std::size_t k = 0; k < halves.size();) {
-    double sum = halves[k].area;
+    double sum = halves[k].area, other = 0;
     std::size_t next = k + 1;
     if (next < halves.size() && halves[next].a == halves[k].a && halves[next].b == halves[k].b)
-      sum += halves[next++].area;
+      sum += other = halves[next++].area;
+    mismatch += (sum - 2 * other) * (sum - 2 * other);  // (A_i F_ij − A_j F_ji)²
+    scale += sum * sum / 4;
     // A pair seen from one side only has A F = 0 from the other: the mean is half the sum.
     out.push_back({halves[k].a, halves[k].b, sum / 2});
     k = next;
   }
+  reciprocity_error = scale > 0 ? std::sqrt(mismatch / scale) : 0;
   return out;
 }
 
@@ -100,7 +105,7 @@ void add_radiosity_links(const bed::Bed& bed, const KeffScene& scene,
 
 void add_radiation_links(const bed::Bed& bed, const KeffScene& scene, const ViewFactors& vf,
                          KeffNetwork& net) {
-  const std::vector<Exchange> exchanges = exchange_areas(bed, vf);
+  const std::vector<Exchange> exchanges = exchange_areas(bed, vf, net.reciprocity_error);
   if (scene.radiation_model == RadiationModel::pair)
     add_pair_links(bed, scene, exchanges, net.wall_area, vf.wall_to_wall, net);
   else

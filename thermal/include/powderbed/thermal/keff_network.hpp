@@ -35,6 +35,10 @@ struct KeffNetwork {
   double wall_area = 0;  // A_wall: the domain's cross-section normal to the axis, m²
   double height = 0;     // H: the distance between the walls, m
   std::size_t lost_rays = 0;  // view-factor rays still bouncing in the side mirrors at the cap
+  // The view factors' Monte-Carlo error, measured by their reciprocity:
+  // √(Σ_pairs (A_i F_ij − A_j F_ji)²) / √(Σ_pairs S_ij²), S_ij the pair's mean exchange area
+  // (exactly 0 for exact F; shrinks as 1/√rays). 0 without radiation.
+  double reciprocity_error = 0;
   // Gas links were built with k_g = gas_reference (W/mK). With gas_follows_temperature (the air
   // model) each carries G k_g(T̄) / gas_reference, T̄ the mean of its two ends' temperatures.
   double gas_reference = 0;
