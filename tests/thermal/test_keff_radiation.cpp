@@ -82,6 +82,14 @@ std::pair<double, double> reciprocity_rms(const bed::Bed& b, const th::ViewFacto
   return {std::sqrt(raw / count), std::sqrt(scaled / count)};
 }
 
+// One sphere of radius kR in a 4 × 4 × 3 kR box, 1.3 kR below the hot wall, 1.7 kR above the cold.
+bed::Bed sphere_between_walls() {
+  bed::Bed b;
+  b.add(2 * kR, 2 * kR, 1.7 * kR, kR);
+  b.domain.upper = {4 * kR, 4 * kR, 3 * kR};
+  return b;
+}
+
 th::KeffScene radiation_only(double t_hot, double t_cold) {
   th::KeffScene s;
   s.contact_path = false;
@@ -159,9 +167,7 @@ TEST(KeffRadiation, OneSphereMatchesItsClosedForm) {
   // A sphere between the walls exchanges with each through a grey link: in steady state
   // Q = σ (T_h⁴ − T_c⁴) / (1/G_h + 1/G_c), and T⁴ = (G_h T_h⁴ + G_c T_c⁴) / (G_h + G_c); the
   // walls see each other past it through G_w, which adds σ G_w (T_h⁴ − T_c⁴) to both flows.
-  bed::Bed b;
-  b.add(2 * kR, 2 * kR, 1.7 * kR, kR);
-  b.domain.upper = {4 * kR, 4 * kR, 3 * kR};
+  const bed::Bed b = sphere_between_walls();
   th::KeffScene s = radiation_only(900, 600);
   s.emissivity = 0.7;
   s.wall_emissivity = 0.4;
@@ -255,9 +261,7 @@ TEST(KeffRadiation, RadiosityModelLetsARadiationOnlySphereIgnoreItsEmissivity) {
   // nothing, so the heat it passes between black walls is σ (T_h⁴ − T_c⁴) / (1/S_h + 1/S_c)
   // whatever its ε (a re-radiating surface). SPEC's pair formula instead puts (1−ε)/(εA) in
   // each of its two links, and its flow falls with ε.
-  bed::Bed b;
-  b.add(2 * kR, 2 * kR, 1.7 * kR, kR);
-  b.domain.upper = {4 * kR, 4 * kR, 3 * kR};
+  const bed::Bed b = sphere_between_walls();
   th::KeffScene s = radiation_only(900, 600);
   s.wall_emissivity = 1;
   s.radiation_model = th::RadiationModel::radiosity;
