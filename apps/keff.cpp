@@ -255,10 +255,10 @@ int run(int argc, char** argv) {
   } else {
     std::printf("keff: k_eff = %.6g W/mK; wall flows %.6g / %.6g W (hot / cold); contact %.1f %%, "
                 "gas %.1f %%, radiation %.1f %%; %zu rattlers of %zu particles; %zu Newton "
-                "steps; %.3g s\n",
+                "step%s; %.3g s\n",
                 r.k_eff, r.heat_flow_hot, r.heat_flow_cold, 100 * r.share_contact,
                 100 * r.share_gas, 100 * r.share_radiation, r.rattlers.size(), bed.n(),
-                r.newton_iterations, wall);
+                r.newton_iterations, r.newton_iterations == 1 ? "" : "s", wall);
     if (!profile_path.empty())
       std::printf("keff: temperature profile in %s\n", profile_path.c_str());
   }

@@ -28,7 +28,7 @@ TEMPERATURES = [300, 500, 700, 900, 1100, 1300, 1500]
 EMISSIVITIES = [0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 1.0]
 RATIOS = [1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1]  # k_g / k_s
 YOUNG = [1, 3, 10, 30, 100, 198, 300, 1000]  # GPa, the same bed read at E
-BED_SCALES = [100, 1000, 10000]  # young-scale of re-deposited beds
+BED_SCALES = [10, 100, 1000, 10000]  # young-scale of re-deposited beds
 HEIGHTS = [1, 2, 3, 5, 7, 10]  # H/D
 SPREADS = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5]  # sigma/D
 PRESSURES = [1e2, 1e3, 3e3, 1e4, 3e4, 1e5]  # lid pressure, Pa (the scene: 1e4)
@@ -604,16 +604,19 @@ def young_section(e_nom, s_bed, same, beds):
         f"({(lo[1]['k_eff'] / hi[1]['k_eff'] - 1) * 100:.0f} % more at the soft end), the contact "
         f"share from {lo[1]['share']['contact']:.2f} to {hi[1]['share']['contact']:.2f}: "
         "only the contact path depends on E (a ∝ E^(-1/3)) and it carries a minority of the heat "
-        "at 300 K. (b) With the Hertz correction the beds softened 1e2–1e4 times give "
+        f"at 300 K. (b) With the Hertz correction the beds softened {BED_SCALES[0]:g}–"
+        f"{BED_SCALES[-1]:g} times give "
         + ", ".join(f"{hz[s]:.4f}" for s in BED_SCALES)
         + " W/mK (S = " + ", ".join(f"{s:g}" for s in BED_SCALES) + "): far outside the seed "
         "spread, because the softening changes the packing itself: the lid holds the same "
         "pressure (its mean force over the hold's second half is "
         + ", ".join(f"{left[s] * 100:.0f} %" for s in BED_SCALES)
         + " of the target), but the softer beds let it travel further and pack denser (core "
-        "porosity and Z in the table). So the Hertz correction of the contact radius does not make k_eff "
-        "independent of S; the scenes' S = 1e3 is not converged in S (S = 1e2 gives "
-        f"{(hz[BED_SCALES[0]] / hz[1000] - 1) * 100:+.0f} %). Read with the geometric radius they "
+        "porosity and Z in the table). So the Hertz correction of the contact radius does not "
+        "make k_eff independent of S; against the scenes' S = 1e3, "
+        + ", ".join(f"S = {s:g} gives {(hz[s] / hz[1000] - 1) * 100:+.0f} %"
+                    for s in BED_SCALES if s < 1000)
+        + ". Read with the geometric radius they "
         "give "
         + ", ".join(f"{gm[s]:.4f}" for s in BED_SCALES)
         + " W/mK, i.e. " + ", ".join(f"{gm[s] / hz[s]:.1f}×" for s in BED_SCALES)
