@@ -542,6 +542,12 @@ def findings(rows, rad, ranges, gas, unc):
         "near-contact gap of small particles (the copper beds, D = 0.15–0.25 mm, sit lowest); "
         f"SPEC's both-lenses region gives {min(both_gain) * 100:.0f}–{max(both_gain) * 100:.0f} % "
         "more than the larger-lens region of the scenes (MFiX's).",
+        "- **Not converged in the DEM softening.** The beds are deposited at young-scale 1e3 "
+        "(lead 1e2) and read with the Hertz correction; re-deposited softer or stiffer, the "
+        "steel 1 mm bed's k_eff moves by more than all three uncertainty sources but "
+        "consolidation (docs/results/keff-parameters.md §3b: the packing under the lid "
+        "changes with S, not only the overlaps). The table's k_eff are those of beds made at "
+        "the scenes' S.",
         "- **Rays and Newton tolerance**: docs/results/keff-accuracy.md.",
         "",
     ]
