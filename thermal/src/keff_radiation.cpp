@@ -8,6 +8,11 @@
 namespace powderbed::thermal {
 namespace {
 
+// A = 4π r², the emitting surface of particle p.
+double area(const bed::Bed& bed, std::size_t p) {
+  return 4 * std::numbers::pi * bed.radius[p] * bed.radius[p];
+}
+
 // A pair's exchange area S_ij = (A_i F_ij + A_j F_ji) / 2, and each particle's with the walls.
 struct Exchange {
   std::uint32_t a, b;  // a < b: particles; or a particle and kHotWall / kColdWall
@@ -16,12 +21,9 @@ struct Exchange {
 
 std::vector<Exchange> exchange_areas(const bed::Bed& bed, const ViewFactors& vf,
                                      double& reciprocity_error) {
-  const auto area = [&](std::uint32_t p) {
-    return 4 * std::numbers::pi * bed.radius[p] * bed.radius[p];
-  };
   std::vector<Exchange> walls, halves;
   for (const ViewFactorEntry& e : vf.entries) {
-    const double s = area(e.i) * e.f;
+    const double s = area(bed, e.i) * e.f;
     if (e.j == kHotWall || e.j == kColdWall)
       walls.push_back({e.i, e.j, s});
     else if (e.j != e.i)
@@ -50,14 +52,12 @@ std::vector<Exchange> exchange_areas(const bed::Bed& bed, const ViewFactors& vf,
 void add_pair_links(const bed::Bed& bed, const KeffScene& scene,
                     const std::vector<Exchange>& exchanges, double wall_area, double f_wall,
                     KeffNetwork& net) {
-  const auto area = [&](std::uint32_t p) {
-    return 4 * std::numbers::pi * bed.radius[p] * bed.radius[p];
-  };
   const double eps = scene.emissivity, eps_w = scene.wall_emissivity;
   for (const Exchange& x : exchanges) {
     const bool wall = x.b == kHotWall || x.b == kColdWall;
-    const double g = wall ? grey_exchange_area(eps, area(x.a), x.area, eps_w, area(x.a))
-                          : grey_exchange_area(eps, area(x.a), x.area, eps, area(x.b));
+    const double a = area(bed, x.a);  // a wall's patch takes the particle's area (header)
+    const double g = wall ? grey_exchange_area(eps, a, x.area, eps_w, a)
+                          : grey_exchange_area(eps, a, x.area, eps, area(bed, x.b));
     net.links.push_back({x.a, x.b, g, HeatPath::radiation});
   }
   if (f_wall > 0)
@@ -78,8 +78,7 @@ void add_radiosity_links(const bed::Bed& bed, const KeffScene& scene,
     j_node[p] = i;
     if (eps == 1) continue;
     j_node[p] = next_node();
-    const double a = 4 * std::numbers::pi * bed.radius[p] * bed.radius[p];
-    net.links.push_back({j_node[p], i, eps * a / (1 - eps), HeatPath::radiation});
+    net.links.push_back({j_node[p], i, eps * area(bed, p) / (1 - eps), HeatPath::radiation});
   }
   std::uint32_t j_hot = kHotWall, j_cold = kColdWall;
   if (eps_w < 1) {
