@@ -51,6 +51,16 @@ std::string write_bed(const bed::Bed& b, const std::string& dir) {
 }
 
 // `--config <paper scene> --bed BED --out DIR/out.h5` on the small grid, plus `extra`.
+// A material table in `dir` with the columns of data/materials/316L.csv and these rows;
+// returns its path.
+std::string write_table(const std::string& dir, const std::string& rows) {
+  const std::string table = dir + "/table.csv";
+  std::ofstream(table) << "temperature_K,specific_heat_J_per_kgK,conductivity_W_per_mK,"
+                          "density_kg_per_m3,phase\n"
+                       << rows;
+  return table;
+}
+
 std::string args(const std::string& bed_path, const std::string& dir, const std::string& extra) {
   return "--config " + kScene + " --bed " + bed_path + kSmallGrid + " --out " + dir + "/out.h5 " +
          extra;
@@ -126,13 +136,11 @@ TEST(SinterCli, FloatingBedExits2) {
 
 TEST(SinterCli, MaterialTableNotIncreasingExits2) {
   const std::string dir = test::scratch_dir("sinter_table_order");
-  const std::string table = dir + "/table.csv";
-  std::ofstream(table) << "temperature_K,specific_heat_J_per_kgK,conductivity_W_per_mK,"
-                          "density_kg_per_m3,phase\n"
-                          "293,452,13.3,7952,solid\n"
-                          "700,565,19.0,7786,solid\n"
-                          "600,548,17.5,7831,solid\n"
-                          "1700,815,32.4,7300,liquid\n";
+  const std::string table = write_table(dir,
+                                        "293,452,13.3,7952,solid\n"
+                                        "700,565,19.0,7786,solid\n"
+                                        "600,548,17.5,7831,solid\n"
+                                        "1700,815,32.4,7300,liquid\n");
   const auto r = test::run_app("sinter", args(write_bed(small_bed(), dir), dir,
                                               "--material.table " + table));
   expect_refused(r, dir, {table + ":4", "does not increase"});
@@ -140,12 +148,10 @@ TEST(SinterCli, MaterialTableNotIncreasingExits2) {
 
 TEST(SinterCli, MaterialTableNegativeValueExits2) {
   const std::string dir = test::scratch_dir("sinter_table_sign");
-  const std::string table = dir + "/table.csv";
-  std::ofstream(table) << "temperature_K,specific_heat_J_per_kgK,conductivity_W_per_mK,"
-                          "density_kg_per_m3,phase\n"
-                          "293,452,13.3,7952,solid\n"
-                          "700,565,-19.0,7786,solid\n"
-                          "1700,815,32.4,7300,liquid\n";
+  const std::string table = write_table(dir,
+                                        "293,452,13.3,7952,solid\n"
+                                        "700,565,-19.0,7786,solid\n"
+                                        "1700,815,32.4,7300,liquid\n");
   const auto r = test::run_app("sinter", args(write_bed(small_bed(), dir), dir,
                                               "--material.table " + table));
   expect_refused(r, dir, {table + ":3", "conductivity", "-19.0"});

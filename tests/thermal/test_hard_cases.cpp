@@ -23,6 +23,14 @@ void expect_finite(const thermal::Sinter& s, const thermal::SinterResult& r) {
   EXPECT_TRUE(std::isfinite(r.energy.relative_error()));
 }
 
+// [GZ]'s hardest sweep point, 400 W at 0.4 m/s, over a 7 x 4 lattice bed.
+thermal::SinterScene vaporising_scene() {
+  auto scene = test::small_scene(thermal::kAllSinterEffects, {15, 9, 7}, 60e-6);
+  scene.power = 400;
+  scene.speed = 0.4;
+  return scene;
+}
+
 }  // namespace
 
 // Particle 0 rests on the floor alone; particle 1 floats 20 µm above the floor touching
@@ -83,9 +91,7 @@ TEST(HardCases, OneKelvinWindow) {
 // [GZ]'s hardest sweep point, 400 W at 0.4 m/s: particles pass T_v and leave the network.
 TEST(HardCases, VaporisationAt400WAndSlowScan) {
   const bed::Bed bed = test::lattice_bed(7, 4, 12.5e-6);
-  auto scene = test::small_scene(thermal::kAllSinterEffects, {15, 9, 7}, 60e-6);
-  scene.power = 400;
-  scene.speed = 0.4;
+  const auto scene = vaporising_scene();
   thermal::Sinter sinter(bed, scene, test::table_316l());
   const auto r = sinter.run(nullptr, 0, nullptr);
   expect_finite(sinter, r);
@@ -115,9 +121,7 @@ TEST(HardCases, VaporisationAt400WAndSlowScan) {
 // leaves must still solve and book correctly.
 TEST(HardCases, VaporisationWithTheImplicitIntegrator) {
   const bed::Bed bed = test::lattice_bed(7, 4, 12.5e-6);
-  auto scene = test::small_scene(thermal::kAllSinterEffects, {15, 9, 7}, 60e-6);
-  scene.power = 400;
-  scene.speed = 0.4;
+  auto scene = vaporising_scene();
   scene.integrator = thermal::Integrator::implicit_euler;
   thermal::Sinter sinter(bed, scene, test::table_316l());
   const auto r = sinter.run(nullptr, 0, nullptr);
