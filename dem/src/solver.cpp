@@ -317,10 +317,11 @@ void check_inputs(const bed::Bed& bed, const RunSettings& s) {
   }
 }
 
-// Force (N) of the bed on the lid (the box's top face): the wall law of forces.hpp's wall_face,
-// summed over the particles the face tables list near it.
+// The held lid's servo (LidSettings::hold): full speed once the force is 10 % off the target.
 constexpr double kServoGain = 10;
 
+// Force (N) of the bed on the lid (the box's top face): the wall law of forces.hpp's wall_face,
+// summed over the particles the face tables list near it.
 double lid_force(const Context& c, bool damping) {
   double total = 0;
   const double top = c.params.box.upper[2];
@@ -519,13 +520,16 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
     // every particle that can touch it listed.
     double lid_at_build = box.upper[2];
     std::uint64_t builds = c.rebuilds, lowered = 0;
-    const auto lower = [&] {
-      ++lowered;
-      box.upper[2] = out.start_z - std::min(travel, static_cast<double>(lowered) * per_step);
-      if (lid_at_build - box.upper[2] > 0.5 * c.list.skin()) {
+    const auto rebuild_if_lid_moved = [&] {
+      if (std::abs(lid_at_build - box.upper[2]) > 0.5 * c.list.skin()) {
         c.rebuild();
         ++c.rebuilds;
       }
+    };
+    const auto lower = [&] {
+      ++lowered;
+      box.upper[2] = out.start_z - std::min(travel, static_cast<double>(lowered) * per_step);
+      rebuild_if_lid_moved();
     };
     const auto record = [&] {
       if (c.rebuilds != builds) {  // here or in the step's own rebuild_if_needed
@@ -559,21 +563,21 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
       const std::uint64_t hold_start = step;
       const auto track = [&] {
         out.hold_end_force = record();
-        if (2 * (step - hold_start) >= hold_steps) late_sum += out.hold_end_force, ++late;
+        if (2 * (step - hold_start) >= hold_steps) {
+          late_sum += out.hold_end_force;
+          ++late;
+        }
         return false;
       };
-      // Pressure held: the servo of LidSettings::hold, never below the floor limit; the face
-      // tables are rebuilt once it has moved skin/2 either way since the last build.
+      // Pressure held: the servo of LidSettings::hold, never below the floor limit, never above
+      // where the lid started; the face tables follow it either way.
       const double lowest = out.start_z - floor_travel;
       const auto servo = [&] {
         const double error = (out.target_force - out.hold_end_force) / out.target_force;
         const double v = lid.speed * std::clamp(kServoGain * error, -1.0, 1.0);
         box.upper[2] = std::clamp(box.upper[2] - v * c.dt, lowest, top);
         c.params.top_velocity = -v;
-        if (std::abs(lid_at_build - box.upper[2]) > 0.5 * c.list.skin()) {
-          c.rebuild();
-          ++c.rebuilds;
-        }
+        rebuild_if_lid_moved();
       };
       out.hold_end_force = out.stop_force;
       const double last = static_cast<double>(step + hold_steps) * c.dt;
