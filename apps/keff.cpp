@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <iostream>
 #include <string>
@@ -218,7 +219,13 @@ int run(int argc, char** argv) {
     bed.provenance.stage = "keff";
     bed.provenance.scene = app::scene_text(vm);
     bed::write_bed_h5(bed, out);
-    bed::write_text_file(profile_path, profile_csv(profile, scene));
+    try {
+      bed::write_text_file(profile_path, profile_csv(profile, scene));
+    } catch (const InputError&) {
+      std::filesystem::remove(out);  // the run's files all or none
+      std::filesystem::remove(bed::xdmf_sidecar_path(out));
+      throw;
+    }
   }
   if (vm.count("json")) {
     bed::JsonWriter j;
