@@ -10,6 +10,7 @@
 #include "box.hpp"
 #include "neighbour_list.hpp"
 #include "powderbed/dem/hertz_normal.hpp"
+#include "powderbed/dem/linear_normal.hpp"
 
 namespace powderbed::dem {
 
@@ -90,16 +91,20 @@ Energy energy(const bed::Bed& bed, const Scene& scene, double young_scale) {
     }
     if (scene.has(kGravity)) e.gravitational += m * scene.gravity * (bed.z[i] - bed.domain.lower[2]);
   }
+  const bool linear = scene.law == ContactLaw::linear;
+  const LinearNormalParams spring{scene.stiffness, 0.0};
   if (scene.has(kHertz)) {
     const HertzNormalParams p = pair_params(scene, young_scale);
     for_each_overlap(bed, [&](std::size_t, std::size_t, double delta, double r_star) {
-      e.elastic += hertz_elastic_energy(p, r_star, delta);
+      e.elastic += linear ? linear_elastic_energy(spring, delta)
+                          : hertz_elastic_energy(p, r_star, delta);
     });
   }
   if (scene.has(kWalls)) {
     const HertzNormalParams p = wall_params(scene, young_scale);
     for_each_wall_overlap(bed, [&](std::size_t i, int, int, double delta) {
-      e.elastic += hertz_elastic_energy(p, bed.radius[i], delta);
+      e.elastic += linear ? linear_elastic_energy(spring, delta)
+                          : hertz_elastic_energy(p, bed.radius[i], delta);
     });
   }
   return e;
@@ -115,25 +120,30 @@ std::array<double, 6> wall_forces(const bed::Bed& bed, const Scene& scene, doubl
     const double rate = side == 0 ? -v[axis] : v[axis];
     const double m = mass_of(bed.radius[i], scene.material.density);
     f[static_cast<std::size_t>(2 * axis + side)] +=
-        hertz_damped_force(p, bed.radius[i], m, delta, rate);
+        scene.law == ContactLaw::linear
+            ? linear_damped_force(linear_pair_constants({scene.stiffness, p.damping_ratio}, m),
+                                  delta, rate)
+            : hertz_damped_force(p, bed.radius[i], m, delta, rate);
   });
   return f;
 }
 
 Overlap max_overlap(const bed::Bed& bed, const Scene& scene) {
   Overlap o;
-  const auto note = [&](double delta, double r) {
+  const auto note = [&](double delta, double r, double r_star, bool wall) {
     if (delta / r > o.relative) {
       o.relative = delta / r;
       o.absolute = delta;
+      o.reduced_radius = r_star;
+      o.wall = wall;
     }
   };
-  for_each_overlap(bed, [&](std::size_t i, std::size_t j, double delta, double) {
-    note(delta, std::min(bed.radius[i], bed.radius[j]));
+  for_each_overlap(bed, [&](std::size_t i, std::size_t j, double delta, double r_star) {
+    note(delta, std::min(bed.radius[i], bed.radius[j]), r_star, false);
   });
   if (scene.has(kWalls)) {
     for_each_wall_overlap(bed, [&](std::size_t i, int, int, double delta) {
-      note(delta, bed.radius[i]);
+      note(delta, bed.radius[i], bed.radius[i], true);
     });
   }
   return o;

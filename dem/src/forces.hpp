@@ -16,7 +16,7 @@
 #include "neighbour_list.hpp"
 #include "parallel.hpp"
 #include "powderbed/dem/gravity.hpp"
-#include "powderbed/dem/hertz_normal.hpp"
+#include "normal_law.hpp"
 #include "powderbed/dem/scene.hpp"
 #include "powderbed/dem/sliding_friction.hpp"
 #include "powderbed/dem/walls.hpp"
@@ -24,8 +24,8 @@
 namespace powderbed::dem::detail {
 
 struct ForceParams {
-  HertzNormalParams pair;   // particle–particle E*, zeta
-  HertzNormalParams wall;   // particle–wall E*, zeta
+  NormalLawParams pair;     // particle–particle: Hertz E*, zeta; linear k_n, zeta
+  NormalLawParams wall;     // particle–wall: the same with the wall's E*
   SlidingFrictionParams friction;
   GravityParams gravity;
   Box box;
@@ -78,8 +78,8 @@ struct ContactBuffer {
 // once per run (per-particle wall constants), and the pair forces of a parallel sum.
 struct ContactTables {
   std::vector<double> reach;                   // per pair: r_i + r_j
-  std::vector<HertzPairConstants> pair;        // per pair
-  std::vector<HertzPairConstants> wall;        // per particle (R* = r_i, m* = m_i)
+  std::vector<NormalConstants> pair;           // per pair
+  std::vector<NormalConstants> wall;           // per particle (R* = r_i, m* = m_i)
   // Per particle, bit 2 axis + side set when that face may be touched before the next build:
   // its gap at the build is below r + skin (a particle moves at most skin/2 between builds).
   std::vector<std::uint8_t> wall_faces;
@@ -89,14 +89,16 @@ struct ContactTables {
 };
 
 // Per-particle wall constants, once per run.
-inline void tabulate_wall_constants(ContactTables& t, const ForceArrays& a, const ForceParams& p) {
+template <class Law>
+void tabulate_wall_constants(ContactTables& t, const ForceArrays& a, const ForceParams& p) {
   t.wall.resize(a.n);
-  for (std::size_t i = 0; i < a.n; ++i) t.wall[i] = hertz_pair_constants(p.wall, a.radius[i], a.mass[i]);
+  for (std::size_t i = 0; i < a.n; ++i) t.wall[i] = Law::constants(p.wall, a.radius[i], a.mass[i]);
   t.wall_faces.assign(a.n, 0);
 }
 
 // Pair constants and wall faces after a neighbour-list build.
-inline void tabulate_contacts(ContactTables& t, const ForceArrays& a, const ForceParams& p,
+template <class Law>
+void tabulate_contacts(ContactTables& t, const ForceArrays& a, const ForceParams& p,
                               const NeighbourList& list, double skin, int threads) {
   const std::size_t pairs = list.pair_entries();
   t.reach.resize(pairs);
@@ -114,7 +116,7 @@ inline void tabulate_contacts(ContactTables& t, const ForceArrays& a, const Forc
       const std::uint32_t j = *it;
       const double reach = ri + a.radius[j];
       t.reach[k] = reach;
-      t.pair[k] = hertz_pair_constants(p.pair, ri * a.radius[j] / reach, mi * a.mass[j] / (mi + a.mass[j]));
+      t.pair[k] = Law::constants(p.pair, ri * a.radius[j] / reach, mi * a.mass[j] / (mi + a.mass[j]));
     }
     const double pos[3] = {a.x[i], a.y[i], a.z[i]};
     std::uint8_t faces = 0;
@@ -135,10 +137,10 @@ inline void tabulate_contacts(ContactTables& t, const ForceArrays& a, const Forc
   }
 }
 
-// Contact of particle i with face (Axis, Side) of the box (SPEC §4: the Hertz law with R* = r_i,
-// m* = m_i), added to f. Axis and side are compile-time, so position, velocity and force stay in
-// registers.
-template <unsigned E, int Axis, int Side>
+// Contact of particle i with face (Axis, Side) of the box (SPEC §4: the scene's law with
+// R* = r_i, m* = m_i), added to f. Axis and side are compile-time, so position, velocity and
+// force stay in registers.
+template <unsigned E, class Law, int Axis, int Side>
 inline void wall_face(const ForceParams& p, const ContactTables& t, std::size_t i,
                       const double pos[3], const double v[3], double radius, double f[3]) {
   // Lower face: overlap r - (x - lo), approach rate -v; upper: r - (hi - x), rate +v (the top
@@ -151,14 +153,14 @@ inline void wall_face(const ForceParams& p, const ContactTables& t, std::size_t 
   if constexpr ((E & kDamping) != 0) {
     double rate = -sign * v[Axis];
     if constexpr (Axis == 2 && Side == 1) rate -= p.top_velocity;
-    fn = hertz_damped_force(t.wall[i], delta, rate);
+    fn = Law::damped(t.wall[i].elastic, t.wall[i].damping, delta, rate);
   } else {
-    fn = hertz_elastic_force(t.wall[i], delta);
+    fn = Law::elastic(t.wall[i].elastic, delta);
   }
   f[Axis] += sign * fn;
   if constexpr ((E & kFriction) != 0) {
     double ft[3];
-    sliding_friction_force(p.friction, fn, Axis == 0 ? 0.0 : v[0], Axis == 1 ? 0.0 : v[1],
+    sliding_friction_force(p.friction, Law::normal_magnitude(fn), Axis == 0 ? 0.0 : v[0], Axis == 1 ? 0.0 : v[1],
                            Axis == 2 ? 0.0 : v[2], ft);
     f[0] += ft[0];
     f[1] += ft[1];
@@ -168,7 +170,7 @@ inline void wall_face(const ForceParams& p, const ContactTables& t, std::size_t 
 
 // Contacts with face (Axis, Side) of the particles of [begin, end) that may touch it, added to
 // their forces.
-template <unsigned E, int Axis, int Side>
+template <unsigned E, class Law, int Axis, int Side>
 void face_forces(const ForceArrays& a, const ForceParams& p, const ContactTables& t,
                  std::size_t begin, std::size_t end) {
   const std::vector<std::uint32_t>& near = t.face_particles[2 * Axis + Side];  // i ascending
@@ -179,7 +181,7 @@ void face_forces(const ForceArrays& a, const ForceParams& p, const ContactTables
     const double v[3] = {a.vx[i], a.vy[i], a.vz[i]};
     const double pos[3] = {a.x[i], a.y[i], a.z[i]};
     double f[3] = {a.fx[i], a.fy[i], a.fz[i]};
-    wall_face<E, Axis, Side>(p, t, i, pos, v, a.radius[i], f);
+    wall_face<E, Law, Axis, Side>(p, t, i, pos, v, a.radius[i], f);
     a.fx[i] = f[0];
     a.fy[i] = f[1];
     a.fz[i] = f[2];
@@ -252,11 +254,11 @@ void collect_contacts(const ForceArrays& a, const ForceParams& p, const ContactT
   }
 }
 
-// Pass 2: the force on the lower index i of each contact (j gets -F), SPEC §4: Hertz with the
-// zeta damping along n = (x_j - x_i) / d, sliding friction on the tangential velocity. A plain
+// Pass 2: the force on the lower index i of each contact (j gets -F), SPEC §4: the scene's law
+// (Hertz or linear) with the zeta damping along n = (x_j - x_i) / d, sliding friction on the tangential velocity. A plain
 // function of restrict-qualified arrays, which the compiler vectorises (it does not through the
 // buffer's members).
-template <unsigned E>
+template <unsigned E, class Law>
 void contact_kernel(std::size_t m, SlidingFrictionParams friction, const double* __restrict dx,
                     const double* __restrict dy, const double* __restrict dz,
                     const double* __restrict reach, const double* __restrict elastic,
@@ -272,14 +274,14 @@ void contact_kernel(std::size_t m, SlidingFrictionParams friction, const double*
     if constexpr ((E & (kDamping | kFriction)) != 0) rate = wx[c] * nx + wy[c] * ny + wz[c] * nz;
     double fn;
     if constexpr ((E & kDamping) != 0) {
-      fn = hertz_damped_force(HertzPairConstants{elastic[c], damping[c]}, delta, rate);
+      fn = Law::damped(elastic[c], damping[c], delta, rate);
     } else {
-      fn = hertz_elastic_force(HertzPairConstants{elastic[c], 0.0}, delta);
+      fn = Law::elastic(elastic[c], delta);
     }
     double f[3] = {-fn * nx, -fn * ny, -fn * nz};
     if constexpr ((E & kFriction) != 0) {
       double ft[3];
-      sliding_friction_force(friction, fn, wx[c] - rate * nx, wy[c] - rate * ny,
+      sliding_friction_force(friction, Law::normal_magnitude(fn), wx[c] - rate * nx, wy[c] - rate * ny,
                              wz[c] - rate * nz, ft);
       f[0] += ft[0];
       f[1] += ft[1];
@@ -291,9 +293,9 @@ void contact_kernel(std::size_t m, SlidingFrictionParams friction, const double*
   }
 }
 
-template <unsigned E>
+template <unsigned E, class Law>
 void contact_forces(const ForceParams& p, ContactBuffer& b) {
-  contact_kernel<E>(b.count, p.friction, b.dx.data(), b.dy.data(), b.dz.data(), b.reach.data(),
+  contact_kernel<E, Law>(b.count, p.friction, b.dx.data(), b.dy.data(), b.dz.data(), b.reach.data(),
                     b.elastic.data(), b.damping.data(), b.wx.data(), b.wy.data(), b.wz.data(),
                     b.fx.data(), b.fy.data(), b.fz.data());
 }
@@ -330,7 +332,7 @@ constexpr std::size_t kContactBlock = 256;
 
 // Forces on every particle (SPEC §4), summed in one fixed order for any thread count: body
 // forces, walls, then the particle's pairs in NeighbourList's incident order.
-template <unsigned E>
+template <unsigned E, class Law>
 void compute_forces(const ForceArrays& a, const ForceParams& p, const NeighbourList& list,
                     ContactTables& t, int threads) {
   // Body forces, then walls face by face, so every particle adds its faces in the same order;
@@ -338,12 +340,12 @@ void compute_forces(const ForceArrays& a, const ForceParams& p, const NeighbourL
   for_each_chunk(a.n, threads, [&](std::size_t begin, std::size_t end) {
     body_forces<E>(a, p, begin, end);
     if constexpr ((E & kWalls) != 0) {
-      face_forces<E, 0, 0>(a, p, t, begin, end);
-      face_forces<E, 0, 1>(a, p, t, begin, end);
-      face_forces<E, 1, 0>(a, p, t, begin, end);
-      face_forces<E, 1, 1>(a, p, t, begin, end);
-      face_forces<E, 2, 0>(a, p, t, begin, end);
-      face_forces<E, 2, 1>(a, p, t, begin, end);
+      face_forces<E, Law, 0, 0>(a, p, t, begin, end);
+      face_forces<E, Law, 0, 1>(a, p, t, begin, end);
+      face_forces<E, Law, 1, 0>(a, p, t, begin, end);
+      face_forces<E, Law, 1, 1>(a, p, t, begin, end);
+      face_forces<E, Law, 2, 0>(a, p, t, begin, end);
+      face_forces<E, Law, 2, 1>(a, p, t, begin, end);
     }
   });
   if constexpr ((E & kHertz) != 0) {
@@ -351,7 +353,7 @@ void compute_forces(const ForceArrays& a, const ForceParams& p, const NeighbourL
       ContactBuffer& b = t.buffers[0];
       for (std::size_t begin = 0; begin < a.n; begin += kContactBlock) {
         collect_contacts<E>(a, p, t, list, begin, std::min(a.n, begin + kContactBlock), b);
-        contact_forces<E>(p, b);
+        contact_forces<E, Law>(p, b);
         // In list order, i ascending: every particle meets its pairs in incident order.
         for (std::size_t c = 0; c < b.count; ++c) {
           const std::uint32_t i = b.i[c], j = b.j[c];
@@ -375,7 +377,7 @@ void compute_forces(const ForceArrays& a, const ForceParams& p, const NeighbourL
       std::fill(t.pfz.begin() + first, t.pfz.begin() + last, 0.0);
       for (std::size_t begin = chunk_begin; begin < chunk_end; begin += kContactBlock) {
         collect_contacts<E>(a, p, t, list, begin, std::min(chunk_end, begin + kContactBlock), b);
-        contact_forces<E>(p, b);
+        contact_forces<E, Law>(p, b);
         for (std::size_t c = 0; c < b.count; ++c) {
           t.pfx[b.k[c]] = b.fx[c];
           t.pfy[b.k[c]] = b.fy[c];

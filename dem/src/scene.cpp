@@ -18,6 +18,16 @@ const char* effect_name(unsigned effect) {
   }
 }
 
+ContactLaw parse_contact_law(const std::string& text, const std::string& option) {
+  if (text == "hertz") return ContactLaw::hertz;
+  if (text == "linear") return ContactLaw::linear;
+  throw InputError(option + ": '" + text + "' is not a contact law (accepted: hertz, linear)");
+}
+
+const char* contact_law_name(ContactLaw law) {
+  return law == ContactLaw::linear ? "linear" : "hertz";
+}
+
 void Scene::validate() const {
   const auto require = require_in_range;  // bed/errors.hpp
   const auto finite_positive = [](double v) { return std::isfinite(v) && v > 0; };
@@ -33,6 +43,10 @@ void Scene::validate() const {
           material.friction, "mu_d >= 0");
   require(finite_positive(wall.young), "wall.young", wall.young, "E > 0 Pa");
   require(wall.poisson >= 0 && wall.poisson < 0.5, "wall.poisson", wall.poisson, "0 <= nu < 0.5");
+  if (law == ContactLaw::linear) {
+    require(finite_positive(stiffness), "contact.stiffness", stiffness,
+            "k_n > 0 N/m with contact.law = linear");
+  }
   require(gravity >= 0 && std::isfinite(gravity), "gravity", gravity, "g >= 0 m/s^2");
   if (has(kDrag)) {
     require(finite_positive(fluid_viscosity), "fluid.viscosity", fluid_viscosity,

@@ -96,6 +96,9 @@ struct Context {
   std::vector<double> x0, y0, z0, u0, v0, w0, sx, sy, sz, su, sv, sw;
   NeighbourList list;
   ContactTables tables;
+  // The law's tabulation (tabulate_contacts<Law>), chosen once at start.
+  void (*tabulate)(ContactTables&, const ForceArrays&, const ForceParams&, const NeighbourList&,
+                   double, int) = nullptr;
   std::uint64_t rebuilds = 0;
 
   ParticleView view() const { return {bed.x.data(), bed.y.data(), bed.z.data(), bed.radius.data(), n}; }
@@ -106,7 +109,7 @@ struct Context {
   }
   void rebuild() {
     list.build(view(), threads, threads > 1);
-    detail::tabulate_contacts(tables, arrays(), params, list, list.skin(), threads);
+    tabulate(tables, arrays(), params, list, list.skin(), threads);
   }
   void rebuild_if_needed() {
     if (list.moved_more_than(view(), 0.5 * list.skin(), threads)) {
@@ -154,7 +157,7 @@ void drift(std::size_t begin, std::size_t end, double dt, const double* __restri
 }
 
 // Velocity Verlet (kick–drift–kick); velocity-dependent forces see the half-step velocity.
-template <unsigned E>
+template <unsigned E, class Law>
 void step_verlet(Context& c, std::uint64_t step) {
   const double dt = c.dt, half = 0.5 * c.dt;
   bed::Bed& b = c.bed;
@@ -177,14 +180,14 @@ void step_verlet(Context& c, std::uint64_t step) {
     }
   });
   c.rebuild_if_needed();
-  detail::compute_forces<E>(c.arrays(), c.params, c.list, c.tables, c.threads);
+  detail::compute_forces<E, Law>(c.arrays(), c.params, c.list, c.tables, c.threads);
   detail::for_each_chunk(c.n, c.threads, kick_all);
   check_finite(c, step);
 }
 
 // Classic RK4 on (x, v) ([GZ]); four force evaluations per step on the same neighbour list
 // (stage positions stay within one step's travel, well inside the skin).
-template <unsigned E>
+template <unsigned E, class Law>
 void step_rk4(Context& c, std::uint64_t step) {
   const double dt = c.dt;
   bed::Bed& b = c.bed;
@@ -200,7 +203,7 @@ void step_rk4(Context& c, std::uint64_t step) {
   });
   // Stage k: derivative (v, F/m) at the current stage state in the bed arrays; weights 1,2,2,1.
   for (int stage = 0; stage < 4; ++stage) {
-    detail::compute_forces<E>(c.arrays(), c.params, c.list, c.tables, c.threads);
+    detail::compute_forces<E, Law>(c.arrays(), c.params, c.list, c.tables, c.threads);
     const double weight = (stage == 0 || stage == 3) ? 1.0 : 2.0;
     const double next = stage < 2 ? 0.5 * dt : dt;  // offset of the next stage
     detail::for_each_particle(c.n, c.threads, [&](std::size_t i) {
@@ -243,26 +246,43 @@ void step_rk4(Context& c, std::uint64_t step) {
   check_finite(c, step);
 }
 
+// Force (N) of the bed on the lid (the box's top face): the wall law of forces.hpp's wall_face,
+// summed over the particles the face tables list near it.
+template <class Law>
+double lid_force(const Context& c, bool damping) {
+  double total = 0;
+  const double top = c.params.box.upper[2];
+  for (const std::uint32_t i : c.tables.face_particles[5]) {
+    const double delta = c.bed.radius[i] - (top - c.bed.z[i]);
+    if (delta <= 0) continue;
+    const detail::NormalConstants& k = c.tables.wall[i];
+    total += damping ? Law::damped(k.elastic, k.damping, delta, c.bed.vz[i] - c.params.top_velocity)
+                     : Law::elastic(k.elastic, delta);
+  }
+  return total;
+}
+
 using StepFn = void (*)(Context&, std::uint64_t);
 
 struct Steppers {
   StepFn step;
   void (*forces)(const ForceArrays&, const ForceParams&, const NeighbourList&, ContactTables&,
                  int);
+  double (*lid_force)(const Context&, bool);
 };
 
-template <unsigned E>
+template <unsigned E, class Law>
 Steppers steppers_for(Integrator integrator) {
-  return {integrator == Integrator::rk4 ? &step_rk4<E> : &step_verlet<E>,
-          &detail::compute_forces<E>};
+  return {integrator == Integrator::rk4 ? &step_rk4<E, Law> : &step_verlet<E, Law>,
+          &detail::compute_forces<E, Law>, &lid_force<Law>};
 }
 
-// The once-only dispatch: a table of the 64 effect sets, each a specialised loop.
-template <std::size_t... Masks>
+// The once-only dispatch: a table of the 64 effect sets, each a specialised loop, per law.
+template <class Law, std::size_t... Masks>
 Steppers dispatch(unsigned effects, Integrator integrator, std::index_sequence<Masks...>) {
   using Maker = Steppers (*)(Integrator);
   static constexpr std::array<Maker, sizeof...(Masks)> table{
-      &steppers_for<static_cast<unsigned>(Masks)>...};
+      &steppers_for<static_cast<unsigned>(Masks), Law>...};
   return table[effects](integrator);
 }
 
@@ -320,21 +340,6 @@ void check_inputs(const bed::Bed& bed, const RunSettings& s) {
 // The held lid's servo (LidSettings::hold): full speed once the force is 10 % off the target.
 constexpr double kServoGain = 10;
 
-// Force (N) of the bed on the lid (the box's top face): the wall law of forces.hpp's wall_face,
-// summed over the particles the face tables list near it.
-double lid_force(const Context& c, bool damping) {
-  double total = 0;
-  const double top = c.params.box.upper[2];
-  for (const std::uint32_t i : c.tables.face_particles[5]) {
-    const double delta = c.bed.radius[i] - (top - c.bed.z[i]);
-    if (delta <= 0) continue;
-    total += damping ? hertz_damped_force(c.tables.wall[i], delta,
-                                          c.bed.vz[i] - c.params.top_velocity)
-                     : hertz_elastic_force(c.tables.wall[i], delta);
-  }
-  return total;
-}
-
 void check_lid(const LidSettings& lid, const Scene& scene) {
   if (!lid.enabled) return;
   const auto require = require_in_range;  // bed/errors.hpp
@@ -362,6 +367,12 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   bed.validate("deposit input bed");
   check_inputs(bed, settings);
   check_lid(settings.lid, scene);
+  if (scene.law == ContactLaw::linear && settings.young_scale != 1) {
+    std::ostringstream msg;
+    msg << "--young-scale: " << settings.young_scale << " with contact.law = linear (accepted: "
+        << "1; the linear law's stiffness is contact.stiffness)";
+    throw InputError(msg.str());
+  }
   const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
 
   Context c(bed, settings);
@@ -389,9 +400,14 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   const Material& mat = scene.material;
   const double young = mat.young / settings.young_scale;
   const double wall_young = scene.wall.young / settings.young_scale;
-  c.params.pair = {effective_modulus(young, mat.poisson, young, mat.poisson), mat.damping};
-  c.params.wall = {effective_modulus(young, mat.poisson, wall_young, scene.wall.poisson),
-                   mat.damping};
+  c.params.pair.hertz = {effective_modulus(young, mat.poisson, young, mat.poisson), mat.damping};
+  c.params.wall.hertz = {effective_modulus(young, mat.poisson, wall_young, scene.wall.poisson),
+                         mat.damping};
+  c.params.pair.linear = {scene.stiffness, mat.damping};
+  c.params.wall.linear = {scene.stiffness, mat.damping};
+  const bool linear = scene.law == ContactLaw::linear;
+  c.tabulate = linear ? &detail::tabulate_contacts<detail::LinearLaw>
+                      : &detail::tabulate_contacts<detail::HertzLaw>;
   c.params.friction.coefficient = mat.friction;
   c.params.gravity.acceleration = scene.gravity;
   c.params.box = Box::from(bed.domain);
@@ -423,11 +439,17 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   }
   const double skin = settings.skin > 0 ? settings.skin : 0.2 * r_max;
   c.list.configure(c.params.box, r_max, skin, n);
-  detail::tabulate_wall_constants(c.tables, c.arrays(), c.params);
+  if (linear) {
+    detail::tabulate_wall_constants<detail::LinearLaw>(c.tables, c.arrays(), c.params);
+  } else {
+    detail::tabulate_wall_constants<detail::HertzLaw>(c.tables, c.arrays(), c.params);
+  }
   c.rebuild();
 
+  const unsigned effects = scene.effects & kAllEffects;
   const Steppers steppers =
-      dispatch(scene.effects & kAllEffects, settings.integrator, std::make_index_sequence<64>{});
+      linear ? dispatch<detail::LinearLaw>(effects, settings.integrator, std::make_index_sequence<64>{})
+             : dispatch<detail::HertzLaw>(effects, settings.integrator, std::make_index_sequence<64>{});
   steppers.forces(c.arrays(), c.params, c.list, c.tables, c.threads);  // Verlet needs F(t0)
 
   const double t_end = settings.t_end > 0 ? settings.t_end : 1.0;
@@ -536,7 +558,7 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
         builds = c.rebuilds;
         lid_at_build = box.upper[2];
       }
-      const double force = lid_force(c, damping);
+      const double force = steppers.lid_force(c, damping);
       out.max_force = std::max(out.max_force, force);
       return force;
     };
@@ -618,8 +640,22 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   const Overlap overlap = max_overlap(bed, scene);
   summary.max_overlap = overlap.relative;
   summary.max_overlap_m = overlap.absolute;
-  summary.max_overlap_full_stiffness =
-      overlap.relative * std::pow(settings.young_scale, -2.0 / 3.0);
+  if (scene.law == ContactLaw::linear) {
+    // The Hertz overlap at the materials' E* under the same force k_n delta:
+    // delta_h = (3 k_n delta / (4 E* sqrt(R*)))^{2/3} (the equivalence of [KE]).
+    const double e_star = overlap.wall ? c.params.wall.hertz.effective_modulus
+                                       : c.params.pair.hertz.effective_modulus;
+    const double full = overlap.absolute > 0
+                            ? std::pow(3 * scene.stiffness * overlap.absolute /
+                                           (4 * e_star * std::sqrt(overlap.reduced_radius)),
+                                       2.0 / 3.0)
+                            : 0.0;
+    summary.max_overlap_full_stiffness =
+        overlap.absolute > 0 ? overlap.relative * full / overlap.absolute : 0.0;
+  } else {
+    summary.max_overlap_full_stiffness =
+        overlap.relative * std::pow(settings.young_scale, -2.0 / 3.0);
+  }
   for (std::size_t i = 0; i < n; ++i) {
     const double p[3] = {bed.x[i], bed.y[i], bed.z[i]};
     for (int a = 0; a < 3; ++a) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/dem/linear_normal.hpp"
 #include "powderbed/dem/stokes_drag.hpp"
 
 namespace powderbed::dem {
@@ -14,6 +15,10 @@ namespace powderbed::dem {
 double rayleigh_time_step(double radius, double density, double young, double poisson) {
   const double shear = young / (2.0 * (1.0 + poisson));
   return std::numbers::pi * radius * std::sqrt(density / shear) / (0.1631 * poisson + 0.8766);
+}
+
+double linear_stable_time_step(const LinearNormalParams& p, double reduced_mass) {
+  return 1.0 / linear_natural_frequency(p, reduced_mass);
 }
 
 TimeStepBound time_step_bound(const bed::Bed& bed, const Scene& scene, double young_scale) {
@@ -26,7 +31,15 @@ TimeStepBound time_step_bound(const bed::Bed& bed, const Scene& scene, double yo
   const double r_min = *std::min_element(bed.radius.begin(), bed.radius.end());
   TimeStepBound bound;
   bound.stable = INFINITY;
-  if (scene.has(kHertz) || scene.has(kWalls)) {
+  if ((scene.has(kHertz) || scene.has(kWalls)) && scene.law == ContactLaw::linear) {
+    // The stiffest contact is a pair of the smallest particles (m* = m/2), or that particle on
+    // a wall (m* = m) when pairs are off; 1/omega_0 = t_c sqrt(1 - zeta^2) / pi.
+    const double mass =
+        4.0 / 3.0 * std::numbers::pi * r_min * r_min * r_min * scene.material.density;
+    const LinearNormalParams spring{scene.stiffness, scene.material.damping};
+    bound.stable = linear_stable_time_step(spring, scene.has(kHertz) ? mass / 2 : mass);
+    bound.limited_by = "contact";
+  } else if (scene.has(kHertz) || scene.has(kWalls)) {
     const Material& m = scene.material;
     double t = rayleigh_time_step(r_min, m.density, m.young / young_scale, m.poisson);
     if (scene.has(kWalls)) {

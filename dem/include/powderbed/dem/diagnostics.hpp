@@ -11,7 +11,7 @@ namespace powderbed::dem {
 struct Energy {
   double kinetic = 0;        // sum 1/2 m v^2
   double gravitational = 0;  // sum m g (z - z_floor), when gravity is on
-  double elastic = 0;        // Hertz contact energy of pairs (hertz on) and walls (walls on)
+  double elastic = 0;        // contact energy (the scene's law) of pairs (hertz on) and walls (walls on)
   double total() const { return kinetic + gravitational + elastic; }
 };
 Energy energy(const bed::Bed& bed, const Scene& scene, double young_scale = 1);
@@ -24,6 +24,8 @@ std::array<double, 6> wall_forces(const bed::Bed& bed, const Scene& scene, doubl
 struct Overlap {
   double relative = 0;  // largest overlap / smaller radius of the pair (radius for walls)
   double absolute = 0;  // m
+  double reduced_radius = 0;  // R* of that contact, m (r for a wall)
+  bool wall = false;          // whether it is a particle–wall contact
 };
 // Largest overlap among particle pairs and (walls on) particle–wall contacts.
 Overlap max_overlap(const bed::Bed& bed, const Scene& scene);

@@ -19,10 +19,18 @@ struct WallMaterial {
   double poisson = 0.26;
 };
 
+// The normal contact law of every particle–particle and particle–wall contact: hertz
+// (hertz_normal.hpp, E* from the materials) or linear (linear_normal.hpp, one stiffness k_n for
+// pairs and walls, as MFiX-DEM's default wall stiffness). Both take the damping ratio zeta.
+enum class ContactLaw { hertz, linear };
+// "hertz" | "linear"; throws InputError naming `option` otherwise.
+ContactLaw parse_contact_law(const std::string& text, const std::string& option = "contact.law");
+const char* contact_law_name(ContactLaw law);
+
 // The effects of DESIGN.md "Effects a scene calls for", one bit each.
 enum Effect : unsigned {
   kGravity = 1u << 0,
-  kHertz = 1u << 1,     // particle–particle Hertz contact
+  kHertz = 1u << 1,     // particle–particle contact (Scene::law: Hertz or linear)
   kDamping = 1u << 2,   // zeta damping of every Hertz contact (particle and wall)
   kFriction = 1u << 3,  // sliding friction of every Hertz contact (particle and wall)
   kDrag = 1u << 4,      // Stokes drag
@@ -37,6 +45,8 @@ const char* effect_name(unsigned effect);
 struct Scene {
   Material material;
   WallMaterial wall;
+  ContactLaw law = ContactLaw::hertz;
+  double stiffness = 0;  // k_n, N/m, of the linear law (pairs and walls)
   double fluid_viscosity = 2.1e-5;  // mu_f, Pa s (argon at 293 K, [GZ] Table 2)
   double gravity = 9.81;            // g, m/s^2
   unsigned effects = kAllEffects;
@@ -44,7 +54,8 @@ struct Scene {
   bool has(unsigned effect) const { return (effects & effect) != 0; }
   // Throws InputError (naming the scene field, the value and the accepted range) for
   // non-positive E, rho, viscosity (when drag is on); nu outside [0, 0.5); zeta outside [0, 1];
-  // negative mu_d or g; damping or friction switched on with neither hertz nor walls.
+  // negative mu_d or g; damping or friction switched on with neither hertz nor walls; the
+  // linear law with k_n <= 0.
   void validate() const;
 };
 

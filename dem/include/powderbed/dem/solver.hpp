@@ -56,7 +56,7 @@ struct RunSettings {
   Integrator integrator = Integrator::verlet;
   double dt = 0;                // s; 0 = TimeStepBound::recommended
   bool unsafe_dt = false;       // accept dt above TimeStepBound::stable
-  double young_scale = 1;       // E used = E / young_scale (particles and walls)
+  double young_scale = 1;       // E used = E / young_scale (particles and walls; Hertz law only)
   double t_end = 0;             // s; with until_rest the cap on simulated time (0: 1 s)
   bool until_rest = false;
   RestCriteria rest;
@@ -106,7 +106,8 @@ struct RunSummary {
   double max_overlap = 0;          // largest overlap / smaller radius (pairs and walls), at end
   double max_overlap_m = 0;        // the same overlap in m
   // What that overlap would be at full stiffness under the same force: Hertz force goes as
-  // E delta^{3/2}, so delta_full = delta_soft * young_scale^{-2/3}.
+  // E delta^{3/2}, so delta_full = delta_soft * young_scale^{-2/3}; with the linear law the
+  // Hertz overlap at the materials' E* under k_n delta.
   double max_overlap_full_stiffness = 0;
   std::size_t lost = 0;            // particles whose centre left the box (non-periodic axes)
   bool at_rest = false;
