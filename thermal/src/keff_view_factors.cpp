@@ -10,167 +10,22 @@
 #include <numbers>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/ray_trace.hpp"
 
 namespace powderbed::thermal {
 namespace {
 
-using Vec = std::array<double, 3>;
+using bed::cosine_direction;
+using bed::RandomStream;
+using bed::SphereGrid;
+using bed::unit_sphere;
+using Vec = bed::Vec3;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max() - 2;
-
-double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-// SplitMix64 (Steele, Lea & Flood 2014): a small generator whose output is the same on every
-// platform (std:: distributions are not), seeded per particle so threads do not matter.
-class Stream {
- public:
-  Stream(std::uint64_t seed, std::uint64_t particle)
-      : state_(seed * 0x9E3779B97F4A7C15ULL ^ (particle + 1) * 0xD1B54A32D192ED03ULL) {
-    next();
-  }
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }  // [0, 1)
-
- private:
-  std::uint64_t state_;
-};
-
-// Marsaglia (1972): a uniform point on the unit sphere from a uniform point of the unit disc.
-Vec unit_sphere(Stream& rng) {
-  for (;;) {
-    const double u = 2 * rng.uniform() - 1, v = 2 * rng.uniform() - 1, s = u * u + v * v;
-    if (s >= 1) continue;
-    const double w = 2 * std::sqrt(1 - s);
-    return {u * w, v * w, 1 - 2 * s};
-  }
-}
-
-// Cosine-weighted direction about the unit normal n: n plus a uniform unit vector, normalised,
-// is distributed as cos θ / π over the hemisphere (the point n + s lies on the unit sphere
-// tangent to the surface, whose projection gives Lambert's law).
-Vec cosine_direction(const Vec& n, Stream& rng) {
-  for (;;) {
-    const Vec s = unit_sphere(rng);
-    const Vec d = {n[0] + s[0], n[1] + s[1], n[2] + s[2]};
-    const double len = std::sqrt(dot(d, d));
-    if (len > 1e-9) return {d[0] / len, d[1] / len, d[2] / len};
-  }
-}
-
-// Uniform grid over the domain grown by r_max; each cell lists every sphere that may overlap it
-// (its bounding box does).
-class Grid {
- public:
-  Grid(const bed::Bed& bed, double r_max) : bed_(bed) {
-    const std::size_t n = bed.n();
-    double size = 2 * r_max;
-    for (int k = 0; k < 3; ++k) {
-      origin_[k] = bed.domain.lower[static_cast<std::size_t>(k)] - r_max;
-      span_[k] = bed.domain.length(k) + 2 * r_max;
-    }
-    // Coarsen a sparse bed so the grid holds at most ~8 cells per particle.
-    while (span_[0] / size * span_[1] / size * span_[2] / size > 8.0 * static_cast<double>(n) + 64)
-      size *= 1.5;
-    cell_ = size;
-    for (int k = 0; k < 3; ++k)
-      dims_[k] = std::max(1, static_cast<int>(std::ceil(span_[k] / cell_)));
-    std::vector<std::uint32_t> count(cells() + 1, 0);
-    const auto visit = [&](std::size_t p, auto&& f) {
-      const Vec c = {bed.x[p], bed.y[p], bed.z[p]};
-      int lo[3], hi[3];
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = index(k, c[static_cast<std::size_t>(k)] - bed.radius[p]);
-        hi[k] = index(k, c[static_cast<std::size_t>(k)] + bed.radius[p]);
-      }
-      for (int a = lo[0]; a <= hi[0]; ++a)
-        for (int b = lo[1]; b <= hi[1]; ++b)
-          for (int e = lo[2]; e <= hi[2]; ++e) f(flat(a, b, e));
-    };
-    for (std::size_t p = 0; p < n; ++p) visit(p, [&](std::size_t c) { ++count[c + 1]; });
-    for (std::size_t c = 0; c < cells(); ++c) count[c + 1] += count[c];
-    start_ = count;
-    items_.resize(start_.back());
-    for (std::size_t p = 0; p < n; ++p)
-      visit(p, [&](std::size_t c) { items_[count[c]++] = static_cast<std::uint32_t>(p); });
-  }
-
-  // Nearest sphere (other than `skip`) hit by o + t d with t < t_limit: {sphere, t}, or kNone.
-  std::pair<std::uint32_t, double> first_hit(const Vec& o, const Vec& d, std::uint32_t skip,
-                                             double t_limit) const {
-    int c[3], step[3];
-    double t_next[3], t_delta[3];
-    for (int k = 0; k < 3; ++k) {
-      const auto K = static_cast<std::size_t>(k);
-      c[k] = index(k, o[K]);
-      const double lo = origin_[k] + c[k] * cell_;
-      if (d[K] > 0) {
-        step[k] = 1, t_next[k] = (lo + cell_ - o[K]) / d[K], t_delta[k] = cell_ / d[K];
-      } else if (d[K] < 0) {
-        step[k] = -1, t_next[k] = (lo - o[K]) / d[K], t_delta[k] = -cell_ / d[K];
-      } else {
-        step[k] = 0, t_next[k] = kInf, t_delta[k] = kInf;
-      }
-    }
-    std::uint32_t best = kNone;
-    double best_t = t_limit;
-    for (;;) {
-      const std::size_t cell = flat(c[0], c[1], c[2]);
-      for (std::uint32_t q = start_[cell]; q < start_[cell + 1]; ++q) {
-        const std::uint32_t s = items_[q];
-        if (s == skip) continue;
-        const double t = sphere_hit(o, d, s);
-        if (t < best_t) best_t = t, best = s;
-      }
-      const int k = t_next[0] < t_next[1] ? (t_next[0] < t_next[2] ? 0 : 2)
-                                          : (t_next[1] < t_next[2] ? 1 : 2);
-      if (best_t <= t_next[k]) break;  // nothing in a later cell can be nearer
-      c[k] += step[k];
-      if (c[k] < 0 || c[k] >= dims_[k]) break;
-      t_next[k] += t_delta[k];
-    }
-    return {best, best_t};
-  }
-
- private:
-  std::size_t cells() const {
-    return static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(dims_[1]) *
-           static_cast<std::size_t>(dims_[2]);
-  }
-  int index(int k, double v) const {
-    return std::clamp(static_cast<int>(std::floor((v - origin_[k]) / cell_)), 0, dims_[k] - 1);
-  }
-  std::size_t flat(int a, int b, int e) const {
-    return (static_cast<std::size_t>(e) * static_cast<std::size_t>(dims_[1]) +
-            static_cast<std::size_t>(b)) * static_cast<std::size_t>(dims_[0]) +
-           static_cast<std::size_t>(a);
-  }
-  // Distance along the unit direction d to sphere s: 0 when o is inside it, kInf on a miss.
-  double sphere_hit(const Vec& o, const Vec& d, std::uint32_t s) const {
-    const Vec oc = {o[0] - bed_.x[s], o[1] - bed_.y[s], o[2] - bed_.z[s]};
-    const double r = bed_.radius[s];
-    const double c = dot(oc, oc) - r * r;
-    if (c < 0) return 0;
-    const double b = dot(oc, d);
-    if (b >= 0) return kInf;  // outside and moving away
-    const double disc = b * b - c;
-    if (disc < 0) return kInf;
-    return c / (-b + std::sqrt(disc));  // = -b - √disc without the cancellation
-  }
-
-  const bed::Bed& bed_;
-  double origin_[3], span_[3], cell_;
-  int dims_[3];
-  std::vector<std::uint32_t> start_, items_;
-};
+constexpr std::uint32_t kNone = SphereGrid::kNoSphere;
 
 // First thing a ray from particle p's surface point o in direction d hits: a sphere, a wall,
 // or kNone after kMaxReflections in the side mirrors.
-std::uint32_t trace(const bed::Bed& bed, const Grid& grid, int axis, std::uint32_t p, Vec o,
+std::uint32_t trace(const bed::Bed& bed, const SphereGrid& grid, int axis, std::uint32_t p, Vec o,
                     Vec d) {
   std::uint32_t skip = p;  // a convex sphere cannot see itself, except in a mirror
   for (int bounce = 0; bounce <= kMaxReflections; ++bounce) {
@@ -197,7 +52,7 @@ std::uint32_t trace(const bed::Bed& bed, const Grid& grid, int axis, std::uint32
 
 // F between the walls (see the header); returns the rays lost in the mirrors. Each wall draws
 // from the streams of particle indices n and n + 1, after the particles'.
-std::size_t wall_rays(const bed::Bed& bed, const Grid& grid, const ViewFactorParams& params,
+std::size_t wall_rays(const bed::Bed& bed, const SphereGrid& grid, const ViewFactorParams& params,
                       double& wall_to_wall) {
   const auto a = static_cast<std::size_t>(params.axis);
   const std::size_t u = (a + 1) % 3, v = (a + 2) % 3;
@@ -210,7 +65,7 @@ std::size_t wall_rays(const bed::Bed& bed, const Grid& grid, const ViewFactorPar
       std::min(static_cast<double>(params.rays) * spheres, kMaxWallRays));
   std::size_t lost = 0, crossed = 0;
   for (const bool hot : {true, false}) {
-    Stream rng(params.seed, bed.n() + (hot ? 0 : 1));
+    RandomStream rng(params.seed, bed.n() + (hot ? 0 : 1));
     Vec normal = {0, 0, 0};
     normal[a] = hot ? -1 : 1;  // into the box
     const std::uint32_t other = hot ? kColdWall : kHotWall;
@@ -239,7 +94,7 @@ ViewFactors view_factors(const bed::Bed& bed, const ViewFactorParams& params) {
   vf.rays = params.rays;
   const std::size_t n = bed.n();
   if (n == 0) return vf;
-  const Grid grid(bed, *std::max_element(bed.radius.begin(), bed.radius.end()));
+  const SphereGrid grid(bed);
   std::vector<std::vector<ViewFactorEntry>> rows(n);
   std::size_t lost = 0;
   const double per_ray = 1.0 / static_cast<double>(params.rays);
@@ -255,7 +110,7 @@ ViewFactors view_factors(const bed::Bed& bed, const ViewFactorParams& params) {
     std::vector<std::uint32_t> touched;
 #pragma omp for schedule(dynamic, 16)
     for (std::size_t p = 0; p < n; ++p) {
-      Stream rng(params.seed, p);
+      RandomStream rng(params.seed, p);
       const auto i = static_cast<std::uint32_t>(p);
       const Vec c = {bed.x[p], bed.y[p], bed.z[p]};
       for (std::size_t ray = 0; ray < params.rays; ++ray) {

@@ -17,9 +17,9 @@
 // area would, at most kMaxWallRays (the binomial error of F_wall is then below 5e-4; in a bed
 // a few diameters thick no ray crosses and F_wall = 0 exactly).
 //
-// Rays are traced through a uniform grid of cells holding every sphere that overlaps them, not
-// against all spheres. Particle i draws from its own random stream seeded by (seed, i), so the
-// result does not depend on the number of OpenMP threads.
+// Rays are traced with the project's one ray–sphere tracer (powderbed/bed/ray_trace.hpp: a
+// uniform grid of cells holding every sphere that overlaps them). Particle i draws from its own
+// random stream seeded by (seed, i), so the result does not depend on the number of threads.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
