@@ -58,9 +58,26 @@ void add_options(po::options_description& desc) {
       ("laser.y", po::value<double>(), "track line y (m); default Ly/2")
       ("laser.start-x", po::value<double>(), "track start x (m); default one spot radius before")
       ("laser.end-x", po::value<double>(), "track end x (m); default one spot radius past")
+      ("laser.absorption", po::value<std::string>()->default_value("beer-lambert"),
+       "beer-lambert (exp(-beta z) on projected areas, Gusarov's beta) or ray-trace (rays on "
+       "the bed's own spheres and the substrate, absorbed alpha per hit, reflected)")
       ("laser.substrate-shading", po::value<std::string>()->default_value("layer"),
-       "beam reaching the substrate: layer (exp(-beta H_layer) everywhere, SPEC) or column "
-       "(exp(-beta H) with H the bed height above each node; bare spots get the full beam)")
+       "beer-lambert: beam reaching the substrate: layer (exp(-beta H_layer) everywhere) or "
+       "column (exp(-beta H) with H the bed height above each node; bare spots get the full beam)")
+      ("laser.absorptivity-liquid", po::value<double>(),
+       "ray-trace: alpha of molten surfaces (default: laser.absorptivity in every phase)")
+      ("laser.rays", po::value<std::size_t>()->default_value(d.rays.rays),
+       "ray-trace: rays per traced beam position")
+      ("laser.retrace-interval", po::value<double>()->default_value(d.retrace_interval),
+       "ray-trace: the beam is traced anew each time it moves this fraction of w")
+      ("laser.reflection", po::value<std::string>()->default_value("specular"),
+       "ray-trace: specular or diffuse (Lambert) reflection")
+      ("laser.ray-cutoff", po::value<double>()->default_value(d.rays.cutoff),
+       "ray-trace: a ray carrying less than this fraction of its power is dropped")
+      ("laser.ray-seed", po::value<std::uint64_t>()->default_value(d.rays.seed),
+       "ray-trace: seed of the rays' jitter")
+      ("wetting.contact-angle", po::value<double>()->default_value(d.contact_angle),
+       "effects.wetting: contact angle of the melt on the solid substrate (degrees)")
       ("material.table", po::value<std::string>()->default_value(d.material_table),
        "CSV of solid rows + one liquid row (relative paths: to the scene file's folder too)")
       ("material.melting-point", po::value<double>()->default_value(d.phase_change.melting_point), "T_m (K)")
@@ -85,7 +102,9 @@ void add_options(po::options_description& desc) {
        "particle steps subcycle so the laser raises no particle more than this per step (K)");
   for (unsigned bit = 1; bit < (1u << th::kSinterEffectCount); bit <<= 1) {
     const std::string name = std::string("effects.") + th::sinter_effect_name(bit);
-    desc.add_options()(name.c_str(), po::value<bool>()->default_value(true), "effect on/off");
+    // Wetting goes beyond [GZ]'s model: a scene switches it on by name.
+    desc.add_options()(name.c_str(), po::value<bool>()->default_value(bit != th::kWetting),
+                       "effect on/off");
   }
 }
 
@@ -128,6 +147,23 @@ th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
     throw InputError("laser.substrate-shading: '" + shading + "' (accepted: layer, column)");
   s.substrate_shading =
       shading == "layer" ? th::SubstrateShading::layer : th::SubstrateShading::column;
+  const std::string absorption = vm["laser.absorption"].as<std::string>();
+  if (absorption != "beer-lambert" && absorption != "ray-trace")
+    throw InputError("laser.absorption: '" + absorption + "' (accepted: beer-lambert, ray-trace)");
+  s.absorption = absorption == "ray-trace" ? th::LaserAbsorption::ray_trace
+                                           : th::LaserAbsorption::beer_lambert;
+  if (vm.count("laser.absorptivity-liquid"))
+    s.absorptivity_liquid = vm["laser.absorptivity-liquid"].as<double>();
+  s.rays.rays = vm["laser.rays"].as<std::size_t>();
+  s.rays.cutoff = vm["laser.ray-cutoff"].as<double>();
+  s.rays.seed = vm["laser.ray-seed"].as<std::uint64_t>();
+  s.retrace_interval = vm["laser.retrace-interval"].as<double>();
+  const std::string reflection = vm["laser.reflection"].as<std::string>();
+  if (reflection != "specular" && reflection != "diffuse")
+    throw InputError("laser.reflection: '" + reflection + "' (accepted: specular, diffuse)");
+  s.rays.reflection =
+      reflection == "specular" ? th::Reflection::specular : th::Reflection::diffuse;
+  s.contact_angle = vm["wetting.contact-angle"].as<double>();
   s.substrate_depth = vm["substrate.depth"].as<double>();
   const auto nodes = app::parse_number_list(vm["substrate.nodes"].as<std::string>(), 3, 3,
                                             "substrate.nodes");
@@ -236,6 +272,23 @@ int run(int argc, char** argv) {
         .value("particles_molten", static_cast<std::uint64_t>(r.particles_molten))
         .value("particles_vaporised", static_cast<std::uint64_t>(r.particles_vaporised))
         .value("energy_balance_error", r.energy.relative_error())
+        .value("laser_absorption", vm["laser.absorption"].as<std::string>())
+        .value("absorptance", r.absorptance);
+    if (r.traces.traces > 0) {
+      const double n = static_cast<double>(r.traces.traces);
+      j.begin_object("ray_trace")
+          .value("traces", static_cast<std::uint64_t>(r.traces.traces))
+          .value("bed_absorptance", r.traces.bed_absorptance())
+          .value("particles", r.traces.absorbed_particles / n)
+          .value("substrate", (r.traces.absorbed - r.traces.absorbed_particles) / n)
+          .value("escaped", r.traces.escaped / n)
+          .value("outside", r.traces.outside / n)
+          .value("dropped", r.traces.dropped / n)
+          .value("hits_per_ray", r.traces.hits / n)
+          .end_object();
+    }
+    j.value("substrate_wetted", static_cast<std::uint64_t>(r.substrate_wetted))
+        .value("bridges", static_cast<std::uint64_t>(r.bridges))
         .begin_object("energy")
         .value("laser_particles", r.energy.laser_particles)
         .value("laser_substrate", r.energy.laser_substrate)
@@ -264,11 +317,11 @@ int run(int argc, char** argv) {
     std::cout << j.str() << '\n';
   } else {
     std::printf("sinter: melt pool height %.1f um, width %.1f um, depth %.1f um; T_max %.0f K; "
-                "%zu of %zu particles molten, %zu vaporised; energy balance %.1e; %llu steps of "
-                "%.3g s, %.1f s wall -> %s\n",
+                "%zu of %zu particles molten, %zu vaporised; absorptance %.3f; energy balance "
+                "%.1e; %llu steps of %.3g s, %.1f s wall -> %s\n",
                 r.melt_pool.height * 1e6, r.melt_pool.width * 1e6, r.melt_pool.depth * 1e6,
                 r.max_temperature, r.particles_molten, bed.n(), r.particles_vaporised,
-                r.energy.relative_error(), static_cast<unsigned long long>(r.steps), r.dt_grid,
+                r.absorptance, r.energy.relative_error(), static_cast<unsigned long long>(r.steps), r.dt_grid,
                 wall, out.c_str());
   }
   return 0;

@@ -91,28 +91,11 @@ void particle_step(Sinter::State& s, double t, double dt) {
     s.ledger.convection += convection * dt;
     s.ledger.radiation += radiation * dt;
   }
-  if constexpr ((Mask & kBitLaser) != 0) {
-    const double xl = laser_x(s, t), yl = s.laser_y;
-    const double w2 = s.laser.spot_radius * s.laser.spot_radius;
-    const double i0 = peak_intensity(s.laser);
-    double absorbed = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double dx = s.x[i] - xl, dy = s.y[i] - yl;
-      const double r2 = dx * dx + dy * dy;
-      if (r2 > kBeamCutoff2 * w2 || s.gone[i]) continue;
-      const double f = s.laser_factor[i] * i0 * std::exp(-2 * r2 / w2);
-      q[i] += f;
-      absorbed += f;
-    }
-    s.ledger.laser_particles += absorbed * dt;
-  }
+  if constexpr ((Mask & kBitLaser) != 0) s.ledger.laser_particles += s.particle_laser(s, t, q) * dt;
   for (std::size_t i = 0; i < n; ++i) {
     if (s.gone[i]) continue;
     s.h[i] += dt * q[i] / s.mass[i];
-    const double temp = s.per_kg.temperature(s.h[i]);
-    s.temperature[i] = temp;
-    if (temp > s.peak[i]) s.peak[i] = temp;
-    if (temp >= s.vaporised_temperature) s.gone[i] = 1;  // left the bed as vapour
+    particle_enthalpy_changed(s, i);
   }
 }
 
@@ -133,34 +116,6 @@ unsigned particle_mask(const SinterScene& scene) {
   if (scene.has(kLaser)) mask |= kBitLaser;
   if (scene.has(kVariableProperties)) mask |= kBitVariable;
   return mask;
-}
-
-// Laser power that passes the powder onto the free top nodes (SPEC.md §5 top-face flux).
-void substrate_laser(Sinter::State& s, double t, double dt) {
-  const SubstrateGeometry& g = s.g;
-  const double xl = laser_x(s, t), yl = s.laser_y;
-  const double reach = std::sqrt(kBeamCutoff2) * s.laser.spot_radius;
-  const auto first = [](double lo, double spacing, std::size_t count, double v) {
-    const double f = std::ceil((v - lo) / spacing);
-    return static_cast<std::size_t>(std::clamp(f, 1.0, static_cast<double>(count - 1)));
-  };
-  const std::size_t i0 = first(g.x0, g.dx, g.nx, xl - reach);
-  const std::size_t i1 = first(g.x0, g.dx, g.nx, xl + reach);
-  const std::size_t j0 = first(g.y0, g.dy, g.ny, yl - reach);
-  const std::size_t j1 = first(g.y0, g.dy, g.ny, yl + reach);
-  const std::size_t k = g.nz - 1;
-  double absorbed = 0;
-  for (std::size_t j = j0; j < j1 && j + 1 < g.ny; ++j) {
-    const double dy = g.y(j) - yl;
-    for (std::size_t i = i0; i < i1 && i + 1 < g.nx; ++i) {
-      const double dx = g.x(i) - xl;
-      const double energy = absorbed_flux(s.laser, dx * dx + dy * dy, 0.0) *
-                            s.transmission[i + g.nx * j] * g.dx * g.dy * dt;
-      s.sources.push_back({g.index(i, j, k), energy});
-      absorbed += energy;
-    }
-  }
-  s.ledger.laser_substrate += absorbed;
 }
 
 // Heat from the free nodes into the Dirichlet sides and bottom over dt, with the face fluxes
@@ -279,13 +234,18 @@ void grid_step(Sinter::State& s, double dt) {
 
 void explicit_step(Sinter::State& s, double dt) {
   const ParticleKernel particles = kParticleKernels[particle_mask(s.scene)];
+  if (s.tracer && s.scene.has(kLaser | kLaserSubstrate)) prepare_traces(s, s.time, s.time + dt);
   if (!s.x.empty()) {
     const double dt_p = dt / static_cast<double>(s.substeps);
     for (std::size_t sub = 0; sub < s.substeps; ++sub)
       particles(s, s.time + dt_p * static_cast<double>(sub), dt_p);
     s.particle_steps += s.substeps;
   }
-  if (s.scene.has(kLaserSubstrate)) substrate_laser(s, s.time, dt);
+  if (s.scene.has(kWetting)) {
+    spread_molten(s);
+    wetted_exchange(s, dt);
+  }
+  if (s.scene.has(kLaserSubstrate)) s.substrate_laser(s, s.time, dt);
   boundary_outflow(s, dt);
   if (s.scene.has(kVariableProperties)) grid_step<true>(s, dt);
   else grid_step<false>(s, dt);

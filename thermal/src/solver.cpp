@@ -94,12 +94,19 @@ SubstrateGeometry make_grid(const bed::Bed& bed, const SinterScene& scene) {
 // Forward-Euler bounds (Gershgorin): dt <= C / Σ G per node and per particle, with the
 // smallest capacity over the temperatures a run can reach and the largest conductivity any
 // neighbour can have, so the bound holds in every state.
+double max_conductivity(const Sinter::State& s) {
+  double k_max = 0;
+  for (double t = s.scene.initial_temperature; t <= s.vaporised_temperature; t += 0.25)
+    k_max = std::max(k_max, s.conductivity(t));
+  return k_max;
+}
+
 StableSteps compute_stable_steps(const Sinter::State& s) {
   StableSteps out;
   const SubstrateGeometry& g = s.g;
   const double t_lo = s.scene.initial_temperature, t_hi = s.vaporised_temperature;
-  double k_max = 0, capacity_over_k = std::numeric_limits<double>::infinity();
-  for (double t = t_lo; t <= t_hi; t += 0.25) k_max = std::max(k_max, s.conductivity(t));
+  const double k_max = s.k_max;
+  double capacity_over_k = std::numeric_limits<double>::infinity();
   for (double t = t_lo; t <= t_hi; t += 0.25) {
     const double face_k = 0.5 * (s.conductivity(t) + k_max);
     capacity_over_k = std::min(capacity_over_k, s.per_m3.capacity(t) / face_k);
@@ -247,7 +254,10 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
   }
   s.k_fixed = s.material.conductivity(t0);
   s.node_k.assign(g.size(), s.k_fixed);
+  setup_laser(s, bed);
+  if (scene.has(kWetting)) setup_wetting(s);
 
+  s.k_max = max_conductivity(s);
   s.stable = compute_stable_steps(s);
   const double bound = s.stable.grid;
   if (scene.dt > 0) {
@@ -268,7 +278,8 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
   // Particle step: the stable bound, and the accuracy limit of the laser's heating rate
   // (alpha I0 A_i / (m_i c_min) at the beam's peak) for particles the track can reach.
   double particle_dt = scene.safety * s.stable.particle;
-  if (scene.has(kLaser) && scene.power > 0) {
+  // (Ray tracing sets this limit from each traced map as the beam moves: prepare_traces.)
+  if (scene.has(kLaser) && scene.power > 0 && !s.tracer) {
     const double i0 = peak_intensity(s.laser), c_min = s.per_kg.min_capacity();
     const double reach = std::sqrt(kBeamCutoff2) * scene.spot_radius;
     for (std::size_t i = 0; i < n; ++i) {
@@ -279,6 +290,7 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
   }
   if (scene.integrator == Integrator::explicit_euler && std::isfinite(particle_dt))
     s.substeps = static_cast<std::size_t>(std::ceil(s.dt / particle_dt));
+  s.substeps_stable = s.substeps;  // the traced maps and wetting may raise it, never lower it
 }
 
 Sinter::~Sinter() = default;
@@ -363,6 +375,11 @@ SinterResult Sinter::run(const std::function<void(const Sinter&)>& snapshot, std
   MeltPoolInput in{&g, &s.node_peak, &s.x, &s.y, &s.z, &s.radius, &s.peak, t_m,
                    g.x0 + 0.5 * static_cast<double>(g.nx - 1) * g.dx};
   r.melt_pool = measure_melt_pool(in);
+  const double beam = s.scene.power * t_end;
+  r.absorptance = beam > 0 ? s.ledger.absorbed() / beam : 0.0;
+  r.traces = s.traces;
+  r.substrate_wetted = s.wetted.size();
+  r.bridges = s.bridges;
   return r;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "powderbed/thermal/beer_lambert_laser.hpp"
+#include "powderbed/thermal/ray_traced_laser.hpp"
 #include "powderbed/thermal/solver.hpp"
 #include "powderbed/thermal/surface_losses.hpp"
 
@@ -50,9 +51,42 @@ struct Sinter::State {
   std::vector<double> plane_sums;  // scratch of the boundary-flux sum, one per z plane
   double k_fixed = 0;  // conductivity of the Dirichlet nodes (at T0)
 
+  // The laser model, chosen once at start (laser_sources.cpp): power into the particles at time
+  // t (added to q, returns the watts absorbed) and energy onto the top nodes over [t, t + dt].
+  double (*particle_laser)(Sinter::State&, double t, std::vector<double>& q) = nullptr;
+  void (*substrate_laser)(Sinter::State&, double t, double dt) = nullptr;
+  // Ray-traced laser: the tracer, the power maps of the traced beam positions around the beam
+  // (start_x + k trace_spacing), the absorptivity of each particle and top node by phase.
+  std::unique_ptr<BeamTracer> tracer;
+  struct TracedBeam {
+    std::uint64_t k;
+    AbsorptionMap map;
+  };
+  std::vector<TracedBeam> traced;
+  double trace_spacing = 0;
+  std::vector<double> particle_alpha, node_alpha;
+  std::size_t vaporised = 0, vaporised_traced = 0;  // gone particles; those the tracer removed
+  TraceSummary traces;
+
+  // Wetting (wetting.cpp): per particle, whether it was molten at the last check, its pairs
+  // (indices into net.pairs) and its substrate contact (index into net.substrate, -1: none);
+  // the substrate contacts that have spread, exchanged exactly once per grid step.
+  std::vector<std::uint8_t> molten;
+  std::vector<std::vector<std::uint32_t>> pairs_of;
+  std::vector<std::int64_t> substrate_of;
+  struct WettedContact {
+    std::uint32_t particle;
+    double shape;  // π a^2 / z_c of the spread cap, m
+    std::vector<std::pair<std::size_t, double>> footprint;  // top nodes under the cap, weights
+  };
+  std::vector<WettedContact> wetted;
+  std::size_t bridges = 0;  // pairs whose bridge has grown
+  double k_max = 0;  // largest conductivity a run can reach (stability bounds)
+
   StableSteps stable;
   double dt = 0;
   std::size_t substeps = 1;
+  std::size_t substeps_stable = 1;  // what the particles' stable bound alone asks for
   EnergyLedger ledger;
   double time = 0;
   std::uint64_t step = 0, particle_steps = 0;
@@ -61,6 +95,29 @@ struct Sinter::State {
 
   State(const SinterScene& scene, Material material);
 };
+
+// Laser models (laser_sources.cpp): chooses s.particle_laser and s.substrate_laser for the
+// scene and, for ray tracing, builds the tracer.
+void setup_laser(Sinter::State& s, const bed::Bed& bed);
+// Ray tracing: traces the beam positions [t0, t1] needs (with the phases of now) and sets the
+// particle substeps so the laser raises no particle by more than time.max-particle-rise.
+void prepare_traces(Sinter::State& s, double t0, double t1);
+// Wetting (wetting.cpp): set-up of the adjacency; after the particle steps of a grid step,
+// spreads the contacts of particles that have just melted; the exact exchange of the spread
+// substrate contacts over dt (energy handed to the grid as sources).
+void setup_wetting(Sinter::State& s);
+void spread_molten(Sinter::State& s);
+void wetted_exchange(Sinter::State& s, double dt);
+// New enthalpy of particle i: temperature, peak and vaporisation follow.
+inline void particle_enthalpy_changed(Sinter::State& s, std::size_t i) {
+  const double temp = s.per_kg.temperature(s.h[i]);
+  s.temperature[i] = temp;
+  if (temp > s.peak[i]) s.peak[i] = temp;
+  if (temp >= s.vaporised_temperature) {
+    s.gone[i] = 1;  // left the bed as vapour
+    ++s.vaporised;
+  }
+}
 
 // One grid step of forward Euler (explicit_step.cpp): particles subcycle, then the grid.
 void explicit_step(Sinter::State& s, double dt);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "powderbed/thermal/material.hpp"
+#include "powderbed/thermal/ray_traced_laser.hpp"
 
 namespace powderbed::thermal {
 
@@ -21,12 +22,19 @@ enum SinterEffect : unsigned {
   kLaserSubstrate = 1u << 6,      // the part of the laser that passes the powder
   kPhaseChange = 1u << 7,         // latent heats in the apparent heat capacity
   kVariableProperties = 1u << 8,  // c, k, rho from the table (off: held at T0)
+  kWetting = 1u << 9,             // molten particles spread on what they touch (wetting.hpp)
 };
-constexpr unsigned kSinterEffectCount = 9;
-constexpr unsigned kAllSinterEffects = (1u << kSinterEffectCount) - 1;
+constexpr unsigned kSinterEffectCount = 10;
+// The effects of [GZ]'s model; wetting, beyond it, is switched on by name.
+constexpr unsigned kAllSinterEffects = (1u << 9) - 1;
 const char* sinter_effect_name(unsigned effect);
 
 enum class Integrator { explicit_euler, implicit_euler };
+
+// How the laser's power is split over the bed: `beer_lambert` (SPEC.md §5: I0 exp(-beta z) on
+// each particle's projected area, Gusarov's beta, and what passes the powder onto the
+// substrate) or `ray_trace` (rays on the bed's own spheres, ray_traced_laser.hpp).
+enum class LaserAbsorption { beer_lambert, ray_trace };
 
 // What the laser crosses before it reaches the substrate (SPEC.md §5 writes exp(-beta H_layer)):
 // `layer`: the bed's layer height everywhere; `column`: the height of the bed above each top
@@ -52,6 +60,15 @@ struct SinterScene {
   double absorptivity = 0.33;  // alpha
   double laser_y = NAN, start_x = NAN, end_x = NAN;
   SubstrateShading substrate_shading = SubstrateShading::layer;
+  LaserAbsorption absorption = LaserAbsorption::beer_lambert;
+  // Ray-trace only: alpha of molten surfaces (NaN: `absorptivity` in every phase), the rays,
+  // and the re-trace interval: the beam is traced anew each time it moves this fraction of w,
+  // and the power maps of the two traced positions around the beam are blended linearly.
+  double absorptivity_liquid = NAN;
+  RayTraceParams rays;
+  double retrace_interval = 0.1;
+  // Wetting only: the contact angle of the melt on the solid substrate, degrees.
+  double contact_angle = 30;
   // Substrate under the bed: x, y extents are the bed's domain; depth and node counts here.
   double substrate_depth = 0.3e-3;
   std::array<std::size_t, 3> nodes{201, 101, 61};

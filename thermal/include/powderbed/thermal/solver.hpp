@@ -50,6 +50,15 @@ struct SinterProgress {
   std::uint64_t step;
 };
 
+// Ray tracing over a run: how the traced beam positions split the power (fractions of the beam,
+// summed over traces).
+struct TraceSummary {
+  std::size_t traces = 0;
+  double absorbed = 0, absorbed_particles = 0, escaped = 0, outside = 0, dropped = 0, hits = 0;
+  // Absorbed over what reached the bed (the beam less what fell beyond the substrate's extent).
+  double bed_absorptance() const { return absorbed / (static_cast<double>(traces) - outside); }
+};
+
 struct SinterResult {
   MeltPool melt_pool;
   double max_temperature = 0;
@@ -58,6 +67,9 @@ struct SinterResult {
   std::uint64_t steps = 0, particle_steps = 0;
   double dt_grid = 0, dt_particle = 0, t_end = 0;
   std::size_t implicit_iterations = 0;  // total linear-solver iterations (implicit only)
+  double absorptance = 0;  // laser energy absorbed over the beam's energy P t_end
+  TraceSummary traces;     // ray tracing only
+  std::size_t substrate_wetted = 0, bridges = 0;  // wetting: spread caps and liquid bridges
 };
 
 class Sinter {

@@ -1,0 +1,195 @@
+// Where the laser's power goes, for the two absorption models (scene.hpp LaserAbsorption):
+// Beer–Lambert on projected areas plus the beam that passes the powder (SPEC.md §5), or the
+// power maps of the ray tracer (ray_traced_laser.hpp) blended between traced beam positions.
+// Each model books every joule it deposits in the ledger where it deposits it.
+#include <algorithm>
+#include <cmath>
+
+#include "powderbed/thermal/beer_lambert_laser.hpp"
+#include "solver_state.hpp"
+
+namespace powderbed::thermal {
+
+namespace {
+
+double beer_lambert_particles(Sinter::State& s, double t, std::vector<double>& q) {
+  const double xl = laser_x(s, t), yl = s.laser_y;
+  const double w2 = s.laser.spot_radius * s.laser.spot_radius;
+  const double i0 = peak_intensity(s.laser);
+  double absorbed = 0;
+  for (std::size_t i = 0; i < s.x.size(); ++i) {
+    const double dx = s.x[i] - xl, dy = s.y[i] - yl;
+    const double r2 = dx * dx + dy * dy;
+    if (r2 > kBeamCutoff2 * w2 || s.gone[i]) continue;
+    const double f = s.laser_factor[i] * i0 * std::exp(-2 * r2 / w2);
+    q[i] += f;
+    absorbed += f;
+  }
+  return absorbed;
+}
+
+// Laser power that passes the powder onto the free top nodes (SPEC.md §5 top-face flux).
+void beer_lambert_substrate(Sinter::State& s, double t, double dt) {
+  const SubstrateGeometry& g = s.g;
+  const double xl = laser_x(s, t), yl = s.laser_y;
+  const double reach = std::sqrt(kBeamCutoff2) * s.laser.spot_radius;
+  const auto first = [](double lo, double spacing, std::size_t count, double v) {
+    const double f = std::ceil((v - lo) / spacing);
+    return static_cast<std::size_t>(std::clamp(f, 1.0, static_cast<double>(count - 1)));
+  };
+  const std::size_t i0 = first(g.x0, g.dx, g.nx, xl - reach);
+  const std::size_t i1 = first(g.x0, g.dx, g.nx, xl + reach);
+  const std::size_t j0 = first(g.y0, g.dy, g.ny, yl - reach);
+  const std::size_t j1 = first(g.y0, g.dy, g.ny, yl + reach);
+  const std::size_t k = g.nz - 1;
+  double absorbed = 0;
+  for (std::size_t j = j0; j < j1 && j + 1 < g.ny; ++j) {
+    const double dy = g.y(j) - yl;
+    for (std::size_t i = i0; i < i1 && i + 1 < g.nx; ++i) {
+      const double dx = g.x(i) - xl;
+      const double energy = absorbed_flux(s.laser, dx * dx + dy * dy, 0.0) *
+                            s.transmission[i + g.nx * j] * g.dx * g.dy * dt;
+      s.sources.push_back({g.index(i, j, k), energy});
+      absorbed += energy;
+    }
+  }
+  s.ledger.laser_substrate += absorbed;
+}
+
+// The traced positions k and k + 1 around the beam at time t, and the blend u of k + 1.
+struct Blend {
+  const AbsorptionMap* a;
+  const AbsorptionMap* b;
+  double u;
+};
+
+const AbsorptionMap& traced_map(const Sinter::State& s, std::uint64_t k) {
+  for (const auto& t : s.traced)
+    if (t.k == k) return t.map;
+  throw std::logic_error("ray-traced laser: beam position not traced");  // prepare_traces' job
+}
+
+std::pair<std::uint64_t, double> trace_position(const Sinter::State& s, double t) {
+  const double f = std::max(0.0, (laser_x(s, t) - s.start_x) / s.trace_spacing);
+  const double k = std::floor(f);
+  return {static_cast<std::uint64_t>(k), f - k};
+}
+
+Blend blend_at(const Sinter::State& s, double t) {
+  const auto [k, u] = trace_position(s, t);
+  return {&traced_map(s, k), &traced_map(s, k + 1), u};
+}
+
+double ray_traced_particles(Sinter::State& s, double t, std::vector<double>& q) {
+  const Blend blend = blend_at(s, t);
+  double absorbed = 0;
+  const auto add = [&](const AbsorptionMap& map, double weight) {
+    const double power = s.scene.power * weight;
+    for (const auto& e : map.particles) {
+      if (s.gone[e.target]) continue;
+      const double f = power * e.fraction;
+      q[e.target] += f;
+      absorbed += f;
+    }
+  };
+  add(*blend.a, 1 - blend.u);
+  add(*blend.b, blend.u);
+  return absorbed;
+}
+
+void ray_traced_substrate(Sinter::State& s, double t, double dt) {
+  const Blend blend = blend_at(s, t);
+  double absorbed = 0, into_boundary = 0;
+  const auto add = [&](const AbsorptionMap& map, double weight) {
+    const double energy = s.scene.power * weight * dt;
+    for (const auto& e : map.nodes) {
+      const double de = energy * e.fraction;
+      absorbed += de;
+      if (s.g.fixed_top(e.target)) into_boundary += de;  // a Dirichlet node passes it on
+      else s.sources.push_back({e.target, de});
+    }
+  };
+  add(*blend.a, 1 - blend.u);
+  add(*blend.b, blend.u);
+  s.ledger.laser_substrate += absorbed;
+  s.ledger.boundary += into_boundary;
+}
+
+// Absorptivity by phase: molten (T >= T_m) surfaces take the liquid value.
+void update_absorptivities(Sinter::State& s) {
+  const double solid = s.scene.absorptivity;
+  const double liquid = std::isnan(s.scene.absorptivity_liquid) ? solid : s.scene.absorptivity_liquid;
+  const double t_m = s.scene.phase_change.melting_point;
+  for (std::size_t i = 0; i < s.x.size(); ++i)
+    s.particle_alpha[i] = s.temperature[i] >= t_m ? liquid : solid;
+  const std::size_t top = s.g.index(0, 0, s.g.nz - 1);
+  for (std::size_t c = 0; c < s.node_alpha.size(); ++c)
+    s.node_alpha[c] = s.node_temperature[top + c] >= t_m ? liquid : solid;
+}
+
+void trace(Sinter::State& s, std::uint64_t k) {
+  if (s.vaporised_traced != s.vaporised) {  // rays pass where vaporised particles were
+    std::vector<std::uint32_t> gone;
+    for (std::size_t i = 0; i < s.x.size(); ++i)
+      if (s.gone[i]) gone.push_back(static_cast<std::uint32_t>(i));
+    s.tracer->remove(gone);
+    s.vaporised_traced = s.vaporised;
+  }
+  update_absorptivities(s);
+  const double x = s.start_x + static_cast<double>(k) * s.trace_spacing;
+  AbsorptionMap map = s.tracer->trace(x, s.laser_y, k, s.particle_alpha, s.node_alpha);
+  TraceSummary& sum = s.traces;
+  ++sum.traces;
+  sum.absorbed += map.absorptance();
+  sum.absorbed_particles += map.absorbed_particles;
+  sum.escaped += map.escaped;
+  sum.outside += map.outside;
+  sum.dropped += map.dropped;
+  sum.hits += map.hits;
+  s.traced.push_back({k, std::move(map)});
+}
+
+// Particle steps per grid step: the stable bound's, and as many as keep the laser's rise per
+// step (P f_i / (m_i c_min) dt_p) below time.max-particle-rise for the traced maps.
+void limit_particle_rise(Sinter::State& s) {
+  const double c_min = s.per_kg.min_capacity();
+  double rate = 0;
+  for (const auto& t : s.traced)
+    for (const auto& e : t.map.particles)
+      rate = std::max(rate, s.scene.power * e.fraction / (s.mass[e.target] * c_min));
+  const double needed = std::ceil(s.dt * rate / s.scene.max_particle_rise);
+  s.substeps = std::max(s.substeps_stable, static_cast<std::size_t>(needed));
+}
+
+}  // namespace
+
+void setup_laser(Sinter::State& s, const bed::Bed& bed) {
+  if (s.scene.absorption == LaserAbsorption::beer_lambert) {
+    s.particle_laser = beer_lambert_particles;
+    s.substrate_laser = beer_lambert_substrate;
+    return;
+  }
+  s.particle_laser = ray_traced_particles;
+  s.substrate_laser = ray_traced_substrate;
+  s.tracer = std::make_unique<BeamTracer>(bed, s.g, s.scene.spot_radius, s.scene.rays);
+  s.trace_spacing = s.scene.retrace_interval * s.scene.spot_radius;
+  s.particle_alpha.assign(s.x.size(), s.scene.absorptivity);
+  s.node_alpha.assign(s.g.nx * s.g.ny, s.scene.absorptivity);
+}
+
+void prepare_traces(Sinter::State& s, double t0, double t1) {
+  const std::uint64_t first = trace_position(s, t0).first;
+  const std::uint64_t last = trace_position(s, t1).first + 1;
+  std::erase_if(s.traced, [&](const Sinter::State::TracedBeam& t) { return t.k < first; });
+  bool added = false;
+  for (std::uint64_t k = first; k <= last; ++k) {
+    const bool have = std::any_of(s.traced.begin(), s.traced.end(),
+                                  [&](const Sinter::State::TracedBeam& t) { return t.k == k; });
+    if (have) continue;
+    trace(s, k);
+    added = true;
+  }
+  if (added) limit_particle_rise(s);
+}
+
+}  // namespace powderbed::thermal

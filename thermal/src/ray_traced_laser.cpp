@@ -1,0 +1,209 @@
+#include "powderbed/thermal/ray_traced_laser.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/ray_trace.hpp"
+
+namespace powderbed::thermal {
+
+namespace {
+
+using bed::Vec3;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Rays of one trace are summed in this many chunks, in chunk order (thread-count independent).
+constexpr std::size_t kChunks = 64;
+
+struct Event {
+  std::uint32_t target;
+  double power;  // fraction of the beam
+};
+
+struct ChunkTally {
+  std::vector<Event> particles, nodes;
+  double escaped = 0, outside = 0, dropped = 0, hits = 0;
+};
+
+}  // namespace
+
+struct BeamTracer::Impl {
+  bed::Bed bed;
+  std::vector<std::uint32_t> index;  // position in `bed` -> caller's particle index
+  std::unique_ptr<bed::SphereGrid> grid;
+  SubstrateGeometry g;
+  double spot_radius = 0, z_start = 0;
+  RayTraceParams params;
+
+  void rebuild() {
+    grid = std::make_unique<bed::SphereGrid>(bed);
+    double top = g.z_top;
+    for (std::size_t i = 0; i < bed.n(); ++i) top = std::max(top, bed.z[i] + bed.radius[i]);
+    z_start = top + 1e-6 * std::max(spot_radius, top - g.z_top);  // just above the highest top
+  }
+
+  // Follows one ray of power `power` from o downwards; books what it leaves where.
+  void follow(Vec3 o, double power, const std::vector<double>& particle_alpha,
+              const std::vector<double>& node_alpha, bed::RandomStream& rng,
+              ChunkTally& tally) const;
+};
+
+void BeamTracer::Impl::follow(Vec3 o, double power, const std::vector<double>& particle_alpha,
+                              const std::vector<double>& node_alpha, bed::RandomStream& rng,
+                              ChunkTally& tally) const {
+  const double floor_power = params.cutoff * power;
+  const double x1 = g.x(g.nx - 1), y1 = g.y(g.ny - 1);
+  Vec3 d = {0, 0, -1};
+  std::uint32_t skip = bed::SphereGrid::kNoSphere;
+  for (int bounce = 0; bounce < params.max_bounces; ++bounce) {
+    const double t_plane = d[2] < 0 ? (g.z_top - o[2]) / d[2] : kInf;
+    const auto [s, t] = grid->first_hit(o, d, skip, t_plane);
+    if (s == bed::SphereGrid::kNoSphere && !std::isfinite(t_plane)) {
+      tally.escaped += power;
+      return;
+    }
+    const double reach = s == bed::SphereGrid::kNoSphere ? t_plane : t;
+    const Vec3 p = {o[0] + reach * d[0], o[1] + reach * d[1], o[2] + reach * d[2]};
+    Vec3 n;
+    double alpha;
+    tally.hits += 1;
+    if (s != bed::SphereGrid::kNoSphere) {
+      const Vec3 c = grid->centre(s);
+      n = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+      const double len = std::sqrt(bed::dot(n, n));
+      for (double& v : n) v /= len;  // normalised: a ray that starts inside a sphere hits at o
+      alpha = particle_alpha[index[s]];
+      tally.particles.push_back({index[s], alpha * power});
+      skip = s;
+    } else {
+      if (p[0] < g.x0 || p[0] > x1 || p[1] < g.y0 || p[1] > y1) {
+        tally.outside += power;
+        return;
+      }
+      const TopStencil st = top_stencil(g, p[0], p[1]);
+      const int nearest = static_cast<int>(std::max_element(st.weight, st.weight + 4) - st.weight);
+      alpha = node_alpha[st.node[nearest] % (g.nx * g.ny)];
+      for (int w = 0; w < 4; ++w)
+        if (st.weight[w] > 0)
+          tally.nodes.push_back({static_cast<std::uint32_t>(st.node[w]), st.weight[w] * alpha * power});
+      n = {0, 0, 1};
+      skip = bed::SphereGrid::kNoSphere;
+    }
+    power *= 1 - alpha;
+    if (power < floor_power) {
+      tally.dropped += power;
+      return;
+    }
+    d = params.reflection == Reflection::specular ? bed::specular_reflection(d, n)
+                                                  : bed::cosine_direction(n, rng);
+    o = p;
+  }
+  tally.dropped += power;
+}
+
+BeamTracer::BeamTracer(const bed::Bed& bed, const SubstrateGeometry& g, double spot_radius,
+                       const RayTraceParams& params)
+    : impl_(std::make_unique<Impl>()) {
+  if (params.rays == 0)
+    throw InputError("laser.rays: 0 (accepted: at least 1 ray per traced beam position)");
+  if (!(params.cutoff > 0 && params.cutoff < 1))
+    throw InputError("laser.ray-cutoff: " + std::to_string(params.cutoff) +
+                     " (accepted: 0 < cutoff < 1, the fraction of its power below which a ray "
+                     "is dropped)");
+  Impl& m = *impl_;
+  m.bed = bed;
+  m.g = g;
+  m.spot_radius = spot_radius;
+  m.params = params;
+  m.index.resize(bed.n());
+  for (std::size_t i = 0; i < bed.n(); ++i) m.index[i] = static_cast<std::uint32_t>(i);
+  m.rebuild();
+}
+
+BeamTracer::~BeamTracer() = default;
+
+void BeamTracer::remove(const std::vector<std::uint32_t>& particles) {
+  Impl& m = *impl_;
+  std::vector<std::uint8_t> drop(m.bed.n(), 0);
+  for (const auto p : particles) {
+    const auto it = std::lower_bound(m.index.begin(), m.index.end(), p);
+    if (it != m.index.end() && *it == p) drop[static_cast<std::size_t>(it - m.index.begin())] = 1;
+  }
+  bed::Bed kept;
+  kept.domain = m.bed.domain;
+  std::vector<std::uint32_t> index;
+  for (std::size_t i = 0; i < m.bed.n(); ++i) {
+    if (drop[i]) continue;
+    kept.x.push_back(m.bed.x[i]);
+    kept.y.push_back(m.bed.y[i]);
+    kept.z.push_back(m.bed.z[i]);
+    kept.radius.push_back(m.bed.radius[i]);
+    kept.id.push_back(m.bed.id[i]);
+    index.push_back(m.index[i]);
+  }
+  m.bed = std::move(kept);
+  m.index = std::move(index);
+  m.rebuild();
+}
+
+AbsorptionMap BeamTracer::trace(double x, double y, std::uint64_t trace,
+                                const std::vector<double>& particle_alpha,
+                                const std::vector<double>& node_alpha) const {
+  const Impl& m = *impl_;
+  const std::size_t rays = m.params.rays;
+  bed::RandomStream jitter(m.params.seed, trace);
+  const double xi = jitter.uniform(), zeta = jitter.uniform();
+  const double golden = 0.5 * (std::sqrt(5.0) - 1);
+  const double per_ray = 1.0 / static_cast<double>(rays);
+  const std::size_t chunks = std::min(kChunks, rays);
+  std::vector<ChunkTally> tally(chunks);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::size_t c = 0; c < chunks; ++c) {
+    bed::RandomStream rng(m.params.seed ^ 0x5DEECE66DULL, trace * kChunks + c);
+    for (std::size_t k = c * rays / chunks; k < (c + 1) * rays / chunks; ++k) {
+      const double u = (static_cast<double>(k) + xi) * per_ray;
+      const double v = std::fmod(static_cast<double>(k) * golden + zeta, 1.0);
+      const double r = m.spot_radius * std::sqrt(-0.5 * std::log1p(-u));
+      const double phi = 2 * std::numbers::pi * v;
+      m.follow({x + r * std::cos(phi), y + r * std::sin(phi), m.z_start}, per_ray, particle_alpha,
+               node_alpha, rng, tally[c]);
+    }
+  }
+  // Chunk order, then target order: the same sums for any thread count.
+  AbsorptionMap map;
+  std::vector<double> particles(particle_alpha.size(), 0.0), nodes;
+  std::vector<std::uint32_t> node_targets;
+  for (const ChunkTally& t : tally) {
+    for (const Event& e : t.particles) particles[e.target] += e.power;
+    for (const Event& e : t.nodes) node_targets.push_back(e.target);
+    map.escaped += t.escaped;
+    map.outside += t.outside;
+    map.dropped += t.dropped;
+    map.hits += t.hits * per_ray;
+  }
+  std::sort(node_targets.begin(), node_targets.end());
+  node_targets.erase(std::unique(node_targets.begin(), node_targets.end()), node_targets.end());
+  nodes.assign(node_targets.size(), 0.0);
+  for (const ChunkTally& t : tally)
+    for (const Event& e : t.nodes)
+      nodes[static_cast<std::size_t>(
+          std::lower_bound(node_targets.begin(), node_targets.end(), e.target) -
+          node_targets.begin())] += e.power;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (particles[i] <= 0) continue;
+    map.particles.push_back({static_cast<std::uint32_t>(i), particles[i]});
+    map.absorbed_particles += particles[i];
+  }
+  for (std::size_t q = 0; q < nodes.size(); ++q) {
+    map.nodes.push_back({node_targets[q], nodes[q]});
+    map.absorbed_substrate += nodes[q];
+  }
+  return map;
+}
+
+}  // namespace powderbed::thermal

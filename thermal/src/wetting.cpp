@@ -1,0 +1,142 @@
+// Molten particles wet what they touch (wetting.hpp has the model and its sources). Checked
+// once per grid step, after the particle steps: a particle that has just reached T_m spreads
+// its substrate contact into a spherical cap and, with each neighbour that is molten too, grows
+// a liquid bridge. Bridges stay in the explicit particle network (their conductance is within
+// the particles' stable step, which is re-checked); a spread substrate contact can be far
+// stiffer than the grid step allows, so it leaves the network and is exchanged exactly
+// (exact_exchange) with the top nodes under the cap.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "powderbed/thermal/contact_conduction.hpp"
+#include "powderbed/thermal/wetting.hpp"
+#include "solver_state.hpp"
+
+namespace powderbed::thermal {
+
+namespace {
+
+// The top nodes under a cap of base radius a centred over (x, y), equally weighted (their
+// cells are equal); the bilinear corners when the cap covers no node.
+std::vector<std::pair<std::size_t, double>> footprint(const SubstrateGeometry& g, double x,
+                                                      double y, double a) {
+  std::vector<std::pair<std::size_t, double>> nodes;
+  const auto range = [](double lo, double spacing, std::size_t count, double v0, double v1) {
+    const double first = std::clamp(std::ceil((v0 - lo) / spacing), 0.0, double(count - 1));
+    const double last = std::clamp(std::floor((v1 - lo) / spacing), 0.0, double(count - 1));
+    return std::pair{static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
+  };
+  const auto [i0, i1] = range(g.x0, g.dx, g.nx, x - a, x + a);
+  const auto [j0, j1] = range(g.y0, g.dy, g.ny, y - a, y + a);
+  for (std::size_t j = j0; j <= j1; ++j)
+    for (std::size_t i = i0; i <= i1; ++i) {
+      const double dx = g.x(i) - x, dy = g.y(j) - y;
+      if (dx * dx + dy * dy <= a * a) nodes.push_back({g.index(i, j, g.nz - 1), 1.0});
+    }
+  if (nodes.empty()) {
+    const TopStencil st = top_stencil(g, x, y);
+    for (int w = 0; w < 4; ++w) nodes.push_back({st.node[w], st.weight[w]});
+    return nodes;
+  }
+  for (auto& node : nodes) node.second = 1.0 / static_cast<double>(nodes.size());
+  return nodes;
+}
+
+void spread_on_substrate(Sinter::State& s, std::size_t i) {
+  const std::int64_t c = s.substrate_of[i];
+  if (c < 0) return;
+  SubstrateContact& contact = s.net.substrate[static_cast<std::size_t>(c)];
+  if (contact.shape == 0) return;  // spread already
+  const double r = s.radius[i];
+  const SpreadCap cap =
+      spherical_cap(4.0 / 3.0 * std::numbers::pi * r * r * r, s.scene.contact_angle * std::numbers::pi / 180);
+  s.wetted.push_back({static_cast<std::uint32_t>(i),
+                      conduction_shape_factor(cap.base_radius, cap.centroid_height),
+                      footprint(s.g, s.x[i], s.y[i], cap.base_radius)});
+  contact.shape = 0;  // out of the explicit network: wetted_exchange carries it
+}
+
+// The particle's stable step with its present contacts; more substeps if it is now shorter.
+void recheck_particle_step(Sinter::State& s, std::size_t i) {
+  double conductance = 0;
+  for (const auto p : s.pairs_of[i]) conductance += s.k_max * s.net.pairs[p].shape;
+  if (s.substrate_of[i] >= 0)
+    conductance += s.k_max * s.net.substrate[static_cast<std::size_t>(s.substrate_of[i])].shape;
+  if (conductance <= 0) return;
+  const double bound = s.scene.safety * s.mass[i] * s.per_kg.min_capacity() / conductance;
+  const auto needed = static_cast<std::size_t>(std::ceil(s.dt / bound));
+  s.substeps_stable = std::max(s.substeps_stable, needed);
+  s.substeps = std::max(s.substeps, s.substeps_stable);
+}
+
+}  // namespace
+
+void setup_wetting(Sinter::State& s) {
+  const std::size_t n = s.x.size();
+  s.molten.assign(n, 0);
+  s.pairs_of.assign(n, {});
+  s.substrate_of.assign(n, -1);
+  for (std::size_t p = 0; p < s.net.pairs.size(); ++p) {
+    s.pairs_of[s.net.pairs[p].i].push_back(static_cast<std::uint32_t>(p));
+    s.pairs_of[s.net.pairs[p].j].push_back(static_cast<std::uint32_t>(p));
+  }
+  for (std::size_t c = 0; c < s.net.substrate.size(); ++c)
+    s.substrate_of[s.net.substrate[c].particle] = static_cast<std::int64_t>(c);
+}
+
+void spread_molten(Sinter::State& s) {
+  const double t_m = s.scene.phase_change.melting_point;
+  for (std::size_t i = 0; i < s.x.size(); ++i) {
+    const bool now = !s.gone[i] && s.temperature[i] >= t_m;
+    const bool melted = now && !s.molten[i];
+    s.molten[i] = now;
+    if (!melted) continue;
+    spread_on_substrate(s, i);
+    bool grown = false;
+    for (const auto p : s.pairs_of[i]) {
+      ContactPair& pair = s.net.pairs[p];
+      const std::uint32_t other = pair.i == i ? pair.j : pair.i;
+      if (s.gone[other] || s.temperature[other] < t_m) continue;
+      const double d = std::hypot(s.x[i] - s.x[other], s.y[i] - s.y[other], s.z[i] - s.z[other]);
+      const double shape = conduction_shape_factor(bridge_radius(s.radius[i], s.radius[other]), d);
+      if (shape <= pair.shape) continue;  // a bridge only grows
+      pair.shape = shape;
+      ++s.bridges;
+      grown = true;
+      recheck_particle_step(s, other);
+    }
+    if (grown) recheck_particle_step(s, i);
+  }
+}
+
+void wetted_exchange(Sinter::State& s, double dt) {
+  const SubstrateGeometry& g = s.g;
+  const double top_volume = g.volume(g.nz - 1);
+  const bool variable = s.scene.has(kVariableProperties);
+  for (const auto& w : s.wetted) {
+    const std::size_t i = w.particle;
+    if (s.gone[i]) continue;
+    // The nodes under the cap as one body: mean temperature and capacity 1 / Σ w² / C.
+    double ts = 0, inverse_capacity = 0;
+    for (const auto& [node, weight] : w.footprint) {
+      ts += weight * s.node_temperature[node];
+      if (!g.fixed_top(node))
+        inverse_capacity += weight * weight / (top_volume * s.capacity_per_m3(s.node_temperature[node]));
+    }
+    const double tp = s.temperature[i];
+    const double k = variable ? 0.5 * (s.conductivity(tp) + s.conductivity(ts)) : s.k_fixed;
+    const double c_particle = s.mass[i] * s.capacity_per_kg(tp);
+    // A footprint of Dirichlet nodes only is a reservoir: infinite capacity.
+    const double c_nodes = inverse_capacity > 0 ? 1 / inverse_capacity : 1e300;
+    const double energy = exact_exchange(k * w.shape, c_particle, tp, c_nodes, ts, dt);
+    s.h[i] += energy / s.mass[i];
+    particle_enthalpy_changed(s, i);
+    for (const auto& [node, weight] : w.footprint) {
+      if (g.fixed_top(node)) s.ledger.boundary -= weight * energy;  // from the reservoir
+      else s.sources.push_back({node, -weight * energy});
+    }
+  }
+}
+
+}  // namespace powderbed::thermal
