@@ -33,7 +33,7 @@ namespace po = app::po;
 const char* const kUsage =
     "deposit [--config SCENE.ini] [--in BED.h5 | --psd SPEC --count N] --domain LX,LY,LZ "
     "[--insert-z Z0,Z1] [--t-end T | --until-rest] [--dt DT] [--unsafe-dt] "
-    "[--integrator verlet|rk4] [--young-scale S] --seed S --out BED.h5 "
+    "[--integrator verlet|rk4] [--young-scale S | --contact.law linear --contact.stiffness K] --seed S --out BED.h5 "
     "[--trajectory RUN.h5 --every K] [--lid [--lid.pressure P] [--lid.travel L] [--lid.speed V] "
     "[--lid.hold T] [--lid.relax T] [--lid.release false]] [--crop-top true] [--core-margin M] [--json]";
 
@@ -56,11 +56,17 @@ void add_options(po::options_description& desc) {
       ("rest.window", po::value<double>()->default_value(1e-3),
        "rest: for this long (s of simulated time)")
       ("dt", po::value<double>(), "time step (s); default 0.2 x the Rayleigh step of the smallest "
-                                  "particle (or the drag relaxation time when shorter)")
+                                  "particle (linear law: 0.2 x 1/omega_0 = sqrt(m*/k_n) of its "
+                                  "pair), or the drag relaxation time when shorter")
       ("unsafe-dt", po::bool_switch(), "accept a --dt above the stable bound (with a warning)")
       ("integrator", po::value<std::string>()->default_value("verlet"), "verlet or rk4")
       ("young-scale", po::value<double>()->default_value(1.0),
-       "stiffness softening S: E used = E / S (particles and walls)")
+       "stiffness softening S of the Hertz law: E used = E / S (particles and walls)")
+      ("contact.law", po::value<std::string>()->default_value("hertz"),
+       "normal contact law of pairs and walls: hertz (from E, nu; softened by young-scale) or "
+       "linear (spring-dashpot F = k_n delta + c delta', contact.stiffness; the law of "
+       "Kumar Yadav & Eshraghi 2016's MFiX beds)")
+      ("contact.stiffness", po::value<double>(), "k_n of the linear law (N/m)")
       ("seed", po::value<std::uint64_t>(), "random seed (insertion positions and sizes)")
       ("threads", po::value<int>()->default_value(0), "OpenMP threads (0: OpenMP's default)")
       ("out", po::value<std::string>(), "output bed (HDF5 + XDMF sidecar)")
@@ -184,6 +190,15 @@ int run(int argc, char** argv) {
   scene.wall.young = vm["wall.young"].as<double>();
   scene.wall.poisson = vm["wall.poisson"].as<double>();
   scene.gravity = vm["gravity"].as<double>();
+  scene.law = dem::parse_contact_law(vm["contact.law"].as<std::string>());
+  if (vm.count("contact.stiffness")) {
+    if (scene.law != dem::ContactLaw::linear)
+      throw InputError("contact.stiffness: given with contact.law = hertz (accepted: with "
+                       "contact.law = linear)");
+    scene.stiffness = vm["contact.stiffness"].as<double>();
+  } else if (scene.law == dem::ContactLaw::linear) {
+    throw InputError("contact.stiffness: missing with contact.law = linear (accepted: k_n > 0 N/m)");
+  }
   scene.effects = 0;
   for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
     if (vm[std::string("effects.") + dem::effect_name(bit)].as<bool>()) scene.effects |= bit;
@@ -255,6 +270,14 @@ int run(int argc, char** argv) {
   bed.provenance.rng_seed = seed;
   bed.provenance.stage = "deposit";
   bed.provenance.scene = app::scene_text(vm);
+  bed::ContactProvenance& made = bed.provenance.contact;  // what keff's Hertz correction reads
+  made.law = dem::contact_law_name(scene.law);
+  made.young = scene.material.young;
+  made.poisson = scene.material.poisson;
+  made.wall_young = scene.wall.young;
+  made.wall_poisson = scene.wall.poisson;
+  made.young_scale = s.young_scale;
+  made.stiffness = scene.stiffness;
   bed::write_bed_h5(bed, out);
 
   if (vm.count("json")) {
@@ -269,6 +292,8 @@ int run(int argc, char** argv) {
         .value("dt_stable", r.dt_stable)
         .value("integrator", vm["integrator"].as<std::string>())
         .value("young_scale", s.young_scale)
+        .value("contact_law", made.law)
+        .value("stiffness", scene.stiffness)
         .value("kinetic_energy", r.kinetic_energy)
         .value("max_speed", r.max_speed)
         .value("max_overlap", r.max_overlap)

@@ -66,9 +66,17 @@ void add_options(po::options_description& desc) {
       ("contact.calibration", po::value<double>()->default_value(d.calibration),
        "A_c: scales the contact radius")
       ("contact.hertz-correction", po::value<bool>()->default_value(d.contact.hertz_correction),
-       "contact radius from the equivalent Hertz overlap of a softened bed (else geometric)")
-      ("contact.young-scale", po::value<double>()->default_value(d.contact.young_scale),
-       "S of the DEM run that made the bed (E used = E / S)")
+       "contact radius from the equivalent Hertz overlap of a softened bed (else geometric); "
+       "the DEM's law, E, nu and softening S or stiffness k_n are read from the bed")
+      ("contact.young", po::value<double>(),
+       "E of the particles in the Hertz correction (Pa; default: the bed's): reads the same "
+       "packing as a material of this modulus, the walls' modulus scaled alike")
+      ("contact.law", po::value<std::string>(),
+       "hertz or linear: checked against the bed's record (it is read from the bed)")
+      ("contact.young-scale", po::value<double>(),
+       "S of the bed's Hertz DEM run: checked against the bed's record (it is read from the bed)")
+      ("contact.stiffness", po::value<double>(),
+       "k_n of the bed's linear DEM run (N/m): checked against the bed's record")
       ("effects.contact", po::value<bool>()->default_value(true), "contact conduction on/off")
       ("rays", po::value<std::size_t>()->default_value(d.rays),
        "Monte-Carlo view-factor rays per particle (radiation)")
@@ -143,7 +151,6 @@ th::KeffScene make_scene(const po::variables_map& vm, const po::variables_map& c
       region == "larger-lens" ? th::LensRegion::larger_lens : th::LensRegion::both_lenses;
   s.calibration = vm["contact.calibration"].as<double>();
   s.contact.hertz_correction = vm["contact.hertz-correction"].as<bool>();
-  s.contact.young_scale = vm["contact.young-scale"].as<double>();
   s.contact_path = vm["effects.contact"].as<bool>();
   s.gas_path = vm["effects.gas"].as<bool>();
   s.radiation_path = vm["effects.radiation"].as<bool>();
@@ -194,8 +201,15 @@ int run(int argc, char** argv) {
   if (!vm.count("bed")) throw InputError("--bed: missing (required)");
   po::variables_map command_line;  // what the command line alone says (walls)
   po::store(po::command_line_parser(argc, argv).options(desc).run(), command_line);
-  const th::KeffScene scene = make_scene(vm, command_line);
+  th::KeffScene scene = make_scene(vm, command_line);
   bed::Bed bed = bed::read_bed_any(vm["bed"].as<std::string>());
+  th::ContactOptions given;
+  if (vm.count("contact.law")) given.law = vm["contact.law"].as<std::string>();
+  if (vm.count("contact.young-scale")) given.young_scale = vm["contact.young-scale"].as<double>();
+  if (vm.count("contact.stiffness")) given.stiffness = vm["contact.stiffness"].as<double>();
+  if (vm.count("contact.young")) given.young = vm["contact.young"].as<double>();
+  scene.contact =
+      th::contact_radius_params(bed.provenance.contact, scene.contact.hertz_correction, given);
 
   const auto start = std::chrono::steady_clock::now();
   const app::ProgressBar bar;
@@ -238,6 +252,8 @@ int run(int argc, char** argv) {
         .value("gas", r.share_gas)
         .value("radiation", r.share_radiation)
         .end_object()
+        .value("hertz_correction", scene.contact.hertz_correction)
+        .value("contact_law", bed.provenance.contact.law)
         .value("rattlers", static_cast<std::uint64_t>(r.rattlers.size()))
         .value("newton_iterations", static_cast<std::uint64_t>(r.newton_iterations))
         .value("newton_residual", r.residual)

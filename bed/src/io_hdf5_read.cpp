@@ -1,8 +1,10 @@
 // Reader of the HDF5 bed file, format version 1 (DESIGN.md "The bed file"): checks everything and
 // refuses a bad file with one line "<file>: <dataset>: <what is wrong>".
 #include <array>
+#include <cmath>
 #include <fstream>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "io_detail.hpp"
@@ -220,6 +222,20 @@ class H5Reader {
     H5Group g = group("provenance");
     if (has_attr(g, "stage")) p.stage = string_attr(g, "/provenance", "stage");
     if (has_attr(g, "scene")) p.scene = string_attr(g, "/provenance", "scene");
+    if (!has_attr(g, "contact_law")) return;  // not recorded (ContactProvenance)
+    ContactProvenance& c = p.contact;
+    c.law = string_attr(g, "/provenance", "contact_law");
+    if (c.law != "hertz" && c.law != "linear")
+      fail("/provenance", "contact_law is '" + c.law + "' (accepted: hertz, linear)");
+    const std::pair<const char*, double*> values[] = {
+        {"contact_young", &c.young},           {"contact_poisson", &c.poisson},
+        {"contact_wall_young", &c.wall_young}, {"contact_wall_poisson", &c.wall_poisson},
+        {"contact_young_scale", &c.young_scale}, {"contact_stiffness", &c.stiffness}};
+    for (const auto& [name, value] : values) {
+      numeric_attr(g, "/provenance", name, H5T_NATIVE_DOUBLE, value, 1);
+      if (!std::isfinite(*value))
+        fail("/provenance", std::string(name) + " is not finite (accepted: a finite number)");
+    }
   }
 
   // N x 3 rows -> structure of arrays.

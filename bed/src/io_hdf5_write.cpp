@@ -1,5 +1,6 @@
 // Writer of the HDF5 bed file, format version 1 (DESIGN.md "The bed file"), plus its XDMF sidecar.
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "io_detail.hpp"
@@ -121,6 +122,15 @@ class H5Writer {
     if (!group.valid()) fail("/provenance", "cannot create group");
     string_attr(group, "/provenance", "stage", p.stage);
     string_attr(group, "/provenance", "scene", p.scene);
+    const ContactProvenance& c = p.contact;
+    if (c.law.empty()) return;
+    string_attr(group, "/provenance", "contact_law", c.law);
+    const std::pair<const char*, double> values[] = {
+        {"contact_young", c.young},           {"contact_poisson", c.poisson},
+        {"contact_wall_young", c.wall_young}, {"contact_wall_poisson", c.wall_poisson},
+        {"contact_young_scale", c.young_scale}, {"contact_stiffness", c.stiffness}};
+    for (const auto& [name, value] : values)
+      numeric_attr(group, "/provenance", name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value, 1);
   }
 
   // Structure of arrays -> N x 3 rows.

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/bed/io.hpp"
@@ -165,6 +167,45 @@ TEST(DepositCli, BadLidExits2WithOneLine) {
     EXPECT_EQ(r.status, 2) << bad << ": " << r.err;
     EXPECT_EQ(r.err_lines(), 1) << bad << ": " << r.err;
     EXPECT_NE(r.err.find("lid"), std::string::npos) << bad << ": " << r.err;
+    EXPECT_FALSE(std::ifstream(dir + "/out.h5").good());
+  }
+}
+
+TEST(DepositCli, LinearLawRunsAndTheBedRecordsHowItWasMade) {
+  const std::string dir = test::scratch_dir("deposit_linear");
+  const std::string in = small_bed(dir);
+  const std::string common = "--in " + in + " --t-end 1e-5 --seed 1 --out " + dir + "/out.h5";
+  auto r = test::run_app("deposit", common + " --contact.law linear --contact.stiffness 1e3 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"contact_law\":\"linear\""), std::string::npos) << r.out;
+  bed::Bed out = bed::read_bed_h5(dir + "/out.h5");
+  EXPECT_EQ(out.provenance.contact.law, "linear");
+  EXPECT_EQ(out.provenance.contact.stiffness, 1e3);
+  EXPECT_EQ(out.provenance.contact.young, 193e9);  // the default material, [GZ]'s 316L
+  EXPECT_EQ(out.provenance.contact.poisson, 0.26);
+  r = test::run_app("deposit", common + " --young-scale 1e3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  out = bed::read_bed_h5(dir + "/out.h5");
+  EXPECT_EQ(out.provenance.contact.law, "hertz");
+  EXPECT_EQ(out.provenance.contact.young_scale, 1e3);
+  EXPECT_EQ(out.provenance.contact.wall_young, 193e9);
+}
+
+TEST(DepositCli, BadContactLawExits2WithOneLine) {
+  const std::string dir = test::scratch_dir("deposit_bad_law");
+  const std::string common = "--in " + small_bed(dir) + " --t-end 1e-6 --seed 1 --out " + dir + "/out.h5 ";
+  const std::pair<std::string, std::vector<std::string>> cases[] = {
+      {"--contact.law jkr", {"contact.law", "jkr", "hertz, linear"}},
+      {"--contact.law linear --contact.stiffness 0", {"contact.stiffness", "k_n > 0"}},
+      {"--contact.law linear --contact.stiffness -1e5", {"contact.stiffness", "-100000"}},
+      {"--contact.law linear", {"contact.stiffness", "missing"}},
+      {"--contact.stiffness 1e5", {"contact.stiffness", "hertz"}},
+      {"--contact.law linear --contact.stiffness 1e5 --young-scale 10", {"--young-scale", "linear"}}};
+  for (const auto& [options, parts] : cases) {
+    const auto r = test::run_app("deposit", common + options);
+    EXPECT_EQ(r.status, 2) << options << ": " << r.err;
+    EXPECT_EQ(r.err_lines(), 1) << r.err;
+    for (const auto& part : parts) EXPECT_NE(r.err.find(part), std::string::npos) << part << " in " << r.err;
     EXPECT_FALSE(std::ifstream(dir + "/out.h5").good());
   }
 }

@@ -25,12 +25,14 @@ namespace {
 
 const std::string kScene = std::string(POWDERBED_SOURCE_DIR) + "/data/scenes/ke2016-steel-1mm.ini";
 
-// Four 1 mm steel spheres stacked on z, overlapping each other and the walls by 1e-3 r.
+// Four 1 mm steel spheres stacked on z, overlapping each other and the walls by 1e-3 r; recorded
+// as made by a Hertz DEM at full stiffness (the scene asks for the Hertz correction).
 bed::Bed column() {
   bed::Bed b;
   const double r = 0.5e-3, overlap = 1e-3 * r, pitch = 2 * r - overlap;
   for (int k = 0; k < 4; ++k) b.add(r, r, r - overlap + k * pitch, r);
   b.domain.upper = {2 * r, 2 * r, 3 * pitch + 2 * (r - overlap)};
+  b.provenance.contact = {"hertz", 198e9, 0.28, 198e9, 0.28, 1.0, 0.0};
   return b;
 }
 
@@ -176,4 +178,67 @@ TEST(KeffCli, BadInputExitsTwoWithOneLine) {
   expect_refused(
       test::run_app("keff", base + "--bed " + bed_path + " --axis x --effects.gas false"), dir,
       {"hot wall"});
+}
+
+TEST(KeffCli, HertzCorrectionReadsTheBedsContactLaw) {
+  // The column recorded as made with the linear law k_n: the correction equates k_n delta_s with
+  // (4/3) E* sqrt(R*) delta_h^{3/2}; contact only, so k_eff is the series sum in closed form.
+  const std::string dir = test::scratch_dir("keff_linear");
+  bed::Bed b = column();
+  const double k_n = 1e5, e = 198e9, nu = 0.28;
+  b.provenance.contact = {"linear", e, nu, e, nu, 1.0, k_n};
+  const std::string bed_path = write_bed(b, dir);
+  const std::string base = "--config " + kScene + " --bed " + bed_path + " --effects.gas false --json";
+  const auto r = test::run_app("keff", base);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"contact_law\":\"linear\""), std::string::npos) << r.out;
+  const double r_p = 0.5e-3, overlap = 1e-3 * r_p, k_s = 28.555;  // the scene's k_s
+  const double e_pair = 1 / (2 * (1 - nu * nu) / e);                // E* of equal materials
+  const auto a_of = [&](double r_star, double delta) {
+    const double delta_h = std::pow(3 * k_n * delta / (4 * e_pair * std::sqrt(r_star)), 2.0 / 3.0);
+    return std::sqrt(r_star * delta_h);
+  };
+  const double g = 1 / (2 / (2 * k_s * a_of(r_p, overlap)) + 3 / (2 * k_s * a_of(r_p / 2, overlap)));
+  const double expected = g * b.domain.length(2) / (b.domain.length(0) * b.domain.length(1));
+  // A linear network solved by CG to 1e-10 of the flows (as the geometric test above).
+  EXPECT_NEAR(json_number(r.out, "k_eff"), expected, 1e-8 * expected);
+  // Reading it at twice the modulus shrinks every contact radius by 2^{-1/3}: k_eff too.
+  const auto stiff = test::run_app("keff", base + " --contact.young 396e9");
+  ASSERT_EQ(stiff.status, 0) << stiff.err;
+  EXPECT_NEAR(json_number(stiff.out, "k_eff"), expected * std::pow(2.0, -1.0 / 3.0), 1e-8 * expected);
+  // Options that agree with the record are accepted.
+  EXPECT_EQ(test::run_app("keff", base + " --contact.law linear --contact.stiffness 1e5").status, 0);
+}
+
+TEST(KeffCli, ContactRecordMissingOrContradictedExitsTwo) {
+  const std::string dir = test::scratch_dir("keff_bad_contact");
+  const std::string base = "--config " + kScene + " --out " + dir + "/out.h5 --bed ";
+  bed::Bed bare = column();
+  bare.provenance.contact = {};  // e.g. a packgen bed or a LAMMPS dump
+  bed::write_bed_h5(bare, dir + "/bare.h5");
+  expect_refused(test::run_app("keff", base + dir + "/bare.h5"), dir,
+                 {"contact.hertz-correction", "records no contact law"});
+  // Without the correction the bare bed is fine (the geometric circle).
+  EXPECT_EQ(test::run_app("keff", base + dir + "/bare.h5 --contact.hertz-correction false").status, 0);
+  std::filesystem::remove(dir + "/out.h5");
+  std::filesystem::remove(dir + "/out.xmf");
+  std::filesystem::remove(dir + "/out-profile.csv");
+  const std::string hertz = write_bed(column(), dir);  // hertz, young-scale 1
+  expect_refused(test::run_app("keff", base + hertz + " --contact.young-scale 1000"), dir,
+                 {"contact.young-scale", "1000", "contradicts"});
+  expect_refused(test::run_app("keff", base + hertz + " --contact.law linear"), dir,
+                 {"contact.law", "linear", "hertz"});
+  expect_refused(test::run_app("keff", base + hertz + " --contact.stiffness 1e5"), dir,
+                 {"contact.stiffness", "contradicts"});
+  expect_refused(test::run_app("keff", base + hertz + " --contact.law jkr"), dir,
+                 {"contact.law", "jkr", "hertz, linear"});
+  expect_refused(test::run_app("keff", base + hertz + " --contact.stiffness -1"), dir,
+                 {"contact.stiffness", "k_n > 0"});
+  expect_refused(test::run_app("keff", base + hertz + " --contact.young 0"), dir,
+                 {"contact.young", "E > 0"});
+  bed::Bed linear = column();
+  linear.provenance.contact = {"linear", 198e9, 0.28, 198e9, 0.28, 1.0, 1e5};
+  bed::write_bed_h5(linear, dir + "/linear.h5");
+  expect_refused(test::run_app("keff", base + dir + "/linear.h5 --contact.stiffness 2e5"), dir,
+                 {"contact.stiffness", "200000", "k_n = 100000 N/m"});
 }

@@ -11,12 +11,26 @@ namespace powderbed::bed {
 enum class Phase : std::uint8_t { solid = 0, liquid = 1, gas = 2 };
 
 // Where a bed came from; written to the file root and /provenance.
+// How a DEM stage made the bed: its normal contact law and what keff's Hertz correction of the
+// contact radius needs (docs/bed-format.md). An empty law: not recorded (a geometric bed, an
+// imported one, a file written before this was recorded).
+struct ContactProvenance {
+  std::string law;          // "hertz" | "linear" | ""
+  double young = 0;         // particles' E, Pa (the material's, not softened)
+  double poisson = 0;       // particles' nu
+  double wall_young = 0;    // walls' E, Pa
+  double wall_poisson = 0;  // walls' nu
+  double young_scale = 1;   // hertz: the DEM ran with E / young_scale (particles and walls)
+  double stiffness = 0;     // linear: k_n, N/m (pairs and walls)
+};
+
 struct Provenance {
   std::string created_by;    // "<app> <version>"
   std::string command_line;  // as typed
   std::uint64_t rng_seed = 0;
   std::string stage;         // "packgen", "deposit", "lattice", ...
   std::string scene;         // the whole resolved configuration, INI text
+  ContactProvenance contact;
 };
 
 struct Bed {

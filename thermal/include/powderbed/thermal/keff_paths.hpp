@@ -32,21 +32,47 @@ inline double hertz_contact_radius(double reduced_radius, double soft_overlap, d
   return std::sqrt(reduced_radius * soft_overlap * std::pow(young_scale, -2.0 / 3.0));
 }
 
+// A bed settled with a linear spring k_n (the MFiX-DEM beds of [KE]) has overlaps δ_s set by
+// k_n, not by the material. Equating k_n δ_s with the Hertz force (4/3) E* √R* δ_h^{3/2}
+// (Kumar Yadav & Eshraghi 2016, SPEC.md §6) gives δ_h = (3 k_n δ_s / (4 E* √R*))^{2/3}, and
+// a = √(R* δ_h). For a wall R* = r and E* is the particle–wall modulus.
+inline double linear_spring_contact_radius(double reduced_radius, double soft_overlap,
+                                           double stiffness, double effective_modulus) {
+  if (soft_overlap <= 0) return 0;
+  const double hertz_overlap = std::cbrt(std::pow(
+      3 * stiffness * soft_overlap / (4 * effective_modulus * std::sqrt(reduced_radius)), 2));
+  return std::sqrt(reduced_radius * hertz_overlap);
+}
+
+// The normal law of the DEM run that made the bed (bed::ContactProvenance).
+enum class BedContactLaw { hertz, linear };
+
 // How a contact radius is taken from the bed's geometry.
 struct ContactRadiusParams {
   bool hertz_correction = false;  // false: the geometric circle where the spheres intersect
-  double young_scale = 1;         // S of the bed's DEM run (E used = E / S)
+  BedContactLaw law = BedContactLaw::hertz;
+  // hertz: E*_true / E*_DEM, the bed's softening S (E' / E_bed times it when the correction
+  // reads the packing at another modulus E', contact.young)
+  double young_scale = 1;
+  double stiffness = 0;       // linear: k_n of the DEM, N/m
+  double pair_modulus = 0;    // linear: E* of two particles at the true moduli, Pa
+  double wall_modulus = 0;    // linear: E* of a particle on a wall, Pa
 };
 
 // Particle–particle contact radius at centre distance d (0 when apart).
 inline double pair_contact_radius(const ContactRadiusParams& p, double r_i, double r_j, double d) {
   if (!p.hertz_correction) return contact_radius(r_i, r_j, d);
-  return hertz_contact_radius(r_i * r_j / (r_i + r_j), r_i + r_j - d, p.young_scale);
+  const double reduced = r_i * r_j / (r_i + r_j), overlap = r_i + r_j - d;
+  if (p.law == BedContactLaw::linear)
+    return linear_spring_contact_radius(reduced, overlap, p.stiffness, p.pair_modulus);
+  return hertz_contact_radius(reduced, overlap, p.young_scale);
 }
 
 // Particle–wall contact radius, the centre `h` from the wall plane: a = √(r² − h²) geometric.
 inline double wall_contact_radius(const ContactRadiusParams& p, double r, double h) {
   if (!p.hertz_correction) return plane_contact_radius(r, h);
+  if (p.law == BedContactLaw::linear)
+    return linear_spring_contact_radius(r, r - h, p.stiffness, p.wall_modulus);
   return hertz_contact_radius(r, r - h, p.young_scale);
 }
 

@@ -3,6 +3,10 @@
 // conductivities, the grey-body radiation settings and the heat paths switched on.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <string>
+
+#include "powderbed/bed/bed.hpp"
 
 #include "powderbed/thermal/keff_gas_lens.hpp"
 #include "powderbed/thermal/keff_paths.hpp"
@@ -16,6 +20,20 @@ enum class GasModel { constant, air };
 // pair: SPEC.md §6's formula, one link per pair carrying both surface resistances; radiosity:
 // the grey enclosure's network, one radiosity node per surface (keff_radiation.hpp).
 enum class RadiationModel { pair, radiosity };
+
+// What the command line or scene says about how the bed was made; each given value must agree
+// with the bed's provenance (bed::ContactProvenance). `young` is different: the particles'
+// modulus E' at which the correction reads the packing (default: the bed's E).
+struct ContactOptions {
+  std::optional<std::string> law;
+  std::optional<double> young_scale, stiffness, young;
+};
+
+// The Hertz correction's constants from the bed's record of its DEM run. Throws InputError (one
+// line) when the correction is asked for and the bed records no contact law, when an option
+// contradicts the record, for an unknown law, k_n <= 0, S <= 0 or E' <= 0.
+ContactRadiusParams contact_radius_params(const bed::ContactProvenance& made,
+                                          bool hertz_correction, const ContactOptions& given);
 
 struct KeffScene {
   // The hot wall is the upper face of `axis` (domain.upper), the cold wall the lower face.
