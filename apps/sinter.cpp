@@ -58,7 +58,9 @@ void add_options(po::options_description& desc) {
       ("laser.y", po::value<double>(), "track line y (m); default Ly/2")
       ("laser.start-x", po::value<double>(), "track start x (m); default one spot radius before")
       ("laser.end-x", po::value<double>(), "track end x (m); default one spot radius past")
-      ("laser.absorption", po::value<std::string>()->default_value("beer-lambert"),
+      ("laser.absorption",
+       po::value<std::string>()->default_value(
+           d.absorption == th::LaserAbsorption::ray_trace ? "ray-trace" : "beer-lambert"),
        "beer-lambert (exp(-beta z) on projected areas, Gusarov's beta) or ray-trace (rays on "
        "the bed's own spheres and the substrate, absorbed alpha per hit, reflected)")
       ("laser.substrate-shading", po::value<std::string>()->default_value("layer"),
@@ -102,8 +104,7 @@ void add_options(po::options_description& desc) {
        "particle steps subcycle so the laser raises no particle more than this per step (K)");
   for (unsigned bit = 1; bit < (1u << th::kSinterEffectCount); bit <<= 1) {
     const std::string name = std::string("effects.") + th::sinter_effect_name(bit);
-    // Wetting goes beyond [GZ]'s model: a scene switches it on by name.
-    desc.add_options()(name.c_str(), po::value<bool>()->default_value(bit != th::kWetting),
+    desc.add_options()(name.c_str(), po::value<bool>()->default_value((d.effects & bit) != 0),
                        "effect on/off");
   }
 }

@@ -60,6 +60,7 @@ void time_steps(benchmark::State& state, const bed::Bed& bed, thermal::SinterSce
 void particles(benchmark::State& state, unsigned effects_off) {
   static const bed::Bed bed = lattice_bed(141);
   thermal::SinterScene scene;
+  scene.absorption = thermal::LaserAbsorption::beer_lambert;  // the kernels of [GZ]'s model
   scene.nodes = {3, 3, 3};
   scene.effects = thermal::kAllSinterEffects & ~effects_off;
   time_steps(state, bed, scene, static_cast<std::int64_t>(bed.n()));
@@ -70,6 +71,7 @@ void grid(benchmark::State& state, unsigned effects_off) {
   bed.domain.lower = {0, 0, 0};
   bed.domain.upper = {0.5e-3, 0.25e-3, 0.1e-3};
   thermal::SinterScene scene;
+  scene.absorption = thermal::LaserAbsorption::beer_lambert;
   scene.nodes = {101, 51, 31};
   scene.substrate_depth = 0.15e-3;
   scene.effects = thermal::kAllSinterEffects & ~effects_off;

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""Accuracy costs time for sinter (DESIGN.md "Accuracy costs time", issue 5): on the [GZ] scene
-and bed, one knob at a time — substrate grid spacing 10 / 5 / 2.5 um, time step from the paper's
-5e-9 s up to the stable bound, phase-change window dT, explicit vs implicit — each row with the
-melt pool, its change against the finest run of that knob and the wall time. Writes
+"""Accuracy costs time for sinter: on the [GZ] scene and bed, one knob at a time — substrate
+grid spacing 10 / 5 / 2.5 um, time step from the paper's 5e-9 s up to the stable bound,
+phase-change window dT, explicit vs implicit, rays per traced beam position and the re-trace
+interval of the ray-traced laser — each row with the melt pool, its change against the finest
+run of that knob and the wall time. Writes
 docs/results/sinter-accuracy.md and sinter-accuracy.png. Run with /usr/bin/python3:
     POWDERBED_BUILD=build /usr/bin/python3 bench/studies/sinter_accuracy.py
 
@@ -11,7 +12,10 @@ the beam passes the measuring plane x = Lx/2 at 2.77e-4 s and the pool there has
 extent by then (the first table checks this at the default step). They run on the 10 um grid
 (161,000 nodes instead of 1.24 M): the time error does not depend on the grid, the 10 um grid's
 stable bound is 4x longer so the sweep spans more, and it keeps the paper's 5e-9 s step (72,000
-steps) and the implicit solves affordable. Runs use one thread: they compare settings.
+steps) and the implicit solves affordable. The ray-tracing rows run on that grid and t_end too:
+the rays decide where the power goes, the grid how it spreads. The implicit integrator has no ray
+tracing or wetting yet, so its rows (and their explicit reference) use Beer-Lambert without
+wetting. Runs use one thread: they compare settings.
 """
 import os
 
@@ -53,6 +57,20 @@ def rows_table(title, rows, ref_label):
     return out
 
 
+def rays_table(title, rows, ref_label):
+    """rows_table with the traced absorptance beside the pool."""
+    ref = next(s for label, s, wall in rows if label == ref_label)
+    ref_pool, ref_abs = pool_um(ref), ref["ray_trace"]["bed_absorptance"]
+    out = [f"| {title} | bed absorptance | change vs {ref_label} | height (um) | width (um) | "
+           f"depth (um) | largest change vs {ref_label} (um) | wall (s) |",
+           "|---|---|---|---|---|---|---|---|"]
+    for label, s, wall in rows:
+        pool, absorptance = pool_um(s), s["ray_trace"]["bed_absorptance"]
+        out.append(f"| {label} | {absorptance:.4f} | {absorptance - ref_abs:+.1e} | {pool[0]:.2f} | "
+                   f"{pool[1]:.2f} | {pool[2]:.2f} | {change(pool, ref_pool):.2f} | {wall:.1f} |")
+    return out
+
+
 def main():
     bed = gz2016_bed()
     sections = []
@@ -89,22 +107,39 @@ def main():
     sections += ["## Phase-change window dT (apparent heat capacity)", "",
                  *rows_table("dT", windows, windows[0][0]), ""]
 
-    integrators = [(f"explicit, dt = {steps[0][1]['dt']:.3g} s", steps[0][1], steps[0][2])]
+    beer = ("--laser.absorption", "beer-lambert", "--effects.wetting", "false")
+    s, wall = run_sinter(bed, "acc-explicit.h5", *beer, *coarse)
+    integrators = [(f"explicit, dt = {s['dt']:.3g} s", s, wall)]
     for dt in ("1.35e-6", "5e-6"):
         s, wall = run_sinter(bed, "acc-implicit.h5", "--integrator", "implicit", "--dt", dt,
-                             *coarse)
+                             *beer, *coarse)
         integrators.append((f"implicit, dt = {dt} s ({s['implicit_iterations']} CG iterations)",
                             s, wall))
-    sections += ["## Explicit vs implicit (10 um grid; t_end = 3.6e-4 s)", "",
-                 *rows_table("integrator", integrators, integrators[0][0]), ""]
+    sections += ["## Explicit vs implicit (Beer-Lambert, no wetting; 10 um grid; t_end = 3.6e-4 s)",
+                 "", *rows_table("integrator", integrators, integrators[0][0]), ""]
+
+    rays = []
+    for n in ("500", "1000", "2000", "4000", "16000", "64000"):
+        s, wall = run_sinter(bed, "acc-rays.h5", "--laser.rays", n, *coarse)
+        rays.append((f"{n} rays" + (" (default)" if n == "4000" else ""), s, wall))
+    sections += ["## Rays per traced beam position (ray-traced laser; 10 um grid; t_end = 3.6e-4 s)",
+                 "", *rays_table("rays", rays, rays[-1][0]), ""]
+
+    retrace = []
+    for f in ("0.4", "0.2", "0.1", "0.05", "0.025"):
+        s, wall = run_sinter(bed, "acc-retrace.h5", "--laser.retrace-interval", f, *coarse)
+        retrace.append((f"{f} w" + (" (default)" if f == "0.1" else ""), s, wall))
+    sections += ["## Re-trace interval (ray-traced laser; 10 um grid; t_end = 3.6e-4 s)", "",
+                 *rays_table("interval", retrace, retrace[-1][0]), ""]
 
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for name, rows, marker in (("grid spacing", grid, "o"), ("time step", steps, "s"),
-                               ("window dT", windows, "^"), ("integrator", integrators, "D")):
-        ref = pool_um(rows[-1][1] if name in ("grid spacing", "time step") else rows[0][1])
+                               ("window dT", windows, "^"), ("integrator", integrators, "D"),
+                               ("rays", rays, "v"), ("re-trace interval", retrace, "P")):
+        ref = pool_um(rows[0][1] if name in ("window dT", "integrator") else rows[-1][1])
         ax.plot([w for _, _, w in rows], [max(change(pool_um(s), ref), 1e-3) for _, s, _ in rows],
                 marker, label=name, linestyle="-")
     ax.axhline(1.0, color="grey", linestyle=":", label="1 um")

@@ -77,6 +77,9 @@ inline thermal::SinterScene small_scene(unsigned effects, std::array<std::size_t
                                         double depth) {
   thermal::SinterScene scene;
   scene.effects = effects;
+  // These scenes test [GZ]'s model, whose laser is Beer–Lambert's (the ray tracer has its own
+  // tests: test_ray_traced_laser.cpp).
+  scene.absorption = thermal::LaserAbsorption::beer_lambert;
   scene.nodes = nodes;
   scene.substrate_depth = depth;
   return scene;

@@ -5,7 +5,9 @@
 #include <sstream>
 
 #include "powderbed/thermal/beer_lambert_laser.hpp"
+#include "powderbed/thermal/contact_conduction.hpp"
 #include "powderbed/thermal/surface_losses.hpp"
+#include "powderbed/thermal/wetting.hpp"
 
 namespace powderbed::thermal {
 
@@ -66,14 +68,24 @@ ExplainReport explain(const bed::Bed& bed, const SinterScene& scene, const Sinte
   const double c_mean = m.solid_specific_heat(0.5 * (t0 + t_m));
   r.heating_time = m.density(t0) * 4.0 / 3.0 * r_mean * c_mean * (t_m - t0) / r.laser_flux;
 
+  const auto& grid = sinter.grid();
+  r.absorptance = sinter.absorptance_at(grid.x0 + 0.5 * static_cast<double>(grid.nx - 1) * grid.dx);
+  const SpreadCap cap = spherical_cap(4.0 / 3.0 * M_PI * r_mean * r_mean * r_mean,
+                                      scene.contact_angle * M_PI / 180);
+  r.wetting_time = m.density(t0) * 4.0 / 3.0 * M_PI * r_mean * r_mean * r_mean * c_mean /
+                   (k * conduction_shape_factor(cap.base_radius, cap.centroid_height));
+  const bool particles_melt = r.heating_time < r.dwell_time;
+  const bool wetting_matters = n > 0 && !sinter.network().substrate.empty() && particles_melt &&
+                               r.wetting_time < r.dwell_time;
+
   std::ostringstream out;
   char line[200];
   const auto row = [&](const char* name, double value, const std::string& note) {
     std::snprintf(line, sizeof line, "  %-34s %10.3g   %s\n", name, value, note.c_str());
     out << line;
   };
-  out << "Scale analysis of the scene (SPEC.md §5; [GZ]: conduction ~1e-1, convection ~1e-5,\n"
-         "radiation ~1e-4 of the laser flux during heating)\n";
+  out << "Scale analysis of the scene (Ganeriwala & Zohdi 2016 [GZ]: conduction ~1e-1,\n"
+         "convection ~1e-5, radiation ~1e-4 of the laser flux during heating)\n";
   row("absorbed laser flux alpha I0 (W/m^2)", r.laser_flux, "");
   row("conduction scale k dT / D / laser", r.conduction_scale,
       "[GZ]'s estimate: as if particles touched over their whole section");
@@ -96,6 +108,15 @@ ExplainReport explain(const bed::Bed& bed, const SinterScene& scene, const Sinte
   row("time to heat a mean particle to T_m (s)", r.heating_time,
       r.heating_time < r.dwell_time ? "shorter than the dwell: lit particles melt"
                                     : "longer than the dwell: particles may not melt");
+  row(scene.absorption == LaserAbsorption::ray_trace ? "absorptance (ray-trace)"
+                                                      : "absorptance (beer-lambert)",
+      r.absorptance,
+      "316L near 1 um: flat ~0.3-0.35, powder layer ~0.6-0.7 (Boley et al. 2015; Trapp et al. "
+      "2017)");
+  row("wetting time m c / (k pi a^2 / z_c) (s)", r.wetting_time,
+      std::string(wetting_matters ? "shorter than the dwell, particles melt: wetting matters"
+                                  : "particles do not melt or touch the substrate: negligible") +
+          (scene.has(kWetting) ? " (on)" : wetting_matters ? " but is OFF" : " (off)"));
   row("phase change window (K)", pc.window,
       scene.has(kPhaseChange) ? "phase change on" : "phase change OFF: no latent heat");
   out << "Time steps: grid bound " << sinter.stable_steps().grid << " s, particle bound "

@@ -177,6 +177,30 @@ void setup_laser(Sinter::State& s, const bed::Bed& bed) {
   s.node_alpha.assign(s.g.nx * s.g.ny, s.scene.absorptivity);
 }
 
+double absorbed_fraction(const Sinter::State& s, double x) {
+  if (s.tracer) {
+    std::vector<double> particle_alpha(s.x.size(), s.scene.absorptivity);
+    std::vector<double> node_alpha(s.g.nx * s.g.ny, s.scene.absorptivity);
+    const AbsorptionMap map = s.tracer->trace(x, s.laser_y, 0, particle_alpha, node_alpha);
+    return map.absorptance() / (1 - map.outside);
+  }
+  // Beer–Lambert: the particles' share plus the substrate's, summed as the kernels deposit them.
+  const double w2 = s.laser.spot_radius * s.laser.spot_radius, i0 = peak_intensity(s.laser);
+  double absorbed = 0;
+  for (std::size_t i = 0; i < s.x.size(); ++i) {
+    const double dx = s.x[i] - x, dy = s.y[i] - s.laser_y;
+    absorbed += s.laser_factor[i] * i0 * std::exp(-2 * (dx * dx + dy * dy) / w2);
+  }
+  const SubstrateGeometry& g = s.g;
+  for (std::size_t j = 1; j + 1 < g.ny; ++j)
+    for (std::size_t i = 1; i + 1 < g.nx; ++i) {
+      const double dx = g.x(i) - x, dy = g.y(j) - s.laser_y;
+      absorbed += absorbed_flux(s.laser, dx * dx + dy * dy, 0.0) * s.transmission[i + g.nx * j] *
+                  g.dx * g.dy;
+    }
+  return absorbed / s.scene.power;
+}
+
 void prepare_traces(Sinter::State& s, double t0, double t1) {
   const std::uint64_t first = trace_position(s, t0).first;
   const std::uint64_t last = trace_position(s, t1).first + 1;

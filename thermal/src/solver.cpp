@@ -392,6 +392,7 @@ const BedSurface& Sinter::surface() const { return s_->surface; }
 const ConductionNetwork& Sinter::network() const { return s_->net; }
 const Material& Sinter::material() const { return s_->material; }
 double Sinter::extinction() const { return s_->beta; }
+double Sinter::absorptance_at(double x) const { return absorbed_fraction(*s_, x); }
 double Sinter::time() const { return s_->time; }
 std::uint64_t Sinter::step() const { return s_->step; }
 const std::vector<double>& Sinter::particle_temperature() const { return s_->temperature; }

@@ -102,6 +102,9 @@ void setup_laser(Sinter::State& s, const bed::Bed& bed);
 // Ray tracing: traces the beam positions [t0, t1] needs (with the phases of now) and sets the
 // particle substeps so the laser raises no particle by more than time.max-particle-rise.
 void prepare_traces(Sinter::State& s, double t0, double t1);
+// Fraction of the beam the bed of the start state absorbs with the beam centred at (x, laser y)
+// (ray tracing: of what reaches the substrate's extent).
+double absorbed_fraction(const Sinter::State& s, double x);
 // Wetting (wetting.cpp): set-up of the adjacency; after the particle steps of a grid step,
 // spreads the contacts of particles that have just melted; the exact exchange of the spread
 // substrate contacts over dt (energy handed to the grid as sources).

@@ -22,6 +22,8 @@ struct ExplainReport {
   double optical_thickness = 0;     // beta H_layer
   double dwell_time = 0;            // w / v, s
   double heating_time = 0;          // m c (T_m - T0) / (alpha I0 pi r^2), mean particle, s
+  double absorptance = 0;           // the laser model's, beam at the bed's centre
+  double wetting_time = 0;          // m c / (k π a^2 / z_c) of a mean particle's spread cap, s
   std::string text;                 // the printed report
 };
 

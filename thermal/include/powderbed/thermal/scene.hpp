@@ -25,7 +25,7 @@ enum SinterEffect : unsigned {
   kWetting = 1u << 9,             // molten particles spread on what they touch (wetting.hpp)
 };
 constexpr unsigned kSinterEffectCount = 10;
-// The effects of [GZ]'s model; wetting, beyond it, is switched on by name.
+// The effects of [GZ]'s model (wetting goes beyond it).
 constexpr unsigned kAllSinterEffects = (1u << 9) - 1;
 const char* sinter_effect_name(unsigned effect);
 
@@ -60,7 +60,7 @@ struct SinterScene {
   double absorptivity = 0.33;  // alpha
   double laser_y = NAN, start_x = NAN, end_x = NAN;
   SubstrateShading substrate_shading = SubstrateShading::layer;
-  LaserAbsorption absorption = LaserAbsorption::beer_lambert;
+  LaserAbsorption absorption = LaserAbsorption::ray_trace;  // why: docs/sinter.md
   // Ray-trace only: alpha of molten surfaces (NaN: `absorptivity` in every phase), the rays,
   // and the re-trace interval: the beam is traced anew each time it moves this fraction of w,
   // and the power maps of the two traced positions around the beam are blended linearly.
@@ -81,7 +81,7 @@ struct SinterScene {
   // per step (K), so tiny particles under the beam subcycle instead of overshooting T_v.
   double max_particle_rise = 50;
   double t_end = NAN;          // NaN: when the laser reaches end_x
-  unsigned effects = kAllSinterEffects;
+  unsigned effects = kAllSinterEffects | kWetting;
 
   bool has(unsigned effect) const { return (effects & effect) != 0; }
   // Throws InputError naming the field, the value and the accepted range.

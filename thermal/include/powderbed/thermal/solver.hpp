@@ -90,6 +90,9 @@ class Sinter {
   const ConductionNetwork& network() const;
   const Material& material() const;
   double extinction() const;  // beta, 1/m
+  // Fraction of the beam the bed absorbs with the beam centred at (x, track line), at the start
+  // state: the laser model's expected absorptance (--explain).
+  double absorptance_at(double x) const;
 
   // Runs to t_end. `snapshot` is called at t = 0, every `every` grid steps and at the end;
   // `progress` about once a second of wall time. Throws NumericalError naming the particle or
