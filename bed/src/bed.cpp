@@ -101,4 +101,43 @@ void Bed::validate(const std::string& source) const {
   }
 }
 
+void Bed::validate_geometry(const std::string& source) const {
+  const int dims = domain.dimension == 2 ? 2 : 3;
+  double smallest = domain.length(0);
+  int smallest_axis = 0;
+  for (int a = 1; a < dims; ++a) {
+    if (domain.length(a) < smallest) {
+      smallest = domain.length(a);
+      smallest_axis = a;
+    }
+  }
+  const std::size_t count = n();
+  for (std::size_t i = 0; i < count; ++i) {
+    if (radius[i] >= smallest) {
+      std::ostringstream msg;
+      msg.precision(6);
+      msg << source << ": radius[" << i << "] is " << radius[i]
+          << " m, not below the domain's smallest extent (" << "xyz"[smallest_axis] << ": "
+          << smallest << " m) (accepted: radius < " << smallest
+          << " m; radii in um or mm instead of m?)";
+      throw InputError(msg.str());
+    }
+  }
+  const std::vector<double>* centre[3] = {&x, &y, &z};
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int a = 0; a < dims; ++a) {
+      const double c = (*centre[a])[i];
+      if (c < domain.lower[a] - radius[i] || c > domain.upper[a] + radius[i]) {
+        std::ostringstream msg;
+        msg.precision(6);
+        msg << source << ": particle " << i << " (id " << id[i] << ") has " << "xyz"[a] << " = "
+            << c << " m, outside the domain [" << domain.lower[a] << ", " << domain.upper[a]
+            << "] m by more than its radius " << radius[i]
+            << " m (accepted: every centre inside the domain; positions in um or mm instead of m?)";
+        throw InputError(msg.str());
+      }
+    }
+  }
+}
+
 }  // namespace powderbed::bed

@@ -81,6 +81,7 @@ Bed read_bed_csv(const std::string& path, const Domain& domain) {
     bed.id.push_back(bed.id.size());
   }
   bed.validate(path);
+  bed.validate_geometry(path);  // inside --domain, radii plausible for it
   return bed;
 }
 

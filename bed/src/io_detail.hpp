@@ -38,6 +38,10 @@ void write_text(const std::string& temp_path, const std::string& path, std::stri
 // The whole file; throws InputError naming `path` when it cannot be read.
 std::string read_text(const std::string& path);
 
+// Physical memory of this machine in bytes (0 when unknown): the readers refuse a declared
+// size that could not fit before allocating it.
+double physical_memory_bytes();
+
 // Lower-case extension with the dot (".h5"), or "" when there is none.
 std::string extension_of(const std::string& path);
 
@@ -68,6 +72,7 @@ class LineCursor {
   // The next line, or false at the end of the text.
   bool next(std::string_view& line);
   std::size_t line_number() const { return number_; }
+  std::size_t bytes_left() const { return pos_ >= text_.size() ? 0 : text_.size() - pos_; }
 
  private:
   std::string_view text_;

@@ -20,6 +20,7 @@ using detail::H5Attr;
 using detail::H5Dataset;
 using detail::H5File;
 using detail::H5Group;
+using detail::H5Handle;
 using detail::H5Space;
 using detail::H5Type;
 
@@ -44,6 +45,7 @@ class H5Reader {
         }
       }
     }
+    bed.validate_geometry(path_);  // inside the domain, radii plausible for it
     return bed;
   }
 
@@ -72,28 +74,69 @@ class H5Reader {
 
   H5Attr attr(hid_t loc, const std::string& object, const char* name) const {
     if (!has_attr(loc, name)) fail(object, std::string("attribute ") + name + " is missing");
-    return H5Attr(H5Aopen(loc, name, H5P_DEFAULT));
+    H5Attr a(H5Aopen(loc, name, H5P_DEFAULT));
+    if (!a.valid()) fail(object, std::string("attribute ") + name + " cannot be opened (damaged file?)");
+    return a;
   }
+
+  // The number of values of attribute `a`, checked before anything is read: a scalar or a
+  // simple dataspace (a damaged file can declare any extent; nothing is allocated from it).
+  hssize_t attr_points(hid_t a, const std::string& object, const char* name) const {
+    H5Space space(H5Aget_space(a));
+    if (!space.valid()) fail(object, std::string("attribute ") + name + " has no dataspace (damaged file?)");
+    const H5S_class_t kind = H5Sget_simple_extent_type(space);
+    if (kind == H5S_SCALAR) return 1;
+    if (kind != H5S_SIMPLE)
+      fail(object, std::string("attribute ") + name + " is empty (accepted: a value)");
+    return H5Sget_simple_extent_npoints(space);
+  }
+
+  // Longest string attribute read (the scene text of /provenance is a few KB).
+  static constexpr std::size_t kMaxStringAttr = std::size_t{16} << 20;
 
   std::string string_attr(hid_t loc, const std::string& object, const char* name) const {
     H5Attr a = attr(loc, object, name);
+    const std::string what = std::string("attribute ") + name;
     H5Type type(H5Aget_type(a));
-    if (H5Tget_class(type) != H5T_STRING)
-      fail(object, std::string("attribute ") + name + " is not a string");
-    if (H5Tis_variable_str(type) > 0) {  // as h5py writes them
+    if (!type.valid() || H5Tget_class(type) != H5T_STRING) fail(object, what + " is not a string");
+    const hssize_t points = attr_points(a, object, name);
+    if (points != 1) {
+      fail(object, what + " has " + std::to_string(points) +
+                       " values (accepted: one string)");
+    }
+    const hsize_t stored = H5Aget_storage_size(a);
+    const htri_t variable = H5Tis_variable_str(type);
+    if (variable < 0) fail(object, what + " has a damaged string type");
+    if (variable > 0) {  // as h5py writes them
+      // One heap reference (16 bytes in HDF5 1.10) is what a variable-length string stores.
+      if (stored == 0 || stored > 64) fail(object, what + " has a damaged string reference");
       H5Type mem(H5Tcopy(H5T_C_S1));
       H5Tset_size(mem, H5T_VARIABLE);
       H5Tset_cset(mem, H5Tget_cset(type));  // HDF5 does not convert ASCII <-> UTF-8
       char* text = nullptr;
-      if (H5Aread(a, mem, &text) < 0)
-        fail(object, std::string("attribute ") + name + " cannot be read");
+      if (H5Aread(a, mem, &text) < 0) fail(object, what + " cannot be read");
       std::string value = text ? text : "";
       H5free_memory(text);
+      if (value.size() > kMaxStringAttr) fail(object, what + " is too long");
       return value;
     }
-    std::string value(H5Tget_size(type), '\0');
-    if (H5Aread(a, type, value.data()) < 0)
-      fail(object, std::string("attribute ") + name + " cannot be read");
+    const std::size_t size = H5Tget_size(type);
+    if (size == 0 || size > kMaxStringAttr) {
+      fail(object, what + " declares " + std::to_string(size) +
+                       " characters (accepted: 1 to " + std::to_string(kMaxStringAttr) + ")");
+    }
+    if (stored < size) {
+      fail(object, what + " declares " + std::to_string(size) + " characters but stores " +
+                       std::to_string(stored) + " bytes (damaged file?)");
+    }
+    // Read through a memory type of our own (C string of the file's size and character set),
+    // never through the file's type.
+    H5Type mem(H5Tcopy(H5T_C_S1));
+    H5Tset_size(mem, size);
+    H5Tset_cset(mem, H5Tget_cset(type));
+    H5Tset_strpad(mem, H5T_STR_NULLPAD);
+    std::string value(size, '\0');
+    if (H5Aread(a, mem, value.data()) < 0) fail(object, what + " cannot be read");
     value.resize(value.find('\0') == std::string::npos ? value.size() : value.find('\0'));
     return value;
   }
@@ -104,15 +147,21 @@ class H5Reader {
                     T* out, hssize_t count) const {
     H5Attr a = attr(loc, object, name);
     H5Type type(H5Aget_type(a));
-    const H5T_class_t cls = H5Tget_class(type);
+    const H5T_class_t cls = type.valid() ? H5Tget_class(type) : H5T_NO_CLASS;
     if (cls != H5T_INTEGER && cls != H5T_FLOAT)
       fail(object, std::string("attribute ") + name + " is not numeric");
-    H5Space space(H5Aget_space(a));
-    const hssize_t got = H5Sget_simple_extent_npoints(space);
+    const std::size_t size = H5Tget_size(type);
+    if (size == 0 || size > 16) {
+      fail(object, std::string("attribute ") + name + " has a " + std::to_string(size) +
+                       "-byte number (accepted: 1 to 16 bytes)");
+    }
+    const hssize_t got = attr_points(a, object, name);
     if (got != count) {
       fail(object, std::string("attribute ") + name + " has " + std::to_string(got) +
                        " values (accepted: " + std::to_string(count) + ")");
     }
+    if (H5Aget_storage_size(a) < static_cast<hsize_t>(count) * size)
+      fail(object, std::string("attribute ") + name + " is truncated (damaged file?)");
     if (H5Aread(a, mem_type, out) < 0)
       fail(object, std::string("attribute ") + name + " cannot be read");
   }
@@ -176,7 +225,7 @@ class H5Reader {
     H5Dataset set(H5Dopen2(particles, name, H5P_DEFAULT));
     if (!set.valid()) fail(object, "is not a dataset");
     H5Type type(H5Dget_type(set));
-    if (H5Tget_class(type) != cls)
+    if (!type.valid() || H5Tget_class(type) != cls)
       fail(object, cls == H5T_FLOAT ? "is not floating point" : "is not integer");
     H5Space space(H5Dget_space(set));
     const int rank = H5Sget_simple_extent_ndims(space);
@@ -190,6 +239,7 @@ class H5Reader {
       msg << "; accepted: " << (cols == 0 ? "N" : "N x 3") << ")";
       fail(object, msg.str());
     }
+    check_extent(set, type, object, dims[0], cols == 0 ? 1 : cols, sizeof(T));
     if (rows < 0) {
       rows = static_cast<hssize_t>(dims[0]);
     } else if (dims[0] != static_cast<hsize_t>(rows)) {
@@ -235,6 +285,43 @@ class H5Reader {
       numeric_attr(g, "/provenance", name, H5T_NATIVE_DOUBLE, value, 1);
       if (!std::isfinite(*value))
         fail("/provenance", std::string(name) + " is not finite (accepted: a finite number)");
+    }
+  }
+
+  // The extent a dataset declares, checked against what the file stores and what this machine
+  // holds BEFORE anything is allocated (a damaged or hostile 18 KB file can declare 2e9 rows):
+  // an unfiltered dataset must store every byte it declares; a compressed one cannot be more
+  // than kMaxCompression times its stored size (deflate's limit is about 1032); and the rows
+  // must fit in memory.
+  void check_extent(hid_t set, hid_t type, const std::string& object, hsize_t rows, hsize_t cols,
+                    std::size_t mem_size) const {
+    constexpr double kMaxCompression = 2048;
+    const std::size_t file_size = H5Tget_size(type);
+    if (file_size == 0 || file_size > 16) {
+      fail(object, "has " + std::to_string(file_size) +
+                       "-byte numbers (damaged file?; accepted: 1 to 16 bytes)");
+    }
+    const double values = static_cast<double>(rows) * static_cast<double>(cols);
+    if (values == 0) return;
+    const double declared = values * static_cast<double>(file_size);
+    const double stored = static_cast<double>(H5Dget_storage_size(set));
+    H5Handle<H5Pclose> plist(H5Dget_create_plist(set));
+    const int filters = plist.valid() ? H5Pget_nfilters(plist) : 0;
+    const double holds = filters > 0 ? stored * kMaxCompression : stored;
+    if (declared > holds) {
+      std::ostringstream msg;
+      msg << "declares " << rows << " rows (" << declared << " bytes) but the file stores "
+          << stored << " bytes" << (filters > 0 ? " compressed" : "")
+          << " (damaged or truncated file?; accepted: a dataset that holds its rows)";
+      fail(object, msg.str());
+    }
+    const double need = values * static_cast<double>(mem_size);
+    const double memory = detail::physical_memory_bytes();
+    if (memory > 0 && need > 0.5 * memory) {
+      std::ostringstream msg;
+      msg << "has " << rows << " rows, needing " << need / 1e9 << " GB (accepted: up to half "
+          << "of this machine's " << memory / 1e9 << " GB)";
+      fail(object, msg.str());
     }
   }
 

@@ -74,6 +74,7 @@ class DumpReader {
         atoms(line, *count);
         if (next(line)) fail("unexpected line after the " + std::to_string(*count) + " atoms");
         bed_.validate(path_);
+        bed_.validate_geometry(path_);  // inside the box bounds, radii plausible for them
         return std::move(bed_);
       } else if (starts_with(line, "ITEM:")) {
         skip_section();  // e.g. ITEM: UNITS, ITEM: TIME
@@ -185,7 +186,17 @@ class DumpReader {
       column_list.append(n);
     }
     const Domain& d = bed_.domain;
-    bed_.reserve(std::min<std::uint64_t>(count, 1u << 24));  // a bogus count must not OOM
+    // A declared count is checked against the text left before anything is allocated: each
+    // atom line holds at least one character per column and a separator (a damaged or hostile
+    // dump can declare 2e9 atoms in a few bytes).
+    const std::uint64_t min_line = 2 * names.size();
+    const std::uint64_t left = lines_.bytes_left();
+    if (count > left / min_line + 1) {
+      fail("NUMBER OF ATOMS is " + std::to_string(count) + " but " + std::to_string(left) +
+           " bytes follow (accepted: one line of " + std::to_string(names.size()) +
+           " columns per atom; truncated dump?)");
+    }
+    bed_.reserve(count);
     for (std::uint64_t i = 0; i < count; ++i) {
       std::string_view line;
       if (!next(line) || starts_with(line, "ITEM:"))

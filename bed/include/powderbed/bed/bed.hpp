@@ -55,6 +55,11 @@ struct Bed {
   // Throws InputError naming `source` when arrays disagree in size, a value is NaN/Inf, a
   // radius is not positive, or ids repeat.
   void validate(const std::string& source) const;
+  // What every reader checks after validate() (docs/hardening.md): each radius below the
+  // domain's smallest extent (a larger one is the unit slip "radii in um?") and each centre
+  // inside the domain to within its own radius on every axis (periodic axes too: beds are
+  // stored wrapped). Throws InputError naming `source`, the particle, its value and the box.
+  void validate_geometry(const std::string& source) const;
 };
 
 }  // namespace powderbed::bed
