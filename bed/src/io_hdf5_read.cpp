@@ -3,6 +3,8 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <limits>
+#include <type_traits>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -23,6 +25,33 @@ using detail::H5Group;
 using detail::H5Handle;
 using detail::H5Space;
 using detail::H5Type;
+
+// Conversion exception handler: a value out of the memory type's range (or a float -> integer
+// truncation) aborts the read instead of being clamped.
+H5T_conv_ret_t abort_on_range(H5T_conv_except_t kind, hid_t, hid_t, void*, void*, void* flag) {
+  if (kind == H5T_CONV_EXCEPT_RANGE_HI || kind == H5T_CONV_EXCEPT_RANGE_LOW ||
+      kind == H5T_CONV_EXCEPT_TRUNCATE) {
+    *static_cast<bool*>(flag) = true;
+    return H5T_CONV_ABORT;
+  }
+  return H5T_CONV_UNHANDLED;
+}
+
+template <class T>
+const char* type_name() {
+  if constexpr (std::is_same_v<T, std::uint16_t>) return "uint16";
+  else if constexpr (std::is_same_v<T, std::uint8_t>) return "uint8";
+  else if constexpr (std::is_same_v<T, std::uint64_t>) return "uint64";
+  else return "float64";
+}
+
+template <class T>
+std::string accepted_range() {
+  if constexpr (std::is_integral_v<T>)
+    return "0 to " + std::to_string(std::numeric_limits<T>::max());
+  else
+    return "float64 numbers";
+}
 
 class H5Reader {
  public:
@@ -247,8 +276,18 @@ class H5Reader {
                        std::to_string(rows) + " (accepted: one per particle)");
     }
     out.resize(dims[0] * (cols == 0 ? 1 : cols));
-    if (!out.empty() && H5Dread(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    // HDF5 clamps a value that its memory type cannot hold (a material index 70000 or -1 read
+    // as uint16 becomes 65535 or 0) unless told to abort: a clamped value is refused instead.
+    H5Handle<H5Pclose> xfer(H5Pcreate(H5P_DATASET_XFER));
+    bool out_of_range = false;
+    H5Pset_type_conv_cb(xfer, abort_on_range, &out_of_range);
+    if (!out.empty() && H5Dread(set, mem_type, H5S_ALL, H5S_ALL, xfer, out.data()) < 0) {
+      if (out_of_range) {
+        fail(object, std::string("holds values outside the range of ") + type_name<T>() +
+                         " (accepted: " + accepted_range<T>() + ")");
+      }
       fail(object, "cannot be read (damaged file?)");
+    }
     return true;
   }
 
