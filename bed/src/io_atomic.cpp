@@ -7,14 +7,20 @@
 
 #include "io_detail.hpp"
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/temp_files.hpp"
 
 namespace powderbed::bed::detail {
 
 AtomicFile::AtomicFile(std::string path)
-    : path_(std::move(path)), temp_(path_ + ".tmp." + std::to_string(::getpid())) {
+    : path_(std::move(path)), temp_(temp_path_for(path_)) {
+  // Registered before it exists, so a SIGINT/SIGTERM from here on removes it (temp_files.hpp).
+  register_temp_file(temp_);
   // Create the temporary now, so an unwritable folder is reported with the system's reason.
   std::FILE* f = std::fopen(temp_.c_str(), "wb");
   if (!f) {
+    const int err = errno;
+    unregister_temp_file(temp_);
+    errno = err;
     throw InputError(path_ + ": cannot create temporary file '" + temp_ + "': " +
                      std::strerror(errno));
   }
@@ -23,15 +29,19 @@ AtomicFile::AtomicFile(std::string path)
 
 AtomicFile::~AtomicFile() {
   if (!committed_) std::remove(temp_.c_str());
+  unregister_temp_file(temp_);
 }
 
 void AtomicFile::commit() {
   if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
     const int err = errno;
     std::remove(temp_.c_str());
+    unregister_temp_file(temp_);
+    committed_ = true;  // nothing left to remove
     throw InputError(path_ + ": cannot replace with '" + temp_ + "': " + std::strerror(err));
   }
   committed_ = true;
+  unregister_temp_file(temp_);
 }
 
 void write_text(const std::string& temp_path, const std::string& path, std::string_view text) {

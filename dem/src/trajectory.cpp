@@ -10,6 +10,7 @@
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/h5_output.hpp"
+#include "powderbed/bed/temp_files.hpp"
 
 namespace powderbed::dem {
 
@@ -79,10 +80,15 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path, const bed::Bed& bed)
     : impl_(std::make_unique<Impl>()) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // our own one-line errors instead of HDF5's stack
   impl_->path = path;
-  impl_->temp = path + ".tmp";
+  // "<path>.tmp.<pid>", registered so that SIGINT/SIGTERM removes it (bed/temp_files.hpp).
+  impl_->temp = bed::temp_path_for(path);
   impl_->n = bed.n();
+  bed::register_temp_file(impl_->temp);
   impl_->file = H5Fcreate(impl_->temp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (impl_->file < 0) throw InputError("--trajectory: cannot create '" + path + "'");
+  if (impl_->file < 0) {
+    bed::unregister_temp_file(impl_->temp);
+    throw InputError("--trajectory: cannot create '" + path + "'");
+  }
   write_string_attribute(impl_->file, "format", "powderbed.trajectory", path);
   write_attribute(impl_->file, "version", H5T_NATIVE_INT, 1, path);
   write_attribute(impl_->file, "n", H5T_NATIVE_UINT64, static_cast<std::uint64_t>(bed.n()), path);
@@ -96,6 +102,7 @@ TrajectoryWriter::~TrajectoryWriter() {
   if (impl_ && impl_->file >= 0) {
     H5Fclose(impl_->file);
     std::remove(impl_->temp.c_str());
+    bed::unregister_temp_file(impl_->temp);
   }
 }
 
@@ -129,7 +136,10 @@ void TrajectoryWriter::close() {
   if (s.file < 0) return;
   const bool closed = H5Fclose(s.file) >= 0;
   s.file = -1;
-  check(closed && std::rename(s.temp.c_str(), s.path.c_str()) == 0, s.path, "the file");
+  const bool renamed = closed && std::rename(s.temp.c_str(), s.path.c_str()) == 0;
+  if (!renamed) std::remove(s.temp.c_str());
+  bed::unregister_temp_file(s.temp);
+  check(renamed, s.path, "the file");
   // XDMF temporal collection: one Polyvertex grid per snapshot, radius shared.
   const std::string h5 = bed::file_name_of(s.path);
   std::ostringstream x;
@@ -156,13 +166,14 @@ void TrajectoryWriter::close() {
   }
   x << "  </Grid>\n </Domain>\n</Xdmf>\n";
   const std::string xmf = bed::xdmf_sidecar_path(s.path);
-  const std::string xmf_temp = xmf + ".tmp";
+  bed::TempFile xmf_temp(bed::temp_path_for(xmf));
   {
-    std::ofstream out(xmf_temp);
+    std::ofstream out(xmf_temp.path());
     out << x.str();
     check(static_cast<bool>(out), xmf, "the XDMF text");
   }
-  check(std::rename(xmf_temp.c_str(), xmf.c_str()) == 0, xmf, "the XDMF file");
+  check(std::rename(xmf_temp.path().c_str(), xmf.c_str()) == 0, xmf, "the XDMF file");
+  xmf_temp.release();
 }
 
 }  // namespace powderbed::dem

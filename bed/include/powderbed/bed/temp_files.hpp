@@ -1,0 +1,41 @@
+#pragma once
+// The temporary files of this process (docs/hardening.md): every writer names its temporary
+// `<path>.tmp.<pid>` and registers it here while it exists, and a SIGINT or SIGTERM removes
+// every registered temporary before the process dies with that signal. A killed run (SIGKILL
+// cannot be caught) leaves at most its own `.tmp.<pid>` files, never a damaged output: outputs
+// only ever appear by rename.
+#include <string>
+
+namespace powderbed::bed {
+
+// "<path>.tmp.<pid>": the one temporary name of `path` for this process.
+std::string temp_path_for(const std::string& path);
+
+// Registers `temp` for removal on SIGINT/SIGTERM (installing the handlers on first use; a
+// handler the program installed itself is left in place and not chained). Async-signal-safe
+// bookkeeping: a fixed table of 64 slots, paths up to 4095 bytes; a temporary that does not
+// fit is simply not registered (it is still removed by its owner's destructor).
+void register_temp_file(const std::string& temp);
+// Forgets `temp` (after it was renamed into place or removed).
+void unregister_temp_file(const std::string& temp);
+// The handlers' work, callable directly (tests): removes every registered temporary.
+void remove_temp_files();
+
+// RAII: registers on construction, on destruction removes the file unless released, and
+// unregisters it.
+class TempFile {
+ public:
+  explicit TempFile(std::string temp);
+  ~TempFile();
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+  const std::string& path() const { return path_; }
+  // The file was renamed into place: keep it, forget it.
+  void release();
+
+ private:
+  std::string path_;
+  bool released_ = false;
+};
+
+}  // namespace powderbed::bed

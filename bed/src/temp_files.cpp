@@ -1,0 +1,97 @@
+// Registry of this process's temporary files, emptied by SIGINT/SIGTERM (temp_files.hpp).
+#include "powderbed/bed/temp_files.hpp"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdio>
+#include <cstring>
+#include <mutex>
+
+namespace powderbed::bed {
+
+namespace {
+
+constexpr int kSlots = 64;
+constexpr std::size_t kPathMax = 4096;
+
+struct Slot {
+  std::atomic<int> state{0};  // 0 free, 1 being written, 2 holds a path
+  char path[kPathMax];
+};
+
+Slot g_slots[kSlots];
+std::once_flag g_install_once;
+
+extern "C" void remove_and_die(int sig) {
+  for (Slot& s : g_slots) {
+    if (s.state.load(std::memory_order_acquire) == 2) ::unlink(s.path);  // async-signal-safe
+  }
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
+void install_handlers() {
+  for (int sig : {SIGINT, SIGTERM}) {
+    struct sigaction old {};
+    if (::sigaction(sig, nullptr, &old) != 0) continue;
+    // Leave a handler of the program's own (or an ignored signal, e.g. under nohup) alone.
+    if (old.sa_handler != SIG_DFL) continue;
+    struct sigaction act {};
+    act.sa_handler = remove_and_die;
+    sigemptyset(&act.sa_mask);
+    act.sa_flags = SA_RESETHAND;
+    ::sigaction(sig, &act, nullptr);
+  }
+}
+
+}  // namespace
+
+std::string temp_path_for(const std::string& path) {
+  return path + ".tmp." + std::to_string(::getpid());
+}
+
+void register_temp_file(const std::string& temp) {
+  std::call_once(g_install_once, install_handlers);
+  if (temp.size() >= kPathMax) return;
+  for (Slot& s : g_slots) {
+    int expected = 0;
+    if (s.state.compare_exchange_strong(expected, 1, std::memory_order_acq_rel)) {
+      std::memcpy(s.path, temp.c_str(), temp.size() + 1);
+      s.state.store(2, std::memory_order_release);
+      return;
+    }
+  }
+}
+
+void unregister_temp_file(const std::string& temp) {
+  for (Slot& s : g_slots) {
+    int expected = 2;
+    if (s.state.load(std::memory_order_acquire) == 2 && temp == s.path &&
+        s.state.compare_exchange_strong(expected, 1, std::memory_order_acq_rel)) {
+      s.state.store(0, std::memory_order_release);
+      return;
+    }
+  }
+}
+
+void remove_temp_files() {
+  for (Slot& s : g_slots) {
+    if (s.state.load(std::memory_order_acquire) == 2) ::unlink(s.path);
+  }
+}
+
+TempFile::TempFile(std::string temp) : path_(std::move(temp)) { register_temp_file(path_); }
+
+TempFile::~TempFile() {
+  if (!released_) std::remove(path_.c_str());
+  unregister_temp_file(path_);
+}
+
+void TempFile::release() {
+  released_ = true;
+  unregister_temp_file(path_);
+}
+
+}  // namespace powderbed::bed
