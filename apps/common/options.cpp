@@ -1,6 +1,13 @@
 #include "common/options.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -8,7 +15,159 @@
 #include "common/app_main.hpp"
 #include "powderbed/bed/errors.hpp"
 
+namespace {
+
+namespace po = boost::program_options;
+
+// A validation_error whose text names the option (Boost fills %canonical_option%: "--count" on
+// the command line, "count" in a scene file), the value and what is accepted.
+[[noreturn]] void refuse_value(const std::string& value, const std::string& what) {
+  po::validation_error e(po::validation_error::invalid_option_value);
+  e.m_error_template = "%canonical_option%: '%value%' " + what;
+  e.set_substitute("value", value);
+  throw e;
+}
+
+std::string trimmed(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t");
+  return s.substr(b, e - b + 1);
+}
+
+// A whole number in [lo, hi] written as digits or as an exact number in e-notation ("1e6").
+template <class T>
+T parse_whole(const std::string& text, long double lo, long double hi, const char* accepted) {
+  const std::string s = trimmed(text);
+  if (s.empty()) refuse_value(text, std::string("is empty (accepted: ") + accepted + ")");
+  if constexpr (std::is_unsigned_v<T>) {
+    if (s[0] == '-') refuse_value(text, std::string("is negative (accepted: ") + accepted + ")");
+  }
+  {
+    T v{};
+    const char* begin = s.data() + (s[0] == '+' ? 1 : 0);
+    const auto res = std::from_chars(begin, s.data() + s.size(), v);
+    if (res.ec == std::errc() && res.ptr == s.data() + s.size()) return v;
+    if (res.ec == std::errc::result_out_of_range)
+      refuse_value(text, std::string("is out of range (accepted: ") + accepted + ")");
+  }
+  double d = 0;
+  const auto res = std::from_chars(s.data() + (s[0] == '+' ? 1 : 0), s.data() + s.size(), d);
+  if (res.ec != std::errc() || res.ptr != s.data() + s.size() || !std::isfinite(d))
+    refuse_value(text, std::string("is not a whole number (accepted: ") + accepted + ")");
+  if (d != std::floor(d))
+    refuse_value(text, std::string("is not a whole number (accepted: ") + accepted + ")");
+  if (static_cast<long double>(d) < lo || static_cast<long double>(d) > hi)
+    refuse_value(text, std::string("is out of range (accepted: ") + accepted + ")");
+  return static_cast<T>(d);
+}
+
+}  // namespace
+
+namespace boost {
+
+void validate(boost::any& v, const std::vector<std::string>& xs, unsigned long*, int) {
+  program_options::validators::check_first_occurrence(v);
+  const std::string& s = program_options::validators::get_single_string(xs);
+  v = boost::any(parse_whole<unsigned long>(
+      s, 0, static_cast<long double>(std::numeric_limits<unsigned long>::max()),
+      "a whole number from 0 to 18446744073709551615"));
+}
+
+void validate(boost::any& v, const std::vector<std::string>& xs, unsigned int*, int) {
+  program_options::validators::check_first_occurrence(v);
+  const std::string& s = program_options::validators::get_single_string(xs);
+  v = boost::any(parse_whole<unsigned int>(s, 0, std::numeric_limits<unsigned int>::max(),
+                                           "a whole number from 0 to 4294967295"));
+}
+
+void validate(boost::any& v, const std::vector<std::string>& xs, int*, int) {
+  program_options::validators::check_first_occurrence(v);
+  const std::string& s = program_options::validators::get_single_string(xs);
+  v = boost::any(parse_whole<int>(s, std::numeric_limits<int>::min(),
+                                  std::numeric_limits<int>::max(),
+                                  "a whole number from -2147483648 to 2147483647"));
+}
+
+void validate(boost::any& v, const std::vector<std::string>& xs, double*, int) {
+  program_options::validators::check_first_occurrence(v);
+  const std::string& text = program_options::validators::get_single_string(xs);
+  const std::string s = trimmed(text);
+  double d = 0;
+  const char* begin = s.data() + (!s.empty() && s[0] == '+' ? 1 : 0);
+  const auto res = std::from_chars(begin, s.data() + s.size(), d);
+  if (s.empty() || res.ec != std::errc() || res.ptr != s.data() + s.size())
+    refuse_value(text, "is not a number (accepted: a finite number, e.g. 30e-6)");
+  if (!std::isfinite(d)) refuse_value(text, "is not finite (accepted: a finite number)");
+  v = boost::any(d);
+}
+
+}  // namespace boost
+
 namespace powderbed::app {
+
+namespace {
+
+// The scene file, parsed as Boost's INI syntax ([section] sets the prefix "section.", key =
+// value, '#' starts a comment) but one line at a time, so that every error names the file and
+// the line: "<file>:<line>: <what>".
+void store_config_file(const std::string& path, const po::options_description& desc,
+                       po::variables_map& vm) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+    throw InputError("--config: '" + path + "' is a folder (accepted: a scene file)");
+  std::ifstream in(path);
+  if (!in) throw InputError("--config: cannot open scene file '" + path + "'");
+  std::string line, prefix;
+  std::size_t number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    const std::string where = path + ":" + std::to_string(number) + ": ";
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    line = trimmed(line);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    if (line.front() == '[') {
+      if (line.back() != ']') throw InputError(where + "'" + line + "' (accepted: [section])");
+      prefix = trimmed(line.substr(1, line.size() - 2));
+      if (!prefix.empty()) prefix += '.';
+      continue;
+    }
+    const auto eq = line.find('=');
+    if (eq == std::string::npos)
+      throw InputError(where + "'" + line + "' (accepted: key = value, [section] or # comment)");
+    const std::string key = prefix + trimmed(line.substr(0, eq));
+    const std::string value = trimmed(line.substr(eq + 1));
+    if (key == "config")
+      throw InputError(where + "config inside a scene file (accepted: one --config)");
+    if (!desc.find_nothrow(key, false))
+      throw InputError(where + "unknown option '" + key + "' (see --help for the options)");
+    po::parsed_options parsed(&desc);
+    po::option opt;
+    opt.string_key = key;
+    opt.value.push_back(value);
+    opt.original_tokens = {key, value};
+    parsed.options.push_back(opt);
+    try {
+      po::store(parsed, vm);  // stored after the command line: command-line values win
+    } catch (const po::error& e) {
+      throw InputError(where + e.what());
+    }
+  }
+}
+
+// The conventions every program shares (DESIGN.md "Command-line programs"), checked once here.
+void check_common(const po::variables_map& vm) {
+  if (vm.count("threads") && !vm["threads"].defaulted()) {
+    const auto& v = vm["threads"].value();
+    if (const int* t = boost::any_cast<int>(&v); t && (*t < 0 || *t > 4096)) {
+      throw InputError("--threads: " + std::to_string(*t) +
+                       " is out of range (accepted: 0 to 4096; 0 = OpenMP's default)");
+    }
+  }
+}
+
+}  // namespace
 
 void add_common_options(po::options_description& desc) {
   desc.add_options()("help,h", "print this help and exit")("version", "print the version and exit")(
@@ -30,13 +189,11 @@ bool parse_options(const char* app, const std::string& usage, po::options_descri
     return false;
   }
   if (vm.count("config")) {
-    const std::string path = vm["config"].as<std::string>();
-    std::ifstream in(path);
-    if (!in) throw InputError("--config: cannot open scene file '" + path + "'");
     // Stored after the command line, so command-line values win (first store wins).
-    po::store(po::parse_config_file(in, desc, false), vm);
+    store_config_file(vm["config"].as<std::string>(), desc, vm);
   }
   po::notify(vm);
+  check_common(vm);
   return true;
 }
 
@@ -102,6 +259,112 @@ std::string scene_text(const po::variables_map& vm) {
     out << '\n';
   }
   return out.str();
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The folder a path names its file in ("." for a bare name).
+std::string folder_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+std::string lower_extension(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+// The files a path stands for: itself and, for .h5, its XDMF sidecar.
+std::vector<std::string> with_sidecar(const std::string& path) {
+  std::vector<std::string> out{path};
+  if (lower_extension(path) == ".h5") out.push_back(path.substr(0, path.size() - 3) + ".xmf");
+  return out;
+}
+
+// Whether a and b name the same file (the same inode when both exist, else the same
+// normalised absolute path).
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+  return fs::weakly_canonical(fs::absolute(a, ec), ec) == fs::weakly_canonical(fs::absolute(b, ec), ec);
+}
+
+}  // namespace
+
+void check_paths(const std::vector<PathArg>& inputs, const std::vector<PathArg>& outputs) {
+  for (const auto& in : inputs) {
+    struct stat st {};
+    if (::stat(in.path.c_str(), &st) != 0)
+      throw InputError(in.option + ": '" + in.path + "' does not exist (accepted: a readable file)");
+    if (S_ISDIR(st.st_mode))
+      throw InputError(in.option + ": '" + in.path + "' is a folder (accepted: a readable file)");
+    if (::access(in.path.c_str(), R_OK) != 0)
+      throw InputError(in.option + ": '" + in.path + "' is not readable (accepted: a readable file)");
+  }
+  for (std::size_t k = 0; k < outputs.size(); ++k) {
+    const auto& out = outputs[k];
+    if (out.path.empty()) throw InputError(out.option + ": empty path (accepted: a file name)");
+    if (out.path.back() == '/')
+      throw InputError(out.option + ": '" + out.path + "' names a folder (accepted: a file name)");
+    for (const auto& file : with_sidecar(out.path)) {
+      struct stat st {};
+      if (::stat(file.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
+        throw InputError(out.option + ": '" + file + "' is a folder" +
+                         (file == out.path ? "" : " (the sidecar of '" + out.path + "')") +
+                         " (accepted: a file name; nothing was written)");
+      }
+    }
+    const std::string folder = folder_of(out.path);
+    struct stat st {};
+    if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+      throw InputError(out.option + ": folder '" + folder + "' of '" + out.path +
+                       "' does not exist (accepted: a file in an existing folder)");
+    }
+    if (::access(folder.c_str(), W_OK | X_OK) != 0) {
+      throw InputError(out.option + ": folder '" + folder + "' of '" + out.path +
+                       "' is not writable (accepted: a file in a writable folder)");
+    }
+    if (::access(out.path.c_str(), F_OK) == 0 && ::access(out.path.c_str(), W_OK) != 0) {
+      // Replaced by rename, which needs only the folder; say so anyway: the user may mean it.
+    }
+    for (const auto& in : inputs) {
+      for (const auto& o : with_sidecar(out.path)) {
+        for (const auto& i : with_sidecar(in.path)) {
+          if (same_file(o, i)) {
+            throw InputError(out.option + ": '" + out.path + "' would overwrite the input " +
+                             in.option + " '" + in.path +
+                             "' (accepted: an output that is not an input)");
+          }
+        }
+      }
+    }
+    for (std::size_t j = 0; j < k; ++j) {
+      if (same_file(outputs[j].path, out.path)) {
+        throw InputError(out.option + ": '" + out.path + "' is also " + outputs[j].option +
+                         " (accepted: distinct outputs)");
+      }
+    }
+  }
+}
+
+void check_extension(const PathArg& path, std::initializer_list<const char*> accepted) {
+  const std::string ext = lower_extension(path.path);
+  std::string list;
+  for (const char* a : accepted) {
+    if (ext == a) return;
+    if (!list.empty()) list += ", ";
+    list += a;
+  }
+  throw InputError(path.option + ": '" + path.path + "' has extension '" + ext +
+                   "' (accepted: " + list + ")");
 }
 
 }  // namespace powderbed::app

@@ -2,11 +2,30 @@
 // Option parsing shared by the programs: Boost.Program_options with --config scene.ini
 // (INI sections map to dotted option names; the command line wins), --help and --version.
 #include <boost/program_options.hpp>
+#include <cstdint>
+#include <initializer_list>
+#include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "powderbed/bed/domain.hpp"
 #include "powderbed/bed/errors.hpp"
+
+// Numbers at the command line and in scene files are parsed with their sign and range checked
+// (docs/hardening.md): Boost's default (lexical_cast) turns "-5" into 2^64 - 5 for an unsigned
+// option and accepts "nan" for a double. These overloads are found by argument-dependent lookup
+// (boost::any) from Boost's typed_value<T>::xparse in every program that includes this header,
+// and throw a validation_error whose message names the option, the value and what is accepted:
+//   unsigned (std::size_t, std::uint64_t, unsigned): whole numbers >= 0 up to the type's maximum
+//     ("1e6" is accepted when it is a whole number; "-5", "2.5", "1e30" are refused)
+//   int: whole numbers in the int range; double: finite numbers (no nan, inf).
+namespace boost {
+void validate(boost::any& v, const std::vector<std::string>& xs, unsigned long*, int);
+void validate(boost::any& v, const std::vector<std::string>& xs, unsigned int*, int);
+void validate(boost::any& v, const std::vector<std::string>& xs, int*, int);
+void validate(boost::any& v, const std::vector<std::string>& xs, double*, int);
+}  // namespace boost
 
 namespace powderbed::app {
 
@@ -27,6 +46,39 @@ T required(const po::variables_map& vm, const char* name) {
   if (!vm.count(name)) throw InputError(std::string("--") + name + ": missing (required)");
   return vm[name].as<T>();
 }
+
+// The value of option `name` (with its default) checked against [lo, hi]; throws InputError
+// "--<name>: <value> is out of range (accepted: <lo> to <hi>[, <why>])".
+template <class T>
+T option_in_range(const po::variables_map& vm, const char* name, T lo, T hi,
+                  const std::string& why = "") {
+  const T v = vm[name].as<T>();
+  if (!(v >= lo && v <= hi)) {
+    std::ostringstream msg;
+    msg.precision(6);
+    msg << "--" << name << ": " << v << " is out of range (accepted: " << lo << " to " << hi;
+    if (!why.empty()) msg << "; " << why;
+    msg << ')';
+    throw InputError(msg.str());
+  }
+  return v;
+}
+
+// An input or output path and the option (or positional name) it came from.
+struct PathArg {
+  std::string option;  // "--out", "--bed", "BED"
+  std::string path;
+};
+
+// The check every program makes BEFORE its work starts (docs/hardening.md): each input exists
+// and is a file; each output is not a folder, its folder exists and is writable, it is not one
+// of the inputs (nor the .xmf sidecar of an .h5 input or output), and no two outputs are the
+// same file. Throws InputError "<option>: '<path>' <what is wrong> (accepted: ...)".
+void check_paths(const std::vector<PathArg>& inputs, const std::vector<PathArg>& outputs);
+
+// Throws InputError "<option>: '<path>' has extension '<ext>' (accepted: .h5, ...)" unless the
+// path ends (case-insensitively) with one of `accepted`.
+void check_extension(const PathArg& path, std::initializer_list<const char*> accepted);
 
 // "a,b,c" -> numbers; throws InputError naming `option` unless there are between min_count
 // and max_count finite numbers.
