@@ -48,6 +48,17 @@ int convert(int argc, char** argv) {
   const bool data_out = has_extension(out, ".data") || has_extension(out, ".DATA");
   if (vm.count("density") && !data_out)
     throw InputError("--density: only used for .data output (OUT is '" + out + "')");
+  if (vm.count("density")) {
+    const double rho = vm["density"].as<double>();
+    if (!(rho > 0)) {
+      throw InputError("--density: " + std::to_string(rho) + " (accepted: > 0 kg/m^3)");
+    }
+  }
+  // Before any reading or writing (docs/hardening.md): the extensions, the input a file, the
+  // output's folder writable and the output not the input.
+  app::check_extension({"IN", in}, {".h5", ".csv", ".dump"});
+  app::check_extension({"OUT", out}, {".h5", ".csv", ".data"});
+  app::check_paths({{"IN", in}}, {{"OUT", out}});
 
   bed::Bed b;
   if (csv_in) {

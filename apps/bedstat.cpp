@@ -84,8 +84,16 @@ Report analyse(const std::string& file, const Request& req, const bed::Domain* c
   }
   if (req.profile_bins) r.profile = bed::density_profile(b, req.profile_bins);
   if (req.rdf_bins && b.n() > 0) r.rdf = bed::radial_distribution(b, 5.0 * r.r_mean, req.rdf_bins);
-  if (req.voronoi && b.domain.dimension == 3) r.voronoi = bed::voronoi_stats(b);
-  if (req.order_margin && b.domain.dimension == 3) {
+  // 3D-only statistics are refused for a 2D bed rather than silently left out.
+  if (req.voronoi && b.domain.dimension != 3) {
+    throw InputError("--voronoi: " + file +
+                     " is a 2D bed (accepted: 3D beds; the radical Voronoi tessellation is 3D only)");
+  }
+  if (req.order_margin && b.domain.dimension != 3) {
+    throw InputError("--order: " + file + " is a 2D bed (accepted: 3D beds; q6 is 3D only)");
+  }
+  if (req.voronoi) r.voronoi = bed::voronoi_stats(b);
+  if (req.order_margin) {
     r.order = bed::bond_order(b, req.tolerance, *req.order_margin);
   }
   return r;
@@ -285,11 +293,23 @@ int run(int argc, char** argv) {
     req.layer = std::make_pair(z[0], z[1]);
   }
   if (vm.count("psd")) req.psd = bed::Psd::parse(vm["psd"].as<std::string>(), "--psd");
-  req.profile_bins = vm["profile"].as<std::size_t>();
-  req.rdf_bins = vm["rdf"].as<std::size_t>();
-  req.histogram_bins = vm["histogram"].as<std::size_t>();
+  // Bins are allocated per bed: a count beyond a million is a slip, refused before any work.
+  constexpr std::size_t kMaxBins = 1000000;
+  req.profile_bins = app::option_in_range<std::size_t>(vm, "profile", 0, kMaxBins, "0 = off");
+  req.rdf_bins = app::option_in_range<std::size_t>(vm, "rdf", 0, kMaxBins, "0 = off");
+  req.histogram_bins = app::option_in_range<std::size_t>(vm, "histogram", 0, kMaxBins, "0 = off");
   req.voronoi = vm.count("voronoi") > 0;
-  if (vm.count("order")) req.order_margin = vm["order-margin"].as<double>();
+  if (vm.count("order")) {
+    req.order_margin = vm["order-margin"].as<double>();
+    if (!(*req.order_margin >= 0)) {
+      std::ostringstream msg;
+      msg << "--order-margin: " << *req.order_margin << " (accepted: >= 0 m)";
+      throw InputError(msg.str());
+    }
+  }
+  std::vector<app::PathArg> inputs;
+  for (const auto& file : vm["bed"].as<std::vector<std::string>>()) inputs.push_back({"BED", file});
+  app::check_paths(inputs, {});
 
   std::optional<bed::Domain> csv_domain;
   if (vm.count("domain")) csv_domain = app::parse_domain_bounds(vm["domain"].as<std::string>(), "--domain");

@@ -35,7 +35,7 @@ int run(int argc, char** argv) {
   po::options_description desc("packgen options (SI units: m)");
   app::add_common_options(desc);
   desc.add_options()
-      ("dim", po::value<int>()->required(), "2 (disks) or 3 (spheres); must match --domain")
+      ("dim", po::value<std::string>()->required(), "2 (disks) or 3 (spheres); must match --domain")
       ("domain", po::value<std::string>()->required(), "LX,LY[,LZ] (m): the box [0, L]")
       ("psd", po::value<std::string>()->required(), "size distribution (PSD string syntax)")
       ("size-sampling", po::value<std::string>()->default_value("iid"),
@@ -73,8 +73,12 @@ int run(int argc, char** argv) {
        "around it (0 = never; O(N) front advancing)")
       ("edge-fraction", po::value<double>()->default_value(0.0),
        "fraction of 0-contact tries drawn within one largest diameter of a wall")
+      ("allow-huge",
+       "accept a domain holding more than 1e9 particles of the PSD's mean size, or a --count "
+       "above 1e9 (otherwise refused as a likely unit slip: lengths are in m)")
       ("seed", po::value<std::uint64_t>()->required(), "random seed")
-      ("out", po::value<std::string>()->required(), "output bed (.h5)");
+      ("out", po::value<std::string>()->required(),
+       "output bed (.h5; other extensions are refused: bedconv converts to .csv or .data)");
   po::variables_map vm;
   if (!app::parse_options("packgen",
                           "packgen --dim 2|3 --domain LX,LY[,LZ] --psd SPEC --approach 0|1|2|3 "
@@ -82,8 +86,15 @@ int run(int argc, char** argv) {
                           desc, {}, argc, argv, vm)) {
     return 0;
   }
+  // The output is checked before any work (docs/hardening.md): extension, folder, not a folder.
+  const app::PathArg out{"--out", vm["out"].as<std::string>()};
+  app::check_extension(out, {".h5"});
+  app::check_paths({}, {out});
+  const std::string dim_text = vm["dim"].as<std::string>();
+  if (dim_text != "2" && dim_text != "3")
+    throw InputError("--dim: '" + dim_text + "' (accepted: 2 or 3)");
+  const int dim = dim_text == "2" ? 2 : 3;
   const bed::Domain domain = app::parse_domain_lengths(vm["domain"].as<std::string>(), "--domain");
-  const int dim = vm["dim"].as<int>();
   if (dim != domain.dimension) {
     throw InputError("--dim: " + std::to_string(dim) + " but --domain '" +
                      vm["domain"].as<std::string>() + "' has " +
@@ -97,7 +108,11 @@ int run(int argc, char** argv) {
   if (vm.count("raster-spacing")) o.raster_spacing = vm["raster-spacing"].as<double>();
   o.tries = vm["tries"].as<int>();
   o.directions = vm.count("directions") ? vm["directions"].as<int>() : dim == 2 ? 10 : 16;
-  if (vm.count("count")) o.count = vm["count"].as<std::size_t>();
+  if (vm.count("count")) {
+    o.count = vm["count"].as<std::size_t>();
+    if (o.count == 0) throw InputError("--count: 0 (accepted: a number of particles >= 1)");
+  }
+  o.allow_huge = vm.count("allow-huge") > 0;
   if (vm.count("target-density")) {
     o.target_density = vm["target-density"].as<double>();
     if (!(o.target_density > 0 && o.target_density < 1)) {
@@ -125,7 +140,7 @@ int run(int argc, char** argv) {
   b.provenance.rng_seed = seed;
   b.provenance.stage = "packgen";
   b.provenance.scene = app::scene_text(vm);
-  bed::write_bed_h5(b, vm["out"].as<std::string>());
+  bed::write_bed_h5(b, out.path);
 
   const double density = bed::packing_density(b);
   if (!result.target_reached) {

@@ -55,6 +55,33 @@ void validate(const bed::Domain& domain, const bed::Psd& psd, const PackOptions&
     for (int a = 1; a < domain.dimension; ++a) lengths += " x " + str(domain.length(a));
     fail("--domain: " + lengths + " is smaller than the smallest particle diameter " + str(d_min));
   }
+  // How many particles the domain could hold: its measure over one particle's (a packing
+  // density of 1 is the bound no packing reaches).
+  const double pi = 3.14159265358979323846;
+  auto particle_measure = [&](double r) {
+    return domain.dimension == 3 ? 4.0 / 3.0 * pi * r * r * r : pi * r * r;
+  };
+  const double by_mean = domain.measure() / particle_measure(psd.mean_radius());
+  if (!o.allow_huge && by_mean > o.max_particles) {
+    std::ostringstream msg;
+    msg << "--domain: " << domain.length(0);
+    for (int a = 1; a < domain.dimension; ++a) msg << ',' << domain.length(a);
+    msg << " m would hold about " << by_mean << " particles of the PSD's mean diameter "
+        << 2 * psd.mean_radius() << " m (accepted: up to " << o.max_particles
+        << "; lengths in um instead of m? e.g. " << domain.length(0)
+        << "e-6; --allow-huge if meant)";
+    fail(msg.str());
+  }
+  const double by_min = domain.measure() / particle_measure(psd.min_radius());
+  if (o.count > 0 && static_cast<double>(o.count) > by_min) {
+    fail("--count: " + std::to_string(o.count) + " particles cannot fit in the domain (accepted: " +
+         "at most " + str(std::floor(by_min)) + ", the domain's " +
+         (domain.dimension == 3 ? "volume" : "area") + " over the smallest particle's)");
+  }
+  if (o.count > 0 && !o.allow_huge && static_cast<double>(o.count) > o.max_particles) {
+    fail("--count: " + std::to_string(o.count) + " (accepted: up to " + str(o.max_particles) +
+         " particles; --allow-huge if meant)");
+  }
   if (o.collision == Collision::raster) {
     if (!(o.raster_spacing > 0) || !std::isfinite(o.raster_spacing)) {
       fail("--raster-spacing: " + str(o.raster_spacing) + " (accepted: a spacing > 0 in m)");

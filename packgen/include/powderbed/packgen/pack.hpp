@@ -54,6 +54,11 @@ struct PackOptions {
   // random onto the floor (0: growth starts as soon as the first sites exist).
   double floor_seed = 0;
   std::size_t raster_max_bytes = std::size_t{2} << 30;
+  // Unit-slip guard (docs/hardening.md): a domain that would hold more than this many particles
+  // of the PSD's mean size is refused as a likely metres-for-micrometres slip unless
+  // allow_huge (packgen --allow-huge) says the size is meant.
+  double max_particles = 1e9;
+  bool allow_huge = false;
   // Called about every 0.25 s when set (the app shows progress with an ETA).
   std::function<void(const PackProgress&)> progress;
 };
