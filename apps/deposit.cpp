@@ -19,6 +19,7 @@
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
 #include "powderbed/bed/psd.hpp"
+#include "powderbed/bed/random.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/scene.hpp"
 #include "powderbed/dem/solver.hpp"
@@ -32,9 +33,9 @@ namespace po = app::po;
 
 const char* const kUsage =
     "deposit [--config SCENE.ini] [--in BED.h5 | --psd SPEC --count N] --domain LX,LY,LZ "
-    "[--insert-z Z0,Z1] [--t-end T | --until-rest] [--dt DT] [--unsafe-dt] "
+    "[--insert-z Z0,Z1 | --insert.enabled true --insert.rate R --insert.speed V] [--t-end T | --until-rest] [--dt DT] [--unsafe-dt] "
     "[--integrator verlet|rk4] [--young-scale S | --contact.law linear --contact.stiffness K] --seed S --out BED.h5 "
-    "[--trajectory RUN.h5 --every K] [--lid [--lid.pressure P] [--lid.travel L] [--lid.speed V] "
+    "[--trajectory RUN.h5 --every K] [--lid [--lid.pressure P] [--lid.travel L | --lid.depth L] [--lid.speed V] "
     "[--lid.hold T] [--lid.relax T] [--lid.release false]] [--crop-top true] [--core-margin M] [--json]";
 
 void add_options(po::options_description& desc) {
@@ -49,6 +50,18 @@ void add_options(po::options_description& desc) {
       ("periodic", po::value<std::string>()->default_value("none"),
        "periodic axes: none, x, y or x,y")
       ("insert-z", po::value<std::string>(), "insertion region Z0,Z1 (m); default: the whole box")
+      ("insert.enabled", po::value<bool>()->default_value(false),
+       "insertion from the top (Kumar Yadav & Eshraghi 2016): the --count particles of --psd "
+       "enter one by one at random positions in the top layer of the box (one diameter), "
+       "moving down, until the box is full; the rest of them are dropped")
+      ("insert.rate", po::value<double>()->default_value(0), "insertion: particles per second")
+      ("insert.speed", po::value<double>()->default_value(0),
+       "insertion: initial downward speed (m/s)")
+      ("insert.tries", po::value<std::size_t>()->default_value(100),
+       "insertion: random draws for a free spot per particle and insertion time")
+      ("insert.patience", po::value<double>()->default_value(0),
+       "insertion: the box is full once no particle has found a free spot for this long (s; 0: "
+       "twice the time to fall one diameter)")
       ("t-end", po::value<double>(), "simulated time (s); with --until-rest the cap (default 1 s)")
       ("until-rest", po::bool_switch(), "stop when the bed is at rest (rest.speed, rest.window)")
       ("rest.speed", po::value<double>()->default_value(1e-4),
@@ -91,6 +104,9 @@ void add_options(po::options_description& desc) {
        "lid: stop lowering when the bed pushes on it with this pressure (Pa; 0: no target)")
       ("lid.travel", po::value<double>()->default_value(l.travel),
        "lid: stop lowering after this travel from the highest particle top (m; 0: no limit)")
+      ("lid.depth", po::value<double>()->default_value(l.depth),
+       "lid: instead of a travel, lower it to this depth below the bed's surface (the 90th "
+       "percentile of the particle tops), overlapping the top layer by it (m; 0: none)")
       ("lid.hold", po::value<double>()->default_value(l.hold), "lid: time held in place (s)")
       ("lid.release", po::value<bool>()->default_value(l.release),
        "lid: true releases it after the hold; false keeps it as the bed's top face (the bed's "
@@ -108,6 +124,24 @@ void add_options(po::options_description& desc) {
     desc.add_options()(name.c_str(), po::value<bool>()->default_value(true),
                        "effect on/off (true/false)");
   }
+}
+
+// The pool of the insertion (dem::InsertionSettings): --count radii drawn from --psd, parked at
+// the box's centre until the solver inserts them in order.
+bed::Bed insertion_pool(const po::variables_map& vm, const bed::Domain& domain,
+                        std::uint64_t seed) {
+  const bed::Psd psd = bed::Psd::parse(app::required<std::string>(vm, "psd"), "--psd");
+  const std::size_t count = app::required<std::size_t>(vm, "count");
+  if (count == 0) throw InputError("--count: 0 (accepted: N >= 1)");
+  bed::Bed pool;
+  pool.domain = domain;
+  pool.reserve(count);
+  bed::Rng rng(seed);
+  double centre[3];
+  for (int a = 0; a < 3; ++a) centre[a] = 0.5 * (domain.lower[a] + domain.upper[a]);
+  for (std::size_t i = 0; i < count; ++i)
+    pool.add(centre[0], centre[1], centre[2], psd.sample_radius(rng));
+  return pool;
 }
 
 bed::Bed insert_from_psd(const po::variables_map& vm, const bed::Domain& domain,
@@ -159,6 +193,11 @@ int run(int argc, char** argv) {
   if (!vm.count("in") && !vm.count("psd")) {
     throw InputError("--in / --psd: neither given (accepted: --in BED.h5 or --psd SPEC --count N)");
   }
+  const bool inserting = vm["insert.enabled"].as<bool>();
+  if (inserting && vm.count("in")) {
+    throw InputError("insert.enabled: with --in (accepted: --psd SPEC --count N, the particles "
+                     "to insert)");
+  }
 
   bed::Bed bed;
   if (vm.count("in")) {
@@ -170,7 +209,7 @@ int run(int argc, char** argv) {
     const bed::Domain domain =
         app::parse_domain_lengths(app::required<std::string>(vm, "domain"), "--domain");
     if (domain.dimension != 3) throw InputError("--domain: 2D box (accepted: LX,LY,LZ)");
-    bed = insert_from_psd(vm, domain, seed);
+    bed = inserting ? insertion_pool(vm, domain, seed) : insert_from_psd(vm, domain, seed);
   }
   const std::string periodic = vm["periodic"].as<std::string>();
   if (periodic == "x" || periodic == "x,y" || periodic == "xy") bed.domain.periodic[0] = true;
@@ -237,9 +276,16 @@ int run(int argc, char** argv) {
   s.lid.speed = vm["lid.speed"].as<double>();
   s.lid.pressure = vm["lid.pressure"].as<double>();
   s.lid.travel = vm["lid.travel"].as<double>();
+  s.lid.depth = vm["lid.depth"].as<double>();
   s.lid.hold = vm["lid.hold"].as<double>();
   s.lid.relax = vm["lid.relax"].as<double>();
   s.lid.release = vm["lid.release"].as<bool>();
+  s.insertion.enabled = inserting;
+  s.insertion.rate = vm["insert.rate"].as<double>();
+  s.insertion.speed = vm["insert.speed"].as<double>();
+  s.insertion.tries = vm["insert.tries"].as<std::size_t>();
+  s.insertion.patience = vm["insert.patience"].as<double>();
+  s.insertion.seed = seed;
   double mean_diameter = 0;
   for (const double r : bed.radius) mean_diameter += 2 * r;
   mean_diameter /= static_cast<double>(std::max<std::size_t>(1, bed.n()));
@@ -305,10 +351,18 @@ int run(int argc, char** argv) {
         .value("core_density", core.density)
         .value("core_margin", margin)
         .value("domain_top", bed.domain.upper[2]);
+    if (inserting) {
+      j.begin_object("insertion")
+          .value("inserted", static_cast<std::uint64_t>(r.inserted))
+          .value("end_time", r.insertion_end)
+          .value("stopped_by", r.insertion_stopped_by)
+          .end_object();
+    }
     if (r.lid_used) {
       j.begin_object("lid")
           .value("start_z", r.lid.start_z)
           .value("stop_z", r.lid.stop_z)
+          .value("surface_z", r.lid.surface_z)
           .value("travel", r.lid.start_z - r.lid.stop_z)
           .value("target_force", r.lid.target_force)
           .value("stop_force", r.lid.stop_force)

@@ -28,7 +28,7 @@ print("  [GZ] 2016 model               30.0   85.0   20.0")
 print("  [GZ] 2016 experiment          26.0   75.0   30.0")
 PY
 /usr/bin/python3 scripts/plot_sinter.py out/sinter.h5 out/sinter --title "sinter, [GZ] scene, 200 W, 2 m/s"
-echo "== deposit + keff: the [KE] steel 1 mm bed (1,100 spheres, lid kept as the hot wall; ~15 s)"
+echo "== deposit + keff: the [KE] steel 1 mm bed (~1,000 spheres inserted from the top of a 10 D cube until full, linear contact as MFiX; ~30 s)"
 build/apps/deposit --config data/scenes/ke2016-steel-1mm-bed.ini --seed 1 --out out/ke-steel-1mm.h5
 echo "   its conductivity at room temperature (air, contact + gas), then at 1000 K with radiation"
 build/apps/keff --config data/scenes/ke2016-steel-1mm.ini --bed out/ke-steel-1mm.h5 \

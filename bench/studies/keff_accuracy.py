@@ -228,7 +228,7 @@ def report(rays_tables, tol_tables, loads, rays_best, tol_best, note):
         "1e-8.",
         "",
         "Bed: the steel 1 mm validation bed (1,100 spheres, `deposit --config "
-        "data/scenes/ke2016-steel-1mm-bed.ini --seed 1`, lid held). keff: "
+        "data/scenes/ke2016-steel-1mm-held-lid-bed.ini --seed 1`, lid held). keff: "
         "data/scenes/ke2016-steel-1mm.ini with `--effects.radiation true` (ε = 0.5 spheres and "
         "walls unless the case says ε = 1) and `--gas.model air` (k_g of each gas link at its "
         "temperature), one thread. "

@@ -5,7 +5,7 @@ polydispersity and consolidation, on steel 1 mm beds. Writes docs/results/keff-p
 keff-parameters.png. Run with /usr/bin/python3 (one thread):
     POWDERBED_BUILD=build /usr/bin/python3 bench/studies/keff_parameters.py
 
-Beds come from `deposit --config data/scenes/ke2016-steel-1mm-bed.ini --seed S` with the study's
+Beds come from `deposit --config data/scenes/ke2016-steel-1mm-held-lid-bed.ini --seed S` with the study's
 changes on the command line (lid kept as keff's hot wall) and are kept in
 out/studies/keff-parameters/ (about fifteen minutes of one core the first time; a bed that is
 there is reused). keff runs with data/scenes/ke2016-steel-1mm.ini (contacts read with the Hertz
@@ -36,7 +36,7 @@ RAYS = 1000
 
 
 def bed_scene(case="steel-1mm"):
-    return os.path.join(SCENES, f"ke2016-{case}-bed.ini")
+    return os.path.join(SCENES, f"ke2016-{case}-held-lid-bed.ini")
 
 
 def keff_scene(case="steel-1mm"):
@@ -407,7 +407,7 @@ def report(temps, ratio, young, emis, heights, psd, cons):
         "    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/keff_parameters.py",
         "",
         "(one thread; the beds are cached in out/studies/keff-parameters/, about fifteen minutes "
-        "of one core the first time). Beds: `deposit --config data/scenes/ke2016-steel-1mm-bed.ini "
+        "of one core the first time). Beds: `deposit --config data/scenes/ke2016-steel-1mm-held-lid-bed.ini "
         "--seed S` (1,100 monodisperse steel spheres of 1 mm in a box of 10 × 10 D, settled, "
         "pressed by the lid at 1e4 Pa, which stays as the bed's top face: keff's hot wall; "
         "docs/deposit-lid.md) with each study's change on the command line. keff: `keff --config "

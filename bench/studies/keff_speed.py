@@ -7,7 +7,7 @@ particles for the scaling. Writes docs/results/keff-speed.md. Run with /usr/bin/
     POWDERBED_BUILD=build /usr/bin/python3 bench/studies/keff_speed.py
 
 Beds (kept in out/studies/keff-speed/):
-- `deposit --config data/scenes/ke2016-steel-1mm-bed.ini --seed 1` (1,100 spheres, lid held: the
+- `deposit --config data/scenes/ke2016-steel-1mm-held-lid-bed.ini --seed 1` (1,100 spheres, lid held: the
   validation bed), and the same scene at 10,000 spheres in a 30 x 30 D box (DEM contacts);
 - packgen 3D monodisperse 1 mm beds, approach 3 / lowest site first, of 1,100, 10,000 and 100,000
   spheres in boxes 10, 15 and 46 D wide; the top wall is put at the highest sphere top. packgen's
@@ -29,7 +29,7 @@ from keff_validation import scene_value
 
 WORK = os.path.join(ROOT, "out", "studies", "keff-speed")
 SCENE = os.path.join(ROOT, "data", "scenes", "ke2016-steel-1mm.ini")
-BED_SCENE = os.path.join(ROOT, "data", "scenes", "ke2016-steel-1mm-bed.ini")
+BED_SCENE = os.path.join(ROOT, "data", "scenes", "ke2016-steel-1mm-held-lid-bed.ini")
 REPEATS = 3
 THREADS = [1, 2]
 TEMPERATURE = 1000.0  # K: radiation carries ~half the heat of the 1 mm steel bed here

@@ -18,6 +18,7 @@
 #include "forces.hpp"
 #include "parallel.hpp"
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/random.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/stokes_drag.hpp"
 #include "powderbed/dem/time_step.hpp"
@@ -340,6 +341,25 @@ void check_inputs(const bed::Bed& bed, const RunSettings& s) {
 // The held lid's servo (LidSettings::hold): full speed once the force is 10 % off the target.
 constexpr double kServoGain = 10;
 
+void check_insertion(const InsertionSettings& ins, const RunSettings& s, const Scene& scene) {
+  if (!ins.enabled) return;
+  const auto require = require_in_range;  // bed/errors.hpp
+  const auto finite = [](double v) { return std::isfinite(v); };
+  require(finite(ins.rate) && ins.rate > 0, "insert.rate", ins.rate, "rate > 0 particles/s");
+  require(finite(ins.speed) && ins.speed >= 0, "insert.speed", ins.speed, "speed >= 0 m/s");
+  require(ins.tries >= 1, "insert.tries", static_cast<double>(ins.tries), "tries >= 1");
+  require(finite(ins.patience) && ins.patience >= 0, "insert.patience", ins.patience,
+          "patience >= 0 s");
+  if (ins.patience == 0 && ins.speed == 0 && !(scene.has(kGravity) && scene.gravity > 0)) {
+    throw InputError("insert.patience: 0 with neither an insertion speed nor gravity (accepted: "
+                     "a patience > 0 s, an insert.speed > 0 or gravity)");
+  }
+  if (!s.trajectory.empty()) {
+    throw InputError("--trajectory: with insertion (accepted: one or the other; the snapshots "
+                     "have a fixed particle count)");
+  }
+}
+
 void check_lid(const LidSettings& lid, const Scene& scene) {
   if (!lid.enabled) return;
   const auto require = require_in_range;  // bed/errors.hpp
@@ -349,9 +369,13 @@ void check_lid(const LidSettings& lid, const Scene& scene) {
   require(finite(lid.travel) && lid.travel >= 0, "lid.travel", lid.travel, "travel >= 0 m");
   require(finite(lid.hold) && lid.hold >= 0, "lid.hold", lid.hold, "hold >= 0 s");
   require(finite(lid.relax) && lid.relax >= 0, "lid.relax", lid.relax, "relax >= 0 s");
-  if (!(lid.pressure > 0 || lid.travel > 0)) {
-    throw InputError("lid.pressure / lid.travel: neither set (accepted: a pressure > 0 Pa, a "
-                     "travel > 0 m, or both)");
+  require(finite(lid.depth) && lid.depth >= 0, "lid.depth", lid.depth, "depth >= 0 m");
+  if (lid.depth > 0 && lid.travel > 0) {
+    throw InputError("lid.depth / lid.travel: both set (accepted: one of them)");
+  }
+  if (!(lid.pressure > 0 || lid.travel > 0 || lid.depth > 0)) {
+    throw InputError("lid.pressure / lid.travel / lid.depth: none set (accepted: a pressure > 0 "
+                     "Pa, a travel or depth > 0 m, or a pressure with one of them)");
   }
   if (!scene.has(kWalls)) {
     throw InputError("lid: on with effects.walls off (accepted: the lid is the box's top wall; "
@@ -367,6 +391,7 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   bed.validate("deposit input bed");
   check_inputs(bed, settings);
   check_lid(settings.lid, scene);
+  check_insertion(settings.insertion, settings, scene);
   if (scene.law == ContactLaw::linear && settings.young_scale != 1) {
     std::ostringstream msg;
     msg << "--young-scale: " << settings.young_scale << " with contact.law = linear (accepted: "
@@ -444,6 +469,67 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   } else {
     detail::tabulate_wall_constants<detail::HertzLaw>(c.tables, c.arrays(), c.params);
   }
+
+  // Insertion (solver.hpp InsertionSettings): the pool's particle c.n is the next to enter, so
+  // the per-particle tables above, made for the whole pool, stay indexed as they are.
+  const InsertionSettings& ins = settings.insertion;
+  const std::size_t pool = n;
+  bool inserting = ins.enabled;
+  bed::Rng insert_rng(ins.seed);
+  // Time a new particle needs to fall one largest diameter (from `speed`, under gravity), twice.
+  const double g = scene.has(kGravity) ? scene.gravity : 0.0;
+  const double fall = g > 0 ? (std::sqrt(ins.speed * ins.speed + 2 * g * 2 * r_max) - ins.speed) / g
+                            : 2 * r_max / ins.speed;
+  const double patience = ins.patience > 0 ? ins.patience : 2 * fall;
+  const auto try_insert = [&] {
+    const std::size_t k = c.n;
+    const double r = bed.radius[k];
+    const Box& box = c.params.box;
+    double lo[3], hi[3];
+    for (int a = 0; a < 2; ++a) {
+      lo[a] = box.lower[a] + (box.periodic[a] ? 0.0 : r);
+      hi[a] = box.upper[a] - (box.periodic[a] ? 0.0 : r);
+    }
+    lo[2] = box.upper[2] - 2 * r_max + r;  // the top layer, one largest diameter
+    hi[2] = box.upper[2] - r;
+    for (std::size_t t = 0; t < ins.tries; ++t) {
+      const double p[3] = {bed::uniform(insert_rng, lo[0], hi[0]),
+                           bed::uniform(insert_rng, lo[1], hi[1]),
+                           bed::uniform(insert_rng, lo[2], hi[2])};
+      bool free = true;
+      for (std::size_t j = 0; j < c.n && free; ++j) {
+        const double dx = box.image(0, bed.x[j] - p[0]), dy = box.image(1, bed.y[j] - p[1]),
+                     dz = bed.z[j] - p[2], reach = r + bed.radius[j];
+        free = dx * dx + dy * dy + dz * dz >= reach * reach;
+      }
+      if (!free) continue;
+      bed.x[k] = p[0];
+      bed.y[k] = p[1];
+      bed.z[k] = p[2];
+      bed.vx[k] = 0;
+      bed.vy[k] = 0;
+      bed.vz[k] = -ins.speed;
+      ++c.n;
+      return true;
+    }
+    return false;
+  };
+  RunSummary summary;
+  const auto end_insertion = [&](const char* why, double time) {
+    inserting = false;
+    summary.inserted = c.n;
+    summary.insertion_end = time;
+    summary.insertion_stopped_by = why;
+    for (auto* v : {&bed.x, &bed.y, &bed.z, &bed.radius, &bed.vx, &bed.vy, &bed.vz}) v->resize(c.n);
+    bed.id.resize(c.n);
+    if (!bed.material.empty()) bed.material.resize(c.n);
+    if (!bed.temperature.empty()) bed.temperature.resize(c.n);
+    if (!bed.phase.empty()) bed.phase.resize(c.n);
+  };
+  if (inserting) {
+    c.n = 0;
+    try_insert();
+  }
   c.rebuild();
 
   const unsigned effects = scene.effects & kAllEffects;
@@ -454,7 +540,7 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
 
   const double t_end = settings.t_end > 0 ? settings.t_end : 1.0;
   const auto total_steps = static_cast<std::uint64_t>(std::ceil(t_end / c.dt - 1e-9));
-  const double rest_energy = settings.rest.kinetic_energy > 0
+  double rest_energy = settings.rest.kinetic_energy > 0
                                  ? settings.rest.kinetic_energy
                                  : 1e-2 * 0.5 * total_mass * settings.rest.max_speed *
                                        settings.rest.max_speed;
@@ -470,7 +556,6 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
     trajectory->write(0, 0.0, bed);
   }
 
-  RunSummary summary;
   std::uint64_t step = 0;
   // Steps until `last_step`, rest (with until_rest) or the observer's stop; `before` runs before
   // each step, `after` after it (true ends the phase). Returns true when the phase ended at rest.
@@ -491,7 +576,7 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
       }
       if (after()) return false;
       const bool report = settings.progress && step % settings.progress_every == 0;
-      if (until_rest && step % rest_every == 0) {
+      if (until_rest && !inserting && step % rest_every == 0) {
         double ke, vmax;
         kinetic_state(c, ke, vmax);
         if (ke < rest_energy && vmax < settings.rest.max_speed) {
@@ -514,7 +599,39 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   };
   const auto nothing = [] {};
   const auto never = [] { return false; };
-  summary.at_rest = advance(total_steps, settings.until_rest, t_end, nothing, never);
+  constexpr double kNotFailing = -1;
+  double failing_since = kNotFailing;  // start of the current run of failed insertions
+  const auto insert_due = [&] {
+    if (!inserting) return;
+    const double time = static_cast<double>(step) * c.dt;
+    const auto due = std::min<std::size_t>(
+        pool, 1 + static_cast<std::size_t>(std::floor(ins.rate * time)));
+    const std::size_t before = c.n;
+    while (c.n < due) {
+      if (try_insert()) {
+        failing_since = kNotFailing;
+        continue;
+      }
+      if (failing_since == kNotFailing) failing_since = time;
+      break;
+    }
+    if (c.n != before) {
+      c.rebuild();
+      ++c.rebuilds;
+    }
+    if (c.n == pool) {
+      end_insertion("pool", time);
+    } else if (failing_since != kNotFailing && time - failing_since >= patience) {
+      end_insertion("full", time);
+    }
+    if (!inserting && settings.rest.kinetic_energy <= 0) {  // the rest criterion's mass
+      double inserted_mass = 0;
+      for (std::size_t i = 0; i < c.n; ++i) inserted_mass += c.mass[i];
+      rest_energy = 1e-2 * 0.5 * inserted_mass * settings.rest.max_speed * settings.rest.max_speed;
+    }
+  };
+  summary.at_rest = advance(total_steps, settings.until_rest, t_end, insert_due, never);
+  if (inserting) end_insertion("time", static_cast<double>(step) * c.dt);
   if (settings.lid.enabled && !stopped) {
     // The lid (solver.hpp LidSettings): the box's top face, moved between steps.
     const LidSettings& lid = settings.lid;
@@ -523,7 +640,7 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
     Box& box = c.params.box;
     const double top = box.upper[2];
     double highest = box.lower[2], r_min = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < c.n; ++i) {
       highest = std::max(highest, bed.z[i] + bed.radius[i]);
       r_min = std::min(r_min, bed.radius[i]);
     }
@@ -531,7 +648,16 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
     out.target_force = lid.pressure * box.length[0] * box.length[1];
     // No bed is thinner than one particle: the lid stops one smallest diameter above the floor.
     const double floor_travel = std::max(0.0, out.start_z - (box.lower[2] + 2 * r_min));
-    const double travel = lid.travel > 0 ? std::min(lid.travel, floor_travel) : floor_travel;
+    double requested = lid.travel;
+    if (lid.depth > 0) {  // to `depth` below the surface, the 90th percentile of the tops
+      std::vector<double> tops(c.n);
+      for (std::size_t i = 0; i < c.n; ++i) tops[i] = bed.z[i] + bed.radius[i];
+      const auto k = tops.begin() + static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(c.n - 1));
+      std::nth_element(tops.begin(), k, tops.end());
+      out.surface_z = *k;
+      requested = std::max(0.0, out.start_z - (out.surface_z - lid.depth));
+    }
+    const double travel = requested > 0 ? std::min(requested, floor_travel) : floor_travel;
     const double per_step = lid.speed * c.dt;
     const bool damping = scene.has(kDamping);
     box.upper[2] = out.start_z;
@@ -567,7 +693,9 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
       if (out.target_force > 0 && out.stop_force >= out.target_force) {
         out.stopped_by = "force";
       } else if (static_cast<double>(lowered) * per_step >= travel) {
-        out.stopped_by = lid.travel > 0 && lid.travel <= floor_travel ? "travel" : "floor";
+        out.stopped_by = requested > 0 && requested <= floor_travel
+                             ? (lid.depth > 0 ? "depth" : "travel")
+                             : "floor";
       }
       return !out.stopped_by.empty();
     };
@@ -631,7 +759,7 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
     trajectory->close();
   }
 
-  summary.n = n;
+  summary.n = c.n;
   summary.steps = step;
   summary.sim_time = static_cast<double>(step) * c.dt;
   summary.dt = c.dt;
@@ -656,7 +784,7 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
     summary.max_overlap_full_stiffness =
         overlap.relative * std::pow(settings.young_scale, -2.0 / 3.0);
   }
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < c.n; ++i) {
     const double p[3] = {bed.x[i], bed.y[i], bed.z[i]};
     for (int a = 0; a < 3; ++a) {
       if (!c.params.box.periodic[a] && (p[a] < c.params.box.lower[a] || p[a] > c.params.box.upper[a])) {
@@ -678,7 +806,7 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   summary.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   summary.particle_steps_per_s =
-      summary.wall_time > 0 ? static_cast<double>(n) * static_cast<double>(step) / summary.wall_time : 0;
+      summary.wall_time > 0 ? static_cast<double>(c.n) * static_cast<double>(step) / summary.wall_time : 0;
   return summary;
 }
 

@@ -120,7 +120,7 @@ TEST(DepositCli, KeBedSceneInsertsElevenHundredInTheTenDiameterBox) {
   // 0-contact insertion); one step of 3.4e-6 s checks the insertion, not the settle.
   const std::string dir = test::scratch_dir("deposit_ke_bed");
   const std::string scene =
-      std::string(POWDERBED_SOURCE_DIR) + "/data/scenes/ke2016-steel-1mm-bed.ini";
+      std::string(POWDERBED_SOURCE_DIR) + "/data/scenes/ke2016-steel-1mm-held-lid-bed.ini";
   const auto r = test::run_app("deposit", "--config " + scene + " --t-end 1e-6 --lid.enabled "
                                           "false --crop-top false --seed 1 --json --out " +
                                               dir + "/out.h5");
@@ -131,6 +131,24 @@ TEST(DepositCli, KeBedSceneInsertsElevenHundredInTheTenDiameterBox) {
   EXPECT_EQ(out.n(), 1100u);
   EXPECT_DOUBLE_EQ(out.domain.upper[0], 10e-3);
   EXPECT_DOUBLE_EQ(out.domain.upper[2], 30e-3);
+}
+
+TEST(DepositCli, KeBedSceneInsertsFromTheTopWithTheLinearLaw) {
+  // The default [KE] bed scene: the linear law, insertion into a cube of 10 diameters. 2 ms of
+  // the insertion at 5000 /s checks the set-up, not the fill (the validation study runs it).
+  const std::string dir = test::scratch_dir("deposit_ke_insert");
+  const std::string scene = std::string(POWDERBED_SOURCE_DIR) + "/data/scenes/ke2016-steel-1mm-bed.ini";
+  const auto r = test::run_app("deposit", "--config " + scene + " --t-end 2e-3 --crop-top false "
+                                          "--seed 1 --json --out " + dir + "/out.h5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"stopped_by\":\"time\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"contact_law\":\"linear\""), std::string::npos) << r.out;
+  const bed::Bed out = bed::read_bed_h5(dir + "/out.h5");
+  EXPECT_EQ(out.n(), 10u);  // one at t = 0 and one every 0.2 ms before 2 ms
+  EXPECT_DOUBLE_EQ(out.domain.upper[2], 10e-3);
+  EXPECT_EQ(out.provenance.contact.law, "linear");
+  EXPECT_EQ(out.provenance.contact.stiffness, 1e5);
+  EXPECT_EQ(out.provenance.contact.young, 198e9);
 }
 
 TEST(DepositCli, LidConsolidatesAndReportsItself) {

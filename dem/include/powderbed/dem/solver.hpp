@@ -34,6 +34,11 @@ struct LidSettings {
   double speed = 0.01;   // m/s
   double pressure = 0;   // Pa; 0: no force target
   double travel = 0;     // m; 0: no travel limit
+  // m; 0: none. Instead of a travel: lower the lid to `depth` below the bed's surface (the 90th
+  // percentile of the particle tops z + r, which a few perched particles do not move), i.e.
+  // overlap the top layer by `depth` ([KE]'s consolidation: "on the order of the particle
+  // radius"); with release, the top boundary is then raised again and the bed relaxes.
+  double depth = 0;
   // s. With a pressure the lid holds it while held: it moves at up to `speed` against the force
   // error, v = speed · clamp((F_target − F) / F_target, −1, 1) (a proportional servo, as a
   // stress-controlled wall in DEM codes); with a travel only it holds its position.
@@ -42,6 +47,26 @@ struct LidSettings {
   // false: the lid stays where it stopped and the bed's domain ends there, so the bed is
   // written pressed against its top face (keff's hot wall touches it as [KE]'s lid does).
   bool release = true;
+};
+
+// The insertion of Kumar Yadav & Eshraghi [KE] 2016 (MFiX-DEM): "particles are injected at
+// random positions on the top boundary with an initial velocity" and "added to completely fill
+// the domain". With it the bed passed in is the pool: its particles, in order, enter one by one
+// at `rate` per second (the first at t = 0), each at a uniform random position in the box's top
+// layer (one largest diameter under the top face, inside the side faces, overlapping no particle
+// already in), moving down at `speed`. A particle that finds no free spot in `tries` draws waits
+// for the next insertion time; the box is full once insertion has failed for `patience` s in a
+// row. Insertion then ends, the pool's rest is dropped (the bed shrinks to the inserted
+// particles) and the run goes on (t_end / until_rest, then the lid). Rest is not tested while
+// particles still enter.
+struct InsertionSettings {
+  bool enabled = false;
+  double rate = 0;           // particles/s
+  double speed = 0;          // m/s, downward, >= 0
+  std::size_t tries = 100;   // random draws per particle and insertion time
+  double patience = 0;       // s; 0: twice the time to fall one largest diameter at `speed`
+                             // (the time a new particle needs to clear the layer)
+  std::uint64_t seed = 1;
 };
 
 struct Progress {
@@ -77,10 +102,12 @@ struct RunSettings {
   std::function<bool(std::uint64_t step, double time, const bed::Bed& bed)> observer;
   std::uint64_t observe_every = 1;
   LidSettings lid;
+  InsertionSettings insertion;
 };
 
 struct LidSummary {
   double start_z = 0;          // m: the lid when it began to move (highest particle top)
+  double surface_z = 0;        // m: the bed's surface (with a depth; LidSettings::depth)
   double stop_z = 0;           // m: where it stopped (its lowest position)
   double target_force = 0;     // N: pressure x top area (0 without a pressure)
   double stop_force = 0;       // N: force of the bed on the lid when it stopped
@@ -88,7 +115,7 @@ struct LidSummary {
   double hold_end_force = 0;   // N: force at the end of the hold
   double hold_end_z = 0;       // m: where the lid is at the end of the hold
   double hold_late_force = 0;  // N: mean force over the second half of the hold
-  // How the lowering ended: "force" (target reached), "travel", or "floor" (the lid came within
+  // How the lowering ended: "force" (target reached), "travel", "depth", or "floor" (the lid came within
   // one smallest diameter of the floor with neither reached).
   std::string stopped_by;
   double release_time = 0;     // s: simulated time of the release
@@ -112,12 +139,17 @@ struct RunSummary {
   std::size_t lost = 0;            // particles whose centre left the box (non-periodic axes)
   bool at_rest = false;
   std::uint64_t neighbour_rebuilds = 0;
+  std::size_t inserted = 0;        // with insertion: particles that entered
+  double insertion_end = 0;        // s: when insertion ended
+  // "full" (no free spot for `patience` s), "pool" (every particle in) or "time" (t_end first)
+  std::string insertion_stopped_by;
   bool lid_used = false;
   LidSummary lid;               // when lid_used; at_rest then says whether the relaxation ended at rest
 };
 
 // Integrates the bed in place (positions and velocities; velocities are created at zero when
-// the bed has none), then, with settings.lid.enabled, consolidates it with the lid. The
+// the bed has none; with settings.insertion the bed is the pool of InsertionSettings), then,
+// with settings.lid.enabled, consolidates it with the lid. The
 // domain's periodic x/y flags make those axes periodic. Throws InputError for a bad
 // scene/settings (dt above the stable bound without unsafe_dt, a particle centre outside the
 // domain, a 2D bed, a periodic axis shorter than 3 neighbour cells, a lid without
