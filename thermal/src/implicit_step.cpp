@@ -160,7 +160,7 @@ void implicit_step(Sinter::State& s, double dt) {
       if (s.gone[i]) continue;
       const double dx = s.x[i] - xl, dy = s.y[i] - s.laser_y;
       sys.rhs[static_cast<std::ptrdiff_t>(i)] +=
-          s.laser_factor[i] * peak_intensity(s.laser) * std::exp(-2 * (dx * dx + dy * dy) / w2);
+          particle_laser_power(s.laser_factor[i], peak_intensity(s.laser), dx * dx + dy * dy, w2);
     }
   }
   const double gx = g.dy * g.dz / g.dx, gy = g.dx * g.dz / g.dy, gz = g.dx * g.dy / g.dz;
@@ -189,8 +189,8 @@ void implicit_step(Sinter::State& s, double dt) {
         if (k == 1) face(c - g.nx * g.ny, gz);
         if (k + 1 == g.nz && s.scene.has(kLaserSubstrate)) {
           const double dx = g.x(i) - xl, dy = g.y(j) - s.laser_y;
-          sys.rhs[u] += absorbed_flux(s.laser, dx * dx + dy * dy, 0.0) *
-                        s.transmission[i + g.nx * j] * g.dx * g.dy;
+          sys.rhs[u] +=
+              node_laser_power(s.laser, dx * dx + dy * dy, s.transmission[i + g.nx * j], g.dx, g.dy);
         }
       }
     }

@@ -21,7 +21,7 @@ double beer_lambert_particles(Sinter::State& s, double t, std::vector<double>& q
     const double dx = s.x[i] - xl, dy = s.y[i] - yl;
     const double r2 = dx * dx + dy * dy;
     if (r2 > kBeamCutoff2 * w2 || s.gone[i]) continue;
-    const double f = s.laser_factor[i] * i0 * std::exp(-2 * r2 / w2);
+    const double f = particle_laser_power(s.laser_factor[i], i0, r2, w2);
     q[i] += f;
     absorbed += f;
   }
@@ -47,8 +47,9 @@ void beer_lambert_substrate(Sinter::State& s, double t, double dt) {
     const double dy = g.y(j) - yl;
     for (std::size_t i = i0; i < i1 && i + 1 < g.nx; ++i) {
       const double dx = g.x(i) - xl;
-      const double energy = absorbed_flux(s.laser, dx * dx + dy * dy, 0.0) *
-                            s.transmission[i + g.nx * j] * g.dx * g.dy * dt;
+      const double energy =
+          node_laser_power(s.laser, dx * dx + dy * dy, s.transmission[i + g.nx * j], g.dx, g.dy) *
+          dt;
       s.sources.push_back({g.index(i, j, k), energy});
       absorbed += energy;
     }
@@ -189,14 +190,14 @@ double absorbed_fraction(const Sinter::State& s, double x) {
   double absorbed = 0;
   for (std::size_t i = 0; i < s.x.size(); ++i) {
     const double dx = s.x[i] - x, dy = s.y[i] - s.laser_y;
-    absorbed += s.laser_factor[i] * i0 * std::exp(-2 * (dx * dx + dy * dy) / w2);
+    absorbed += particle_laser_power(s.laser_factor[i], i0, dx * dx + dy * dy, w2);
   }
   const SubstrateGeometry& g = s.g;
   for (std::size_t j = 1; j + 1 < g.ny; ++j)
     for (std::size_t i = 1; i + 1 < g.nx; ++i) {
       const double dx = g.x(i) - x, dy = g.y(j) - s.laser_y;
-      absorbed += absorbed_flux(s.laser, dx * dx + dy * dy, 0.0) * s.transmission[i + g.nx * j] *
-                  g.dx * g.dy;
+      absorbed +=
+          node_laser_power(s.laser, dx * dx + dy * dy, s.transmission[i + g.nx * j], g.dx, g.dy);
     }
   return absorbed / s.scene.power;
 }

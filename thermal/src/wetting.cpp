@@ -7,6 +7,7 @@
 // (exact_exchange) with the top nodes under the cap.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "powderbed/thermal/contact_conduction.hpp"
@@ -110,6 +111,15 @@ void spread_molten(Sinter::State& s) {
   }
 }
 
+// Capacity of a body between its temperature t and the other body's t_other, from its enthalpy
+// curve (the secant): the apparent heat capacity at t alone would let a particle leaving its
+// melting window give up far more than it holds between the two temperatures.
+double secant_capacity(const EnthalpyCurve& curve, double t, double t_other) {
+  const double span = t_other - t;
+  if (std::abs(span) < 1e-6) return curve.capacity(t);
+  return (curve.enthalpy(t_other) - curve.enthalpy(t)) / span;
+}
+
 void wetted_exchange(Sinter::State& s, double dt) {
   const SubstrateGeometry& g = s.g;
   const double top_volume = g.volume(g.nz - 1);
@@ -117,19 +127,26 @@ void wetted_exchange(Sinter::State& s, double dt) {
   for (const auto& w : s.wetted) {
     const std::size_t i = w.particle;
     if (s.gone[i]) continue;
-    // The nodes under the cap as one body: mean temperature and capacity 1 / Σ w² / C.
-    double ts = 0, inverse_capacity = 0;
-    for (const auto& [node, weight] : w.footprint) {
-      ts += weight * s.node_temperature[node];
-      if (!g.fixed_top(node))
-        inverse_capacity += weight * weight / (top_volume * s.capacity_per_m3(s.node_temperature[node]));
-    }
     const double tp = s.temperature[i];
+    double ts = 0;
+    for (const auto& [node, weight] : w.footprint) ts += weight * s.node_temperature[node];
+    // The nodes under the cap as one body of capacity 1 / Σ w² / C_q (Dirichlet nodes: a
+    // reservoir), and the most energy that leaves no free node beyond the particle's
+    // temperature: node q takes w_q E.
+    double inverse_capacity = 0, limit = std::numeric_limits<double>::infinity();
+    for (const auto& [node, weight] : w.footprint) {
+      if (g.fixed_top(node) || weight <= 0) continue;
+      const double tq = s.node_temperature[node];
+      inverse_capacity += weight * weight / (top_volume * secant_capacity(s.per_m3, tq, tp));
+      limit = std::min(limit, top_volume * std::abs(s.per_m3.enthalpy(tp) - s.e[node]) / weight);
+    }
     const double k = variable ? 0.5 * (s.conductivity(tp) + s.conductivity(ts)) : s.k_fixed;
-    const double c_particle = s.mass[i] * s.capacity_per_kg(tp);
-    // A footprint of Dirichlet nodes only is a reservoir: infinite capacity.
+    const double c_particle = s.mass[i] * secant_capacity(s.per_kg, tp, ts);
     const double c_nodes = inverse_capacity > 0 ? 1 / inverse_capacity : 1e300;
-    const double energy = exact_exchange(k * w.shape, c_particle, tp, c_nodes, ts, dt);
+    double energy = exact_exchange(k * w.shape, c_particle, tp, c_nodes, ts, dt);
+    // Nor the particle beyond the nodes' mean temperature.
+    limit = std::min(limit, s.mass[i] * std::abs(s.per_kg.enthalpy(ts) - s.h[i]));
+    energy = std::clamp(energy, -limit, limit);
     s.h[i] += energy / s.mass[i];
     particle_enthalpy_changed(s, i);
     for (const auto& [node, weight] : w.footprint) {

@@ -29,6 +29,19 @@ inline double absorbed_flux(const LaserParams& p, double r2, double depth) {
          std::exp(-2 * r2 / (p.spot_radius * p.spot_radius));
 }
 
+// H_i of a particle at horizontal distance^2 `r2` from the axis: laser_factor = alpha A_i
+// exp(-beta z_i) (fixed for a fixed bed), times I0 exp(-2 r^2 / w^2).
+inline double particle_laser_power(double laser_factor, double peak, double r2, double w2) {
+  return laser_factor * peak * std::exp(-2 * r2 / w2);
+}
+
+// Power onto a top node of the substrate: alpha I(r, 0) times the fraction `transmission` of
+// the beam that passes the powder above it, over the node's face dx dy.
+inline double node_laser_power(const LaserParams& p, double r2, double transmission, double dx,
+                               double dy) {
+  return absorbed_flux(p, r2, 0.0) * transmission * dx * dy;
+}
+
 inline double gusarov_extinction(double porosity, double mean_diameter) {
   return 3 * (1 - porosity) / (2 * porosity * mean_diameter);
 }
