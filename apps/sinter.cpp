@@ -3,6 +3,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -54,6 +55,9 @@ void add_options(po::options_description& desc) {
        "number of snapshots in the time series (besides t = 0)")
       ("full-fields", po::bool_switch(), "also store the whole substrate field in each snapshot")
       ("threads", po::value<int>()->default_value(0), "OpenMP threads (0: OpenMP's default)")
+      ("trust-units", po::bool_switch(),
+       "skip the guards against unit slips (a spot larger than the bed, over 10 kW, a substrate "
+       "deeper than 1 cm)")
       ("laser.absorptivity", po::value<double>()->default_value(d.absorptivity), "alpha")
       ("laser.y", po::value<double>(), "track line y (m); default Ly/2")
       ("laser.start-x", po::value<double>(), "track start x (m); default one spot radius before")
@@ -200,6 +204,48 @@ th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
   return s;
 }
 
+// Guards against the unit slips users make (metres for micrometres, W for mW): each names the
+// likely mistake; --trust-units skips them where a huge value is meant.
+void check_units(const th::SinterScene& s, const bed::Bed& bed) {
+  const double size = std::max(bed.domain.length(0), bed.domain.length(1));
+  const auto refuse = [](const std::string& what) { throw InputError(what + " (--trust-units if it is meant)"); };
+  if (s.spot_radius > size) {
+    std::ostringstream msg;
+    msg << "--spot: w = " << s.spot_radius << " m is wider than the bed (" << size
+        << " m): a unit slip? (accepted: a beam radius in metres, e.g. 54e-6)";
+    refuse(msg.str());
+  }
+  if (s.power > 1e4) {
+    std::ostringstream msg;
+    msg << "--power: " << s.power << " W is beyond the lasers of powder-bed machines (accepted: up "
+           "to 1e4 W)";
+    refuse(msg.str());
+  }
+  if (s.substrate_depth > 1e-2) {
+    std::ostringstream msg;
+    msg << "substrate.depth: " << s.substrate_depth << " m: a unit slip? (accepted: a depth in "
+           "metres up to 1e-2, e.g. 0.3e-3)";
+    refuse(msg.str());
+  }
+}
+
+// A grid that cannot fit in memory is refused before anything is allocated: a step keeps about
+// eight doubles per node.
+void check_grid_memory(const th::SinterScene& s) {
+  const double nodes = static_cast<double>(s.nodes[0]) * static_cast<double>(s.nodes[1]) *
+                       static_cast<double>(s.nodes[2]);
+  const double bytes = 8.0 * sizeof(double) * nodes;
+  const double memory = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+                        static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+  if (bytes > memory) {
+    std::ostringstream msg;
+    msg << "substrate.nodes: " << s.nodes[0] << "," << s.nodes[1] << "," << s.nodes[2] << " ("
+        << nodes << " nodes) needs about " << bytes / (1u << 30) << " GiB; this machine has "
+        << memory / (1u << 30) << " GiB (accepted: fewer nodes, or a coarser --grid-spacing)";
+    throw InputError(msg.str());
+  }
+}
+
 int run(int argc, char** argv) {
   po::options_description desc("sinter options (SI units)");
   add_options(desc);
@@ -213,6 +259,8 @@ int run(int argc, char** argv) {
   bed::Bed bed = bed::read_bed_any(bed_path);
   th::SinterScene scene = make_scene(vm, bed.domain.length(0), bed.domain.length(1));
   scene.unsafe_dt = vm["unsafe-dt"].as<bool>();
+  if (!vm["trust-units"].as<bool>()) check_units(scene, bed);
+  check_grid_memory(scene);
   const th::MaterialTable table = th::read_material_table(scene.material_table);
   th::Sinter sinter(bed, scene, table);
   if (scene.unsafe_dt && scene.dt > sinter.stable_steps().grid &&
