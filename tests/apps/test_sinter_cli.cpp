@@ -257,3 +257,32 @@ TEST(SinterCli, OneAndTwoThreadsGiveIdenticalResults) {
   for (const char* key : {"height", "width", "depth", "max_temperature", "particles_molten"})
     EXPECT_EQ(json_text(one.out, key), json_text(two.out, key)) << key;
 }
+
+// Issue 12's bad input for the ray-traced laser and wetting: each exits 2 with one line that
+// names the option and what it accepts, and writes nothing. The paper's scene (kScene) reads
+// laser.absorption = ray-trace, so the ray tracer's own options take effect as given.
+TEST(SinterCli, BadRayTraceAndWettingOptionsExit2) {
+  const std::string dir = test::scratch_dir("sinter_ray_options");
+  const std::string bed_path = write_bed(small_bed(), dir);
+  const auto refused = [&](const std::string& extra, std::initializer_list<std::string> parts) {
+    SCOPED_TRACE(extra);
+    expect_refused(test::run_app("sinter", args(bed_path, dir, extra + " --json")), dir, parts);
+  };
+  refused("--laser.absorption ray-trace --laser.absorptivity 0",
+          {"laser.absorptivity", "accepted", "0 < alpha <= 1"});
+  refused("--laser.absorptivity 1.5", {"laser.absorptivity", "1.5", "accepted", "alpha <= 1"});
+  refused("--laser.absorption beer-lambert --laser.absorptivity 1.5",
+          {"laser.absorptivity", "1.5", "accepted", "alpha <= 1"});
+  refused("--laser.absorptivity-liquid 0",
+          {"laser.absorptivity-liquid", "accepted", "0 < alpha <= 1"});
+  refused("--laser.rays 0", {"laser.rays", "accepted", "at least 1"});
+  refused("--laser.absorption foo",
+          {"laser.absorption", "foo", "accepted", "beer-lambert", "ray-trace"});
+  refused("--laser.reflection foo", {"laser.reflection", "foo", "accepted", "specular", "diffuse"});
+  refused("--laser.retrace-interval 0", {"laser.retrace-interval", "accepted", "0 < interval"});
+  refused("--laser.ray-cutoff 1", {"laser.ray-cutoff", "accepted", "0 < cutoff < 1"});
+  refused("--laser.absorption ray-trace --integrator implicit",
+          {"laser.absorption", "accepted", "--integrator explicit"});
+  refused("--effects.wetting true --wetting.contact-angle 0",
+          {"wetting.contact-angle", "accepted", "0 < theta < 180"});
+}
