@@ -255,6 +255,12 @@ int run(int argc, char** argv) {
   const bool explain_only = vm["explain"].as<bool>();
   const std::string out = explain_only && !vm.count("out") ? "" : app::required<std::string>(vm, "out");
   if (const int threads = vm["threads"].as<int>(); threads > 0) omp_set_num_threads(threads);
+  std::vector<app::PathArg> outputs;
+  if (!out.empty()) {
+    app::check_extension({"--out", out}, {".h5"});
+    outputs.push_back({"--out", out});
+  }
+  app::check_paths({{"--bed", bed_path}}, outputs);
 
   bed::Bed bed = bed::read_bed_any(bed_path);
   th::SinterScene scene = make_scene(vm, bed.domain.length(0), bed.domain.length(1));

@@ -106,15 +106,19 @@ void BeamTracer::Impl::follow(Vec3 o, double power, const std::vector<double>& p
   tally.dropped += power;
 }
 
-BeamTracer::BeamTracer(const bed::Bed& bed, const SubstrateGeometry& g, double spot_radius,
-                       const RayTraceParams& params)
-    : impl_(std::make_unique<Impl>()) {
+void validate(const RayTraceParams& params) {
   if (params.rays == 0)
     throw InputError("laser.rays: 0 (accepted: at least 1 ray per traced beam position)");
   if (!(params.cutoff > 0 && params.cutoff < 1))
     throw InputError("laser.ray-cutoff: " + std::to_string(params.cutoff) +
                      " (accepted: 0 < cutoff < 1, the fraction of its power below which a ray "
                      "is dropped)");
+}
+
+BeamTracer::BeamTracer(const bed::Bed& bed, const SubstrateGeometry& g, double spot_radius,
+                       const RayTraceParams& params)
+    : impl_(std::make_unique<Impl>()) {
+  validate(params);
   Impl& m = *impl_;
   m.bed = bed;
   m.g = g;

@@ -41,28 +41,23 @@ void SinterScene::validate() const {
   require(power >= 0 && std::isfinite(power), "laser.power", power, "P >= 0 W");
   require(positive(speed), "laser.speed", speed, "v > 0 m/s");
   require(positive(spot_radius), "laser.spot", spot_radius, "w > 0 m");
-  require(absorptivity >= 0 && absorptivity <= 1, "laser.absorptivity", absorptivity,
-          "0 <= alpha <= 1");
-  if (absorption == LaserAbsorption::ray_trace) {
-    // A surface that absorbs nothing would reflect a ray forever between two spheres.
-    require(absorptivity > 0 && absorptivity <= 1, "laser.absorptivity", absorptivity,
-            "0 < alpha <= 1 with laser.absorption = ray-trace");
-    require(std::isnan(absorptivity_liquid) || (absorptivity_liquid > 0 && absorptivity_liquid <= 1),
-            "laser.absorptivity-liquid", absorptivity_liquid, "0 < alpha <= 1");
-    // rays and cutoff are checked by the tracer (ray_traced_laser.cpp).
-    require(retrace_interval > 0 && retrace_interval <= 1, "laser.retrace-interval",
-            retrace_interval, "0 < interval <= 1 spot radius");
-    if (integrator != Integrator::explicit_euler)
-      throw InputError("laser.absorption: ray-trace works with --integrator explicit only "
-                       "(accepted: --integrator explicit, or laser.absorption = beer-lambert)");
-  }
-  if (has(kWetting)) {
-    require(contact_angle > 0 && contact_angle < 180, "wetting.contact-angle", contact_angle,
-            "0 < theta < 180 degrees");
-    if (integrator != Integrator::explicit_euler)
-      throw InputError("effects.wetting: works with --integrator explicit only (accepted: "
-                       "--integrator explicit, or effects.wetting = false)");
-  }
+  // Every option is checked whichever model reads it: a value that cannot be right is refused
+  // even where the scene ignores it. alpha = 0 would reflect a ray forever between two spheres.
+  require(absorptivity > 0 && absorptivity <= 1, "laser.absorptivity", absorptivity,
+          "0 < alpha <= 1");
+  require(std::isnan(absorptivity_liquid) || (absorptivity_liquid > 0 && absorptivity_liquid <= 1),
+          "laser.absorptivity-liquid", absorptivity_liquid, "0 < alpha <= 1");
+  thermal::validate(rays);
+  require(retrace_interval > 0 && retrace_interval <= 1, "laser.retrace-interval",
+          retrace_interval, "0 < interval <= 1 spot radius");
+  require(contact_angle > 0 && contact_angle < 180, "wetting.contact-angle", contact_angle,
+          "0 < theta < 180 degrees");
+  if (absorption == LaserAbsorption::ray_trace && integrator != Integrator::explicit_euler)
+    throw InputError("laser.absorption: ray-trace works with --integrator explicit only "
+                     "(accepted: --integrator explicit, or laser.absorption = beer-lambert)");
+  if (has(kWetting) && integrator != Integrator::explicit_euler)
+    throw InputError("effects.wetting: works with --integrator explicit only (accepted: "
+                     "--integrator explicit, or effects.wetting = false)");
   require(positive(substrate_depth), "substrate.depth", substrate_depth, "depth > 0 m");
   static const char* axis[] = {"x", "y", "z"};
   for (std::size_t a = 0; a < 3; ++a) {
