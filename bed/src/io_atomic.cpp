@@ -13,6 +13,7 @@ namespace powderbed::bed::detail {
 
 AtomicFile::AtomicFile(std::string path)
     : path_(std::move(path)), temp_(temp_path_for(path_)) {
+  remove_stale_temp_files(path_);  // left by a run of this path that was SIGKILLed
   // Registered before it exists, so a SIGINT/SIGTERM from here on removes it (temp_files.hpp).
   register_temp_file(temp_);
   // Create the temporary now, so an unwritable folder is reported with the system's reason.

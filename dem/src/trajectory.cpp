@@ -83,6 +83,7 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path, const bed::Bed& bed)
   // "<path>.tmp.<pid>", registered so that SIGINT/SIGTERM removes it (bed/temp_files.hpp).
   impl_->temp = bed::temp_path_for(path);
   impl_->n = bed.n();
+  bed::remove_stale_temp_files(path);  // left by a SIGKILLed run
   bed::register_temp_file(impl_->temp);
   impl_->file = H5Fcreate(impl_->temp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   if (impl_->file < 0) {

@@ -18,6 +18,10 @@ std::string temp_path_for(const std::string& path);
 void register_temp_file(const std::string& temp);
 // Forgets `temp` (after it was renamed into place or removed).
 void unregister_temp_file(const std::string& temp);
+// Removes `<path>.tmp.<pid>` files left by processes that no longer exist on this machine (a run
+// killed by SIGKILL cannot clean up after itself; the next writer of the same path does). A
+// temporary of a live process is never touched. Returns how many were removed.
+int remove_stale_temp_files(const std::string& path);
 // The handlers' work, callable directly (tests): removes every registered temporary.
 void remove_temp_files();
 
