@@ -1,9 +1,16 @@
 // Reader of the HDF5 bed file, format version 1 (DESIGN.md "The bed file"): checks everything and
 // refuses a bad file with one line "<file>: <dataset>: <what is wrong>".
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <array>
+#include <cstring>
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <type_traits>
 #include <sstream>
 #include <utility>
@@ -87,8 +94,139 @@ class H5Reader {
     if (!std::ifstream(path_)) throw InputError(path_ + ": cannot open (missing or unreadable)");
     if (H5Fis_hdf5(path_.c_str()) <= 0)
       throw InputError(path_ + ": not an HDF5 file (accepted: a powderbed bed, format version 1)");
+    check_global_heaps();
     file_ = H5File(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
     if (!file_.valid()) throw InputError(path_ + ": cannot open as HDF5 (damaged file?)");
+  }
+
+  // libhdf5 1.10 trusts the sizes in a global heap collection (where variable-length strings
+  // such as /format live): a damaged collection size makes it allocate gigabytes, a damaged
+  // object size makes it read past the collection (found by tests/fuzz). So each collection
+  // ("GCOL", version 1) is checked first: inside the file, and every object inside it.
+  void check_global_heaps() const {
+    const int fd = ::open(path_.c_str(), O_RDONLY);
+    if (fd < 0) return;  // H5Fopen reports it
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || st.st_size < 16) {
+      ::close(fd);
+      return;
+    }
+    const auto size = static_cast<std::size_t>(st.st_size);
+    void* map = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+    ::close(fd);
+    if (map == MAP_FAILED) return;
+    const auto* bytes = static_cast<const unsigned char*>(map);
+    auto u64 = [&](std::size_t at) {
+      std::uint64_t v = 0;
+      for (int k = 7; k >= 0; --k) v = (v << 8) | bytes[at + static_cast<std::size_t>(k)];
+      return v;
+    };
+    std::string problem;
+    std::size_t previous_end = 0;
+    std::vector<std::size_t> collections;
+    std::map<std::pair<std::size_t, unsigned>, std::uint64_t> objects;  // (heap, index) -> size
+    const unsigned char* at = bytes;
+    const unsigned char* end = bytes + size;
+    while (problem.empty() && (at = static_cast<const unsigned char*>(
+                                   std::memchr(at, 'G', static_cast<std::size_t>(end - at))))) {
+      const std::size_t o = static_cast<std::size_t>(at - bytes);
+      ++at;
+      if (o + 16 > size || std::memcmp(bytes + o, "GCOL", 4) != 0 || bytes[o + 4] != 1 ||
+          bytes[o + 5] != 0 || bytes[o + 6] != 0 || bytes[o + 7] != 0)
+        continue;
+      const std::uint64_t length = u64(o + 8);
+      if (o < previous_end) {  // libhdf5's cache loops forever on overlapping collections
+        problem = "global heap at byte " + std::to_string(o) + " overlaps the one before it";
+        break;
+      }
+      if (length < 16 || length > size - o) {
+        problem = "global heap at byte " + std::to_string(o) + " declares " +
+                  std::to_string(length) + " bytes, past the end of the file";
+        break;
+      }
+      std::size_t p = o + 16;
+      const std::size_t stop = o + static_cast<std::size_t>(length);
+      previous_end = stop;
+      while (p + 16 <= stop) {
+        const unsigned index = bytes[p] | (unsigned{bytes[p + 1]} << 8);
+        const std::uint64_t object = u64(p + 8);
+        if (index == 0) {  // free space, its size counting its header: 0 loops libhdf5 forever
+          if (object < 16 || object > stop - p) {
+            problem = "global heap free space at byte " + std::to_string(p) + " declares " +
+                      std::to_string(object) + " bytes (damaged)";
+            break;
+          }
+          p += static_cast<std::size_t>(object);
+          continue;
+        }
+        if (object > stop - p - 16) {
+          problem = "global heap object " + std::to_string(index) + " at byte " +
+                    std::to_string(p) + " declares " + std::to_string(object) +
+                    " bytes, past its collection";
+          break;
+        }
+        objects[{o, index}] = object;
+        p += 16 + static_cast<std::size_t>((object + 7) / 8 * 8);
+      }
+      collections.push_back(o);
+    }
+    // The references of the string attributes this reader reads: libhdf5 copies `length`
+    // bytes of object `index` of the collection at `address` without checking any of the
+    // three. Each attribute message (versions 1 to 3) holding one of these names is found by
+    // its name and its reference checked against the collections above.
+    static const char* const names[] = {"format", "length_unit", "created_by", "command_line",
+                                        "stage", "scene", "contact_law"};
+    auto u16 = [&](std::size_t k) { return unsigned{bytes[k]} | (unsigned{bytes[k + 1]} << 8); };
+    auto u32 = [&](std::size_t k) {
+      return std::uint32_t{bytes[k]} | (std::uint32_t{bytes[k + 1]} << 8) |
+             (std::uint32_t{bytes[k + 2]} << 16) | (std::uint32_t{bytes[k + 3]} << 24);
+    };
+    auto align8 = [](std::size_t n) { return (n + 7) / 8 * 8; };
+    for (const char* name : names) {
+      if (!problem.empty()) break;
+      const std::size_t len = std::strlen(name) + 1;  // with its terminating null
+      for (std::size_t from = 8; problem.empty() && from + len <= size;) {
+        const auto* hit = static_cast<const unsigned char*>(
+            ::memmem(bytes + from, size - from, name, len));
+        if (!hit) break;
+        const std::size_t pos = static_cast<std::size_t>(hit - bytes);
+        from = pos + 1;
+        // Message header before the name: v1 [1, 0, name, dt, ds] (8 bytes, fields padded to
+        // 8); v2 [2, flags, name, dt, ds] (8 bytes); v3 the same plus a charset byte (9).
+        std::size_t head = 0;
+        int version = 0;
+        if (pos >= 9 && bytes[pos - 9] == 3 && u16(pos - 7) == len) {
+          head = pos - 9;
+          version = 3;
+        } else if (pos >= 8 && (bytes[pos - 8] == 1 || bytes[pos - 8] == 2) && u16(pos - 6) == len) {
+          head = pos - 8;
+          version = bytes[pos - 8];
+        } else {
+          continue;
+        }
+        const std::size_t dt = u16(head + 4), ds = u16(head + 6);
+        const bool pad = version == 1;
+        const std::size_t type_at = pos + (pad ? align8(len) : len);
+        const std::size_t data_at = type_at + (pad ? align8(dt) : dt) + (pad ? align8(ds) : ds);
+        // A variable-length string type: class 9 (low nibble of the first byte), type 1 string.
+        if (dt < 8 || type_at + 8 > size || (bytes[type_at] & 0x0f) != 9 ||
+            (bytes[type_at + 1] & 0x0f) != 1 || data_at + 16 > size)
+          continue;
+        const std::uint32_t length = u32(data_at);
+        const std::uint64_t address = u64(data_at + 4);
+        const std::uint32_t index = u32(data_at + 12);
+        if (length == 0 && address == 0) continue;  // an empty string stores no heap object
+        const auto it = objects.find({static_cast<std::size_t>(address), index});
+        if (it == objects.end() || length > it->second) {
+          problem = std::string("attribute ") + name + " refers to " + std::to_string(length) +
+                    " bytes of object " + std::to_string(index) + " of a global heap at byte " +
+                    std::to_string(address) + " that does not hold them";
+        }
+      }
+    }
+    ::munmap(map, size);
+    if (!problem.empty())
+      throw InputError(path_ + ": " + problem + " (damaged file; accepted: a powderbed bed)");
   }
 
   H5Group group(const char* name) const {
