@@ -88,7 +88,7 @@ int run(int argc, char** argv) {
   }
   // The output is checked before any work (docs/hardening.md): extension, folder, not a folder.
   const app::PathArg out{"--out", vm["out"].as<std::string>()};
-  app::check_extension(out, {".h5"});
+  app::check_extension(out, {".h5"}, "bedconv converts an .h5 bed to .csv or .data");
   app::check_paths({}, {out});
   const std::string dim_text = vm["dim"].as<std::string>();
   if (dim_text != "2" && dim_text != "3")

@@ -355,7 +355,8 @@ void check_paths(const std::vector<PathArg>& inputs, const std::vector<PathArg>&
   }
 }
 
-void check_extension(const PathArg& path, std::initializer_list<const char*> accepted) {
+void check_extension(const PathArg& path, std::initializer_list<const char*> accepted,
+                     const std::string& hint) {
   const std::string ext = lower_extension(path.path);
   std::string list;
   for (const char* a : accepted) {
@@ -364,7 +365,7 @@ void check_extension(const PathArg& path, std::initializer_list<const char*> acc
     list += a;
   }
   throw InputError(path.option + ": '" + path.path + "' has extension '" + ext +
-                   "' (accepted: " + list + ")");
+                   "' (accepted: " + list + (hint.empty() ? "" : "; " + hint) + ")");
 }
 
 }  // namespace powderbed::app

@@ -77,8 +77,9 @@ struct PathArg {
 void check_paths(const std::vector<PathArg>& inputs, const std::vector<PathArg>& outputs);
 
 // Throws InputError "<option>: '<path>' has extension '<ext>' (accepted: .h5, ...)" unless the
-// path ends (case-insensitively) with one of `accepted`.
-void check_extension(const PathArg& path, std::initializer_list<const char*> accepted);
+// path ends (case-insensitively) with one of `accepted`; `hint` is appended to the accepted list.
+void check_extension(const PathArg& path, std::initializer_list<const char*> accepted,
+                     const std::string& hint = "");
 
 // "a,b,c" -> numbers; throws InputError naming `option` unless there are between min_count
 // and max_count finite numbers.
