@@ -1,0 +1,897 @@
+// The hostile-but-fair probe of issue 14 as a table (docs/hardening.md): each case runs one
+// program on one bad input and checks the promise of DESIGN.md "Command-line programs": exit 2
+// (or the status the case names), ONE line on stderr naming the option/file/field, nothing on
+// stdout, and the scratch folder exactly as it was (no output, no temporary, every existing file
+// byte for byte). Files are made on demand: "@name" in a command is a file of the scratch folder
+// built by make_file(name) (good beds, damaged beds, scene files, an old output, folders).
+// Cases whose fix belongs in a program this suite's author could not edit are instantiated
+// under DISABLED_Known (run them with --gtest_also_run_disabled_tests) with the reason beside.
+// Then the kill tests (SIGKILL / SIGINT while a program writes: the old output intact, no
+// temporaries left).
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "powderbed/bed/bed.hpp"
+#include "powderbed/bed/io.hpp"
+#include "powderbed/bed/lattice.hpp"
+#include "run_command.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using powderbed::test::CommandResult;
+
+// ----------------------------------------------------------------------------------------------
+// One case of the table.
+struct Case {
+  std::string name;                // unique, [A-Za-z0-9_]
+  std::string app;                 // packgen, deposit, sinter, keff, bedstat, bedconv
+  std::string args;                // "@file" -> scratch file; "{scenes}" -> data/scenes
+  int status = 2;                  // expected exit status
+  std::vector<std::string> words;  // each must appear on stderr ("@file" expands too)
+  std::string why_disabled;        // non-empty: instantiated under DISABLED_Known
+};
+
+std::ostream& operator<<(std::ostream& out, const Case& c) {
+  return out << c.app << " " << c.args;
+}
+
+// ----------------------------------------------------------------------------------------------
+// HDF5 damage (the writer refuses bad beds, so the C API edits a good file).
+struct H5 {
+  explicit H5(const std::string& path) : f(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT)) {}
+  ~H5() { H5Fclose(f); }
+  void remove(const char* name) const { H5Ldelete(f, name, H5P_DEFAULT); }
+  void dataset(const char* name, hid_t file_type, hid_t mem_type, const void* data,
+               std::vector<hsize_t> dims) const {
+    remove(name);
+    const hid_t space = dims.empty() ? H5Screate(H5S_SCALAR)
+                                     : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
+    const hid_t set = H5Dcreate2(f, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (data) H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
+    H5Dclose(set);
+    H5Sclose(space);
+  }
+  void doubles(const char* name, const std::vector<double>& v, hsize_t cols) const {
+    dataset(name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, v.data(),
+            cols ? std::vector<hsize_t>{v.size() / cols, cols} : std::vector<hsize_t>{v.size()});
+  }
+  void attr_delete(const char* object, const char* name) const {
+    H5Adelete_by_name(f, object, name, H5P_DEFAULT);
+  }
+  template <class T>
+  void attr_numbers(const char* object, const char* name, hid_t type, const std::vector<T>& v) const {
+    attr_delete(object, name);
+    const hsize_t n = v.size();
+    const hid_t space = n == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &n, nullptr);
+    const hid_t a = H5Acreate_by_name(f, object, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(a, type, v.data());
+    H5Aclose(a);
+    H5Sclose(space);
+  }
+  // A fixed-length string attribute of `count` copies of `value` (count 1: scalar).
+  void attr_string(const char* object, const char* name, const std::string& value, hsize_t count = 1) const {
+    attr_delete(object, name);
+    const hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, value.size());
+    const hid_t space = count == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &count, nullptr);
+    const hid_t a = H5Acreate_by_name(f, object, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    std::string data;
+    for (hsize_t i = 0; i < count; ++i) data += value;
+    H5Awrite(a, type, data.data());
+    H5Aclose(a);
+    H5Sclose(space);
+    H5Tclose(type);
+  }
+  hid_t f;
+};
+
+powderbed::bed::Bed good_bed() { return powderbed::bed::simple_cubic_lattice(2, 1e-5); }  // 8, 40 um box
+
+std::vector<double> rows_of(const powderbed::bed::Bed& b) {
+  std::vector<double> rows;
+  for (std::size_t i = 0; i < b.n(); ++i) rows.insert(rows.end(), {b.x[i], b.y[i], b.z[i]});
+  return rows;
+}
+
+void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+const char* kDumpHead = "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n";
+const char* kDumpBox = "ITEM: BOX BOUNDS ff ff ff\n0 4e-5\n0 4e-5\n0 4e-5\n";
+
+// The scratch files a command can name, built on demand.
+void make_file(const std::string& dir, const std::string& name) {
+  const std::string p = dir + "/" + name;
+  if (fs::exists(p)) return;
+  namespace bed = powderbed::bed;
+  auto damaged = [&](const std::function<void(H5&)>& edit) {
+    bed::write_bed_h5(good_bed(), p);
+    fs::remove(dir + "/" + name.substr(0, name.size() - 3) + ".xmf");
+    H5 h(p);
+    edit(h);
+  };
+  // Folders.
+  if (name == "adir" || name == "side.xmf" || name == "prof-profile.csv") {
+    fs::create_directories(p);
+    return;
+  }
+  // Good beds and an existing output (which a failed run must leave as it is).
+  if (name == "good.h5" || name == "old.h5") return bed::write_bed_h5(good_bed(), p);
+  if (name == "wide.h5") {  // 0.4 x 0.4 mm floor: wider than gz2016-sinter's spot
+    bed::Bed b;
+    b.domain.upper = {4e-4, 4e-4, 1e-4};
+    for (int i = 0; i < 8; ++i) b.add(2e-5 + 4e-5 * i, 2e-4, 1.5e-5, 1.5e-5);
+    return bed::write_bed_h5(b, p);
+  }
+  if (name == "good2d.h5") {
+    bed::Bed b;
+    b.domain.dimension = 2;
+    b.domain.upper = {1e-4, 1e-4, 0};
+    for (int i = 0; i < 4; ++i) b.add(2e-5 + 2e-5 * i, 2e-5, 0, 1e-5);
+    return bed::write_bed_h5(b, p);
+  }
+  if (name == "good.csv") return bed::write_bed_csv(good_bed(), p);
+  if (name == "good.dump") {
+    return write(p, std::string(kDumpHead) + "2\n" + kDumpBox +
+                        "ITEM: ATOMS id x y z radius\n1 1e-5 1e-5 1e-5 1e-5\n2 3e-5 1e-5 1e-5 1e-5\n");
+  }
+  // Damaged HDF5 beds.
+  if (name == "text.h5") return write(p, "this is not a bed\n");
+  if (name == "empty.h5") return write(p, "");
+  if (name == "truncated.h5") {
+    bed::write_bed_h5(good_bed(), dir + "/full.tmpbed");
+    std::ifstream in(dir + "/full.tmpbed", std::ios::binary);
+    std::string head(3000, '\0');
+    in.read(head.data(), 3000);
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    in.close();
+    fs::remove(dir + "/full.tmpbed");
+    fs::remove(dir + "/full.xmf");
+    return write(p, head);
+  }
+  const bed::Bed g = good_bed();
+  if (name == "no_id.h5") return damaged([](H5& h) { h.remove("/particles/id"); });
+  if (name == "no_domain.h5") return damaged([](H5& h) { h.remove("/domain"); });
+  if (name == "no_version.h5") return damaged([](H5& h) { h.attr_delete("/", "version"); });
+  if (name == "radius_count.h5")
+    return damaged([](H5& h) { h.doubles("/particles/radius", std::vector<double>(7, 1e-5), 0); });
+  if (name == "nan_position.h5") {
+    return damaged([&](H5& h) {
+      auto rows = rows_of(g);
+      rows[6] = NAN;
+      h.doubles("/particles/position", rows, 3);
+    });
+  }
+  if (name == "negative_radius.h5") {
+    return damaged([&](H5& h) {
+      auto r = g.radius;
+      r[4] = -1e-5;
+      h.doubles("/particles/radius", r, 0);
+    });
+  }
+  if (name == "version2.h5")
+    return damaged([](H5& h) { h.attr_numbers<int>("/", "version", H5T_NATIVE_INT, {2}); });
+  if (name == "format_other.h5")
+    return damaged([](H5& h) { h.attr_string("/", "format", "other.format"); });
+  if (name == "format_array.h5")
+    return damaged([](H5& h) { h.attr_string("/", "format", "powderbed.bed", 1000); });
+  if (name == "format_number.h5")
+    return damaged([](H5& h) { h.attr_numbers<int>("/", "format", H5T_NATIVE_INT, {7}); });
+  if (name == "unit_mm.h5") return damaged([](H5& h) { h.attr_string("/", "length_unit", "mm"); });
+  if (name == "dimension4.h5")
+    return damaged([](H5& h) { h.attr_numbers<int>("/", "dimension", H5T_NATIVE_INT, {4}); });
+  if (name == "flat_domain.h5") {
+    return damaged([](H5& h) {
+      h.attr_numbers<double>("/domain", "upper", H5T_NATIVE_DOUBLE, {4e-5, 4e-5, 0});
+    });
+  }
+  if (name == "upper_short.h5")
+    return damaged([](H5& h) { h.attr_numbers<double>("/domain", "upper", H5T_NATIVE_DOUBLE, {4e-5, 4e-5}); });
+  if (name == "periodic5.h5") {
+    return damaged([](H5& h) {
+      h.attr_numbers<std::uint8_t>("/domain", "periodic", H5T_NATIVE_UINT8, {5, 0, 0});
+    });
+  }
+  if (name == "huge_rows.h5") {  // 2e9 rows declared, none stored: a few KB on disk
+    return damaged([](H5& h) {
+      h.dataset("/particles/position", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, nullptr, {2000000000, 3});
+    });
+  }
+  if (name == "huge_ids.h5") {
+    return damaged([](H5& h) {
+      h.dataset("/particles/id", H5T_STD_U64LE, H5T_NATIVE_UINT64, nullptr, {200000000});
+    });
+  }
+  if (name == "position_rank1.h5")
+    return damaged([&](H5& h) { h.doubles("/particles/position", rows_of(g), 0); });
+  if (name == "position_scalar.h5") {
+    return damaged([](H5& h) {
+      const double v = 1e-5;
+      h.dataset("/particles/position", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &v, {});
+    });
+  }
+  if (name == "float_ids.h5") {
+    return damaged([](H5& h) { h.doubles("/particles/id", std::vector<double>(8, 1.0), 0); });
+  }
+  if (name == "um_radii.h5") {  // radii in micrometres: 10 "m" in a 40 um box
+    return damaged([](H5& h) { h.doubles("/particles/radius", std::vector<double>(8, 10.0), 0); });
+  }
+  if (name == "far_particle.h5") {  // one centre at (1, 1, 1) m in a 40 um box
+    return damaged([&](H5& h) {
+      auto rows = rows_of(g);
+      rows[9] = rows[10] = rows[11] = 1.0;
+      h.doubles("/particles/position", rows, 3);
+    });
+  }
+  if (name == "below_floor.h5") {  // a centre 3 radii below the floor
+    return damaged([&](H5& h) {
+      auto rows = rows_of(g);
+      rows[2] = -3e-5;
+      h.doubles("/particles/position", rows, 3);
+    });
+  }
+  if (name == "material_big.h5") {
+    return damaged([](H5& h) {
+      const std::vector<std::int32_t> m(8, 70000);
+      h.dataset("/particles/material", H5T_STD_I32LE, H5T_NATIVE_INT32, m.data(), {8});
+    });
+  }
+  if (name == "material_negative.h5") {
+    return damaged([](H5& h) {
+      const std::vector<std::int32_t> m(8, -1);
+      h.dataset("/particles/material", H5T_STD_I32LE, H5T_NATIVE_INT32, m.data(), {8});
+    });
+  }
+  if (name == "id_negative.h5") {
+    return damaged([](H5& h) {
+      const std::vector<std::int64_t> id = {0, 1, 2, 3, 4, 5, 6, -7};
+      h.dataset("/particles/id", H5T_STD_I64LE, H5T_NATIVE_INT64, id.data(), {8});
+    });
+  }
+  if (name == "duplicate_ids.h5") {
+    return damaged([](H5& h) {
+      const std::vector<std::uint64_t> id = {0, 1, 2, 3, 4, 5, 6, 6};
+      h.dataset("/particles/id", H5T_STD_U64LE, H5T_NATIVE_UINT64, id.data(), {8});
+    });
+  }
+  if (name == "phase7.h5") {
+    return damaged([](H5& h) {
+      const std::vector<std::uint8_t> ph(8, 7);
+      h.dataset("/particles/phase", H5T_STD_U8LE, H5T_NATIVE_UINT8, ph.data(), {8});
+    });
+  }
+  if (name == "z_in_2d.h5") {
+    bed::Bed b;
+    b.domain.dimension = 2;
+    b.domain.upper = {1e-4, 1e-4, 0};
+    for (int i = 0; i < 4; ++i) b.add(2e-5 + 2e-5 * i, 2e-5, 0, 1e-5);
+    bed::write_bed_h5(b, p);
+    fs::remove(dir + "/z_in_2d.xmf");
+    H5 h(p);
+    std::vector<double> rows = rows_of(b);
+    rows[2] = 1e-6;
+    h.doubles("/particles/position", rows, 3);
+    return;
+  }
+  // Damaged CSV beds (domain 0..4e-5 given with --domain).
+  const std::map<std::string, std::string> csv = {
+      {"csv_header.csv", "a,b,c,d\n1e-5,1e-5,1e-5,1e-5\n"},
+      {"csv_three.csv", "x,y,z,r\n1e-5,1e-5,1e-5,1e-5\n2e-5,2e-5,2e-5\n"},
+      {"csv_five.csv", "x,y,z,r\n1e-5,1e-5,1e-5,1e-5,1\n"},
+      {"csv_word.csv", "x,y,z,r\n1e-5,one,1e-5,1e-5\n"},
+      {"csv_nan.csv", "x,y,z,r\n1e-5,nan,1e-5,1e-5\n"},
+      {"csv_inf.csv", "x,y,z,r\n1e-5,1e-5,inf,1e-5\n"},
+      {"csv_r0.csv", "x,y,z,r\n1e-5,1e-5,1e-5,0\n"},
+      {"csv_rneg.csv", "x,y,z,r\n1e-5,1e-5,1e-5,-1e-5\n"},
+      {"csv_far.csv", "x,y,z,r\n1e-5,1e-5,1e-5,1e-5\n1,1,1,1e-5\n"},
+      {"csv_um.csv", "x,y,z,r\n10,10,10,10\n"},
+      {"csv_empty.csv", ""},
+  };
+  if (auto it = csv.find(name); it != csv.end()) return write(p, it->second);
+  // Damaged LAMMPS dumps.
+  const std::string atoms = "ITEM: ATOMS id x y z radius\n";
+  const std::map<std::string, std::string> dump = {
+      {"dump_no_timestep.dump", "hello\n"},
+      {"dump_huge_count.dump", std::string(kDumpHead) + "2000000000\n" + kDumpBox + atoms +
+                                   "1 1e-5 1e-5 1e-5 1e-5\n"},
+      {"dump_count_word.dump", std::string(kDumpHead) + "many\n" + kDumpBox + atoms},
+      {"dump_truncated.dump", std::string(kDumpHead) + "3\n" + kDumpBox + atoms +
+                                  "1 1e-5 1e-5 1e-5 1e-5\n2 3e-5 1e-5 1e-5 1e-5\n"},
+      {"dump_no_radius.dump", std::string(kDumpHead) + "1\n" + kDumpBox +
+                                  "ITEM: ATOMS id x y z\n1 1e-5 1e-5 1e-5\n"},
+      {"dump_triclinic.dump", std::string(kDumpHead) + "1\n" +
+                                  "ITEM: BOX BOUNDS xy xz yz ff ff ff\n0 4e-5 0\n0 4e-5 0\n0 4e-5 0\n" +
+                                  atoms + "1 1e-5 1e-5 1e-5 1e-5\n"},
+      {"dump_word.dump", std::string(kDumpHead) + "1\n" + kDumpBox + atoms + "1 1e-5 abc 1e-5 1e-5\n"},
+      {"dump_id0.dump", std::string(kDumpHead) + "1\n" + kDumpBox + atoms + "0 1e-5 1e-5 1e-5 1e-5\n"},
+      {"dump_um.dump", std::string(kDumpHead) + "1\n" + kDumpBox + atoms + "1 1e-5 1e-5 1e-5 20\n"},
+      {"dump_far.dump", std::string(kDumpHead) + "1\n" + kDumpBox + atoms + "1 1 1 1 1e-5\n"},
+      {"dump_bad_box.dump", std::string(kDumpHead) + "1\n" +
+                                "ITEM: BOX BOUNDS ff ff ff\n4e-5 0\n0 4e-5\n0 4e-5\n" + atoms +
+                                "1 1e-5 1e-5 1e-5 1e-5\n"},
+      {"dump_extra.dump", std::string(kDumpHead) + "1\n" + kDumpBox + atoms +
+                              "1 1e-5 1e-5 1e-5 1e-5\n2 1e-5 1e-5 1e-5 1e-5\n"},
+  };
+  if (auto it = dump.find(name); it != dump.end()) return write(p, it->second);
+  // Scene files.
+  const std::map<std::string, std::string> ini = {
+      {"unknown_key.ini", "# a scene\n[nosuch]\nkey = 1\n"},
+      {"no_equals.ini", "just some words\n"},
+      {"open_section.ini", "[laser\n"},
+      {"seed_negative.ini", "\n\nseed = -1\n"},
+      {"threads_negative.ini", "threads = -2\n"},
+      {"nan_value.ini", "# doubles refuse nan\ntol = nan\n"},
+      {"nested_config.ini", "config = other.ini\n"},
+      {"packgen_count.ini", "# count\n\ncount = -5\n"},
+  };
+  if (auto it = ini.find(name); it != ini.end()) return write(p, it->second);
+  // Any other name (out.h5, new.csv, missing.h5, nowhere/...) is meant not to exist.
+}
+
+// ----------------------------------------------------------------------------------------------
+// The table.
+std::vector<Case> all_cases() {
+  std::vector<Case> t;
+  auto add = [&](std::string name, std::string app, std::string args, int status,
+                 std::vector<std::string> words, std::string why = "") {
+    t.push_back({std::move(name), std::move(app), std::move(args), status, std::move(words), std::move(why)});
+  };
+  const std::string pk = "--dim 3 --domain 1e-4,1e-4,1e-4 --psd mono:d=2e-5 ";
+  const std::string pk_ok = pk + "--seed 1 --out @new.h5";
+  const std::string sinter = "--config {scenes}/gz2016-sinter.ini ";
+  const std::string keff = "";
+  const std::string deposit = "--t-end 1e-5 --seed 1 ";
+
+  // Every program: the shared conventions.
+  const std::vector<std::pair<std::string, std::string>> programs = {
+      {"packgen", pk + "--seed 1 --out @out.h5 "},
+      {"bedstat", "@good.h5 "},
+      {"bedconv", "@good.h5 @out.csv "},
+      {"deposit", "--in @good.h5 " + deposit + "--out @out.h5 "},
+      {"sinter", "--bed @wide.h5 --out @out.h5 "},
+      {"keff", "--bed @good.h5 --out @out.h5 "},
+  };
+  for (const auto& [app, base] : programs) {
+    add(app + "_unknown_option", app, base + "--bogus 1", 2, {"bogus"});
+    add(app + "_config_missing", app, base + "--config @nowhere/scene.ini", 2, {"scene.ini"});
+    add(app + "_config_folder", app, base + "--config @adir", 2, {"adir"});
+    add(app + "_config_unknown_key", app, base + "--config @unknown_key.ini", 2,
+        {"unknown_key.ini:3", "nosuch.key"});
+    add(app + "_config_no_equals", app, base + "--config @no_equals.ini", 2, {"no_equals.ini:1"});
+    add(app + "_config_open_section", app, base + "--config @open_section.ini", 2,
+        {"open_section.ini:1", "[laser"});
+    add(app + "_config_nested", app, base + "--config @nested_config.ini", 2,
+        {"nested_config.ini:1", "config"});
+    add(app + "_help", app, "--help", 0, {});
+    add(app + "_version", app, "--version", 0, {});
+  }
+  // Numbers with a sign, a range and a type, in every program that takes them.
+  for (const auto& [app, base, option] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"packgen", pk + "--out @out.h5 ", "--seed"},
+           {"deposit", "--in @good.h5 --t-end 1e-5 --out @out.h5 ", "--seed"},
+           {"keff", "--bed @good.h5 --out @out.h5 ", "--radiation.seed"},
+           {"sinter", sinter + "--bed @wide.h5 --out @out.h5 ", "--laser.ray-seed"}}) {
+    add(app + "_seed_negative", app, base + option + " -1", 2, {option, "-1", "negative"});
+    add(app + "_seed_fraction", app, base + option + " 1.5", 2, {option, "1.5", "whole number"});
+    add(app + "_seed_word", app, base + option + " abc", 2, {option, "abc"});
+    add(app + "_seed_too_big", app, base + option + " 1e30", 2, {option, "1e30", "range"});
+  }
+  for (const auto& [app, base] : std::vector<std::pair<std::string, std::string>>{
+           {"deposit", "--in @good.h5 " + deposit + "--out @out.h5 "},
+           {"sinter", "--bed @wide.h5 --out @out.h5 "}}) {
+    add(app + "_threads_negative", app, base + "--threads -1", 2, {"--threads", "-1", "0 to"});
+    add(app + "_threads_word", app, base + "--threads many", 2, {"--threads", "many"});
+    add(app + "_threads_ini", app, base + "--config @threads_negative.ini", 2, {"threads", "-2"});
+  }
+
+  // Bed files: every damage, through every program that reads a bed.
+  const std::vector<std::tuple<std::string, std::vector<std::string>>> damage = {
+      {"text", {"not an HDF5 file"}},
+      {"empty", {"not an HDF5 file"}},
+      {"truncated", {"truncated"}},
+      {"no_id", {"/particles/id", "missing"}},
+      {"no_domain", {"/domain", "missing"}},
+      {"no_version", {"version", "missing"}},
+      {"radius_count", {"/particles/radius", "rows"}},
+      {"nan_position", {"position x[2]", "nan"}},
+      {"negative_radius", {"radius[4]", "> 0"}},
+      {"version2", {"version 2"}},
+      {"format_other", {"format", "other.format"}},
+      {"format_array", {"format", "1000 values"}},
+      {"format_number", {"format", "not a string"}},
+      {"unit_mm", {"length_unit", "mm"}},
+      {"dimension4", {"dimension", "4"}},
+      {"flat_domain", {"domain axis z"}},
+      {"upper_short", {"upper", "2 values"}},
+      {"periodic5", {"periodic[0]", "5"}},
+      {"huge_rows", {"/particles/position", "2000000000 rows"}},
+      {"huge_ids", {"/particles/id", "200000000 rows"}},
+      {"position_rank1", {"/particles/position", "shape"}},
+      {"position_scalar", {"/particles/position", "shape"}},
+      {"float_ids", {"/particles/id", "not integer"}},
+      {"um_radii", {"radius[0]", "um"}},
+      {"far_particle", {"particle 3", "outside the domain"}},
+      {"below_floor", {"particle 0", "outside the domain"}},
+      {"material_big", {"/particles/material", "0 to 65535"}},
+      {"material_negative", {"/particles/material", "0 to 65535"}},
+      {"id_negative", {"/particles/id", "range"}},
+      {"duplicate_ids", {"id 6", "twice"}},
+      {"phase7", {"phase[0]", "7"}},
+      {"z_in_2d", {"z of particle 0", "2D"}},
+  };
+  for (const auto& [kind, words] : damage) {
+    std::vector<std::string> w = words;
+    w.push_back("@" + kind + ".h5");
+    add("bedstat_bed_" + kind, "bedstat", "@" + kind + ".h5 --json", 2, w);
+    add("bedconv_bed_" + kind, "bedconv", "@" + kind + ".h5 @out.csv", 2, w);
+    add("sinter_bed_" + kind, "sinter", sinter + "--bed @" + kind + ".h5 --out @out.h5", 2, w);
+    add("keff_bed_" + kind, "keff", "--bed @" + kind + ".h5 --out @out.h5", 2, w);
+    add("deposit_bed_" + kind, "deposit", "--in @" + kind + ".h5 " + deposit + "--out @out.h5", 2, w);
+  }
+  const std::string dom = " --domain 0,0,0,4e-5,4e-5,4e-5";
+  const std::vector<std::tuple<std::string, std::vector<std::string>>> csv_damage = {
+      {"csv_header", {":1:", "header"}},
+      {"csv_three", {":3:", "3 fields"}},
+      {"csv_five", {":2:", "5 fields"}},
+      {"csv_word", {":2:", "one"}},
+      {"csv_nan", {":2:", "nan"}},
+      {"csv_inf", {":2:", "inf"}},
+      {"csv_r0", {":2:", "r is 0"}},
+      {"csv_rneg", {":2:", "> 0"}},
+      {"csv_far", {"particle 1", "outside the domain"}},
+      {"csv_um", {"radius[0]", "um"}},
+      {"csv_empty", {"header"}},
+  };
+  for (const auto& [kind, words] : csv_damage) {
+    std::vector<std::string> w = words;
+    w.push_back("@" + kind + ".csv");
+    add("bedstat_" + kind, "bedstat", "@" + kind + ".csv --json" + dom, 2, w);
+    add("bedconv_" + kind, "bedconv", "@" + kind + ".csv @out.h5" + dom, 2, w);
+  }
+  const std::vector<std::tuple<std::string, std::vector<std::string>>> dump_damage = {
+      {"dump_no_timestep", {"ITEM: TIMESTEP"}},
+      {"dump_huge_count", {"2000000000", "bytes follow"}},
+      {"dump_count_word", {"number of atoms", "many"}},
+      {"dump_truncated", {"2 of 3 atoms"}},
+      {"dump_no_radius", {"radius|diameter"}},
+      {"dump_triclinic", {"triclinic"}},
+      {"dump_word", {"column y", "abc"}},
+      {"dump_id0", {"id is '0'"}},
+      {"dump_um", {"radius[0]", "um"}},
+      {"dump_far", {"particle 0", "outside the domain"}},
+      {"dump_bad_box", {"box bounds", "lower < upper"}},
+      {"dump_extra", {"unexpected line"}},
+  };
+  for (const auto& [kind, words] : dump_damage) {
+    std::vector<std::string> w = words;
+    w.push_back("@" + kind + ".dump");
+    add("bedstat_" + kind, "bedstat", "@" + kind + ".dump --json", 2, w);
+    add("bedconv_" + kind, "bedconv", "@" + kind + ".dump @out.h5", 2, w);
+  }
+  // Paths: missing, folders, outputs that cannot be written, outputs that are inputs.
+  add("bedstat_bed_missing", "bedstat", "@missing.h5", 2, {"@missing.h5", "does not exist"});
+  add("bedstat_bed_folder", "bedstat", "@adir", 2, {"@adir", "folder"});
+  add("bedstat_no_bed", "bedstat", "--json", 2, {"no bed"});
+  add("bedstat_data_input", "bedstat", "@good.data", 2, {"does not exist"});
+  add("bedconv_in_missing", "bedconv", "@missing.h5 @out.csv", 2, {"@missing.h5", "does not exist"});
+  add("bedconv_in_folder", "bedconv", "@adir @out.csv", 2, {"@adir"});
+  add("bedconv_out_is_in", "bedconv", "@good.h5 @good.h5", 2, {"@good.h5", "overwrite the input"});
+  add("bedconv_out_is_in_path", "bedconv", "@good.h5 @adir/../good.h5", 2, {"overwrite the input"});
+  add("bedconv_out_xmf_of_in", "bedconv", "@good.h5 @good.xmf", 2, {".xmf"});
+  add("bedconv_out_dump", "bedconv", "@good.h5 @out.dump", 2, {"OUT", ".dump"});
+  add("bedconv_out_txt", "bedconv", "@good.h5 @out.txt", 2, {"OUT", ".txt", ".h5"});
+  add("bedconv_in_data", "bedconv", "@good.data @out.h5", 2, {"IN", ".data"});
+  add("bedconv_in_txt", "bedconv", "@good.txt @out.h5", 2, {"IN", ".txt"});
+  add("bedconv_out_no_folder", "bedconv", "@good.h5 @nowhere/out.csv", 2, {"nowhere", "does not exist"});
+  add("bedconv_out_folder", "bedconv", "@good.h5 @adir/", 2, {"adir", "folder"});
+  add("bedconv_out_sidecar_folder", "bedconv", "@good.h5 @side.h5", 2, {"side.xmf", "folder"});
+  add("bedconv_old_output_kept", "bedconv", "@um_radii.h5 @old.h5", 2, {"um"});
+  add("bedconv_density_negative", "bedconv", "@good.h5 @out.data --density -5", 2, {"--density", "-5"});
+  add("bedconv_density_nan", "bedconv", "@good.h5 @out.data --density nan", 2, {"--density", "nan"});
+  add("bedconv_density_not_data", "bedconv", "@good.h5 @out.csv --density 7900", 2, {"--density", ".data"});
+  add("bedconv_csv_no_domain", "bedconv", "@good.csv @out.h5", 2, {"--domain"});
+  add("bedconv_domain_for_h5", "bedconv", "@good.h5 @out.csv" + dom, 2, {"--domain", "only for CSV"});
+  add("bedconv_domain_short", "bedconv", "@good.csv @out.h5 --domain 0,0,0,1", 2, {"--domain", "4 numbers"});
+  add("bedconv_domain_inverted", "bedconv", "@good.csv @out.h5 --domain 1,0,0,0,1,1", 2, {"--domain", "lower < upper"});
+  add("bedconv_csv_outside_domain", "bedconv", "@good.csv @out.h5 --domain 0,0,0,1e-5,1e-5,1e-5", 2,
+      {"radius", "um"});
+  add("bedconv_missing_out", "bedconv", "@good.h5", 2, {"out"});
+  add("bedconv_ok_csv", "bedconv", "@good.h5 @new.csv", 0, {});
+  add("bedconv_ok_data", "bedconv", "@good.h5 @new.data --density 7900", 0, {});
+  add("bedconv_ok_dump", "bedconv", "@good.dump @new.h5", 0, {});
+
+  // packgen.
+  add("packgen_ok", "packgen", pk_ok, 0, {});
+  add("packgen_count_negative", "packgen", pk + "--seed 1 --count -5 --out @out.h5", 2, {"--count", "-5", "negative"});
+  add("packgen_count_huge", "packgen", pk + "--seed 1 --count 1e11 --out @out.h5", 2, {"--count", "cannot fit"});
+  add("packgen_count_huge_digits", "packgen", pk + "--seed 1 --count 100000000000 --out @out.h5", 2, {"--count"});
+  add("packgen_count_zero", "packgen", pk + "--seed 1 --count 0 --out @out.h5", 2, {"--count", ">= 1"});
+  add("packgen_count_fraction", "packgen", pk + "--seed 1 --count 2.5 --out @out.h5", 2, {"--count", "2.5"});
+  add("packgen_count_word", "packgen", pk + "--seed 1 --count ten --out @out.h5", 2, {"--count", "ten"});
+  add("packgen_count_ini", "packgen", pk + "--seed 1 --out @out.h5 --config @packgen_count.ini", 2,
+      {"packgen_count.ini:3", "count", "-5"});
+  add("packgen_seed_ini", "packgen", pk + "--out @out.h5 --config @seed_negative.ini", 2,
+      {"seed_negative.ini:3", "seed", "-1"});
+  add("packgen_dim_word", "packgen", "--dim three --domain 1e-4,1e-4,1e-4 --psd mono:d=2e-5 --seed 1 --out @out.h5", 2,
+      {"--dim", "three", "2 or 3"});
+  add("packgen_dim_4", "packgen", "--dim 4 --domain 1e-4,1e-4,1e-4 --psd mono:d=2e-5 --seed 1 --out @out.h5", 2,
+      {"--dim", "2 or 3"});
+  add("packgen_dim_mismatch", "packgen", "--dim 2 --domain 1e-4,1e-4,1e-4 --psd mono:d=2e-5 --seed 1 --out @out.h5", 2,
+      {"--dim", "3 lengths"});
+  add("packgen_domain_metres_for_um", "packgen", "--dim 3 --domain 200,200,100 --psd mono:d=2e-5 --seed 1 --out @out.h5", 2,
+      {"--domain", "um", "--allow-huge"});
+  add("packgen_domain_2d_slip", "packgen", "--dim 2 --domain 2000,1000 --psd mono:d=2e-5 --seed 1 --out @out.h5", 2,
+      {"--domain", "um"});
+  add("packgen_domain_one_length", "packgen", "--dim 3 --domain 1e-4 --psd mono:d=2e-5 --seed 1 --out @out.h5", 2,
+      {"--domain", "2 to 3"});
+  add("packgen_domain_negative", "packgen", "--dim 3 --domain -1e-4,1e-4,1e-4 --psd mono:d=2e-5 --seed 1 --out @out.h5", 2,
+      {"--domain", "lower < upper"});
+  add("packgen_domain_nan", "packgen", "--dim 3 --domain nan,1e-4,1e-4 --psd mono:d=2e-5 --seed 1 --out @out.h5", 2,
+      {"--domain", "nan"});
+  add("packgen_domain_smaller_than_particle", "packgen", "--dim 3 --domain 1e-5,1e-4,1e-4 --psd mono:d=2e-5 --seed 1 --out @out.h5", 2,
+      {"--domain", "smallest particle"});
+  add("packgen_psd_word", "packgen", "--dim 3 --domain 1e-4,1e-4,1e-4 --psd spheres --seed 1 --out @out.h5", 2, {"--psd"});
+  add("packgen_psd_negative", "packgen", "--dim 3 --domain 1e-4,1e-4,1e-4 --psd mono:d=-2e-5 --seed 1 --out @out.h5", 2, {"--psd"});
+  add("packgen_psd_table_missing", "packgen", "--dim 3 --domain 1e-4,1e-4,1e-4 --psd table:file=@nowhere.csv --seed 1 --out @out.h5", 2,
+      {"nowhere.csv"});
+  add("packgen_approach_5", "packgen", pk + "--seed 1 --approach 5 --out @out.h5", 2, {"--approach", "5"});
+  add("packgen_approach_3_in_2d", "packgen", "--dim 2 --domain 1e-4,1e-4 --psd mono:d=2e-5 --approach 3 --seed 1 --out @out.h5", 2,
+      {"--approach", "3D"});
+  add("packgen_tries_0", "packgen", pk + "--seed 1 --tries 0 --out @out.h5", 2, {"--tries"});
+  add("packgen_tries_negative", "packgen", pk + "--seed 1 --tries -3 --out @out.h5", 2, {"--tries"});
+  add("packgen_directions_0", "packgen", pk + "--seed 1 --directions 0 --out @out.h5", 2, {"--directions"});
+  add("packgen_retire_negative", "packgen", pk + "--seed 1 --retire-after -1 --out @out.h5", 2, {"--retire-after"});
+  add("packgen_max_failures_0", "packgen", pk + "--seed 1 --max-failures 0 --out @out.h5", 2, {"--max-failures"});
+  add("packgen_max_failures_negative", "packgen", pk + "--seed 1 --max-failures -1 --out @out.h5", 2, {"--max-failures", "negative"});
+  add("packgen_target_density_big", "packgen", pk + "--seed 1 --target-density 1.5 --out @out.h5", 2, {"--target-density"});
+  add("packgen_target_density_nan", "packgen", pk + "--seed 1 --target-density nan --out @out.h5", 2, {"--target-density", "nan"});
+  add("packgen_two_stop_rules", "packgen", pk + "--seed 1 --count 5 --target-density 0.3 --out @out.h5", 2, {"--count", "--target-density"});
+  add("packgen_edge_fraction", "packgen", pk + "--seed 1 --edge-fraction 2 --out @out.h5", 2, {"--edge-fraction"});
+  add("packgen_floor_seed", "packgen", pk + "--seed 1 --floor-seed 1 --out @out.h5", 2, {"--floor-seed"});
+  add("packgen_collision_word", "packgen", pk + "--seed 1 --collision octree --out @out.h5", 2, {"--collision", "octree"});
+  add("packgen_raster_no_spacing", "packgen", pk + "--seed 1 --collision raster --out @out.h5", 2, {"--raster-spacing"});
+  add("packgen_raster_negative", "packgen", pk + "--seed 1 --collision raster --raster-spacing -1e-6 --out @out.h5", 2, {"--raster-spacing"});
+  add("packgen_raster_too_fine", "packgen", pk + "--seed 1 --collision raster --raster-spacing 1e-12 --out @out.h5", 2,
+      {"--raster-spacing", "GiB"});
+  add("packgen_site_order_word", "packgen", pk + "--seed 1 --site-order highest --out @out.h5", 2, {"--site-order"});
+  add("packgen_size_sampling_word", "packgen", pk + "--seed 1 --size-sampling sobol --out @out.h5", 2, {"--size-sampling"});
+  add("packgen_phases_word", "packgen", pk + "--seed 1 --phases a:b --out @out.h5", 2, {"--phases"});
+  add("packgen_phases_density", "packgen", pk + "--seed 1 --phases 0:0.5,1:0.3 --out @out.h5", 2, {"--phases"});
+  add("packgen_missing_seed", "packgen", pk + "--out @out.h5", 2, {"seed"});
+  add("packgen_missing_out", "packgen", pk + "--seed 1", 2, {"out"});
+  add("packgen_out_txt", "packgen", pk + "--seed 1 --out @out.txt", 2, {"--out", ".txt", ".h5"});
+  add("packgen_out_csv", "packgen", pk + "--seed 1 --out @out.csv", 2, {"--out", ".csv", "bedconv"});
+  add("packgen_out_no_folder", "packgen", pk + "--seed 1 --out @nowhere/out.h5", 2, {"--out", "nowhere", "does not exist"});
+  add("packgen_out_folder", "packgen", pk + "--seed 1 --out @adir/", 2, {"--out", "adir"});
+  add("packgen_out_sidecar_folder", "packgen", pk + "--seed 1 --out @side.h5", 2, {"--out", "side.xmf", "folder"});
+  add("packgen_old_output_kept", "packgen", "--dim 3 --domain 1e-4,1e-4,1e-4 --psd mono:d=-1 --seed 1 --out @old.h5", 2, {"--psd"});
+
+  // bedstat.
+  add("bedstat_ok", "bedstat", "@good.h5 --json", 0, {});
+  add("bedstat_tol_negative", "bedstat", "@good.h5 --tol -1", 2, {"--tol"});
+  add("bedstat_tol_nan", "bedstat", "@good.h5 --tol nan", 2, {"--tol", "nan"});
+  add("bedstat_tol_ini", "bedstat", "@good.h5 --config @nan_value.ini", 2, {"nan_value.ini:2", "tol", "nan"});
+  add("bedstat_layer_inverted", "bedstat", "@good.h5 --layer 2e-5,1e-5", 2, {"--layer", "Z0 < Z1"});
+  add("bedstat_layer_word", "bedstat", "@good.h5 --layer a,b", 2, {"--layer"});
+  add("bedstat_layer_one", "bedstat", "@good.h5 --layer 1e-5", 2, {"--layer", "2"});
+  add("bedstat_profile_negative", "bedstat", "@good.h5 --profile -1", 2, {"--profile", "negative"});
+  add("bedstat_profile_huge", "bedstat", "@good.h5 --profile 1e14", 2, {"--profile", "0 to 1000000"});
+  add("bedstat_rdf_negative", "bedstat", "@good.h5 --rdf -5", 2, {"--rdf", "-5"});
+  add("bedstat_rdf_huge", "bedstat", "@good.h5 --rdf 1e9", 2, {"--rdf", "0 to 1000000"});
+  add("bedstat_histogram_huge", "bedstat", "@good.h5 --histogram 100000000", 2, {"--histogram", "0 to 1000000"});
+  add("bedstat_histogram_fraction", "bedstat", "@good.h5 --histogram 2.5", 2, {"--histogram", "2.5"});
+  add("bedstat_voronoi_2d", "bedstat", "@good2d.h5 --voronoi", 2, {"--voronoi", "2D", "3D"});
+  add("bedstat_order_2d", "bedstat", "@good2d.h5 --order", 2, {"--order", "2D"});
+  add("bedstat_order_margin_negative", "bedstat", "@good.h5 --order --order-margin -1e-5", 2, {"--order-margin"});
+  add("bedstat_psd_bad", "bedstat", "@good.h5 --psd gauss:mean=3e-5", 2, {"--psd"});
+  add("bedstat_csv_no_domain", "bedstat", "@good.csv", 2, {"domain"});
+  add("bedstat_csv_bad_domain", "bedstat", "@good.csv --domain 0,0,0,1,1", 2, {"--domain"});
+  add("bedstat_unknown_extension", "bedstat", "@good.txt", 2, {"does not exist"});
+  add("bedstat_second_bed_bad", "bedstat", "@good.h5 @um_radii.h5", 2, {"um_radii.h5", "um"});
+
+  // deposit (apps/deposit.cpp belongs to another engineer: what still fails there is disabled).
+  const std::string dep = "--in @good.h5 --t-end 1e-5 --seed 1 ";
+  add("deposit_count_negative", "deposit", "--psd mono:d=2e-5 --domain 1e-4,1e-4,1e-4 --count -5 --t-end 1e-5 --seed 1 --out @out.h5", 2,
+      {"--count", "-5"});
+  add("deposit_count_zero", "deposit", "--psd mono:d=2e-5 --domain 1e-4,1e-4,1e-4 --count 0 --t-end 1e-5 --seed 1 --out @out.h5", 2,
+      {"--count", "0"});
+  add("deposit_in_and_psd", "deposit", dep + "--psd mono:d=2e-5 --out @out.h5", 2, {"--in", "--psd"});
+  add("deposit_no_source", "deposit", "--t-end 1e-5 --seed 1 --out @out.h5", 2, {"--in", "--psd"});
+  add("deposit_every_negative", "deposit", dep + "--trajectory @traj.h5 --every -1 --out @out.h5", 2, {"--every", "-1"});
+  add("deposit_every_zero", "deposit", dep + "--trajectory @traj.h5 --every 0 --out @out.h5", 2, {"--every"});
+  add("deposit_dt_negative", "deposit", dep + "--dt -1e-9 --out @out.h5", 2, {"--dt"});
+  add("deposit_dt_nan", "deposit", dep + "--dt nan --out @out.h5", 2, {"--dt", "nan"});
+  add("deposit_t_end_missing", "deposit", "--in @good.h5 --seed 1 --out @out.h5", 2, {"--t-end"});
+  add("deposit_integrator_word", "deposit", dep + "--integrator euler --out @out.h5", 2, {"euler"});
+  add("deposit_periodic_word", "deposit", dep + "--periodic z --out @out.h5", 2, {"--periodic", "z"});
+  add("deposit_contact_law_word", "deposit", dep + "--contact.law spring --out @out.h5", 2, {"spring"});
+  add("deposit_stiffness_with_hertz", "deposit", dep + "--contact.stiffness 100 --out @out.h5", 2, {"contact.stiffness"});
+  add("deposit_domain_2d", "deposit", "--psd mono:d=2e-5 --domain 1e-4,1e-4 --count 5 --t-end 1e-5 --seed 1 --out @out.h5", 2,
+      {"--domain", "2D"});
+  add("deposit_young_scale_negative", "deposit", dep + "--young-scale -1 --out @out.h5", 2, {"young"});
+  add("deposit_out_no_folder", "deposit", dep + "--out @nowhere/out.h5", 2, {"--out", "nowhere"},
+      "deposit.cpp: --out checked only when writing, after the run (call app::check_paths first)");
+  add("deposit_out_is_in", "deposit", dep + "--out @good.h5", 2, {"--out", "input"},
+      "deposit.cpp: --out = --in overwrites the input (call app::check_paths first)");
+  add("deposit_out_txt", "deposit", dep + "--out @out.txt", 2, {"--out", ".txt"},
+      "deposit.cpp: --out extension unchecked (call app::check_extension)");
+  add("deposit_trajectory_no_folder", "deposit", dep + "--trajectory @nowhere/traj.h5 --every 10 --out @out.h5", 2,
+      {"--trajectory", "nowhere"});
+  add("deposit_material_young_gpa", "deposit", dep + "--material.young 193 --out @out.h5", 2, {"material.young", "193"},
+      "deposit.cpp: no unit-slip guard on material.young (193 Pa for 193 GPa)");
+
+  // keff (apps/keff.cpp belongs to another engineer).
+  const std::string kf = "--bed @good.h5 ";
+  add("keff_profile_bins_negative", "keff", kf + "--profile-bins -1 --out @out.h5", 2, {"--profile-bins", "-1"});
+  add("keff_profile_bins_huge", "keff", kf + "--profile-bins 1e14 --out @out.h5", 2, {"--profile-bins"},
+      "keff.cpp: --profile-bins has no upper bound (app::option_in_range)");
+  add("keff_rays_negative", "keff", kf + "--rays -5 --out @out.h5", 2, {"--rays", "-5"});
+  add("keff_axis_word", "keff", kf + "--axis w --out @out.h5", 2, {"--axis", "w"});
+  add("keff_temperature_negative", "keff", kf + "--temperature -5 --out @out.h5", 2, {"--temperature"});
+  add("keff_temperature_nan", "keff", kf + "--temperature nan --out @out.h5", 2, {"--temperature", "nan"});
+  add("keff_gas_model_word", "keff", kf + "--gas.model helium --out @out.h5", 2, {"gas.model", "helium"});
+  add("keff_radiation_model_word", "keff", kf + "--radiation.model mc --out @out.h5", 2, {"radiation.model", "mc"});
+  add("keff_lens_region_word", "keff", kf + "--gas.lens-region all --out @out.h5", 2, {"gas.lens-region"});
+  add("keff_missing_bed", "keff", "--out @out.h5", 2, {"--bed"});
+  add("keff_bed_missing_file", "keff", "--bed @missing.h5 --out @out.h5", 2, {"missing.h5"});
+  add("keff_out_no_folder", "keff", kf + "--out @nowhere/out.h5", 2, {"--out", "nowhere"},
+      "keff.cpp: --out checked only when writing, after the solve (call app::check_paths first)");
+  add("keff_out_is_bed", "keff", kf + "--out @good.h5", 2, {"--out", "input"},
+      "keff.cpp: --out = --bed overwrites the input (call app::check_paths first)");
+  add("keff_profile_folder", "keff", kf + "--profile-bins 4 --out @prof.h5", 2, {"prof-profile.csv", "folder"});
+  add("keff_min_gap_metre", "keff", kf + "--gas.min-gap 1 --out @out.h5", 2, {"gas.min-gap"},
+      "keff.cpp: no unit-slip guard on gas.min-gap (1 m)");
+
+  // sinter (apps/sinter.cpp belongs to another engineer).
+  const std::string si = sinter + "--bed @wide.h5 ";  // wider than the scene's spot
+  add("sinter_snapshots_negative", "sinter", si + "--snapshots -1 --out @out.h5", 2, {"--snapshots", "-1"});
+  add("sinter_rays_negative", "sinter", si + "--laser.rays -5 --out @out.h5", 2, {"--laser.rays", "-5"});
+  add("sinter_power_nan", "sinter", si + "--power nan --out @out.h5", 2, {"--power", "nan"});
+  add("sinter_speed_inf", "sinter", si + "--speed inf --out @out.h5", 2, {"--speed", "inf"});
+  add("sinter_integrator_word", "sinter", si + "--integrator rk4 --out @out.h5", 2, {"--integrator", "rk4"});
+  add("sinter_grid_spacing_negative", "sinter", si + "--grid-spacing -1e-6 --out @out.h5", 2, {"--grid-spacing"});
+  add("sinter_dt_negative", "sinter", si + "--dt -1 --out @out.h5", 2, {"--dt"});
+  add("sinter_absorption_word", "sinter", si + "--laser.absorption magic --out @out.h5", 2, {"laser.absorption", "magic"});
+  add("sinter_reflection_word", "sinter", si + "--laser.reflection mirror --out @out.h5", 2, {"laser.reflection"});
+  add("sinter_substrate_nodes_word", "sinter", si + "--substrate.nodes a,b,c --out @out.h5", 2, {"substrate.nodes"});
+  add("sinter_substrate_nodes_huge", "sinter", si + "--substrate.nodes 100000,100000,100000 --out @out.h5", 2,
+      {"substrate.nodes"});
+  add("sinter_missing_out", "sinter", si, 2, {"--out"});
+  add("sinter_spot_metres", "sinter", si + "--spot 54 --out @out.h5", 2, {"--spot", "54"});
+  add("sinter_out_is_bed", "sinter", si + "--out @wide.h5", 2, {"--out", "input"},
+      "sinter.cpp: --out = --bed overwrites the input (call app::check_paths first)");
+  add("sinter_out_no_folder", "sinter", si + "--out @nowhere/out.h5", 2, {"--out", "nowhere"});
+  add("sinter_out_txt", "sinter", si + "--out @out.txt", 2, {"--out", ".txt"});
+  add("sinter_substrate_depth_metres", "sinter", si + "--substrate.depth 0.3 --out @out.h5", 2, {"substrate.depth"});
+  return t;
+}
+
+// ----------------------------------------------------------------------------------------------
+// Running one case.
+
+std::map<std::string, std::string> snapshot(const std::string& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    const std::string rel = fs::relative(e.path(), dir).string();
+    files[rel] = e.is_directory() ? std::string("<folder>") : powderbed::test::read_text(e.path().string());
+  }
+  return files;
+}
+
+// "@name" -> dir/name (making the file), "{scenes}" -> the source's data/scenes.
+std::string expand(const std::string& text, const std::string& dir, bool make) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '@') {
+      std::size_t j = i + 1;
+      while (j < text.size() && text[j] != ' ') ++j;
+      const std::string name = text.substr(i + 1, j - i - 1);
+      const std::string first = name.substr(0, name.find('/'));
+      if (make && !first.empty()) {
+        make_file(dir, first);  // names without a recipe (out.h5, missing.h5) stay absent
+        if (first == "side.h5") make_file(dir, "side.xmf");          // the sidecar is a folder
+        if (first == "prof.h5") make_file(dir, "prof-profile.csv");  // keff's profile is a folder
+      }
+      out += dir + "/" + name;
+      i = j - 1;
+    } else if (text.compare(i, 8, "{scenes}") == 0) {
+      out += std::string(POWDERBED_SOURCE_DIR) + "/data/scenes";
+      i += 7;
+    } else {
+      out += text[i];
+    }
+  }
+  return out;
+}
+
+class Hardening : public ::testing::TestWithParam<Case> {};
+
+TEST_P(Hardening, RefusedCleanly) {
+  const Case& c = GetParam();
+  const std::string dir = powderbed::test::scratch_dir("hard_" + c.name);
+  const std::string args = expand(c.args, dir, true);
+  const auto before = snapshot(dir);
+  const CommandResult r = powderbed::test::run_app(c.app, args);
+  EXPECT_EQ(r.status, c.status) << c.app << " " << args << "\n" << r.err;
+  if (c.status != 0) {
+    EXPECT_EQ(r.err_lines(), 1) << "one line on stderr, got:\n" << r.err;
+    EXPECT_TRUE(r.out.empty()) << "stdout: " << r.out;
+    for (const auto& w : c.words) {
+      const std::string word = expand(w, dir, false);
+      EXPECT_NE(r.err.find(word), std::string::npos) << "'" << word << "' not in: " << r.err;
+    }
+    // Nothing written, nothing destroyed: the folder is byte for byte what it was.
+    const auto after = snapshot(dir);
+    for (const auto& [name, content] : before) {
+      const auto it = after.find(name);
+      EXPECT_TRUE(it != after.end()) << name << " was removed";
+      if (it != after.end()) {
+        EXPECT_TRUE(it->second == content) << name << " was changed";
+      }
+    }
+    for (const auto& [name, content] : after)
+      EXPECT_TRUE(before.count(name)) << name << " was written by a refused run";
+  }
+  fs::remove_all(dir);
+}
+
+std::vector<Case> cases(bool disabled) {
+  std::vector<Case> out;
+  for (auto& c : all_cases())
+    if (c.why_disabled.empty() != disabled) out.push_back(c);
+  return out;
+}
+
+std::string case_name(const ::testing::TestParamInfo<Case>& info) { return info.param.name; }
+
+INSTANTIATE_TEST_SUITE_P(Table, Hardening, ::testing::ValuesIn(cases(false)), case_name);
+// Known failures whose fix is in apps/deposit.cpp, apps/keff.cpp or apps/sinter.cpp (each case
+// says what; docs/hardening.md lists them).
+INSTANTIATE_TEST_SUITE_P(DISABLED_Known, Hardening, ::testing::ValuesIn(cases(true)), case_name);
+
+TEST(HardeningTable, HasAtLeast200CasesWithUniqueNames) {
+  const auto t = all_cases();
+  EXPECT_GE(t.size(), 200u);
+  std::map<std::string, int> seen;
+  for (const auto& c : t) EXPECT_EQ(++seen[c.name], 1) << c.name;
+}
+
+// ----------------------------------------------------------------------------------------------
+// Kill tests: a program killed while it works or writes leaves the old output as it was and no
+// temporary (SIGINT/SIGTERM: removed by the handler; SIGKILL: by the next writer of that path).
+
+pid_t spawn(const std::string& app, const std::vector<std::string>& args) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    std::vector<std::string> all = {std::string(POWDERBED_APPS_DIR) + "/" + app};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    std::freopen("/dev/null", "w", stdout);
+    std::freopen("/dev/null", "w", stderr);
+    ::execv(argv[0], argv.data());
+    std::_Exit(127);
+  }
+  return pid;
+}
+
+std::vector<std::string> temporaries(const std::string& dir) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string n = e.path().filename().string();
+    if (n.find(".tmp") != std::string::npos) out.push_back(n);
+  }
+  return out;
+}
+
+// packgen of ~40k spheres: long enough (about a second or more) to be killed while it packs or
+// writes; the delays walk through the run.
+void kill_packgen_and_check(int sig) {
+  const std::string dir = powderbed::test::scratch_dir(std::string("hard_kill_") + (sig == SIGKILL ? "9" : "2"));
+  const std::string out = dir + "/out.h5";
+  powderbed::bed::write_bed_h5(good_bed(), out);
+  const std::string old_h5 = powderbed::test::read_text(out);
+  const std::string old_xmf = powderbed::test::read_text(dir + "/out.xmf");
+  const std::vector<std::string> args = {"--dim", "3", "--domain", "1e-3,1e-3,5e-4", "--psd",
+                                         "mono:d=2e-5", "--approach", "3", "--seed", "1",
+                                         "--out", out};
+  int killed = 0;
+  for (int delay_ms : {50, 150, 300, 600, 1000}) {
+    const pid_t pid = spawn("packgen", args);
+    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+    const bool running = ::kill(pid, sig) == 0;
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    if (running && WIFSIGNALED(status)) ++killed;
+    // The output is the old bed or a whole new one, never a part.
+    const std::string now = powderbed::test::read_text(out);
+    if (now != old_h5) {
+      EXPECT_NO_THROW(powderbed::bed::read_bed_h5(out)) << "after a kill at " << delay_ms << " ms";
+    } else {
+      EXPECT_EQ(powderbed::test::read_text(dir + "/out.xmf"), old_xmf);
+    }
+    if (sig != SIGKILL) {
+      EXPECT_TRUE(temporaries(dir).empty()) << "left " << temporaries(dir).front();
+    }
+  }
+  EXPECT_GE(killed, 1) << "no run was still going when the signal came: lengthen the run";
+  // Mid-write: poll for the writer's temporary and signal the moment it appears.
+  int mid_write = 0;
+  for (int attempt = 0; attempt < 5 && mid_write == 0; ++attempt) {
+    const pid_t pid = spawn("packgen", args);
+    bool seen = false;
+    int status = 0;
+    while (!seen && ::waitpid(pid, &status, WNOHANG) == 0) {
+      seen = !temporaries(dir).empty();
+      if (!seen) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    if (seen) {
+      ::kill(pid, sig);
+      ::waitpid(pid, &status, 0);
+      if (WIFSIGNALED(status)) ++mid_write;
+    }
+    const std::string now = powderbed::test::read_text(out);
+    if (now != old_h5) {
+      EXPECT_NO_THROW(powderbed::bed::read_bed_h5(out)) << "after a mid-write kill";
+    }
+    if (sig != SIGKILL) {
+      EXPECT_TRUE(temporaries(dir).empty()) << "left " << temporaries(dir).front();
+    }
+  }
+  EXPECT_GE(mid_write, 1) << "never caught packgen while its temporary existed";
+  if (sig == SIGKILL) {
+    // Whatever a SIGKILLed run left is removed by the next writer of the same path.
+    const CommandResult r = powderbed::test::run_app(
+        "packgen", "--dim 3 --domain 1e-4,1e-4,1e-4 --psd mono:d=2e-5 --seed 1 --out " + out);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(temporaries(dir).empty()) << "left " << temporaries(dir).front();
+  }
+  fs::remove_all(dir);
+}
+
+TEST(HardeningKill, SigintLeavesOldOutputAndNoTemporaries) { kill_packgen_and_check(SIGINT); }
+TEST(HardeningKill, SigtermLeavesOldOutputAndNoTemporaries) { kill_packgen_and_check(SIGTERM); }
+TEST(HardeningKill, SigkillLeavesOldOutputAndTheNextRunCleansUp) { kill_packgen_and_check(SIGKILL); }
+
+// deposit's trajectory: SIGINT during a run removes out.h5's and traj.h5's temporaries.
+TEST(HardeningKill, SigintDuringDepositTrajectoryLeavesNoTemporaries) {
+  const std::string dir = powderbed::test::scratch_dir("hard_kill_deposit");
+  const std::string out = dir + "/out.h5";
+  powderbed::bed::write_bed_h5(good_bed(), out);
+  const std::string old_h5 = powderbed::test::read_text(out);
+  const pid_t pid = spawn("deposit", {"--psd", "mono:d=2e-5", "--domain", "4e-4,4e-4,4e-4",
+                                      "--count", "400", "--t-end", "10", "--seed", "1",
+                                      "--threads", "1", "--trajectory", dir + "/traj.h5",
+                                      "--every", "50", "--out", out});
+  bool saw_temporary = false;
+  for (int i = 0; i < 100 && !saw_temporary; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    saw_temporary = !temporaries(dir).empty();
+  }
+  EXPECT_TRUE(saw_temporary) << "the trajectory's temporary never appeared";
+  for (const auto& n : temporaries(dir)) EXPECT_NE(n.find(std::to_string(pid)), std::string::npos) << n;
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT);
+  EXPECT_TRUE(temporaries(dir).empty()) << "left " << temporaries(dir).front();
+  EXPECT_EQ(powderbed::test::read_text(out), old_h5);
+  fs::remove_all(dir);
+}
+
+}  // namespace
