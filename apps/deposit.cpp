@@ -187,20 +187,30 @@ int run(int argc, char** argv) {
 
   const std::string out = app::required<std::string>(vm, "out");
   const auto seed = app::required<std::uint64_t>(vm, "seed");
-  if (vm.count("in") && vm.count("psd")) {
-    throw InputError("--in and --psd: both given (accepted: one source of particles)");
-  }
   if (!vm.count("in") && !vm.count("psd")) {
     throw InputError("--in / --psd: neither given (accepted: --in BED.h5 or --psd SPEC --count N)");
   }
-  const bool inserting = vm["insert.enabled"].as<bool>();
-  if (inserting && vm.count("in")) {
+  // One source of particles. A scene's psd (with its count and insertion) gives way to --in on
+  // the command line, which wins over the scene (so a bed scene can re-run its own bed, e.g. to
+  // consolidate it); both in the same place is refused.
+  po::variables_map command_line;
+  po::store(po::command_line_parser(argc, argv).options(desc).run(), command_line);
+  bool from_bed = vm.count("in") > 0;
+  if (vm.count("in") && vm.count("psd")) {
+    if ((command_line.count("in") > 0) == (command_line.count("psd") > 0))
+      throw InputError("--in and --psd: both given (accepted: one source of particles)");
+    from_bed = command_line.count("in") > 0;
+  }
+  const bool inserting = !from_bed && vm["insert.enabled"].as<bool>();
+  const bool insert_typed =
+      command_line.count("insert.enabled") > 0 && !command_line["insert.enabled"].defaulted();
+  if (from_bed && vm["insert.enabled"].as<bool>() && (insert_typed || !command_line.count("in"))) {
     throw InputError("insert.enabled: with --in (accepted: --psd SPEC --count N, the particles "
                      "to insert)");
   }
 
   bed::Bed bed;
-  if (vm.count("in")) {
+  if (from_bed) {
     std::optional<bed::Domain> domain;
     if (vm.count("domain")) domain = app::parse_domain_lengths(vm["domain"].as<std::string>(), "--domain");
     bed = bed::read_bed_any(vm["in"].as<std::string>(), domain ? &*domain : nullptr);

@@ -743,8 +743,26 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
       bed.domain.upper[2] = box.upper[2];
       summary.at_rest = false;
     } else {
-      box.upper[2] = top;  // the release
+      // The release: raised back to the top of the box at lid.speed ([KE]: "raised again"), so
+      // that the bed unloads as slowly as it was loaded; at once, a bed pressed on stiff
+      // linear springs throws its top layers up.
       out.release_time = static_cast<double>(step) * c.dt;
+      c.params.top_velocity = lid.speed;
+      const auto raise = [&] {
+        box.upper[2] = std::min(top, box.upper[2] + per_step);
+        rebuild_if_lid_moved();
+      };
+      const auto raised = [&] {
+        record();
+        return box.upper[2] >= top;
+      };
+      const auto raising_steps =
+          static_cast<std::uint64_t>(std::ceil((top - box.upper[2]) / per_step)) + 1;
+      if (!stopped)
+        advance(step + raising_steps, false, static_cast<double>(step + raising_steps) * c.dt,
+                raise, raised);
+      c.params.top_velocity = 0;
+      box.upper[2] = top;
     }
     if (!stopped && lid.release) {
       c.rebuild();

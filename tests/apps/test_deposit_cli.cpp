@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <utility>
@@ -226,4 +227,26 @@ TEST(DepositCli, BadContactLawExits2WithOneLine) {
     for (const auto& part : parts) EXPECT_NE(r.err.find(part), std::string::npos) << part << " in " << r.err;
     EXPECT_FALSE(std::ifstream(dir + "/out.h5").good());
   }
+}
+
+TEST(DepositCli, InOnTheCommandLineWinsOverTheScenesPsd) {
+  // A bed scene (psd, count, insertion) re-runs a given bed, as the consolidation of its beds
+  // does; --in and --psd both on the command line stay refused.
+  const std::string dir = test::scratch_dir("deposit_in_wins");
+  const std::string in = small_bed(dir);
+  const std::string scene = std::string(POWDERBED_SOURCE_DIR) + "/data/scenes/ke2016-steel-1mm-bed.ini";
+  auto r = test::run_app("deposit", "--config " + scene + " --in " + in +
+                                        " --t-end 1e-5 --seed 1 --json --out " + dir + "/out.h5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"n\":2,"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("\"insertion\""), std::string::npos) << r.out;
+  std::filesystem::remove(dir + "/out.h5");
+  r = test::run_app("deposit", "--config " + scene + " --in " + in + " --psd mono:d=1e-3 "
+                                   "--t-end 1e-5 --seed 1 --out " + dir + "/out.h5");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("--in and --psd"), std::string::npos) << r.err;
+  r = test::run_app("deposit", "--config " + scene + " --in " + in + " --insert.enabled true "
+                                   "--t-end 1e-5 --seed 1 --out " + dir + "/out.h5");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("insert.enabled"), std::string::npos) << r.err;
 }

@@ -26,9 +26,10 @@ struct RestCriteria {
 // it"). After the settle, the box's top face comes down to the highest particle top and moves
 // down at `speed` until the bed pushes on it with pressure x (top area) or it has travelled
 // `travel` (whichever comes first; at least one must be set), stays there for `hold`, and goes
-// back to the top of the box; the bed then relaxes until rest or for `relax` at most. The lid
-// is the top face of the box with the wall law of walls.hpp (the approach rate counts its
-// velocity), so it needs effects.walls; it moves between steps and costs nothing when off.
+// back up to the top of the box at `speed`; the bed then relaxes until rest or for `relax` at
+// most. The lid is the top face of the box with the wall law of walls.hpp (the approach rate
+// counts its velocity), so it needs effects.walls; it moves between steps and costs nothing when
+// off.
 struct LidSettings {
   bool enabled = false;
   double speed = 0.01;   // m/s
@@ -118,7 +119,7 @@ struct LidSummary {
   // How the lowering ended: "force" (target reached), "travel", "depth", or "floor" (the lid came within
   // one smallest diameter of the floor with neither reached).
   std::string stopped_by;
-  double release_time = 0;     // s: simulated time of the release
+  double release_time = 0;     // s: simulated time the raise began
 };
 
 struct RunSummary {
