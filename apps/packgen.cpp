@@ -113,6 +113,20 @@ int run(int argc, char** argv) {
     if (o.count == 0) throw InputError("--count: 0 (accepted: a number of particles >= 1)");
   }
   o.allow_huge = vm.count("allow-huge") > 0;
+  if (o.count > 0) {
+    // Even at density 1 the domain holds no more than its measure over the smallest particle's.
+    const double r = psd.min_radius();
+    const double each = dim == 3 ? 4.0 / 3.0 * 3.14159265358979323846 * r * r * r
+                                 : 3.14159265358979323846 * r * r;
+    const double fit = std::floor(domain.measure() / each);
+    if (static_cast<double>(o.count) > fit) {
+      std::ostringstream msg;
+      msg << "--count: " << o.count << " particles cannot fit in the domain (accepted: at most "
+          << fit << ", the domain's " << (dim == 3 ? "volume" : "area")
+          << " over the smallest particle's)";
+      throw InputError(msg.str());
+    }
+  }
   if (vm.count("target-density")) {
     o.target_density = vm["target-density"].as<double>();
     if (!(o.target_density > 0 && o.target_density < 1)) {

@@ -72,8 +72,11 @@ void validate(const bed::Domain& domain, const bed::Psd& psd, const PackOptions&
         << "e-6; --allow-huge if meant)";
     fail(msg.str());
   }
+  // A count that cannot fit even at density 1 is refused here when it is large enough for its
+  // reservation to matter (2^20); below that the packing finds out and the caller says how
+  // many were placed (packgen refuses any impossible count itself, naming the bound).
   const double by_min = domain.measure() / particle_measure(psd.min_radius());
-  if (o.count > 0 && static_cast<double>(o.count) > by_min) {
+  if (o.count > (std::size_t{1} << 20) && static_cast<double>(o.count) > by_min) {
     fail("--count: " + std::to_string(o.count) + " particles cannot fit in the domain (accepted: " +
          "at most " + str(std::floor(by_min)) + ", the domain's " +
          (domain.dimension == 3 ? "volume" : "area") + " over the smallest particle's)");
