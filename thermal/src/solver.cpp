@@ -192,12 +192,11 @@ Sinter::State::State(const SinterScene& sc, Material m)
       capacity_per_m3([this](double t) { return per_m3.capacity(t); }, table_low(sc),
                       table_high(sc), std::min(1.0, sc.phase_change.window / 8)) {}
 
-Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTable& table) {
-  scene.validate();
-  check_bed(bed);
-  s_ = std::make_unique<State>(scene, scene_material(scene, table));
-  State& s = *s_;
-  s.g = make_grid(bed, scene);
+namespace {
+
+// The laser's path: track line, start, end and t_end, checked against the bed.
+void setup_track(Sinter::State& s, const bed::Bed& bed) {
+  const SinterScene& scene = s.scene;
   const SubstrateGeometry& g = s.g;
   const double lx = bed.domain.length(0), ly = bed.domain.length(1);
   s.laser_y = std::isnan(scene.laser_y) ? g.y0 + 0.5 * ly : scene.laser_y;
@@ -217,19 +216,12 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
     throw InputError(msg.str());
   }
   s.t_end = std::isnan(scene.t_end) ? (end_x - s.start_x) / scene.speed : scene.t_end;
-  s.vaporised_temperature = scene.phase_change.boiling_point + 0.5 * scene.phase_change.window;
+}
 
-  s.surface = analyse_surface(bed, g.z_top);
-  s.net = build_network(bed, g);
-  s.layer_height = s.surface.layer_height;
-  s.beta = bed.n() > 0 && scene.has(kPenetration)
-               ? gusarov_extinction(s.surface.porosity, s.surface.mean_diameter)
-               : 0.0;
-  s.laser = {scene.power, scene.spot_radius, scene.absorptivity, s.beta};
-  s.environment = {scene.convection, scene.emissivity, scene.environment_temperature};
-
+// Particles at T0: positions, masses, projected areas, Beer–Lambert factors, exposure.
+void setup_particles(Sinter::State& s, const bed::Bed& bed) {
   const std::size_t n = bed.n();
-  const double t0 = scene.initial_temperature;
+  const double t0 = s.scene.initial_temperature;
   s.x = bed.x;
   s.y = bed.y;
   s.z = bed.z;
@@ -242,7 +234,7 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
     const double r = bed.radius[i];
     s.mass[i] = rho0 * 4.0 / 3.0 * M_PI * r * r * r;
     s.area[i] = M_PI * r * r;
-    s.laser_factor[i] = scene.absorptivity * s.area[i] * std::exp(-s.beta * s.surface.depth[i]);
+    s.laser_factor[i] = s.scene.absorptivity * s.area[i] * std::exp(-s.beta * s.surface.depth[i]);
     if (s.surface.exposed[i]) s.exposed.push_back(static_cast<std::uint32_t>(i));
   }
   s.h.assign(n, 0.0);  // enthalpies are measured from T0
@@ -250,16 +242,21 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
   s.peak.assign(n, t0);
   s.heat.assign(n, 0.0);
   s.gone.assign(n, 0);
+}
 
+// Substrate nodes at T0 and the Beer–Lambert transmission above each top node (1 without
+// penetration or particles).
+void setup_substrate(Sinter::State& s) {
+  const SubstrateGeometry& g = s.g;
+  const double t0 = s.scene.initial_temperature;
   s.e.assign(g.size(), 0.0);
   s.node_temperature.assign(g.size(), t0);
   s.node_peak.assign(g.size(), t0);
   s.node_max = t0;
-  // Beer–Lambert through the bed above each top node (1 without penetration or particles).
   s.transmission.assign(g.nx * g.ny, 1.0);
   for (std::size_t j = 0; j < g.ny; ++j) {
     for (std::size_t i = 0; i < g.nx; ++i) {
-      const double above = scene.substrate_shading == SubstrateShading::layer
+      const double above = s.scene.substrate_shading == SubstrateShading::layer
                                ? s.layer_height
                                : s.surface.column_height(g.x(i), g.y(j));
       s.transmission[i + g.nx * j] = std::exp(-s.beta * above);
@@ -267,9 +264,12 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
   }
   s.k_fixed = s.material.conductivity(t0);
   s.node_k.assign(g.size(), s.k_fixed);
-  setup_laser(s, bed);
-  if (scene.has(kWetting)) setup_wetting(s);
+}
 
+// The grid step (the user's, checked against the bound, or safety x the bound) and the particle
+// substeps within it.
+void choose_steps(Sinter::State& s) {
+  const SinterScene& scene = s.scene;
   s.k_max = max_conductivity(s);
   s.stable = compute_stable_steps(s);
   const double bound = s.stable.grid;
@@ -295,7 +295,7 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
   if (scene.has(kLaser) && scene.power > 0 && !s.tracer) {
     const double i0 = peak_intensity(s.laser), c_min = s.per_kg.min_capacity();
     const double reach = std::sqrt(kBeamCutoff2) * scene.spot_radius;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
       if (std::abs(s.y[i] - s.laser_y) > reach) continue;
       const double rate = s.laser_factor[i] * i0 / (s.mass[i] * c_min);
       particle_dt = std::min(particle_dt, scene.max_particle_rise / rate);
@@ -304,6 +304,31 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
   if (scene.integrator == Integrator::explicit_euler && std::isfinite(particle_dt))
     s.substeps = static_cast<std::size_t>(std::ceil(s.dt / particle_dt));
   s.substeps_stable = s.substeps;  // the traced maps and wetting may raise it, never lower it
+}
+
+}  // namespace
+
+Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTable& table) {
+  scene.validate();
+  check_bed(bed);
+  s_ = std::make_unique<State>(scene, scene_material(scene, table));
+  State& s = *s_;
+  s.g = make_grid(bed, scene);
+  setup_track(s, bed);
+  s.vaporised_temperature = scene.phase_change.boiling_point + 0.5 * scene.phase_change.window;
+  s.surface = analyse_surface(bed, s.g.z_top);
+  s.net = build_network(bed, s.g);
+  s.layer_height = s.surface.layer_height;
+  s.beta = bed.n() > 0 && scene.has(kPenetration)
+               ? gusarov_extinction(s.surface.porosity, s.surface.mean_diameter)
+               : 0.0;
+  s.laser = {scene.power, scene.spot_radius, scene.absorptivity, s.beta};
+  s.environment = {scene.convection, scene.emissivity, scene.environment_temperature};
+  setup_particles(s, bed);
+  setup_substrate(s);
+  setup_laser(s, bed);
+  if (scene.has(kWetting)) setup_wetting(s);
+  choose_steps(s);
 }
 
 Sinter::~Sinter() = default;
