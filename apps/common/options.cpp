@@ -120,6 +120,7 @@ void store_config_file(const std::string& path, const po::options_description& d
   if (!in) throw InputError("--config: cannot open scene file '" + path + "'");
   std::string line, prefix;
   std::size_t number = 0;
+  po::parsed_options all(&desc);
   while (std::getline(in, line)) {
     ++number;
     const std::string where = path + ":" + std::to_string(number) + ": ";
@@ -142,18 +143,26 @@ void store_config_file(const std::string& path, const po::options_description& d
       throw InputError(where + "config inside a scene file (accepted: one --config)");
     if (!desc.find_nothrow(key, false))
       throw InputError(where + "unknown option '" + key + "' (see --help for the options)");
-    po::parsed_options parsed(&desc);
     po::option opt;
     opt.string_key = key;
     opt.value.push_back(value);
     opt.original_tokens = {key, value};
-    parsed.options.push_back(opt);
+    all.options.push_back(opt);
+    // This line's value checked on its own (with the key's earlier lines, so that a key given
+    // twice is refused at its second line, as Boost refuses it), so the error can name it.
+    po::parsed_options same_key(&desc);
+    for (const auto& o : all.options)
+      if (o.string_key == key) same_key.options.push_back(o);
     try {
-      po::store(parsed, vm);  // stored after the command line: command-line values win
+      po::variables_map scratch;
+      po::store(same_key, scratch);
     } catch (const po::error& e) {
       throw InputError(where + e.what());
     }
   }
+  // Stored in one go, after the command line (command-line values win), as Boost's own
+  // parse_config_file stores them: lines of one multi-valued option add up.
+  po::store(all, vm);
 }
 
 // The conventions every program shares (DESIGN.md "Command-line programs"), checked once here.
