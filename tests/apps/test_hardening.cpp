@@ -14,6 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -830,35 +831,42 @@ void kill_packgen_and_check(int sig) {
     }
   }
   EXPECT_GE(killed, 1) << "no run was still going when the signal came: lengthen the run";
-  // Mid-write: poll for the writer's temporary and signal the moment it appears.
+  // Mid-write: bedconv of 64 000 spheres to CSV holds its temporary while it formats the text
+  // (tens of ms); poll for the temporary and signal the moment it appears.
+  const std::string big = dir + "/big.h5", csv = dir + "/out.csv";
+  powderbed::bed::write_bed_h5(powderbed::bed::simple_cubic_lattice(40, 1e-6), big);
+  powderbed::bed::write_bed_csv(good_bed(), csv);
+  const std::string old_csv = powderbed::test::read_text(csv);
   int mid_write = 0;
-  for (int attempt = 0; attempt < 5 && mid_write == 0; ++attempt) {
-    const pid_t pid = spawn("packgen", args);
+  for (int attempt = 0; attempt < 10 && mid_write < 2; ++attempt) {
+    const pid_t pid = spawn("bedconv", {big, csv});
     bool seen = false;
     int status = 0;
     while (!seen && ::waitpid(pid, &status, WNOHANG) == 0) {
       seen = !temporaries(dir).empty();
-      if (!seen) std::this_thread::sleep_for(std::chrono::microseconds(200));
+      if (!seen) std::this_thread::sleep_for(std::chrono::microseconds(100));
     }
     if (seen) {
       ::kill(pid, sig);
       ::waitpid(pid, &status, 0);
       if (WIFSIGNALED(status)) ++mid_write;
     }
-    const std::string now = powderbed::test::read_text(out);
-    if (now != old_h5) {
-      EXPECT_NO_THROW(powderbed::bed::read_bed_h5(out)) << "after a mid-write kill";
+    const std::string now = powderbed::test::read_text(csv);
+    if (now != old_csv) {  // a whole new file: the header and all 64 000 rows
+      EXPECT_EQ(std::count(now.begin(), now.end(), '\n'), 64001) << "a partial CSV after a kill";
     }
     if (sig != SIGKILL) {
       EXPECT_TRUE(temporaries(dir).empty()) << "left " << temporaries(dir).front();
     }
   }
-  EXPECT_GE(mid_write, 1) << "never caught packgen while its temporary existed";
+  EXPECT_GE(mid_write, 1) << "never caught bedconv while its temporary existed";
   if (sig == SIGKILL) {
     // Whatever a SIGKILLed run left is removed by the next writer of the same path.
     const CommandResult r = powderbed::test::run_app(
         "packgen", "--dim 3 --domain 1e-4,1e-4,1e-4 --psd mono:d=2e-5 --seed 1 --out " + out);
     EXPECT_EQ(r.status, 0) << r.err;
+    const CommandResult c = powderbed::test::run_app("bedconv", big + " " + csv);
+    EXPECT_EQ(c.status, 0) << c.err;
     EXPECT_TRUE(temporaries(dir).empty()) << "left " << temporaries(dir).front();
   }
   fs::remove_all(dir);
