@@ -18,7 +18,7 @@ import sys
 
 import numpy as np
 
-from common import ROOT, app, run_json, write_text
+from common import RESULTS, ROOT, app, run_json, write_text
 from keff_speed import RUNS as SPEED_RUNS, WORK, build_note, deposit_bed
 
 SCENE = os.path.join(ROOT, "data", "scenes", "ke2016-steel-1mm.ini")
@@ -422,8 +422,14 @@ def main():
     tol_tables = {label: tol_rows(runs) for label, runs in tols.items()}
     rays_best, tol_best = cheapest_rays(rays_tables), cheapest_tolerance(tol_tables)
     plot(rays_tables, tol_tables)
-    print(write_text("keff-accuracy.md", report(rays_tables, tol_tables, loads, rays_best,
-                                                tol_best, note)))
+    text = report(rays_tables, tol_tables, loads, rays_best, tol_best, note)
+    # keff_softening.py's section of the page stays (it regenerates it on its own).
+    page = os.path.join(RESULTS, "keff-accuracy.md")
+    old = open(page).read() if os.path.exists(page) else ""
+    begin, end = "<!-- softening:begin -->", "<!-- softening:end -->"
+    if begin in old:
+        text = text.rstrip("\n") + "\n\n" + old[old.index(begin):old.index(end) + len(end)] + "\n"
+    print(write_text("keff-accuracy.md", text))
 
 
 if __name__ == "__main__":
