@@ -97,6 +97,118 @@ class H5Reader {
     check_global_heaps();
     file_ = H5File(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
     if (!file_.valid()) throw InputError(path_ + ": cannot open as HDF5 (damaged file?)");
+    check_attribute_messages();
+  }
+
+  // libhdf5 1.10 decodes an attribute message (while looking an attribute up by name) without
+  // checking that its name is terminated or that its parts fit the message (found by
+  // tests/fuzz: a read past the header in H5MM_strdup). The attribute messages of the groups
+  // whose attributes are read ("/", /domain, /provenance; version 1 object headers, as
+  // libhdf5 1.10 writes them, and their continuation blocks) are checked first.
+  void check_attribute_messages() const {
+    const int fd = ::open(path_.c_str(), O_RDONLY);
+    if (fd < 0) return;
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || st.st_size < 16) {
+      ::close(fd);
+      return;
+    }
+    const auto size = static_cast<std::size_t>(st.st_size);
+    void* map = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+    ::close(fd);
+    if (map == MAP_FAILED) return;
+    const auto* bytes = static_cast<const unsigned char*>(map);
+    auto u16 = [&](std::size_t k) { return std::size_t{bytes[k]} | (std::size_t{bytes[k + 1]} << 8); };
+    auto u64 = [&](std::size_t k) {
+      std::uint64_t v = 0;
+      for (int b = 7; b >= 0; --b) v = (v << 8) | bytes[k + static_cast<std::size_t>(b)];
+      return v;
+    };
+    auto align8 = [](std::size_t n) { return (n + 7) / 8 * 8; };
+    std::string problem;
+    // The messages of one block [begin, end): type u16, size u16, flags, 3 reserved, data.
+    auto check_block = [&](const std::string& object, std::size_t begin, std::size_t end,
+                           std::vector<std::pair<std::size_t, std::size_t>>& more) {
+      for (std::size_t m = begin; problem.empty() && m + 8 <= end;) {
+        const std::size_t type = u16(m), length = u16(m + 2);
+        const std::size_t data = m + 8;
+        if (data + length > end) {
+          problem = object + ": a header message runs past its block";
+          break;
+        }
+        if (type == 0x10 && length >= 16) {  // continuation: offset, length
+          const std::uint64_t at = u64(data), n = u64(data + 8);
+          if (at >= size || n > size - at) {
+            problem = object + ": a header continuation points past the end of the file";
+            break;
+          }
+          more.emplace_back(static_cast<std::size_t>(at), static_cast<std::size_t>(at + n));
+        }
+        if (type == 0x0C && length >= 8) {  // attribute
+          const unsigned version = bytes[data];
+          const std::size_t name = u16(data + 2), dt = u16(data + 4), ds = u16(data + 6);
+          const std::size_t head = version == 3 ? 9 : 8;
+          const std::size_t need = version == 1 ? head + align8(name) + align8(dt) + align8(ds)
+                                                : head + name + dt + ds;
+          if (version < 1 || version > 3 || name == 0 || need > length ||
+              bytes[data + head + name - 1] != 0) {
+            problem = object + ": a damaged attribute message (name or parts do not fit)";
+            break;
+          }
+          // Its value: dataspace points x datatype size must fit the message too.
+          const std::size_t dt_at = data + head + (version == 1 ? align8(name) : name);
+          const std::size_t ds_at = dt_at + (version == 1 ? align8(dt) : dt);
+          // Only the classes a bed's attributes have: integer 0, float 1, string 3, variable-
+          // length 9 over integer characters (libhdf5 decodes compound and enum member names
+          // unchecked).
+          const unsigned cls = bytes[dt_at] & 0x0f;
+          if (dt < 8 || (cls != 0 && cls != 1 && cls != 3 && cls != 9) ||
+              (cls == 9 && (dt < 16 || (bytes[dt_at + 8] & 0x0f) != 0))) {
+            problem = object + ": an attribute of a datatype a bed does not use (class " +
+                      std::to_string(cls) + ")";
+            break;
+          }
+          if (dt >= 8 && ds >= 4) {
+            const std::uint64_t type_size = u64(dt_at + 4) & 0xffffffffu;
+            const unsigned ds_version = bytes[ds_at], rank = bytes[ds_at + 1];
+            const std::size_t dims_at = ds_at + (ds_version == 1 ? 8 : 4);
+            double points = (ds_version == 2 && bytes[ds_at + 3] == 2) ? 0.0 : 1.0;  // null space
+            if (dims_at + 8 * std::size_t{rank} > ds_at + ds) {
+              problem = object + ": a damaged attribute dataspace";
+              break;
+            }
+            for (unsigned r = 0; r < rank; ++r) points *= static_cast<double>(u64(dims_at + 8 * r));
+            if (static_cast<double>(need) + points * static_cast<double>(type_size) >
+                static_cast<double>(length)) {
+              problem = object + ": an attribute value larger than its message";
+              break;
+            }
+          }
+        }
+        m = data + length;
+      }
+    };
+    for (const char* name : {".", "domain", "provenance"}) {
+      if (!problem.empty()) break;
+      if (std::string(name) != "." && H5Lexists(file_, name, H5P_DEFAULT) <= 0) continue;
+      H5O_info_t info{};
+      if (H5Oget_info_by_name2(file_, name, &info, H5O_INFO_BASIC, H5P_DEFAULT) < 0) continue;
+      const std::string object = std::string("/") + (std::string(name) == "." ? "" : name);
+      const auto addr = static_cast<std::size_t>(info.addr);
+      if (addr + 16 > size || bytes[addr] != 1) continue;  // version 2 headers: not checked
+      const std::size_t header = static_cast<std::size_t>(u64(addr + 8) & 0xffffffffu);
+      std::vector<std::pair<std::size_t, std::size_t>> blocks{{addr + 16, addr + 16 + header}};
+      if (blocks[0].second > size) {
+        problem = object + ": its header runs past the end of the file";
+        break;
+      }
+      for (std::size_t b = 0; problem.empty() && b < blocks.size() && b < 64; ++b) {
+        const auto [begin, end] = blocks[b];
+        check_block(object, begin, end, blocks);
+      }
+    }
+    ::munmap(map, size);
+    if (!problem.empty()) throw InputError(path_ + ": " + problem + " (damaged file?)");
   }
 
   // libhdf5 1.10 trusts the sizes in a global heap collection (where variable-length strings
@@ -212,6 +324,13 @@ class H5Reader {
         if (dt < 8 || type_at + 8 > size || (bytes[type_at] & 0x0f) != 9 ||
             (bytes[type_at + 1] & 0x0f) != 1 || data_at + 16 > size)
           continue;
+        // Its characters: a 1-byte base type (libhdf5 allocates length x base size before
+        // reading: a damaged base size of 13 369 345 asked for 3.2 GB).
+        if (dt >= 20 && u32(type_at + 12) != 1) {
+          problem = std::string("attribute ") + name + " has a damaged string type (characters of " +
+                    std::to_string(u32(type_at + 12)) + " bytes)";
+          break;
+        }
         const std::uint32_t length = u32(data_at);
         const std::uint64_t address = u64(data_at + 4);
         const std::uint32_t index = u32(data_at + 12);
