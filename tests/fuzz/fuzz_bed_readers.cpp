@@ -15,8 +15,8 @@
 
 namespace {
 
-// POWDERBED_FUZZ_READERS=text restricts the run to the CSV and dump readers (ctest's default:
-// libhdf5 1.10 itself still has the findings docs/hardening.md lists); unset or "all": all three.
+// POWDERBED_FUZZ_READERS=text restricts the run to the CSV and dump readers (ctest runs both
+// modes: tests/fuzz/CMakeLists.txt); unset or "all": all three.
 bool text_only() {
   static const bool only = [] {
     const char* v = std::getenv("POWDERBED_FUZZ_READERS");
