@@ -278,7 +278,9 @@ def fig13():
         "(docs/results/deposit-accuracy.md has what softening costs) and 60 ms of settling, so "
         "the fines falling at their Stokes speed have landed), the "
         "paper's scene at 200 W, 2 m/s. Vaporised: peak temperature at or above T_v = 3130 K; "
-        "fines are particles under 16 um in diameter.",
+        "fines are particles under 16 um in diameter. deposit draws each size from the mixture's "
+        "number fractions (550 : 3000), so the bimodal bed's split is near, not exactly, "
+        "550 + 3000 (the counts in brackets).",
         "",
         "| bed | model | height / width / depth (um) | T_max (K) | absorptance | molten | "
         "vaporised fines (of) | vaporised coarse (of) | wall (s) |",
