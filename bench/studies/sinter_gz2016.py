@@ -292,6 +292,10 @@ def fig13():
                      f"{s['max_temperature']:.0f} | {s['absorptance']:.3f} | "
                      f"{s['particles_molten']} | {fine} ({n_fine}) | {coarse} ({n_coarse}) | "
                      f"{wall:.1f} |")
+    lines += ["", "As in [GZ], it is the fines that vaporise, under either model: a particle's heat "
+              "capacity grows as r^3 and the power it takes as r^2, so a fine of 8 um reaches T_v "
+              "where a 30 um particle only melts. The fines also cover the gaps, so the bed with "
+              "fines absorbs more of the beam."]
     return lines
 
 
