@@ -19,14 +19,14 @@
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/h5_output.hpp"
 #include "powderbed/bed/json.hpp"
-#include "powderbed/thermal/keff_profile.hpp"
-#include "powderbed/thermal/keff_solve.hpp"
+#include "powderbed/keff/profile.hpp"
+#include "powderbed/keff/solve.hpp"
 
 namespace {
 
 using namespace powderbed;
 namespace po = app::po;
-namespace th = thermal;
+namespace kf = keff;
 
 const char* const kUsage =
     "keff --config SCENE.ini --bed BED.h5 [--axis x|y|z] [--t-hot K --t-cold K | --temperature K] "
@@ -39,7 +39,7 @@ constexpr double kSpan = 1;
 
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
-  const th::KeffScene d;
+  const kf::KeffScene d;
   desc.add_options()
       ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump)")
       ("out", po::value<std::string>(), "the bed with the particle temperatures (HDF5)")
@@ -104,7 +104,7 @@ int axis_index(const std::string& name) {
 // The wall temperatures: --temperature or --t-hot/--t-cold, whichever the command line gives
 // (it wins over the scene, DESIGN.md); both on the command line, or both in the scene, is refused.
 void set_walls(const po::variables_map& vm, const po::variables_map& command_line,
-               th::KeffScene& s) {
+               kf::KeffScene& s) {
   const auto walls_given = [](const po::variables_map& m) {
     return (m.count("t-hot") && !m["t-hot"].defaulted()) ||
            (m.count("t-cold") && !m["t-cold"].defaulted());
@@ -132,15 +132,15 @@ void set_walls(const po::variables_map& vm, const po::variables_map& command_lin
   s.cold_temperature = vm["t-cold"].as<double>();
 }
 
-th::KeffScene make_scene(const po::variables_map& vm, const po::variables_map& command_line) {
-  th::KeffScene s;
+kf::KeffScene make_scene(const po::variables_map& vm, const po::variables_map& command_line) {
+  kf::KeffScene s;
   s.axis = axis_index(vm["axis"].as<std::string>());
   set_walls(vm, command_line, s);
   s.solid_conductivity = vm["solid.conductivity"].as<double>();
   const std::string model = vm["gas.model"].as<std::string>();
   if (model != "constant" && model != "air")
     throw InputError("gas.model: '" + model + "' (accepted: constant, air)");
-  s.gas_model = model == "air" ? th::GasModel::air : th::GasModel::constant;
+  s.gas_model = model == "air" ? kf::GasModel::air : kf::GasModel::constant;
   s.gas_conductivity = vm["gas.conductivity"].as<double>();
   s.lens.lens = vm["gas.lens"].as<double>();
   s.lens.min_gap = vm["gas.min-gap"].as<double>();
@@ -148,7 +148,7 @@ th::KeffScene make_scene(const po::variables_map& vm, const po::variables_map& c
   if (region != "both-lenses" && region != "larger-lens")
     throw InputError("gas.lens-region: '" + region + "' (accepted: both-lenses, larger-lens)");
   s.lens.region =
-      region == "larger-lens" ? th::LensRegion::larger_lens : th::LensRegion::both_lenses;
+      region == "larger-lens" ? kf::LensRegion::larger_lens : kf::LensRegion::both_lenses;
   s.calibration = vm["contact.calibration"].as<double>();
   s.contact.hertz_correction = vm["contact.hertz-correction"].as<bool>();
   s.contact_path = vm["effects.contact"].as<bool>();
@@ -159,7 +159,7 @@ th::KeffScene make_scene(const po::variables_map& vm, const po::variables_map& c
   if (radiation != "pair" && radiation != "radiosity")
     throw InputError("radiation.model: '" + radiation + "' (accepted: pair, radiosity)");
   s.radiation_model =
-      radiation == "radiosity" ? th::RadiationModel::radiosity : th::RadiationModel::pair;
+      radiation == "radiosity" ? kf::RadiationModel::radiosity : kf::RadiationModel::pair;
   s.seed = vm["radiation.seed"].as<std::uint64_t>();
   s.emissivity = vm["radiation.emissivity"].as<double>();
   s.wall_emissivity = vm["radiation.wall-emissivity"].as<double>();
@@ -176,7 +176,7 @@ std::string profile_path_of(const std::string& out) {
   return (h5 ? out.substr(0, out.size() - suffix.size()) : out) + "-profile.csv";
 }
 
-std::string profile_csv(const th::TemperatureProfile& p, const th::KeffScene& scene) {
+std::string profile_csv(const kf::TemperatureProfile& p, const kf::KeffScene& scene) {
   const char* const axis = scene.axis == 0 ? "x" : scene.axis == 1 ? "y" : "z";
   std::string text = "# keff temperature profile along " + std::string(axis) +
                      ": particles binned by centre, cold wall " +
@@ -201,23 +201,23 @@ int run(int argc, char** argv) {
   if (!vm.count("bed")) throw InputError("--bed: missing (required)");
   po::variables_map command_line;  // what the command line alone says (walls)
   po::store(po::command_line_parser(argc, argv).options(desc).run(), command_line);
-  th::KeffScene scene = make_scene(vm, command_line);
+  kf::KeffScene scene = make_scene(vm, command_line);
   bed::Bed bed = bed::read_bed_any(vm["bed"].as<std::string>());
-  th::ContactOptions given;
+  kf::ContactOptions given;
   if (vm.count("contact.law")) given.law = vm["contact.law"].as<std::string>();
   if (vm.count("contact.young-scale")) given.young_scale = vm["contact.young-scale"].as<double>();
   if (vm.count("contact.stiffness")) given.stiffness = vm["contact.stiffness"].as<double>();
   if (vm.count("contact.young")) given.young = vm["contact.young"].as<double>();
   scene.contact =
-      th::contact_radius_params(bed.provenance.contact, scene.contact.hertz_correction, given);
+      kf::contact_radius_params(bed.provenance.contact, scene.contact.hertz_correction, given);
 
   const auto start = std::chrono::steady_clock::now();
   const app::ProgressBar bar;
   std::function<void(double)> progress;
   if (scene.radiation_path && ::isatty(STDERR_FILENO))
     progress = [&bar](double fraction) { bar.draw(fraction, "view factors"); };
-  const th::KeffNetwork network = th::build_keff_network(bed, scene, progress);
-  const th::KeffResult r = th::solve_keff(bed, scene, network);
+  const kf::KeffNetwork network = kf::build_keff_network(bed, scene, progress);
+  const kf::KeffResult r = kf::solve_keff(bed, scene, network);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -225,7 +225,7 @@ int run(int argc, char** argv) {
   if (vm.count("out")) {
     const std::string out = vm["out"].as<std::string>();
     profile_path = profile_path_of(out);
-    const th::TemperatureProfile profile = th::temperature_profile(
+    const kf::TemperatureProfile profile = kf::temperature_profile(
         bed, scene.axis, r.temperature, r.rattlers, vm["profile-bins"].as<std::size_t>());
     bed.temperature = r.temperature;
     bed.provenance.created_by = app::version_string("keff");
@@ -263,7 +263,7 @@ int run(int argc, char** argv) {
         .value("gas_links", static_cast<std::uint64_t>(r.gas_links))
         .value("radiation_links", static_cast<std::uint64_t>(r.radiation_links))
         .value("rays", static_cast<std::uint64_t>(scene.radiation_path ? scene.rays : 0))
-        .value("radiation_model", scene.radiation_model == th::RadiationModel::radiosity
+        .value("radiation_model", scene.radiation_model == kf::RadiationModel::radiosity
                                       ? "radiosity"
                                       : "pair")
         .value("lost_rays", static_cast<std::uint64_t>(r.lost_rays))

@@ -1,12 +1,12 @@
-// Rong–Horio gas-lens conductance by exact l_min part + Gauss–Legendre in ln l (keff_gas_lens.hpp).
-#include "powderbed/thermal/keff_gas_lens.hpp"
+// Rong–Horio gas-lens conductance by exact l_min part + Gauss–Legendre in ln l (gas_lens.hpp).
+#include "powderbed/keff/gas_lens.hpp"
 
 #include <array>
 #include <cmath>
 
-#include "powderbed/thermal/contact_conduction.hpp"
+#include "powderbed/bed/contact_geometry.hpp"
 
-namespace powderbed::thermal {
+namespace powderbed::keff {
 namespace {
 
 struct GaussLegendre {
@@ -97,8 +97,8 @@ double gas_pair_factor(const GasLensParams& p, double r_i, double r_j, double d)
   const double reach = both ? f * (r_i + r_j) : f * r_max + r_min;
   if (d >= reach || d <= r_max - r_min) return 0;
   const double lens =
-      both ? contact_radius(f * r_i, f * r_j, d) : contact_radius(f * r_max, r_min, d);
-  const double solid = contact_radius(r_i, r_j, d);
+      both ? bed::contact_radius(f * r_i, f * r_j, d) : bed::contact_radius(f * r_max, r_min, d);
+  const double solid = bed::contact_radius(r_i, r_j, d);
   const double u_out = std::fmin(lens * lens, r_min * r_min);
   return lens_integral(p, PairGeometry{r_i * r_i, r_j * r_j, d}, solid * solid, u_out);
 }
@@ -106,9 +106,9 @@ double gas_pair_factor(const GasLensParams& p, double r_i, double r_j, double d)
 double gas_wall_factor(const GasLensParams& p, double r, double h) {
   const double f = 1 + p.lens;
   if (h >= f * r || h <= 0) return 0;
-  const double solid = plane_contact_radius(r, h);
+  const double solid = bed::plane_contact_radius(r, h);
   const double u_out = std::fmin(f * f * r * r - h * h, r * r);
   return lens_integral(p, WallGeometry{r * r, h}, solid * solid, u_out);
 }
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

@@ -1,14 +1,14 @@
-#include "powderbed/thermal/keff_network.hpp"
+#include "powderbed/keff/network.hpp"
 
 #include <algorithm>
 #include <string>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/neighbours.hpp"
-#include "powderbed/thermal/keff_radiation.hpp"
-#include "powderbed/thermal/keff_view_factors.hpp"
+#include "powderbed/keff/radiation.hpp"
+#include "powderbed/keff/view_factors.hpp"
 
-namespace powderbed::thermal {
+namespace powderbed::keff {
 namespace {
 
 const char* const kAxisName[3] = {"x", "y", "z"};
@@ -87,4 +87,4 @@ KeffNetwork build_keff_network(const bed::Bed& bed, const KeffScene& scene,
   return net;
 }
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

@@ -1,11 +1,11 @@
-#include "powderbed/thermal/keff_profile.hpp"
+#include "powderbed/keff/profile.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 
-namespace powderbed::thermal {
+namespace powderbed::keff {
 
 TemperatureProfile temperature_profile(const bed::Bed& bed, int axis,
                                        const std::vector<double>& temperature,
@@ -55,4 +55,4 @@ TemperatureProfile temperature_profile(const bed::Bed& bed, int axis,
   return p;
 }
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

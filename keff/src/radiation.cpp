@@ -1,16 +1,16 @@
-#include "powderbed/thermal/keff_radiation.hpp"
+#include "powderbed/keff/radiation.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
 
-namespace powderbed::thermal {
+namespace powderbed::keff {
 namespace {
 
 // A = 4π r², the emitting surface of particle p.
 double area(const bed::Bed& bed, std::size_t p) {
-  return 4 * std::numbers::pi * bed.radius[p] * bed.radius[p];
+  return bed::sphere_area(bed.radius[p]);
 }
 
 // A pair's exchange area S_ij = (A_i F_ij + A_j F_ji) / 2, and each particle's with the walls.
@@ -111,4 +111,4 @@ void add_radiation_links(const bed::Bed& bed, const KeffScene& scene, const View
     add_radiosity_links(bed, scene, exchanges, net.wall_area, vf.wall_to_wall, net);
 }
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

@@ -1,11 +1,11 @@
-#include "powderbed/thermal/keff_scene.hpp"
+#include "powderbed/keff/scene.hpp"
 
 #include <cmath>
 #include <sstream>
 
 #include "powderbed/bed/errors.hpp"
 
-namespace powderbed::thermal {
+namespace powderbed::keff {
 namespace {
 
 bool positive(double v) { return std::isfinite(v) && v > 0; }
@@ -121,4 +121,4 @@ void KeffScene::validate() const {
         "effects: contact, gas and radiation are all off (accepted: at least one heat path)");
 }
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

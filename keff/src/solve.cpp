@@ -13,7 +13,7 @@
 // k_g'(T̄)/2 (T_j − T_i) to both slopes), so it is not symmetric: each step is solved by
 // Jacobi-preconditioned BiCGSTAB (Eigen), CG's nonsymmetric sibling. A step that does not lower
 // the residual is halved (backtracking), so a poor start cannot make Newton diverge.
-#include "powderbed/thermal/keff_solve.hpp"
+#include "powderbed/keff/solve.hpp"
 
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
@@ -23,9 +23,9 @@
 #include <string>
 
 #include "powderbed/bed/errors.hpp"
-#include "powderbed/thermal/keff_paths.hpp"
+#include "powderbed/keff/paths.hpp"
 
-namespace powderbed::thermal {
+namespace powderbed::keff {
 namespace {
 
 const char* const kAxisName[3] = {"x", "y", "z"};
@@ -312,4 +312,4 @@ KeffResult solve_keff(const bed::Bed& bed, const KeffScene& scene, const KeffNet
   return r;
 }
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

@@ -1,4 +1,4 @@
-#include "powderbed/thermal/keff_view_factors.hpp"
+#include "powderbed/keff/view_factors.hpp"
 
 #include <omp.h>
 
@@ -12,7 +12,7 @@
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/ray_trace.hpp"
 
-namespace powderbed::thermal {
+namespace powderbed::keff {
 namespace {
 
 using bed::cosine_direction;
@@ -60,7 +60,7 @@ std::size_t wall_rays(const bed::Bed& bed, const SphereGrid& grid, const ViewFac
   for (const double r : bed.radius) mean_radius += r / static_cast<double>(bed.n());
   const double wall_area = bed.domain.length(static_cast<int>(u)) *
                            bed.domain.length(static_cast<int>(v));
-  const double spheres = std::ceil(wall_area / (4 * std::numbers::pi * mean_radius * mean_radius));
+  const double spheres = std::ceil(wall_area / bed::sphere_area(mean_radius));
   const auto per_wall = static_cast<std::size_t>(
       std::min(static_cast<double>(params.rays) * spheres, kMaxWallRays));
   std::size_t lost = 0, crossed = 0;
@@ -153,4 +153,4 @@ ViewFactors view_factors(const bed::Bed& bed, const ViewFactorParams& params) {
   return vf;
 }
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

@@ -11,17 +11,17 @@
 
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/bed/io.hpp"
-#include "powderbed/thermal/keff_solve.hpp"
+#include "powderbed/keff/solve.hpp"
 
 using namespace powderbed;
-namespace th = powderbed::thermal;
+namespace kf = powderbed::keff;
 
 namespace {
 
 // ∫ 2π ρ / max(l_min, l(ρ)) dρ from ρ_in to ρ_out by the midpoint rule on `steps` cells, with
 // l(ρ) = d − √(r_i² − ρ²) − √(r_j² − ρ²) written directly (no substitution).
 template <class Gap>
-double midpoint(const th::GasLensParams& p, double rho_in, double rho_out, const Gap& gap) {
+double midpoint(const kf::GasLensParams& p, double rho_in, double rho_out, const Gap& gap) {
   const int steps = 2'000'000;
   const double h = (rho_out - rho_in) / steps;
   double sum = 0;
@@ -32,21 +32,21 @@ double midpoint(const th::GasLensParams& p, double rho_in, double rho_out, const
   return sum * h;
 }
 
-double pair_reference(const th::GasLensParams& p, double r_i, double r_j, double d) {
+double pair_reference(const kf::GasLensParams& p, double r_i, double r_j, double d) {
   const double f = 1 + p.lens, r_min = std::fmin(r_i, r_j), r_max = std::fmax(r_i, r_j);
-  const double lens = p.region == th::LensRegion::both_lenses
-                          ? th::contact_radius(f * r_i, f * r_j, d)
-                          : th::contact_radius(f * r_max, r_min, d);
+  const double lens = p.region == kf::LensRegion::both_lenses
+                          ? bed::contact_radius(f * r_i, f * r_j, d)
+                          : bed::contact_radius(f * r_max, r_min, d);
   const double rho_out = std::fmin(lens, r_min);
-  return midpoint(p, th::contact_radius(r_i, r_j, d), rho_out, [&](double rho) {
+  return midpoint(p, bed::contact_radius(r_i, r_j, d), rho_out, [&](double rho) {
     return d - std::sqrt(r_i * r_i - rho * rho) - std::sqrt(r_j * r_j - rho * rho);
   });
 }
 
-double wall_reference(const th::GasLensParams& p, double r, double h) {
+double wall_reference(const kf::GasLensParams& p, double r, double h) {
   const double f = 1 + p.lens;
   const double rho_out = std::fmin(std::sqrt(f * f * r * r - h * h), r);
-  return midpoint(p, th::plane_contact_radius(r, h), rho_out,
+  return midpoint(p, bed::plane_contact_radius(r, h), rho_out,
                   [&](double rho) { return h - std::sqrt(r * r - rho * rho); });
 }
 
@@ -56,9 +56,9 @@ double wall_reference(const th::GasLensParams& p, double r, double h) {
 // still catches any slip in the substitution or the l_min split (those show at 1e-3 and more).
 constexpr double kQuadrature = 1e-9;
 
-// Both outer edges of the gas region (keff_gas_lens.hpp).
-void expect_pair_factor_matches_brute_force(th::LensRegion region) {
-  th::GasLensParams p;
+// Both outer edges of the gas region (gas_lens.hpp).
+void expect_pair_factor_matches_brute_force(kf::LensRegion region) {
+  kf::GasLensParams p;
   p.region = region;
   const double r = 0.5e-3;
   struct Case {
@@ -72,51 +72,51 @@ void expect_pair_factor_matches_brute_force(th::LensRegion region) {
                         Case{r, r / 8, 9 * r / 8 + 2e-6, "1:8, apart"},
                         Case{r, r, 2.15 * r, "lens reaches well into the gap"}}) {
     const double reference = pair_reference(p, c.r_i, c.r_j, c.d);
-    EXPECT_NEAR(th::gas_pair_factor(p, c.r_i, c.r_j, c.d), reference, kQuadrature * reference)
+    EXPECT_NEAR(kf::gas_pair_factor(p, c.r_i, c.r_j, c.d), reference, kQuadrature * reference)
         << c.what;
     // Symmetric in the pair: the same integral with i and j swapped, equal to round-off.
-    EXPECT_NEAR(th::gas_pair_factor(p, c.r_j, c.r_i, c.d),
-                th::gas_pair_factor(p, c.r_i, c.r_j, c.d), 1e-12 * reference)
+    EXPECT_NEAR(kf::gas_pair_factor(p, c.r_j, c.r_i, c.d),
+                kf::gas_pair_factor(p, c.r_i, c.r_j, c.d), 1e-12 * reference)
         << c.what;
   }
   // Just out of reach: lenses apart (2.4 r), or the larger lens clear of the other sphere (2.2 r).
-  const double reach = region == th::LensRegion::both_lenses ? 2.4 * r : 2.2 * r;
-  EXPECT_EQ(th::gas_pair_factor(p, r, r, reach), 0.0);
-  EXPECT_GT(th::gas_pair_factor(p, r, r, 0.999 * reach), 0.0);
+  const double reach = region == kf::LensRegion::both_lenses ? 2.4 * r : 2.2 * r;
+  EXPECT_EQ(kf::gas_pair_factor(p, r, r, reach), 0.0);
+  EXPECT_GT(kf::gas_pair_factor(p, r, r, 0.999 * reach), 0.0);
 }
 
 }  // namespace
 
 TEST(KeffGas, PairFactorMatchesBruteForceBothLenses) {
-  expect_pair_factor_matches_brute_force(th::LensRegion::both_lenses);
+  expect_pair_factor_matches_brute_force(kf::LensRegion::both_lenses);
 }
 
 TEST(KeffGas, PairFactorMatchesBruteForceLargerLens) {
-  expect_pair_factor_matches_brute_force(th::LensRegion::larger_lens);
+  expect_pair_factor_matches_brute_force(kf::LensRegion::larger_lens);
 }
 
 TEST(KeffGas, LargerLensRegionIsTheSmallerOne) {
   // Two touching equal spheres: the larger lens meets the other sphere at ρ = 0.456 r, the two
   // lenses meet at 0.663 r; the gas factor of the first region is the smaller.
-  th::GasLensParams both, larger;
-  larger.region = th::LensRegion::larger_lens;
+  kf::GasLensParams both, larger;
+  larger.region = kf::LensRegion::larger_lens;
   const double r = 0.5e-3, d = 2 * r * (1 - 1e-4);
-  EXPECT_LT(th::gas_pair_factor(larger, r, r, d), th::gas_pair_factor(both, r, r, d));
+  EXPECT_LT(kf::gas_pair_factor(larger, r, r, d), kf::gas_pair_factor(both, r, r, d));
 }
 
 TEST(KeffGas, WallFactorMatchesBruteForce) {
-  const th::GasLensParams p;
+  const kf::GasLensParams p;
   const double r = 0.5e-3;
   for (const double h : {r * (1 - 1e-4), r + 3e-6, r + 0.5e-6, 1.15 * r}) {
     const double reference = wall_reference(p, r, h);
-    EXPECT_NEAR(th::gas_wall_factor(p, r, h), reference, kQuadrature * reference) << h;
+    EXPECT_NEAR(kf::gas_wall_factor(p, r, h), reference, kQuadrature * reference) << h;
   }
-  EXPECT_EQ(th::gas_wall_factor(p, r, 1.2 * r), 0.0);
+  EXPECT_EQ(kf::gas_wall_factor(p, r, 1.2 * r), 0.0);
 }
 
 TEST(KeffGas, AirPolynomial) {
   // SPEC.md §6 at 300 K, evaluated by hand: 1.77282e-4 − 3.0474e-3 + 2.8278e-2 + 7.505e-4.
-  EXPECT_NEAR(th::air_conductivity(300), 0.026158382, 1e-12);  // the hand sum is exact to 1e-12
+  EXPECT_NEAR(kf::air_conductivity(300), 0.026158382, 1e-12);  // the hand sum is exact to 1e-12
 }
 
 TEST(KeffGas, TwoSpheresGasOnlyIsTheSeriesOfThreeLenses) {
@@ -127,12 +127,12 @@ TEST(KeffGas, TwoSpheresGasOnlyIsTheSeriesOfThreeLenses) {
   b.add(r, r, r + g_wall, r);
   b.add(r, r, 3 * r + g_wall + g_pair, r);
   b.domain.upper = {2 * r, 2 * r, 4 * r + 2 * g_wall + g_pair};
-  th::KeffScene s;
+  kf::KeffScene s;
   s.contact_path = false;
-  const th::KeffResult res = th::solve_keff(b, s);
+  const kf::KeffResult res = kf::solve_keff(b, s);
   const double k_g = s.gas_conductivity;
-  const double wall = k_g * th::gas_wall_factor(s.lens, r, r + g_wall);
-  const double pair = k_g * th::gas_pair_factor(s.lens, r, r, 2 * r + g_pair);
+  const double wall = k_g * kf::gas_wall_factor(s.lens, r, r + g_wall);
+  const double pair = k_g * kf::gas_pair_factor(s.lens, r, r, 2 * r + g_pair);
   const double g = 1 / (2 / wall + 1 / pair);
   const double expected = g * b.domain.length(2) / (b.domain.length(0) * b.domain.length(1));
   EXPECT_NEAR(res.k_eff, expected, 1e-12 * expected);  // a 2-unknown solve: round-off
@@ -156,12 +156,12 @@ TEST(KeffGas, RandomBedGasOnlyAgainstZehnerBauerSchlunder) {
   // lid (the [KE] scene at 7 x 7 D). Gas path alone, the ke2016 scene's lens settings.
   const bed::Bed b =
       bed::read_bed_h5(std::string(POWDERBED_SOURCE_DIR) + "/tests/data/ke2016-steel-1mm-400.h5");
-  th::KeffScene s;
+  kf::KeffScene s;
   s.contact_path = false;
   s.solid_conductivity = 28.555;
   s.gas_conductivity = 0.026;
-  s.lens.region = th::LensRegion::larger_lens;
-  const th::KeffResult r = th::solve_keff(b, s);
+  s.lens.region = kf::LensRegion::larger_lens;
+  const kf::KeffResult r = kf::solve_keff(b, s);
   EXPECT_TRUE(r.rattlers.empty());  // every sphere has gas neighbours within its lens
   double solid = 0;
   for (const double radius : b.radius) solid += 4.0 / 3.0 * M_PI * radius * radius * radius;

@@ -1,5 +1,5 @@
 // Hard cases of issue 6 for the effective-conductivity solver (SPEC.md §6) beyond the rattlers
-// and k_g = 0 of test_keff_network.cpp: a bed at 2000 K where the T⁴ links dominate, the air
+// and k_g = 0 of test_network.cpp: a bed at 2000 K where the T⁴ links dominate, the air
 // model's temperature-dependent k_g against a bisection of the one-sphere balance, a bed one
 // particle thick against its per-sphere series closed form, a bimodal bed of size ratio 1:8, and
 // a Newton start far from the solution. Every solve must converge with nothing NaN.
@@ -9,12 +9,12 @@
 #include <random>
 
 #include "powderbed/bed/bed.hpp"
-#include "powderbed/thermal/keff_gas_lens.hpp"
-#include "powderbed/thermal/keff_paths.hpp"
-#include "powderbed/thermal/keff_solve.hpp"
+#include "powderbed/keff/gas_lens.hpp"
+#include "powderbed/keff/paths.hpp"
+#include "powderbed/keff/solve.hpp"
 
 using namespace powderbed;
-namespace th = powderbed::thermal;
+namespace kf = powderbed::keff;
 
 namespace {
 
@@ -69,8 +69,8 @@ bed::Bed bimodal_bed(unsigned seed) {
   return b;
 }
 
-th::KeffScene scene(double t_hot, double t_cold, bool contact, bool gas, bool radiation) {
-  th::KeffScene s;
+kf::KeffScene scene(double t_hot, double t_cold, bool contact, bool gas, bool radiation) {
+  kf::KeffScene s;
   s.hot_temperature = t_hot;
   s.cold_temperature = t_cold;
   s.contact_path = contact;
@@ -81,18 +81,18 @@ th::KeffScene scene(double t_hot, double t_cold, bool contact, bool gas, bool ra
   return s;
 }
 
-double end_temperature(const th::KeffScene& s, const th::KeffResult& r, std::uint32_t j) {
-  return j == th::kHotWall ? s.hot_temperature : j == th::kColdWall ? s.cold_temperature
+double end_temperature(const kf::KeffScene& s, const kf::KeffResult& r, std::uint32_t j) {
+  return j == kf::kHotWall ? s.hot_temperature : j == kf::kColdWall ? s.cold_temperature
                                                                      : r.temperature[j];
 }
 
-// A link's flow from j into i, written out from SPEC.md §6 independently of keff_solve.cpp.
-double link_flow(const th::KeffNetwork& net, const th::KeffLink& l, double ti, double tj) {
-  if (l.path == th::HeatPath::radiation)
-    return th::kStefanBoltzmann * l.conductance * (std::pow(tj, 4) - std::pow(ti, 4));
+// A link's flow from j into i, written out from SPEC.md §6 independently of solve.cpp.
+double link_flow(const kf::KeffNetwork& net, const kf::KeffLink& l, double ti, double tj) {
+  if (l.path == kf::HeatPath::radiation)
+    return kf::kStefanBoltzmann * l.conductance * (std::pow(tj, 4) - std::pow(ti, 4));
   double g = l.conductance;
-  if (l.path == th::HeatPath::gas && net.gas_follows_temperature)
-    g *= th::air_conductivity((ti + tj) / 2) / net.gas_reference;
+  if (l.path == kf::HeatPath::gas && net.gas_follows_temperature)
+    g *= kf::air_conductivity((ti + tj) / 2) / net.gas_reference;
   return g * (tj - ti);
 }
 
@@ -100,7 +100,7 @@ double link_flow(const th::KeffNetwork& net, const th::KeffLink& l, double ti, d
 // wall flows agree to the issue's 1e-8, the particles lie between the wall temperatures
 // (maximum principle, below), and Tellegen's theorem Σ q ΔT = Q (T_hot − T_cold) holds with the
 // flows recomputed link by link from the returned temperatures.
-void expect_solved(const th::KeffNetwork& net, const th::KeffScene& s, const th::KeffResult& r) {
+void expect_solved(const kf::KeffNetwork& net, const kf::KeffScene& s, const kf::KeffResult& r) {
   EXPECT_LE(r.residual, s.newton_tolerance);
   ASSERT_TRUE(std::isfinite(r.k_eff));
   EXPECT_GT(r.k_eff, 0);
@@ -119,16 +119,16 @@ void expect_solved(const th::KeffNetwork& net, const th::KeffScene& s, const th:
     EXPECT_LE(r.temperature[p], s.hot_temperature + 1e-6) << "particle " << p;
   }
   double dissipation = 0, q_hot = 0, q_cold = 0;
-  for (const th::KeffLink& l : net.links) {
+  for (const kf::KeffLink& l : net.links) {
     if (rattler[l.i]) continue;
     const double ti = r.temperature[l.i], tj = end_temperature(s, r, l.j);
     const double q = link_flow(net, l, ti, tj);
     dissipation += q * (tj - ti);
-    if (l.j == th::kHotWall) q_hot += q;
-    if (l.j == th::kColdWall) q_cold -= q;
+    if (l.j == kf::kHotWall) q_hot += q;
+    if (l.j == kf::kColdWall) q_cold -= q;
   }
   // Straight from wall to wall through the gaps (radiation): the same flow at both walls.
-  const double direct = th::kStefanBoltzmann * net.wall_exchange *
+  const double direct = kf::kStefanBoltzmann * net.wall_exchange *
                         (std::pow(s.hot_temperature, 4) - std::pow(s.cold_temperature, 4));
   q_hot += direct;
   q_cold += direct;
@@ -148,9 +148,9 @@ void expect_solved(const th::KeffNetwork& net, const th::KeffScene& s, const th:
 
 TEST(KeffHardCases, At2000KRadiationDominatesAndNewtonConverges) {
   const bed::Bed b = lattice_bed(5, 8, 3);  // 200 spheres
-  const th::KeffScene s = scene(2100, 1900, true, true, true);
-  const th::KeffNetwork net = th::build_keff_network(b, s);
-  const th::KeffResult r = th::solve_keff(b, s, net);
+  const kf::KeffScene s = scene(2100, 1900, true, true, true);
+  const kf::KeffNetwork net = kf::build_keff_network(b, s);
+  const kf::KeffResult r = kf::solve_keff(b, s, net);
   expect_solved(net, s, r);
   EXPECT_TRUE(r.rattlers.empty());
   // The secant start misses T⁴ by ~(ΔT / T)² ≈ 1 % over this window: quadratic steps from there
@@ -173,17 +173,17 @@ TEST(KeffHardCases, AirGasModelMatchesBisectionOfOneSphere) {
   b.add(1.5 * kR, 1.5 * kR, kR * (1 - 1e-3), kR);
   b.domain.upper = {3 * kR, 3 * kR, kR * (2 - 4e-3)};
   for (const bool radiation : {false, true}) {
-    th::KeffScene s = scene(1500, 300, true, true, radiation);
-    s.gas_model = th::GasModel::air;
-    const th::KeffNetwork net = th::build_keff_network(b, s);
+    kf::KeffScene s = scene(1500, 300, true, true, radiation);
+    s.gas_model = kf::GasModel::air;
+    const kf::KeffNetwork net = kf::build_keff_network(b, s);
     ASSERT_TRUE(net.gas_follows_temperature);
-    const th::KeffResult r = th::solve_keff(b, s, net);
+    const kf::KeffResult r = kf::solve_keff(b, s, net);
     expect_solved(net, s, r);
-    for (const th::KeffLink& l : net.links) ASSERT_TRUE(l.j >= th::kColdWall);  // walls only
+    for (const kf::KeffLink& l : net.links) ASSERT_TRUE(l.j >= kf::kColdWall);  // walls only
     const auto balance = [&](double t) {
       double sum = 0;
-      for (const th::KeffLink& l : net.links)
-        sum += link_flow(net, l, t, l.j == th::kHotWall ? 1500.0 : 300.0);
+      for (const kf::KeffLink& l : net.links)
+        sum += link_flow(net, l, t, l.j == kf::kHotWall ? 1500.0 : 300.0);
       return sum;
     };
     double lo = 300, hi = 1500;  // balance(lo) > 0 > balance(hi)
@@ -200,10 +200,10 @@ TEST(KeffHardCases, AirGasModelMatchesBisectionOfOneSphere) {
 TEST(KeffHardCases, AirGasModelOnADisorderedBedWithAndWithoutRadiation) {
   const bed::Bed b = lattice_bed(4, 6, 5);
   for (const bool radiation : {false, true}) {
-    th::KeffScene s = scene(1500, 300, true, true, radiation);
-    s.gas_model = th::GasModel::air;
-    const th::KeffNetwork net = th::build_keff_network(b, s);
-    const th::KeffResult r = th::solve_keff(b, s, net);
+    kf::KeffScene s = scene(1500, 300, true, true, radiation);
+    s.gas_model = kf::GasModel::air;
+    const kf::KeffNetwork net = kf::build_keff_network(b, s);
+    const kf::KeffResult r = kf::solve_keff(b, s, net);
     SCOPED_TRACE(radiation ? "with radiation" : "without radiation");
     expect_solved(net, s, r);
     EXPECT_LE(r.newton_iterations, 10u);  // as the one sphere (3 and 4 measured)
@@ -226,21 +226,21 @@ TEST(KeffHardCases, OneParticleThickBedMatchesPerSphereSeries) {
       b.add((i + 0.5) * pitch, (j + 0.5) * pitch, kR + lift(rng) * e, kR + e);
     }
   b.domain.upper = {4 * pitch, 4 * pitch, height};
-  const th::KeffScene s = scene(305, 295, true, true, false);
-  const th::KeffNetwork net = th::build_keff_network(b, s);
-  const th::KeffResult r = th::solve_keff(b, s, net);
+  const kf::KeffScene s = scene(305, 295, true, true, false);
+  const kf::KeffNetwork net = kf::build_keff_network(b, s);
+  const kf::KeffResult r = kf::solve_keff(b, s, net);
   expect_solved(net, s, r);
   std::vector<double> g_hot(b.n(), 0), g_cold(b.n(), 0);
-  for (const th::KeffLink& l : net.links) {
-    ASSERT_TRUE(l.j == th::kHotWall || l.j == th::kColdWall) << "link " << l.i << "-" << l.j;
-    (l.j == th::kHotWall ? g_hot : g_cold)[l.i] += l.conductance;
+  for (const kf::KeffLink& l : net.links) {
+    ASSERT_TRUE(l.j == kf::kHotWall || l.j == kf::kColdWall) << "link " << l.i << "-" << l.j;
+    (l.j == kf::kHotWall ? g_hot : g_cold)[l.i] += l.conductance;
   }
   double g = 0;
   for (std::size_t p = 0; p < b.n(); ++p) {
     const double rp = b.radius[p];
     const auto wall = [&](double h) {  // Batchelor–O'Brien 2 k_s √(r² − h²) + Rong–Horio lens
       return 2 * s.solid_conductivity * std::sqrt(rp * rp - h * h) +
-             s.gas_conductivity * th::gas_wall_factor(s.lens, rp, h);
+             s.gas_conductivity * kf::gas_wall_factor(s.lens, rp, h);
     };
     const double hot = wall(height - b.z[p]), cold = wall(b.z[p]);
     // The network's wall links are these two sums: round-off.
@@ -262,18 +262,18 @@ TEST(KeffHardCases, OneLayerTangentToBothWalls) {
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) b.add((2 * i + 1) * kR, (2 * j + 1) * kR, kR, kR);
   b.domain.upper = {8 * kR, 8 * kR, 2 * kR};
-  th::KeffScene s = scene(305, 295, true, true, false);
-  const th::KeffNetwork net = th::build_keff_network(b, s);
-  const th::KeffResult r = th::solve_keff(b, s, net);
+  kf::KeffScene s = scene(305, 295, true, true, false);
+  const kf::KeffNetwork net = kf::build_keff_network(b, s);
+  const kf::KeffResult r = kf::solve_keff(b, s, net);
   expect_solved(net, s, r);
   EXPECT_EQ(r.contact_links, 0u);
-  const double expected = 16 * s.gas_conductivity * th::gas_wall_factor(s.lens, kR, kR) / 2 *
+  const double expected = 16 * s.gas_conductivity * kf::gas_wall_factor(s.lens, kR, kR) / 2 *
                           b.domain.length(2) / (b.domain.length(0) * b.domain.length(1));
   EXPECT_NEAR(r.k_eff, expected, 1e-10 * expected);  // CG to 1e-12 on 16 unknowns
   // All paths at 1000 K: the Monte-Carlo view factors break the symmetry, no closed form.
   s = scene(1100, 900, true, true, true);
-  const th::KeffNetwork all = th::build_keff_network(b, s);
-  const th::KeffResult ra = th::solve_keff(b, s, all);
+  const kf::KeffNetwork all = kf::build_keff_network(b, s);
+  const kf::KeffResult ra = kf::solve_keff(b, s, all);
   expect_solved(all, s, ra);
   EXPECT_GT(ra.share_radiation, 0);
   EXPECT_GT(ra.k_eff, expected);  // radiation adds a parallel path to the same lenses
@@ -283,10 +283,10 @@ TEST(KeffHardCases, BimodalBedSizeRatioOneToEight) {
   const bed::Bed b = bimodal_bed(17);
   ASSERT_GT(b.n(), 500u);
   for (const bool radiation : {false, true}) {
-    th::KeffScene s = scene(1100, 900, true, true, radiation);
+    kf::KeffScene s = scene(1100, 900, true, true, radiation);
     s.rays = 100;  // the solve is under test, not the view factors (they take most of the time)
-    const th::KeffNetwork net = th::build_keff_network(b, s);
-    const th::KeffResult r = th::solve_keff(b, s, net);
+    const kf::KeffNetwork net = kf::build_keff_network(b, s);
+    const kf::KeffResult r = kf::solve_keff(b, s, net);
     SCOPED_TRACE(radiation ? "with radiation" : "without radiation");
     expect_solved(net, s, r);
     EXPECT_LE(r.newton_iterations, 6u);  // linear, or the secant start of a 200 K window (2)
@@ -305,9 +305,9 @@ TEST(KeffHardCases, NewtonFromAFarStartBacktracksToConvergence) {
   // 2100/1900 K window takes 3).
   const bed::Bed b = lattice_bed(4, 8, 7);
   for (const auto& [t_hot, t_cold] : {std::pair{2000.0, 300.0}, std::pair{5000.0, 50.0}}) {
-    const th::KeffScene s = scene(t_hot, t_cold, false, false, true);
-    const th::KeffNetwork net = th::build_keff_network(b, s);
-    const th::KeffResult r = th::solve_keff(b, s, net);
+    const kf::KeffScene s = scene(t_hot, t_cold, false, false, true);
+    const kf::KeffNetwork net = kf::build_keff_network(b, s);
+    const kf::KeffResult r = kf::solve_keff(b, s, net);
     SCOPED_TRACE(t_hot);
     expect_solved(net, s, r);
     EXPECT_GT(r.newton_iterations, 3u);  // the damped steps came first

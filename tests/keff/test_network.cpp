@@ -9,10 +9,10 @@
 
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/bed/errors.hpp"
-#include "powderbed/thermal/keff_solve.hpp"
+#include "powderbed/keff/solve.hpp"
 
 using namespace powderbed;
-namespace th = powderbed::thermal;
+namespace kf = powderbed::keff;
 
 namespace {
 
@@ -30,14 +30,14 @@ bed::Bed column(double width = 2 * kR) {
   return b;
 }
 
-th::KeffScene contact_only() {
-  th::KeffScene s;
+kf::KeffScene contact_only() {
+  kf::KeffScene s;
   s.gas_path = false;
   return s;
 }
 
 // k_eff of the column from its series conductance: two wall contacts and kColumn - 1 pairs.
-double series_keff(const bed::Bed& b, const th::KeffScene& s, double a_pair, double a_wall) {
+double series_keff(const bed::Bed& b, const kf::KeffScene& s, double a_pair, double a_wall) {
   const double g_pair = 2 * s.solid_conductivity * a_pair;
   const double g_wall = 2 * s.solid_conductivity * a_wall;
   const double g = 1 / (2 / g_wall + (kColumn - 1) / g_pair);
@@ -52,8 +52,8 @@ constexpr double kExact = 1e-10;
 
 TEST(Keff, ColumnMatchesSeriesContactConductance) {
   const bed::Bed b = column();
-  const th::KeffScene s = contact_only();
-  const th::KeffResult r = th::solve_keff(b, s);
+  const kf::KeffScene s = contact_only();
+  const kf::KeffResult r = kf::solve_keff(b, s);
   const double d = 2 * kR - kOverlap;
   const double a_pair = std::sqrt(kR * kR - d * d / 4);
   const double a_wall = std::sqrt(kR * kR - (kR - kOverlap) * (kR - kOverlap));
@@ -70,11 +70,11 @@ TEST(Keff, ColumnMatchesSeriesContactConductance) {
 
 TEST(Keff, ColumnWithHertzCorrectionAndCalibration) {
   const bed::Bed b = column();
-  th::KeffScene s = contact_only();
+  kf::KeffScene s = contact_only();
   s.contact.hertz_correction = true;
   s.contact.young_scale = 1000;  // δ_h = δ_s S^{-2/3} = δ_s / 100
   s.calibration = 1.3;
-  const th::KeffResult r = th::solve_keff(b, s);
+  const kf::KeffResult r = kf::solve_keff(b, s);
   // a = A_c √(R* δ_h): R* = r/2 for a pair, r for the wall.
   const double a_pair = 1.3 * std::sqrt(kR / 2 * kOverlap / 100);
   const double a_wall = 1.3 * std::sqrt(kR * kOverlap / 100);
@@ -85,10 +85,10 @@ TEST(Keff, ColumnWithHertzCorrectionAndCalibration) {
 TEST(Keff, ZeroGasConductivityIsContactOnly) {
   // Issue 6 hard case: k_g = 0 with contacts only gives no gas links and the contact answer.
   const bed::Bed b = column();
-  th::KeffScene s;
+  kf::KeffScene s;
   s.gas_conductivity = 0;
-  const th::KeffResult r = th::solve_keff(b, s);
-  const double k_contact = th::solve_keff(b, contact_only()).k_eff;
+  const kf::KeffResult r = kf::solve_keff(b, s);
+  const double k_contact = kf::solve_keff(b, contact_only()).k_eff;
   EXPECT_EQ(r.gas_links, 0u);
   EXPECT_NEAR(r.k_eff, k_contact, kExact * k_contact);
 }
@@ -101,10 +101,10 @@ TEST(Keff, AxisXGivesTheSameColumn) {
   along_x.z = along_z.x;
   const auto& upper = along_z.domain.upper;
   along_x.domain.upper = {upper[2], upper[1], upper[0]};
-  th::KeffScene s = contact_only();
-  const double k_z = th::solve_keff(along_z, s).k_eff;
+  kf::KeffScene s = contact_only();
+  const double k_z = kf::solve_keff(along_z, s).k_eff;
   s.axis = 0;
-  EXPECT_NEAR(th::solve_keff(along_x, s).k_eff, k_z, kExact * k_z);
+  EXPECT_NEAR(kf::solve_keff(along_x, s).k_eff, k_z, kExact * k_z);
 }
 
 TEST(Keff, RattlersAndFloatingClustersAreReportedAndLeftOut) {
@@ -115,9 +115,9 @@ TEST(Keff, RattlersAndFloatingClustersAreReportedAndLeftOut) {
   b.add(6 * kR, 6 * kR, mid, kR);                    // a rattler
   b.add(6 * kR, 2 * kR, mid, kR);                    // a floating pair ...
   b.add(6 * kR, 2 * kR, mid + 2 * kR - kOverlap, kR);  // ... touching each other only
-  th::KeffScene s;  // both paths: the lenses of the extra particles reach nothing either
-  const th::KeffResult with = th::solve_keff(b, s);
-  const th::KeffResult without = th::solve_keff(plain, s);
+  kf::KeffScene s;  // both paths: the lenses of the extra particles reach nothing either
+  const kf::KeffResult with = kf::solve_keff(b, s);
+  const kf::KeffResult without = kf::solve_keff(plain, s);
   ASSERT_EQ(with.rattlers.size(), 3u);
   EXPECT_EQ(with.rattlers[0], static_cast<std::uint32_t>(kColumn));
   // The same linear system up to the ordering of the unknowns: equal to round-off.
@@ -139,9 +139,9 @@ TEST(Keff, DisorderedBedWallFlowsAgreeAndTellegenHolds) {
         b.add(kR + i * pitch + jitter(rng), kR + j * pitch + jitter(rng),
               0.98 * kR + k * pitch + jitter(rng), size(rng));
   b.domain.upper = {4 * pitch + 0.1 * kR, 4 * pitch + 0.1 * kR, 5 * pitch + 1.96 * kR};
-  th::KeffScene s;  // constant k_g: a linear network, whose links' G the Tellegen sum uses
-  const th::KeffNetwork net = th::build_keff_network(b, s);
-  const th::KeffResult r = th::solve_keff(b, s, net);
+  kf::KeffScene s;  // constant k_g: a linear network, whose links' G the Tellegen sum uses
+  const kf::KeffNetwork net = kf::build_keff_network(b, s);
+  const kf::KeffResult r = kf::solve_keff(b, s, net);
   // Issue 6: the two wall flows agree to 1e-8 relative (the direct solve reaches ~1e-14).
   EXPECT_NEAR(r.heat_flow_hot, r.heat_flow_cold, 1e-8 * r.heat_flow_hot);
   EXPECT_GT(r.share_contact, 0);
@@ -149,9 +149,9 @@ TEST(Keff, DisorderedBedWallFlowsAgreeAndTellegenHolds) {
   EXPECT_NEAR(r.share_contact + r.share_gas, 1, 1e-14);  // shares of one sum: round-off
   // Tellegen: Σ G ΔT² over the links equals Q_wall (T_hot − T_cold) for the solved network.
   double dissipation = 0;
-  for (const th::KeffLink& l : net.links) {
-    const double tj = l.j == th::kHotWall    ? s.hot_temperature
-                      : l.j == th::kColdWall ? s.cold_temperature
+  for (const kf::KeffLink& l : net.links) {
+    const double tj = l.j == kf::kHotWall    ? s.hot_temperature
+                      : l.j == kf::kColdWall ? s.cold_temperature
                                              : r.temperature[l.j];
     dissipation += l.conductance * (tj - r.temperature[l.i]) * (tj - r.temperature[l.i]);
   }
@@ -167,7 +167,7 @@ TEST(Keff, NoParticleAtAWallIsRefusedNamingTheWall) {
   bed::Bed b = column();
   b.domain.upper[2] += kR;  // the top particle no longer reaches the hot wall, nor its lens
   try {
-    th::solve_keff(b, contact_only());
+    kf::solve_keff(b, contact_only());
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("hot wall"), std::string::npos) << e.what();
@@ -176,19 +176,19 @@ TEST(Keff, NoParticleAtAWallIsRefusedNamingTheWall) {
 
 TEST(Keff, BadScenesAndBedsAreRefused) {
   const bed::Bed b = column();
-  th::KeffScene s;
+  kf::KeffScene s;
   s.hot_temperature = s.cold_temperature;
-  EXPECT_THROW(th::solve_keff(b, s), InputError);
-  s = th::KeffScene{};
+  EXPECT_THROW(kf::solve_keff(b, s), InputError);
+  s = kf::KeffScene{};
   s.solid_conductivity = -1;
-  EXPECT_THROW(th::solve_keff(b, s), InputError);
-  s = th::KeffScene{};
+  EXPECT_THROW(kf::solve_keff(b, s), InputError);
+  s = kf::KeffScene{};
   s.contact_path = s.gas_path = false;
-  EXPECT_THROW(th::solve_keff(b, s), InputError);
+  EXPECT_THROW(kf::solve_keff(b, s), InputError);
   bed::Bed periodic = b;
   periodic.domain.periodic[2] = true;
-  EXPECT_THROW(th::solve_keff(periodic, th::KeffScene{}), InputError);
+  EXPECT_THROW(kf::solve_keff(periodic, kf::KeffScene{}), InputError);
   bed::Bed outside = b;
   outside.z[0] = -1e-3;
-  EXPECT_THROW(th::solve_keff(outside, th::KeffScene{}), InputError);
+  EXPECT_THROW(kf::solve_keff(outside, kf::KeffScene{}), InputError);
 }

@@ -13,12 +13,12 @@
 #include <utility>
 
 #include "powderbed/bed/bed.hpp"
-#include "powderbed/thermal/keff_radiation.hpp"
-#include "powderbed/thermal/keff_solve.hpp"
-#include "powderbed/thermal/keff_view_factors.hpp"
+#include "powderbed/keff/radiation.hpp"
+#include "powderbed/keff/solve.hpp"
+#include "powderbed/keff/view_factors.hpp"
 
 using namespace powderbed;
-namespace th = powderbed::thermal;
+namespace kf = powderbed::keff;
 
 namespace {
 
@@ -45,23 +45,23 @@ bed::Bed loose_lattice(int side, unsigned seed) {
 }
 
 // Sum of each particle's row (self, particles and walls).
-std::vector<double> row_sums(const th::ViewFactors& vf, std::size_t n) {
+std::vector<double> row_sums(const kf::ViewFactors& vf, std::size_t n) {
   std::vector<double> sum(n, 0);
   for (const auto& e : vf.entries) sum[e.i] += e.f;
   return sum;
 }
 
-std::map<std::pair<std::uint32_t, std::uint32_t>, double> pair_factors(const th::ViewFactors& vf) {
+std::map<std::pair<std::uint32_t, std::uint32_t>, double> pair_factors(const kf::ViewFactors& vf) {
   std::map<std::pair<std::uint32_t, std::uint32_t>, double> f;
   for (const auto& e : vf.entries)
-    if (e.j != th::kHotWall && e.j != th::kColdWall && e.j != e.i)
+    if (e.j != kf::kHotWall && e.j != kf::kColdWall && e.j != e.i)
       f[{e.i, e.j}] = e.f;
   return f;
 }
 
 // RMS over pairs with F ≥ 0.02 both ways of the reciprocity error A_i F_ij − A_j F_ji, raw and
 // over its binomial standard error √(A_i² F_ij(1−F_ij) + A_j² F_ji(1−F_ji)) / √rays.
-std::pair<double, double> reciprocity_rms(const bed::Bed& b, const th::ViewFactors& vf) {
+std::pair<double, double> reciprocity_rms(const bed::Bed& b, const kf::ViewFactors& vf) {
   const auto f = pair_factors(vf);
   double raw = 0, scaled = 0;
   int count = 0;
@@ -90,8 +90,8 @@ bed::Bed sphere_between_walls() {
   return b;
 }
 
-th::KeffScene radiation_only(double t_hot, double t_cold) {
-  th::KeffScene s;
+kf::KeffScene radiation_only(double t_hot, double t_cold) {
+  kf::KeffScene s;
   s.contact_path = false;
   s.gas_path = false;
   s.radiation_path = true;
@@ -112,10 +112,10 @@ TEST(KeffViewFactors, SphereRestingOnPlaneSeesHalf) {
   b.add(200 * kR, 200 * kR, kR, kR);
   b.domain.upper = {400 * kR, 400 * kR, 4 * kR};
   const std::size_t rays = 100000;
-  const th::ViewFactors vf = th::view_factors(b, {rays, 7, 2, {}});
+  const kf::ViewFactors vf = kf::view_factors(b, {rays, 7, 2, {}});
   double f = 0;
   for (const auto& e : vf.entries)
-    if (e.j == th::kColdWall) f = e.f;
+    if (e.j == kf::kColdWall) f = e.f;
   // F = 0.5 exactly for a sphere tangent to an infinite plane; the estimate is binomial with
   // standard error √(F(1−F)/N) = 1.6e-3: 3 standard errors.
   const double se = std::sqrt(0.25 / static_cast<double>(rays));
@@ -124,7 +124,7 @@ TEST(KeffViewFactors, SphereRestingOnPlaneSeesHalf) {
 
 TEST(KeffViewFactors, RowsSumToOneInAClosedBox) {
   const bed::Bed b = loose_lattice(4, 3);
-  const th::ViewFactors vf = th::view_factors(b, {500, 1, 2, {}});
+  const kf::ViewFactors vf = kf::view_factors(b, {500, 1, 2, {}});
   EXPECT_EQ(vf.lost_rays, 0u);
   // Walls and mirrors close the box: every ray hits something, and a row is a sum of 500 counts
   // over 500, exact but for the round-off of the division.
@@ -134,8 +134,8 @@ TEST(KeffViewFactors, RowsSumToOneInAClosedBox) {
 TEST(KeffViewFactors, ReciprocityWithinMonteCarloErrorShrinkingAsOneOverRootRays) {
   const bed::Bed b = loose_lattice(3, 5);
   const auto [raw_coarse, scaled_coarse] =
-      reciprocity_rms(b, th::view_factors(b, {1000, 2, 2, {}}));
-  const auto [raw_fine, scaled_fine] = reciprocity_rms(b, th::view_factors(b, {100000, 2, 2, {}}));
+      reciprocity_rms(b, kf::view_factors(b, {1000, 2, 2, {}}));
+  const auto [raw_fine, scaled_fine] = reciprocity_rms(b, kf::view_factors(b, {100000, 2, 2, {}}));
   // The errors are sampling noise: RMS over the standard error ≈ 1 (a systematic error, e.g. a
   // wrong emission law or a missed hit, would grow with the rays). 1.5 allows for the RMS of
   // ~100 pairs (±10 %) and the pairs sharing rays.
@@ -151,9 +151,9 @@ TEST(KeffViewFactors, SameForAnyThreadCount) {
   const bed::Bed b = loose_lattice(3, 9);
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
-  const th::ViewFactors one = th::view_factors(b, {300, 4, 2, {}});
+  const kf::ViewFactors one = kf::view_factors(b, {300, 4, 2, {}});
   omp_set_num_threads(3);
-  const th::ViewFactors three = th::view_factors(b, {300, 4, 2, {}});
+  const kf::ViewFactors three = kf::view_factors(b, {300, 4, 2, {}});
   omp_set_num_threads(threads);
   ASSERT_EQ(one.entries.size(), three.entries.size());
   for (std::size_t k = 0; k < one.entries.size(); ++k) {
@@ -168,16 +168,16 @@ TEST(KeffRadiation, OneSphereMatchesItsClosedForm) {
   // Q = σ (T_h⁴ − T_c⁴) / (1/G_h + 1/G_c), and T⁴ = (G_h T_h⁴ + G_c T_c⁴) / (G_h + G_c); the
   // walls see each other past it through G_w, which adds σ G_w (T_h⁴ − T_c⁴) to both flows.
   const bed::Bed b = sphere_between_walls();
-  th::KeffScene s = radiation_only(900, 600);
+  kf::KeffScene s = radiation_only(900, 600);
   s.emissivity = 0.7;
   s.wall_emissivity = 0.4;
-  const th::KeffNetwork net = th::build_keff_network(b, s);
+  const kf::KeffNetwork net = kf::build_keff_network(b, s);
   double g_hot = 0, g_cold = 0;
-  for (const auto& l : net.links) (l.j == th::kHotWall ? g_hot : g_cold) += l.conductance;
-  const th::KeffResult r = th::solve_keff(b, s, net);
+  for (const auto& l : net.links) (l.j == kf::kHotWall ? g_hot : g_cold) += l.conductance;
+  const kf::KeffResult r = kf::solve_keff(b, s, net);
   const double h4 = std::pow(900.0, 4), c4 = std::pow(600.0, 4);
   EXPECT_GT(net.wall_exchange, 0);  // the sphere covers π/16 of the walls
-  const double q = th::kStefanBoltzmann * (h4 - c4) * (1 / (1 / g_hot + 1 / g_cold) +
+  const double q = kf::kStefanBoltzmann * (h4 - c4) * (1 / (1 / g_hot + 1 / g_cold) +
                                                       net.wall_exchange);
   // Newton stops at a relative residual of 1e-10, one unknown: the flows to ~1e-10.
   EXPECT_NEAR(r.heat_flow_hot, q, 1e-9 * q);
@@ -189,7 +189,7 @@ TEST(KeffRadiation, OneSphereMatchesItsClosedForm) {
 
 TEST(KeffRadiation, RadiationOnlyNetworkConservesEnergy) {
   const bed::Bed b = loose_lattice(4, 11);
-  const th::KeffResult r = th::solve_keff(b, radiation_only(1200, 400));
+  const kf::KeffResult r = kf::solve_keff(b, radiation_only(1200, 400));
   EXPECT_EQ(r.rattlers.size(), 0u);
   EXPECT_GT(r.radiation_links, 0u);
   // The bound on the wall-flow mismatch (it is the sum of the Newton residuals).
@@ -213,12 +213,12 @@ TEST(KeffRadiation, NewtonConvergesInAFewStepsWithAllPaths) {
       for (int k = 0; k < 4; ++k)
         b.add(kR + i * pitch, kR + j * pitch, kR - overlap + k * pitch, kR);
   b.domain.upper = {side, side, side - 2 * overlap};
-  th::KeffScene s;
+  kf::KeffScene s;
   s.radiation_path = true;
   s.hot_temperature = 1500;
   s.cold_temperature = 1300;
   s.rays = 1000;
-  const th::KeffResult r = th::solve_keff(b, s);
+  const kf::KeffResult r = kf::solve_keff(b, s);
   EXPECT_GE(r.newton_iterations, 1u);
   EXPECT_LE(r.newton_iterations, 5u);  // the secant start is close: quadratic steps
   EXPECT_NEAR(r.heat_flow_hot, r.heat_flow_cold, 1e-8 * r.heat_flow_hot);
@@ -226,9 +226,9 @@ TEST(KeffRadiation, NewtonConvergesInAFewStepsWithAllPaths) {
   // Tellegen: the shares are parts of one sum.
   EXPECT_NEAR(r.share_contact + r.share_gas + r.share_radiation, 1, 1e-12);
   // Radiation adds a parallel path: k_eff rises over the conduction-only network.
-  th::KeffScene conduction = s;
+  kf::KeffScene conduction = s;
   conduction.radiation_path = false;
-  EXPECT_GT(r.k_eff, th::solve_keff(b, conduction).k_eff);
+  EXPECT_GT(r.k_eff, kf::solve_keff(b, conduction).k_eff);
 }
 
 TEST(KeffRadiation, ParallelPlatesPastATinySphere) {
@@ -240,13 +240,13 @@ TEST(KeffRadiation, ParallelPlatesPastATinySphere) {
   const double gap = 1e-2, r = 1e-3 * gap;
   b.add(gap / 2, gap / 2, gap / 2, r);
   b.domain.upper = {gap, gap, gap};
-  for (const th::RadiationModel model : {th::RadiationModel::pair, th::RadiationModel::radiosity}) {
-    th::KeffScene s = radiation_only(900, 500);
+  for (const kf::RadiationModel model : {kf::RadiationModel::pair, kf::RadiationModel::radiosity}) {
+    kf::KeffScene s = radiation_only(900, 500);
     s.radiation_model = model;
     s.wall_emissivity = 0.6;
     s.rays = 200;
-    const th::KeffResult res = th::solve_keff(b, s);
-    const double plates = th::kStefanBoltzmann * (std::pow(900.0, 4) - std::pow(500.0, 4)) *
+    const kf::KeffResult res = kf::solve_keff(b, s);
+    const double plates = kf::kStefanBoltzmann * (std::pow(900.0, 4) - std::pow(500.0, 4)) *
                           gap * gap / (2 / 0.6 - 1);
     // The shadow and the sphere's own path are O((r/gap)²) = 1e-6 of the flow; the wall-to-wall
     // F is counted from 1e6 rays per wall, nearly all of which cross (binomial error ~0).
@@ -262,32 +262,32 @@ TEST(KeffRadiation, RadiosityModelLetsARadiationOnlySphereIgnoreItsEmissivity) {
   // whatever its ε (a re-radiating surface). SPEC's pair formula instead puts (1−ε)/(εA) in
   // each of its two links, and its flow falls with ε.
   const bed::Bed b = sphere_between_walls();
-  th::KeffScene s = radiation_only(900, 600);
+  kf::KeffScene s = radiation_only(900, 600);
   s.wall_emissivity = 1;
-  s.radiation_model = th::RadiationModel::radiosity;
-  const auto flow = [&](double eps, th::RadiationModel model) {
-    th::KeffScene t = s;
+  s.radiation_model = kf::RadiationModel::radiosity;
+  const auto flow = [&](double eps, kf::RadiationModel model) {
+    kf::KeffScene t = s;
     t.emissivity = eps;
     t.radiation_model = model;
-    return th::solve_keff(b, t).heat_flow_hot;
+    return kf::solve_keff(b, t).heat_flow_hot;
   };
-  const double black = flow(1, th::RadiationModel::radiosity);
+  const double black = flow(1, kf::RadiationModel::radiosity);
   // Same rays, same exchange areas: the grey sphere's radiosity node removes its surface
   // resistance from the path exactly, to Newton's 1e-10.
-  EXPECT_NEAR(flow(0.3, th::RadiationModel::radiosity), black, 1e-9 * black);
-  EXPECT_NEAR(flow(1, th::RadiationModel::pair), black, 1e-12 * black);  // black: one network
-  EXPECT_LT(flow(0.3, th::RadiationModel::pair), 0.9 * black);
+  EXPECT_NEAR(flow(0.3, kf::RadiationModel::radiosity), black, 1e-9 * black);
+  EXPECT_NEAR(flow(1, kf::RadiationModel::pair), black, 1e-12 * black);  // black: one network
+  EXPECT_LT(flow(0.3, kf::RadiationModel::pair), 0.9 * black);
 }
 
 TEST(KeffRadiation, RadiosityNetworkOnABedConservesEnergy) {
   const bed::Bed b = loose_lattice(4, 5);
-  th::KeffScene s = radiation_only(1300, 1100);
-  s.radiation_model = th::RadiationModel::radiosity;
+  kf::KeffScene s = radiation_only(1300, 1100);
+  s.radiation_model = kf::RadiationModel::radiosity;
   s.emissivity = 0.3;
   s.wall_emissivity = 0.5;
-  const th::KeffNetwork net = th::build_keff_network(b, s);
+  const kf::KeffNetwork net = kf::build_keff_network(b, s);
   EXPECT_EQ(net.node_count, 2 * b.n() + 2);  // a radiosity node per sphere and per wall
-  const th::KeffResult r = th::solve_keff(b, s, net);
+  const kf::KeffResult r = kf::solve_keff(b, s, net);
   ASSERT_EQ(r.temperature.size(), b.n());
   EXPECT_NEAR(r.heat_flow_hot, r.heat_flow_cold, 1e-8 * r.heat_flow_hot);  // the bound
   EXPECT_LE(r.residual, s.newton_tolerance);
@@ -299,21 +299,21 @@ TEST(KeffRadiation, RadiosityNetworkOnABedConservesEnergy) {
   // is its blackbody power and the grey network is the black one (as for the single sphere
   // above); the pair formula's per-link surface resistances lower the flow instead.
   s.wall_emissivity = 1;
-  th::KeffScene black = s, pair = s;
+  kf::KeffScene black = s, pair = s;
   black.emissivity = 1;
-  pair.radiation_model = th::RadiationModel::pair;
-  const double k_black = th::solve_keff(b, black).k_eff;
-  EXPECT_NEAR(th::solve_keff(b, s).k_eff, k_black, 1e-8 * k_black);  // Newton's 1e-10, summed
-  EXPECT_LT(th::solve_keff(b, pair).k_eff, 0.9 * k_black);
+  pair.radiation_model = kf::RadiationModel::pair;
+  const double k_black = kf::solve_keff(b, black).k_eff;
+  EXPECT_NEAR(kf::solve_keff(b, s).k_eff, k_black, 1e-8 * k_black);  // Newton's 1e-10, summed
+  EXPECT_LT(kf::solve_keff(b, pair).k_eff, 0.9 * k_black);
 }
 
 TEST(KeffRadiation, NetworkReportsTheViewFactorErrorShrinkingAsOneOverRootRays) {
   const bed::Bed b = loose_lattice(3, 9);
-  th::KeffScene s = radiation_only(1000, 900);
+  kf::KeffScene s = radiation_only(1000, 900);
   s.rays = 1000;
-  const double coarse = th::build_keff_network(b, s).reciprocity_error;
+  const double coarse = kf::build_keff_network(b, s).reciprocity_error;
   s.rays = 10000;
-  const double fine = th::build_keff_network(b, s).reciprocity_error;
+  const double fine = kf::build_keff_network(b, s).reciprocity_error;
   EXPECT_GT(coarse, 0);
   // 10x the rays: √10 = 3.16 less error; 2-5 allows the error's own scatter over ~100 pairs.
   EXPECT_GT(coarse / fine, 2.0);

@@ -15,8 +15,8 @@
 // exact, π Δu / l_min. On the rest the substitution w = ln l turns it into π ∫ (du/dl) dw, whose
 // integrand du/dl is smooth and slowly varying (≈ 2R* near contact, where the original integrand
 // peaks like 1/l), so fixed Gauss–Legendre converges geometrically; kGasLensNodes points reach
-// round-off against a 2e6-point midpoint reference (tests/thermal/test_keff_gas.cpp).
-namespace powderbed::thermal {
+// round-off against a 2e6-point midpoint reference (tests/keff/test_gas.cpp).
+namespace powderbed::keff {
 
 inline constexpr int kGasLensNodes = 32;
 
@@ -36,4 +36,4 @@ double gas_pair_factor(const GasLensParams& p, double r_i, double r_j, double d)
 // Factor of a particle whose centre is `h` from a wall plane.
 double gas_wall_factor(const GasLensParams& p, double r, double h);
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

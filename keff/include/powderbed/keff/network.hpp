@@ -10,9 +10,10 @@
 #include <vector>
 
 #include "powderbed/bed/bed.hpp"
-#include "powderbed/thermal/keff_scene.hpp"
+#include "powderbed/bed/contact_geometry.hpp"
+#include "powderbed/keff/scene.hpp"
 
-namespace powderbed::thermal {
+namespace powderbed::keff {
 
 enum class HeatPath : std::uint8_t { contact, gas, radiation };
 
@@ -48,15 +49,15 @@ struct KeffNetwork {
   double wall_exchange = 0;
 };
 
-// Stefan–Boltzmann constant, W/(m² K⁴).
-inline constexpr double kStefanBoltzmann = 5.670374419e-8;
+// Stefan–Boltzmann constant, W/(m² K⁴), shared with the laser solver.
+using bed::kStefanBoltzmann;
 
 // Links of every path the scene switches on; pairs come from the bed's cell list with a gap
-// that covers the gas lenses; radiation links from Monte-Carlo view factors (keff_radiation.hpp).
+// that covers the gas lenses; radiation links from Monte-Carlo view factors (radiation.hpp).
 // Throws InputError for a 2D bed, an axis that is periodic, or a
 // particle centre outside the walls (naming its id). `progress`, when set, hears the fraction of
 // the view-factor tracing done (ViewFactorParams::progress).
 KeffNetwork build_keff_network(const bed::Bed& bed, const KeffScene& scene,
                                const std::function<void(double)>& progress = {});
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

@@ -4,9 +4,9 @@
 // settled with a softened modulus. Each returns a conductance (W/K) or a length.
 #include <cmath>
 
-#include "powderbed/thermal/contact_conduction.hpp"
+#include "powderbed/bed/contact_geometry.hpp"
 
-namespace powderbed::thermal {
+namespace powderbed::keff {
 
 // Air conductivity of [KE] (SPEC.md §6), W/mK, fitted over 175–1900 K.
 inline double air_conductivity(double t) {
@@ -61,7 +61,7 @@ struct ContactRadiusParams {
 
 // Particle–particle contact radius at centre distance d (0 when apart).
 inline double pair_contact_radius(const ContactRadiusParams& p, double r_i, double r_j, double d) {
-  if (!p.hertz_correction) return contact_radius(r_i, r_j, d);
+  if (!p.hertz_correction) return bed::contact_radius(r_i, r_j, d);
   const double reduced = r_i * r_j / (r_i + r_j), overlap = r_i + r_j - d;
   if (p.law == BedContactLaw::linear)
     return linear_spring_contact_radius(reduced, overlap, p.stiffness, p.pair_modulus);
@@ -70,10 +70,10 @@ inline double pair_contact_radius(const ContactRadiusParams& p, double r_i, doub
 
 // Particle–wall contact radius, the centre `h` from the wall plane: a = √(r² − h²) geometric.
 inline double wall_contact_radius(const ContactRadiusParams& p, double r, double h) {
-  if (!p.hertz_correction) return plane_contact_radius(r, h);
+  if (!p.hertz_correction) return bed::plane_contact_radius(r, h);
   if (p.law == BedContactLaw::linear)
     return linear_spring_contact_radius(r, r - h, p.stiffness, p.wall_modulus);
   return hertz_contact_radius(r, r - h, p.young_scale);
 }
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

@@ -7,7 +7,7 @@
 
 #include "powderbed/bed/bed.hpp"
 
-namespace powderbed::thermal {
+namespace powderbed::keff {
 
 struct TemperatureProfile {
   // One entry per bin, from the cold wall (domain.lower of the axis) to the hot wall.
@@ -25,4 +25,4 @@ TemperatureProfile temperature_profile(const bed::Bed& bed, int axis,
                                        const std::vector<std::uint32_t>& excluded,
                                        std::size_t bins);
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

@@ -1,6 +1,6 @@
 #pragma once
 // Grey-body radiation links of the effective-conductivity network (SPEC.md §6), from the view
-// factors of keff_view_factors.hpp. S_ij = A_i F_ij is the exchange area, A = 4π r². Monte-Carlo
+// factors of view_factors.hpp. S_ij = A_i F_ij is the exchange area, A = 4π r². Monte-Carlo
 // F break reciprocity by their sampling error, so a pair's S is the mean of A_i F_ij and A_j F_ji:
 // one link per pair, and the heat flows are antisymmetric (the wall flows then agree). Rays that
 // return to their own sphere through a side mirror carry no net heat and make no link. The walls
@@ -21,10 +21,10 @@
 //   link σ G (τ_l⁴ − τ_k⁴), so the Newton solve needs nothing new; a black surface (ε = 1) needs
 //   no radiosity node. With all surfaces black both models are the same network.
 #include "powderbed/bed/bed.hpp"
-#include "powderbed/thermal/keff_network.hpp"
-#include "powderbed/thermal/keff_view_factors.hpp"
+#include "powderbed/keff/network.hpp"
+#include "powderbed/keff/view_factors.hpp"
 
-namespace powderbed::thermal {
+namespace powderbed::keff {
 
 // G_r (m²) of two grey surfaces of emissivities ε and areas A with exchange area S = A_i F_ij.
 inline double grey_exchange_area(double eps_i, double area_i, double exchange, double eps_j,
@@ -37,4 +37,4 @@ inline double grey_exchange_area(double eps_i, double area_i, double exchange, d
 void add_radiation_links(const bed::Bed& bed, const KeffScene& scene, const ViewFactors& vf,
                          KeffNetwork& net);
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

@@ -8,17 +8,17 @@
 
 #include "powderbed/bed/bed.hpp"
 
-#include "powderbed/thermal/keff_gas_lens.hpp"
-#include "powderbed/thermal/keff_paths.hpp"
+#include "powderbed/keff/gas_lens.hpp"
+#include "powderbed/keff/paths.hpp"
 
-namespace powderbed::thermal {
+namespace powderbed::keff {
 
 // constant: k_g as given; air: the [KE] polynomial of SPEC.md §6, each gas link at the mean
 // temperature of its two ends (the network is then nonlinear and solved by Newton).
 enum class GasModel { constant, air };
 
 // pair: SPEC.md §6's formula, one link per pair carrying both surface resistances; radiosity:
-// the grey enclosure's network, one radiosity node per surface (keff_radiation.hpp).
+// the grey enclosure's network, one radiosity node per surface (radiation.hpp).
 enum class RadiationModel { pair, radiosity };
 
 // What the command line or scene says about how the bed was made; each given value must agree
@@ -54,7 +54,7 @@ struct KeffScene {
   std::uint64_t seed = 1;
   RadiationModel radiation_model = RadiationModel::pair;
   // Newton stops at ‖R‖ / ‖Σ|q|‖ ≤ newton_tolerance: each particle's net heat flow against the
-  // flows it balances (keff_solve.cpp); docs/results/keff-accuracy.md measures what it costs.
+  // flows it balances (solve.cpp); docs/results/keff-accuracy.md measures what it costs.
   double newton_tolerance = 1e-10;
 
   // k_g of the linear start (and of every gas link when gas_model = constant): the constant, or
@@ -64,4 +64,4 @@ struct KeffScene {
   void validate() const;
 };
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

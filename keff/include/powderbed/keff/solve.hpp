@@ -2,14 +2,14 @@
 // Steady state of the heat-path network between the walls and the effective conductivity
 // k_eff = (Q_wall / A_wall) · H / (T_hot − T_cold) (SPEC.md §6). Contact and constant-k_g gas
 // links are linear (one conjugate-gradient solve); radiation links (T⁴) and gas links that follow
-// temperature make it nonlinear, solved by Newton with the analytic Jacobian (keff_solve.cpp).
+// temperature make it nonlinear, solved by Newton with the analytic Jacobian (solve.cpp).
 #include <cstdint>
 #include <vector>
 
 #include "powderbed/bed/bed.hpp"
-#include "powderbed/thermal/keff_network.hpp"
+#include "powderbed/keff/network.hpp"
 
-namespace powderbed::thermal {
+namespace powderbed::keff {
 
 struct KeffResult {
   double k_eff = 0;           // W/mK, from the mean of the two wall flows
@@ -36,4 +36,4 @@ struct KeffResult {
 KeffResult solve_keff(const bed::Bed& bed, const KeffScene& scene);
 KeffResult solve_keff(const bed::Bed& bed, const KeffScene& scene, const KeffNetwork& network);
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

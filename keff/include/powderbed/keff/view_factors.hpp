@@ -26,9 +26,9 @@
 #include <vector>
 
 #include "powderbed/bed/bed.hpp"
-#include "powderbed/thermal/keff_network.hpp"
+#include "powderbed/keff/network.hpp"
 
-namespace powderbed::thermal {
+namespace powderbed::keff {
 
 struct ViewFactorParams {
   std::size_t rays = 1000;  // rays per particle
@@ -58,4 +58,4 @@ inline constexpr double kMaxWallRays = 1e6;
 // Throws InputError for rays = 0 or a 2D bed.
 ViewFactors view_factors(const bed::Bed& bed, const ViewFactorParams& params);
 
-}  // namespace powderbed::thermal
+}  // namespace powderbed::keff

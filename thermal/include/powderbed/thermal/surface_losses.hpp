@@ -1,9 +1,11 @@
 #pragma once
 // Losses of an exposed top particle (SPEC.md §5) over its projected area A = π r^2:
 //   convection h (T_env - T) A,  radiation eps sigma (T_env^4 - T^4) A.
+#include "powderbed/bed/contact_geometry.hpp"
+
 namespace powderbed::thermal {
 
-constexpr double kStefanBoltzmann = 5.670374419e-8;  // W/m^2K^4
+using bed::kStefanBoltzmann;  // W/m^2K^4, shared with keff
 
 struct SurfaceParams {
   double convection;   // h, W/m^2K
