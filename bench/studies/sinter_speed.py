@@ -67,7 +67,8 @@ def main():
     lines += ["", f"Machine: the shared 2-core development machine, load average "
               f"{load[0]:.1f} / {load[1]:.1f} / {load[2]:.1f} at the end of the runs "
               "(other work was running; single times on it are noisy, hence medians). "
-              "Targets: the paper's pass under 30 s on one thread, under 2 GiB; two threads lose here because the machine is loaded (threads wait at every grid step's barrier).",
+              "Targets: the paper's pass under 30 s on one thread, under 2 GiB; two threads lose "
+              "here because the machine is loaded (threads wait at every grid step's barrier).",
               "",
               "Where the time goes: the ray tracer traces the beam ~210 times along the track "
               "(every 0.1 w) with 4,000 rays each, a few hits per ray; the rest is the same for "
