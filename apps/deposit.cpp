@@ -83,6 +83,10 @@ void add_options(po::options_description& desc) {
       ("seed", po::value<std::uint64_t>(), "random seed (insertion positions and sizes)")
       ("threads", po::value<int>()->default_value(0), "OpenMP threads (0: OpenMP's default)")
       ("out", po::value<std::string>(), "output bed (HDF5 + XDMF sidecar)")
+      ("allow-lost", po::value<std::size_t>()->default_value(0),
+       "particles that may leave the box during the run (more: exit 3, nothing written)")
+      ("trust-units", po::bool_switch(),
+       "skip the guard against unit slips (a Young's modulus below 1 MPa: GPa typed as Pa?)")
       ("trajectory", po::value<std::string>(), "HDF5 time series of snapshots (+ .xmf)")
       ("every", po::value<std::uint64_t>()->default_value(0), "steps between snapshots")
       ("material.young", po::value<double>()->default_value(d.material.young), "E (Pa)")
@@ -187,6 +191,18 @@ int run(int argc, char** argv) {
 
   const std::string out = app::required<std::string>(vm, "out");
   const auto seed = app::required<std::uint64_t>(vm, "seed");
+  // Inputs and outputs checked before the run, so a bad --out costs no simulation and never
+  // replaces the input.
+  {
+    std::vector<app::PathArg> inputs, outputs{{"--out", out}};
+    if (vm.count("in")) inputs.push_back({"--in", vm["in"].as<std::string>()});
+    app::check_extension({"--out", out}, {".h5"});
+    if (vm.count("trajectory")) {
+      app::check_extension({"--trajectory", vm["trajectory"].as<std::string>()}, {".h5"});
+      outputs.push_back({"--trajectory", vm["trajectory"].as<std::string>()});
+    }
+    app::check_paths(inputs, outputs);
+  }
   if (!vm.count("in") && !vm.count("psd")) {
     throw InputError("--in / --psd: neither given (accepted: --in BED.h5 or --psd SPEC --count N)");
   }
@@ -231,6 +247,13 @@ int run(int argc, char** argv) {
 
   dem::Scene scene;
   scene.material.young = vm["material.young"].as<double>();
+  if (!vm["trust-units"].as<bool>() && scene.material.young < 1e6) {
+    std::ostringstream msg;
+    msg << "material.young: " << scene.material.young << " Pa is below the 1 MPa of the softest "
+        << "powders: a unit slip? (accepted: E in Pa, e.g. 193e9 for 193 GPa; --trust-units if "
+           "it is meant)";
+    throw InputError(msg.str());
+  }
   scene.material.poisson = vm["material.poisson"].as<double>();
   scene.material.density = vm["material.density"].as<double>();
   scene.material.damping = vm["material.damping"].as<double>();
@@ -314,6 +337,16 @@ int run(int argc, char** argv) {
 
   const dem::RunSummary r = dem::run_deposition(bed, scene, s);
   const std::size_t removed = dem::remove_lost_particles(bed);
+  // Particles leave the box only when a run goes wrong (a step beyond the stable bound, a bed
+  // that does not fit its box): such a bed is not a result.
+  if (removed > vm["allow-lost"].as<std::size_t>()) {
+    std::ostringstream msg;
+    msg << removed << " of " << bed.n() + removed << " particles left the box during the run "
+        << "(accepted: at most --allow-lost " << vm["allow-lost"].as<std::size_t>()
+        << "); the time step may be beyond the stable bound (--unsafe-dt?) or the bed may not fit "
+           "its box";
+    throw NumericalError(msg.str());
+  }
   if (vm["crop-top"].as<bool>() && bed.n() > 0) {
     double top = bed.domain.lower[2];
     for (std::size_t i = 0; i < bed.n(); ++i) top = std::max(top, bed.z[i] + bed.radius[i]);

@@ -3,6 +3,7 @@
 // radiation with Monte-Carlo view factors).
 #include <chrono>
 #include <cmath>
+#include <sstream>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -60,6 +61,8 @@ void add_options(po::options_description& desc) {
       ("gas.lens", po::value<double>()->default_value(d.lens.lens),
        "gas lens thickness over the particle radius (Rong-Horio)")
       ("gas.min-gap", po::value<double>()->default_value(d.lens.min_gap), "l_min (m)")
+      ("trust-units", po::bool_switch(),
+       "skip the guard against unit slips (gas.min-gap over 1e-4 m: um typed as m?)")
       ("gas.lens-region", po::value<std::string>()->default_value("both-lenses"),
        "outer edge of the gas path: both-lenses (where the two lenses intersect) or larger-lens "
        "(where the larger particle's lens meets the smaller particle, as MFiX computes it)")
@@ -202,6 +205,24 @@ int run(int argc, char** argv) {
   po::variables_map command_line;  // what the command line alone says (walls)
   po::store(po::command_line_parser(argc, argv).options(desc).run(), command_line);
   kf::KeffScene scene = make_scene(vm, command_line);
+  // l_min removes the gas lens's singularity at contact (1 um by default, Rong & Horio): a gap
+  // of a tenth of a millimetre is a slip of units, not a model.
+  if (!vm["trust-units"].as<bool>() && scene.lens.min_gap > 1e-4) {
+    std::ostringstream msg;
+    msg << "gas.min-gap: " << scene.lens.min_gap << " m: a unit slip? (accepted: l_min in metres "
+        << "up to 1e-4, e.g. 1e-6; --trust-units if it is meant)";
+    throw InputError(msg.str());
+  }
+  // Inputs and outputs checked before the work: a folder where the profile goes, or --out = the
+  // bed, must not cost a solve or an existing file.
+  const auto bins = app::option_in_range<std::size_t>(vm, "profile-bins", 0, 1000000);
+  std::vector<app::PathArg> outputs;
+  if (vm.count("out")) {
+    const std::string out = vm["out"].as<std::string>();
+    app::check_extension({"--out", out}, {".h5"});
+    outputs = {{"--out", out}, {"--out (its profile)", profile_path_of(out)}};
+  }
+  app::check_paths({{"--bed", vm["bed"].as<std::string>()}}, outputs);
   bed::Bed bed = bed::read_bed_any(vm["bed"].as<std::string>());
   kf::ContactOptions given;
   if (vm.count("contact.law")) given.law = vm["contact.law"].as<std::string>();
@@ -218,6 +239,15 @@ int run(int argc, char** argv) {
     progress = [&bar](double fraction) { bar.draw(fraction, "view factors"); };
   const kf::KeffNetwork network = kf::build_keff_network(bed, scene, progress);
   const kf::KeffResult r = kf::solve_keff(bed, scene, network);
+  // No conducting path from wall to wall gives k_eff = 0 up to round-off: not a result.
+  if (!(r.k_eff > 0) || !std::isfinite(r.k_eff)) {
+    std::ostringstream msg;
+    msg << "k_eff = " << r.k_eff << " W/mK: no heat path joins the two walls ("
+        << r.rattlers.size() << " of " << bed.n()
+        << " particles isolated; accepted: a bed whose particles connect the walls, e.g. a "
+           "settled bed from deposit)";
+    throw NumericalError(msg.str());
+  }
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -226,7 +256,7 @@ int run(int argc, char** argv) {
     const std::string out = vm["out"].as<std::string>();
     profile_path = profile_path_of(out);
     const kf::TemperatureProfile profile = kf::temperature_profile(
-        bed, scene.axis, r.temperature, r.rattlers, vm["profile-bins"].as<std::size_t>());
+        bed, scene.axis, r.temperature, r.rattlers, bins);
     bed.temperature = r.temperature;
     bed.provenance.created_by = app::version_string("keff");
     bed.provenance.command_line = app::command_line(argc, argv);
