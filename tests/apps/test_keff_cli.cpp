@@ -242,3 +242,26 @@ TEST(KeffCli, ContactRecordMissingOrContradictedExitsTwo) {
   expect_refused(test::run_app("keff", base + dir + "/linear.h5 --contact.stiffness 2e5"), dir,
                  {"contact.stiffness", "200000", "k_n = 100000 N/m"});
 }
+
+// A bed whose particles do not join the walls (one sphere on the floor, one under the lid, a
+// diameter of gas between them, beyond the lenses' reach): k_eff is zero up to round-off, which
+// is no result: exit 3 naming it, and no file written (issue 14: it used to print -7.9e-16).
+TEST(KeffCli, BedThatDoesNotJoinTheWallsExitsThree) {
+  const std::string dir = test::scratch_dir("keff_broken");
+  bed::Bed b = column();
+  const double r = 0.5e-3, overlap = 1e-3 * r;
+  b.x = {r, r};
+  b.y = {r, r};
+  b.z = {r - overlap, 6 * r - r + overlap};  // a gap of 2 r: the lenses reach 0.2 r each
+  b.radius = {r, r};
+  b.id = {0, 1};
+  b.domain.upper[2] = 6 * r;
+  const std::string bed_path = write_bed(b, dir);
+  const auto run = test::run_app("keff", "--config " + kScene + " --bed " + bed_path + " --out " +
+                                            dir + "/out.h5");
+  EXPECT_EQ(run.status, 3) << run.err;
+  EXPECT_NE(run.err.find("k_eff"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("no heat path"), std::string::npos) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out.h5"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out-profile.csv"));
+}
