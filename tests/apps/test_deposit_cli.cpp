@@ -250,3 +250,28 @@ TEST(DepositCli, InOnTheCommandLineWinsOverTheScenesPsd) {
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("insert.enabled"), std::string::npos) << r.err;
 }
+
+// A particle moving at 100 m/s in a box whose walls are switched off leaves it within the run:
+// a run that loses particles is no result (issue 14: it wrote the bed and exited 0). Exit 3
+// naming the count, no bed written; --allow-lost 1 accepts it and writes the one that stayed.
+TEST(DepositCli, RunThatLosesParticlesExitsThree) {
+  const std::string dir = test::scratch_dir("deposit_lost");
+  bed::Bed b;
+  b.domain.upper = {0.3e-3, 0.3e-3, 0.3e-3};
+  b.add(1e-4, 1.5e-4, 21e-6, 20e-6);
+  b.add(2e-4, 1.5e-4, 1.5e-4, 20e-6);
+  b.vx = {0, 100};
+  b.vy = {0, 0};
+  b.vz = {0, 0};
+  bed::write_bed_h5(b, dir + "/in.h5");
+  const std::string base = "--in " + dir + "/in.h5 --t-end 2e-6 --effects.walls false "
+                           "--effects.gravity false --seed 1 --out " + dir + "/out.h5";
+  const auto lost = test::run_app("deposit", base);
+  EXPECT_EQ(lost.status, 3) << lost.err;
+  EXPECT_EQ(lost.err_lines(), 1) << lost.err;
+  EXPECT_NE(lost.err.find("1 of 2 particles left the box"), std::string::npos) << lost.err;
+  EXPECT_FALSE(std::ifstream(dir + "/out.h5").good());
+  const auto allowed = test::run_app("deposit", base + " --allow-lost 1 --json");
+  EXPECT_EQ(allowed.status, 0) << allowed.err;
+  EXPECT_EQ(test::json_number(allowed.out, "n"), 1.0) << allowed.out;
+}
