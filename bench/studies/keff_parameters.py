@@ -1,42 +1,138 @@
 #!/usr/bin/env python3
 """The [KE] parameter studies with keff (SPEC.md §6, issue 6): bed temperature with and without
-radiation, gas-to-solid conductivity ratio, Young's modulus, emissivity, bed height,
-polydispersity and consolidation, on steel 1 mm beds. Writes docs/results/keff-parameters.md and
-keff-parameters.png. Run with /usr/bin/python3 (one thread):
-    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/keff_parameters.py
+radiation, gas-to-solid conductivity ratio, Young's modulus and DEM stiffness, emissivity, bed
+height, polydispersity and consolidation, on steel 1 mm beds made as [KE] made theirs. Writes
+docs/results/keff-parameters.md and keff-parameters.png. Run with /usr/bin/python3 (one thread):
+    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/keff_parameters.py [--seeds N]
+(--seeds N: seeds 1..N of the bed studies, default 3.)
 
-Beds come from `deposit --config data/scenes/ke2016-steel-1mm-held-lid-bed.ini --seed S` with the study's
-changes on the command line (lid kept as keff's hot wall) and are kept in
-out/studies/keff-parameters/ (about fifteen minutes of one core the first time; a bed that is
-there is reused). keff runs with data/scenes/ke2016-steel-1mm.ini (contacts read with the Hertz
-correction at the bed's softening).
+Beds: [KE]'s unconsolidated bed, `deposit --config data/scenes/ke2016-<case>-bed.ini --seed S`
+(linear spring-dashpot k_n = 1e5 N/m, insertion from the top of a 10 D cube until full), with
+each study's change on the command line. The scene's own beds, the lid-depth consolidated ones
+and the stiffness sweep are those of keff_validation.py and keff_softening.py (their caches in
+out/studies/keff-validation/ and keff-softening/, made there if missing); the height and size
+distribution beds are kept in out/studies/keff-parameters/. keff runs with
+data/scenes/ke2016-<case>.ini (contacts with the Hertz correction read from the bed).
 """
 import json
+import math
 import os
+import re
 import statistics
+import sys
 
+import numpy as np
+
+import keff_validation as kv
 from common import ROOT, RESULTS, app, run_json, summary, write_text
-from keff_validation import core_gradient, pm, scene_value, wall_links, zbs
+from keff_softening import bed as softened_bed
+from keff_validation import core_gradient
 
 WORK = os.path.join(ROOT, "out", "studies", "keff-parameters")
 SCENES = os.path.join(ROOT, "data", "scenes")
 ENV = dict(os.environ, OMP_NUM_THREADS="1")
 SIGMA = 5.670374419e-8  # Stefan–Boltzmann, W/m^2K^4
-SEEDS = [1, 2, 3]
+# Seeds of the bed studies (3, height, polydispersity, consolidation): 1..N with --seeds N
+# (default 3). Cut for compute time (issue 13): σ/D up to 0.2 (was 0.5: the smallest sphere sets
+# the DEM step, 8 times shorter at 0.25 D).
+FULL_SEEDS = 3
+SEEDS = list(range(1, FULL_SEEDS + 1))
 D = 1.0e-3  # the steel case's diameter (m)
 TEMPERATURES = [300, 500, 700, 900, 1100, 1300, 1500]
 EMISSIVITIES = [0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 1.0]
 RATIOS = [1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1]  # k_g / k_s
 YOUNG = [1, 3, 10, 30, 100, 198, 300, 1000]  # GPa, the same bed read at E
-BED_SCALES = [10, 100, 1000, 10000]  # young-scale of re-deposited beds
-HEIGHTS = [1, 2, 3, 5, 7, 10]  # H/D
-SPREADS = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5]  # sigma/D
-PRESSURES = [1e2, 1e3, 3e3, 1e4, 3e4, 1e5]  # lid pressure, Pa (the scene: 1e4)
+STIFFNESS = [1e3, 1e4, 1e5, 1e6]  # DEM k_n (N/m) of keff_softening.py's beds; [KE] 1e5
+HEIGHTS = [1, 2, 3, 5, 7, 10]  # box height H/D, insertion until full
+SPREADS = [0.0, 0.1, 0.2]  # sigma/D
+DEPTHS = [0.0] + kv.DEPTHS  # lid depth below the surface (r): keff_validation's beds
 RAYS = 1000
 
 
+def seeds_text():
+    return "seed 1" if len(SEEDS) == 1 else f"seeds 1–{len(SEEDS)}"
+
+
 def bed_scene(case="steel-1mm"):
-    return os.path.join(SCENES, f"ke2016-{case}-held-lid-bed.ini")
+    return os.path.join(SCENES, f"ke2016-{case}-bed.ini")
+
+
+def scene_value(path, section, key):
+    """A key of an INI scene (section None: before the first [section])."""
+    current = None
+    for line in open(path):
+        line = line.split("#")[0].strip()
+        m = re.match(r"\[(.+)\]", line)
+        if m:
+            current = m.group(1)
+        elif "=" in line and current == section:
+            k, v = (x.strip() for x in line.split("=", 1))
+            if k == key:
+                return float(v)
+    raise KeyError(f"{key} in {path}")
+
+
+def zbs(porosity, kappa, c=1.25):
+    """Zehner–Bauer–Schlünder stagnant conductivity k_eff/k_g of a packed bed of spheres, point
+    contacts, no radiation, no Smoluchowski effect (Zehner & Schlünder, Chem. Ing. Tech. 42 (1970)
+    933; VDI Heat Atlas, section M5): kappa = k_s/k_g, B = C ((1 - eps)/eps)^(10/9), C = 1.25."""
+    b = c * ((1 - porosity) / porosity) ** (10 / 9)
+    n = 1 - b / kappa
+    core = 2 / n * ((1 - 1 / kappa) * b / n ** 2 * math.log(kappa / b) - (b + 1) / 2 - (b - 1) / n)
+    root = math.sqrt(1 - porosity)
+    return 1 - root + root * core
+
+
+def pm(values, digits=4):
+    """mean ± sd of the seeds, or the value alone for one seed."""
+    mean, _, _, sd = summary(values)
+    return f"{mean:.{digits}f}" if len(values) == 1 else f"{mean:.{digits}f} ± {sd:.{digits}f}"
+
+
+def wall_links(bed, lens=0.2):
+    """Particles within reach of the hot (top) and cold (bottom) wall: with the wall inside
+    their gas lens (gap < lens r), or touching it."""
+    import h5py
+    with h5py.File(bed, "r") as f:
+        z = np.array(f["particles/position"])[:, 2]
+        r = np.array(f["particles/radius"])
+        lo, hi = f["domain"].attrs["lower"][2], f["domain"].attrs["upper"][2]
+    top, bottom = hi - z - r, z - r - lo
+    touch = 1e-9 * r
+    return (int(np.sum(top < lens * r)), int(np.sum(top <= touch)),
+            int(np.sum(bottom < lens * r)), int(np.sum(bottom <= touch)))
+
+
+def record(path, dep, wall):
+    """A bed made elsewhere (keff_validation, keff_softening) with bedstat's summary (kept in
+    WORK): dict with path, dep, stat, wall."""
+    os.makedirs(WORK, exist_ok=True)
+    meta = os.path.join(WORK, os.path.basename(path) + ".bedstat.json")
+    if os.path.exists(meta):
+        with open(meta) as f:
+            stat = json.load(f)
+    else:
+        stat, _ = run_json([app("bedstat"), path], env=ENV)
+        with open(meta, "w") as f:
+            json.dump(stat, f)
+    return {"path": path, "dep": dep, "stat": stat, "wall": wall}
+
+
+def validation_bed(case, seed, depth=0.0):
+    """keff_validation's bed of the case and seed: unconsolidated (depth 0) or with the lid
+    lowered to `depth` particle radii below the surface, raised and relaxed."""
+    d = next(c[2] for c in kv.CASES if c[0] == case)
+    base = os.path.join(kv.WORK, f"{case}-seed{seed}.h5")
+    common = [app("deposit"), "--config", kv.bed_scene(case), "--seed", str(seed), "--threads",
+              "1"]
+    os.makedirs(kv.WORK, exist_ok=True)
+    dep, wall = kv.cached_run(base, common)
+    if depth == 0:
+        return record(base, dep, wall)
+    path = os.path.join(kv.WORK, f"{case}-seed{seed}-depth{depth:g}.h5")
+    dep, wall = kv.cached_run(path, common + ["--in", base, "--t-end", "1e-4", "--lid.enabled",
+                                              "true", "--lid.depth", f"{depth * d / 2:.6g}"])
+    return record(path, dep, wall)
 
 
 def keff_scene(case="steel-1mm"):
@@ -90,12 +186,12 @@ def keff(bed, *extra, case="steel-1mm", core=True):
     s, _ = run_json([app("keff"), "--config", keff_scene(case), "--bed", bed["path"], *extra,
                      "--out", out], env=ENV)
     if core:
-        s.update(core_gradient(out, s))
+        s["k_core"] = core_gradient(out, s)
     return s
 
 
 def base_bed(seed=1):
-    return deposit("steel-1mm", seed)
+    return validation_bed("steel-1mm", seed)
 
 
 # ------------------------------------------------------------------------------------------------
@@ -107,7 +203,7 @@ def temperature_study():
     list plus the one where sigma T^3 D / k_g = 0.5."""
     rows = []
     for case, d in (("steel-1mm", 1.0e-3), ("steel-3.2mm", 3.2e-3)):
-        bed = deposit(case, 1, case=case)
+        bed = validation_bed(case, 1)
         t_star = crossing(d)
         for t in sorted(TEMPERATURES + [round(t_star, 1)]):
             base = ["--temperature", f"{t}", "--gas.model", "air", "--rays", str(RAYS)]
@@ -145,25 +241,26 @@ def ratio_study():
 # 3. Young's modulus
 
 def young_study():
-    """(a) The seed-1 bed read as a material of modulus E: the bed settled at E_nom / S_bed, and
-    under the same forces a Hertz contact at E has the overlap delta_s (E_nom / (S_bed E))^(2/3),
-    which is keff's reading at young-scale S_bed E / E_nom. (b) Beds deposited at young-scale S
-    (E_nom / S in the DEM), read with the Hertz correction at their own S and with the geometric
-    contact radius."""
+    """(a) The seed-1 bed read as a material of modulus E (`--contact.young`: the Hertz
+    correction k_n δ_s = (4/3) E* √R* δ_h^{3/2} at E, the packing the same). (b) The beds of
+    keff_softening.py, deposited at k_n = 1e3 ... 1e6 N/m (seed 1), read with the Hertz
+    correction at their own k_n and with the geometric contact radius."""
     bed = base_bed()
     e_nom = scene_value(bed_scene(), "material", "young") / 1e9
-    s_bed = scene_value(bed_scene(), None, "young-scale")
-    same = [(e, keff(bed, "--contact.young-scale", f"{s_bed * e / e_nom:.6g}")) for e in YOUNG]
+    k_bed = scene_value(bed_scene(), "contact", "stiffness")
+    same = [(e, keff(bed, "--contact.young", f"{e * 1e9:.6g}")) for e in YOUNG]
     beds = []
-    for scale in BED_SCALES:
+    for k_n in STIFFNESS:
         for seed in SEEDS:
-            b = (base_bed(seed) if scale == s_bed else
-                 deposit(f"steel-1mm-S{scale:g}", seed, "--young-scale", f"{scale:g}"))
-            hertz = keff(b, "--contact.young-scale", f"{scale:g}")
-            geometric = keff(b, "--contact.hertz-correction", "false")
-            beds.append({"scale": scale, "seed": seed, "bed": b, "hertz": hertz,
-                         "geometric": geometric})
-    return e_nom, s_bed, same, beds
+            if seed == 1:  # keff_softening.py's bed
+                b = record(*softened_bed("steel-1mm", k_n))
+            elif k_n == k_bed:
+                b = base_bed(seed)
+            else:
+                b = deposit(f"steel-1mm-kn{k_n:g}", seed, "--contact.stiffness", f"{k_n:g}")
+            beds.append({"k_n": k_n, "seed": seed, "bed": b, "hertz": keff(b),
+                         "geometric": keff(b, "--contact.hertz-correction", "false")})
+    return e_nom, k_bed, same, beds
 
 
 # ------------------------------------------------------------------------------------------------
@@ -196,13 +293,14 @@ def emissivity_study():
 # 5. Bed height
 
 def height_study():
-    """Beds of 110 H/D spheres in the same 10 x 10 D box (lid kept, 1e4 Pa), seeds 1-3: k_eff at
-    300 K, and at 1000 K with radiation (eps 0.5, air)."""
+    """Boxes of 10 x 10 x H D filled by the scene's insertion (until full, top cropped at the
+    highest particle top), seed 1: k_eff at 300 K, and at 1000 K with radiation (eps 0.5,
+    air)."""
     rows = []
     for h in HEIGHTS:
         for seed in SEEDS:
-            b = base_bed(seed) if h == 10 else deposit(f"steel-1mm-H{h}", seed, "--count",
-                                                       str(110 * h))
+            b = base_bed(seed) if h == 10 else deposit(
+                f"steel-1mm-H{h}", seed, "--domain", f"{10 * D:g},{10 * D:g},{h * D:g}")
             cold = keff(b, core=False)
             hot = keff(b, "--temperature", "1000", "--gas.model", "air", "--effects.radiation",
                        "true", "--rays", str(RAYS), core=False)
@@ -217,14 +315,14 @@ def psd_spec(spread):
     """Gaussian on the diameter, mean D, sd spread D, truncated symmetrically at the mean
     ± min(2 sd, 0.75 D) (the mean stays D; the smallest sphere 0.25 D keeps the DEM step at a
     quarter of the monodisperse one). Returns (spec, count): the count gives the solid volume
-    of 1,100 spheres of D."""
+    of the scene's pool of 1,400 spheres of D (the insertion stops when the box is full)."""
     if spread == 0:
-        return f"mono:d={D:g}", 1100
+        return f"mono:d={D:g}", 1400
     from scipy.stats import truncnorm
     sd = spread * D
     half = min(2 * sd, 0.75 * D)
     dist = truncnorm(-half / sd, half / sd, loc=D, scale=sd)
-    count = round(1100 * D ** 3 / dist.moment(3))
+    count = round(1400 * D ** 3 / dist.moment(3))
     return (f"gauss:mean={D:g},sd={sd:.6g},min={D - half:.6g},max={D + half:.6g}", count)
 
 
@@ -244,14 +342,13 @@ def psd_study():
 # 7. Consolidation
 
 def consolidation_study():
-    """Lid pressures 1e2 (about a fifth of the bed's weight per area: the lid only touches)
-    to 1e5 Pa, lid kept, seeds 1-3."""
+    """[KE]'s consolidation: keff_validation's beds, the lid lowered to 0.25-1 r below the
+    surface of the unconsolidated bed, held, raised and relaxed; seed 1."""
     rows = []
-    for p in PRESSURES:
+    for depth in DEPTHS:
         for seed in SEEDS:
-            b = (base_bed(seed) if p == 1e4 else
-                 deposit(f"steel-1mm-P{p:g}", seed, "--lid.pressure", f"{p:g}"))
-            rows.append({"p": p, "seed": seed, "bed": b, "run": keff(b)})
+            b = validation_bed("steel-1mm", seed, depth)
+            rows.append({"p": depth, "seed": seed, "bed": b, "run": keff(b)})
     return rows
 
 
@@ -337,28 +434,30 @@ def plot(temps, ratio, young, emis, heights, psd, cons):
     h2, l2 = b.get_legend_handles_labels()
     a.legend(h1 + h2, l1 + l2, fontsize=7, loc="lower left")
     a = ax[1, 0]
-    e_nom, s_bed, same, beds = young
+    e_nom, k_bed, same, beds = young
     a.plot([e for e, _ in same], [s["k_eff"] for _, s in same], "o-", label="k_eff")
     a.plot([e for e, _ in same], [s["k_core"] for _, s in same], "s--", label="k_core")
     a.axvline(e_nom, color="k", lw=0.8)
     a.set_xscale("log")
     a.set_xlabel("Young's modulus E read (GPa)")
     a.set_ylabel("k (W/mK)")
-    a.set_title("3a. the same bed read at E (Hertz a, 300 K)")
+    a.set_title("3a. the same bed read at E (Hertz correction, 300 K)")
     a.legend(fontsize=7)
     a = ax[1, 1]
-    g = groups(beds, "scale")
-    for key, marker, n, name in (("hertz", "o", 0, "Hertz a at the bed's S"),
+    g = groups(beds, "k_n")
+    for key, marker, n, name in (("hertz", "o", 0, "Hertz correction at the bed's k_n"),
                                  ("geometric", "v", 2, "geometric a")):
-        a.plot([r["scale"] for r in beds], [r[key]["k_eff"] for r in beds], marker,
+        a.plot([r["k_n"] for r in beds], [r[key]["k_eff"] for r in beds], marker,
                color=f"C{n}", alpha=0.4)
-        a.plot(list(g), [statistics.mean(r[key]["k_eff"] for r in rows) for rows in g.values()],
-               "-", color=f"C{n}", label=name)
+        a.plot(list(g), [statistics.mean(r[key]["k_eff"] for r in v) for v in g.values()],
+               "-", color=f"C{n}", label=f"k_eff, {name}")
+        a.plot(list(g), [statistics.mean(r[key]["k_core"] for r in v) for v in g.values()],
+               "--", color=f"C{n}", alpha=0.6, label=f"k_core, {name}")
     a.set_xscale("log")
     a.set_yscale("log")
-    a.set_xlabel("deposit young-scale S (DEM modulus 198 GPa / S)")
-    a.set_ylabel("k_eff (W/mK)")
-    a.set_title("3b. beds deposited softened (seeds 1-3, line: mean)")
+    a.set_xlabel("DEM stiffness k_n (N/m) of the deposit ([KE]: 1e5)")
+    a.set_ylabel("k (W/mK)")
+    a.set_title(f"3b. beds deposited at k_n ({seeds_text()}, line: mean)")
     a.legend(fontsize=7)
     a = ax[1, 2]
     for n, (t, rows) in enumerate(groups(emis[1], "t").items()):
@@ -386,14 +485,14 @@ def plot(temps, ratio, young, emis, heights, psd, cons):
                 for rows in g.values()],
                [statistics.mean(r[key]["k_eff"] for r in rows) / ref for rows in g.values()],
                "-", color=f"C{n}", label=name)
-    a.set_xlabel("bed height H / D (floor to lid; 110, 220, ... 1100 spheres)")
+    a.set_xlabel("bed height H / D (floor to the highest particle top)")
     a.set_ylabel("k_eff / k_eff(10 D)")
-    a.set_title("5. bed height (seeds 1-3, line: mean)")
+    a.set_title(f"5. bed height ({seeds_text()}, line: mean)")
     a.legend(fontsize=7)
     bed_panel(ax[2, 1], psd, "spread", "σ / D (Gaussian on the diameter, nominal)",
               "6. polydispersity (same solid volume)", log_x=False)
-    bed_panel(ax[2, 2], cons, "p", "lid pressure (Pa)", "7. consolidation (seeds 1-3, line: mean)",
-              log_x=True)
+    bed_panel(ax[2, 2], cons, "p", "lid depth below the surface (r; 0: unconsolidated)",
+              f"7. consolidation ({seeds_text()}, line: mean)", log_x=False)
     fig.tight_layout()
     fig.savefig(os.path.join(RESULTS, "keff-parameters.png"), dpi=110)
 
@@ -404,20 +503,36 @@ def report(temps, ratio, young, emis, heights, psd, cons):
         "",
         "Generated by `bench/studies/keff_parameters.py`; regenerate with",
         "",
-        "    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/keff_parameters.py",
+        "    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/keff_parameters.py"
+        + ("" if len(SEEDS) == FULL_SEEDS else f" --seeds {len(SEEDS)}"),
         "",
-        "(one thread; the beds are cached in out/studies/keff-parameters/, about fifteen minutes "
-        "of one core the first time). Beds: `deposit --config data/scenes/ke2016-steel-1mm-held-lid-bed.ini "
-        "--seed S` (1,100 monodisperse steel spheres of 1 mm in a box of 10 × 10 D, settled, "
-        "pressed by the lid at 1e4 Pa, which stays as the bed's top face: keff's hot wall; "
-        "docs/deposit-lid.md) with each study's change on the command line. keff: `keff --config "
-        "data/scenes/ke2016-steel-1mm.ini --bed BED` (k_s 28.555, k_g 0.026 W/mK, contacts read "
-        "with the Hertz correction at the bed's softening S = 1e3, larger-lens gas region, walls "
-        "at 305 / 295 K) with the study's options. k_core is the bed's core conductivity (heat "
-        "flux over the mean temperature gradient of the particles more than 2 D from both walls, "
-        "keff_validation.core_gradient). Shares: each path's part of Σ G ΔT² (docs/keff.md). "
-        "Seed 1 unless the table gives seeds 1–3; the seed-to-seed sd of k_eff on the scene's "
-        "bed is in section 7.",
+        "(one thread). Beds: [KE]'s unconsolidated bed, `deposit --config "
+        "data/scenes/ke2016-steel-1mm-bed.ini --seed S` (monodisperse steel spheres of 1 mm "
+        "inserted from the top of a 10 D cube with a downward velocity until it is full, the "
+        "linear spring–dashpot contact of [KE]'s MFiX-DEM runs, k_n = 1e5 N/m, settled; written "
+        "with the top at the highest particle top, keff's hot wall) with each study's change on "
+        "the command line; the scene's own beds and the consolidated ones are those of "
+        "docs/results/keff-validation.md (bench/studies/keff_validation.py), the stiffness sweep "
+        "those of keff_softening.py (docs/results/keff-accuracy.md). keff: `keff --config "
+        "data/scenes/ke2016-steel-1mm.ini --bed BED` (k_s 28.555, k_g 0.026 W/mK, contacts with "
+        "the Hertz correction read from the bed, k_n δ_s = (4/3) E* √R* δ_h^{3/2}; larger-lens "
+        "gas region, walls at 305 / 295 K) with the study's options. k_eff is wall to wall; "
+        "k_core the bed's core conductivity (heat flux over the mean temperature gradient of "
+        "the particles more than 2 D from both walls, keff_validation.core_gradient), which on "
+        "these beds is several times k_eff: the hot wall at the highest particle top touches "
+        "few particles (keff-validation.md). Shares: each path's part of Σ G ΔT² "
+        "(docs/keff.md).",
+        "",
+        "**Cut for compute time** (issue 13, regenerated on the new beds in one session): "
+        + ("" if len(SEEDS) >= FULL_SEEDS else
+           f"{seeds_text()} in the bed studies, where the held-lid page had seeds 1–3; ")
+        + f"polydispersity to σ/D {SPREADS[-1]:g} (was 0.5: the smallest sphere sets the DEM "
+        "step). **Changed with the protocol:** the DEM's softness is now the linear law's k_n, so "
+        "3b sweeps k_n (keff_softening.py's beds for seed 1) where it swept the Hertz "
+        "young-scale; consolidation is [KE]'s lid depth (0.25–1 r, the validation beds) in "
+        "place of the held lid's pressure sweep. Single-case studies (1, 2, 3a, 4) are on the "
+        "seed-1 bed. The seed-to-seed spread of the scene's bed (8 beds) is in "
+        "keff-validation.md (Bed generation).",
         "",
         "**Published values.** SPEC.md §6 records what [KE] found qualitatively (radiation matters "
         "above σT³D/k_g ≈ 0.5; thin beds lose up to half the conductivity; the other studies are "
@@ -480,12 +595,13 @@ def temperature_section(temps):
                        for r in cold)
         + " (1 mm, 3.2 mm). Without radiation k_eff rises with T through k_g(T) alone "
         f"({cold[0]['runs']['off']['k_eff']:.3f} → {hottest['runs']['off']['k_eff']:.3f} W/mK "
-        "for 1 mm, 300 → 1500 K). [KE] (SPEC §6): radiation matters above σT³D/k_g ≈ 0.5; "
-        "ours agrees: below 0.5 radiation adds at most ~20 % (2–5 % at 300 K, near the seed "
-        "spread), above it it grows fast (k_eff doubles at σT³D/k_g ≈ 2–3). The number does not "
-        "collapse the two sizes onto one curve (panel 2): at the same σT³D/k_g the 3.2 mm bed "
-        "has the smaller radiation share, its contacts (pressed by a lid scaled with ρD) "
-        "carrying more of the heat than the 1 mm bed's.",
+        "for 1 mm, 300 → 1500 K). Below σT³D/k_g = 0.5 radiation (ε 0.5) adds at most "
+        + " and ".join(f"{max((r['runs'][0.5]['k_eff'] / r['runs']['off']['k_eff'] - 1) * 100 for r in rows if r['number'] < 0.5):.0f} %"
+                       for rows in groups(temps, "case").values())
+        + " (1 mm, 3.2 mm). [KE] (SPEC §6): radiation matters above σT³D/k_g ≈ 0.5. These are "
+        "wall-to-wall values on unconsolidated beds, whose hot wall touches few particles; "
+        "radiation also crosses that open top layer, so its share here includes the wall "
+        "layer's.",
         "",
     ]
     return L
@@ -521,108 +637,80 @@ def ratio_section(eps_core, rows):
         + (f", passing one half between k_g/k_s = {cross[0][0]['ratio']:g} and "
            f"{cross[0][1]['ratio']:g}" if cross else "")
         + ". keff's particles are isothermal and k_s enters only through the contact "
-        "conductance 2 k_s a, so at k_g/k_s ≥ 1e-2 k_eff/k_g stops at the gas network's own "
-        f"value (~{hi['run']['k_eff'] / hi['k_g']:.1f}) while ZBS, which conducts through the "
-        f"solid in series, falls to {hi['zbs']:.1f}: the model (SPEC §6 as written) does not "
-        "hold for poorly conducting solids (k_core / ZBS "
-        f"{hi['run']['k_core'] / hi['k_g'] / hi['zbs']:.2f} at 0.1). For metals in air "
-        "(k_g/k_s ≈ 1e-4–1e-3) it is within ZBS's range (k_core / ZBS "
-        f"{lo['run']['k_core'] / lo['k_g'] / lo['zbs']:.2f}–"
-        f"{rows[2]['run']['k_core'] / rows[2]['k_g'] / rows[2]['zbs']:.2f}), and there the ratio "
-        "acts through the contact path. [KE] studied the ratio (SPEC §6) without a stated result "
+        "conductance 2 k_s a, while ZBS conducts through the solid in series; k_core / ZBS is "
+        f"{hi['run']['k_core'] / hi['k_g'] / hi['zbs']:.2f} at k_g/k_s = {hi['ratio']:g} and "
+        f"{lo['run']['k_core'] / lo['k_g'] / lo['zbs']:.2f} at {lo['ratio']:g}. k_eff here is "
+        f"{lo['run']['k_eff'] / lo['run']['k_core']:.2f}–"
+        f"{hi['run']['k_eff'] / hi['run']['k_core']:.2f} of k_core: the unconsolidated bed's "
+        "hot-wall layer. [KE] studied the ratio (SPEC §6) without a stated result "
         "to compare with.",
         "",
     ]
     return L
 
 
-def lid_columns(rows):
-    """Lid travel (D) and the lid's mean force over the second half of the hold over its target,
-    mean ± sd."""
-    return (f"{pm([r['bed']['dep']['lid']['travel'] / D for r in rows], 2)} | "
-            + pm([held(r) for r in rows], 3))
-
-
-def held(row):
-    """The lid's mean force over the second half of the hold, over its target."""
-    lid = row["bed"]["dep"]["lid"]
-    return lid["hold_late_force"] / lid["target_force"]
-
-
-def young_section(e_nom, s_bed, same, beds):
+def young_section(e_nom, k_bed, same, beds):
     ref = next(s for e, s in same if e == round(e_nom))
     L = [
-        "## 3. Young's modulus",
+        "## 3. Young's modulus and the DEM stiffness",
         "",
-        f"(a) The seed-1 bed (deposited at E_nom / S_bed, E_nom = {e_nom:g} GPa, "
-        f"S_bed = {s_bed:g}) read as a material of modulus E: under the bed's forces a Hertz "
-        "contact at E has the overlap δ_s (E_nom / (S_bed E))^(2/3), which is keff's Hertz "
-        "reading at `--contact.young-scale` S_bed E / E_nom (the pure contact-area effect, "
-        "a ∝ E^(-1/3); the packing is the same). 300 K, contact + gas.",
+        f"(a) The seed-1 bed (deposited with the linear law at k_n = {k_bed:g} N/m; E_nom = "
+        f"{e_nom:g} GPa in its record) read as a material of modulus E (`--contact.young`): the "
+        "Hertz correction k_n δ_s = (4/3) E* √R* δ_h^{3/2} gives the overlap of a Hertz contact "
+        "at E under the bed's forces, so a ∝ E^(-1/3) at the same packing. 300 K, contact + gas.",
         "",
-        "| E (GPa) | young-scale read | k_eff (W/mK) | vs E_nom | k_core (W/mK) | contact share |",
+        "| E (GPa) | k_eff (W/mK) | vs E_nom | k_core (W/mK) | vs E_nom | contact share |",
         "|---|---|---|---|---|---|",
     ]
     for e, s in same:
-        L.append(f"| {e:g} | {s_bed * e / e_nom:.4g} | {s['k_eff']:.4f} | "
-                 f"{(s['k_eff'] / ref['k_eff'] - 1) * 100:+.1f} % | {s['k_core']:.4f} | "
+        L.append(f"| {e:g} | {s['k_eff']:.4f} | {(s['k_eff'] / ref['k_eff'] - 1) * 100:+.1f} % | "
+                 f"{s['k_core']:.4f} | {(s['k_core'] / ref['k_core'] - 1) * 100:+.1f} % | "
                  f"{s['share']['contact']:.3f} |")
     L += [
         "",
-        "(b) Beds deposited at young-scale S (the DEM runs with E_nom / S, particles and walls; "
-        "lid at 1e4 Pa, seeds 1–3), read with the Hertz correction at their own S (the contacts "
-        "of the real steel) and with the geometric radius of the soft overlap (what a softened "
-        "bed gives without the correction).",
+        "(b) The beds of keff_softening.py: the scene's bed deposited at k_n = "
+        + ", ".join(f"{k:g}" for k in STIFFNESS) + f" N/m ({seeds_text()}), read with the Hertz "
+        "correction at their own k_n (the contacts of the real steel) and with the geometric "
+        "radius of the soft overlap (what a soft bed gives without the correction).",
         "",
-        "| S | DEM E (GPa) | lid travel (D) | lid force in the hold / target | "
-        "max overlap / r | core porosity | Z (bedstat) | k_eff, Hertz a | "
-        "k_eff, geometric a | geometric / Hertz | contact share, Hertz / geometric | "
-        "deposit wall (s) |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "| k_n (N/m) | max overlap / r | core porosity | Z (bedstat) | k_eff, Hertz | "
+        "k_eff, geometric | geometric / Hertz | k_core, Hertz | k_core, geometric | "
+        "contact share, Hertz / geometric | deposit wall (s) |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
-    for scale, rows in groups(beds, "scale").items():
-        h = [r["hertz"]["k_eff"] for r in rows]
-        g = [r["geometric"]["k_eff"] for r in rows]
+    by = groups(beds, "k_n")
+    for k_n, rs in by.items():
+        h = [r["hertz"]["k_eff"] for r in rs]
+        g = [r["geometric"]["k_eff"] for r in rs]
         L.append(
-            f"| {scale:g} | {e_nom / scale:.3g} | {lid_columns(rows)} | "
-            f"{statistics.mean(r['bed']['dep']['max_overlap_m'] for r in rows) / (D / 2):.4f} | "
-            f"{pm([1 - r['bed']['dep']['core_density'] for r in rows], 3)} | "
-            f"{pm([r['bed']['stat']['coordination'] for r in rows], 2)} | {pm(h)} | {pm(g)} | "
+            f"| {k_n:g} | "
+            f"{statistics.mean(r['bed']['dep']['max_overlap_m'] for r in rs) / (D / 2):.2e} | "
+            f"{pm([1 - r['bed']['dep']['core_density'] for r in rs], 3)} | "
+            f"{pm([r['bed']['stat']['coordination'] for r in rs], 2)} | {pm(h)} | {pm(g)} | "
             f"{statistics.mean(g) / statistics.mean(h):.2f} | "
-            f"{statistics.mean(r['hertz']['share']['contact'] for r in rows):.3f} / "
-            f"{statistics.mean(r['geometric']['share']['contact'] for r in rows):.3f} | "
-            f"{statistics.median(r['bed']['wall'] for r in rows):.0f} |")
+            f"{pm([r['hertz']['k_core'] for r in rs])} | "
+            f"{pm([r['geometric']['k_core'] for r in rs])} | "
+            f"{statistics.mean(r['hertz']['share']['contact'] for r in rs):.3f} / "
+            f"{statistics.mean(r['geometric']['share']['contact'] for r in rs):.3f} | "
+            f"{statistics.median(r['bed']['wall'] for r in rs):.0f} |")
     lo, hi = same[0], same[-1]
-    by = groups(beds, "scale")
-    hz = {s: statistics.mean(r["hertz"]["k_eff"] for r in rows) for s, rows in by.items()}
-    gm = {s: statistics.mean(r["geometric"]["k_eff"] for r in rows) for s, rows in by.items()}
-    left = {s: statistics.mean(held(r) for r in rows) for s, rows in by.items()}
+    hc = [statistics.mean(r["hertz"]["k_core"] for r in rs) for rs in by.values()]
+    gc = [statistics.mean(r["geometric"]["k_core"] for r in rs) for rs in by.values()]
     L += [
         "",
-        f"**Findings.** (a) From E = {lo[0]:g} to {hi[0]:g} GPa the same packing's k_eff falls "
-        f"from {lo[1]['k_eff']:.4f} to {hi[1]['k_eff']:.4f} W/mK "
-        f"({(lo[1]['k_eff'] / hi[1]['k_eff'] - 1) * 100:.0f} % more at the soft end), the contact "
-        f"share from {lo[1]['share']['contact']:.2f} to {hi[1]['share']['contact']:.2f}: "
-        "only the contact path depends on E (a ∝ E^(-1/3)) and it carries a minority of the heat "
-        f"at 300 K. (b) With the Hertz correction the beds softened {BED_SCALES[0]:g}–"
-        f"{BED_SCALES[-1]:g} times give "
-        + ", ".join(f"{hz[s]:.4f}" for s in BED_SCALES)
-        + " W/mK (S = " + ", ".join(f"{s:g}" for s in BED_SCALES) + "): far outside the seed "
-        "spread, because the softening changes the packing itself: the lid holds the same "
-        "pressure (its mean force over the hold's second half is "
-        + ", ".join(f"{left[s] * 100:.0f} %" for s in BED_SCALES)
-        + " of the target), but the softer beds let it travel further and pack denser (core "
-        "porosity and Z in the table). So the Hertz correction of the contact radius does not "
-        "make k_eff independent of S; against the scenes' S = 1e3, "
-        + ", ".join(f"S = {s:g} gives {(hz[s] / hz[1000] - 1) * 100:+.0f} %"
-                    for s in BED_SCALES if s < 1000)
-        + ". Read with the geometric radius they "
-        "give "
-        + ", ".join(f"{gm[s]:.4f}" for s in BED_SCALES)
-        + " W/mK, i.e. " + ", ".join(f"{gm[s] / hz[s]:.1f}×" for s in BED_SCALES)
-        + " the corrected value: softening without the correction inflates the contacts by "
-        "√2 S^(1/3) and k_eff with them. [KE] studied E (SPEC §6) without a stated result; the "
-        "correction is SPEC's prescription for softened beds.",
+        f"**Findings.** (a) From E = {lo[0]:g} to {hi[0]:g} GPa the same packing's k_eff goes "
+        f"from {lo[1]['k_eff']:.4f} to {hi[1]['k_eff']:.4f} W/mK and k_core from "
+        f"{lo[1]['k_core']:.4f} to {hi[1]['k_core']:.4f} "
+        f"({(lo[1]['k_core'] / hi[1]['k_core'] - 1) * 100:.0f} % more at the soft end), the "
+        f"contact share from {lo[1]['share']['contact']:.2f} to {hi[1]['share']['contact']:.2f}: "
+        "only the contact path depends on E. (b) With the Hertz correction k_core over k_n = "
+        f"{STIFFNESS[0]:g}–{STIFFNESS[-1]:g} N/m is "
+        + ", ".join(f"{v:.4f}" for v in hc)
+        + f" W/mK (spread {(max(hc) - min(hc)) / statistics.mean(hc) * 100:.0f} % of the mean); "
+        "with the geometric radius "
+        + ", ".join(f"{v:.4f}" for v in gc)
+        + " W/mK: without the correction the contacts grow as the DEM softens. [KE] studied E "
+        "(SPEC §6) without a stated result to compare with.",
         "",
     ]
     return L
@@ -681,11 +769,12 @@ def height_section(rows):
     L = [
         "## 5. Bed height",
         "",
-        "110 H/D spheres (the scene's 1,100 at 10 D) in the same 10 × 10 D box, lid at 1e4 Pa "
-        "kept, seeds 1–3. k_eff at 300 K (scene) and at 1000 K with radiation (ε 0.5, air "
-        f"k_g(T), {RAYS} rays). H is keff's wall-to-wall distance (floor to lid).",
+        "A 10 × 10 × H D box filled by the scene's insertion until full (`--domain "
+        f"0.01,0.01,H`), unconsolidated, {seeds_text()}. k_eff at 300 K (scene) and at 1000 K with "
+        f"radiation (ε 0.5, air k_g(T), {RAYS} rays). H/D (measured) is keff's wall-to-wall "
+        "distance, floor to the highest particle top.",
         "",
-        "| H/D nominal | particles | H/D (floor to lid) | box porosity | k_eff 300 K (W/mK) | "
+        "| H/D nominal | particles | H/D (floor to the hot wall) | box porosity | k_eff 300 K (W/mK) | "
         "/ k_eff(10 D) | contact share | k_eff 1000 K, radiation | / k_eff(10 D) | "
         "radiation share |",
         "|---|---|---|---|---|---|---|---|---|---|",
@@ -694,7 +783,7 @@ def height_section(rows):
         c = [r["cold"]["k_eff"] for r in rs]
         w = [r["hot"]["k_eff"] for r in rs]
         L.append(
-            f"| {h} | {rs[0]['cold']['particles']} | "
+            f"| {h} | {statistics.mean(r['cold']['particles'] for r in rs):.0f} | "
             f"{pm([r['bed']['dep']['domain_top'] / D for r in rs], 2)} | "
             f"{pm([1 - r['bed']['stat']['box_density'] for r in rs], 3)} | {pm(c)} | "
             f"{statistics.mean(c) / ref_cold:.2f} | "
@@ -710,16 +799,31 @@ def height_section(rows):
         + ", ".join(f"{rel[h]:.2f}" for h in HEIGHTS[:-1])
         + " at H/D = " + ", ".join(f"{h}" for h in HEIGHTS[:-1])
         + "; at 1000 K with radiation " + ", ".join(f"{rel_hot[h]:.2f}" for h in HEIGHTS[:-1])
-        + ". The wall layers (porosity near a flat wall is higher, and each wall adds a contact "
-        "resistance in series) weigh more in a thin bed; with radiation, which crosses the open "
-        "wall layers, the thin beds keep "
-        + ("more" if rel_hot[HEIGHTS[0]] > rel[HEIGHTS[0]] else "less")
-        + ". [KE] (SPEC §6): thin beds lose up to half the conductivity; ours keep "
-        f"{rel[2] * 100:.0f} % at 2 D and {rel[1] * 100:.0f} % at nominal 1 D (whose 110 "
-        "spheres do not fit in one layer: see its H/D and porosity in the table).",
+        + f" ({seeds_text()}). The 300 K k_eff of an unconsolidated bed is set by the few "
+        "particles under the hot wall at the highest particle top: on the 10 D bed its "
+        f"seed-to-seed σ is {seed_spread()} of its mean (keff-validation.md, Bed generation), "
+        "so the ratios between 2 and 10 D carry that scatter; with radiation, which crosses "
+        "the open top layer, they are smoother. At 1 D the insertion stops with "
+        f"{statistics.mean(r['cold']['particles'] for r in g[1]):.0f} spheres, an incomplete "
+        "monolayer whose spheres each reach both walls, so its k_eff is not that of a thin "
+        "bed. [KE] (SPEC §6): thin beds lose up to half the conductivity; ours, relative to "
+        f"10 D: {rel[2]:.2f} at 2 D and {rel[3]:.2f} at 3 D at 300 K, {rel_hot[2]:.2f} and "
+        f"{rel_hot[3]:.2f} at 1000 K with radiation.",
         "",
     ]
     return L
+
+
+def seed_spread():
+    """The relative sd of k_eff over keff_validation's bed-generation seeds (bed-seeds.json), as
+    text, or 'not measured' when that study has not run."""
+    path = os.path.join(kv.WORK, "bed-seeds.json")
+    if not os.path.exists(path):
+        return "not measured"
+    with open(path) as f:
+        k = [r["k_eff"] for r in json.load(f).values()]
+    return (f"{statistics.stdev(k) / statistics.mean(k) * 100:.0f} % ({len(k)} seeds)"
+            if len(k) > 1 else "not measured")
 
 
 def rel_sd(bed):
@@ -737,18 +841,19 @@ def psd_section(rows):
         "## 6. Polydispersity",
         "",
         "Gaussian on the diameter, mean 1 mm, sd σ, truncated symmetrically at 1 mm ± min(2σ, "
-        "0.75 mm) (so the mean stays 1 mm; σ/D 0.4 and 0.5 are cut at 0.25–1.75 mm and their "
-        "sampled sd is below the nominal σ), the count chosen for the solid volume of 1,100 "
-        "spheres of 1 mm; lid at 1e4 Pa kept, seeds 1–3. Sampled σ/D: bedstat's radius sd over "
-        "its mean.",
+        "0.75 mm) (so the mean stays 1 mm), the pool chosen for the solid volume of the scene's "
+        f"1,400 spheres of 1 mm (the insertion stops when the box is full); unconsolidated, "
+        f"{seeds_text()}; σ/D up to {SPREADS[-1]:g} only (compute time). Sampled σ/D: bedstat's "
+        "radius sd over its mean.",
         "",
-        "| σ/D nominal | --psd | particles | sampled σ/D | core porosity | box porosity | "
+        "| σ/D nominal | --psd | pool / particles in the bed | sampled σ/D | core porosity | box porosity | "
         "Z (bedstat) | k_eff (W/mK) | k_core (W/mK) | contact share | deposit wall (s) |",
         "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for spread, rs in g.items():
         L.append(
-            f"| {spread:g} | `{rs[0]['spec']}` | {rs[0]['count']} | "
+            f"| {spread:g} | `{rs[0]['spec']}` | {rs[0]['count']} / "
+            f"{statistics.mean(r['bed']['dep']['n'] for r in rs):.0f} | "
             f"{statistics.mean(rel_sd(r['bed']) for r in rs):.3f} | "
             f"{pm([1 - r['bed']['dep']['core_density'] for r in rs], 3)} | "
             f"{pm([1 - r['bed']['stat']['box_density'] for r in rs], 3)} | "
@@ -761,17 +866,17 @@ def psd_section(rows):
            for s, rs in g.items()}
     z = {s: statistics.mean(r["bed"]["stat"]["coordination"] for r in rs) for s, rs in g.items()}
     kc = {s: statistics.mean(r["run"]["k_core"] for r in rs) for s, rs in g.items()}
-    sd0 = statistics.stdev(r["run"]["k_eff"] for r in g[0.0]) / k[0.0]
+    top = SPREADS[-1]
     L += [
         "",
-        f"**Findings.** From σ/D 0 to 0.5 the core porosity goes {por[0.0]:.3f} → {por[0.5]:.3f}, "
-        f"Z {z[0.0]:.2f} → {z[0.5]:.2f}, k_eff {k[0.0]:.4f} → {k[0.5]:.4f} W/mK "
-        f"({(k[0.5] / k[0.0] - 1) * 100:+.0f} %; seed sd at σ = 0: {sd0 * 100:.0f} %), while "
-        f"k_core stays at {kc[0.0]:.3f}–{max(kc.values()):.3f} W/mK within its seed spread: the "
-        "core packs as densely, with fewer contacts per particle, and the loss in k_eff comes "
-        "from the wall layers (box porosity up by "
-        f"{box_porosity(g[0.5]) - box_porosity(g[0.0]):.3f}). "
-        "[KE] studied σ/D up to 0.5 (SPEC §6) without a stated result to compare with.",
+        f"**Findings.** From σ/D 0 to {top:g} the core porosity goes {por[0.0]:.3f} → "
+        f"{por[top]:.3f}, Z {z[0.0]:.2f} → {z[top]:.2f}, k_eff {k[0.0]:.4f} → {k[top]:.4f} W/mK "
+        f"({(k[top] / k[0.0] - 1) * 100:+.0f} %), k_core {kc[0.0]:.4f} → {kc[top]:.4f} W/mK "
+        f"({(kc[top] / kc[0.0] - 1) * 100:+.0f} %); box porosity "
+        f"{box_porosity(g[top]) - box_porosity(g[0.0]):+.3f}. The seed-to-seed σ of "
+        f"k_eff on the monodisperse bed is {seed_spread()} of its mean (keff-validation.md, "
+        "Bed generation): read a trend in k_eff against it. [KE] studied σ/D up "
+        "to 0.5 (SPEC §6) without a stated result to compare with.",
         "",
     ]
     return L
@@ -782,66 +887,58 @@ def consolidation_section(rows):
     L = [
         "## 7. Consolidation",
         "",
-        "Lid pressure 1e2 Pa (about a fifth of the bed's own weight per area, ~470 Pa: the lid "
-        "only touches the bed) to 1e5 Pa (the scene: 1e4), lid kept, seeds 1–3. Travel: how far "
-        "the lid went down from the highest particle top; the force in the hold: its mean over "
-        "the hold's second half, over the target (the lid holds the pressure, following the "
-        "creeping bed; docs/deposit-lid.md). Touching: overlapping "
-        "the wall (keff_validation.wall_links). Max overlap: deposit's, over r.",
+        "[KE]'s consolidation: the unconsolidated bed with the top wall lowered to 0.25, 0.5, "
+        "0.75 and 1 particle radius below its surface (the 90th percentile of the particle "
+        "tops), held, raised back at its speed and relaxed (`--lid.enabled true --lid.depth L`, "
+        f"docs/deposit-lid.md), the beds of keff-validation.md ({seeds_text()}); keff's hot wall at the "
+        "highest particle top of the relaxed bed. Lid force: the largest during the press. "
+        "Within reach of the hot wall / touching it: particles with the wall inside their gas "
+        "lens (0.2 r) / overlapping it (wall_links); the same for the floor.",
         "",
-        "| lid pressure (Pa) | lid travel (D) | lid force in the hold / target | particles "
-        "touching the lid / the floor | core porosity | box porosity | Z (bedstat) | "
-        "max overlap / r | k_eff (W/mK) | per seed | k_core (W/mK) | contact share |",
+        "| lid depth (r) | lid travel (D) | largest lid force (N) | hot wall: in lens / touching "
+        "| floor: in lens / touching | core porosity | box porosity | Z (bedstat) | "
+        "k_eff (W/mK) | k_core (W/mK) | k_eff / k_core | contact share |",
         "|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for p, rs in g.items():
-        k = [r["run"]["k_eff"] for r in rs]
+        lid = [r["bed"]["dep"].get("lid", {}) for r in rs]
+        links = [wall_links(r["bed"]["path"]) for r in rs]
         L.append(
-            f"| {p:g} | {lid_columns(rs)} | "
-            f"{statistics.mean(wall_links(r['bed']['path'])[1] for r in rs):.0f} / "
-            f"{statistics.mean(wall_links(r['bed']['path'])[3] for r in rs):.0f} | "
+            f"| {p:g} | {statistics.mean(x.get('travel', 0.0) for x in lid) / D:.2f} | "
+            f"{statistics.mean(x.get('max_force', 0.0) for x in lid):.3g} | "
+            f"{statistics.mean(x[0] for x in links):.0f} / {statistics.mean(x[1] for x in links):.0f} | "
+            f"{statistics.mean(x[2] for x in links):.0f} / {statistics.mean(x[3] for x in links):.0f} | "
             f"{pm([1 - r['bed']['dep']['core_density'] for r in rs], 3)} | "
             f"{pm([1 - r['bed']['stat']['box_density'] for r in rs], 3)} | "
             f"{pm([r['bed']['stat']['coordination'] for r in rs], 2)} | "
-            f"{statistics.mean(r['bed']['dep']['max_overlap_m'] for r in rs) / (D / 2):.4f} | "
-            f"{pm(k)} | {' / '.join(f'{v:.4f}' for v in k)} | "
-            f"{pm([r['run']['k_core'] for r in rs])} | "
+            f"{pm([r['run']['k_eff'] for r in rs])} | {pm([r['run']['k_core'] for r in rs])} | "
+            f"{statistics.mean(r['run']['k_eff'] / r['run']['k_core'] for r in rs):.2f} | "
             f"{statistics.mean(r['run']['share']['contact'] for r in rs):.3f} |")
-    means = {p: statistics.mean(r["run"]["k_eff"] for r in rs) for p, rs in g.items()}
-    scene = [r["run"]["k_eff"] for r in g[1e4]]
+    k = {p: statistics.mean(r["run"]["k_eff"] for r in rs) for p, rs in g.items()}
+    kc = {p: statistics.mean(r["run"]["k_core"] for r in rs) for p, rs in g.items()}
     allk = [r["run"]["k_eff"] for r in rows]
+    allc = [r["run"]["k_core"] for r in rows]
     mean, lo, hi, sd = summary(allk)
-    band = [r["run"]["k_eff"] for r in rows if 3e3 <= r["p"] <= 3e4]
-    bmean, blo, bhi, bsd = summary(band)
-    cores = [r["run"]["k_core"] for r in rows]
-    cmean, _, _, csd = summary(cores)
+    cmean, clo, chi, csd = summary(allc)
     L += [
         "",
-        "**Findings.** k_eff (mean of the seeds) goes "
-        + " → ".join(f"{means[p]:.4f}" for p in PRESSURES)
-        + " W/mK from 1e2 to 1e5 Pa. Seed spread at the scene's 1e4 Pa: "
-        f"{pm(scene)} W/mK ({statistics.stdev(scene) / statistics.mean(scene) * 100:.1f} %). "
-        "Consolidation spread (the issue's uncertainty source): over all "
-        f"{len(PRESSURES)} settings × 3 seeds k_eff = {mean:.4f} ± {sd:.4f} W/mK "
-        f"({sd / mean * 100:.0f} %, range {lo:.4f}–{hi:.4f}), k_core = {cmean:.4f} ± {csd:.4f} "
-        f"({csd / cmean * 100:.0f} %); over the half decade either side of the scene "
-        f"(3e3–3e4 Pa, 9 beds) k_eff = {bmean:.4f} ± {bsd:.4f} W/mK ({bsd / bmean * 100:.0f} %, "
-        f"range {blo:.4f}–{bhi:.4f}). Below ~1e3 Pa (the bed's own weight is ~470 Pa) the lid "
-        "touches few particles (table) and k_eff falls to a fraction of k_core: the hot-wall "
-        "contact, not the bed, sets it, as with the released lid of "
-        "docs/results/keff-validation.md. "
-        f"At {PRESSURES[-1]:g} Pa the softened (S = 1e3) bed is pressed to core porosity "
-        f"{statistics.mean(1 - r['bed']['dep']['core_density'] for r in g[PRESSURES[-1]]):.3f} "
-        "(random close packing of rigid spheres: 0.36): its overlaps are those of 0.2 GPa "
-        "spheres, so a setting that dense is outside what the softened DEM represents. "
-        "[KE] consolidate by lowering a lid and releasing it (SPEC §6); here the lid stays "
-        "(docs/deposit-lid.md), so the stress it left is still on the bed.",
+        "**Findings.** k_eff goes " + " → ".join(f"{k[p]:.4f}" for p in DEPTHS)
+        + " W/mK and k_core " + " → ".join(f"{kc[p]:.4f}" for p in DEPTHS)
+        + f" W/mK from the unconsolidated bed to the lid at {DEPTHS[-1]:g} r. Over the "
+        f"{len(rows)} beds (the consolidation uncertainty of [KE]) k_eff = {mean:.4f} ± "
+        f"{sd:.4f} W/mK ({sd / mean * 100:.0f} %, range {lo:.4f}–{hi:.4f}), k_core = "
+        f"{cmean:.4f} ± {csd:.4f} ({csd / cmean * 100:.0f} %). The press flattens the top, so "
+        "more particles reach the hot wall and k_eff jumps from the unconsolidated bed to any "
+        "depth; k_core, the bed's own, moves by a few per cent.",
         "",
     ]
     return L
 
 
 def main():
+    global SEEDS
+    if "--seeds" in sys.argv:
+        SEEDS = list(range(1, int(sys.argv[sys.argv.index("--seeds") + 1]) + 1))
     temps = temperature_study()
     ratio = ratio_study()
     young = young_study()
