@@ -33,8 +33,7 @@ SCENES = os.path.join(ROOT, "data", "scenes")
 ENV = dict(os.environ, OMP_NUM_THREADS="1")
 SIGMA = 5.670374419e-8  # Stefan–Boltzmann, W/m^2K^4
 # Seeds of the bed studies (3, height, polydispersity, consolidation): 1..N with --seeds N
-# (default 3). Cut for compute time (issue 13): σ/D up to 0.2 (was 0.5: the smallest sphere sets
-# the DEM step, 8 times shorter at 0.25 D).
+# (default 3).
 FULL_SEEDS = 3
 SEEDS = list(range(1, FULL_SEEDS + 1))
 D = 1.0e-3  # the steel case's diameter (m)
@@ -44,7 +43,8 @@ RATIOS = [1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1]  # k_g / k_s
 YOUNG = [1, 3, 10, 30, 100, 198, 300, 1000]  # GPa, the same bed read at E
 STIFFNESS = [1e3, 1e4, 1e5, 1e6]  # DEM k_n (N/m) of keff_softening.py's beds; [KE] 1e5
 HEIGHTS = [1, 2, 3, 5, 7, 10]  # box height H/D, insertion until full
-SPREADS = [0.0, 0.1, 0.2]  # sigma/D
+SPREADS = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5]  # sigma/D
+FULL_SPREAD = 0.5
 DEPTHS = [0.0] + kv.DEPTHS  # lid depth below the surface (r): keff_validation's beds
 RAYS = 1000
 
@@ -523,11 +523,14 @@ def report(temps, ratio, young, emis, heights, psd, cons):
         "few particles (keff-validation.md). Shares: each path's part of Σ G ΔT² "
         "(docs/keff.md).",
         "",
-        "**Cut for compute time** (issue 13, regenerated on the new beds in one session): "
-        + ("" if len(SEEDS) >= FULL_SEEDS else
-           f"{seeds_text()} in the bed studies, where the held-lid page had seeds 1–3; ")
-        + f"polydispersity to σ/D {SPREADS[-1]:g} (was 0.5: the smallest sphere sets the DEM "
-        "step). **Changed with the protocol:** the DEM's softness is now the linear law's k_n, so "
+        "" + ("" if len(SEEDS) >= FULL_SEEDS and SPREADS[-1] >= FULL_SPREAD else
+           "**Cut for compute time:** "
+           + "; ".join(([f"{seeds_text()} in the bed studies, where the held-lid page had "
+                         "seeds 1–3"] if len(SEEDS) < FULL_SEEDS else [])
+                       + ([f"polydispersity to σ/D {SPREADS[-1]:g} (was 0.5: the smallest "
+                           "sphere sets the DEM step)"] if SPREADS[-1] < FULL_SPREAD else []))
+           + ". ")
+        + "**Changed with the protocol (issue 13):** the DEM's softness is now the linear law's k_n, so "
         "3b sweeps k_n (keff_softening.py's beds for seed 1) where it swept the Hertz "
         "young-scale; consolidation is [KE]'s lid depth (0.25–1 r, the validation beds) in "
         "place of the held lid's pressure sweep. Single-case studies (1, 2, 3a, 4) are on the "
@@ -843,8 +846,11 @@ def psd_section(rows):
         "Gaussian on the diameter, mean 1 mm, sd σ, truncated symmetrically at 1 mm ± min(2σ, "
         "0.75 mm) (so the mean stays 1 mm), the pool chosen for the solid volume of the scene's "
         f"1,400 spheres of 1 mm (the insertion stops when the box is full); unconsolidated, "
-        f"{seeds_text()}; σ/D up to {SPREADS[-1]:g} only (compute time). Sampled σ/D: bedstat's "
-        "radius sd over its mean.",
+        f"{seeds_text()}"
+        + (f"; σ/D up to {SPREADS[-1]:g} only (compute time). " if SPREADS[-1] < FULL_SPREAD else
+           "; σ/D 0.4 and 0.5 are cut at 0.25–1.75 mm, so their sampled sd is below the nominal "
+           "σ. ")
+        + "Sampled σ/D: bedstat's radius sd over its mean.",
         "",
         "| σ/D nominal | --psd | pool / particles in the bed | sampled σ/D | core porosity | box porosity | "
         "Z (bedstat) | k_eff (W/mK) | k_core (W/mK) | contact share | deposit wall (s) |",
