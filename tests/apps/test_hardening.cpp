@@ -4,8 +4,6 @@
 // stdout, and the scratch folder exactly as it was (no output, no temporary, every existing file
 // byte for byte). Files are made on demand: "@name" in a command is a file of the scratch folder
 // built by make_file(name) (good beds, damaged beds, scene files, an old output, folders).
-// Cases whose fix belongs in a program this suite's author could not edit are instantiated
-// under DISABLED_Known (run them with --gtest_also_run_disabled_tests) with the reason beside.
 // Then the kill tests (SIGKILL / SIGINT while a program writes: the old output intact, no
 // temporaries left).
 #include <gtest/gtest.h>
@@ -44,7 +42,6 @@ struct Case {
   std::string args;                // "@file" -> scratch file; "{scenes}" -> data/scenes
   int status = 2;                  // expected exit status
   std::vector<std::string> words;  // each must appear on stderr ("@file" expands too)
-  std::string why_disabled;        // non-empty: instantiated under DISABLED_Known
 };
 
 std::ostream& operator<<(std::ostream& out, const Case& c) {
@@ -348,8 +345,8 @@ void make_file(const std::string& dir, const std::string& name) {
 std::vector<Case> all_cases() {
   std::vector<Case> t;
   auto add = [&](std::string name, std::string app, std::string args, int status,
-                 std::vector<std::string> words, std::string why = "") {
-    t.push_back({std::move(name), std::move(app), std::move(args), status, std::move(words), std::move(why)});
+                 std::vector<std::string> words) {
+    t.push_back({std::move(name), std::move(app), std::move(args), status, std::move(words)});
   };
   const std::string pk = "--dim 3 --domain 1e-4,1e-4,1e-4 --psd mono:d=2e-5 ";
   const std::string pk_ok = pk + "--seed 1 --out @new.h5";
@@ -604,7 +601,7 @@ std::vector<Case> all_cases() {
   add("bedstat_unknown_extension", "bedstat", "@good.txt", 2, {"does not exist"});
   add("bedstat_second_bed_bad", "bedstat", "@good.h5 @um_radii.h5", 2, {"um_radii.h5", "um"});
 
-  // deposit (apps/deposit.cpp belongs to another engineer: what still fails there is disabled).
+  // deposit.
   const std::string dep = "--in @good.h5 --t-end 1e-5 --seed 1 ";
   add("deposit_count_negative", "deposit", "--psd mono:d=2e-5 --domain 1e-4,1e-4,1e-4 --count -5 --t-end 1e-5 --seed 1 --out @out.h5", 2,
       {"--count", "-5"});
@@ -624,22 +621,17 @@ std::vector<Case> all_cases() {
   add("deposit_domain_2d", "deposit", "--psd mono:d=2e-5 --domain 1e-4,1e-4 --count 5 --t-end 1e-5 --seed 1 --out @out.h5", 2,
       {"--domain", "2D"});
   add("deposit_young_scale_negative", "deposit", dep + "--young-scale -1 --out @out.h5", 2, {"young"});
-  add("deposit_out_no_folder", "deposit", dep + "--out @nowhere/out.h5", 2, {"--out", "nowhere"},
-      "deposit.cpp: --out checked only when writing, after the run (call app::check_paths first)");
-  add("deposit_out_is_in", "deposit", dep + "--out @good.h5", 2, {"--out", "input"},
-      "deposit.cpp: --out = --in overwrites the input (call app::check_paths first)");
-  add("deposit_out_txt", "deposit", dep + "--out @out.txt", 2, {"--out", ".txt"},
-      "deposit.cpp: --out extension unchecked (call app::check_extension)");
+  add("deposit_out_no_folder", "deposit", dep + "--out @nowhere/out.h5", 2, {"--out", "nowhere"});
+  add("deposit_out_is_in", "deposit", dep + "--out @good.h5", 2, {"--out", "input"});
+  add("deposit_out_txt", "deposit", dep + "--out @out.txt", 2, {"--out", ".txt"});
   add("deposit_trajectory_no_folder", "deposit", dep + "--trajectory @nowhere/traj.h5 --every 10 --out @out.h5", 2,
       {"--trajectory", "nowhere"});
-  add("deposit_material_young_gpa", "deposit", dep + "--material.young 193 --out @out.h5", 2, {"material.young", "193"},
-      "deposit.cpp: no unit-slip guard on material.young (193 Pa for 193 GPa)");
+  add("deposit_material_young_gpa", "deposit", dep + "--material.young 193 --out @out.h5", 2, {"material.young", "193"});
 
-  // keff (apps/keff.cpp belongs to another engineer).
+  // keff.
   const std::string kf = "--bed @good.h5 ";
   add("keff_profile_bins_negative", "keff", kf + "--profile-bins -1 --out @out.h5", 2, {"--profile-bins", "-1"});
-  add("keff_profile_bins_huge", "keff", kf + "--profile-bins 1e14 --out @out.h5", 2, {"--profile-bins"},
-      "keff.cpp: --profile-bins has no upper bound (app::option_in_range)");
+  add("keff_profile_bins_huge", "keff", kf + "--profile-bins 1e14 --out @out.h5", 2, {"--profile-bins"});
   add("keff_rays_negative", "keff", kf + "--rays -5 --out @out.h5", 2, {"--rays", "-5"});
   add("keff_axis_word", "keff", kf + "--axis w --out @out.h5", 2, {"--axis", "w"});
   add("keff_temperature_negative", "keff", kf + "--temperature -5 --out @out.h5", 2, {"--temperature"});
@@ -649,15 +641,12 @@ std::vector<Case> all_cases() {
   add("keff_lens_region_word", "keff", kf + "--gas.lens-region all --out @out.h5", 2, {"gas.lens-region"});
   add("keff_missing_bed", "keff", "--out @out.h5", 2, {"--bed"});
   add("keff_bed_missing_file", "keff", "--bed @missing.h5 --out @out.h5", 2, {"missing.h5"});
-  add("keff_out_no_folder", "keff", kf + "--out @nowhere/out.h5", 2, {"--out", "nowhere"},
-      "keff.cpp: --out checked only when writing, after the solve (call app::check_paths first)");
-  add("keff_out_is_bed", "keff", kf + "--out @good.h5", 2, {"--out", "input"},
-      "keff.cpp: --out = --bed overwrites the input (call app::check_paths first)");
+  add("keff_out_no_folder", "keff", kf + "--out @nowhere/out.h5", 2, {"--out", "nowhere"});
+  add("keff_out_is_bed", "keff", kf + "--out @good.h5", 2, {"--out", "input"});
   add("keff_profile_folder", "keff", kf + "--profile-bins 4 --out @prof.h5", 2, {"prof-profile.csv", "folder"});
-  add("keff_min_gap_metre", "keff", kf + "--gas.min-gap 1 --out @out.h5", 2, {"gas.min-gap"},
-      "keff.cpp: no unit-slip guard on gas.min-gap (1 m)");
+  add("keff_min_gap_metre", "keff", kf + "--gas.min-gap 1 --out @out.h5", 2, {"gas.min-gap"});
 
-  // sinter (apps/sinter.cpp belongs to another engineer).
+  // sinter.
   const std::string si = sinter + "--bed @wide.h5 ";  // wider than the scene's spot
   add("sinter_snapshots_negative", "sinter", si + "--snapshots -1 --out @out.h5", 2, {"--snapshots", "-1"});
   add("sinter_rays_negative", "sinter", si + "--laser.rays -5 --out @out.h5", 2, {"--laser.rays", "-5"});
@@ -673,8 +662,7 @@ std::vector<Case> all_cases() {
       {"substrate.nodes"});
   add("sinter_missing_out", "sinter", si, 2, {"--out"});
   add("sinter_spot_metres", "sinter", si + "--spot 54 --out @out.h5", 2, {"--spot", "54"});
-  add("sinter_out_is_bed", "sinter", si + "--out @wide.h5", 2, {"--out", "input"},
-      "sinter.cpp: --out = --bed overwrites the input (call app::check_paths first)");
+  add("sinter_out_is_bed", "sinter", si + "--out @wide.h5", 2, {"--out", "input"});
   add("sinter_out_no_folder", "sinter", si + "--out @nowhere/out.h5", 2, {"--out", "nowhere"});
   add("sinter_out_txt", "sinter", si + "--out @out.txt", 2, {"--out", ".txt"});
   add("sinter_substrate_depth_metres", "sinter", si + "--substrate.depth 0.3 --out @out.h5", 2, {"substrate.depth"});
@@ -750,19 +738,9 @@ TEST_P(Hardening, RefusedCleanly) {
   fs::remove_all(dir);
 }
 
-std::vector<Case> cases(bool disabled) {
-  std::vector<Case> out;
-  for (auto& c : all_cases())
-    if (c.why_disabled.empty() != disabled) out.push_back(c);
-  return out;
-}
-
 std::string case_name(const ::testing::TestParamInfo<Case>& info) { return info.param.name; }
 
-INSTANTIATE_TEST_SUITE_P(Table, Hardening, ::testing::ValuesIn(cases(false)), case_name);
-// Known failures whose fix is in apps/deposit.cpp, apps/keff.cpp or apps/sinter.cpp (each case
-// says what; docs/hardening.md lists them).
-INSTANTIATE_TEST_SUITE_P(DISABLED_Known, Hardening, ::testing::ValuesIn(cases(true)), case_name);
+INSTANTIATE_TEST_SUITE_P(Table, Hardening, ::testing::ValuesIn(all_cases()), case_name);
 
 TEST(HardeningTable, HasAtLeast200CasesWithUniqueNames) {
   const auto t = all_cases();
