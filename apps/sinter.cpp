@@ -1,4 +1,4 @@
-// sinter: the DE–FD laser thermal solver (SPEC.md §5) on a bed: one laser track, melt pool on
+// sinter: the DE–FD laser thermal solver (docs/sinter.md) on a bed: one laser track, melt pool on
 // the plane x = Lx/2, an HDF5 + XDMF time series, and the energy balance of the run.
 #include <omp.h>
 #include <unistd.h>
