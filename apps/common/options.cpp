@@ -14,6 +14,7 @@
 
 #include "common/app_main.hpp"
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/io.hpp"
 
 namespace {
 
@@ -281,20 +282,11 @@ std::string folder_of(const std::string& path) {
   return slash == 0 ? "/" : path.substr(0, slash);
 }
 
-std::string lower_extension(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  const auto dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = path.substr(dot);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 // The files a path stands for: itself and, for .h5, its XDMF sidecar.
 std::vector<std::string> with_sidecar(const std::string& path) {
   std::vector<std::string> out{path};
-  if (lower_extension(path) == ".h5") out.push_back(path.substr(0, path.size() - 3) + ".xmf");
+  if (bed::extension_of(path) == ".h5") out.push_back(path.substr(0, path.size() - 3) + ".xmf");
   return out;
 }
 
@@ -366,7 +358,7 @@ void check_paths(const std::vector<PathArg>& inputs, const std::vector<PathArg>&
 
 void check_extension(const PathArg& path, std::initializer_list<const char*> accepted,
                      const std::string& hint) {
-  const std::string ext = lower_extension(path.path);
+  const std::string ext = bed::extension_of(path.path);
   std::string list;
   for (const char* a : accepted) {
     if (ext == a) return;

@@ -6,7 +6,7 @@
 namespace powderbed::bed {
 
 Bed read_bed_any(const std::string& path, const Domain* csv_domain) {
-  const std::string ext = detail::extension_of(path);
+  const std::string ext = extension_of(path);
   if (ext == ".h5") return read_bed_h5(path);
   if (ext == ".dump") return read_lammps_dump(path);
   if (ext == ".csv") {
@@ -20,7 +20,7 @@ Bed read_bed_any(const std::string& path, const Domain* csv_domain) {
 }
 
 void write_bed_any(const Bed& bed, const std::string& path) {
-  const std::string ext = detail::extension_of(path);
+  const std::string ext = extension_of(path);
   if (ext == ".h5") return write_bed_h5(bed, path);
   if (ext == ".csv") return write_bed_csv(bed, path);
   if (ext == ".data") return write_lammps_data(bed, path);

@@ -42,9 +42,6 @@ std::string read_text(const std::string& path);
 // size that could not fit before allocating it.
 double physical_memory_bytes();
 
-// Lower-case extension with the dot (".h5"), or "" when there is none.
-std::string extension_of(const std::string& path);
-
 // The XDMF sidecar of an HDF5 bed: `<path minus .h5>.xmf`.
 std::string xdmf_path(const std::string& h5_path);
 // XDMF 3 text describing `bed` as stored in the HDF5 file named `h5_file_name` (no folder, so

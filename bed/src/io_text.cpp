@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "io_detail.hpp"
+#include "powderbed/bed/io.hpp"
 #include "powderbed/bed/errors.hpp"
 
 namespace powderbed::bed::detail {
@@ -37,15 +38,6 @@ std::string read_text(const std::string& path) {
   return std::move(text).str();
 }
 
-std::string extension_of(const std::string& path) {
-  const auto slash = path.find_last_of('/');
-  const auto dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = path.substr(dot);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 bool LineCursor::next(std::string_view& line) {
   if (pos_ >= text_.size()) return false;
@@ -59,3 +51,17 @@ bool LineCursor::next(std::string_view& line) {
 }
 
 }  // namespace powderbed::bed::detail
+
+namespace powderbed::bed {
+
+std::string extension_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace powderbed::bed

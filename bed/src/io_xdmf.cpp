@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "io_detail.hpp"
+#include "powderbed/bed/io.hpp"
 
 namespace powderbed::bed::detail {
 

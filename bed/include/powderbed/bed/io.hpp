@@ -31,5 +31,8 @@ Bed read_lammps_dump(const std::string& path);
 // By extension: .h5 (HDF5), .csv (needs domain), .dump (read), .data (write).
 Bed read_bed_any(const std::string& path, const Domain* csv_domain = nullptr);
 void write_bed_any(const Bed& bed, const std::string& path);
+// Lower-case extension with the dot (".h5"), or "" when there is none: what read_bed_any and
+// write_bed_any dispatch on.
+std::string extension_of(const std::string& path);
 
 }  // namespace powderbed::bed
