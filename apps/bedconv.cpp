@@ -1,4 +1,4 @@
-// bedconv: converts a bed between the formats of DESIGN.md "The bed file", chosen by extension:
+// bedconv: converts a bed between the formats of docs/bed-format.md, chosen by extension:
 // .h5 <-> .csv, .h5 -> .data (LAMMPS), .dump (LAMMPS/LIGGGHTS) -> .h5, any readable -> any writable.
 #include <iostream>
 #include <string>

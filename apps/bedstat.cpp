@@ -1,4 +1,4 @@
-// bedstat: statistics of one or more beds (SPEC.md §2), as a table or one JSON object.
+// bedstat: statistics of one or more beds (docs/bed-format.md, README "The programs"), as a table or one JSON object.
 // Several beds print side by side: this is how geometric and dynamic beds are compared.
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// deposit: DEM drop deposition (SPEC.md §4). Particles come from a PSD (placed without overlap
+// deposit: DEM drop deposition (Ganeriwala & Zohdi 2016). Particles come from a PSD (placed without overlap
 // in the insertion region by packgen's 0-contact packing) or from a bed file, fall under the
 // scene's effects and settle; the settled bed is written with velocities.
 #include <unistd.h>

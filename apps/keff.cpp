@@ -1,4 +1,4 @@
-// keff: the effective thermal conductivity of a bed between two isothermal walls (SPEC.md §6):
+// keff: the effective thermal conductivity of a bed between two isothermal walls (docs/keff.md):
 // the steady state of the particles' heat-path network (contact and gas conduction, grey-body
 // radiation with Monte-Carlo view factors).
 #include <chrono>
@@ -105,7 +105,7 @@ int axis_index(const std::string& name) {
 }
 
 // The wall temperatures: --temperature or --t-hot/--t-cold, whichever the command line gives
-// (it wins over the scene, DESIGN.md); both on the command line, or both in the scene, is refused.
+// (it wins over the scene, as every option does); both on the command line, or both in the scene, is refused.
 void set_walls(const po::variables_map& vm, const po::variables_map& command_line,
                kf::KeffScene& s) {
   const auto walls_given = [](const po::variables_map& m) {

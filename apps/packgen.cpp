@@ -1,4 +1,4 @@
-// packgen: geometric packing (SPEC.md §3) -> one bed file, with a short summary or --json.
+// packgen: geometric packing (Luberto & de Payrebrune, extended to 3D) -> one bed file, with a short summary or --json.
 #include <unistd.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 #pragma once
 // What every program's main shares: error-to-exit-status mapping and version text
-// (DESIGN.md "Command-line programs": bad input exits 2 with one line, numerics 3).
+// (README "The programs": bad input exits 2 with one line, numerics 3).
 #include <functional>
 #include <string>
 

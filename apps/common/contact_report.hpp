@@ -1,5 +1,5 @@
 #pragma once
-// The contact tolerances every program reports (SPEC.md §2: Z at 1e-6, 1e-3 and 1e-2) and the
+// The contact tolerances every program reports (Z at 1e-6, 1e-3 and 1e-2) and the
 // text of a tolerance as a JSON key ("1e-06", "0.001", "0.01").
 #include <array>
 #include <cstdio>

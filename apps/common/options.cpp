@@ -166,7 +166,7 @@ void store_config_file(const std::string& path, const po::options_description& d
   po::store(all, vm);
 }
 
-// The conventions every program shares (DESIGN.md "Command-line programs"), checked once here.
+// The conventions every program shares (README "The programs", docs/hardening.md), checked once here.
 void check_common(const po::variables_map& vm) {
   if (vm.count("threads") && !vm["threads"].defaulted()) {
     const auto& v = vm["threads"].value();

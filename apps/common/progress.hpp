@@ -1,5 +1,5 @@
 #pragma once
-// The progress bar of long runs (DESIGN.md "Command-line programs": progress with an ETA on
+// The progress bar of long runs (README "The programs": progress with an ETA on
 // stderr when stderr is a terminal): "[#####.....]  45 %  <detail>  ETA 12 s", redrawn in place.
 #include <chrono>
 #include <string>
