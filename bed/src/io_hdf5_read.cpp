@@ -60,6 +60,31 @@ std::string accepted_range() {
     return "float64 numbers";
 }
 
+// A file mapped read-only for the checks made before libhdf5 opens it; bytes is null when it
+// cannot be mapped or is under 16 bytes (H5Fopen then reports what is wrong).
+struct MappedFile {
+  const unsigned char* bytes = nullptr;
+  std::size_t size = 0;
+  explicit MappedFile(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_RDONLY);
+    if (fd < 0) return;
+    struct stat st {};
+    if (::fstat(fd, &st) == 0 && st.st_size >= 16) {
+      void* map = ::mmap(nullptr, static_cast<std::size_t>(st.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
+      if (map != MAP_FAILED) {
+        bytes = static_cast<const unsigned char*>(map);
+        size = static_cast<std::size_t>(st.st_size);
+      }
+    }
+    ::close(fd);
+  }
+  ~MappedFile() {
+    if (bytes) ::munmap(const_cast<unsigned char*>(bytes), size);
+  }
+  MappedFile(const MappedFile&) = delete;
+  MappedFile& operator=(const MappedFile&) = delete;
+};
+
 class H5Reader {
  public:
   explicit H5Reader(std::string path) : path_(std::move(path)) {}
@@ -106,18 +131,10 @@ class H5Reader {
   // whose attributes are read ("/", /domain, /provenance; version 1 object headers, as
   // libhdf5 1.10 writes them, and their continuation blocks) are checked first.
   void check_attribute_messages() const {
-    const int fd = ::open(path_.c_str(), O_RDONLY);
-    if (fd < 0) return;
-    struct stat st {};
-    if (::fstat(fd, &st) != 0 || st.st_size < 16) {
-      ::close(fd);
-      return;
-    }
-    const auto size = static_cast<std::size_t>(st.st_size);
-    void* map = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
-    ::close(fd);
-    if (map == MAP_FAILED) return;
-    const auto* bytes = static_cast<const unsigned char*>(map);
+    const MappedFile file(path_);
+    if (!file.bytes) return;  // H5Fopen reports it
+    const unsigned char* bytes = file.bytes;
+    const std::size_t size = file.size;
     auto u16 = [&](std::size_t k) { return std::size_t{bytes[k]} | (std::size_t{bytes[k + 1]} << 8); };
     auto u64 = [&](std::size_t k) {
       std::uint64_t v = 0;
@@ -207,7 +224,6 @@ class H5Reader {
         check_block(object, begin, end, blocks);
       }
     }
-    ::munmap(map, size);
     if (!problem.empty()) throw InputError(path_ + ": " + problem + " (damaged file?)");
   }
 
@@ -216,18 +232,10 @@ class H5Reader {
   // object size makes it read past the collection (found by tests/fuzz). So each collection
   // ("GCOL", version 1) is checked first: inside the file, and every object inside it.
   void check_global_heaps() const {
-    const int fd = ::open(path_.c_str(), O_RDONLY);
-    if (fd < 0) return;  // H5Fopen reports it
-    struct stat st {};
-    if (::fstat(fd, &st) != 0 || st.st_size < 16) {
-      ::close(fd);
-      return;
-    }
-    const auto size = static_cast<std::size_t>(st.st_size);
-    void* map = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
-    ::close(fd);
-    if (map == MAP_FAILED) return;
-    const auto* bytes = static_cast<const unsigned char*>(map);
+    const MappedFile file(path_);
+    if (!file.bytes) return;  // H5Fopen reports it
+    const unsigned char* bytes = file.bytes;
+    const std::size_t size = file.size;
     auto u64 = [&](std::size_t at) {
       std::uint64_t v = 0;
       for (int k = 7; k >= 0; --k) v = (v << 8) | bytes[at + static_cast<std::size_t>(k)];
@@ -343,7 +351,6 @@ class H5Reader {
         }
       }
     }
-    ::munmap(map, size);
     if (!problem.empty())
       throw InputError(path_ + ": " + problem + " (damaged file; accepted: a powderbed bed)");
   }
