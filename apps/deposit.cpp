@@ -15,6 +15,7 @@
 #include "common/app_main.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
+#include "common/threads.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
@@ -40,6 +41,7 @@ const char* const kUsage =
 
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
+  app::add_threads_option(desc);
   const dem::Scene d;
   const dem::LidSettings l;
   desc.add_options()
@@ -81,7 +83,6 @@ void add_options(po::options_description& desc) {
        "Kumar Yadav & Eshraghi 2016's MFiX beds)")
       ("contact.stiffness", po::value<double>(), "k_n of the linear law (N/m)")
       ("seed", po::value<std::uint64_t>(), "random seed (insertion positions and sizes)")
-      ("threads", po::value<int>()->default_value(0), "OpenMP threads (0: OpenMP's default)")
       ("out", po::value<std::string>(), "output bed (HDF5 + XDMF sidecar)")
       ("allow-lost", po::value<std::size_t>()->default_value(0),
        "particles that may leave the box during the run (more: exit 3, nothing written)")
@@ -291,7 +292,7 @@ int run(int argc, char** argv) {
     if (!(s.dt > 0)) throw InputError("--dt: " + std::to_string(s.dt) + " (accepted: dt > 0 s)");
   }
   s.unsafe_dt = vm["unsafe-dt"].as<bool>();
-  s.threads = vm["threads"].as<int>();
+  s.threads = app::apply_thread_team(vm).size;
   if (vm.count("trajectory")) {
     s.trajectory = vm["trajectory"].as<std::string>();
     s.trajectory_every = vm["every"].as<std::uint64_t>();

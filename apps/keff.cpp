@@ -16,6 +16,7 @@
 #include "common/app_main.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
+#include "common/threads.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/h5_output.hpp"
@@ -40,6 +41,7 @@ constexpr double kSpan = 1;
 
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
+  app::add_threads_option(desc);
   const kf::KeffScene d;
   desc.add_options()
       ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump)")
@@ -201,6 +203,7 @@ int run(int argc, char** argv) {
   add_options(desc);
   po::variables_map vm;
   if (!app::parse_options("keff", kUsage, desc, {}, argc, argv, vm)) return 0;
+  app::apply_thread_team(vm);
   if (!vm.count("bed")) throw InputError("--bed: missing (required)");
   po::variables_map command_line;  // what the command line alone says (walls)
   po::store(po::command_line_parser(argc, argv).options(desc).run(), command_line);

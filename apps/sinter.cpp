@@ -1,6 +1,5 @@
 // sinter: the DE–FD laser thermal solver (docs/sinter.md) on a bed: one laser track, melt pool on
 // the plane x = Lx/2, an HDF5 + XDMF time series, and the energy balance of the run.
-#include <omp.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -16,6 +15,7 @@
 #include "common/app_main.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
+#include "common/threads.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
@@ -36,6 +36,7 @@ const char* const kUsage =
 
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
+  app::add_threads_option(desc);
   const th::SinterScene d;
   desc.add_options()
       ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump) resting on z = floor")
@@ -54,7 +55,6 @@ void add_options(po::options_description& desc) {
       ("snapshots", po::value<std::size_t>()->default_value(20),
        "number of snapshots in the time series (besides t = 0)")
       ("full-fields", po::bool_switch(), "also store the whole substrate field in each snapshot")
-      ("threads", po::value<int>()->default_value(0), "OpenMP threads (0: OpenMP's default)")
       ("trust-units", po::bool_switch(),
        "skip the guards against unit slips (a spot larger than the bed, over 10 kW, a substrate "
        "deeper than 1 cm)")
@@ -254,7 +254,7 @@ int run(int argc, char** argv) {
   const std::string bed_path = app::required<std::string>(vm, "bed");
   const bool explain_only = vm["explain"].as<bool>();
   const std::string out = explain_only && !vm.count("out") ? "" : app::required<std::string>(vm, "out");
-  if (const int threads = vm["threads"].as<int>(); threads > 0) omp_set_num_threads(threads);
+  app::apply_thread_team(vm);
   std::vector<app::PathArg> outputs;
   if (!out.empty()) {
     app::check_extension({"--out", out}, {".h5"});

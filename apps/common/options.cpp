@@ -172,7 +172,7 @@ void check_common(const po::variables_map& vm) {
     const auto& v = vm["threads"].value();
     if (const int* t = boost::any_cast<int>(&v); t && (*t < 0 || *t > 4096)) {
       throw InputError("--threads: " + std::to_string(*t) +
-                       " is out of range (accepted: 0 to 4096; 0 = OpenMP's default)");
+                       " is out of range (accepted: 0 to 4096; 0 = the idle cores)");
     }
   }
 }
