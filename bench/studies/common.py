@@ -24,6 +24,13 @@ def run_json(args, env=None):
     return json.loads(proc.stdout), wall
 
 
+def bedstat(args, env=None):
+    """bedstat's --json entry of the one bed in `args` (its path and options): the element of
+    the "beds" array bedstat always prints."""
+    out, _ = run_json([app("bedstat"), *args], env=env)
+    return out["beds"][0]
+
+
 def summary(values):
     """mean, min, max, sd of a list of numbers."""
     sd = statistics.stdev(values) if len(values) > 1 else 0.0

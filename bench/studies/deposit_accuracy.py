@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Accuracy against cost of stiffness softening, time step and integrator on the [GZ] scene
 (issue 4 "Accuracy costs time"); writes docs/results/deposit-accuracy.md. Run with
-/usr/bin/python3 (numpy, h5py) after building deposit and bedstat:
-    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/deposit_accuracy.py
+python3 (numpy, h5py) after building deposit and bedstat:
+    POWDERBED_BUILD=build python3 bench/studies/deposit_accuracy.py
 
 Every run: data/scenes/gz2016-deposit.ini, seed 1 (the same 600 particles at the same start),
 1 thread, stopped at rest (--until-rest: max speed < 1e-4 m/s and kinetic energy below
@@ -18,7 +18,7 @@ import tempfile
 
 import numpy as np
 
-from common import ROOT, app, read_bed, run_json, write_text
+from common import ROOT, app, bedstat, read_bed, run_json, write_text
 
 SCENE = os.path.join(ROOT, "data", "scenes", "gz2016-deposit.ini")
 # (young-scale, dt as a fraction of the Rayleigh step, integrator)
@@ -43,13 +43,13 @@ def main():
         run, _ = run_json([app("deposit"), "--config", SCENE, "--seed", "1", "--young-scale",
                            repr(scale), "--dt", repr(dt), "--integrator", integrator,
                            "--until-rest", "--t-end", "0.1", "--threads", "1", "--out", out])
-        stat, _ = run_json([app("bedstat"), out, "--layer", "0,30e-6"])
+        stat = bedstat([out, "--layer", "0,30e-6"])
         centres, radii = read_bed(out)
         h99 = np.percentile(centres[:, 2] + radii, 99)
         rows.append((scale, fraction, integrator, run, stat, h99))
-        print(scale, fraction, integrator, run["wall_time"], stat["layer"]["density"], flush=True)
+        print(scale, fraction, integrator, run["wall_time"], stat["layer_density"], flush=True)
     ref = rows[0]
-    ref_phi = ref[4]["layer"]["density"]
+    ref_phi = ref[4]["layer_density"]
     lines = [
         "# Accuracy against cost: softening, time step, integrator ([GZ] scene)",
         "",
@@ -62,13 +62,13 @@ def main():
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for scale, fraction, integrator, run, stat, h99 in rows:
-        phi = stat["layer"]["density"]
+        phi = stat["layer_density"]
         lines.append(
             f"| {scale:g} | {fraction:g} | {integrator} | {run['dt']:.3g} | {run['steps']} | "
             f"{run['sim_time']:.4f} | {run['wall_time']:.1f} | {phi:.4f} | {100 * (phi / ref_phi - 1):+.2f} % | "
             f"{h99 * 1e6:.1f} | {stat['coordination']:.2f} | {run['max_overlap']:.2g} | "
             f"{run['max_overlap_full_stiffness']:.2g} | {run['lost']} |")
-    within = [r for r in rows if abs(r[4]["layer"]["density"] / ref_phi - 1) <= 0.005]
+    within = [r for r in rows if abs(r[4]["layer_density"] / ref_phi - 1) <= 0.005]
     fastest = min(within, key=lambda r: r[3]["wall_time"])
     lines += [
         "",

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The paper's deposition ([GZ] §3, SPEC.md §4) from data/scenes/gz2016-deposit.ini, beside the
 paper's numbers and the LIGGGHTS peer deck; writes docs/results/deposit-gz2016.md and
-docs/results/deposit-gz2016.png. Run with /usr/bin/python3 (numpy, h5py, matplotlib):
-    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/deposit_gz2016.py
+docs/results/deposit-gz2016.png. Run with python3 (numpy, h5py, matplotlib):
+    POWDERBED_BUILD=build python3 bench/studies/deposit_gz2016.py
 
 Definitions used in the table:
 - layer density: bedstat --layer 0,30e-6 (exact sphere caps in the bottom 30 um);
@@ -21,7 +21,7 @@ import tempfile
 
 import numpy as np
 
-from common import ROOT, RESULTS, app, read_bed, run_json, write_text
+from common import ROOT, RESULTS, app, bedstat, read_bed, run_json, write_text
 
 SCENE = os.path.join(ROOT, "data", "scenes", "gz2016-deposit.ini")
 # The peer scripts live in shared/ beside the repository (DESIGN.md: "side by side").
@@ -85,7 +85,7 @@ def ours(work, scale):
     out = os.path.join(work, f"gz2016-s{scale:g}.h5")
     run, _ = run_json([app("deposit"), "--config", SCENE, "--seed", "1", "--young-scale",
                        repr(scale), "--threads", "2", "--out", out])
-    stat, _ = run_json([app("bedstat"), out, "--layer", "0,30e-6"])
+    stat = bedstat([out, "--layer", "0,30e-6"])
     centres, radii = read_bed(out)
     return run, stat, centres, radii
 
@@ -117,7 +117,7 @@ def main():
     for scale in SCALES:
         run, stat, centres, radii = results[scale]
         z, r = centres[:, 2], radii
-        phi = stat["layer"]["density"]
+        phi = stat["layer_density"]
         h99, hmax, heq = heights(z, r, phi)
         rows.append(
             f"| deposit, --young-scale {scale:g} (E = {193 / scale:.3g} GPa), Verlet | {stat['n']} "

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Geometric (packgen, each approach) and dynamic (deposit) beds of the same PSD in the same box.
 
 The [GZ] deposition scene (data/scenes/gz2016-deposit.ini: 600 316L particles, diameters
@@ -18,7 +18,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(__file__))
 import numpy as np  # noqa: E402
-from common import RESULTS, ROOT, app, read_bed, run_json, write_text  # noqa: E402
+from common import RESULTS, ROOT, app, bedstat, read_bed, run_json, write_text  # noqa: E402
 
 
 def domain_of(path):
@@ -101,7 +101,7 @@ def main():
         for label, path, wall in made:
             lo, hi = domain_of(path)
             bins = max(4, round((hi[2] - lo[2]) / 5e-6))  # phi(z) in 5 um layers
-            stat, _ = run_json([app("bedstat"), path, "--layer", "0,30e-6", "--profile", str(bins)])
+            stat = bedstat([path, "--layer", "0,30e-6", "--profile", str(bins)])
             rows.append((label, stat, wall, inplane_rdf(path)))
         table = subprocess.run([app("bedstat")] + [p for _, p, _ in made] + ["--layer", "0,30e-6"],
                                capture_output=True, text=True, check=True).stdout
@@ -109,7 +109,7 @@ def main():
     lines = [
         "# Geometric and dynamic beds of the same powder",
         "",
-        "Regenerate: `/usr/bin/python3 bench/studies/geometric_vs_dynamic.py` (Release build in `build/`).",
+        "Regenerate: `python3 bench/studies/geometric_vs_dynamic.py` (Release build in `build/`).",
         "",
         f"PSD `{PSD}`, {COUNT} particles, seed {SEED}. deposit: `{os.path.relpath(SCENE, ROOT)}` "
         f"(1 × 0.5 mm floor, dropped from 0.2–0.3 mm, 0.1 s) with `--young-scale {YOUNG_SCALE}`. "
@@ -122,14 +122,14 @@ def main():
         "|---|---|---|---|---|---|---|---|---|",
     ]
     for label, s, wall, _ in rows:
-        lines.append(f"| {label} | {s['density']:.3f} | {s['box_density']:.3f} | {s['coordination']:.2f} "
+        lines.append(f"| {label} | {s['layer_density']:.3f} | {s['box_density']:.3f} | {s['coordination']:.2f} "
                      f"| {s['coordination_by_tol']['0.01']:.2f} | {s['rattlers']} | {s['wall_contacts']} "
                      f"| {s['max_overlap']:.1e} | {wall:.2f} |")
     geo, dyn = rows[3], rows[-1]
     lines += [
         "",
-        f"The 3-contact (lowest-site) packgen layer has {geo[1]['density']:.3f} in the bottom 30 µm "
-        f"against deposit's {dyn[1]['density']:.3f} ([GZ]: ≈ 0.45) in {geo[2]:.2f} s instead of "
+        f"The 3-contact (lowest-site) packgen layer has {geo[1]['layer_density']:.3f} in the bottom 30 µm "
+        f"against deposit's {dyn[1]['layer_density']:.3f} ([GZ]: ≈ 0.45) in {geo[2]:.2f} s instead of "
         f"{dyn[2]:.0f} s; the 0/1/2-contact rules, without gravity, spread the same 600 particles "
         "through the box and leave the floor layer at half that density. The beds differ in their "
         "contacts: the settled bed rests mostly on the floor (many particles touch only the floor: "

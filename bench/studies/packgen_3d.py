@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """3D beds from packgen: density, coordination, time and KS distance for each approach.
 
 Scenes (SPEC §3, issue 3 "3D beds"): a monodisperse cube of 20 diameters (r = 0.5) and a powder
@@ -7,7 +7,7 @@ and the bimodal mix of SPEC §1, every run in fill mode (default --tries 1000 --
 Approaches 0, 1, 2, 3 with --site-order random, and 3 with --site-order lowest. Then the
 retirement rule (--retire-after 32 / 256 / 0 = never) for approaches 1, 2 and 3 random on the
 monodisperse cube: does retirement stop those runs early?
-Writes docs/results/packgen-3d.md. /usr/bin/python3; POWDERBED_BUILD selects the build.
+Writes docs/results/packgen-3d.md. python3; POWDERBED_BUILD selects the build.
 """
 import os
 import sys
@@ -34,7 +34,7 @@ RETIRE = (32, 256, 0)  # 0: never retire
 def main():
     start = time.perf_counter()
     lines = ["# packgen 3D beds: approaches side by side", "",
-             "Regenerate: `/usr/bin/python3 bench/studies/packgen_3d.py` (POWDERBED_BUILD = a Release build).",
+             "Regenerate: `python3 bench/studies/packgen_3d.py` (POWDERBED_BUILD = a Release build).",
              "Fill mode (`--tries 1000 --max-failures 100`, default `--retire-after 32`), seed 1, one run each,",
              "one core of a shared machine (times are indicative). Density: whole box. Z: contacts at 1e-6.",
              "KS: distance of the placed sizes to the requested PSD (fill mode keeps placing small sizes",
@@ -47,7 +47,7 @@ def main():
                 out = os.path.join(tmp, "bed.h5")
                 s, _ = common.run_json([common.app("packgen"), "--dim", "3", "--domain", domain, "--psd", psd,
                                         "--seed", str(SEED), "--out", out] + args)
-                st, _ = common.run_json([common.app("bedstat"), out, "--psd", psd])
+                st = common.bedstat([out, "--psd", psd])
                 lines.append(f"| {label} | {name} | {s['n']} | {s['density']:.4f} | {s['coordination']:.3f} | "
                              f"{s['wall_time']:.3f} | {s['n'] / max(s['wall_time'], 1e-9):,.0f} | "
                              f"{st.get('ks_distance', 0.0):.4f} | {s['stop_reason']} |")

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Whole-run speed of packgen's densest 3D rule against GenGeo, one script, one machine.
 
 (i)  3D monodisperse (r = 0.5), approach 3 with --site-order lowest, N = 1e3 ... 1e6 (--count N
@@ -8,7 +8,7 @@
      on the same scenes: radii 0.2-1.0 in a cube of side 10 (packgen: truncated Gaussians with
      mean 0.6 and 0.35, stratified sizes; the 0.6 one also iid) and monodisperse r = 0.5; density
      of the whole box and of the core (2 r_max from every wall, the floor and the packing's top).
-Writes docs/results/packgen-speed.md and packgen-speed.png. Run with /usr/bin/python3 (h5py,
+Writes docs/results/packgen-speed.md and packgen-speed.png. Run with python3 (h5py,
 numpy, scipy, matplotlib); POWDERBED_BUILD selects the build directory (default build/).
 """
 import math
@@ -59,11 +59,11 @@ print(t1 - t0)
 
 
 def gengeo_available():
-    return subprocess.run(["/usr/bin/python3", "-c", "import gengeo"], capture_output=True).returncode == 0
+    return subprocess.run(["python3", "-c", "import gengeo"], capture_output=True).returncode == 0
 
 
 def bedstat(path, extra):
-    out, _ = common.run_json([common.app("bedstat"), path, "--order", "--tol", str(TOL)] + extra)
+    out = common.bedstat([path, "--order", "--tol", str(TOL)] + extra)
     return out
 
 
@@ -104,10 +104,10 @@ def scene_core(path, side, r_max):
     if np.any(hi <= lo):
         return float("nan"), float("nan"), top
     extra = ["--domain", f"0,0,0,{side},{side},{side}"] if path.endswith(".csv") else []
-    out, _ = common.run_json([common.app("bedstat"), path, "--layer", f"{margin},{top - margin}"] + extra)
+    out = common.bedstat([path, "--layer", f"{margin},{top - margin}"] + extra)
     inside = np.all((xyz >= lo) & (xyz <= hi), axis=1)
     core = float(np.sum(4.0 / 3.0 * math.pi * r[inside] ** 3) / np.prod(hi - lo))
-    return out["layer"]["density"], core, top
+    return out["layer_density"], core, top
 
 
 def ks_uniform(r, lo, hi):
@@ -157,7 +157,7 @@ def scaling(tmp):
 def run_gengeo(tmp, rmin, rmax, psds):
     """GenGeo in the walled cube, one run; KS to the uniform request and to each of `psds`."""
     csv = os.path.join(tmp, "gengeo.csv")
-    proc = subprocess.run(["/usr/bin/python3", "-c", GENGEO, str(SIDE), str(rmin), str(rmax), "1000", csv],
+    proc = subprocess.run(["python3", "-c", GENGEO, str(SIDE), str(rmin), str(rmax), "1000", csv],
                           capture_output=True, text=True, check=True)
     t = float(proc.stdout.strip().splitlines()[-1])
     st = bedstat(csv, ["--domain", f"0,0,0,{SIDE},{SIDE},{SIDE}"])
@@ -235,7 +235,7 @@ def report(rows, scenes, have_gengeo, elapsed):
     lines = [
         "# packgen speed: 3D densest rule, scaling and GenGeo side by side",
         "",
-        "Regenerate: `/usr/bin/python3 bench/studies/packgen_speed.py` (POWDERBED_BUILD = a Release build;",
+        "Regenerate: `python3 bench/studies/packgen_speed.py` (POWDERBED_BUILD = a Release build;",
         f"this run took {elapsed:.0f} s). One core; times are packgen's own `wall_time` (placement only, not",
         "file output) and GenGeo's `generatePacking` call; medians of 3 seeds / 3 runs.",
         "",
