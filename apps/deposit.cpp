@@ -1,7 +1,6 @@
 // deposit: DEM drop deposition (Ganeriwala & Zohdi 2016). Particles come from a PSD (placed without overlap
 // in the insertion region by packgen's 0-contact packing) or from a bed file, fall under the
 // scene's effects and settle; the settled bed is written with velocities.
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -42,6 +41,7 @@ const char* const kUsage =
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
   app::add_threads_option(desc);
+  app::add_progress_option(desc);
   const dem::Scene d;
   const dem::LidSettings l;
   desc.add_options()
@@ -182,6 +182,19 @@ bed::Bed insert_from_psd(const po::variables_map& vm, const bed::Domain& domain,
   }
   placed.bed.domain = domain;
   return placed.bed;
+}
+
+// The core density, or why there is none: a bed less than two margins thick (a monolayer) has
+// no core away from the floor and the surface, and its density is a layer's (bedstat --layer).
+std::string core_text(const dem::CoreDensity& core, double margin) {
+  std::ostringstream out;
+  if (std::isnan(core.density)) {
+    out << "no core (the bed is thinner than 2 x --core-margin " << margin
+        << " m from floor and surface; see bedstat --layer for a layer's density)";
+  } else {
+    out << "core density " << core.density;
+  }
+  return out.str();
 }
 
 int run(int argc, char** argv) {
@@ -327,16 +340,15 @@ int run(int argc, char** argv) {
   if (!(margin >= 0) || !std::isfinite(margin)) {
     throw InputError("--core-margin: " + std::to_string(margin) + " (accepted: M >= 0 m)");
   }
-  const app::ProgressBar bar;
-  if (::isatty(STDERR_FILENO)) {
-    s.progress = [&bar](const dem::Progress& p) {
-      char detail[64];
-      std::snprintf(detail, sizeof detail, "t = %.3e s  KE = %.2e J", p.time, p.kinetic_energy);
-      bar.draw(p.t_end > 0 ? p.time / p.t_end : 1.0, detail);
-    };
-  }
+  app::ProgressBar bar("deposit", app::progress_interval(vm));
+  s.progress = [&bar](const dem::Progress& p) {
+    char detail[64];
+    std::snprintf(detail, sizeof detail, "t = %.3e s  KE = %.2e J", p.time, p.kinetic_energy);
+    bar.draw(p.t_end > 0 ? p.time / p.t_end : 1.0, detail);
+  };
 
   const dem::RunSummary r = dem::run_deposition(bed, scene, s);
+  bar.finish();
   const std::size_t removed = dem::remove_lost_particles(bed);
   // Particles leave the box only when a run goes wrong (a step beyond the stable bound, a bed
   // that does not fit its box): such a bed is not a result.
@@ -425,8 +437,8 @@ int run(int argc, char** argv) {
     std::cout << "deposit: " << bed.n() << " particles (" << removed << " lost), " << r.steps
               << " steps of " << r.dt << " s to t = " << r.sim_time << " s, " << r.wall_time
               << " s wall, " << r.particle_steps_per_s << " particle-steps/s, max overlap "
-              << r.max_overlap << " r" << (r.at_rest ? ", at rest" : "") << ", core density "
-              << core.density;
+              << r.max_overlap << " r" << (r.at_rest ? ", at rest" : "") << ", "
+              << core_text(core, margin);
     if (r.lid_used) {
       std::cout << ", lid " << r.lid.start_z << " -> " << r.lid.stop_z << " m (" << r.lid.stopped_by
                 << ", max force " << r.lid.max_force << " N)";

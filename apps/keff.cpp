@@ -11,7 +11,6 @@
 #include <iostream>
 #include <string>
 
-#include <unistd.h>
 
 #include "common/app_main.hpp"
 #include "common/options.hpp"
@@ -42,6 +41,7 @@ constexpr double kSpan = 1;
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
   app::add_threads_option(desc);
+  app::add_progress_option(desc);
   const kf::KeffScene d;
   desc.add_options()
       ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump)")
@@ -236,11 +236,12 @@ int run(int argc, char** argv) {
       kf::contact_radius_params(bed.provenance.contact, scene.contact.hertz_correction, given);
 
   const auto start = std::chrono::steady_clock::now();
-  const app::ProgressBar bar;
+  app::ProgressBar bar("keff", app::progress_interval(vm));
   std::function<void(double)> progress;
-  if (scene.radiation_path && ::isatty(STDERR_FILENO))
+  if (scene.radiation_path)
     progress = [&bar](double fraction) { bar.draw(fraction, "view factors"); };
   const kf::KeffNetwork network = kf::build_keff_network(bed, scene, progress);
+  bar.finish();
   const kf::KeffResult r = kf::solve_keff(bed, scene, network);
   // No conducting path from wall to wall gives k_eff = 0 up to round-off: not a result.
   if (!(r.k_eff > 0) || !std::isfinite(r.k_eff)) {

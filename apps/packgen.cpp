@@ -1,6 +1,4 @@
 // packgen: geometric packing (Luberto & de Payrebrune, extended to 3D) -> one bed file, with a short summary or --json.
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -10,6 +8,7 @@
 #include "common/app_main.hpp"
 #include "common/contact_report.hpp"
 #include "common/options.hpp"
+#include "common/progress.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
@@ -24,16 +23,11 @@ namespace po = app::po;
 
 
 
-void show_progress(const packgen::PackProgress& p) {
-  const double f = std::min(std::max(p.fraction_done, 1e-9), 1.0);
-  const double eta = p.elapsed * (1 - f) / f;
-  std::fprintf(stderr, "\rpackgen: %zu particles, density %.4f, %.1f s, ETA %.0f s   ", p.n,
-               p.density, p.elapsed, eta);
-}
 
 int run(int argc, char** argv) {
   po::options_description desc("packgen options (SI units: m)");
   app::add_common_options(desc);
+  app::add_progress_option(desc);
   desc.add_options()
       ("dim", po::value<std::string>()->required(), "2 (disks) or 3 (spheres); must match --domain")
       ("domain", po::value<std::string>()->required(), "LX,LY[,LZ] (m): the box [0, L]")
@@ -143,11 +137,16 @@ int run(int argc, char** argv) {
   o.site_order = packgen::parse_site_order(vm["site-order"].as<std::string>());
   o.floor_seed = vm["floor-seed"].as<double>();
   o.size_sampling = packgen::parse_size_sampling(vm["size-sampling"].as<std::string>());
-  if (::isatty(STDERR_FILENO)) o.progress = show_progress;
+  app::ProgressBar bar("packgen", app::progress_interval(vm));
+  o.progress = [&bar](const packgen::PackProgress& p) {
+    char detail[64];
+    std::snprintf(detail, sizeof detail, "%zu particles, density %.4f", p.n, p.density);
+    bar.draw(p.fraction_done, detail);
+  };
   const std::uint64_t seed = vm["seed"].as<std::uint64_t>();
 
   packgen::PackResult result = packgen::pack(domain, psd, o, seed);
-  if (o.progress) std::fputc('\n', stderr);
+  bar.finish();
   bed::Bed& b = result.bed;
   b.provenance.created_by = app::version_string("packgen");
   b.provenance.command_line = app::command_line(argc, argv);

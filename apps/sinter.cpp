@@ -37,6 +37,7 @@ const char* const kUsage =
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
   app::add_threads_option(desc);
+  app::add_progress_option(desc);
   const th::SinterScene d;
   desc.add_options()
       ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump) resting on z = floor")
@@ -246,6 +247,29 @@ void check_grid_memory(const th::SinterScene& s) {
   }
 }
 
+// --explain --json: the scale analysis's numbers (SI; ratios to the absorbed laser flux) and the
+// printed report as "text".
+std::string explain_json(const th::ExplainReport& r) {
+  bed::JsonWriter j;
+  j.begin_object()
+      .value("laser_flux", r.laser_flux)
+      .value("conduction_scale", r.conduction_scale)
+      .value("conduction_ratio", r.conduction_ratio)
+      .value("substrate_ratio", r.substrate_ratio)
+      .value("convection_ratio", r.convection_ratio)
+      .value("radiation_ratio", r.radiation_ratio)
+      .value("biot_surface", r.biot_surface)
+      .value("biot_laser", r.biot_laser)
+      .value("optical_thickness", r.optical_thickness)
+      .value("dwell_time", r.dwell_time)
+      .value("heating_time", r.heating_time)
+      .value("absorptance", r.absorptance)
+      .value("wetting_time", r.wetting_time)
+      .value("text", r.text)
+      .end_object();
+  return j.str() + '\n';
+}
+
 int run(int argc, char** argv) {
   po::options_description desc("sinter options (SI units)");
   add_options(desc);
@@ -275,7 +299,8 @@ int run(int argc, char** argv) {
               << sinter.stable_steps().grid << " s (--unsafe-dt)\n";
   }
   if (explain_only) {
-    std::cout << th::explain(bed, scene, sinter).text;
+    const th::ExplainReport report = th::explain(bed, scene, sinter);
+    std::cout << (vm.count("json") ? explain_json(report) : report.text);
     return 0;
   }
 
@@ -289,19 +314,16 @@ int run(int argc, char** argv) {
   const std::size_t snapshots = vm["snapshots"].as<std::size_t>();
   const std::uint64_t every = snapshots > 0 ? std::max<std::uint64_t>(1, steps_total / snapshots) : 0;
   const auto start = std::chrono::steady_clock::now();
-  const app::ProgressBar bar;
-  std::function<void(const th::SinterProgress&)> progress;
-  if (::isatty(STDERR_FILENO)) {
-    progress = [&bar](const th::SinterProgress& p) {
-      char detail[64];
-      std::snprintf(detail, sizeof detail, "t = %.3e s  T_max(particles) = %.0f K", p.time,
-                    p.max_temperature);
-      bar.draw(p.time / p.t_end, detail);
-    };
-  }
+  app::ProgressBar bar("sinter", app::progress_interval(vm));
+  const auto progress = [&bar](const th::SinterProgress& p) {
+    char detail[64];
+    std::snprintf(detail, sizeof detail, "t = %.3e s  T_max(particles) = %.0f K", p.time,
+                  p.max_temperature);
+    bar.draw(p.time / p.t_end, detail);
+  };
   const th::SinterResult r = sinter.run(
       [&](const th::Sinter& s) { writer.snapshot(s); }, every, progress);
-  if (progress) std::fputc('\n', stderr);
+  bar.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const std::vector<std::pair<std::string, double>> summary{

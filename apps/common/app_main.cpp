@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/json.hpp"
 
 namespace powderbed::app {
 
@@ -26,6 +27,12 @@ int run_app(const char* app, int /*argc*/, char** /*argv*/, const std::function<
 }
 
 std::string version_string(const char* app) { return std::string(app) + " " + POWDERBED_VERSION; }
+
+std::string version_json(const char* app) {
+  bed::JsonWriter json;
+  json.begin_object().value("program", app).value("version", POWDERBED_VERSION).end_object();
+  return json.str();
+}
 
 std::string command_line(int argc, char** argv) {
   std::string out;

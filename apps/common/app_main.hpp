@@ -12,6 +12,8 @@ int run_app(const char* app, int argc, char** argv, const std::function<int()>& 
 
 // "<app> <version>", the created_by attribute of a bed.
 std::string version_string(const char* app);
+// {"program": "<app>", "version": "<version>"}: --version --json.
+std::string version_json(const char* app);
 // The command line as typed (arguments quoted where they contain spaces).
 std::string command_line(int argc, char** argv);
 

@@ -186,6 +186,16 @@ void add_common_options(po::options_description& desc) {
       "json", "print one JSON summary object on stdout");
 }
 
+void add_progress_option(po::options_description& desc) {
+  desc.add_options()("progress", po::value<double>()->default_value(10.0),
+                     "batch runs (stderr not a terminal): seconds between progress lines on "
+                     "stderr (0 = none)");
+}
+
+double progress_interval(const po::variables_map& vm) {
+  return option_in_range<double>(vm, "progress", 0.0, 1e9, "seconds; 0 = no progress lines");
+}
+
 bool parse_options(const char* app, const std::string& usage, po::options_description& desc,
                    const po::positional_options_description& positional, int argc, char** argv,
                    po::variables_map& vm) {
@@ -195,7 +205,7 @@ bool parse_options(const char* app, const std::string& usage, po::options_descri
     return false;
   }
   if (vm.count("version")) {
-    std::cout << version_string(app) << '\n';
+    std::cout << (vm.count("json") ? version_json(app) : version_string(app)) << '\n';
     return false;
   }
   if (vm.count("config")) {
@@ -257,7 +267,8 @@ std::string scene_text(const po::variables_map& vm) {
   std::ostringstream out;
   out.precision(17);
   for (const auto& [key, value] : vm) {
-    if (key == "config" || key == "json" || key == "help" || key == "version") continue;
+    if (key == "config" || key == "json" || key == "help" || key == "version" || key == "progress")
+      continue;
     const auto& v = value.value();
     out << key << " = ";
     if (const auto* s = boost::any_cast<std::string>(&v)) out << *s;

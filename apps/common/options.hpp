@@ -34,6 +34,11 @@ namespace po = boost::program_options;
 // Adds --help, --version, --config FILE and --json.
 void add_common_options(po::options_description& desc);
 
+// Adds --progress SECONDS: the time between progress lines of a batch run (common/progress.hpp).
+void add_progress_option(po::options_description& desc);
+// --progress checked: a finite number of seconds >= 0; throws InputError naming the option.
+double progress_interval(const po::variables_map& vm);
+
 // Parses argv and, when --config is given, the scene file. Returns false when --help or
 // --version was printed (the program then exits 0). Throws po::error / InputError on bad input.
 bool parse_options(const char* app, const std::string& usage, po::options_description& desc,
