@@ -1,5 +1,7 @@
 #include "powderbed/bed/h5_output.hpp"
 
+#include <cstdio>
+
 #include "io_detail.hpp"
 #include "io_hdf5_handle.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -69,20 +71,24 @@ H5Output::H5Output(const std::string& path) : impl_(std::make_unique<Impl>(path)
 H5Output::~H5Output() = default;
 
 void H5Output::write(const std::string& name, const std::vector<double>& data,
-                     const std::vector<std::size_t>& dims) {
+                     const std::vector<std::size_t>& dims, const std::string& units) {
   impl_->dataset(name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data.data(), data.size(), dims);
+  attribute(name, "units", units);
 }
 void H5Output::write(const std::string& name, const std::vector<float>& data,
-                     const std::vector<std::size_t>& dims) {
+                     const std::vector<std::size_t>& dims, const std::string& units) {
   impl_->dataset(name, H5T_IEEE_F32LE, H5T_NATIVE_FLOAT, data.data(), data.size(), dims);
+  attribute(name, "units", units);
 }
 void H5Output::write(const std::string& name, const std::vector<std::uint8_t>& data,
-                     const std::vector<std::size_t>& dims) {
+                     const std::vector<std::size_t>& dims, const std::string& units) {
   impl_->dataset(name, H5T_STD_U8LE, H5T_NATIVE_UINT8, data.data(), data.size(), dims);
+  attribute(name, "units", units);
 }
 void H5Output::write(const std::string& name, const std::vector<std::uint64_t>& data,
-                     const std::vector<std::size_t>& dims) {
+                     const std::vector<std::size_t>& dims, const std::string& units) {
   impl_->dataset(name, H5T_STD_U64LE, H5T_NATIVE_UINT64, data.data(), data.size(), dims);
+  attribute(name, "units", units);
 }
 
 void H5Output::attribute(const std::string& object, const std::string& name, double value) {
@@ -112,6 +118,12 @@ void H5Output::commit() {
 }
 
 const std::string& H5Output::path() const { return impl_->atomic.path(); }
+
+std::string step_group(std::uint64_t step) {
+  char digits[32];
+  std::snprintf(digits, sizeof digits, "%012llu", static_cast<unsigned long long>(step));
+  return std::string("/steps/") + digits;
+}
 
 std::string xdmf_sidecar_path(const std::string& h5_path) { return detail::xdmf_path(h5_path); }
 

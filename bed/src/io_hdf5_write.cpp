@@ -1,4 +1,4 @@
-// Writer of the HDF5 bed file, format version 1 (DESIGN.md "The bed file"), plus its XDMF sidecar.
+// Writer of the HDF5 bed file, format version 1 (docs/bed-format.md), plus its XDMF sidecar.
 #include <array>
 #include <utility>
 #include <vector>
@@ -7,6 +7,7 @@
 #include "io_hdf5_handle.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
+#include "powderbed/bed/xdmf.hpp"
 
 namespace powderbed::bed {
 
@@ -49,10 +50,11 @@ class H5Writer {
       fail(object, std::string("cannot write attribute ") + name);
   }
 
-  // Contiguous dataset of `rows` x `cols` (cols 0 -> one-dimensional), written in one call.
-  void dataset(hid_t group, const char* name, hid_t file_type, hid_t mem_type, const void* data,
-               hsize_t rows, hsize_t cols) const {
-    const std::string object = std::string("/particles/") + name;
+  // Contiguous dataset of `rows` x `cols` (cols 0 -> one-dimensional), written in one call,
+  // with its SI unit as the attribute `units` ("1": a number without unit).
+  void dataset(hid_t group, const std::string& object, const char* name, hid_t file_type,
+               hid_t mem_type, const void* data, hsize_t rows, hsize_t cols,
+               const char* units) const {
     const hsize_t dims[2] = {rows, cols};
     H5Space space(H5Screate_simple(cols == 0 ? 1 : 2, dims, nullptr));
     H5Dataset set(H5Dcreate2(group, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT,
@@ -60,6 +62,7 @@ class H5Writer {
     if (!set.valid()) fail(object, "cannot create dataset");
     if (rows > 0 && H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
       fail(object, "cannot write dataset (disk full?)");
+    string_attr(set, object, "units", units);
   }
 
   void write(const Bed& bed, const std::string& file_name) const {
@@ -68,6 +71,7 @@ class H5Writer {
     write_root(file, bed);
     write_domain(file, bed.domain);
     write_particles(file, bed);
+    write_polyvertex(file, bed.n());
     write_provenance(file, bed.provenance);
     if (!file.close()) fail("/", "cannot close HDF5 file '" + file_name + "' (disk full?)");
   }
@@ -100,21 +104,33 @@ class H5Writer {
     H5Group group(H5Gcreate2(file, "particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
     if (!group.valid()) fail("/particles", "cannot create group");
     const hsize_t n = bed.n();
+    const auto set = [&](const char* name, hid_t file_type, hid_t mem_type, const void* data,
+                         hsize_t cols, const char* units) {
+      dataset(group, std::string("/particles/") + name, name, file_type, mem_type, data, n, cols,
+              units);
+    };
     std::vector<double> rows = interleave(bed.x, bed.y, bed.z);
-    dataset(group, "position", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows.data(), n, 3);
-    dataset(group, "radius", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, bed.radius.data(), n, 0);
-    dataset(group, "id", H5T_STD_U64LE, H5T_NATIVE_UINT64, bed.id.data(), n, 0);
+    set("position", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows.data(), 3, "m");
+    set("radius", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, bed.radius.data(), 0, "m");
+    set("id", H5T_STD_U64LE, H5T_NATIVE_UINT64, bed.id.data(), 0, "1");
     if (!bed.material.empty())
-      dataset(group, "material", H5T_STD_U16LE, H5T_NATIVE_UINT16, bed.material.data(), n, 0);
+      set("material", H5T_STD_U16LE, H5T_NATIVE_UINT16, bed.material.data(), 0, "1");
     if (bed.has_velocity()) {
       rows = interleave(bed.vx, bed.vy, bed.vz);
-      dataset(group, "velocity", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows.data(), n, 3);
+      set("velocity", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, rows.data(), 3, "m/s");
     }
     if (!bed.temperature.empty())
-      dataset(group, "temperature", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, bed.temperature.data(), n,
-              0);
-    if (!bed.phase.empty())
-      dataset(group, "phase", H5T_STD_U8LE, H5T_NATIVE_UINT8, bed.phase.data(), n, 0);
+      set("temperature", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, bed.temperature.data(), 0, "K");
+    if (!bed.phase.empty()) set("phase", H5T_STD_U8LE, H5T_NATIVE_UINT8, bed.phase.data(), 0, "1");
+  }
+
+  // The Polyvertex connectivity the XDMF sidecar reads (powderbed/bed/xdmf.hpp).
+  void write_polyvertex(hid_t file, std::size_t n) const {
+    H5Group group(H5Gcreate2(file, "xdmf", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    if (!group.valid()) fail("/xdmf", "cannot create group");
+    const std::vector<std::uint64_t> c = polyvertex_connectivity(n);
+    dataset(group, kPolyvertexDataset, "polyvertex", H5T_STD_U64LE, H5T_NATIVE_UINT64, c.data(), n,
+            0, "1");
   }
 
   void write_provenance(hid_t file, const Provenance& p) const {

@@ -1,10 +1,10 @@
-// XDMF 3 sidecar of an HDF5 bed (DESIGN.md "The bed file"): ParaView opens the .xmf and reads the
-// arrays from the .h5. In ParaView, show true radii with the Point Gaussian representation,
-// shader "Sphere", scale by the `radius` array, Gaussian radius 1.
+// XDMF 3 sidecar of an HDF5 bed (docs/bed-format.md): ParaView opens the .xmf and reads the
+// arrays from the .h5; docs/bed-format.md "Seeing true radii in ParaView" draws true radii.
 #include <sstream>
 
 #include "io_detail.hpp"
 #include "powderbed/bed/io.hpp"
+#include "powderbed/bed/xdmf.hpp"
 
 namespace powderbed::bed::detail {
 
@@ -56,8 +56,7 @@ std::string xdmf_text(const Bed& bed, const std::string& h5_file_name) {
       << "<Xdmf Version=\"3.0\">\n"
       << "  <Domain>\n"
       << "    <Grid Name=\"bed\" GridType=\"Uniform\">\n"
-      << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
-      << "\" NodesPerElement=\"1\"/>\n"
+      << xdmf_polyvertex_topology(n, h5, "      ")
       << "      <Geometry GeometryType=\"XYZ\">\n";
   data_item(out, h5, "position", n, 3, "Float", 8);
   out << "      </Geometry>\n";

@@ -20,15 +20,16 @@ class H5Output {
   H5Output& operator=(const H5Output&) = delete;
 
   // Dataset at `name` ("/a/b/c") with shape `dims` (row-major; the product must equal the size
-  // of `data`). Throws InputError naming the file and dataset on failure.
+  // of `data`) and its SI unit as the attribute `units` ("1": a number without unit). Throws
+  // InputError naming the file and dataset on failure.
   void write(const std::string& name, const std::vector<double>& data,
-             const std::vector<std::size_t>& dims);
+             const std::vector<std::size_t>& dims, const std::string& units);
   void write(const std::string& name, const std::vector<float>& data,
-             const std::vector<std::size_t>& dims);
+             const std::vector<std::size_t>& dims, const std::string& units);
   void write(const std::string& name, const std::vector<std::uint8_t>& data,
-             const std::vector<std::size_t>& dims);
+             const std::vector<std::size_t>& dims, const std::string& units);
   void write(const std::string& name, const std::vector<std::uint64_t>& data,
-             const std::vector<std::size_t>& dims);
+             const std::vector<std::size_t>& dims, const std::string& units);
   // Attributes of the group or dataset `object` (created as a group when missing).
   void attribute(const std::string& object, const std::string& name, double value);
   void attribute(const std::string& object, const std::string& name,
@@ -44,6 +45,10 @@ class H5Output {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// The group of time step `step` in a time series: "/steps/" and the step in 12 digits, so that
+// the groups' lexical order (h5py, h5ls) is their time order.
+std::string step_group(std::uint64_t step);
 
 // The XDMF sidecar of an HDF5 file: `<path minus .h5>.xmf` (docs/bed-format.md).
 std::string xdmf_sidecar_path(const std::string& h5_path);

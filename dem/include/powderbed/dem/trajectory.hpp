@@ -4,8 +4,11 @@
 //   /              attrs format = "powderbed.trajectory", version = 1, n
 //   /radius        float64 N   (shared by every step)
 //   /id            uint64  N
-//   /steps/<k>     group per snapshot, attr time (s), attr step; datasets position N×3,
-//                  velocity N×3
+//   /xdmf/polyvertex uint64 N  0..N-1, the Polyvertex cells ParaView's filters need
+//   /steps/<k>     group per snapshot (k: the step in 12 digits, lexical order = time order),
+//                  attr time (s), attr step; datasets position N×3, velocity N×3 (when the
+//                  bed has velocities)
+// Every dataset has its SI unit as the attribute `units` (m, m/s; "1" without unit).
 // The file is written under a temporary name and renamed on close(), so an interrupted run
 // leaves no half trajectory under the requested name.
 #include <cstdint>

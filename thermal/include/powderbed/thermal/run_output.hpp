@@ -4,7 +4,8 @@
 //                          command_line; /provenance attr scene (the resolved configuration)
 //   /particles             position N×3, radius N, id N
 //   /substrate             attrs origin (x0, y0, z_top), spacing (dx, dy, dz), nodes (nx, ny, nz)
-//   /steps/<k>             attrs time, step; particle_temperature N, particle_phase N (0 solid,
+//   /steps/<k>             k: the step in 12 digits (lexical order = time order);
+//                          attrs time, step; particle_temperature N, particle_phase N (0 solid,
 //                          1 liquid, 2 gas), section_y nz×nx (substrate T on y = Ly/2),
 //                          top ny×nx (substrate T on the top face), substrate nz×ny×nx
 //                          (float32, only with full fields)
@@ -12,6 +13,8 @@
 //                          section_y nz×nx, top ny×nx; attrs height, width, depth, x_plane,
 //                          melting_point
 //   /summary               attrs: the numbers `sinter --json` prints
+//   /xdmf/polyvertex       0..N-1, the particles' Polyvertex cells for ParaView
+// Every dataset has its SI unit as the attribute `units` (K, m; "1" without unit).
 // Arrays are row-major with x fastest. Written under a temporary name, renamed by finish().
 #include <memory>
 #include <string>

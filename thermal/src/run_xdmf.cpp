@@ -1,0 +1,94 @@
+#include "run_xdmf.hpp"
+
+#include <sstream>
+
+#include "powderbed/bed/h5_output.hpp"
+#include "powderbed/bed/xdmf.hpp"
+
+namespace powderbed::thermal::detail {
+
+namespace {
+
+using Steps = std::vector<std::pair<std::uint64_t, double>>;
+
+struct Writer {
+  std::ostringstream x;
+  std::string h5;
+
+  void item(const std::string& dims, const std::string& path, bool uchar = false) {
+    x << "      <DataItem Dimensions=\"" << dims << "\" NumberType=\""
+      << (uchar ? "UChar" : "Float") << "\" Precision=\"" << (uchar ? 1 : 8)
+      << "\" Format=\"HDF\">" << h5 << ":" << path << "</DataItem>\n";
+  }
+  void attribute(const char* name, const std::string& dims, const std::string& path,
+                 bool uchar = false) {
+    x << "     <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"Node\">\n";
+    item(dims, path, uchar);
+    x << "     </Attribute>\n";
+  }
+  void begin_step(const char* what, std::uint64_t step, double time) {
+    x << "    <Grid Name=\"" << what << " step " << step << "\" GridType=\"Uniform\">\n"
+      << "     <Time Value=\"" << time << "\"/>\n";
+  }
+};
+
+void particles(Writer& w, std::size_t count, const Steps& steps) {
+  const std::string n = std::to_string(count);
+  w.x << "  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const auto& [step, time] : steps) {
+    const std::string group = bed::step_group(step);
+    w.begin_step("particles", step, time);
+    w.x << bed::xdmf_polyvertex_topology(count, w.h5, "     ")
+        << "     <Geometry GeometryType=\"XYZ\">\n";
+    w.item(n + " 3", "/particles/position");
+    w.x << "     </Geometry>\n";
+    w.attribute("radius", n, "/particles/radius");
+    w.attribute("temperature", n, group + "/particle_temperature");
+    w.attribute("phase", n, group + "/particle_phase", true);
+    w.x << "    </Grid>\n";
+  }
+  w.x << "  </Grid>\n";
+}
+
+// A plane of substrate nodes as a CoRectMesh: dimensions and origin/spacing in z, y, x order.
+struct Plane {
+  const char* name;     // the collection's name and the dataset under each step group
+  std::size_t nz, ny;   // nx is the grid's
+  double z0, y0;
+};
+
+void plane(Writer& w, const SubstrateGeometry& g, const Plane& p, const Steps& steps) {
+  const std::string dims =
+      std::to_string(p.nz) + " " + std::to_string(p.ny) + " " + std::to_string(g.nx);
+  w.x << "  <Grid Name=\"" << p.name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const auto& [step, time] : steps) {
+    w.begin_step(p.name, step, time);
+    w.x << "     <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"" << dims << "\"/>\n"
+        << "     <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n"
+        << "      <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">"
+        << p.z0 << " " << p.y0 << " " << g.x0 << "</DataItem>\n"
+        << "      <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">"
+        << g.dz << " " << g.dy << " " << g.dx << "</DataItem>\n"
+        << "     </Geometry>\n";
+    w.attribute("temperature", dims, bed::step_group(step) + "/" + p.name);
+    w.x << "    </Grid>\n";
+  }
+  w.x << "  </Grid>\n";
+}
+
+}  // namespace
+
+std::string run_xdmf(const std::string& h5, std::size_t count, const SubstrateGeometry& g,
+                     const Steps& steps) {
+  Writer w;
+  w.h5 = h5;
+  w.x.precision(17);
+  w.x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n";
+  particles(w, count, steps);
+  plane(w, g, {"top", 1, g.ny, g.z_top, g.y0}, steps);
+  plane(w, g, {"section_y", g.nz, 1, g.z(0), g.y(g.ny / 2)}, steps);
+  w.x << " </Domain>\n</Xdmf>\n";
+  return w.x.str();
+}
+
+}  // namespace powderbed::thermal::detail
