@@ -1,0 +1,17 @@
+#pragma once
+// A bed as the Python module hands it over: a dict of numpy arrays and plain values
+// (python/powderbed/__init__.py wraps it in the Bed class), to and from bed::Bed.
+#include <pybind11/pybind11.h>
+
+#include "powderbed/bed/bed.hpp"
+
+namespace powderbed::python {
+
+// Keys: x, y, z, r, id (always); material, vx, vy, vz, temperature, phase (None when absent);
+// domain {dimension, lower, upper, periodic}; provenance {created_by, command_line, rng_seed,
+// stage, scene, contact_*}.
+pybind11::dict bed_to_dict(const bed::Bed& bed);
+// The inverse; throws InputError naming the key when an array's length differs from x's.
+bed::Bed bed_from_dict(const pybind11::dict& d);
+
+}  // namespace powderbed::python

@@ -1,0 +1,85 @@
+// The C++ half of the Python module `powderbed` (python/powderbed/__init__.py is the other):
+// the bed library's readers and writers, PSD sampling and bedstat's statistics, so a script
+// gets the same numbers as the programs without parsing their output.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "bed_dict.hpp"
+#include "common/bed_report.hpp"
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/io.hpp"
+#include "powderbed/bed/psd.hpp"
+#include "powderbed/bed/random.hpp"
+
+namespace py = pybind11;
+using namespace powderbed;
+
+namespace {
+
+py::dict read_bed(const std::string& path, std::optional<std::vector<double>> csv_bounds) {
+  std::optional<bed::Domain> domain;
+  if (csv_bounds) {
+    if (csv_bounds->size() != 6) throw InputError("domain: 6 numbers xlo,ylo,zlo,xhi,yhi,zhi");
+    const auto& b = *csv_bounds;
+    domain.emplace();
+    domain->lower = {b[0], b[1], b[2]};
+    domain->upper = {b[3], b[4], b[5]};
+    domain->dimension = (b[2] == 0 && b[5] == 0) ? 2 : 3;
+    domain->validate("domain");
+  }
+  return python::bed_to_dict(bed::read_bed_any(path, domain ? &*domain : nullptr));
+}
+
+void write_bed(const py::dict& bed, const std::string& path) {
+  bed::write_bed_any(python::bed_from_dict(bed), path);
+}
+
+// n radii drawn from the PSD string `spec` with the engine the programs use, seeded by `seed`.
+py::array_t<double> sample_psd(const std::string& spec, std::size_t n, std::uint64_t seed) {
+  const bed::Psd psd = bed::Psd::parse(spec, "psd");
+  bed::Rng rng(seed);
+  py::array_t<double> out(static_cast<py::ssize_t>(n));
+  auto r = out.mutable_unchecked<1>();
+  for (py::ssize_t i = 0; i < static_cast<py::ssize_t>(n); ++i) r(i) = psd.sample_radius(rng);
+  return out;
+}
+
+// bedstat's JSON entry of one bed (apps/common/bed_report.hpp), as text for json.loads.
+std::string stats_json(const py::dict& bed, double tol, std::optional<std::pair<double, double>> layer,
+                       std::optional<std::string> psd, std::size_t profile, std::size_t rdf,
+                       std::size_t histogram, bool voronoi, std::optional<double> order_margin,
+                       const std::string& label) {
+  app::BedRequest req;
+  req.tolerance = tol;
+  req.layer = layer;
+  if (psd) req.psd = bed::Psd::parse(*psd, "psd");
+  req.profile_bins = profile;
+  req.rdf_bins = rdf;
+  req.histogram_bins = histogram;
+  req.voronoi = voronoi;
+  req.order_margin = order_margin;
+  bed::Bed b = python::bed_from_dict(bed);
+  b.validate(label);
+  bed::JsonWriter json;
+  app::write_bed_json(json, app::analyse_bed(std::move(b), label, req), req);
+  return json.str();
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "powderbed's C++ bed library (use the package powderbed, not this module)";
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  py::register_exception<NumericalError>(m, "NumericalError", PyExc_ArithmeticError);
+  m.def("read_bed", &read_bed, py::arg("path"), py::arg("domain") = py::none());
+  m.def("write_bed", &write_bed, py::arg("bed"), py::arg("path"));
+  m.def("sample_psd", &sample_psd, py::arg("spec"), py::arg("n"), py::arg("seed"));
+  m.def("stats_json", &stats_json, py::arg("bed"), py::arg("tol"), py::arg("layer"),
+        py::arg("psd"), py::arg("profile"), py::arg("rdf"), py::arg("histogram"),
+        py::arg("voronoi"), py::arg("order_margin"), py::arg("label"));
+}

@@ -1,0 +1,72 @@
+"""powderbed from Python: beds as numpy arrays, PSD sampling, bedstat's statistics and every
+program's --json summary as a dict (README "Python").
+
+    import powderbed
+    b = powderbed.read_bed("out/deposit.h5")      # b.x, b.y, b.z, b.r, b.id, b.domain, ...
+    print(powderbed.stats(b)["coordination"])     # the entry bedstat --json prints for it
+    radii = powderbed.sample_psd("gauss:mean=27e-6,sd=4.25e-6,min=10e-6,max=50e-6", 600, seed=1)
+    summary = powderbed.deposit(config="data/scenes/gz2016-deposit.ini", out="gz.h5", seed=1)
+
+Lengths in metres, velocities in m/s, temperatures in K (SI, as the bed files).
+"""
+try:
+    import numpy  # noqa: F401  (the arrays the C++ half returns)
+except ImportError as error:
+    import sys
+    raise ImportError(f"powderbed needs numpy, which {sys.executable} cannot import (Debian: "
+                      "python3-numpy, installed by scripts/setup.sh)") from error
+
+import json as _json
+
+from . import _core
+from ._programs import PROGRAMS, ProgramError, run
+from ._bed import Bed
+
+InputError = _core.InputError
+
+__all__ = ["Bed", "InputError", "ProgramError", "PROGRAMS", "read_bed", "write_bed", "sample_psd",
+           "stats", "run", *PROGRAMS]
+
+
+def read_bed(path, domain=None):
+    """The bed in `path` (.h5, .csv with domain=(xlo, ylo, zlo, xhi, yhi, zhi), .dump), read by
+    the C++ bed library with all its checks; raises InputError (a ValueError) on a bad file."""
+    fields = _core.read_bed(str(path), None if domain is None else [float(v) for v in domain])
+    return Bed(fields, source=str(path))
+
+
+def write_bed(bed, path):
+    """Writes `bed` to `path` by its extension (.h5 with its .xmf sidecar, .csv, .data), through
+    a temporary file and a rename, as the programs do."""
+    _core.write_bed(bed.as_dict(), str(path))
+
+
+def sample_psd(spec, n, seed=0):
+    """n radii (m) drawn from the PSD string `spec` (README "Particle size distributions") with
+    the programs' random engine seeded by `seed`."""
+    return _core.sample_psd(spec, int(n), int(seed))
+
+
+def stats(bed, tol=1e-6, layer=None, psd=None, profile=0, rdf=0, histogram=0, voronoi=False,
+          order=False, order_margin=0.0, label=""):
+    """The dict `bedstat --json` prints for this one bed (its entry under "beds"): box_density,
+    layer_density (with layer=(z0, z1)), coordination at `tol` and coordination_by_tol, contacts,
+    rattlers, wall_contacts, max_overlap, radius, and the optional statistics bedstat's options
+    of the same names ask for."""
+    text = _core.stats_json(bed.as_dict(), float(tol),
+                            None if layer is None else (float(layer[0]), float(layer[1])), psd,
+                            int(profile), int(rdf), int(histogram), bool(voronoi),
+                            float(order_margin) if order else None, label or bed.source)
+    return _json.loads(text)
+
+
+def _program(name):
+    def call(*args, **options):
+        return run(name, *args, **options)
+    call.__name__ = name
+    call.__doc__ = f"run('{name}', *args, **options): {name}'s --json summary as a dict."
+    return call
+
+
+for _name in PROGRAMS:
+    globals()[_name] = _program(_name)
