@@ -7,6 +7,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mkdir -p out
+# The Python the build found importing numpy (python/CMakeLists.txt records it), so a pyenv or
+# conda python3 first on PATH without Debian's numpy/h5py/matplotlib does not break the plots.
+python=$(cat build/python/interpreter 2>/dev/null || command -v python3)
 psd="gauss:mean=27e-6,sd=4.25e-6,min=10e-6,max=50e-6,on=diameter"
 echo "== packgen: 600 particles grown from the floor (3-contact, lowest site first)"
 build/apps/packgen --dim 3 --domain 1e-3,0.5e-3,60e-6 --psd "$psd" --count 600 --approach 3 \
@@ -15,11 +18,11 @@ echo "== deposit: the paper's drop and settle, 0.1 s (data/scenes/gz2016-deposit
 build/apps/deposit --config data/scenes/gz2016-deposit.ini --seed 1 --out out/deposit.h5
 echo "== bedstat: side by side; the paper reports about 0.45 in the bottom 30 um"
 build/apps/bedstat out/packgen.h5 out/deposit.h5 --layer 0,30e-6 --psd "$psd"
-/usr/bin/python3 scripts/plot_bed.py out/packgen.h5 out/packgen.png --title "packgen, [GZ] powder"
-/usr/bin/python3 scripts/plot_bed.py out/deposit.h5 out/deposit.png --title "deposit, [GZ] scene"
+"$python" scripts/plot_bed.py out/packgen.h5 out/packgen.png --title "packgen, [GZ] powder"
+"$python" scripts/plot_bed.py out/deposit.h5 out/deposit.png --title "deposit, [GZ] scene"
 echo "== sinter: 200 W at 2 m/s over the deposited bed (data/scenes/gz2016-sinter.ini, under a minute)"
 build/apps/sinter --config data/scenes/gz2016-sinter.ini --bed out/deposit.h5 --out out/sinter.h5
-/usr/bin/python3 - out/sinter.h5 <<'PY'
+"$python" - out/sinter.h5 <<'PY'
 import sys, h5py
 m = h5py.File(sys.argv[1], "r")["melt"].attrs
 print("melt pool on x = Lx/2 (um)     height  width  depth")
@@ -27,7 +30,7 @@ print("  sinter, this bed          %8.1f %6.1f %6.1f" % tuple(m[k] * 1e6 for k i
 print("  [GZ] 2016 model               30.0   85.0   20.0")
 print("  [GZ] 2016 experiment          26.0   75.0   30.0")
 PY
-/usr/bin/python3 scripts/plot_sinter.py out/sinter.h5 out/sinter --title "sinter, [GZ] scene, 200 W, 2 m/s"
+"$python" scripts/plot_sinter.py out/sinter.h5 out/sinter --title "sinter, [GZ] scene, 200 W, 2 m/s"
 echo "== deposit + keff: the [KE] steel 1 mm bed (~1,000 spheres inserted from the top of a 10 D cube until full, linear contact as MFiX; ~30 s)"
 build/apps/deposit --config data/scenes/ke2016-steel-1mm-bed.ini --seed 1 --out out/ke-steel-1mm.h5
 echo "   its conductivity at room temperature (air, contact + gas), then at 1000 K with radiation"
@@ -35,7 +38,7 @@ build/apps/keff --config data/scenes/ke2016-steel-1mm.ini --bed out/ke-steel-1mm
   --out out/keff-300K.h5
 build/apps/keff --config data/scenes/ke2016-steel-1mm.ini --bed out/ke-steel-1mm.h5 \
   --temperature 1000 --gas.model air --effects.radiation true --out out/keff-1000K.h5
-/usr/bin/python3 scripts/plot_keff_profile.py out/keff-300K-profile.csv out/keff-1000K-profile.csv \
+"$python" scripts/plot_keff_profile.py out/keff-300K-profile.csv out/keff-1000K-profile.csv \
   out/keff-profile.png --label "300 K, contact + gas" --label "1000 K, + radiation"
 echo "beds: out/packgen.h5, out/deposit.h5, out/ke-steel-1mm.h5; laser run: out/sinter.h5" \
   "(ParaView: open the .xmf, see docs/bed-format.md); pictures: out/packgen.png," \

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Draws keff temperature profiles (the RUN-profile.csv that `keff --out RUN.h5` writes beside the
 bed) to a PNG: the mean particle temperature of each bin along the axis with its min–max band,
 and the straight line a uniform conductor between the same walls would have. Several profiles

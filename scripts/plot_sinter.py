@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Draws a sinter run (sinter --out RUN.h5) like [GZ] Fig. 11: peak temperatures over the whole
 track, as a top view (substrate top face and particles from above) and as the cross-section on
 the plane x = Lx/2 where the melt pool is measured (substrate section and the particles the plane

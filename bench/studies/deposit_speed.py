@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Speed of deposit beside LIGGGHTS 3.8 on the [GZ] scene, in one run (issue 4 "Speed").
 
-Writes docs/results/deposit-speed.md. Run from anywhere with /usr/bin/python3 (needs numpy and
+Writes docs/results/deposit-speed.md. Run from anywhere with python3 (needs numpy and
 h5py) after building deposit, bedconv and bedstat (POWDERBED_BUILD selects the build folder):
-    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/deposit_speed.py
+    POWDERBED_BUILD=build python3 bench/studies/deposit_speed.py
 
 What is measured (all on this machine, in this one run, one after the other):
 1. A settled bed: data/scenes/gz2016-deposit.ini (600 particles, seed 1) dropped and settled with

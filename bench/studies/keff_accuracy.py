@@ -3,8 +3,8 @@
 against the change in k_eff and the seed-to-seed spread (the view-factor error as k_eff sees it),
 and the Newton tolerance 1e-4 … 1e-12 against the change in k_eff and the wall-flow mismatch,
 each with its wall time; which are the cheapest settings within 1 % of the most accurate.
-Writes docs/results/keff-accuracy.md and keff-accuracy.png. Run with /usr/bin/python3:
-    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/keff_accuracy.py
+Writes docs/results/keff-accuracy.md and keff-accuracy.png. Run with python3:
+    POWDERBED_BUILD=build python3 bench/studies/keff_accuracy.py
 
 Bed: the 1,100-particle steel 1 mm validation bed of keff_speed.py (deposit, seed 1, lid held;
 out/studies/keff-speed/deposit-1100.h5, made if missing). keff: data/scenes/ke2016-steel-1mm.ini
@@ -218,7 +218,7 @@ def report(rays_tables, tol_tables, loads, rays_best, tol_best, note):
     lines = [
         "# keff: accuracy against time",
         "",
-        "Regenerate: `POWDERBED_BUILD=build /usr/bin/python3 bench/studies/keff_accuracy.py` "
+        "Regenerate: `POWDERBED_BUILD=build python3 bench/studies/keff_accuracy.py` "
         "(a Release build; the bed is keff_speed.py's, made once in out/studies/keff-speed/; "
         "`--report` rewrites this page from the last run's measurements, accuracy-runs.json "
         "there). "

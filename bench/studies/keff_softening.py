@@ -5,8 +5,8 @@ k_n = 1e3 ... 1e6 N/m for steel 1 mm and copper 0.25 mm (seed 1), and k_eff, k_c
 Hertz correction read from each bed (k_n δ_s = (4/3) E* √R* δ_h^{3/2}). Compared with the
 consolidation σ of docs/results/keff-validation.md (its results.json, when that study has run).
 Writes its section of docs/results/keff-accuracy.md (between the softening markers, which
-keff_accuracy.py keeps). Run with /usr/bin/python3:
-    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/keff_softening.py
+keff_accuracy.py keeps). Run with python3:
+    POWDERBED_BUILD=build python3 bench/studies/keff_softening.py
 About ten minutes of one core the first time (k_n = 1e6 on copper: 3.5e6 steps); beds kept in
 out/studies/keff-softening/.
 """

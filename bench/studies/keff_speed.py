@@ -3,8 +3,8 @@
 with radiation at the default ray count (the scene's, 100 per particle) in under 5 s, a 100,000-particle bed in under
 2 minutes. Whole-process wall time, keff's own `wall_time` and peak memory (/usr/bin/time -v) at
 1 and 2 OpenMP threads, radiation off and on, medians of 3 runs; beds of 1.1e3, 1e4 and 1e5
-particles for the scaling. Writes docs/results/keff-speed.md. Run with /usr/bin/python3:
-    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/keff_speed.py
+particles for the scaling. Writes docs/results/keff-speed.md. Run with python3:
+    POWDERBED_BUILD=build python3 bench/studies/keff_speed.py
 
 Beds (kept in out/studies/keff-speed/):
 - `deposit --config data/scenes/ke2016-steel-1mm-held-lid-bed.ini --seed 1` (1,100 spheres, lid held: the
@@ -152,7 +152,7 @@ def report(beds, rows, loads, prof, note):
     lines = [
         "# keff speed",
         "",
-        "Regenerate: `POWDERBED_BUILD=build /usr/bin/python3 bench/studies/keff_speed.py` (a "
+        "Regenerate: `POWDERBED_BUILD=build python3 bench/studies/keff_speed.py` (a "
         "Release build; beds are made once and kept in out/studies/keff-speed/; `--report` "
         "rewrites this page from the last run's measurements, speed-runs.json there). Issue 6's "
         "targets: the 1,100-particle validation bed **with radiation at the default ray count "

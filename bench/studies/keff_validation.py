@@ -5,8 +5,8 @@ to 0.25, 0.5, 0.75 and 1 particle radius below the bed's surface, held, raised, 
 mean and standard deviation (the consolidation uncertainty), the input uncertainty over [KE]'s
 ranges of k_s, k_g and E by a second-order polynomial chaos on a Smolyak sparse grid, the total,
 and each bed's porosity beside their Table 3. Writes docs/results/keff-validation.md. Run with
-/usr/bin/python3:
-    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/keff_validation.py [--seeds N] [--bed-seeds M]
+python3:
+    POWDERBED_BUILD=build python3 bench/studies/keff_validation.py [--seeds N] [--bed-seeds M]
 
 --seeds N: the consolidation/PCE study on seeds 1..N (default 1). --bed-seeds M: the
 bed-generation study, steel 1 mm unconsolidated, seeds 1..M (default 8, [KE]'s count; ~160 s of

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Reproduces the 2D study of Luberto & de Payrebrune (SPEC.md §3 table) with packgen.
 
 --samples per paper case (seeds 1..N; the paper: 100) on the 4.0 x 4.0 um square with the raster
@@ -160,7 +160,7 @@ def main():
         "",
         f"Regenerate: `POWDERBED_BUILD=build bench/studies/packgen_2d_study.py --samples "
         f"{args.samples} --alt-samples {args.alt_samples} --sens-samples {args.sens_samples}` "
-        "(Release build; needs /usr/bin/python3 with h5py, scipy, matplotlib).",
+        "(Release build; needs python3 with h5py, scipy, matplotlib).",
         "",
         "Settings of the paper: 4.0 × 4.0 µm square, raster collision grid h = 0.015 µm "
         f"(`--collision raster --raster-spacing 1.5e-08`), {args.samples} samples per case "

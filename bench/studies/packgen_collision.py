@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Accuracy costs time (issue 3): packgen's raster collision grid at several spacings h against
 the exact back-ends (grid, kdtree), and the contact approaches against each other.
 
@@ -121,7 +121,7 @@ def main():
         "# packgen: accuracy of the collision back-ends, and the approaches",
         "",
         f"Regenerate: `POWDERBED_BUILD=build bench/studies/packgen_collision.py --seeds "
-        f"{args.seeds}` (Release build; /usr/bin/python3 with h5py, scipy, matplotlib).",
+        f"{args.seeds}` (Release build; python3 with h5py, scipy, matplotlib).",
         "",
         f"{args.seeds} seeds per row (1..{args.seeds}): counts are means, the wall time is the "
         "median of packgen's placement time (`wall_time` of `--json`, file writing excluded). "

@@ -4,8 +4,8 @@ grid spacing 10 / 5 / 2.5 um, time step from the paper's 5e-9 s up to the stable
 phase-change window dT, explicit vs implicit, rays per traced beam position and the re-trace
 interval of the ray-traced laser — each row with the melt pool, its change against the finest
 run of that knob and the wall time. Writes
-docs/results/sinter-accuracy.md and sinter-accuracy.png. Run with /usr/bin/python3:
-    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/sinter_accuracy.py
+docs/results/sinter-accuracy.md and sinter-accuracy.png. Run with python3:
+    POWDERBED_BUILD=build python3 bench/studies/sinter_accuracy.py
 
 The time-step and integrator rows stop at t = 3.6e-4 s instead of the track's end (5.54e-4 s):
 the beam passes the measuring plane x = Lx/2 at 2.77e-4 s and the pool there has reached its

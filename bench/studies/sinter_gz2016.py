@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The paper's single-track validation, its sweeps and its Fig. 13 ([GZ] §3) on the bed of the
 deposit scene: writes docs/results/sinter-gz2016.md (+ the top-view and cross-section pictures)
-and docs/results/sinter-sweeps.md (+ sinter-sweeps.png). Run with /usr/bin/python3:
-    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/sinter_gz2016.py [--no-sweeps|--fig13-only]
+and docs/results/sinter-sweeps.md (+ sinter-sweeps.png). Run with python3:
+    POWDERBED_BUILD=build python3 bench/studies/sinter_gz2016.py [--no-sweeps|--fig13-only]
 
 The melt pool is measured as `sinter` does (thermal/include/powderbed/thermal/melt_pool.hpp):
 on the plane x = Lx/2, the region whose peak temperature reached T_m = 1700 K; height above the
@@ -24,7 +24,7 @@ SPEEDS = [0.4, 0.8, 1.2, 1.6, 2.0, 2.5, 3.0, 3.5, 4.0]     # m/s at 200 W
 
 def picture(run_path, name, title):
     prefix = os.path.join(RESULTS, name)
-    subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "plot_sinter.py"), run_path,
+    subprocess.run(["python3", os.path.join(ROOT, "scripts", "plot_sinter.py"), run_path,
                     prefix, "--title", title], check=True)
     return os.path.basename(prefix)
 

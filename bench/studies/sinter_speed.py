@@ -4,8 +4,8 @@ scene's bed, 201 x 101 x 61 nodes) as whole runs, with the scene's default model
 laser, wetting) and with Beer-Lambert without wetting, one and two threads, median of three
 each (the two models' runs interleaved so that the machine's load falls on both alike), with
 the peak memory of the process. [GZ] report about 3 CPU hours
-for this pass. Writes docs/results/sinter-speed.md. Run with /usr/bin/python3:
-    POWDERBED_BUILD=build /usr/bin/python3 bench/studies/sinter_speed.py
+for this pass. Writes docs/results/sinter-speed.md. Run with python3:
+    POWDERBED_BUILD=build python3 bench/studies/sinter_speed.py
 """
 import os
 import resource

@@ -1,4 +1,4 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Restitution coefficient of the Hertz + zeta-damping contact of SPEC.md section 4, computed
 independently of the library (used once to write tests/data/hertz_restitution.csv).
 
@@ -7,7 +7,7 @@ c = 2 zeta sqrt(m k_n), k_n = 2 E* sqrt(R* x) = 3/2 K x^(1/2).
 With x = L X, t = T tau, L = (m v^2 / K)^(2/5), T = L / v the impact velocity drops out:
   X'' = -max(0, X^(3/2) + 2 sqrt(3/2) zeta X^(1/4) X'),  X(0) = 0, X'(0) = 1,
 and e(zeta) = -X' when X returns to 0.  Classic RK4 with step h; run at h and h/2 to show the
-error.  Usage: /usr/bin/python3 hertz_restitution.py > hertz_restitution.csv
+error.  Usage: python3 hertz_restitution.py > hertz_restitution.csv
 """
 import math
 
@@ -48,7 +48,7 @@ if __name__ == "__main__":
     print("# e(zeta) of the Hertz + zeta-damping normal contact (SPEC.md section 4), independent of "
           "the library: dimensionless ODE X''=-max(0,X^1.5+2*sqrt(1.5)*zeta*X^0.25*X'), X(0)=0, "
           "X'(0)=1, classic RK4 at h=%g; halving h changes e by at most %.1e; made by "
-          "tests/data/hertz_restitution.py (/usr/bin/python3). tau_c: contact time in units of "
+          "tests/data/hertz_restitution.py (python3). tau_c: contact time in units of "
           "(m*^2/(v K^2))^(1/5), K = 4/3 E* sqrt(R*)" % (h / 2, worst))
     print("zeta,restitution,tau_c")
     for z, e, t in rows:
