@@ -8,6 +8,10 @@ packages=(
   libcgal-dev libnanoflann-dev libeigen3-dev libhdf5-dev libboost-program-options-dev
   libgtest-dev libbenchmark-dev
   python3 python3-h5py python3-matplotlib python3-numpy
+  python3-dev pybind11-dev python3-pytest  # the Python module powderbed (python/) and its tests
+  # scripts/render_paraview.py and its test (tests/paraview): pvpython under a virtual X server;
+  # paraview + python3-paraview are ~540 MB installed (VTK, Qt, GDAL): the largest download here
+  python3-paraview xvfb xauth
   lammps          # `lmp` reads our LAMMPS data export back in the tests
   clang libclang-rt-14-dev  # the bed-reader fuzz target (tests/fuzz, ~40 s build + 30 s run)
 )
