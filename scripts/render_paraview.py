@@ -100,6 +100,9 @@ def camera(view, source, how, extent, size):
         return None
     if extent:
         x0, x1, y0, y1 = extent
+    else:  # the bounds of the centres, widened by the largest radius
+        r = source.PointData["radius"].GetRange()[1]
+        x0, x1, y0, y1 = x0 - r, x1 + r, y0 - r, y1 + r
     width, height = size
     view.CameraParallelProjection = 1
     view.CameraFocalPoint = [(x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2]
