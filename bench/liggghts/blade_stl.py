@@ -3,10 +3,11 @@
 
 The blade is a flat-bottomed box: leading (+x) face at x = FRONT, THICKNESS behind it, bottom
 edge at z = BOTTOM (plate + gap), top at z = TOP, across the strip y in [YLO, YHI]. LIGGGHTS
-aborts when a mesh vertex lies exactly on a periodic face ("mesh element ... outside domain" /
-a vertex on the boundary cannot be assigned to one process), so the blade is inset across by
-INSET x (YHI - YLO) on each side (default 1e-3: 0.5 um on a 0.5 mm strip, far below any
-particle, none of which can slip through). Triangles are wound so that normals point out.
+3.8.0 aborts when a mesh vertex lies exactly on a periodic face (MPI_ABORT at the first run's
+set-up, with no message on screen or in the log: seen here with the blade's vertices at y = 0 and
+y = L_y), so the blade is inset across by INSET x (YHI - YLO) on each side (default 1e-3: 0.5 um
+on a 0.5 mm strip, far below any particle, none of which can slip through). Triangles are wound
+so that normals point out.
 Usage: blade_stl.py OUT.stl FRONT THICKNESS BOTTOM TOP YLO YHI [--inset F]   (SI units, m)
 """
 import argparse
