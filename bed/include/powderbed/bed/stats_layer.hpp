@@ -59,7 +59,8 @@ double solid_volume_in_box(const Bed& bed, const std::array<double, 3>& lo,
                            const std::array<double, 3>& hi);
 
 // Top-view raster of the spheres that reach into [plate, top] over the window, as a height
-// field: h(x, y) = max_i z_i + sqrt(r_i^2 - |(x, y) - (x_i, y_i)|^2) - plate.
+// field: h(x, y) = max_i z_i + sqrt(r_i^2 - |(x, y) - (x_i, y_i)|^2) - plate. The request as
+// layer_stats checks it (the pieces below do not check again).
 HeightMap height_map(const Bed& bed, const LayerRequest& request);
 
 // Surface texture of a height map (ISO 25178): mean height, Sa = mean |h - mean|,
