@@ -20,10 +20,9 @@ Method, per seed (1, 2, 3; --seeds to choose):
    vertex on a periodic face) that stands for recoater.delay, moves to recoater.end at
    recoater.speed (fix move/mesh linear) and stands for recoater.settle; Hertz with the scene's
    E and nu (softened by young-scale, particles and walls), the restitution that matches the
-   scene's damping ratio, friction with the tangential history spring (no_history when the scene's
-   friction.model is sliding), rolling resistance (epsd)
-   when the scene has material.rolling > 0; plate, lid and end walls as primitive walls,
-   periodic in y. Loop time from LIGGGHTS's "Loop time" lines (all three runs).
+   scene's damping ratio, friction with the tangential history spring (no_history when the
+   scene's friction.model is sliding), rolling resistance (epsd) when the scene has
+   material.rolling > 0; plate, lid and end walls as primitive walls, periodic in y. Loop time from LIGGGHTS's "Loop time" lines (all three runs).
 4. Both beds through `bedstat --spread` with the same gap, plate (the domain floor) and window
    (the layer the blade leaves behind it, [start + t/2, end - t/2] for a blade of thickness t
    centred at recoater.start and stopping centred at recoater.end, less 10 % of it at each end;
