@@ -13,11 +13,13 @@
 #include "common/bed_report.hpp"
 #include "common/contact_report.hpp"
 #include "common/options.hpp"
+#include "common/spread_report.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/stats.hpp"
+#include "powderbed/bed/stats_layer.hpp"
 
 namespace {
 
@@ -44,6 +46,36 @@ std::vector<std::string> cells(const std::vector<Report>& reports, F&& f) {
     out.push_back(s.str());
   }
   return out;
+}
+
+// --spread rows (docs/spread-layer.md), after the bed's other statistics.
+void print_spread_table(std::ostream& out, const std::vector<Report>& reports) {
+  auto row = [&](const std::string& label, auto&& f) {
+    table_row(out, label, cells(reports, [&](auto& s, const Report& r) { f(s, *r.spread); }));
+  };
+  using Spread = app::SpreadReport;
+  row("spread: plate z (m)", [](auto& s, const Spread& p) { s << p.layer.request.plate; });
+  row("spread: gap (m)", [](auto& s, const Spread& p) { s << p.layer.request.gap; });
+  row("spread: window x0 (m)", [](auto& s, const Spread& p) { s << p.layer.request.x0; });
+  row("spread: window x1 (m)", [](auto& s, const Spread& p) { s << p.layer.request.x1; });
+  row("spread: raster cell (m)", [](auto& s, const Spread& p) { s << p.layer.map.dx; });
+  row("spread: layer particles", [](auto& s, const Spread& p) { s << p.layer.particles; });
+  row("spread: layer density", [](auto& s, const Spread& p) { s << p.layer.density; });
+  row("spread: coverage", [](auto& s, const Spread& p) { s << p.layer.coverage; });
+  row("spread: mean height (m)", [](auto& s, const Spread& p) { s << p.layer.mean_height; });
+  row("spread: Sa (m)", [](auto& s, const Spread& p) { s << p.layer.sa; });
+  row("spread: Sq (m)", [](auto& s, const Spread& p) { s << p.layer.sq; });
+  row("spread: d(diameter)/dx", [](auto& s, const Spread& p) { s << p.layer.segregation.slope; });
+  std::size_t bins = 0;
+  for (const auto& r : reports) bins = std::max(bins, r.spread->layer.segregation.x.size());
+  for (std::size_t k = 0; k < bins; ++k) {
+    row("  mean diameter, x bin " + std::to_string(k), [k](auto& s, const Spread& p) {
+      const auto& seg = p.layer.segregation;
+      if (k < seg.x.size() && seg.count[k] > 0) s << seg.mean_diameter[k]; else s << "-";
+    });
+  }
+  row("spread: KS D to feed", [](auto& s, const Spread& p) { if (p.ks) s << p.ks->d; else s << "-"; });
+  row("spread: KS p", [](auto& s, const Spread& p) { if (p.ks) s << p.ks->p; else s << "-"; });
 }
 
 void print_table(std::ostream& out, const std::vector<Report>& reports, const Request& req) {
@@ -105,6 +137,7 @@ void print_table(std::ostream& out, const std::vector<Report>& reports, const Re
                 if (r.order) s << r.order->q6_global; else s << "-";
               }));
   }
+  if (req.spread) print_spread_table(out, reports);
 }
 
 // The statistics the options ask for; throws InputError naming the option on bad values.
@@ -139,6 +172,60 @@ Request parse_request(const po::variables_map& vm) {
   return req;
 }
 
+// The --spread options make sense only with --spread; --height-map and --feed are paths.
+void check_spread_options(const po::variables_map& vm, std::size_t beds,
+                          std::vector<app::PathArg>& inputs, std::vector<app::PathArg>& outputs) {
+  for (const char* name : {"plate", "gap", "window", "raster", "height-map", "feed"}) {
+    if (vm.count(name) && !vm.count("spread")) {
+      throw InputError(std::string("--") + name + ": given without --spread (accepted: with --spread)");
+    }
+  }
+  if (vm.count("height-map")) {
+    if (beds != 1) {
+      throw InputError("--height-map: " + std::to_string(beds) + " beds given (accepted: one bed)");
+    }
+    outputs.push_back({"--height-map", vm["height-map"].as<std::string>()});
+    app::check_extension(outputs.back(), {".csv"});
+  }
+  if (vm.count("feed")) inputs.push_back({"--feed", vm["feed"].as<std::string>()});
+}
+
+// --spread's options (docs/spread-layer.md); the gap and the feed may also come from each bed.
+app::SpreadRequest parse_spread_request(const po::variables_map& vm,
+                                        const std::optional<bed::Domain>& csv_domain) {
+  app::SpreadRequest sp;
+  auto positive = [&](const char* name) {
+    const double v = vm[name].as<double>();
+    if (!(v > 0)) {
+      std::ostringstream msg;
+      msg << "--" << name << ": " << v << " (accepted: > 0 m)";
+      throw InputError(msg.str());
+    }
+    return v;
+  };
+  if (vm.count("plate")) sp.plate = vm["plate"].as<double>();
+  if (vm.count("gap")) sp.gap = positive("gap");
+  if (vm.count("raster")) sp.raster = positive("raster");
+  if (vm.count("window")) {
+    const auto x = app::parse_number_list(vm["window"].as<std::string>(), 2, 2, "--window");
+    if (!(x[1] > x[0])) {
+      throw InputError("--window: '" + vm["window"].as<std::string>() + "' (accepted: X0,X1 with X0 < X1)");
+    }
+    sp.window = std::make_pair(x[0], x[1]);
+  }
+  sp.segregation_bins = app::option_in_range<std::size_t>(vm, "segregation-bins", 1, 1000000);
+  if (vm.count("height-map")) sp.height_map = vm["height-map"].as<std::string>();
+  if (vm.count("feed")) {
+    const std::string file = vm["feed"].as<std::string>();
+    const bed::Bed feed = bed::read_bed_any(file, csv_domain ? &*csv_domain : nullptr);
+    app::SpreadFeed f;
+    f.source = file;
+    for (const double r : feed.radius) f.diameters.push_back(2.0 * r);
+    sp.feed = std::move(f);
+  }
+  return sp;
+}
+
 int run(int argc, char** argv) {
   po::options_description desc("bedstat options");
   app::add_common_options(desc);
@@ -159,7 +246,21 @@ int run(int argc, char** argv) {
       "voronoi", "local packing fractions from the radical Voronoi tessellation (3D)")(
       "order", "bond-orientational order (3D): mean local q6 and global Q6, bonds = contacts at --tol")(
       "order-margin", po::value<double>()->default_value(0.0),
-      "--order: average only over particles at least this far (m) from non-periodic faces");
+      "--order: average only over particles at least this far (m) from non-periodic faces")(
+      "spread", "spread-layer statistics (docs/spread-layer.md): density between --plate and "
+                "--plate + --gap, coverage, height map Sa/Sq, segregation along x, KS to the feed")(
+      "plate", po::value<double>(), "--spread: z of the build plate (m; default: the domain floor)")(
+      "gap", po::value<double>(),
+      "--spread: layer thickness (m): top = plate + gap (default: the bed's recorded recoater.gap)")(
+      "window", po::value<std::string>(),
+      "--spread: X0,X1 (m): the part of the strip to measure, leaving out its ends (default: all)")(
+      "raster", po::value<double>(), "--spread: height-map cell (m; default: mean radius / 10)")(
+      "segregation-bins", po::value<std::size_t>()->default_value(10),
+      "--spread: x bins of the mean diameter")(
+      "height-map", po::value<std::string>(),
+      "--spread: write the height map as CSV x,y,height,covered (m; one bed only)")(
+      "feed", po::value<std::string>(),
+      "--spread: bed of the feed powder for the two-sample KS test (default: the bed's recorded PSD)");
   po::positional_options_description positional;
   positional.add("bed", -1);
   po::variables_map vm;
@@ -169,13 +270,16 @@ int run(int argc, char** argv) {
   }
   if (!vm.count("bed")) throw InputError("no bed given (usage: bedstat BED [BED...] [options])");
 
-  const Request req = parse_request(vm);
-  std::vector<app::PathArg> inputs;
-  for (const auto& file : vm["bed"].as<std::vector<std::string>>()) inputs.push_back({"BED", file});
-  app::check_paths(inputs, {});
+  Request req = parse_request(vm);
+  const auto& files = vm["bed"].as<std::vector<std::string>>();
+  std::vector<app::PathArg> inputs, outputs;
+  for (const auto& file : files) inputs.push_back({"BED", file});
+  check_spread_options(vm, files.size(), inputs, outputs);
+  app::check_paths(inputs, outputs);
 
   std::optional<bed::Domain> csv_domain;
   if (vm.count("domain")) csv_domain = app::parse_domain_bounds(vm["domain"].as<std::string>(), "--domain");
+  if (vm.count("spread")) req.spread = parse_spread_request(vm, csv_domain);
 
   std::vector<Report> reports;
   for (const auto& file : vm["bed"].as<std::vector<std::string>>()) {
@@ -183,6 +287,9 @@ int run(int argc, char** argv) {
         app::analyse_bed(bed::read_bed_any(file, csv_domain ? &*csv_domain : nullptr), file, req));
   }
 
+  if (req.spread && !req.spread->height_map.empty()) {
+    bed::write_height_map_csv(reports.front().spread->layer.map, req.spread->height_map);
+  }
   if (vm.count("json")) {
     // Always {"beds": [...]}, one entry per bed, however many beds: one shape to parse.
     bed::JsonWriter json;

@@ -13,6 +13,7 @@ packages=(
   # paraview + python3-paraview are ~540 MB installed (VTK, Qt, GDAL): the largest download here
   python3-paraview xvfb xauth
   lammps          # `lmp` reads our LAMMPS data export back in the tests
+  liggghts        # the peer of bench/studies/deposit_speed.py and spread_peer.py
   clang libclang-rt-14-dev  # the bed-reader fuzz target (tests/fuzz, ~40 s build + 30 s run)
 )
 

@@ -51,6 +51,7 @@ void add_optional_statistics(BedReport& r, const BedRequest& req) {
   }
   if (req.voronoi) r.voronoi = bed::voronoi_stats(b);
   if (req.order_margin) r.order = bed::bond_order(b, req.tolerance, *req.order_margin);
+  if (req.spread) r.spread = analyse_spread(b, r.file, *req.spread);
 }
 
 void write_array(bed::JsonWriter& json, const std::string& key, const std::vector<double>& v) {
@@ -148,6 +149,7 @@ void write_bed_json(bed::JsonWriter& json, const BedReport& r, const BedRequest&
   write_contacts(json, r, req);
   write_radius(json, r);
   write_structure(json, r);
+  if (r.spread) write_spread_json(json, *r.spread);
   json.end_object();
 }
 

@@ -11,6 +11,7 @@
 #include "powderbed/bed/json.hpp"
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/stats.hpp"
+#include "common/spread_report.hpp"
 
 namespace powderbed::app {
 
@@ -23,6 +24,7 @@ struct BedRequest {
   std::size_t histogram_bins = 0;
   bool voronoi = false;
   std::optional<double> order_margin;  // --order: bond order q6 at --tol, this margin (m)
+  std::optional<SpreadRequest> spread;  // --spread: the layer statistics (common/spread_report.hpp)
 };
 
 struct RadiusSummary {
@@ -43,6 +45,7 @@ struct BedReport {
   std::optional<bed::Histogram> histogram;
   std::optional<bed::VoronoiStats> voronoi;
   std::optional<bed::OrderStats> order;
+  std::optional<SpreadReport> spread;
 };
 
 // The statistics `req` asks for; `file` labels the report. Throws InputError for a 3D-only

@@ -19,6 +19,7 @@
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/stats.hpp"
+#include "powderbed/bed/stats_layer.hpp"
 
 namespace powderbed::bed {
 
@@ -279,6 +280,39 @@ Series density_profile(const Bed& bed, std::size_t bins) {
   const double layer = d.measure() / d.length(axis) * step;
   for (double& y : out.y) y /= layer;
   return out;
+}
+
+// Spread-layer density (docs/spread-layer.md): the solid inside a box, every sphere cut exactly
+// by the box faces. On a periodic axis the box is either unbounded (each sphere counts whole: the
+// rest of a wrapped particle is its image) or bounded, and then every image reaching it counts.
+double solid_volume_in_box(const Bed& bed, const std::array<double, 3>& lo,
+                           const std::array<double, 3>& hi) {
+  check_bed(bed, "solid_volume_in_box");
+  const Domain& d = bed.domain;
+  if (d.dimension != 3) throw InputError("solid_volume_in_box: a 2D bed (accepted: 3D beds)");
+  const Box box{lo, hi};
+  double sum = 0;
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    const double r = bed.radius[i];
+    const std::array<double, 3> c{bed.x[i], bed.y[i], bed.z[i]};
+    std::array<double, 3> k0{}, k1{};  // image shifts, in periods, along each axis
+    for (int a = 0; a < 3; ++a) {
+      if (d.periodic[a] && std::isfinite(lo[a]) && std::isfinite(hi[a])) {
+        k0[a] = std::ceil((lo[a] - c[a] - r) / d.length(a));
+        k1[a] = std::floor((hi[a] - c[a] + r) / d.length(a));
+      }
+    }
+    for (double kx = k0[0]; kx <= k1[0]; kx += 1.0) {
+      for (double ky = k0[1]; ky <= k1[1]; ky += 1.0) {
+        for (double kz = k0[2]; kz <= k1[2]; kz += 1.0) {
+          const std::array<double, 3> image{c[0] + kx * d.length(0), c[1] + ky * d.length(1),
+                                            c[2] + kz * d.length(2)};
+          sum += ball_box_measure(3, image, r, box);
+        }
+      }
+    }
+  }
+  return sum;
 }
 
 }  // namespace powderbed::bed

@@ -600,6 +600,14 @@ std::vector<Case> all_cases() {
   add("bedstat_csv_bad_domain", "bedstat", "@good.csv --domain 0,0,0,1,1", 2, {"--domain"});
   add("bedstat_unknown_extension", "bedstat", "@good.txt", 2, {"does not exist"});
   add("bedstat_second_bed_bad", "bedstat", "@good.h5 @um_radii.h5", 2, {"um_radii.h5", "um"});
+  add("bedstat_spread_2d", "bedstat", "@good2d.h5 --spread --gap 1e-5", 2, {"--spread", "2D"});
+  add("bedstat_spread_no_gap", "bedstat", "@good.h5 --spread", 2, {"--gap", "recoater.gap"});
+  add("bedstat_spread_gap_nan", "bedstat", "@good.h5 --spread --gap nan", 2, {"--gap", "nan"});
+  add("bedstat_spread_window_inverted", "bedstat", "@good.h5 --spread --gap 1e-5 --window 2e-5,1e-5", 2, {"--window", "X0 < X1"});
+  add("bedstat_spread_raster_zero", "bedstat", "@good.h5 --spread --gap 1e-5 --raster 0", 2, {"--raster", "> 0"});
+  add("bedstat_spread_bins_zero", "bedstat", "@good.h5 --spread --gap 1e-5 --segregation-bins 0", 2, {"--segregation-bins", "1 to 1000000"});
+  add("bedstat_spread_feed_missing", "bedstat", "@good.h5 --spread --gap 1e-5 --feed @missing.h5", 2, {"--feed", "does not exist"});
+  add("bedstat_spread_option_alone", "bedstat", "@good.h5 --window 0,1e-5", 2, {"--window", "--spread"});
 
   // deposit.
   const std::string dep = "--in @good.h5 --t-end 1e-5 --seed 1 ";
