@@ -1,0 +1,170 @@
+#!/usr/bin/env python3
+"""Process map: a laser power x scan speed grid of single tracks on one powder layer, each
+track's mean melt pool (width W, depth D, length L along the track, from sinter --json
+"tracks"), and the usual criteria drawn as regions:
+
+  keyhole          W / D <= 1.5          (the threshold of Johnson et al. 2019, "Assessing
+                                          printability maps in additive manufacturing of metal
+                                          alloys", Acta Mater. 176)
+  lack of fusion   (h / W)^2 + (t / D)^2 > 1  for hatch h and layer t (Tang, Pistorius & Beuth
+                                          2017, Addit. Manuf. 14: neighbouring elliptic pools
+                                          no longer overlap down to the layer below)
+  balling          L / W > pi            (Plateau-Rayleigh: a liquid cylinder longer than pi
+                                          times its width breaks up; Yadroitsev et al. 2010,
+                                          J. Mater. Process. Technol. 210)
+
+The thermal model has no recoil pressure, evaporation or melt flow (docs/sinter.md), so the
+keyhole line marks where its conduction-mode answer stops being trustworthy, not a keyhole it
+simulates. Writes docs/results/process-map.md and process-map.png. Run with python3:
+    POWDERBED_BUILD=build python3 bench/studies/process_map.py [--bed LAYER.h5] [--small]
+The bed defaults to a spread layer (data/scenes/spread-blade.ini, seed 1), made once in
+out/studies/. --small runs a 3 x 3 grid for a quick look.
+"""
+import argparse
+import json
+import math
+import os
+import platform
+import subprocess
+
+from common import ROOT, app, run_json, write_text, RESULTS
+
+WORK = os.path.join(ROOT, "out", "studies")
+SPREAD_SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
+SINTER_SCENE = os.path.join(ROOT, "data", "scenes", "gz2016-sinter.ini")
+POWERS = [50, 100, 150, 200, 300]          # W
+SPEEDS = [0.25, 0.5, 1.0, 2.0, 3.0]        # m/s
+SMALL_POWERS, SMALL_SPEEDS = [100, 200, 300], [0.5, 1.0, 2.0]
+HATCH = 100e-6      # m: the hatch the lack-of-fusion criterion is evaluated for
+LAYER = 90e-6       # m: the spread layer's gap (data/scenes/spread-blade.ini)
+
+
+def spread_layer():
+    """The default bed: one layer spread by the blade scene with seed 1 (a few minutes once)."""
+    os.makedirs(WORK, exist_ok=True)
+    path = os.path.join(WORK, "process-map-layer.h5")
+    if not os.path.exists(path):
+        subprocess.run([app("deposit"), "--config", SPREAD_SCENE, "--seed", "1", "--threads", "1",
+                        "--out", path], check=True, capture_output=True)
+    return path
+
+
+def track_pool(summary):
+    """(W, D, L) in m of the run's one track; sinter's "tracks" list, else its melt_pool."""
+    tracks = summary.get("tracks") or []
+    if tracks:
+        t = tracks[0]
+        return t["width"], t["depth"], t.get("length", float("nan"))
+    pool = summary["melt_pool"]
+    return pool["width"], pool["depth"], float("nan")
+
+
+def run_point(bed, power, speed, extra):
+    out = os.path.join(WORK, f"process-map-{power:g}W-{speed:g}ms.h5")
+    args = [app("sinter"), "--config", SINTER_SCENE, "--bed", bed, "--out", out,
+            "--power", str(power), "--speed", str(speed), "--threads", "1", "--snapshots", "1",
+            *extra]
+    summary, wall = run_json(args)
+    width, depth, length = track_pool(summary)
+    return {"power": power, "speed": speed, "width": width, "depth": depth, "length": length,
+            "peak": summary["max_temperature"], "vaporised": summary["particles_vaporised"],
+            "wall": wall}
+
+
+def classify(p, hatch, layer):
+    """The regions a point falls in (a point may be in several), or 'fused' when in none."""
+    w, d, length = p["width"], p["depth"], p["length"]
+    if not (w > 0 and d > 0):
+        return ["no melt"]
+    regions = []
+    if w / d <= 1.5:
+        regions.append("keyhole")
+    if (hatch / w) ** 2 + (layer / d) ** 2 > 1:
+        regions.append("lack of fusion")
+    if math.isfinite(length) and length / w > math.pi:
+        regions.append("balling")
+    return regions or ["fused"]
+
+
+def plot(points, hatch, layer, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    colours = {"fused": "tab:green", "lack of fusion": "tab:orange", "keyhole": "tab:red",
+               "balling": "tab:purple", "no melt": "tab:gray"}
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    for p in points:
+        regions = classify(p, hatch, layer)
+        ax.scatter(p["speed"], p["power"], s=160, c=colours[regions[0]], edgecolors="k", zorder=3)
+        if len(regions) > 1:  # a second region as a ring
+            ax.scatter(p["speed"], p["power"], s=320, facecolors="none",
+                       edgecolors=colours[regions[1]], linewidths=2.5, zorder=2)
+        if p["width"] > 0:
+            ax.annotate(f"{p['width'] * 1e6:.0f}/{p['depth'] * 1e6:.0f}", (p["speed"], p["power"]),
+                        textcoords="offset points", xytext=(0, 11), ha="center", fontsize=7)
+    for name, colour in colours.items():
+        ax.scatter([], [], c=colour, edgecolors="k", label=name)
+    ax.set_xlabel("scan speed (m/s)")
+    ax.set_ylabel("laser power (W)")
+    ax.set_title(f"single tracks, W/D in um; hatch {hatch * 1e6:.0f} um, layer {layer * 1e6:.0f} um")
+    ax.legend(fontsize=8, loc="upper left")
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+
+
+def table(points, hatch, layer):
+    rows = ["| P (W) | v (m/s) | W (um) | D (um) | L (um) | W/D | L/W | LOF index | regions | "
+            "peak T (K) | vaporised | wall (s) |", "|" + "---|" * 12]
+    for p in points:
+        w, d, length = p["width"], p["depth"], p["length"]
+        ok = w > 0 and d > 0
+        lof = (hatch / w) ** 2 + (layer / d) ** 2 if ok else float("inf")
+        rows.append(
+            f"| {p['power']:g} | {p['speed']:g} | {w * 1e6:.1f} | {d * 1e6:.1f} | "
+            f"{length * 1e6:.0f} | {w / d if ok else float('nan'):.2f} | "
+            f"{length / w if ok else float('nan'):.2f} | {lof:.2f} | "
+            f"{', '.join(classify(p, hatch, layer))} | {p['peak']:.0f} | {p['vaporised']} | "
+            f"{p['wall']:.1f} |")
+    return "\n".join(rows)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--bed", help="the powder layer (default: a spread-blade layer, seed 1)")
+    parser.add_argument("--small", action="store_true", help="a 3 x 3 grid")
+    parser.add_argument("--hatch", type=float, default=HATCH)
+    parser.add_argument("--layer", type=float, default=LAYER)
+    parser.add_argument("--sinter-args", default="",
+                        help="extra sinter options, e.g. '--grid-spacing 1e-5'")
+    args = parser.parse_args()
+    bed = args.bed or spread_layer()
+    powers, speeds = (SMALL_POWERS, SMALL_SPEEDS) if args.small else (POWERS, SPEEDS)
+    extra = args.sinter_args.split()
+    points = [run_point(bed, p, v, extra) for p in powers for v in speeds]
+    plot(points, args.hatch, args.layer, os.path.join(RESULTS, "process-map.png"))
+    with open(os.path.join(WORK, "process-map.json"), "w") as f:
+        json.dump(points, f, indent=1)
+    bed_name = os.path.relpath(bed, ROOT) if bed.startswith(ROOT) else os.path.basename(bed)
+    text = f"""# Process map: power x speed on one powder layer
+
+Regenerate: `POWDERBED_BUILD=build python3 bench/studies/process_map.py` (script docstring:
+the criteria and their sources). Bed: `{bed_name}`; scene `data/scenes/gz2016-sinter.ini`
+(316L, absorptivity and spot of [GZ]) with `--power` and `--speed` per point
+{('and `' + args.sinter_args + '`') if args.sinter_args else ''}; one track per run, one thread.
+Machine: {platform.node()} ({os.cpu_count()} cores), {platform.platform()}.
+
+Criteria: keyhole W/D <= 1.5; lack of fusion (h/W)^2 + (t/D)^2 > 1 with h = {args.hatch * 1e6:.0f} um,
+t = {args.layer * 1e6:.0f} um; balling L/W > pi (L: the longest stretch of the track's centre line
+molten at once). The model is conduction only (no recoil, evaporation or melt flow): points in
+the keyhole region say where its answer stops being trustworthy.
+
+![process map](process-map.png)
+
+{table(points, args.hatch, args.layer)}
+"""
+    write_text("process-map.md", text)
+
+
+if __name__ == "__main__":
+    main()
