@@ -109,7 +109,10 @@ class DataReader {
     const std::string_view body = strip_comment(line);
     split_words(body, words_);
     std::string name;
-    for (auto w : words_) name += (name.empty() ? "" : " ") + std::string(w);
+    for (auto w : words_) {
+      if (!name.empty()) name += ' ';
+      name.append(w);
+    }
     section_ = name;
     style_.clear();
     const auto hash = line.find('#');
@@ -142,7 +145,8 @@ class DataReader {
     if (!style_.empty() && style_ != "sphere" && style_ != "granular")
       fail("Atoms # " + style_ + " (accepted: atom_style sphere or granular)");
     for (int a = 0; a < 3; ++a) {
-      if (!box_[a]) fail(std::string("no ") + "xyz"[a] + "lo " + "xyz"[a] + "hi line before Atoms");
+      static constexpr const char* kBox[3] = {"xlo xhi", "ylo yhi", "zlo zhi"};
+      if (!box_[a]) fail(std::string("no ") + kBox[a] + " line before Atoms");
     }
     if (!count_) fail("no 'N atoms' line before Atoms");
     // Each atom line holds at least 7 numbers of one digit and their separators.

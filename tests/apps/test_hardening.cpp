@@ -492,8 +492,9 @@ std::vector<Case> all_cases() {
   add("bedconv_out_xmf_of_in", "bedconv", "@good.h5 @good.xmf", 2, {".xmf"});
   add("bedconv_out_dump", "bedconv", "@good.h5 @out.dump", 2, {"OUT", ".dump"});
   add("bedconv_out_txt", "bedconv", "@good.h5 @out.txt", 2, {"OUT", ".txt", ".h5"});
-  add("bedconv_in_data", "bedconv", "@good.data @out.h5", 2, {"IN", ".data"});
-  add("bedconv_in_txt", "bedconv", "@good.txt @out.h5", 2, {"IN", ".txt"});
+  add("bedconv_in_data_missing", "bedconv", "@good.data @out.h5", 2, {"@good.data", "does not exist"});
+  add("bedconv_in_txt_missing", "bedconv", "@good.txt @out.h5", 2, {"@good.txt", "does not exist"});
+  add("bedconv_in_xyz", "bedconv", "@good.xyz @out.h5", 2, {"IN", ".xyz", ".lammpstrj"});
   add("bedconv_out_no_folder", "bedconv", "@good.h5 @nowhere/out.csv", 2, {"nowhere", "does not exist"});
   add("bedconv_out_folder", "bedconv", "@good.h5 @adir/", 2, {"adir", "folder"});
   add("bedconv_out_sidecar_folder", "bedconv", "@good.h5 @side.h5", 2, {"side.xmf", "folder"});

@@ -23,7 +23,7 @@ double lammps_tsuji_max_zeta(bool hertz);
 // LIGGGHTS 3.8 `model hertz` (normal_model_hertz.h): gamma_n = -2 sqrt(5/6) beta sqrt(S_n m*),
 // S_n = 2 E* a = our k_n, beta = ln e / sqrt(ln^2 e + pi^2): ours for beta = -zeta / sqrt(5/6),
 // i.e. e = exp(-pi b / sqrt(1 - b^2)), b = zeta / sqrt(5/6) (zeta < sqrt(5/6) = 0.9129;
-// zeta = 0.1: e = 0.70738). Throws InputError naming `option` for zeta outside [0, 0.9129).
+// zeta = 0.1: e = 0.707351). Throws InputError naming `option` for zeta outside [0, 0.9129).
 double liggghts_hertz_restitution(double zeta, const char* option);
 
 }  // namespace powderbed::bed
