@@ -45,8 +45,8 @@ void add_options(po::options_description& desc) {
       "index (default: the bed's deposit scene's material.density, else 7952, 316L steel)")(
       "deck", po::value<std::string>(),
       "also write an input deck for lammps or liggghts beside the .data OUT (in.<name>.<engine>): "
-      "the laws of the bed's deposit scene (its /provenance), --deck-scene, or deposit's "
-      "defaults")(
+      "the laws of the deposit scene that made the bed (its /provenance), --deck-scene, or "
+      "deposit's defaults (docs/decks.md)")(
       "deck-scene", po::value<std::string>(),
       "deposit scene (INI, deposit's keys: material.*, wall.*, contact.*, effects.*, gravity, "
       "fluid.viscosity, young-scale, dt) whose keys override the bed's own scene in the deck")(
@@ -106,10 +106,19 @@ std::size_t write_trajectory(const std::string& in, const std::string& out,
   return snapshots.size();
 }
 
-// The deck's laws: deposit's defaults, then the bed's /provenance scene, then --deck-scene.
-bed::DeckLaws laws_for(const bed::Bed& b, const std::string& in, const po::variables_map& vm) {
+// The scene of a bed that deposit made (another stage's scene has other laws: sinter's dt is
+// its thermal step).
+app::DeckScene scene_of(const bed::Bed& b, const std::string& in) {
   app::DeckScene scene;
-  app::apply_scene_text(b.provenance.scene, in + " /provenance scene", scene);
+  if (b.provenance.stage == "deposit")
+    app::apply_scene_text(b.provenance.scene, in + " /provenance scene", scene);
+  return scene;
+}
+
+// The deck's laws: deposit's defaults, then the scene of the deposit that made the bed, then
+// --deck-scene.
+bed::DeckLaws laws_for(const bed::Bed& b, const std::string& in, const po::variables_map& vm) {
+  app::DeckScene scene = scene_of(b, in);
   if (vm.count("deck-scene")) {
     const std::string path = vm["deck-scene"].as<std::string>();
     std::ifstream file(path);
@@ -209,8 +218,7 @@ int convert(int argc, char** argv) {
   if (deck) {
     bed::write_deck(b, laws_for(b, in, vm), engine, out);
   } else if (data_out) {
-    app::DeckScene scene;
-    app::apply_scene_text(b.provenance.scene, in + " /provenance scene", scene);
+    const app::DeckScene scene = scene_of(b, in);
     bool has_density = false;
     for (const auto& [key, source] : scene.origin) has_density |= key == "material.density";
     std::string origin;
