@@ -2,7 +2,8 @@
 """ctest decks.<engine>.<ranks>: the deck `bedconv --deck ENGINE` writes runs with the engine
 (serially or under mpirun -np 2, as a study goes to a cluster), and its dump reads back
 losslessly: the step-0 snapshot holds the bed's ids, radii, centres, velocities and materials
-bit for bit, the domain and periodic axes are the bed's, and the last snapshot has moved.
+bit for bit, the domain and periodic axes are the bed's; the engine moves the particles where
+deposit does, in free fall and in a pressed lattice of Hertz contacts.
 
 usage: check_deck.py APPS_DIR ENGINE RANKS
 Exits 77 (ctest: skipped) with a message when the engine or mpirun is missing."""
@@ -38,6 +39,50 @@ def read_bed(path):
     return bed
 
 
+CONTACT_STEPS = 2000
+
+
+def contact_run(work, launcher, env):
+    """A pressed lattice: 4 x 4 x 2 spheres of r = 20 um overlapping their neighbours and the floor
+    by 2e-8 m (1e-3 r), periodic in x and y, with small shuffled velocities, given as a LAMMPS data
+    file (bedconv and deposit read it). 2000 steps (~30 contact periods) of Hertz contact,
+    damping, walls, gravity and drag in the engine and in deposit (friction off: the engines'
+    tangential laws differ from deposit's, docs/decks.md). Returns (largest centre difference,
+    largest motion)."""
+    r, overlap, nx, nz = 20e-6, 2e-8, 4, 2
+    s = 2 * r - overlap
+    atoms, vel = [], []
+    for k in range(nx * nx * nz):
+        i, j, l = k % nx, k // nx % nx, k // (nx * nx)
+        atoms.append(f"{k + 1} 1 {2 * r!r} 7952 {(i + 0.5) * s!r} {(j + 0.5) * s!r} {r - overlap / 2 + l * s!r}")
+        vel.append(f"{k + 1} {1e-3 * np.sin(k)!r} {1e-3 * np.cos(3 * k)!r} {-1e-3 * np.sin(7 * k) ** 2!r} 0 0 0")
+    with open(os.path.join(work, "lattice.data"), "w") as f:
+        f.write(f"pressed lattice\n\n# boundary p p f\n{len(atoms)} atoms\n1 atom types\n\n0 {nx * s!r} xlo xhi\n"
+                f"0 {nx * s!r} ylo yhi\n0 4e-4 zlo zhi\n\nAtoms # sphere\n\n" + "\n".join(atoms) +
+                "\n\nVelocities\n\n" + "\n".join(vel) + "\n")
+    with open(os.path.join(work, "nofriction.ini"), "w") as f:
+        f.write("effects.friction = false\n")
+    run([os.path.join(APPS, "bedconv"), "lattice.data", "lat.data", "--deck", ENGINE, "--deck-scene",
+         "nofriction.ini", "--deck-steps", str(CONTACT_STEPS)], work)
+    run(launcher + [EXE, "-in", f"in.lat.{ENGINE}", "-log", "none"], work, env)
+    run([os.path.join(APPS, "bedconv"), f"lat.{ENGINE}.lammpstrj", "lat_last.h5"], work)
+    dt = float(next(l.split()[1] for l in open(os.path.join(work, f"in.lat.{ENGINE}")) if l.startswith("timestep")))
+    run([os.path.join(APPS, "deposit"), "--in", "lattice.data", "--dt", repr(dt), "--t-end", repr(CONTACT_STEPS * dt),
+         "--effects.friction", "false", "--seed", "1", "--out", "lat_ours.h5"], work)
+    engine = read_bed(os.path.join(work, "lat_last.h5"))  # sorted by id (dump_modify sort id)
+    ours = read_bed(os.path.join(work, "lat_ours.h5"))
+    order = np.argsort(ours["id"])
+    first = np.array([[float(v) for v in a.split()[4:7]] for a in atoms])
+    gap = np.abs(engine["position"] - ours["position"][order]).max()
+    moved = np.abs(ours["position"][order] - first).max()
+    # The same forces summed in another order differ by ulps that 30 contact periods amplify;
+    # 1e-6 of the motion is far below a wrong stiffness, damping or wall (each shifts the phase
+    # of every oscillation). Measured: 2e-18 (LAMMPS), 2e-17 m (LIGGGHTS) on 2e-6 m.
+    assert moved > 1e-10, f"the lattice did not move ({moved} m)"
+    assert gap <= 1e-6 * moved, f"engine and deposit differ by {gap} m after moving {moved} m"
+    return gap, moved
+
+
 def main():
     if shutil.which(EXE) is None:
         print(f"skipped: {EXE} not on PATH (Debian package {ENGINE})")
@@ -60,15 +105,15 @@ def main():
         run([os.path.join(APPS, "bedconv"), "bed.h5", "bed.data", "--deck", ENGINE, "--density", "4430,8190",
              "--deck-steps", str(STEPS)], work)
         deck = f"in.bed.{ENGINE}"
-        cmd = [EXE, "-in", deck, "-log", "none"]
+        launcher = []
         env = dict(os.environ)
         if RANKS > 1:
             # Open MPI refuses root without these, and 2 ranks on a 1-core runner without
             # --oversubscribe.
             env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
                        OMPI_MCA_rmaps_base_oversubscribe="1")
-            cmd = ["mpirun", "-np", str(RANKS)] + cmd
-        out = run(cmd, work, env).stdout
+            launcher = ["mpirun", "-np", str(RANKS)]
+        out = run(launcher + [EXE, "-in", deck, "-log", "none"], work, env).stdout
         if RANKS > 1 and f"on {RANKS} procs" not in out:
             sys.exit(f"{EXE} did not run on {RANKS} ranks:\n{out[-2000:]}")
         dump = f"bed.{ENGINE}.lammpstrj"
@@ -127,8 +172,10 @@ def main():
         assert np.array_equal(final["lower"], bed["lower"]) and np.array_equal(final["upper"], bed["upper"]), \
             "domain of write_data"
         assert np.array_equal(final["radius"], bed["radius"][order]), "radii of write_data"
+        contact_gap, contact_moved = contact_run(work, launcher, env)
         print(f"{ENGINE} x{RANKS}: {len(bed['id'])} particles, 2 materials, periodic x y; step 0 exact, "
-              f"moved {moved:.3g} m in {STEPS} steps, {gap:.3g} m from deposit's")
+              f"moved {moved:.3g} m in {STEPS} steps, {gap:.3g} m from deposit's; pressed lattice: "
+              f"moved {contact_moved:.3g} m in {CONTACT_STEPS} steps, {contact_gap:.3g} m from deposit's")
         return 0
     finally:
         shutil.rmtree(work, ignore_errors=True)
