@@ -106,10 +106,21 @@ std::size_t write_trajectory(const std::string& in, const std::string& out,
   return snapshots.size();
 }
 
-// The scene of a bed that deposit made (another stage's scene has other laws: sinter's dt is
-// its thermal step).
+// What the bed records of the DEM that made it: the contact_* attributes of /provenance (kept
+// by later stages), then the scene text of a bed that deposit made (another stage's scene has
+// other laws: sinter's dt is its thermal step).
 app::DeckScene scene_of(const bed::Bed& b, const std::string& in) {
   app::DeckScene scene;
+  const bed::ContactProvenance& c = b.provenance.contact;
+  if (!c.law.empty()) {
+    std::ostringstream ini;
+    ini.precision(17);
+    ini << "contact.law = " << c.law << "\nmaterial.young = " << c.young << "\nmaterial.poisson = "
+        << c.poisson << "\nwall.young = " << c.wall_young << "\nwall.poisson = " << c.wall_poisson
+        << "\nyoung-scale = " << c.young_scale << "\n";
+    if (c.law == "linear") ini << "contact.stiffness = " << c.stiffness << "\n";
+    app::apply_scene_text(ini.str(), in + " /provenance contact_* attributes", scene);
+  }
   if (b.provenance.stage == "deposit")
     app::apply_scene_text(b.provenance.scene, in + " /provenance scene", scene);
   return scene;

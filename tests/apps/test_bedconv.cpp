@@ -100,6 +100,26 @@ TEST_F(Bedconv, DeckTakesTheBedsSceneAndSaysWhereEachNumberCameFrom) {
   EXPECT_NE(read_text(path("dep.data")).find(" 4430 "), std::string::npos) << "the scene's density";
 }
 
+TEST_F(Bedconv, DeckOfALaterStageTakesTheContactAttributesNotItsScene) {
+  bed::Bed b = bed::simple_cubic_lattice(3, 1e-5);
+  b.provenance.stage = "sinter";
+  b.provenance.scene = "dt = 5e-6\n";  // sinter's thermal step, no DEM step
+  b.provenance.contact.law = "hertz";
+  b.provenance.contact.young = 110e9;  // Ti-6Al-4V, softened 100 x in the DEM that made it
+  b.provenance.contact.poisson = 0.31;
+  b.provenance.contact.wall_young = 193e9;
+  b.provenance.contact.wall_poisson = 0.26;
+  b.provenance.contact.young_scale = 100;
+  bed::write_bed_h5(b, path("hot.h5"));
+  const auto r = run_app("bedconv", path("hot.h5") + " " + path("hot.data") + " --deck liggghts");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string deck = read_text(path("in.hot.liggghts"));
+  // E / S for the particles (1.1e9 Pa) and the walls (1.93e9 Pa), in that order.
+  EXPECT_NE(deck.find("youngsModulus peratomtype 1100000000 1930000000\n"), std::string::npos) << deck;
+  EXPECT_NE(deck.find("contact_* attributes"), std::string::npos);
+  EXPECT_EQ(deck.find("timestep       5"), std::string::npos) << "not sinter's step";
+}
+
 TEST_F(Bedconv, DeckSceneOverridesAndBadDeckInputsExit2WritingNothing) {
   write_deposited(path("dep.h5"));
   std::ofstream(path("wet.ini")) << "[material]\ndamping = 0.7\n";
