@@ -1,83 +1,242 @@
-// bedconv: converts a bed between the formats of docs/bed-format.md, chosen by extension:
-// .h5 <-> .csv, .h5 -> .data (LAMMPS), .dump (LAMMPS/LIGGGHTS) -> .h5, any readable -> any writable.
+// bedconv: converts a bed between the formats of docs/bed-format.md, chosen by extension
+// (readable: .h5, .csv, .dump, .lammpstrj, .data, YADE .txt, GenGeo .geo, .gz of the text ones;
+// writable: .h5, .csv, .data), writes LAMMPS / LIGGGHTS decks (--deck, docs/decks.md) and
+// turns a multi-snapshot dump into a trajectory (--all-snapshots).
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 #include "common/app_main.hpp"
+#include "common/deck_export.hpp"
 #include "common/options.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
+#include "powderbed/dem/time_step.hpp"
+#include "powderbed/dem/trajectory.hpp"
 
 namespace {
 
 using powderbed::InputError;
 namespace app = powderbed::app;
 namespace bed = powderbed::bed;
+namespace dem = powderbed::dem;
 namespace po = boost::program_options;
 
-bool has_extension(const std::string& path, const std::string& ext) {
-  return path.size() >= ext.size() && path.compare(path.size() - ext.size(), ext.size(), ext) == 0;
+const char* const kUsage =
+    "bedconv IN OUT [--domain ...] [--density RHO[,RHO...]] [--deck lammps|liggghts "
+    "[--deck-scene SCENE.ini] [--deck-steps N] [--dt DT]] [--all-snapshots [--dt DT]] [--tol T]";
+
+void add_options(po::options_description& desc) {
+  desc.add_options()(
+      "in", po::value<std::string>()->required(),
+      "input bed: .h5, .csv (x,y,z,r in m; needs --domain), .dump / .lammpstrj (LAMMPS/LIGGGHTS "
+      "text dump; the last snapshot), .data (LAMMPS data file, ours or write_data's), .txt (YADE "
+      "text export x y z r; --domain or the spheres' bounding box), .geo (GenGeo); text files "
+      "may be gzipped (.gz)")(
+      "out", po::value<std::string>()->required(),
+      "output: .h5 (with an .xmf sidecar for ParaView), .csv or .data (LAMMPS, atom_style "
+      "sphere, one atom type per material, velocities); with --all-snapshots a trajectory .h5")(
+      "domain", po::value<std::string>(),
+      "domain of a CSV or YADE input, m: xlo,ylo,zlo,xhi,yhi,zhi (zlo = zhi = 0 makes it 2D)")(
+      "density", po::value<std::string>(),
+      "particle density of .data output, kg/m^3: one for every material, or one per material "
+      "index (default: the bed's deposit scene's material.density, else 7952, 316L steel)")(
+      "deck", po::value<std::string>(),
+      "also write an input deck for lammps or liggghts beside the .data OUT (in.<name>.<engine>): "
+      "the laws of the deposit scene that made the bed (its /provenance), --deck-scene, or "
+      "deposit's defaults (docs/decks.md)")(
+      "deck-scene", po::value<std::string>(),
+      "deposit scene (INI, deposit's keys: material.*, wall.*, contact.*, effects.*, gravity, "
+      "fluid.viscosity, young-scale, dt) whose keys override the bed's own scene in the deck")(
+      "deck-steps", po::value<std::uint64_t>()->default_value(1000),
+      "steps the deck runs by default (its variable NSTEPS)")(
+      "dt", po::value<double>(),
+      "time step (s): the deck's (default: the scene's dt, else deposit's default step for this "
+      "bed), or a dump's snapshot spacing for --all-snapshots when it has no ITEM: TIME")(
+      "all-snapshots", po::bool_switch(),
+      "IN a .dump / .lammpstrj: every snapshot into OUT, a trajectory .h5 (+ .xmf), time from "
+      "ITEM: TIME or step x --dt")(
+      "tol", po::value<double>()->default_value(1e-6),
+      "contact tolerance the precision warning of a text IN is judged against (bedstat --tol)");
+  app::add_common_options(desc);
+}
+
+// Densities per atom type for .data output, with where they came from.
+std::vector<double> densities(const po::variables_map& vm, const app::DeckScene& scene,
+                              bool scene_has_density, std::string& origin) {
+  if (vm.count("density")) {
+    const auto list = app::parse_number_list(vm["density"].as<std::string>(), 1, 65536, "--density");
+    for (double rho : list) {
+      if (!(rho > 0)) throw InputError("--density: " + std::to_string(rho) + " (accepted: > 0 kg/m^3)");
+    }
+    origin = "--density";
+    return list;
+  }
+  if (scene_has_density) {
+    origin = "material.density of the scene (every material)";
+    return {scene.scene.material.density};
+  }
+  origin = "default 7952 (316L; the bed records no density: give --density)";
+  return {bed::kDefaultLammpsDensity};
+}
+
+// Every snapshot of the dump `in` into the trajectory `out`; returns the number of snapshots.
+std::size_t write_trajectory(const std::string& in, const std::string& out,
+                             const po::variables_map& vm) {
+  const auto snapshots = bed::read_lammps_dump_all(in);
+  const bed::Bed& first = snapshots.front().bed;
+  for (std::size_t k = 0; k < snapshots.size(); ++k) {
+    const bed::Bed& b = snapshots[k].bed;
+    if (b.id != first.id || b.radius != first.radius)
+      throw InputError(in + ": snapshot " + std::to_string(k) + " (step " +
+                       std::to_string(snapshots[k].step) + ") holds other atoms than the first "
+                       "(accepted: the same atoms, sorted alike, in every snapshot: dump_modify sort id)");
+    if (snapshots[k].time < 0 && !vm.count("dt"))
+      throw InputError(in + ": no ITEM: TIME in step " + std::to_string(snapshots[k].step) +
+                       " (accepted: a dump with times, or --dt DT for time = step x DT)");
+  }
+  dem::TrajectoryWriter writer(out, first);
+  for (const auto& s : snapshots) {
+    const double time = s.time >= 0 ? s.time : static_cast<double>(s.step) * vm["dt"].as<double>();
+    writer.write(s.step, time, s.bed);
+  }
+  writer.close();
+  return snapshots.size();
+}
+
+// What the bed records of the DEM that made it: the contact_* attributes of /provenance (kept
+// by later stages), then the scene text of a bed that deposit made (another stage's scene has
+// other laws: sinter's dt is its thermal step).
+app::DeckScene scene_of(const bed::Bed& b, const std::string& in) {
+  app::DeckScene scene;
+  const bed::ContactProvenance& c = b.provenance.contact;
+  if (!c.law.empty()) {
+    std::ostringstream ini;
+    ini.precision(17);
+    ini << "contact.law = " << c.law << "\nmaterial.young = " << c.young << "\nmaterial.poisson = "
+        << c.poisson << "\nwall.young = " << c.wall_young << "\nwall.poisson = " << c.wall_poisson
+        << "\nyoung-scale = " << c.young_scale << "\n";
+    if (c.law == "linear") ini << "contact.stiffness = " << c.stiffness << "\n";
+    app::apply_scene_text(ini.str(), in + " /provenance contact_* attributes", scene);
+  }
+  if (b.provenance.stage == "deposit")
+    app::apply_scene_text(b.provenance.scene, in + " /provenance scene", scene);
+  return scene;
+}
+
+// The deck's laws: deposit's defaults, then the scene of the deposit that made the bed, then
+// --deck-scene.
+bed::DeckLaws laws_for(const bed::Bed& b, const std::string& in, const po::variables_map& vm) {
+  app::DeckScene scene = scene_of(b, in);
+  if (vm.count("deck-scene")) {
+    const std::string path = vm["deck-scene"].as<std::string>();
+    std::ifstream file(path);
+    std::ostringstream text;
+    text << file.rdbuf();
+    if (!file) throw InputError("--deck-scene: cannot read '" + path + "'");
+    app::apply_scene_text(text.str(), path, scene);
+  }
+  bool has_density = false;
+  for (const auto& [key, source] : scene.origin) has_density |= key == "material.density";
+  std::string density_origin;
+  const auto rho = densities(vm, scene, has_density, density_origin);
+  double dt = scene.dt;
+  std::string dt_origin = "dt of the scene";
+  if (vm.count("dt")) {
+    dt = vm["dt"].as<double>();
+    dt_origin = "--dt";
+  } else if (!(dt > 0)) {
+    scene.scene.validate();
+    dt = dem::time_step_bound(b, scene.scene, scene.young_scale).recommended;
+    dt_origin = "deposit's default for this bed and scene (0.2 x the stable bound)";
+  }
+  bed::DeckLaws laws = app::deck_laws(scene, rho, density_origin + " [" + in + "]", dt, dt_origin);
+  laws.steps = vm["deck-steps"].as<std::uint64_t>();
+  return laws;
 }
 
 int convert(int argc, char** argv) {
   po::options_description desc("bedconv options");
-  desc.add_options()(
-      "in", po::value<std::string>()->required(),
-      "input bed: .h5, .csv (x,y,z,r in m; needs --domain) or .dump (LAMMPS/LIGGGHTS text "
-      "dump; the last snapshot)")(
-      "out", po::value<std::string>()->required(),
-      "output bed: .h5 (with an .xmf sidecar for ParaView), .csv or .data (LAMMPS, atom_style "
-      "sphere)")("domain", po::value<std::string>(),
-                 "domain of a CSV input, m: xlo,ylo,zlo,xhi,yhi,zhi (zlo = zhi = 0 makes it 2D)")(
-      "density", po::value<double>(),
-      ("particle density written to .data output, kg/m^3 (default " +
-       std::to_string(static_cast<int>(bed::kDefaultLammpsDensity)) + ", 316L steel)")
-          .c_str());
-  app::add_common_options(desc);
+  add_options(desc);
   po::positional_options_description positional;
   positional.add("in", 1).add("out", 1);
   po::variables_map vm;
-  if (!app::parse_options("bedconv", "bedconv IN OUT [--domain ...] [--density RHO]", desc,
-                          positional, argc, argv, vm))
-    return 0;
+  if (!app::parse_options("bedconv", kUsage, desc, positional, argc, argv, vm)) return 0;
 
   const std::string in = vm["in"].as<std::string>();
   const std::string out = vm["out"].as<std::string>();
-  const bool csv_in = has_extension(in, ".csv") || has_extension(in, ".CSV");
-  const bool data_out = has_extension(out, ".data") || has_extension(out, ".DATA");
+  const std::string in_ext = bed::readable_extension_of(in);
+  const bool data_out = bed::extension_of(out) == ".data";
+  const bool all = vm["all-snapshots"].as<bool>();
+  const bool deck = vm.count("deck") > 0;
   if (vm.count("density") && !data_out)
     throw InputError("--density: only used for .data output (OUT is '" + out + "')");
-  if (vm.count("density")) {
-    const double rho = vm["density"].as<double>();
-    if (!(rho > 0)) {
-      throw InputError("--density: " + std::to_string(rho) + " (accepted: > 0 kg/m^3)");
-    }
-  }
+  if (deck && !data_out)
+    throw InputError("--deck: OUT must be the deck's .data file (OUT is '" + out + "')");
+  if (!deck && (vm.count("deck-scene") || !vm["deck-steps"].defaulted()))
+    throw InputError("--deck-scene / --deck-steps: only with --deck");
+  if (all && in_ext != ".dump" && in_ext != ".lammpstrj")
+    throw InputError("--all-snapshots: IN must be a .dump or .lammpstrj (IN is '" + in + "')");
+  if (vm.count("dt") && !deck && !all) throw InputError("--dt: only with --deck or --all-snapshots");
+  if (vm.count("dt") && !(vm["dt"].as<double>() > 0))
+    throw InputError("--dt: " + std::to_string(vm["dt"].as<double>()) + " (accepted: dt > 0 s)");
+  const double tol = vm["tol"].as<double>();
+  if (!(tol >= 0)) throw InputError("--tol: " + std::to_string(tol) + " (accepted: T >= 0)");
+  const bed::DeckEngine engine =
+      deck ? bed::parse_deck_engine(vm["deck"].as<std::string>(), "--deck") : bed::DeckEngine::lammps;
   // Before any reading or writing (docs/hardening.md): the extensions, the input a file, the
-  // output's folder writable and the output not the input.
-  app::check_extension({"IN", in}, {".h5", ".csv", ".dump"});
-  app::check_extension({"OUT", out}, {".h5", ".csv", ".data"});
-  app::check_paths({{"IN", in}}, {{"OUT", out}});
+  // outputs' folders writable and no output the input.
+  app::check_extension({"IN", in}, {".h5", ".csv", ".dump", ".lammpstrj", ".data", ".txt", ".geo",
+                                    ".gz"});
+  if (all) app::check_extension({"OUT", out}, {".h5"});
+  else app::check_extension({"OUT", out}, {".h5", ".csv", ".data"});
+  std::vector<app::PathArg> outputs{{"OUT", out}};
+  const bed::DeckFiles files = bed::deck_files(out, engine);
+  if (deck) outputs.push_back({"deck", files.input});
+  std::vector<app::PathArg> inputs{{"IN", in}};
+  if (vm.count("deck-scene")) inputs.push_back({"--deck-scene", vm["deck-scene"].as<std::string>()});
+  app::check_paths(inputs, outputs);
 
-  bed::Bed b;
-  if (csv_in) {
-    if (!vm.count("domain")) {
-      throw InputError(in + ": CSV carries no domain; give --domain xlo,ylo,zlo,xhi,yhi,zhi (m)");
+  if (all) {
+    const std::size_t count = write_trajectory(in, out, vm);
+    if (vm.count("json")) {
+      bed::JsonWriter json;
+      json.begin_object().value("in", in).value("out", out)
+          .value("snapshots", static_cast<std::uint64_t>(count)).end_object();
+      std::cout << json.str() << '\n';
     }
+    return 0;
+  }
+  bed::Bed b;
+  const bool needs_domain = in_ext == ".csv";
+  if (vm.count("domain")) {
+    if (in_ext != ".csv" && in_ext != ".txt")
+      throw InputError("--domain: only for CSV or YADE input ('" + in + "' carries its own domain)");
     const bed::Domain domain = app::parse_domain_bounds(vm["domain"].as<std::string>(), "--domain");
     b = bed::read_bed_any(in, &domain);
   } else {
-    if (vm.count("domain"))
-      throw InputError("--domain: only for CSV input ('" + in + "' carries its own domain)");
+    if (needs_domain)
+      throw InputError(in + ": CSV carries no domain; give --domain xlo,ylo,zlo,xhi,yhi,zhi (m)");
     b = bed::read_bed_any(in);
   }
+  const std::string warning = bed::printed_precision_warning(b, tol);
+  if (!warning.empty()) std::cerr << "bedconv: warning: " << in << ": " << warning << '\n';
 
   b.provenance.created_by = app::version_string("bedconv");
   b.provenance.command_line = app::command_line(argc, argv);
-  if (data_out) {
-    bed::write_lammps_data(b, out, vm.count("density") ? vm["density"].as<double>()
-                                                       : bed::kDefaultLammpsDensity);
+  if (deck) {
+    bed::write_deck(b, laws_for(b, in, vm), engine, out);
+  } else if (data_out) {
+    const app::DeckScene scene = scene_of(b, in);
+    bool has_density = false;
+    for (const auto& [key, source] : scene.origin) has_density |= key == "material.density";
+    std::string origin;
+    bed::LammpsDataOptions options;
+    options.type_density = densities(vm, scene, has_density, origin);
+    options.comments = {"density: " + origin};
+    bed::write_lammps_data(b, out, options);
   } else {
     bed::write_bed_any(b, out);
   }
@@ -88,8 +247,9 @@ int convert(int argc, char** argv) {
         .value("in", in)
         .value("out", out)
         .value("particles", static_cast<std::uint64_t>(b.n()))
-        .value("dimension", b.domain.dimension)
-        .end_object();
+        .value("dimension", b.domain.dimension);
+    if (deck) json.value("deck", files.input);
+    json.end_object();
     std::cout << json.str() << '\n';
   }
   return 0;

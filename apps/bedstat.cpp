@@ -7,6 +7,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/app_main.hpp"
@@ -283,8 +284,11 @@ int run(int argc, char** argv) {
 
   std::vector<Report> reports;
   for (const auto& file : vm["bed"].as<std::vector<std::string>>()) {
-    reports.push_back(
-        app::analyse_bed(bed::read_bed_any(file, csv_domain ? &*csv_domain : nullptr), file, req));
+    bed::Bed b = bed::read_bed_any(file, csv_domain ? &*csv_domain : nullptr);
+    // A text bed printed too coarsely for --tol (a dump at LAMMPS's default 6 digits).
+    const std::string warning = bed::printed_precision_warning(b, req.tolerance);
+    if (!warning.empty()) std::cerr << "bedstat: warning: " << file << ": " << warning << '\n';
+    reports.push_back(app::analyse_bed(std::move(b), file, req));
   }
 
   if (req.spread && !req.spread->height_map.empty()) {

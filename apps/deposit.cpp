@@ -12,6 +12,7 @@
 #include <string>
 
 #include "common/app_main.hpp"
+#include "common/deck_export.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
@@ -89,6 +90,9 @@ void add_options(po::options_description& desc) {
       ("trust-units", po::bool_switch(),
        "skip the guard against unit slips (a Young's modulus below 1 MPa: GPa typed as Pa?)")
       ("trajectory", po::value<std::string>(), "HDF5 time series of snapshots (+ .xmf)")
+      ("export-deck", po::value<std::string>(),
+       "also write the settled bed as a LAMMPS data file and a lammps or liggghts input deck with "
+       "this run's laws beside --out: BED.data, in.BED.<engine> (docs/decks.md)")
       ("every", po::value<std::uint64_t>()->default_value(0), "steps between snapshots")
       ("material.young", po::value<double>()->default_value(d.material.young), "E (Pa)")
       ("material.poisson", po::value<double>()->default_value(d.material.poisson), "nu")
@@ -215,6 +219,9 @@ int run(int argc, char** argv) {
       app::check_extension({"--trajectory", vm["trajectory"].as<std::string>()}, {".h5"});
       outputs.push_back({"--trajectory", vm["trajectory"].as<std::string>()});
     }
+    if (vm.count("export-deck")) {
+      for (auto& p : app::deck_outputs(vm["export-deck"].as<std::string>(), out)) outputs.push_back(p);
+    }
     app::check_paths(inputs, outputs);
   }
   if (!vm.count("in") && !vm.count("psd")) {
@@ -289,6 +296,7 @@ int run(int argc, char** argv) {
   for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
     if (vm[std::string("effects.") + dem::effect_name(bit)].as<bool>()) scene.effects |= bit;
   }
+  if (vm.count("export-deck")) app::check_run_deck(scene, vm["export-deck"].as<std::string>());
 
   dem::RunSettings s;
   s.integrator = dem::parse_integrator(vm["integrator"].as<std::string>());
@@ -381,6 +389,8 @@ int run(int argc, char** argv) {
   made.young_scale = s.young_scale;
   made.stiffness = scene.stiffness;
   bed::write_bed_h5(bed, out);
+  if (vm.count("export-deck"))
+    app::export_run_deck(bed, scene, s.young_scale, r.dt, vm["export-deck"].as<std::string>(), out);
 
   if (vm.count("json")) {
     bed::JsonWriter j;

@@ -12,8 +12,10 @@ packages=(
   # scripts/render_paraview.py and its test (tests/paraview): pvpython under a virtual X server;
   # paraview + python3-paraview are ~540 MB installed (VTK, Qt, GDAL): the largest download here
   python3-paraview xvfb xauth
-  lammps          # `lmp` reads our LAMMPS data export back in the tests
-  liggghts        # the peer of bench/studies/deposit_speed.py and spread_peer.py
+  zlib1g-dev gzip  # gzipped dumps (bed/src/io_text.cpp) and their test
+  # the exported decks run in ctest decks.* (docs/decks.md): LAMMPS, LIGGGHTS, mpirun for 2 ranks;
+  # LIGGGHTS is also the peer of bench/studies/deposit_speed.py and spread_peer.py
+  lammps liggghts mpi-default-bin
   clang libclang-rt-14-dev  # the bed-reader fuzz target (tests/fuzz, ~40 s build + 30 s run)
 )
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "powderbed/bed/bed.hpp"
 
@@ -59,6 +60,24 @@ inline bool parse_uint(std::string_view text, std::uint64_t& value) {
   const auto res = std::from_chars(text.data(), end, value);
   return res.ec == std::errc() && res.ptr == end;
 }
+
+// Significant digits printed in a number token ("2.0000999994058125e-05": 17, "2.5e-05": 2,
+// "0.0100": 3): the mantissa's digits from the first non-zero one on.
+inline int significant_digits(std::string_view token) {
+  int digits = 0;
+  bool leading = true;
+  for (const char c : token) {
+    if (c == 'e' || c == 'E') break;
+    if (c < '0' || c > '9') continue;
+    if (leading && c == '0') continue;
+    leading = false;
+    ++digits;
+  }
+  return digits;
+}
+
+// Splits a line at spaces and tabs into `words` (views into `line`).
+void split_words(std::string_view line, std::vector<std::string_view>& words);
 
 // Text lines split from a whole file, with their 1-based numbers for error messages.
 // Trailing '\r' (CRLF files) is dropped. `first_line` is the number of the text's first line.

@@ -1,5 +1,5 @@
-// LAMMPS data file export, atom_style sphere (DESIGN.md "The bed file": beds convert to LAMMPS
-// and LIGGGHTS so a study can outgrow one machine).
+// LAMMPS data file export, atom_style sphere (docs/decks.md: beds convert to LAMMPS and
+// LIGGGHTS so a study can outgrow one machine).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -33,13 +33,42 @@ std::array<double, 2> box_bounds(double lo, double hi, const std::vector<double>
 
 }  // namespace
 
-void write_lammps_data(const Bed& bed, const std::string& path, double density) {
-  bed.validate(path);
-  if (!std::isfinite(density) || !(density > 0)) {
-    std::ostringstream msg;
-    msg << path << ": density is " << density << " (accepted: > 0 kg/m^3)";
-    throw InputError(msg.str());
+namespace {
+
+// Atom types the bed's materials need: the largest material index + 1 (1 without materials).
+std::size_t material_types(const Bed& bed) {
+  if (bed.material.empty()) return 1;
+  return static_cast<std::size_t>(*std::max_element(bed.material.begin(), bed.material.end())) + 1;
+}
+
+void check_options(const Bed& bed, const std::string& path, const LammpsDataOptions& o) {
+  const std::size_t types = material_types(bed);
+  if (o.type_density.size() != 1 && o.type_density.size() != types) {
+    throw InputError(path + ": " + std::to_string(o.type_density.size()) + " densities for " +
+                     std::to_string(types) + " atom types (accepted: one density, or one per "
+                     "material index 0.." + std::to_string(types - 1) + ")");
   }
+  for (const double rho : o.type_density) {
+    if (!std::isfinite(rho) || !(rho > 0)) {
+      std::ostringstream msg;
+      msg << path << ": density is " << rho << " (accepted: > 0 kg/m^3)";
+      throw InputError(msg.str());
+    }
+  }
+  if (o.extra_types < 0) throw InputError(path + ": negative count of extra atom types");
+}
+
+}  // namespace
+
+void write_lammps_data(const Bed& bed, const std::string& path, double density) {
+  LammpsDataOptions options;
+  options.type_density = {density};
+  write_lammps_data(bed, path, options);
+}
+
+void write_lammps_data(const Bed& bed, const std::string& path, const LammpsDataOptions& options) {
+  bed.validate(path);
+  check_options(bed, path, options);
   // LAMMPS ids start at 1 and are 32-bit in the default (smallbig) build.
   constexpr std::uint64_t max_id = std::numeric_limits<std::int32_t>::max() - 1;
   for (std::uint64_t id : bed.id) {
@@ -61,28 +90,49 @@ void write_lammps_data(const Bed& bed, const std::string& path, double density) 
         bed.n() ? *std::max_element(bed.radius.begin(), bed.radius.end()) : 1e-3 * d.length(0);
     bz = {-r_max, r_max};
   }
+  const std::size_t types = material_types(bed);
+  auto density = [&](std::size_t i) {
+    const std::size_t type = bed.material.empty() ? 0 : bed.material[i];
+    return options.type_density.size() == 1 ? options.type_density[0] : options.type_density[type];
+  };
 
   std::string text;
-  text.reserve(256 + bed.n() * 5 * 25);
-  char line[256];
+  text.reserve(512 + bed.n() * (bed.has_velocity() ? 9 : 6) * 25);
+  char line[512];
   auto append = [&](int len) { text.append(line, static_cast<std::size_t>(len)); };
   text += "LAMMPS data file, atom_style sphere, from powderbed";
   if (!bed.provenance.created_by.empty()) text += " (" + bed.provenance.created_by + ")";
-  text += "\n\n# LAMMPS atom id = powderbed id + 1; one atom type; density in kg/m^3 (SI units)\n";
+  text += "\n\n# LAMMPS atom id = powderbed id + 1; atom type = material index + 1; density in "
+          "kg/m^3 (SI units)\n";
+  append(std::snprintf(line, sizeof line, "# boundary %s %s %s\n", d.periodic[0] ? "p" : "f",
+                       d.periodic[1] ? "p" : "f",
+                       d.dimension == 3 && d.periodic[2] ? "p" : "f"));
   if (d.dimension == 2) {
     text += "# 2D bed: disks in the z = 0 plane, given a z slab of +-r_max; use 'dimension 2' "
             "(density is then mass/area)\n";
   }
   if (widened) text += "# box widened past the bed domain to hold every particle centre\n";
-  append(std::snprintf(line, sizeof line, "%zu atoms\n1 atom types\n\n", bed.n()));
+  for (const auto& c : options.comments) text += "# " + c + "\n";
+  append(std::snprintf(line, sizeof line, "%zu atoms\n%zu atom types\n\n", bed.n(),
+                       types + static_cast<std::size_t>(options.extra_types)));
   append(std::snprintf(line, sizeof line, "%.17g %.17g xlo xhi\n", bx[0], bx[1]));
   append(std::snprintf(line, sizeof line, "%.17g %.17g ylo yhi\n", by[0], by[1]));
   append(std::snprintf(line, sizeof line, "%.17g %.17g zlo zhi\n", bz[0], bz[1]));
   text += "\nAtoms # sphere\n\n";
   for (std::size_t i = 0; i < bed.n(); ++i) {
-    append(std::snprintf(line, sizeof line, "%llu 1 %.17g %.17g %.17g %.17g %.17g\n",
-                         static_cast<unsigned long long>(bed.id[i] + 1), 2.0 * bed.radius[i],
-                         density, bed.x[i], bed.y[i], bed.z[i]));
+    const unsigned type = bed.material.empty() ? 1u : bed.material[i] + 1u;
+    append(std::snprintf(line, sizeof line, "%llu %u %.17g %.17g %.17g %.17g %.17g\n",
+                         static_cast<unsigned long long>(bed.id[i] + 1), type,
+                         2.0 * bed.radius[i], density(i), bed.x[i], bed.y[i], bed.z[i]));
+  }
+  if (bed.has_velocity()) {
+    // atom_style sphere's Velocities: id vx vy vz wx wy wz (beds carry no spin: w = 0).
+    text += "\nVelocities\n\n";
+    for (std::size_t i = 0; i < bed.n(); ++i) {
+      append(std::snprintf(line, sizeof line, "%llu %.17g %.17g %.17g 0 0 0\n",
+                           static_cast<unsigned long long>(bed.id[i] + 1), bed.vx[i], bed.vy[i],
+                           bed.vz[i]));
+    }
   }
   detail::AtomicFile file(path);
   detail::write_text(file.temp_path(), path, text);

@@ -1,5 +1,5 @@
-// LAMMPS/LIGGGHTS text dump import (DESIGN.md "The bed file"): the last snapshot becomes a bed,
-// its box bounds the domain (pp -> periodic). Lines starting with '#' are skipped as comments.
+// LAMMPS/LIGGGHTS text dump import (docs/decks.md): each snapshot becomes a bed, its box
+// bounds the domain (pp -> periodic). Lines starting with '#' are skipped as comments.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -15,16 +15,7 @@ namespace powderbed::bed {
 
 namespace {
 
-void split_words(std::string_view line, std::vector<std::string_view>& words) {
-  words.clear();
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-    if (i > start) words.push_back(line.substr(start, i - start));
-  }
-}
+using detail::split_words;
 
 bool starts_with(std::string_view s, std::string_view prefix) {
   return s.substr(0, prefix.size()) == prefix;
@@ -49,6 +40,7 @@ struct Columns {
   std::array<int, 3> velocity{-1, -1, -1};
   int size = -1;  // radius or diameter
   bool diameter = false;
+  int type = -1;
 };
 
 class DumpReader {
@@ -56,33 +48,49 @@ class DumpReader {
   DumpReader(std::string path, std::string_view text, std::size_t first_line)
       : path_(std::move(path)), lines_(text, first_line) {}
 
-  Bed read() {
+  // The next snapshot: ITEM sections (TIME, TIMESTEP, NUMBER OF ATOMS, BOX BOUNDS, others
+  // skipped) up to ITEM: ATOMS and its atoms; nothing when only blank or comment lines are
+  // left.
+  std::optional<DumpSnapshot> next_snapshot() {
     std::optional<std::uint64_t> count;
-    bool have_box = false;
+    bool have_box = false, have_step = false;
+    DumpSnapshot snap;
+    bed_ = Bed{};
     std::string_view line;
     while (next(line)) {
       if (starts_with(line, "ITEM: TIMESTEP")) {
-        number_line("timestep");
+        snap.step = number_line("timestep");
+        have_step = true;
+      } else if (starts_with(line, "ITEM: TIME")) {
+        snap.time = real_line("time");
       } else if (starts_with(line, "ITEM: NUMBER OF ATOMS")) {
         count = number_line("number of atoms");
       } else if (starts_with(line, "ITEM: BOX BOUNDS")) {
         box(line);
         have_box = true;
       } else if (starts_with(line, "ITEM: ATOMS")) {
+        if (!have_step) fail("ITEM: ATOMS before ITEM: TIMESTEP");
         if (!count) fail("ITEM: ATOMS before ITEM: NUMBER OF ATOMS");
         if (!have_box) fail("ITEM: ATOMS before ITEM: BOX BOUNDS");
         atoms(line, *count);
-        if (next(line)) fail("unexpected line after the " + std::to_string(*count) + " atoms");
+        if (next(line)) {
+          if (!starts_with(line, "ITEM:"))
+            fail("unexpected line after the " + std::to_string(*count) + " atoms");
+          pushed_ = line;
+        }
         bed_.validate(path_);
         bed_.validate_geometry(path_);  // inside the box bounds, radii plausible for them
-        return std::move(bed_);
+        snap.bed = std::move(bed_);
+        return snap;
       } else if (starts_with(line, "ITEM:")) {
-        skip_section();  // e.g. ITEM: UNITS, ITEM: TIME
+        skip_section();  // e.g. ITEM: UNITS
       } else {
         fail("found '" + std::string(line) + "' where an ITEM: line belongs");
       }
     }
-    fail("the last snapshot has no ITEM: ATOMS section (truncated dump?)");
+    if (have_step || count || have_box)
+      fail("the last snapshot has no ITEM: ATOMS section (truncated dump?)");
+    return std::nullopt;
   }
 
  private:
@@ -111,6 +119,16 @@ class DumpReader {
     std::uint64_t value = 0;
     if (words_.size() != 1 || !detail::parse_uint(words_[0], value))
       fail(std::string(what) + " is '" + std::string(line) + "' (accepted: a whole number)");
+    return value;
+  }
+
+  double real_line(const char* what) {
+    std::string_view line;
+    if (!next(line)) fail(std::string("dump ends before the ") + what);
+    split_words(line, words_);
+    double value = 0;
+    if (words_.size() != 1 || !detail::parse_double(words_[0], value) || !std::isfinite(value))
+      fail(std::string(what) + " is '" + std::string(line) + "' (accepted: a number)");
     return value;
   }
 
@@ -153,6 +171,7 @@ class DumpReader {
     for (int k = 0; k < static_cast<int>(names.size()); ++k) {
       const auto name = names[k];
       if (name == "id") c.id = k;
+      if (name == "type") c.type = k;
       if (name == "radius" || name == "diameter") {
         c.size = k;
         c.diameter = name == "diameter";
@@ -197,6 +216,8 @@ class DumpReader {
            " columns per atom; truncated dump?)");
     }
     bed_.reserve(count);
+    std::vector<std::uint16_t> types;
+    int digits = 0;
     for (std::uint64_t i = 0; i < count; ++i) {
       std::string_view line;
       if (!next(line) || starts_with(line, "ITEM:"))
@@ -221,8 +242,16 @@ class DumpReader {
       for (int a = 0; a < 3; ++a) {
         p[a] = number(c.position[a]);
         if (c.scaled[a]) p[a] = d.lower[a] + p[a] * d.length(a);
+        digits = std::max(digits, detail::significant_digits(words_[c.position[a]]));
       }
       const double size = number(c.size);
+      digits = std::max(digits, detail::significant_digits(words_[c.size]));
+      if (c.type >= 0) {
+        std::uint64_t type = 0;
+        if (!detail::parse_uint(words_[c.type], type) || type == 0 || type > 65536)
+          fail("type is '" + std::string(words_[c.type]) + "' (accepted: 1 to 65536)");
+        types.push_back(static_cast<std::uint16_t>(type - 1));
+      }
       bed_.x.push_back(p[0]);
       bed_.y.push_back(p[1]);
       bed_.z.push_back(p[2]);
@@ -234,6 +263,10 @@ class DumpReader {
         bed_.vz.push_back(number(c.velocity[2]));
       }
     }
+    // One type is one material: no material array (as a bed without materials writes).
+    if (std::any_of(types.begin(), types.end(), [](std::uint16_t t) { return t != 0; }))
+      bed_.material = std::move(types);
+    bed_.provenance.printed_digits = digits;
   }
 
   std::string path_;
@@ -249,7 +282,18 @@ Bed read_lammps_dump(const std::string& path) {
   const std::string text = detail::read_text(path);
   const auto start = last_snapshot(text);
   if (!start) throw InputError(path + ": no 'ITEM: TIMESTEP' line (accepted: a LAMMPS text dump)");
-  return DumpReader(path, std::string_view(text).substr(start->first), start->second).read();
+  DumpReader reader(path, std::string_view(text).substr(start->first), start->second);
+  return std::move(reader.next_snapshot()->bed);
+}
+
+std::vector<DumpSnapshot> read_lammps_dump_all(const std::string& path) {
+  const std::string text = detail::read_text(path);
+  if (!last_snapshot(text))
+    throw InputError(path + ": no 'ITEM: TIMESTEP' line (accepted: a LAMMPS text dump)");
+  DumpReader reader(path, text, 1);
+  std::vector<DumpSnapshot> snapshots;
+  while (auto snap = reader.next_snapshot()) snapshots.push_back(std::move(*snap));
+  return snapshots;
 }
 
 }  // namespace powderbed::bed

@@ -6,12 +6,63 @@
 #include <sstream>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include "io_detail.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/errors.hpp"
 
 namespace powderbed::bed::detail {
+
+namespace {
+
+// The two magic bytes of a gzip member (RFC 1952 section 2.3.1).
+bool is_gzip(std::string_view bytes) {
+  return bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0x1f &&
+         static_cast<unsigned char>(bytes[1]) == 0x8b;
+}
+
+// The text of a gzipped file (concatenated members too, as gunzip reads them), capped like an
+// uncompressed file at a quarter of this machine's memory so that a small damaged or hostile
+// file cannot ask for more.
+std::string gunzip(const std::string& path, const std::string& bytes) {
+  const double memory = physical_memory_bytes();
+  const double cap = memory > 0 ? 0.25 * memory : 1e12;
+  if (bytes.size() > 0xffffffffu)
+    throw InputError(path + ": gzip file above 4 GB (accepted: smaller; gunzip it first)");
+  z_stream z{};
+  if (inflateInit2(&z, 15 + 32) != Z_OK) throw InputError(path + ": zlib cannot start");
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
+  z.avail_in = static_cast<uInt>(bytes.size());
+  std::string out;
+  char chunk[1 << 16];
+  int rc = Z_OK;
+  while (true) {
+    z.next_out = reinterpret_cast<Bytef*>(chunk);
+    z.avail_out = sizeof chunk;
+    rc = inflate(&z, Z_NO_FLUSH);
+    out.append(chunk, sizeof chunk - z.avail_out);
+    if (static_cast<double>(out.size()) > cap) {
+      inflateEnd(&z);
+      throw InputError(path + ": more than a quarter of this machine's memory once gunzipped "
+                       "(accepted: smaller files; convert it on a larger machine)");
+    }
+    const std::string_view rest(reinterpret_cast<const char*>(z.next_in), z.avail_in);
+    if (rc == Z_STREAM_END && is_gzip(rest)) {
+      inflateReset(&z);  // a further gzip member
+      continue;
+    }
+    if (rc != Z_OK) break;
+  }
+  inflateEnd(&z);
+  if (rc != Z_STREAM_END) {
+    throw InputError(path + ": damaged gzip data (" + (z.msg ? std::string(z.msg) : "truncated") +
+                     "; accepted: a whole .gz file)");
+  }
+  return out;
+}
+
+}  // namespace
 
 double physical_memory_bytes() {
   const long pages = ::sysconf(_SC_PHYS_PAGES);
@@ -35,9 +86,22 @@ std::string read_text(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw InputError(path + ": read error");
-  return std::move(text).str();
+  std::string bytes = std::move(text).str();
+  if (is_gzip(bytes)) return gunzip(path, bytes);
+  return bytes;
 }
 
+
+void split_words(std::string_view line, std::vector<std::string_view>& words) {
+  words.clear();
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+    if (i > start) words.push_back(line.substr(start, i - start));
+  }
+}
 
 bool LineCursor::next(std::string_view& line) {
   if (pos_ >= text_.size()) return false;
@@ -62,6 +126,12 @@ std::string extension_of(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
+}
+
+std::string readable_extension_of(const std::string& path) {
+  const std::string ext = extension_of(path);
+  if (ext != ".gz") return ext;
+  return extension_of(path.substr(0, path.size() - 3));
 }
 
 }  // namespace powderbed::bed

@@ -325,6 +325,15 @@ void make_file(const std::string& dir, const std::string& name) {
                               "1 1e-5 1e-5 1e-5 1e-5\n2 1e-5 1e-5 1e-5 1e-5\n"},
   };
   if (auto it = dump.find(name); it != dump.end()) return write(p, it->second);
+  // Damaged foreign formats (docs/decks.md).
+  const std::map<std::string, std::string> foreign = {
+      {"cut.data", "title\n\n2 atoms\n1 atom types\n0 4e-5 xlo xhi\n0 4e-5 ylo yhi\n0 4e-5 zlo zhi\n\n"
+                   "Atoms # sphere\n\n1 1 2e-5 7952 1e-5 1e-5 1e-5\n"},
+      {"bad_yade.txt", "#format x_y_z_r\n1e-5 1e-5 1e-5\n"},
+      {"bad.geo", "LSMGeometry 0.1\n"},
+      {"bad.dump.gz", std::string("\x1f\x8b\x08\x00garbage", 11)},
+  };
+  if (auto it = foreign.find(name); it != foreign.end()) return write(p, it->second);
   // Scene files.
   const std::map<std::string, std::string> ini = {
       {"unknown_key.ini", "# a scene\n[nosuch]\nkey = 1\n"},
@@ -492,8 +501,9 @@ std::vector<Case> all_cases() {
   add("bedconv_out_xmf_of_in", "bedconv", "@good.h5 @good.xmf", 2, {".xmf"});
   add("bedconv_out_dump", "bedconv", "@good.h5 @out.dump", 2, {"OUT", ".dump"});
   add("bedconv_out_txt", "bedconv", "@good.h5 @out.txt", 2, {"OUT", ".txt", ".h5"});
-  add("bedconv_in_data", "bedconv", "@good.data @out.h5", 2, {"IN", ".data"});
-  add("bedconv_in_txt", "bedconv", "@good.txt @out.h5", 2, {"IN", ".txt"});
+  add("bedconv_in_data_missing", "bedconv", "@good.data @out.h5", 2, {"@good.data", "does not exist"});
+  add("bedconv_in_txt_missing", "bedconv", "@good.txt @out.h5", 2, {"@good.txt", "does not exist"});
+  add("bedconv_in_xyz", "bedconv", "@good.xyz @out.h5", 2, {"IN", ".xyz", ".lammpstrj"});
   add("bedconv_out_no_folder", "bedconv", "@good.h5 @nowhere/out.csv", 2, {"nowhere", "does not exist"});
   add("bedconv_out_folder", "bedconv", "@good.h5 @adir/", 2, {"adir", "folder"});
   add("bedconv_out_sidecar_folder", "bedconv", "@good.h5 @side.h5", 2, {"side.xmf", "folder"});
@@ -511,6 +521,13 @@ std::vector<Case> all_cases() {
   add("bedconv_ok_csv", "bedconv", "@good.h5 @new.csv", 0, {});
   add("bedconv_ok_data", "bedconv", "@good.h5 @new.data --density 7900", 0, {});
   add("bedconv_ok_dump", "bedconv", "@good.dump @new.h5", 0, {});
+  // Foreign formats (docs/decks.md): a damaged file exits 2 naming file and line.
+  add("bedconv_data_truncated", "bedconv", "@cut.data @out.h5", 2, {"@cut.data", "1 of the 2 atoms"});
+  add("bedconv_yade_columns", "bedconv", "@bad_yade.txt @out.h5", 2, {"@bad_yade.txt:2:", "x y z r"});
+  add("bedconv_geo_header", "bedconv", "@bad.geo @out.h5", 2, {"@bad.geo:1:", "LSMGeometry"});
+  add("bedconv_gz_damaged", "bedconv", "@bad.dump.gz @out.h5", 2, {"@bad.dump.gz", "gzip"});
+  add("bedconv_all_snapshots_h5", "bedconv", "@good.h5 @out.h5 --all-snapshots", 2, {"--all-snapshots"});
+  add("bedconv_deck_not_data", "bedconv", "@good.h5 @out.csv --deck lammps", 2, {"--deck", ".data"});
 
   // packgen.
   add("packgen_ok", "packgen", pk_ok, 0, {});

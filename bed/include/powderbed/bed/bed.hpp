@@ -31,6 +31,11 @@ struct Provenance {
   std::string stage;         // "packgen", "deposit", "lattice", ...
   std::string scene;         // the whole resolved configuration, INI text
   ContactProvenance contact;
+  // The printed precision of a bed read from text: the most significant digits any of its
+  // centres or radii was printed with (a format prints at most that many; LAMMPS's default dump
+  // format %g: 6, %.17g: 17, exact), 0 for a bed read from HDF5 or made here. Not stored in the
+  // bed file: printed_precision_warning (io.hpp) reads it after an import.
+  int printed_digits = 0;
 };
 
 struct Bed {

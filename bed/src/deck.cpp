@@ -1,0 +1,308 @@
+// LAMMPS and LIGGGHTS input decks for a bed (deck.hpp, docs/decks.md).
+#include "powderbed/bed/deck.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <sstream>
+
+#include "io_detail.hpp"
+#include "powderbed/bed/deck_damping.hpp"
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/io.hpp"
+
+namespace powderbed::bed {
+
+DeckEngine parse_deck_engine(const std::string& text, const std::string& option) {
+  if (text == "lammps") return DeckEngine::lammps;
+  if (text == "liggghts") return DeckEngine::liggghts;
+  throw InputError(option + ": '" + text + "' (accepted: lammps, liggghts)");
+}
+
+const char* deck_engine_name(DeckEngine engine) {
+  return engine == DeckEngine::lammps ? "lammps" : "liggghts";
+}
+
+namespace {
+
+std::string folder_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? "" : path.substr(0, slash + 1);
+}
+
+std::string name_of(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// The data file's name without its extension.
+std::string stem_of(const std::string& path) {
+  const std::string name = name_of(path);
+  const auto dot = name.find_last_of('.');
+  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
+}
+
+// %.17g: every double in a deck reads back as the same double.
+std::string num(double v) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+// E* of two bodies (hertz_normal.hpp's effective_modulus; bed/ does not depend on dem/).
+double effective_modulus(double e1, double nu1, double e2, double nu2) {
+  return 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
+}
+
+std::size_t type_count(const Bed& bed) {
+  if (bed.material.empty()) return 1;
+  return static_cast<std::size_t>(*std::max_element(bed.material.begin(), bed.material.end())) + 1;
+}
+
+void check(const Bed& bed, const DeckLaws& laws, const std::string& data_path) {
+  bed.validate(data_path);
+  if (bed.domain.dimension != 3)
+    throw InputError(data_path + ": a 2D bed (accepted for a deck: 3D beds)");
+  if (bed.n() == 0) throw InputError(data_path + ": an empty bed (accepted: one particle or more)");
+  if (!(laws.dt > 0) || !std::isfinite(laws.dt))
+    throw InputError("deck: time step " + num(laws.dt) + " (accepted: dt > 0 s)");
+  if (laws.law != "hertz" && laws.law != "linear")
+    throw InputError("deck: contact law '" + laws.law + "' (accepted: hertz, linear)");
+  const bool hertz = laws.law == "hertz";
+  if (hertz && (!(laws.young > 0) || !(laws.wall_young > 0) || !(laws.young_scale > 0)))
+    throw InputError("deck: Hertz law needs E > 0, wall E > 0 and young-scale > 0");
+  if (!hertz && !(laws.stiffness > 0))
+    throw InputError("deck: linear law needs contact.stiffness > 0 (N/m)");
+  const std::size_t types = type_count(bed);
+  if (laws.density.size() != 1 && laws.density.size() != types)
+    throw InputError("deck: " + std::to_string(laws.density.size()) + " densities for " +
+                     std::to_string(types) + " materials (accepted: one, or one per material)");
+  if (laws.steps == 0) throw InputError("deck: 0 steps (accepted: N >= 1)");
+}
+
+struct Stiffness {
+  double pair = 0;  // LAMMPS hertz / hooke coefficient: 4/3 E* (Pa) or k_n (N/m)
+  double wall = 0;
+};
+
+Stiffness stiffness(const DeckLaws& laws) {
+  if (laws.law == "linear") return {laws.stiffness, laws.stiffness};
+  const double e = laws.young / laws.young_scale, ew = laws.wall_young / laws.young_scale;
+  return {4.0 / 3.0 * effective_modulus(e, laws.poisson, e, laws.poisson),
+          4.0 / 3.0 * effective_modulus(e, laws.poisson, ew, laws.wall_poisson)};
+}
+
+double max_diameter(const Bed& bed) {
+  return 2 * *std::max_element(bed.radius.begin(), bed.radius.end());
+}
+
+void header(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckEngine engine,
+            const std::string& data_name, const DeckFiles& files) {
+  const bool lammps = engine == DeckEngine::lammps;
+  const char* exe = lammps ? "lmp" : "liggghts";
+  out << "# " << (lammps ? "LAMMPS" : "LIGGGHTS") << " input deck for " << data_name << ", written by "
+      << (bed.provenance.created_by.empty() ? "powderbed" : bed.provenance.created_by) << "\n"
+      << "# Run in this folder: " << exe << " -in " << name_of(files.input)
+      << " [-var NSTEPS N] [-var DUMP_EVERY K], or mpirun -np 4 " << exe << " -in "
+      << name_of(files.input) << "\n"
+      << "# Writes " << files.dump << " (id type x y z vx vy vz radius at %.17g: bedconv reads it "
+      << "back exactly) and " << files.final_data << ". SI units.\n"
+      << "# Where each number comes from:\n";
+  for (const auto& line : laws.origin) out << "#   " << line << "\n";
+  out << "# Damping: deposit's dashpot c = 2 zeta sqrt(m* k_n) (k_n = dF/d delta); ";
+  if (lammps) {
+    out << "LAMMPS's damping tsuji gives eta = alpha(e) sqrt(m* K) with K = 4/3 E* a (hertz) or k "
+        << "(hooke),\n#   so alpha(e) = zeta sqrt(6) (hertz) or 2 zeta (hooke); e below solves "
+        << "Tsuji's alpha polynomial (docs/decks.md, measured in docs/results/deck-damping.md).\n";
+  } else {
+    out << "LIGGGHTS's hertz gives gamma_n = 2 sqrt(5/6) |beta| sqrt(m* S_n),\n#   S_n = 2 E* a = "
+        << "k_n, so beta = zeta / sqrt(5/6) and e = exp(-pi b / sqrt(1 - b^2)), b = zeta / "
+        << "sqrt(5/6) (docs/decks.md, measured in docs/results/deck-damping.md).\n";
+  }
+  out << "# Translation only (fix nve): deposit integrates no rotation; tangential force: viscous, "
+         "capped at Coulomb mu F_n\n"
+         "#   (the closest to deposit's regularised sliding; identical while sliding).\n";
+}
+
+// Deck variables and the system set-up up to read_data.
+void setup(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckEngine engine,
+           const std::string& data_name, const DeckFiles& files) {
+  const bool lammps = engine == DeckEngine::lammps;
+  const Domain& d = bed.domain;
+  out << "\nvariable NSTEPS     index " << laws.steps << "\n"
+      << "variable DUMP_EVERY index ${NSTEPS}\n"
+      << "variable DUMP       index " << files.dump << "\n"
+      << "variable FINAL      index " << files.final_data << "\n\n"
+      << "units          si\n"
+      << "atom_style     " << (lammps ? "sphere" : "granular") << "\n"
+      << "atom_modify    map array\n"
+      << "dimension      3\n"
+      << "boundary       " << (d.periodic[0] ? "p" : "f") << " " << (d.periodic[1] ? "p" : "f")
+      << " " << (d.periodic[2] ? "p" : "f") << "\n";
+  if (lammps) {
+    out << "comm_modify    vel yes\n";
+  } else {
+    out << "newton         off\ncommunicate    single vel yes\n"
+        << "hard_particles yes  # E above 1 GPa\n";
+  }
+  out << "read_data      " << data_name << "\n"
+      << "neighbor       " << num(0.1 * max_diameter(bed)) << " bin  # skin 0.1 x the largest diameter\n"
+      << "neigh_modify   delay 0\n\n";
+}
+
+// LAMMPS pair_style granular / fix wall/gran granular arguments after the style: the normal
+// law with its damping, the tangential law and the clamp.
+std::string lammps_contact(const DeckLaws& laws, double k) {
+  const bool hertz = laws.law == "hertz";
+  std::string s = std::string(hertz ? "hertz " : "hooke ") + num(k) + " ";
+  if (laws.damping_ratio > 0) {
+    s += num(lammps_tsuji_input(laws.damping_ratio, hertz, "material.damping")) + " damping tsuji";
+  } else {
+    s += "0 damping velocity";
+  }
+  s += " tangential linear_nohistory 1 " + num(laws.friction);
+  if (hertz) s += " limit_damping";  // deposit's Hertz force never pulls; its linear one may
+  return s;
+}
+
+void lammps_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws) {
+  const Stiffness k = stiffness(laws);
+  if (laws.contact) {
+    out << "pair_style     granular\n"
+        << "pair_coeff     * * " << lammps_contact(laws, k.pair) << "\n";
+  } else {
+    out << "pair_style     none  # particle-particle contact is off in the scene\n";
+  }
+  if (!laws.walls) return;
+  const Domain& d = bed.domain;
+  for (int a = 0; a < 3; ++a) {
+    if (d.periodic[a]) continue;
+    const char axis = "xyz"[a];
+    out << "fix            wall_" << axis << " all wall/gran granular " << lammps_contact(laws, k.wall)
+        << " " << axis << "plane " << num(d.lower[a]) << " " << num(d.upper[a]) << "\n";
+  }
+}
+
+// LIGGGHTS: per-type properties (the walls are the last type) and gran / wall/gran styles.
+void liggghts_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws) {
+  const std::size_t types = type_count(bed) + 1;
+  const std::string n = std::to_string(types);
+  const bool hertz = laws.law == "hertz";
+  auto per_type = [&](const char* name, double particles, double wall) {
+    out << "fix            prop_" << name << " all property/global " << name << " peratomtype";
+    for (std::size_t t = 0; t + 1 < types; ++t) out << " " << num(particles);
+    out << " " << num(wall) << "\n";
+  };
+  auto per_pair = [&](const char* name, double value) {
+    out << "fix            prop_" << name << " all property/global " << name << " peratomtypepair " << n;
+    for (std::size_t t = 0; t < types * types; ++t) out << " " << num(value);
+    out << "\n";
+  };
+  std::string model;
+  if (hertz) {
+    per_type("youngsModulus", laws.young / laws.young_scale, laws.wall_young / laws.young_scale);
+    per_type("poissonsRatio", laws.poisson, laws.wall_poisson);
+    per_pair("coefficientRestitution", liggghts_hertz_restitution(laws.damping_ratio, "material.damping"));
+    model = "model hertz tangential no_history";
+  } else {
+    // hooke/stiffness has one absolute dashpot per type pair: 2 zeta sqrt(m* k_n) for the
+    // reduced mass of two particles of the mean mass (exact for equal particles).
+    double mass = 0;
+    for (std::size_t i = 0; i < bed.n(); ++i) {
+      const std::size_t t = bed.material.empty() ? 0 : bed.material[i];
+      const double rho = laws.density.size() == 1 ? laws.density[0] : laws.density[t];
+      mass += rho * 4.0 / 3.0 * std::numbers::pi * std::pow(bed.radius[i], 3);
+    }
+    const double reduced = 0.5 * mass / static_cast<double>(bed.n());
+    const double gamma = 2 * laws.damping_ratio * std::sqrt(reduced * laws.stiffness);
+    out << "# linear law: one dashpot " << num(gamma) << " N s/m for the mean pair (m* = "
+        << num(reduced) << " kg); deposit's varies with each pair's m*\n";
+    per_pair("kn", laws.stiffness);
+    per_pair("kt", laws.stiffness);
+    per_pair("gamman_abs", gamma);
+    per_pair("gammat_abs", gamma);
+    model = "model hooke/stiffness tangential no_history absolute_damping on";
+  }
+  per_pair("coefficientFriction", laws.friction);
+  if (laws.contact) {
+    out << "pair_style     gran " << model << (hertz ? " limitForce on" : "") << "\n"
+        << "pair_coeff     * *\n";
+  } else {
+    out << "pair_style     none  # particle-particle contact is off in the scene\n";
+  }
+  if (!laws.walls) return;
+  const Domain& d = bed.domain;
+  for (int a = 0; a < 3; ++a) {
+    if (d.periodic[a]) continue;
+    const char axis = "xyz"[a];
+    for (int side = 0; side < 2; ++side) {
+      out << "fix            wall_" << axis << (side ? "hi" : "lo") << " all wall/gran " << model
+          << " primitive type " << types << " " << axis << "plane "
+          << num(side ? d.upper[a] : d.lower[a]) << (hertz ? " limitForce on" : "") << "\n";
+    }
+  }
+}
+
+void forces_and_run(std::ostringstream& out, const DeckLaws& laws, DeckEngine engine) {
+  const bool lammps = engine == DeckEngine::lammps;
+  if (laws.gravity > 0)
+    out << "fix            gravity all gravity " << num(laws.gravity) << " vector 0 0 -1\n";
+  if (laws.viscosity > 0) {
+    const double c = 6 * std::numbers::pi * laws.viscosity;
+    out << "# Stokes drag -6 pi mu_f r v on each particle (mu_f = " << num(laws.viscosity) << " Pa s)\n"
+        << "compute        radius all property/atom radius\n"
+        << "variable       drag_x atom " << num(-c) << "*c_radius*vx\n"
+        << "variable       drag_y atom " << num(-c) << "*c_radius*vy\n"
+        << "variable       drag_z atom " << num(-c) << "*c_radius*vz\n"
+        << "fix            drag all addforce v_drag_x v_drag_y v_drag_z\n";
+  }
+  out << "fix            move all nve\n"
+      << "timestep       " << num(laws.dt) << "\n\n"
+      << "dump           snapshots all custom ${DUMP_EVERY} ${DUMP} id type x y z vx vy vz radius\n";
+  if (lammps) {
+    out << "dump_modify    snapshots sort id format float %.17g\n";
+  } else {
+    out << "dump_modify    snapshots sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"\n"
+        << "# LIGGGHTS 3.8 prints a dump's box bounds with %g; ${FINAL} has them exactly\n";
+  }
+  out << "thermo_style   custom step atoms ke\n"
+      << "thermo         ${NSTEPS}\n"
+      << "run            ${NSTEPS}\n"
+      << "write_data     ${FINAL}\n";
+}
+
+}  // namespace
+
+DeckFiles deck_files(const std::string& data_path, DeckEngine engine) {
+  const std::string stem = stem_of(data_path);
+  const std::string e = deck_engine_name(engine);
+  return {folder_of(data_path) + "in." + stem + "." + e, stem + "." + e + ".lammpstrj",
+          stem + "." + e + ".final.data"};
+}
+
+void write_deck(const Bed& bed, const DeckLaws& laws, DeckEngine engine,
+                const std::string& data_path) {
+  check(bed, laws, data_path);
+  const DeckFiles files = deck_files(data_path, engine);
+  const std::string data_name = name_of(data_path);
+  std::ostringstream deck;
+  header(deck, bed, laws, engine, data_name, files);
+  setup(deck, bed, laws, engine, data_name, files);
+  if (engine == DeckEngine::lammps) lammps_laws(deck, bed, laws);
+  else liggghts_laws(deck, bed, laws);
+  forces_and_run(deck, laws, engine);
+
+  LammpsDataOptions data;
+  data.type_density = laws.density;
+  data.extra_types = 1;
+  data.comments = {"atom type " + std::to_string(type_count(bed) + 1) +
+                   " holds no atoms: the walls' material (LIGGGHTS wall/gran primitive type)"};
+  const std::string text = deck.str();
+  detail::AtomicFile input(files.input);
+  detail::write_text(input.temp_path(), files.input, text);
+  write_lammps_data(bed, data_path, data);
+  input.commit();
+}
+
+}  // namespace powderbed::bed
