@@ -52,8 +52,12 @@ Bed read_yade_text(const std::string& path, const Domain* domain) {
       fail(std::to_string(words.size()) + " columns (accepted: x y z r, as yade.export.text writes)");
     double v[4];
     for (int k = 0; k < 4; ++k) {
-      if (!detail::parse_double(words[k], v[k]))
-        fail("'" + std::string(words[k]) + "' (accepted: a number)");
+      if (!detail::parse_double(words[k], v[k])) {
+        // Appended, not "'" + std::string(...): GCC 12 flags that form with a false -Wrestrict.
+        std::string what(1, '\'');
+        what.append(words[k]).append("' (accepted: a number)");
+        fail(what);
+      }
       digits = std::max(digits, detail::significant_digits(words[k]));
     }
     bed.add(v[0], v[1], v[2], v[3]);
