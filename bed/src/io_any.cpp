@@ -1,4 +1,4 @@
-// Bed I/O chosen by file extension (DESIGN.md "The bed file": any bed feeds any stage).
+// Bed I/O chosen by file extension (docs/bed-format.md: any bed feeds any stage).
 #include "io_detail.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"

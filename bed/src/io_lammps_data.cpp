@@ -1,4 +1,4 @@
-// LAMMPS data file export, atom_style sphere (DESIGN.md "The bed file": beds convert to LAMMPS
+// LAMMPS data file export, atom_style sphere (docs/bed-format.md: beds convert to LAMMPS
 // and LIGGGHTS so a study can outgrow one machine).
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-// LAMMPS/LIGGGHTS text dump import (DESIGN.md "The bed file"): the last snapshot becomes a bed,
+// LAMMPS/LIGGGHTS text dump import (docs/bed-format.md): the last snapshot becomes a bed,
 // its box bounds the domain (pp -> periodic). Lines starting with '#' are skipped as comments.
 #include <algorithm>
 #include <array>

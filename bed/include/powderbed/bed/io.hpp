@@ -1,5 +1,5 @@
 #pragma once
-// Bed files: the HDF5 format of DESIGN.md (with an XDMF sidecar), CSV x,y,z,r, LAMMPS data
+// Bed files: the HDF5 format of docs/bed-format.md (with an XDMF sidecar), CSV x,y,z,r, LAMMPS data
 // export and LAMMPS/LIGGGHTS dump import. Every writer is atomic (temporary file + rename);
 // every reader validates and throws InputError naming the file, dataset/line and what is wrong.
 #include <string>
