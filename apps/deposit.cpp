@@ -12,6 +12,7 @@
 #include <string>
 
 #include "common/app_main.hpp"
+#include "common/material_options.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
@@ -42,6 +43,7 @@ void add_options(po::options_description& desc) {
   app::add_common_options(desc);
   app::add_threads_option(desc);
   app::add_progress_option(desc);
+  app::add_material_options(desc, "deposit");
   const dem::Scene d;
   const dem::LidSettings l;
   desc.add_options()

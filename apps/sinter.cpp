@@ -13,12 +13,14 @@
 #include <string>
 
 #include "common/app_main.hpp"
+#include "common/material_options.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
+#include "powderbed/bed/material_file.hpp"
 #include "powderbed/thermal/explain.hpp"
 #include "powderbed/thermal/run_output.hpp"
 #include "powderbed/thermal/solver.hpp"
@@ -38,6 +40,7 @@ void add_options(po::options_description& desc) {
   app::add_common_options(desc);
   app::add_threads_option(desc);
   app::add_progress_option(desc);
+  app::add_material_options(desc, "sinter");
   const th::SinterScene d;
   desc.add_options()
       ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump) resting on z = floor")
@@ -86,7 +89,8 @@ void add_options(po::options_description& desc) {
       ("wetting.contact-angle", po::value<double>()->default_value(d.contact_angle),
        "effects.wetting: contact angle of the melt on the solid substrate (degrees)")
       ("material.table", po::value<std::string>()->default_value(d.material_table),
-       "CSV of solid rows + one liquid row (relative paths: to the scene file's folder too)")
+       "material file with the property table (solid rows + one liquid row): a name of "
+       "--list-materials or a path (relative paths: to the scene file's folder too)")
       ("material.melting-point", po::value<double>()->default_value(d.phase_change.melting_point), "T_m (K)")
       ("material.boiling-point", po::value<double>()->default_value(d.phase_change.boiling_point), "T_v (K)")
       ("material.latent-melt", po::value<double>()->default_value(d.phase_change.latent_melt), "L_m (J/kg)")
@@ -114,9 +118,10 @@ void add_options(po::options_description& desc) {
   }
 }
 
-// A relative table path is tried from the working folder, then from the scene file's folder.
+// A material name is its shipped file (bed/material_file.hpp); a relative path is tried from the
+// working folder, then from the scene file's folder.
 std::string resolve_table(const po::variables_map& vm) {
-  const std::string path = vm["material.table"].as<std::string>();
+  const std::string path = bed::material_path(vm["material.table"].as<std::string>(), "material.table");
   namespace fs = std::filesystem;
   if (fs::path(path).is_absolute() || fs::exists(path) || !vm.count("config")) return path;
   const fs::path beside = fs::path(vm["config"].as<std::string>()).parent_path() / path;
