@@ -121,7 +121,8 @@ void add_options(po::options_description& desc) {
 // A material name is its shipped file (bed/material_file.hpp); a relative path is tried from the
 // working folder, then from the scene file's folder.
 std::string resolve_table(const po::variables_map& vm) {
-  const std::string path = bed::material_path(vm["material.table"].as<std::string>(), "material.table");
+  const std::string path =
+      bed::material_path(vm["material.table"].as<std::string>(), "material.table");
   namespace fs = std::filesystem;
   if (fs::path(path).is_absolute() || fs::exists(path) || !vm.count("config")) return path;
   const fs::path beside = fs::path(vm["config"].as<std::string>()).parent_path() / path;

@@ -136,7 +136,8 @@ void write_structure(bed::JsonWriter& json, const BedReport& r) {
 
 std::string psd_basis_text(const bed::Psd& psd) {
   bool number = false, volume = false;
-  for (const auto& c : psd.components()) (c.basis == bed::PsdBasis::volume ? volume : number) = true;
+  for (const auto& c : psd.components())
+    (c.basis == bed::PsdBasis::volume ? volume : number) = true;
   return number && volume ? "number+volume" : (volume ? "volume" : "number");
 }
 

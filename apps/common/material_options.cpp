@@ -60,7 +60,8 @@ void add_material_options(po::options_description& desc, const char* app) {
   }
   const std::string help =
       "material: a name of --list-materials (data/materials/NAME.csv) or a path to a material "
-      "CSV; fills " + filled + " (an option given on the command line or in the scene file wins)";
+      "CSV; fills " +
+      filled + " (an option given on the command line or in the scene file wins)";
   desc.add_options()("material", po::value<std::string>(), help.c_str())(
       "list-materials", "print the shipped materials (name and description) and exit");
 }
@@ -72,8 +73,11 @@ bool list_materials(const po::variables_map& vm) {
     bed::JsonWriter j;
     j.begin_object().begin_array("materials");
     for (const auto& m : materials) {
-      j.begin_object().value("name", m.name).value("description", m.description)
-          .value("path", m.path).end_object();
+      j.begin_object()
+          .value("name", m.name)
+          .value("description", m.description)
+          .value("path", m.path)
+          .end_object();
     }
     j.end_array().end_object();
     std::cout << j.str() << '\n';

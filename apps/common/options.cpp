@@ -228,7 +228,8 @@ bool parse_options(const char* app, const std::string& usage, po::options_descri
   check_common(vm);
   apply_material(app, vm);
   if (vm.count("print-config")) {
-    std::cout << "# " << version_string(app) << ": the resolved options (--config reads this back)\n"
+    std::cout << "# " << version_string(app)
+              << ": the resolved options (--config reads this back)\n"
               << scene_text(vm);
     return false;
   }

@@ -42,7 +42,8 @@ double progress_interval(const po::variables_map& vm);
 
 // Parses argv and, when --config is given, the scene file; then fills the options a --material
 // file gives (common/material_options.hpp). Returns false when --help, --version,
-// --list-materials or --print-config was printed (the program then exits 0). Throws po::error / InputError on bad input.
+// --list-materials or --print-config was printed (the program then exits 0). Throws po::error /
+// InputError on bad input.
 bool parse_options(const char* app, const std::string& usage, po::options_description& desc,
                    const po::positional_options_description& positional, int argc, char** argv,
                    po::variables_map& vm);

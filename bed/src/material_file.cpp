@@ -72,7 +72,8 @@ void read_scalar(const std::vector<std::string>& all, const std::string& line,
   const std::string& key = all[0];
   if (key == "name" || key == "description") {
     const auto rest = trim(line.substr(line.find(',') + 1));
-    if (rest.empty()) throw InputError(where + ": " + key + " is empty (accepted: one line of text)");
+    if (rest.empty())
+      throw InputError(where + ": " + key + " is empty (accepted: one line of text)");
     (key == "name" ? file.name : file.description) = rest;
     return;
   }
@@ -115,8 +116,10 @@ void read_row(const std::string& line, const std::string& where, MaterialFile& f
   row.density = parse_positive(fields[3], where, "density");
   row.source = fields.size() > 5 ? fields[5] : "";
   if (fields[4] == "solid") {
-    if (file.liquid) throw InputError(where + ": solid row after the liquid row (accepted: solid "
-                                      "rows first, then one liquid row)");
+    if (file.liquid)
+      throw InputError(where +
+                       ": solid row after the liquid row (accepted: solid "
+                       "rows first, then one liquid row)");
     if (!file.solid.empty() && row.temperature <= file.solid.back().temperature) {
       throw InputError(where + ": temperature " + fields[0] +
                        " K does not increase (accepted: strictly increasing solid rows)");
@@ -133,9 +136,7 @@ void read_row(const std::string& line, const std::string& where, MaterialFile& f
 
 // solidus <= melting_point <= liquidus < boiling_point, where the file gives them.
 void check_consistency(const MaterialFile& file) {
-  const auto refuse = [&](const std::string& what) {
-    throw InputError(file.path + ": " + what);
-  };
+  const auto refuse = [&](const std::string& what) { throw InputError(file.path + ": " + what); };
   const auto solidus = file.get("solidus"), liquidus = file.get("liquidus");
   const auto melting = file.get("melting_point"), boiling = file.get("boiling_point");
   if (solidus && liquidus && *solidus > *liquidus)
@@ -157,11 +158,13 @@ std::optional<double> MaterialFile::get(const std::string& key) const {
 }
 
 double MaterialFile::solid_conductivity(double temperature) const {
-  if (solid.empty()) throw InputError(path + ": no property table (accepted: a table with solid rows)");
+  if (solid.empty())
+    throw InputError(path + ": no property table (accepted: a table with solid rows)");
   if (temperature <= solid.front().temperature) return solid.front().conductivity;
   if (temperature >= solid.back().temperature) return solid.back().conductivity;
-  const auto upper = std::upper_bound(solid.begin(), solid.end(), temperature,
-                                      [](double t, const MaterialRow& r) { return t < r.temperature; });
+  const auto upper =
+      std::upper_bound(solid.begin(), solid.end(), temperature,
+                       [](double t, const MaterialRow& r) { return t < r.temperature; });
   const auto& a = *(upper - 1);
   const auto& b = *upper;
   return a.conductivity + (b.conductivity - a.conductivity) * (temperature - a.temperature) /
@@ -183,7 +186,8 @@ MaterialFile read_material_file(const std::string& path) {
     if (!table && first[0] == "property") continue;  // the scalar block's header
     if (!table && first[0].rfind("temperature", 0) == 0) {
       const auto header = split_fields(line, 5);
-      if (header.size() < 5 || header[4] != "phase" || (header.size() == 6 && header[5] != "source")) {
+      if (header.size() < 5 || header[4] != "phase" ||
+          (header.size() == 6 && header[5] != "source")) {
         throw InputError(where + ": header '" + line + "' (accepted: " + kTableHeader +
                          "[,source])");
       }
@@ -220,9 +224,9 @@ std::vector<MaterialFile> shipped_materials() {
 }
 
 std::string material_path(const std::string& name_or_path, const std::string& option) {
-  const bool is_path = name_or_path.find('/') != std::string::npos ||
-                       (name_or_path.size() > 4 &&
-                        name_or_path.compare(name_or_path.size() - 4, 4, ".csv") == 0);
+  const bool is_path =
+      name_or_path.find('/') != std::string::npos ||
+      (name_or_path.size() > 4 && name_or_path.compare(name_or_path.size() - 4, 4, ".csv") == 0);
   if (is_path) return name_or_path;
   const std::string path = materials_folder() + "/" + name_or_path + ".csv";
   if (std::filesystem::exists(path)) return path;

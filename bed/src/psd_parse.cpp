@@ -248,7 +248,8 @@ PsdComponent volume_gauss_as_table(const PsdComponent& g) {
   c.min = g.min;
   c.max = g.max;
   const double dx = (g.max - g.min) / volume_gauss_bins;
-  for (std::size_t i = 0; i <= volume_gauss_bins; ++i) c.edges.push_back(g.min + dx * static_cast<double>(i));
+  for (std::size_t i = 0; i <= volume_gauss_bins; ++i)
+    c.edges.push_back(g.min + dx * static_cast<double>(i));
   c.edges.back() = g.max;
   for (std::size_t i = 0; i < volume_gauss_bins; ++i) {
     c.fractions.push_back(normal_mass((c.edges[i] - g.mean) / g.sd, (c.edges[i + 1] - g.mean) / g.sd));

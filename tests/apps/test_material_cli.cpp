@@ -8,18 +8,18 @@
 #include <string>
 #include <vector>
 
+#include "cli_checks.hpp"
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/material_file.hpp"
-#include "cli_checks.hpp"
 #include "run_command.hpp"
 
 using namespace powderbed;
 
 namespace {
 
-const std::vector<std::string> kMaterials = {"316L", "AlSi10Mg", "IN625", "IN718", "Ti-6Al-4V",
-                                             "copper"};
+const std::vector<std::string> kMaterials = {"316L",  "AlSi10Mg",  "IN625",
+                                             "IN718", "Ti-6Al-4V", "copper"};
 
 // The value printed for `key` by --print-config ("key = value" lines); "" when absent.
 std::string config_value(const std::string& text, const std::string& key) {
@@ -41,7 +41,8 @@ std::string small_bed(const std::string& dir) {
   b.domain.upper = {0.2e-3, 0.1e-3, 0.1e-3};
   const double r = 15e-6;
   for (int row = 0; row < 2; ++row)
-    for (int i = 0; i < 6; ++i) b.add(25e-6 + i * 29.9e-6, 35e-6 + row * 29.9e-6, r * (1 - 1e-4), r);
+    for (int i = 0; i < 6; ++i)
+      b.add(25e-6 + i * 29.9e-6, 35e-6 + row * 29.9e-6, r * (1 - 1e-4), r);
   const std::string path = dir + "/bed.h5";
   bed::write_bed_h5(b, path);
   return path;
@@ -53,7 +54,8 @@ TEST(MaterialCli, ListMaterialsNamesTheSixWithDescriptions) {
   for (const char* app : {"deposit", "sinter", "keff"}) {
     const auto r = test::run_app(app, "--list-materials");
     ASSERT_EQ(r.status, 0) << app << r.err;
-    for (const auto& name : kMaterials) EXPECT_NE(r.out.find(name + "  "), std::string::npos) << app << name;
+    for (const auto& name : kMaterials)
+      EXPECT_NE(r.out.find(name + "  "), std::string::npos) << app << name;
     int lines = 0;
     for (char c : r.out) lines += c == '\n';
     EXPECT_EQ(lines, 6) << r.out;
@@ -90,8 +92,10 @@ TEST(MaterialCli, DepositRunRecordsTheMaterialsModulus) {
   b.domain.upper = {0.3e-3, 0.3e-3, 0.3e-3};
   b.add(1e-4, 1.5e-4, 21e-6, 20e-6);
   bed::write_bed_h5(b, dir + "/in.h5");
-  const auto r = test::run_app("deposit", "--in " + dir + "/in.h5 --material copper --t-end 1e-6 "
-                                          "--seed 1 --out " + dir + "/out.h5");
+  const auto r = test::run_app("deposit", "--in " + dir +
+                                              "/in.h5 --material copper --t-end 1e-6 "
+                                              "--seed 1 --out " +
+                                              dir + "/out.h5");
   ASSERT_EQ(r.status, 0) << r.err;
   const bed::Bed out = bed::read_bed_h5(dir + "/out.h5");
   EXPECT_EQ(out.provenance.contact.young, 119e9);
@@ -108,7 +112,8 @@ TEST(MaterialCli, SinterTakesTheTableAndPhaseChange) {
   EXPECT_EQ(config_number(r.out, "material.latent-melt"), 2.087e5);
   EXPECT_EQ(config_number(r.out, "material.hold-from"), 1200);
   EXPECT_EQ(config_number(r.out, "laser.absorptivity"), 0.03);
-  const auto given = test::run_app("sinter", "--material copper --laser.absorptivity 0.5 --print-config");
+  const auto given =
+      test::run_app("sinter", "--material copper --laser.absorptivity 0.5 --print-config");
   EXPECT_EQ(config_number(given.out, "laser.absorptivity"), 0.5);
 }
 
@@ -151,9 +156,11 @@ TEST(MaterialCli, UnknownMaterialOrBadFileExits2WithOneLine) {
 TEST(PrintConfig, EveryProgramReadsItsOwnConfigBack) {
   const std::string dir = test::scratch_dir("print_config");
   const std::vector<std::pair<std::string, std::string>> runs = {
-      {"packgen", "--dim 3 --psd mono:d=30e-6 --count 10 --domain 1e-3,1e-3,1e-3 --seed 1 --out p.h5"},
-      {"deposit", "--material IN718 --psd lognormal:d10=20e-6,d50=30e-6,d90=45e-6 --count 5 "
-                  "--domain 1e-3,1e-3,1e-3 --seed 2 --until-rest"},
+      {"packgen",
+       "--dim 3 --psd mono:d=30e-6 --count 10 --domain 1e-3,1e-3,1e-3 --seed 1 --out p.h5"},
+      {"deposit",
+       "--material IN718 --psd lognormal:d10=20e-6,d50=30e-6,d90=45e-6 --count 5 "
+       "--domain 1e-3,1e-3,1e-3 --seed 2 --until-rest"},
       {"sinter", "--material Ti-6Al-4V --power 150 --effects.wetting false"},
       {"keff", "--material AlSi10Mg --temperature 500"},
       {"bedstat", "a.h5 b.h5 --voronoi --tol 1e-3"},

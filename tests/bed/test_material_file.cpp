@@ -1,13 +1,13 @@
 // Material files (bed/material_file.hpp, docs/physics.md "Materials"): the six shipped powders
 // load with every property and its source; bad files are refused naming the file and the line.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <string>
-#include <unistd.h>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/material_file.hpp"
@@ -51,8 +51,8 @@ TEST(MaterialFile, ShipsTheSixPowdersWithEverySourcedProperty) {
   const auto materials = bed::shipped_materials();
   std::set<std::string> names;
   for (const auto& m : materials) names.insert(m.name);
-  EXPECT_EQ(names, (std::set<std::string>{"316L", "AlSi10Mg", "IN625", "IN718", "Ti-6Al-4V",
-                                          "copper"}));
+  EXPECT_EQ(names,
+            (std::set<std::string>{"316L", "AlSi10Mg", "IN625", "IN718", "Ti-6Al-4V", "copper"}));
   for (const auto& m : materials) {
     EXPECT_FALSE(m.description.empty()) << m.name;
     for (const auto& key : bed::kMaterialKeys) {
@@ -61,11 +61,13 @@ TEST(MaterialFile, ShipsTheSixPowdersWithEverySourcedProperty) {
     for (const auto& p : m.properties) EXPECT_FALSE(p.source.empty()) << m.name << " " << p.key;
     ASSERT_GE(m.solid.size(), 2u) << m.name;
     ASSERT_TRUE(m.liquid.has_value()) << m.name;
-    for (const auto& row : m.solid) EXPECT_FALSE(row.source.empty()) << m.name << " " << row.temperature;
+    for (const auto& row : m.solid)
+      EXPECT_FALSE(row.source.empty()) << m.name << " " << row.temperature;
     EXPECT_FALSE(m.liquid->source.empty()) << m.name;
     // One powder, one density: the scalar is the table's first (room-temperature) row, to the
     // rounding of the sources (0.5 %).
-    EXPECT_NEAR(*m.get("density"), m.solid.front().density, 5e-3 * m.solid.front().density) << m.name;
+    EXPECT_NEAR(*m.get("density"), m.solid.front().density, 5e-3 * m.solid.front().density)
+        << m.name;
     // Metals expand on melting: the liquid is lighter than the hottest solid row.
     EXPECT_LT(m.liquid->density, m.solid.back().density) << m.name;
     // sinter holds the table from hold_from to the melting window: it lies between them.
