@@ -7,7 +7,6 @@
 #include <cmath>
 #include <memory>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -20,7 +19,6 @@
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
-#include "powderbed/bed/material_file.hpp"
 #include "powderbed/thermal/explain.hpp"
 #include "powderbed/thermal/run_output.hpp"
 #include "powderbed/thermal/solver.hpp"
@@ -118,20 +116,11 @@ void add_options(po::options_description& desc) {
   }
 }
 
-// A material name is its shipped file (bed/material_file.hpp); a relative path is tried from the
-// working folder, then from the scene file's folder.
-std::string resolve_table(const po::variables_map& vm) {
-  const std::string path =
-      bed::material_path(vm["material.table"].as<std::string>(), "material.table");
-  namespace fs = std::filesystem;
-  if (fs::path(path).is_absolute() || fs::exists(path) || !vm.count("config")) return path;
-  const fs::path beside = fs::path(vm["config"].as<std::string>()).parent_path() / path;
-  return fs::exists(beside) ? beside.string() : path;
-}
-
 th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
   th::SinterScene s;
-  s.material_table = resolve_table(vm);
+  // A name of the shipped materials, or a path (relative: to the scene file's folder too).
+  s.material_table =
+      app::material_file(vm["material.table"].as<std::string>(), vm, "material.table");
   s.phase_change.melting_point = vm["material.melting-point"].as<double>();
   s.phase_change.boiling_point = vm["material.boiling-point"].as<double>();
   s.phase_change.latent_melt = vm["material.latent-melt"].as<double>();

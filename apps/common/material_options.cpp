@@ -1,5 +1,6 @@
 #include "common/material_options.hpp"
 
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -61,7 +62,9 @@ void add_material_options(po::options_description& desc, const char* app) {
   const std::string help =
       "material: a name of --list-materials (data/materials/NAME.csv) or a path to a material "
       "CSV; fills " +
-      filled + " (an option given on the command line or in the scene file wins)";
+      filled +
+      " (an option given beside it wins: on the command line always, in the scene file when "
+      "--material is in the scene file too)";
   desc.add_options()("material", po::value<std::string>(), help.c_str())(
       "list-materials", "print the shipped materials (name and description) and exit");
 }
@@ -90,18 +93,31 @@ bool list_materials(const po::variables_map& vm) {
   return true;
 }
 
-void apply_material(const char* app, po::variables_map& vm) {
+std::string material_file(const std::string& name_or_path, const po::variables_map& vm,
+                          const std::string& option) {
+  namespace fs = std::filesystem;
+  const std::string path = bed::material_path(name_or_path, option);
+  if (fs::path(path).is_absolute() || fs::exists(path) || !vm.count("config")) return path;
+  const fs::path beside = fs::path(vm["config"].as<std::string>()).parent_path() / path;
+  return fs::exists(beside) ? beside.string() : path;
+}
+
+void apply_material(const char* app, po::variables_map& vm, const std::set<std::string>& typed) {
   if (!vm.count("material")) return;
-  const std::string path = bed::material_path(vm["material"].as<std::string>(), "--material");
+  const std::string path = material_file(vm["material"].as<std::string>(), vm, "--material");
   bed::MaterialFile file;
   try {
     file = bed::read_material_file(path);
   } catch (const InputError& e) {
     throw InputError(std::string("--material: ") + e.what());
   }
+  // Given beside it, an option wins: at the command line always, in the scene file unless
+  // --material itself was typed at the command line (then the scene's values give way).
+  const bool material_typed = typed.count("material") > 0;
   for (const auto& m : kMaterialOptions) {
     if (std::string(m.app) != app) continue;
-    if (vm.count(m.option) && !vm[m.option].defaulted()) continue;  // given: it wins
+    const bool in_scene = vm.count(m.option) && !vm[m.option].defaulted();
+    if (typed.count(m.option) || (in_scene && !material_typed)) continue;
     const std::string key = m.key;
     if (key == "file") {
       store(vm, m.option, path);

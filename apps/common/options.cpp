@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include "common/app_main.hpp"
@@ -211,6 +212,9 @@ bool parse_options(const char* app, const std::string& usage, po::options_descri
                    const po::positional_options_description& positional, int argc, char** argv,
                    po::variables_map& vm) {
   po::store(po::command_line_parser(argc, argv).options(desc).positional(positional).run(), vm);
+  std::set<std::string> typed;  // what the command line gave (a --material file's rule needs it)
+  for (const auto& [key, value] : vm)
+    if (!value.defaulted()) typed.insert(key);
   if (vm.count("help")) {
     std::cout << "usage: " << usage << "\n\n" << desc << '\n';
     return false;
@@ -226,7 +230,7 @@ bool parse_options(const char* app, const std::string& usage, po::options_descri
   }
   po::notify(vm);
   check_common(vm);
-  apply_material(app, vm);
+  apply_material(app, vm, typed);
   if (vm.count("print-config")) {
     std::cout << "# " << version_string(app)
               << ": the resolved options (--config reads this back)\n"

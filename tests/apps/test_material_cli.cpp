@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -77,13 +78,25 @@ TEST(MaterialCli, DepositTakesTheElasticConstantsAndDensity) {
   EXPECT_EQ(config_number(r.out, "material.density"), 4000);  // given: it wins
   EXPECT_EQ(config_number(r.out, "material.young"), 114e9);
   EXPECT_EQ(config_number(r.out, "material.poisson"), 0.34);
-  // A scene file's value wins too.
+  // A scene file's value wins over a material the scene file names, and gives way to one typed
+  // at the command line (a 316L scene run as copper takes copper's numbers).
   const std::string dir = test::scratch_dir("material_scene");
-  std::ofstream(dir + "/s.ini") << "[material]\npoisson = 0.3\n";
-  r = test::run_app("deposit", "--config " + dir + "/s.ini --material Ti-6Al-4V --print-config");
+  std::ofstream(dir + "/own.ini") << "material = Ti-6Al-4V\n[material]\npoisson = 0.3\n";
+  r = test::run_app("deposit", "--config " + dir + "/own.ini --print-config");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(config_number(r.out, "material.poisson"), 0.3);
   EXPECT_EQ(config_number(r.out, "material.young"), 114e9);
+  std::ofstream(dir + "/steel.ini") << "[material]\npoisson = 0.26\nyoung = 193e9\n";
+  r = test::run_app("deposit", "--config " + dir + "/steel.ini --material copper --print-config");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(config_number(r.out, "material.poisson"), 0.34);
+  EXPECT_EQ(config_number(r.out, "material.young"), 119e9);
+  // A relative material path in a scene file is found beside the scene, as sinter's table is.
+  std::filesystem::copy_file(bed::materials_folder() + "/copper.csv", dir + "/mine.csv");
+  std::ofstream(dir + "/mine.ini") << "material = mine.csv\n";
+  r = test::run_app("deposit", "--config " + dir + "/mine.ini --print-config");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(config_number(r.out, "material.young"), 119e9);
 }
 
 TEST(MaterialCli, DepositRunRecordsTheMaterialsModulus) {
@@ -115,6 +128,13 @@ TEST(MaterialCli, SinterTakesTheTableAndPhaseChange) {
   const auto given =
       test::run_app("sinter", "--material copper --laser.absorptivity 0.5 --print-config");
   EXPECT_EQ(config_number(given.out, "laser.absorptivity"), 0.5);
+  // The paper's 316L scene run as copper: the scene's table gives way to the typed material.
+  const auto scene = test::run_app(
+      "sinter", "--config " + std::string(POWDERBED_SOURCE_DIR) +
+                    "/data/scenes/gz2016-sinter.ini --material copper --print-config");
+  ASSERT_EQ(scene.status, 0) << scene.err;
+  EXPECT_EQ(config_value(scene.out, "material.table"), bed::materials_folder() + "/copper.csv");
+  EXPECT_EQ(config_number(scene.out, "material.melting-point"), 1357.77);
 }
 
 TEST(MaterialCli, EveryShippedMaterialPassesSintersChecks) {
