@@ -196,3 +196,30 @@ TEST(PrintConfig, EveryProgramReadsItsOwnConfigBack) {
     EXPECT_EQ(again.out, first.out) << app;
   }
 }
+
+TEST(MaterialCli, TheSameTrackMeltsTitaniumButNotCopper) {
+  // [GZ]'s laser (200 W, 2 m/s, w = 54 um) over twelve 30 um particles; only --material
+  // differs. Per particle the beam delivers I0 pi r^2 = 31 W for about w / v = 27-54 us. Copper
+  // (alpha 0.03) absorbs about 0.9 W of it, at most 5e-5 J even counting the reflections the
+  // ray tracer adds, against the 8e-5 J that heats its 1.3e-10 kg from 363 K and melts it (c dT +
+  // L_m = 6.3e5 J/kg); its 400 W/mK substrate drains the rest. Ti-6Al-4V (alpha 0.4) absorbs
+  // 12 W, about 5e-4 J, six times the 8e-5 J its 6.3e-11 kg need (1.3e6 J/kg): every particle
+  // melts. So the numbers of the files reach the solver, and the verdicts have margins of 1.6
+  // and 6.
+  const std::string dir = test::scratch_dir("material_track");
+  const std::string bed_path = small_bed(dir);
+  const auto run = [&](const std::string& material) {
+    return test::run_app("sinter", "--bed " + bed_path + " --material " + material +
+                                       " --substrate.nodes 21,11,11 --substrate.depth 0.1e-3 "
+                                       "--snapshots 0 --json --out " + dir + "/out.h5");
+  };
+  const auto copper = run("copper");
+  ASSERT_EQ(copper.status, 0) << copper.err;
+  EXPECT_EQ(test::json_number(copper.out, "particles_molten"), 0) << copper.out;
+  const auto titanium = run("Ti-6Al-4V");
+  ASSERT_EQ(titanium.status, 0) << titanium.err;
+  EXPECT_EQ(test::json_number(titanium.out, "particles_molten"), 12) << titanium.out;
+  // The absorbed share follows the flat absorptivity of each file (0.03 against 0.4).
+  EXPECT_LT(test::json_number(copper.out, "absorptance"),
+            0.2 * test::json_number(titanium.out, "absorptance"));
+}
