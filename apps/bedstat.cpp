@@ -119,8 +119,20 @@ void print_table(std::ostream& out, const std::vector<Report>& reports, const Re
   table_row(out, "radius sd (m)", cells(reports, [](auto& s, const Report& r) { s << r.radius.sd; }));
   table_row(out, "radius min (m)", cells(reports, [](auto& s, const Report& r) { s << r.radius.min; }));
   table_row(out, "radius max (m)", cells(reports, [](auto& s, const Report& r) { s << r.radius.max; }));
+  using Quantiles = app::DiameterQuantiles;
+  for (const auto& [basis, q] : {std::pair{"number", &Report::by_number},
+                                 std::pair{"volume", &Report::by_volume}}) {
+    for (const auto& [label, d] :
+         {std::pair{"D10", &Quantiles::d10}, std::pair{"D50", &Quantiles::d50},
+          std::pair{"D90", &Quantiles::d90}}) {
+      table_row(out, std::string(label) + " diameter, " + basis + " basis (m)",
+                cells(reports, [q = q, d = d](auto& s, const Report& r) { s << (r.*q).*d; }));
+    }
+  }
   if (req.psd) {
     table_row(out, "KS distance to --psd", cells(reports, [](auto& s, const Report& r) { s << *r.ks; }));
+    table_row(out, "--psd basis",
+              std::vector<std::string>(reports.size(), app::psd_basis_text(*req.psd)));
   }
   if (req.voronoi) {
     table_row(out, "Voronoi local fraction mean", cells(reports, [](auto& s, const Report& r) {

@@ -13,6 +13,7 @@
 
 #include "common/app_main.hpp"
 #include "common/deck_export.hpp"
+#include "common/material_options.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
@@ -43,6 +44,7 @@ void add_options(po::options_description& desc) {
   app::add_common_options(desc);
   app::add_threads_option(desc);
   app::add_progress_option(desc);
+  app::add_material_options(desc, "deposit");
   const dem::Scene d;
   const dem::LidSettings l;
   desc.add_options()

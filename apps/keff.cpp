@@ -13,6 +13,7 @@
 
 
 #include "common/app_main.hpp"
+#include "common/material_options.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
@@ -42,6 +43,7 @@ void add_options(po::options_description& desc) {
   app::add_common_options(desc);
   app::add_threads_option(desc);
   app::add_progress_option(desc);
+  app::add_material_options(desc, "keff");
   const kf::KeffScene d;
   desc.add_options()
       ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump)")
@@ -88,7 +90,7 @@ void add_options(po::options_description& desc) {
       ("radiation.seed", po::value<std::uint64_t>()->default_value(d.seed),
        "seed of the view-factor rays (each particle its own stream: any thread count agrees)")
       ("radiation.model", po::value<std::string>()->default_value("pair"),
-       "pair (SPEC's per-pair grey formula) or radiosity (the grey enclosure: one radiosity node "
+       "pair (the per-pair grey formula of docs/physics.md §6) or radiosity (the grey enclosure: one radiosity node "
        "per surface, docs/keff.md)")
       ("radiation.emissivity", po::value<double>()->default_value(d.emissivity),
        "grey emissivity of the particles")

@@ -7,12 +7,12 @@
 #include <cmath>
 #include <memory>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <string>
 
 #include "common/app_main.hpp"
+#include "common/material_options.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
@@ -38,6 +38,7 @@ void add_options(po::options_description& desc) {
   app::add_common_options(desc);
   app::add_threads_option(desc);
   app::add_progress_option(desc);
+  app::add_material_options(desc, "sinter");
   const th::SinterScene d;
   desc.add_options()
       ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump) resting on z = floor")
@@ -86,7 +87,8 @@ void add_options(po::options_description& desc) {
       ("wetting.contact-angle", po::value<double>()->default_value(d.contact_angle),
        "effects.wetting: contact angle of the melt on the solid substrate (degrees)")
       ("material.table", po::value<std::string>()->default_value(d.material_table),
-       "CSV of solid rows + one liquid row (relative paths: to the scene file's folder too)")
+       "material file with the property table (solid rows + one liquid row): a name of "
+       "--list-materials or a path (relative paths: to the scene file's folder too)")
       ("material.melting-point", po::value<double>()->default_value(d.phase_change.melting_point), "T_m (K)")
       ("material.boiling-point", po::value<double>()->default_value(d.phase_change.boiling_point), "T_v (K)")
       ("material.latent-melt", po::value<double>()->default_value(d.phase_change.latent_melt), "L_m (J/kg)")
@@ -114,18 +116,11 @@ void add_options(po::options_description& desc) {
   }
 }
 
-// A relative table path is tried from the working folder, then from the scene file's folder.
-std::string resolve_table(const po::variables_map& vm) {
-  const std::string path = vm["material.table"].as<std::string>();
-  namespace fs = std::filesystem;
-  if (fs::path(path).is_absolute() || fs::exists(path) || !vm.count("config")) return path;
-  const fs::path beside = fs::path(vm["config"].as<std::string>()).parent_path() / path;
-  return fs::exists(beside) ? beside.string() : path;
-}
-
 th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
   th::SinterScene s;
-  s.material_table = resolve_table(vm);
+  // A name of the shipped materials, or a path (relative: to the scene file's folder too).
+  s.material_table =
+      app::material_file(vm["material.table"].as<std::string>(), vm, "material.table");
   s.phase_change.melting_point = vm["material.melting-point"].as<double>();
   s.phase_change.boiling_point = vm["material.boiling-point"].as<double>();
   s.phase_change.latent_melt = vm["material.latent-melt"].as<double>();

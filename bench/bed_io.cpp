@@ -1,4 +1,4 @@
-// HDF5 bed write and read speed (DESIGN.md "The bed file": contiguous datasets, one H5Dread
+// HDF5 bed write and read speed (docs/bed-format.md: contiguous datasets, one H5Dread
 // each). Results: docs/results/bed-io.md, regenerated with
 //   build/bench/bench_bed_io --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>

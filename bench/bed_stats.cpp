@@ -1,4 +1,4 @@
-// Bed statistics at scale (SPEC.md §2): packing density and contact statistics on ~1e6
+// Bed statistics at scale (docs/physics.md §2): packing density and contact statistics on ~1e6
 // particles, Laguerre tessellation on ~1e5, and the two neighbour-search back-ends side by side.
 // Beds: FCC lattices (touching spheres, r = 1) jittered by up to 0.005 r per coordinate (seed 1),
 // in a non-periodic box, so spheres cross every face, edge and corner of it (the exact-cap and

@@ -1,5 +1,5 @@
 // What each effect of a deposition scene costs per step, and that an effect switched off costs
-// nothing (DESIGN.md "Effects a scene calls for"): the solver picks, once per run, a step loop
+// nothing (docs/architecture.md "Effects a scene calls for"): the solver picks, once per run, a step loop
 // compiled for the scene's 6-bit effect mask, so a loop with friction off is the loop of a build
 // that never had friction. Two benchmark families on the same beds, one thread, E = 193 GPa:
 //   BM_Step/<mask>: steps with the effects of <mask> on (kAllEffects, then each bit off in turn);

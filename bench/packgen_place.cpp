@@ -1,4 +1,4 @@
-// Placement hot paths of packgen (SPEC.md §3, issue 3 "speed and scaling"):
+// Placement hot paths of packgen (docs/physics.md §3, issue 3 "speed and scaling"):
 //  - the whole 3D monodisperse 3-contact packing, lowest site first (the rule of
 //    docs/results/packgen-speed.md), for N = 1e3, 1e4, 1e5 spheres of r = 0.5 in a cube sized as
 //    bench/studies/packgen_speed.py sizes it; `s_per_sphere` is the time per placed sphere;

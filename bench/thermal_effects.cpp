@@ -1,4 +1,4 @@
-// What each sinter effect costs (DESIGN.md "Effects a scene calls for": an effect that is off
+// What each sinter effect costs (docs/architecture.md "Effects a scene calls for": an effect that is off
 // costs nothing in the inner loop). The solver picks one of 64 particle kernels compiled for
 // the chosen effects and a grid kernel for constant or variable conductivity, so switching an
 // effect off removes its work rather than skipping it per contact. Two beds:

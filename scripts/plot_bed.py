@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Draws a bed file (HDF5, DESIGN.md format) to a PNG with true radii.
+"""Draws a bed file (HDF5, docs/bed-format.md) to a PNG with true radii.
 
 2D beds: the disks. 3D beds: a top view (x-y) and a side view (x-z) of the spheres as circles,
 drawn back to front so nearer particles cover farther ones.

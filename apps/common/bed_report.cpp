@@ -28,6 +28,20 @@ RadiusSummary radius_summary(const std::vector<double>& radius) {
   return s;
 }
 
+DiameterQuantiles diameter_quantiles(const std::vector<double>& radius, bed::PsdBasis basis) {
+  return {basis, bed::sample_diameter_quantile(radius, 0.1, basis),
+          bed::sample_diameter_quantile(radius, 0.5, basis),
+          bed::sample_diameter_quantile(radius, 0.9, basis)};
+}
+
+void write_quantiles(bed::JsonWriter& json, const DiameterQuantiles& q) {
+  json.begin_object(bed::basis_name(q.basis))
+      .value("d10", q.d10)
+      .value("d50", q.d50)
+      .value("d90", q.d90)
+      .end_object();
+}
+
 // 3D-only statistics are refused for a 2D bed rather than silently left out.
 void check_dimension(const bed::Bed& b, const std::string& file, const BedRequest& req) {
   if (req.voronoi && b.domain.dimension != 3) {
@@ -82,14 +96,18 @@ void write_contacts(bed::JsonWriter& json, const BedReport& r, const BedRequest&
       .value("max_overlap", r.max_overlap);
 }
 
-void write_radius(bed::JsonWriter& json, const BedReport& r) {
+void write_radius(bed::JsonWriter& json, const BedReport& r, const BedRequest& req) {
   json.begin_object("radius")
       .value("mean", r.radius.mean)
       .value("sd", r.radius.sd)
       .value("min", r.radius.min)
       .value("max", r.radius.max)
       .end_object();
-  if (r.ks) json.value("ks_distance", *r.ks);
+  json.begin_object("diameter_quantiles");
+  write_quantiles(json, r.by_number);
+  write_quantiles(json, r.by_volume);
+  json.end_object();
+  if (r.ks) json.value("ks_distance", *r.ks).value("psd_basis", psd_basis_text(*req.psd));
   if (!r.histogram) return;
   json.begin_object("radius_histogram");
   write_array(json, "edges", r.histogram->edges);
@@ -117,6 +135,13 @@ void write_structure(bed::JsonWriter& json, const BedReport& r) {
 
 }  // namespace
 
+std::string psd_basis_text(const bed::Psd& psd) {
+  bool number = false, volume = false;
+  for (const auto& c : psd.components())
+    (c.basis == bed::PsdBasis::volume ? volume : number) = true;
+  return number && volume ? "number+volume" : (volume ? "volume" : "number");
+}
+
 BedReport analyse_bed(bed::Bed bed, const std::string& file, const BedRequest& req) {
   check_dimension(bed, file, req);
   BedReport r;
@@ -132,6 +157,8 @@ BedReport analyse_bed(bed::Bed bed, const std::string& file, const BedRequest& r
   r.by_tol.pop_back();
   r.max_overlap = bed::max_relative_overlap(b);
   r.radius = radius_summary(b.radius);
+  r.by_number = diameter_quantiles(b.radius, bed::PsdBasis::number);
+  r.by_volume = diameter_quantiles(b.radius, bed::PsdBasis::volume);
   add_optional_statistics(r, req);
   return r;
 }
@@ -147,7 +174,7 @@ void write_bed_json(bed::JsonWriter& json, const BedReport& r, const BedRequest&
     json.value("layer_density", *r.layer_density);
   }
   write_contacts(json, r, req);
-  write_radius(json, r);
+  write_radius(json, r, req);
   write_structure(json, r);
   if (r.spread) write_spread_json(json, *r.spread);
   json.end_object();

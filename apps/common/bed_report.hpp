@@ -31,6 +31,15 @@ struct RadiusSummary {
   double mean = 0, sd = 0, min = 0, max = 0;
 };
 
+// D10, D50, D90 of the bed's diameters on one basis (number, or volume as laser diffraction and
+// powder data sheets report them).
+struct DiameterQuantiles {
+  bed::PsdBasis basis = bed::PsdBasis::number;
+  double d10 = 0, d50 = 0, d90 = 0;
+};
+// The basis (or bases, "number+volume") the components of a target PSD were given on.
+std::string psd_basis_text(const bed::Psd& psd);
+
 struct BedReport {
   std::string file;
   bed::Bed bed;
@@ -40,6 +49,7 @@ struct BedReport {
   std::vector<bed::ContactStats> by_tol;  // at kReportedTolerances
   double max_overlap = 0;
   RadiusSummary radius;
+  DiameterQuantiles by_number, by_volume;
   std::optional<double> ks;
   std::optional<bed::Series> profile, rdf;
   std::optional<bed::Histogram> histogram;

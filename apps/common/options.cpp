@@ -10,9 +10,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include "common/app_main.hpp"
+#include "common/material_options.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 
@@ -142,11 +144,18 @@ void store_config_file(const std::string& path, const po::options_description& d
     const std::string value = trimmed(line.substr(eq + 1));
     if (key == "config")
       throw InputError(where + "config inside a scene file (accepted: one --config)");
-    if (!desc.find_nothrow(key, false))
+    const po::option_description* known = desc.find_nothrow(key, false);
+    if (!known)
       throw InputError(where + "unknown option '" + key + "' (see --help for the options)");
     po::option opt;
     opt.string_key = key;
-    opt.value.push_back(value);
+    // A switch without a value (bedstat's voronoi) is on with an empty value, as --print-config
+    // writes it, or "true", and left off with "false".
+    const bool switch_only = known->semantic()->max_tokens() == 0;
+    if (switch_only && value == "false") continue;
+    if (switch_only && !value.empty() && value != "true")
+      throw InputError(where + key + " = '" + value + "' (accepted: true or false)");
+    if (!switch_only) opt.value.push_back(value);
     opt.original_tokens = {key, value};
     all.options.push_back(opt);
     // This line's value checked on its own (with the key's earlier lines, so that a key given
@@ -183,7 +192,10 @@ void add_common_options(po::options_description& desc) {
   desc.add_options()("help,h", "print this help and exit")("version", "print the version and exit")(
       "config", po::value<std::string>(),
       "scene file (INI; [section] key = value sets --section.key); the command line wins")(
-      "json", "print one JSON summary object on stdout");
+      "json", "print one JSON summary object on stdout")(
+      "print-config",
+      "print the resolved options (command line, scene file, material file and defaults) as a "
+      "scene file for --config, and exit");
 }
 
 void add_progress_option(po::options_description& desc) {
@@ -200,6 +212,9 @@ bool parse_options(const char* app, const std::string& usage, po::options_descri
                    const po::positional_options_description& positional, int argc, char** argv,
                    po::variables_map& vm) {
   po::store(po::command_line_parser(argc, argv).options(desc).positional(positional).run(), vm);
+  std::set<std::string> typed;  // what the command line gave (a --material file's rule needs it)
+  for (const auto& [key, value] : vm)
+    if (!value.defaulted()) typed.insert(key);
   if (vm.count("help")) {
     std::cout << "usage: " << usage << "\n\n" << desc << '\n';
     return false;
@@ -208,12 +223,20 @@ bool parse_options(const char* app, const std::string& usage, po::options_descri
     std::cout << (vm.count("json") ? version_json(app) : version_string(app)) << '\n';
     return false;
   }
+  if (list_materials(vm)) return false;
   if (vm.count("config")) {
     // Stored after the command line, so command-line values win (first store wins).
     store_config_file(vm["config"].as<std::string>(), desc, vm);
   }
   po::notify(vm);
   check_common(vm);
+  apply_material(app, vm, typed);
+  if (vm.count("print-config")) {
+    std::cout << "# " << version_string(app)
+              << ": the resolved options (--config reads this back)\n"
+              << scene_text(vm);
+    return false;
+  }
   return true;
 }
 
@@ -267,12 +290,21 @@ std::string scene_text(const po::variables_map& vm) {
   std::ostringstream out;
   out.precision(17);
   for (const auto& [key, value] : vm) {
-    if (key == "config" || key == "json" || key == "help" || key == "version" || key == "progress")
+    if (key == "config" || key == "json" || key == "help" || key == "version" ||
+        key == "progress" || key == "print-config" || key == "list-materials")
       continue;
     const auto& v = value.value();
-    out << key << " = ";
+    if (const auto* list = boost::any_cast<std::vector<std::string>>(&v)) {
+      for (const auto& item : *list) out << key << " = " << item << '\n';  // lines add up
+      continue;
+    }
+    out << key << " = ";  // a switch without a value (bedstat's voronoi) prints an empty value
     if (const auto* s = boost::any_cast<std::string>(&v)) out << *s;
-    else if (const auto* d = boost::any_cast<double>(&v)) out << *d;
+    else if (const auto* d = boost::any_cast<double>(&v)) {
+      char text[32];  // the shortest text that reads back to the same double
+      const auto end = std::to_chars(text, text + sizeof text, *d).ptr;
+      out.write(text, end - text);
+    }
     else if (const auto* b = boost::any_cast<bool>(&v)) out << (*b ? "true" : "false");
     else if (const auto* u = boost::any_cast<std::uint64_t>(&v)) out << *u;
     else if (const auto* z = boost::any_cast<std::size_t>(&v)) out << *z;

@@ -31,7 +31,8 @@ namespace powderbed::app {
 
 namespace po = boost::program_options;
 
-// Adds --help, --version, --config FILE and --json.
+// Adds --help, --version, --config FILE, --json and --print-config (parse_options prints the
+// resolved options as a scene file and returns false).
 void add_common_options(po::options_description& desc);
 
 // Adds --progress SECONDS: the time between progress lines of a batch run (common/progress.hpp).
@@ -39,8 +40,10 @@ void add_progress_option(po::options_description& desc);
 // --progress checked: a finite number of seconds >= 0; throws InputError naming the option.
 double progress_interval(const po::variables_map& vm);
 
-// Parses argv and, when --config is given, the scene file. Returns false when --help or
-// --version was printed (the program then exits 0). Throws po::error / InputError on bad input.
+// Parses argv and, when --config is given, the scene file; then fills the options a --material
+// file gives (common/material_options.hpp). Returns false when --help, --version,
+// --list-materials or --print-config was printed (the program then exits 0). Throws po::error /
+// InputError on bad input.
 bool parse_options(const char* app, const std::string& usage, po::options_description& desc,
                    const po::positional_options_description& positional, int argc, char** argv,
                    po::variables_map& vm);

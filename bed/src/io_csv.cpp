@@ -1,4 +1,4 @@
-// CSV beds "x,y,z,r" (SI units), DESIGN.md "The bed file": full precision out, strict checks in.
+// CSV beds "x,y,z,r" (SI units), docs/bed-format.md: full precision out, strict checks in.
 #include <cmath>
 #include <cstdio>
 #include <sstream>

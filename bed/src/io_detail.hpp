@@ -10,7 +10,7 @@
 
 namespace powderbed::bed::detail {
 
-// A file written atomically (DESIGN.md "The bed file": a crash never leaves half a bed).
+// A file written atomically (docs/bed-format.md: a crash never leaves half a bed).
 // The constructor creates `<path>.tmp.<pid>` (throws InputError naming `path` with the system's
 // reason when it cannot); the caller writes temp_path(); commit() renames it over `path`. The
 // destructor removes the temporary unless commit() succeeded, so any failure leaves an existing

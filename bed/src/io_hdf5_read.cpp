@@ -1,4 +1,4 @@
-// Reader of the HDF5 bed file, format version 1 (DESIGN.md "The bed file"): checks everything and
+// Reader of the HDF5 bed file, format version 1 (docs/bed-format.md): checks everything and
 // refuses a bad file with one line "<file>: <dataset>: <what is wrong>".
 #include <fcntl.h>
 #include <sys/mman.h>

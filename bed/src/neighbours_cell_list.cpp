@@ -1,4 +1,4 @@
-// Cell-list neighbour search (SPEC.md §2, DESIGN.md "Performance habits"): O(N) pairs.
+// Cell-list neighbour search (docs/physics.md §2, docs/architecture.md "Performance habits"): O(N) pairs.
 #include <algorithm>
 #include <cmath>
 

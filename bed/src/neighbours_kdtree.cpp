@@ -1,5 +1,5 @@
 // kd-tree neighbour search (nanoflann 1.4 radius search), the alternative back-end to the cell
-// list of SPEC.md §2. Periodic axes: a particle within the search radius of a periodic face also
+// list of docs/physics.md §2. Periodic axes: a particle within the search radius of a periodic face also
 // queries its image shifted by one period; candidates are then measured at the minimum image.
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-// Sampling, CDF and analytic moments of the particle size distributions of SPEC.md §1.
+// Sampling, CDF and analytic moments of the particle size distributions of docs/physics.md §1.
 // Parsing of the PSD string is in psd_parse.cpp.
 #include "powderbed/bed/psd.hpp"
 
@@ -41,7 +41,7 @@ double normal_upper_quantile(double q) {
   return q <= 0 ? std::numeric_limits<double>::infinity() : sqrt2 * boost::math::erfc_inv(2 * q);
 }
 
-// SPEC §1: inverse CDF of the standard normal truncated to [lo, hi] at u in [0, 1). Works on
+// docs/physics.md §1: inverse CDF of the standard normal truncated to [lo, hi] at u in [0, 1). Works on
 // whichever tail the quantile lies in, so a window far in a tail (e.g. [6, 7]) keeps full
 // relative precision instead of collapsing to Phi = 1.
 double truncated_normal_quantile(double lo, double hi, double u) {
@@ -169,7 +169,7 @@ double moment_variable(const PsdComponent& c, int k) {
   return 0;
 }
 
-// Inverse CDF of the component's size variable at u in [0, 1) (SPEC §1).
+// Inverse CDF of the component's size variable at u in [0, 1) (docs/physics.md §1).
 double quantile_variable(const PsdComponent& c, double u) {
   if (is_point(c)) return c.mean;
   switch (c.kind) {
@@ -264,7 +264,7 @@ Psd Psd::mono_radius(double radius) {
   return psd;
 }
 
-// SPEC §1: one uniform draw picks the component by number fraction, a second one is pushed
+// docs/physics.md §1: one uniform draw picks the component by number fraction, a second one is pushed
 // through that component's inverse CDF.
 double Psd::sample_radius(Rng& rng) const {
   const double pick = uniform01(rng);
@@ -317,6 +317,22 @@ std::size_t Psd::total_count() const {
   std::size_t sum = 0;
   for (const auto& c : components_) sum += c.count;
   return sum;
+}
+
+const char* basis_name(PsdBasis basis) { return basis == PsdBasis::volume ? "volume" : "number"; }
+
+double sample_diameter_quantile(std::vector<double> radii, double q, PsdBasis basis) {
+  if (radii.empty()) return 0;
+  std::sort(radii.begin(), radii.end());
+  const auto weight = [basis](double r) { return basis == PsdBasis::volume ? r * r * r : 1.0; };
+  double total = 0;
+  for (const double r : radii) total += weight(r);
+  double cumulative = 0;
+  for (const double r : radii) {
+    cumulative += weight(r);
+    if (cumulative >= q * total) return 2 * r;
+  }
+  return 2 * radii.back();
 }
 
 // sup |F_n - F| is reached at a sample value, on one side of the step of F_n there: compare

@@ -1,4 +1,4 @@
-// The PSD string syntax of psd.hpp (SPEC.md §1): components, their keys, weights and the
+// The PSD string syntax of psd.hpp (docs/physics.md §1): components, their keys, weights and the
 // measured-table CSV, with one-line InputError messages naming component, kind and field.
 #include <algorithm>
 #include <boost/math/special_functions/erf.hpp>
@@ -112,11 +112,11 @@ class ComponentParser {
   // Refuses keys outside `accepted` (weights are accepted for every kind).
   void check_keys(const std::vector<std::string>& accepted) const {
     for (const auto& [key, value] : values_) {
-      if (key == "count" || key == "frac" || key == "vfrac") continue;
+      if (key == "count" || key == "frac" || key == "vfrac" || key == "basis") continue;
       if (std::find(accepted.begin(), accepted.end(), key) == accepted.end()) {
         std::string list;
         for (const auto& a : accepted) list += a + ", ";
-        fail("unknown key '" + key + "' (accepted: " + list + "count, frac, vfrac)");
+        fail("unknown key '" + key + "' (accepted: " + list + "basis, count, frac, vfrac)");
       }
     }
   }
@@ -147,6 +147,14 @@ class ComponentParser {
     if (text("on") == "diameter") return SizeVariable::diameter;
     if (text("on") == "radius") return SizeVariable::radius;
     fail("on = '" + text("on") + "' (accepted: radius, diameter)");
+  }
+
+  // basis=number|volume: what the size parameters describe (psd.hpp); `fallback` without it.
+  PsdBasis basis(PsdBasis fallback) const {
+    if (!has("basis")) return fallback;
+    if (text("basis") == "number") return PsdBasis::number;
+    if (text("basis") == "volume") return PsdBasis::volume;
+    fail("basis = '" + text("basis") + "' (accepted: number, volume)");
   }
 
   // The weight key of this component, its value checked.
@@ -202,6 +210,51 @@ PsdComponent parse_mono(const ComponentParser& p) {
   c.kind = PsdComponent::Kind::mono;
   c.on = p.has("d") ? SizeVariable::diameter : SizeVariable::radius;
   c.mean = c.min = c.max = p.size(p.has("d") ? "d" : "r");
+  c.basis = p.basis(PsdBasis::number);  // one size: the same on either basis
+  return c;
+}
+
+// Number fractions of table bins given by volume: a bin's number fraction is its volume fraction
+// over its mean d^3 (r^3 alike) with sizes uniform by number within the bin,
+// E[x^3] = (b^4 - a^4) / (4 (b - a)); normalised over the bins.
+void volume_to_number_fractions(PsdComponent& c) {
+  double sum = 0;
+  for (std::size_t i = 0; i < c.fractions.size(); ++i) {
+    const double a = c.edges[i], b = c.edges[i + 1];
+    c.fractions[i] /= (b * b * b * b - a * a * a * a) / (4 * (b - a));
+    sum += c.fractions[i];
+  }
+  for (double& f : c.fractions) f /= sum;
+}
+
+// P(a < X < b) of the standard normal without cancellation in the far tails.
+double normal_mass(double a, double b) {
+  const double s = std::sqrt(0.5);
+  if (a + b > 0) return 0.5 * (std::erfc(a * s) - std::erfc(b * s));
+  return 0.5 * (std::erfc(-b * s) - std::erfc(-a * s));
+}
+
+// A truncated normal on the volume basis has no closed-form number density (it is the normal
+// over d^3): it becomes a table of this many equal bins over [min, max], each with its exact
+// volume fraction. Within a bin the number density varies by at most (1 + dx/min)^3 with
+// dx = (max - min) / 1024: the table's CDF differs from the exact one by well below 1e-3.
+constexpr std::size_t volume_gauss_bins = 1024;
+
+PsdComponent volume_gauss_as_table(const PsdComponent& g) {
+  PsdComponent c;
+  c.kind = PsdComponent::Kind::table;
+  c.on = g.on;
+  c.basis = PsdBasis::volume;
+  c.min = g.min;
+  c.max = g.max;
+  const double dx = (g.max - g.min) / volume_gauss_bins;
+  for (std::size_t i = 0; i <= volume_gauss_bins; ++i)
+    c.edges.push_back(g.min + dx * static_cast<double>(i));
+  c.edges.back() = g.max;
+  for (std::size_t i = 0; i < volume_gauss_bins; ++i) {
+    c.fractions.push_back(normal_mass((c.edges[i] - g.mean) / g.sd, (c.edges[i + 1] - g.mean) / g.sd));
+  }
+  volume_to_number_fractions(c);
   return c;
 }
 
@@ -221,6 +274,8 @@ PsdComponent parse_gauss(const ComponentParser& p) {
            p.text("max") + "] (accepted: min <= mean <= max)");
   }
   p.check_window(c);
+  c.basis = p.basis(PsdBasis::number);
+  if (c.basis == PsdBasis::volume && c.sd > 0) return volume_gauss_as_table(c);
   return c;
 }
 
@@ -254,8 +309,16 @@ PsdComponent parse_lognormal(const ComponentParser& p) {
     c.mu = std::log(d50);
     c.sigma = std::log(d90 / d10) / (2 * z90());
   }
-  c.min = p.has("min") ? p.size("min") : std::exp(c.mu - lognormal_default_window_sigmas * c.sigma);
-  c.max = p.has("max") ? p.size("max") : std::exp(c.mu + lognormal_default_window_sigmas * c.sigma);
+  // D10/D50/D90 are volume-based unless said otherwise (laser-diffraction data sheets give
+  // them so); median/gsd are number-based. A volume-basis lognormal is the number-basis one
+  // with ln d shifted by 3 sigma^2 (Hatch & Choate 1929): ln d_number = ln d_volume - 3 sigma^2.
+  c.basis = p.basis(by_quantiles ? PsdBasis::volume : PsdBasis::number);
+  const double shift = c.basis == PsdBasis::volume ? 3 * c.sigma * c.sigma : 0;
+  c.mu -= shift;
+  // The default window leaves 5 sigma on both sides of the number and the volume distribution.
+  const double k = lognormal_default_window_sigmas;
+  c.min = p.has("min") ? p.size("min") : std::exp(c.mu - k * c.sigma);
+  c.max = p.has("max") ? p.size("max") : std::exp(c.mu + shift + k * c.sigma);
   p.check_window(c);
   return c;
 }
@@ -323,6 +386,8 @@ PsdComponent parse_table(const ComponentParser& p) {
   for (const double f : c.fractions) sum += f;
   if (!(sum > 0)) p.fail("file '" + path + "': no bin with a fraction > 0");
   for (double& f : c.fractions) f /= sum;
+  c.basis = p.basis(PsdBasis::number);
+  if (c.basis == PsdBasis::volume) volume_to_number_fractions(c);
   return c;
 }
 

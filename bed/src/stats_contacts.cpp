@@ -1,4 +1,4 @@
-// Contact statistics of SPEC.md §2: coordination number, contacts per particle, rattlers, wall
+// Contact statistics of docs/physics.md §2: coordination number, contacts per particle, rattlers, wall
 // contacts, and the largest relative overlap.
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 
 namespace powderbed::bed {
 
-// SPEC.md §2: a pair touches when d_ij <= (r_i + r_j)(1 + tol); Z = 2 contacts / N. A particle
+// docs/physics.md §2: a pair touches when d_ij <= (r_i + r_j)(1 + tol); Z = 2 contacts / N. A particle
 // touches a non-periodic face when its centre is within r (1 + tol) of it (2D: x and y faces).
 // All tolerances are counted in one pass over the cell list built for the largest of them.
 std::vector<ContactStats> contact_stats(const Bed& bed, const std::vector<double>& tolerances) {
@@ -79,7 +79,7 @@ ContactStats contact_stats(const Bed& bed, double tolerance) {
   return contact_stats(bed, std::vector<double>{tolerance}).front();
 }
 
-// SPEC.md §2 overlap check: max over pairs of (r_i + r_j - d) / (r_i + r_j).
+// docs/physics.md §2 overlap check: max over pairs of (r_i + r_j - d) / (r_i + r_j).
 double max_relative_overlap(const Bed& bed) {
   detail::check_pair_index_range(bed, "max_relative_overlap");
   if (bed.n() < 2) return 0.0;

@@ -1,4 +1,4 @@
-// Packing densities of SPEC.md §2: exact spherical caps / circular segments, and the volume of
+// Packing densities of docs/physics.md §2: exact spherical caps / circular segments, and the volume of
 // a sphere inside a box.
 //
 // Sphere ∩ box: a sphere cut on at most one axis is exact (two caps). A sphere cut on two or
@@ -192,7 +192,7 @@ void check_bed(const Bed& bed, const char* what) {
 
 }  // namespace
 
-// SPEC.md §2: exact spherical-cap volume of the slice z0 <= z <= z1.
+// docs/physics.md §2: exact spherical-cap volume of the slice z0 <= z <= z1.
 double sphere_slab_volume(double r, double zc, double z0, double z1) {
   check_radius(r, "sphere_slab_volume");
   check_interval(z0, z1, "sphere_slab_volume");
@@ -200,7 +200,7 @@ double sphere_slab_volume(double r, double zc, double z0, double z1) {
   return b > a ? cap_primitive(r, b) - cap_primitive(r, a) : 0.0;
 }
 
-// SPEC.md §2 (2D): exact circular-segment area of the strip y0 <= y <= y1.
+// docs/physics.md §2 (2D): exact circular-segment area of the strip y0 <= y <= y1.
 double disk_strip_area(double r, double yc, double y0, double y1) {
   check_radius(r, "disk_strip_area");
   check_interval(y0, y1, "disk_strip_area");
@@ -208,7 +208,7 @@ double disk_strip_area(double r, double yc, double y0, double y1) {
   return b > a ? segment_primitive(r, b) - segment_primitive(r, a) : 0.0;
 }
 
-// SPEC.md §2: phi = (particle volume inside the domain box) / (box volume).
+// docs/physics.md §2: phi = (particle volume inside the domain box) / (box volume).
 double packing_density(const Bed& bed) {
   check_bed(bed, "packing_density");
   const Box box = domain_box(bed.domain);
@@ -220,7 +220,7 @@ double packing_density(const Bed& bed) {
   return sum / bed.domain.measure();
 }
 
-// SPEC.md §2 ([GZ] bottom-layer density): particle volume in the layer / layer volume.
+// docs/physics.md §2 ([GZ] bottom-layer density): particle volume in the layer / layer volume.
 double layer_density(const Bed& bed, double z0, double z1) {
   check_bed(bed, "layer_density");
   if (!std::isfinite(z0) || !std::isfinite(z1) || !(z1 > z0)) {
@@ -245,7 +245,7 @@ double layer_density(const Bed& bed, double z0, double z1) {
   return sum / (d.measure() / d.length(axis) * (z1 - z0));
 }
 
-// SPEC.md §2 height profile: layer densities over `bins` equal layers of the domain height.
+// docs/physics.md §2 height profile: layer densities over `bins` equal layers of the domain height.
 Series density_profile(const Bed& bed, std::size_t bins) {
   check_bed(bed, "density_profile");
   if (bins == 0) throw InputError("density_profile: bins is 0 (accepted: >= 1)");

@@ -1,4 +1,4 @@
-// Size and pair distributions of SPEC.md §2: radius histogram against the target PSD, and the
+// Size and pair distributions of docs/physics.md §2: radius histogram against the target PSD, and the
 // radial distribution function g(r).
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 
 namespace powderbed::bed {
 
-// SPEC.md §2 "PSD histogram vs target". A single size (zero-width window) gets the window
+// docs/physics.md §2 "PSD histogram vs target". A single size (zero-width window) gets the window
 // r (1 -+ 0.005) so that it has a bin. With a target PSD the window is the PSD's; radii outside
 // it are not counted, so counts summing to less than N show sizes the PSD cannot produce.
 Histogram radius_histogram(const Bed& bed, std::size_t bins, const Psd* target) {
@@ -53,7 +53,7 @@ Histogram radius_histogram(const Bed& bed, std::size_t bins, const Psd* target) 
   return h;
 }
 
-// SPEC.md §2 g(r): pair counts in shells around the centres at least r_max from every
+// docs/physics.md §2 g(r): pair counts in shells around the centres at least r_max from every
 // non-periodic face, divided by the ideal-gas count (N - 1)/V times the shell measure (so an
 // uncorrelated bed of N particles gives g = 1 without a 1/N bias).
 Series radial_distribution(const Bed& bed, double r_max, std::size_t bins) {

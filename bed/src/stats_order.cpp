@@ -1,4 +1,4 @@
-// Bond-orientational order of SPEC.md §2's contact network (Steinhardt, Nelson & Ronchetti,
+// Bond-orientational order of docs/physics.md §2's contact network (Steinhardt, Nelson & Ronchetti,
 // Phys. Rev. B 28, 784 (1983)), l = 6: tells a random packing from a crystal.
 #include <boost/math/special_functions/spherical_harmonic.hpp>
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Local packing fractions from the radical (Laguerre) tessellation, SPEC.md §2: CGAL regular
+// Local packing fractions from the radical (Laguerre) tessellation, docs/physics.md §2: CGAL regular
 // triangulation of the centres weighted by r^2. The Laguerre cell of a vertex v is bounded by one
 // face per triangulation edge (v, w), the polygon of the weighted circumcentres of the cells
 // around that edge, lying in the radical plane with outward normal n = (w - v)/|w - v|. By the

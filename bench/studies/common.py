@@ -55,8 +55,8 @@ def read_bed(path):
 
 
 def coordination_at_gaps(centres, radii, gaps):
-    """Z = 2 contacts / N (SPEC §2) with a contact when the surface gap d - ri - rj <= g, for each
-    absolute gap g (m) in `gaps`: the raster-bed reading of a contact (SPEC §3: gaps of order h).
+    """Z = 2 contacts / N (docs/physics.md §2) with a contact when the surface gap d - ri - rj <= g, for each
+    absolute gap g (m) in `gaps`: the raster-bed reading of a contact (docs/physics.md §3: gaps of order h).
     Overlapping pairs (negative gap) count as contacts."""
     import numpy as np
     from scipy.spatial import cKDTree

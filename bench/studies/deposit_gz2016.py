@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The paper's deposition ([GZ] §3, SPEC.md §4) from data/scenes/gz2016-deposit.ini, beside the
+"""The paper's deposition ([GZ] §3, docs/physics.md §4) from data/scenes/gz2016-deposit.ini, beside the
 paper's numbers and the LIGGGHTS peer deck; writes docs/results/deposit-gz2016.md and
 docs/results/deposit-gz2016.png. Run with python3 (numpy, h5py, matplotlib):
     POWDERBED_BUILD=build python3 bench/studies/deposit_gz2016.py
@@ -24,7 +24,7 @@ import numpy as np
 from common import ROOT, RESULTS, app, bedstat, read_bed, run_json, write_text
 
 SCENE = os.path.join(ROOT, "data", "scenes", "gz2016-deposit.ini")
-# The peer scripts live in shared/ beside the repository (DESIGN.md: "side by side").
+# The peer scripts live in shared/ beside the repository (docs/architecture.md "Performance habits": side by side).
 PEER = os.path.join(ROOT, "..", "shared", "peers", "gz2016.liggghts")
 LX, LY = 1e-3, 0.5e-3
 SCALES = [1e3, 1e4]  # 1e3 is the default reported; 1e4 shows the sensitivity

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""What keff's accuracy costs (issue 6, SPEC.md §6): Monte-Carlo rays per particle 1e2 … 1e5
+"""What keff's accuracy costs (issue 6, docs/physics.md §6): Monte-Carlo rays per particle 1e2 … 1e5
 against the change in k_eff and the seed-to-seed spread (the view-factor error as k_eff sees it),
 and the Newton tolerance 1e-4 … 1e-12 against the change in k_eff and the wall-flow mismatch,
 each with its wall time; which are the cheapest settings within 1 % of the most accurate.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The [KE] parameter studies with keff (SPEC.md §6, issue 6): bed temperature with and without
+"""The [KE] parameter studies with keff (docs/physics.md §6, issue 6): bed temperature with and without
 radiation, gas-to-solid conductivity ratio, Young's modulus and DEM stiffness, emissivity, bed
 height, polydispersity and consolidation, on steel 1 mm beds made as [KE] made theirs. Writes
 docs/results/keff-parameters.md and keff-parameters.png. Run with python3 (one thread):
@@ -140,7 +140,7 @@ def keff_scene(case="steel-1mm"):
 
 
 def k_air(t):
-    """The [KE] air conductivity of SPEC §6 (W/mK, 175–1900 K)."""
+    """The [KE] air conductivity of docs/physics.md §6 (W/mK, 175–1900 K)."""
     return 6.566e-12 * t ** 3 - 3.386e-8 * t ** 2 + 9.426e-5 * t + 7.505e-4
 
 
@@ -268,8 +268,8 @@ def young_study():
 
 def emissivity_study():
     """k_eff and the radiation share at 1000 and 1500 K (air k_g, seed-1 bed) against the
-    particles' emissivity, with the walls at the same emissivity and at the scene's 0.5 (SPEC's
-    pair formula), and with both at ε in the radiosity model (the grey enclosure)."""
+    particles' emissivity, with the walls at the same emissivity and at the scene's 0.5 (the pair
+    formula of docs/physics.md §6), and with both at ε in the radiosity model (the grey enclosure)."""
     bed = base_bed()
     wall_scene = scene_value(keff_scene(), "radiation", "wall-emissivity")
     rows = []
@@ -537,10 +537,10 @@ def report(temps, ratio, young, emis, heights, psd, cons):
         "seed-1 bed. The seed-to-seed spread of the scene's bed (8 beds) is in "
         "keff-validation.md (Bed generation).",
         "",
-        "**Published values.** SPEC.md §6 records what [KE] found qualitatively (radiation matters "
+        "**Published values.** docs/physics.md §6 records what [KE] found qualitatively (radiation matters "
         "above σT³D/k_g ≈ 0.5; thin beds lose up to half the conductivity; the other studies are "
         "named without results) and no k_eff values of [KE]'s studies, so nothing here is "
-        "compared with a published number; where SPEC states a trend it is set beside ours.",
+        "compared with a published number; where [KE] state a trend it is set beside ours.",
         "",
     ]
     L += temperature_section(temps)
@@ -558,7 +558,7 @@ def temperature_section(temps):
     L = [
         "## 1. Bed temperature, with and without radiation",
         "",
-        "`--temperature T` (walls at T ± 0.5 K), `--gas.model air` (SPEC §6 k_g(T) at each gas "
+        "`--temperature T` (walls at T ± 0.5 K), `--gas.model air` (docs/physics.md §6 k_g(T) at each gas "
         f"link), radiation off and on (`--effects.radiation true --rays {RAYS}`, particles and "
         "walls at ε 0.5 or 0.9), seed-1 beds of steel 1 mm and steel 3.2 mm (its own scenes). "
         "In bold: the temperature where σT³D/k_g(T) = 0.5.",
@@ -601,7 +601,7 @@ def temperature_section(temps):
         "for 1 mm, 300 → 1500 K). Below σT³D/k_g = 0.5 radiation (ε 0.5) adds at most "
         + " and ".join(f"{max((r['runs'][0.5]['k_eff'] / r['runs']['off']['k_eff'] - 1) * 100 for r in rows if r['number'] < 0.5):.0f} %"
                        for rows in groups(temps, "case").values())
-        + " (1 mm, 3.2 mm). [KE] (SPEC §6): radiation matters above σT³D/k_g ≈ 0.5. These are "
+        + " (1 mm, 3.2 mm). [KE] (docs/physics.md §6): radiation matters above σT³D/k_g ≈ 0.5. These are "
         "wall-to-wall values on unconsolidated beds, whose hot wall touches few particles; "
         "radiation also crosses that open top layer, so its share here includes the wall "
         "layer's.",
@@ -645,7 +645,7 @@ def ratio_section(eps_core, rows):
         f"{lo['run']['k_core'] / lo['k_g'] / lo['zbs']:.2f} at {lo['ratio']:g}. k_eff here is "
         f"{lo['run']['k_eff'] / lo['run']['k_core']:.2f}–"
         f"{hi['run']['k_eff'] / hi['run']['k_core']:.2f} of k_core: the unconsolidated bed's "
-        "hot-wall layer. [KE] studied the ratio (SPEC §6) without a stated result "
+        "hot-wall layer. [KE] studied the ratio (docs/physics.md §6) without a stated result "
         "to compare with.",
         "",
     ]
@@ -713,7 +713,7 @@ def young_section(e_nom, k_bed, same, beds):
         "with the geometric radius "
         + ", ".join(f"{v:.4f}" for v in gc)
         + " W/mK: without the correction the contacts grow as the DEM softens. [KE] studied E "
-        "(SPEC §6) without a stated result to compare with.",
+        "(docs/physics.md §6) without a stated result to compare with.",
         "",
     ]
     return L
@@ -725,7 +725,7 @@ def emissivity_section(wall_scene, rows):
         "",
         f"Seed-1 bed at 1000 and 1500 K (walls T ± 0.5 K), air k_g(T), {RAYS} rays (the same "
         "view factors for every ε: `radiation.seed` 1). 'Particles and walls': both at ε; "
-        f"'particles': walls at the scene's {wall_scene:g}. SPEC's pair formula, and the "
+        f"'particles': walls at the scene's {wall_scene:g}. The pair formula of docs/physics.md §6, and the "
         "radiosity model (`--radiation.model radiosity`: the grey enclosure, one radiosity node "
         "per surface, docs/keff.md) with particles and walls at ε.",
         "",
@@ -753,13 +753,13 @@ def emissivity_section(wall_scene, rows):
             f"{hi['radiosity']['share']['radiation']:.2f})")
     L += [
         "",
-        "**Findings.** " + ". ".join(find) + ". SPEC's pair formula 1/G = (1−ε)/(εA_i) + "
+        "**Findings.** " + ". ".join(find) + ". The pair formula of docs/physics.md §6 1/G = (1−ε)/(εA_i) + "
         "1/(A_i F_ij) + (1−ε)/(εA_j) adds each sphere's whole surface resistance to every one of "
         "its ~10 links, but with F_ij ≈ 0.1 the space term 1/(A F_ij) dominates until ε is "
         "small, and a wall's surface resistance is charged over each particle's area rather "
         "than the wall's (docs/keff.md). In the grey enclosure a sphere's ε acts only where it "
         "trades heat between conduction and radiation, and the walls' ε over their whole area. "
-        "[KE] studied ε 0.1–1 (SPEC §6) without a stated result to compare with.",
+        "[KE] studied ε 0.1–1 (docs/physics.md §6) without a stated result to compare with.",
         "",
     ]
     return L
@@ -809,7 +809,7 @@ def height_section(rows):
         "the open top layer, they are smoother. At 1 D the insertion stops with "
         f"{statistics.mean(r['cold']['particles'] for r in g[1]):.0f} spheres, an incomplete "
         "monolayer whose spheres each reach both walls, so its k_eff is not that of a thin "
-        "bed. [KE] (SPEC §6): thin beds lose up to half the conductivity; ours, relative to "
+        "bed. [KE] (docs/physics.md §6): thin beds lose up to half the conductivity; ours, relative to "
         f"10 D: {rel[2]:.2f} at 2 D and {rel[3]:.2f} at 3 D at 300 K, {rel_hot[2]:.2f} and "
         f"{rel_hot[3]:.2f} at 1000 K with radiation.",
         "",
@@ -882,7 +882,7 @@ def psd_section(rows):
         f"{box_porosity(g[top]) - box_porosity(g[0.0]):+.3f}. The seed-to-seed σ of "
         f"k_eff on the monodisperse bed is {seed_spread()} of its mean (keff-validation.md, "
         "Bed generation): read a trend in k_eff against it. [KE] studied σ/D up "
-        "to 0.5 (SPEC §6) without a stated result to compare with.",
+        "to 0.5 (docs/physics.md §6) without a stated result to compare with.",
         "",
     ]
     return L

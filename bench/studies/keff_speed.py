@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""keff's speed against the issue-6 targets (SPEC.md §6): the 1,100-particle [KE] validation bed
+"""keff's speed against the issue-6 targets (docs/physics.md §6): the 1,100-particle [KE] validation bed
 with radiation at the default ray count (the scene's, 100 per particle) in under 5 s, a 100,000-particle bed in under
 2 minutes. Whole-process wall time, keff's own `wall_time` and peak memory (/usr/bin/time -v) at
 1 and 2 OpenMP threads, radiation off and on, medians of 3 runs; beds of 1.1e3, 1e4 and 1e5
@@ -304,7 +304,7 @@ def findings(beds, rows, prof, loads):
            "NOT identical at 1 and 2 threads: see the table."))
     out.append(
         "- **No peer program here.** [KE] ran MFiX-DEM, which is not installed on this machine, "
-        "and SPEC.md §6 gives no cost of [KE]'s runs, so no ratio against a peer is given: the "
+        "and docs/physics.md §6 gives no cost of [KE]'s runs, so no ratio against a peer is given: the "
         "numbers above stand against the issue's targets only.")
     return out
 

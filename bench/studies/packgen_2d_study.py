@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""Reproduces the 2D study of Luberto & de Payrebrune (SPEC.md §3 table) with packgen.
+"""Reproduces the 2D study of Luberto & de Payrebrune (docs/physics.md §3 table) with packgen.
 
 --samples per paper case (seeds 1..N; the paper: 100) on the 4.0 x 4.0 um square with the raster
 collision grid of spacing h = 0.015 um and packgen's 2D defaults; the diameter reading of the Gauss
 window with --alt-samples; then one-at-a-time sensitivity runs (--sens-samples seeds each) over
 tries, directions, max-failures and retire-after. Coordination is counted on the written beds at
-absolute surface gaps of order h (SPEC §3). Writes docs/results/packgen-2d-study.md and .png.
+absolute surface gaps of order h (docs/physics.md §3). Writes docs/results/packgen-2d-study.md and .png.
 Usage: POWDERBED_BUILD=build bench/studies/packgen_2d_study.py [--samples N] [--alt-samples N]
        [--sens-samples N]
 """
@@ -25,12 +25,12 @@ MONO = "mono:r=0.075e-6"
 GAUSS_RADIUS = "gauss:mean=0.075e-6,sd=0.0375e-6,min=0.015e-6,max=0.15e-6,on=radius"
 # The paper's text also calls the window a diameter window: radii in [0.0075, 0.075] um.
 GAUSS_DIAMETER_WINDOW = "gauss:mean=0.075e-6,sd=0.0375e-6,min=0.0075e-6,max=0.075e-6,on=radius"
-# Contacts in a raster bed: surface gap d - ri - rj <= g with g of order h (SPEC §3). The table
+# Contacts in a raster bed: surface gap d - ri - rj <= g with g of order h (docs/physics.md §3). The table
 # shows g = h, sqrt(2) h (the diagonal of a grid cell) and 2 h; "strict" is packgen's tol 1e-6.
 GAPS = [("h", 1.0), ("√2 h", math.sqrt(2)), ("2 h", 2.0)]
 SCAN = [0.1 * k for k in range(31)]  # g / h for the tolerance scan, 0 .. 3 h
 
-PAPER = {  # particles, density, coordination ranges of SPEC §3
+PAPER = {  # particles, density, coordination ranges of docs/physics.md §3
     ("mono", 0): ((500, 520), (0.55, 0.57), (1.8, 2.1)),
     ("mono", 1): ((560, 580), (0.62, 0.64), (3.25, 3.45)),
     ("gauss", 0): ((325, 425), (0.42, 0.52), (1.3, 1.5)),

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """3D beds from packgen: density, coordination, time and KS distance for each approach.
 
-Scenes (SPEC §3, issue 3 "3D beds"): a monodisperse cube of 20 diameters (r = 0.5) and a powder
+Scenes (docs/physics.md §3, issue 3 "3D beds"): a monodisperse cube of 20 diameters (r = 0.5) and a powder
 layer 1.0 x 0.5 x 0.1 mm with the truncated Gaussian (diameters mean 30 um, sd 5 um, [20, 40] um)
-and the bimodal mix of SPEC §1, every run in fill mode (default --tries 1000 --max-failures 100).
+and the bimodal mix of docs/physics.md §1, every run in fill mode (default --tries 1000 --max-failures 100).
 Approaches 0, 1, 2, 3 with --site-order random, and 3 with --site-order lowest. Then the
 retirement rule (--retire-after 32 / 256 / 0 = never) for approaches 1, 2 and 3 random on the
 monodisperse cube: does retirement stop those runs early?
@@ -73,7 +73,7 @@ def main():
         lines += ["", f"Never retiring raises the density by at most {gain:.4f} and makes the runs {slow:.1f}× slower or",
                   "more, so the retirement rule is not what keeps these approaches loose and the default stays 32.",
                   "The densities are those of the rules themselves: a 1-contact sphere touches one particle (Z = 2,",
-                  "a loose random aggregate near the random-sequential-addition limit 0.384 of SPEC §3), a 2-contact",
+                  "a loose random aggregate near the random-sequential-addition limit 0.384 of docs/physics.md §3), a 2-contact",
                   "one two (Z ≈ 4), and 3-contact at random sites fills holes high in the bed before low ones, which",
                   "the lowest-site order avoids (φ 0.58, Z ≈ 6)."]
     lines += ["", f"Whole script: {time.perf_counter() - start:.0f} s.", ""]

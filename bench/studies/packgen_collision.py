@@ -2,7 +2,7 @@
 """Accuracy costs time (issue 3): packgen's raster collision grid at several spacings h against
 the exact back-ends (grid, kdtree), and the contact approaches against each other.
 
-Cases: the paper's 2D square (4.0 x 4.0 um, r = 0.075 um mono and the truncated Gauss of SPEC §3)
+Cases: the paper's 2D square (4.0 x 4.0 um, r = 0.075 um mono and the truncated Gauss of docs/physics.md §3)
 and a small 3D cube of 10 diameters (mono r = 0.075 um). packgen's defaults otherwise. --seeds
 per row (seeds 1..N): the counts are means, the wall time (packgen's own placement time) the
 median. Writes docs/results/packgen-collision.md and packgen-collision.png.
@@ -126,7 +126,7 @@ def main():
         f"{args.seeds} seeds per row (1..{args.seeds}): counts are means, the wall time is the "
         "median of packgen's placement time (`wall_time` of `--json`, file writing excluded). "
         "packgen defaults otherwise (`--tries 1000`, `--max-failures 100`, `--retire-after 32`, "
-        "`--directions` 10 in 2D and 16 in 3D). Z strict counts contacts at tol 1e-6 (SPEC §2); "
+        "`--directions` 10 in 2D and 16 in 3D). Z strict counts contacts at tol 1e-6 (docs/physics.md §2); "
         "Z gap ≤ h at a surface gap of at most the row's raster spacing (0.015 µm, the paper's, "
         "for the exact back-ends). Largest overlap: the largest (ri + rj − d) / (ri + rj) "
         "(`max_relative_overlap`, the same as bedstat's `max_overlap`). Refused valid / accepted "

@@ -239,7 +239,7 @@ def report(rows, scenes, have_gengeo, elapsed):
         f"this run took {elapsed:.0f} s). One core; times are packgen's own `wall_time` (placement only, not",
         "file output) and GenGeo's `generatePacking` call; medians of 3 seeds / 3 runs.",
         "",
-        "Rule: `packgen --dim 3 --approach 3 --site-order lowest` (SPEC §3 3-contact, lowest free site first:",
+        "Rule: `packgen --dim 3 --approach 3 --site-order lowest` (docs/physics.md §3 3-contact, lowest free site first:",
         "Bennett 1972 / Visscher–Bolsterli 1972 growth on the floor; packgen/include/powderbed/packgen/site_heap.hpp).",
         "",
         "Order parameter: Steinhardt bond order with l = 6, bonds = contacts at relative tolerance 1e-6;",

@@ -8,7 +8,7 @@ from common import ROOT, app, run_json
 SCENE = os.path.join(ROOT, "data", "scenes", "gz2016-sinter.ini")
 DEPOSIT_SCENE = os.path.join(ROOT, "data", "scenes", "gz2016-deposit.ini")
 WORK = os.path.join(ROOT, "out", "studies")
-# [GZ] 2016, SPEC.md §5: melt pool (height, width, depth) in um on the plane x = Lx/2.
+# [GZ] 2016, docs/physics.md §5: melt pool (height, width, depth) in um on the plane x = Lx/2.
 PAPER_MODEL = (30.0, 85.0, 20.0)
 PAPER_EXPERIMENT = (26.0, 75.0, 30.0)
 

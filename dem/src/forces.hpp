@@ -1,5 +1,5 @@
 #pragma once
-// The force loop, composed at compile time from the scene's effects (DESIGN.md "House style":
+// The force loop, composed at compile time from the scene's effects (docs/architecture.md "House style":
 // a template over the chosen set, dispatched once; no per-contact test of a switch). Each
 // contact force is computed once per pair (half neighbour list) from constants tabulated at the
 // list build, and the forces on a particle are summed in one fixed order (body forces, walls,
@@ -137,7 +137,7 @@ void tabulate_contacts(ContactTables& t, const ForceArrays& a, const ForceParams
   }
 }
 
-// Contact of particle i with face (Axis, Side) of the box (SPEC §4: the scene's law with
+// Contact of particle i with face (Axis, Side) of the box (docs/physics.md §4: the scene's law with
 // R* = r_i, m* = m_i), added to f. Axis and side are compile-time, so position, velocity and
 // force stay in registers.
 template <unsigned E, class Law, int Axis, int Side>
@@ -254,7 +254,7 @@ void collect_contacts(const ForceArrays& a, const ForceParams& p, const ContactT
   }
 }
 
-// Pass 2: the force on the lower index i of each contact (j gets -F), SPEC §4: the scene's law
+// Pass 2: the force on the lower index i of each contact (j gets -F), docs/physics.md §4: the scene's law
 // (Hertz or linear) with the zeta damping along n = (x_j - x_i) / d, sliding friction on the tangential velocity. A plain
 // function of restrict-qualified arrays, which the compiler vectorises (it does not through the
 // buffer's members).
@@ -330,7 +330,7 @@ void body_forces(const ForceArrays& a, const ForceParams& p, std::size_t begin, 
 // contacts a particle in a dense bed) stays in the L2 cache between the passes.
 constexpr std::size_t kContactBlock = 256;
 
-// Forces on every particle (SPEC §4), summed in one fixed order for any thread count: body
+// Forces on every particle (docs/physics.md §4), summed in one fixed order for any thread count: body
 // forces, walls, then the particle's pairs in NeighbourList's incident order.
 template <unsigned E, class Law>
 void compute_forces(const ForceArrays& a, const ForceParams& p, const NeighbourList& list,

@@ -1,5 +1,5 @@
 #pragma once
-// Verlet neighbour list built from a cell list (SPEC §4 "neighbour search by binning"): a half
+// Verlet neighbour list built from a cell list (docs/physics.md §4 "neighbour search by binning"): a half
 // list, each pair (i, j) within r_i + r_j + skin once, under its lower index i, so each contact
 // force is computed once. For a deterministic parallel sum each particle also gets its incident
 // pairs in a fixed order (the pairs under lower indices, by that index, then its own), the order

@@ -1,6 +1,6 @@
 #pragma once
 // The scene's normal contact law (scene.hpp ContactLaw) behind one compile-time interface, so
-// that the force loop is instantiated once per law (DESIGN.md "House style": composed at start,
+// that the force loop is instantiated once per law (docs/architecture.md "House style": composed at start,
 // no per-contact test of the law). Each adaptor forwards to its kernel header.
 #include <cmath>
 

@@ -1,4 +1,4 @@
-// The deposition run of SPEC.md §4: set-up, the once-only dispatch to a loop specialised for the
+// The deposition run of docs/physics.md §4: set-up, the once-only dispatch to a loop specialised for the
 // scene's effects, velocity Verlet and classic RK4 steps, rest detection, snapshots.
 #include "powderbed/dem/solver.hpp"
 

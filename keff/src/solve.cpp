@@ -9,7 +9,7 @@
 // σ G_r (T_h² + T_c²)(T_h + T_c) (gas links that follow temperature: k_g at the mean wall
 // temperature); then Newton on the particles' net heat flows R(T) = 0 with the analytic
 // Jacobian (∂/∂T_i of σ G_r T_i⁴ is 4σ G_r T_i³). That Jacobian scales column j by 4σ G_r T_j³
-// (and a gas link whose k_g follows its mean temperature, SPEC.md §6's air polynomial, adds
+// (and a gas link whose k_g follows its mean temperature, docs/physics.md §6's air polynomial, adds
 // k_g'(T̄)/2 (T_j − T_i) to both slopes), so it is not symmetric: each step is solved by
 // Jacobi-preconditioned BiCGSTAB (Eigen), CG's nonsymmetric sibling. A step that does not lower
 // the residual is halved (backtracking), so a poor start cannot make Newton diverge.

@@ -1,4 +1,4 @@
-// Validation and parsing of the packing options (SPEC.md §3).
+// Validation and parsing of the packing options (docs/physics.md §3).
 #include <algorithm>
 #include <cmath>
 #include <sstream>

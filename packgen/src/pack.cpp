@@ -1,4 +1,4 @@
-// The placement loop of SPEC.md §3: sizes from the PSD, n_T tries per size, 0/1/2/3-contact
+// The placement loop of docs/physics.md §3: sizes from the PSD, n_T tries per size, 0/1/2/3-contact
 // candidates, one collision back-end. The loop is a template over the back-end, dispatched
 // once in pack(), so no test in the hot loop goes through a virtual call.
 #include <algorithm>
@@ -52,7 +52,7 @@ constexpr std::size_t kCoverTests = 4;
 constexpr double kSiteSlab = 1.0 / 32;
 constexpr std::size_t kMaxSiteSlabs = std::size_t{1} << 20;
 
-// Containment tolerance (SPEC §3 "every particle lies fully inside"): 1e-12 relative to the
+// Containment tolerance (docs/physics.md §3 "every particle lies fully inside"): 1e-12 relative to the
 // radius and the coordinate, so centres computed to touch a wall are not refused for rounding.
 constexpr double kInsideTolerance = 1e-12;
 
@@ -257,7 +257,7 @@ void Packer<Backend>::place(const Vec3& c, double r) {
 }
 
 // The free sites of a new particle i: every pair (q1, q2) of its partners in reach of each
-// other, both mirror solutions of the trilateration (SPEC §3 3-contact). A site is kept when
+// other, both mirror solutions of the trilateration (docs/physics.md §3 3-contact). A site is kept when
 // it is inside and free for the smallest size, or failing that the largest. Any particle
 // overlapping a centre at r_i + r from i lies within r_i + r_j + 2 r of i, i.e. in the
 // partner list, so the filter is exact without the grid; sites are only ever covered later,
@@ -270,7 +270,7 @@ void Packer<Backend>::place(const Vec3& c, double r) {
 // sorted by gap so the free test meets the likeliest blocker (a contact of i) first.
 template <class Backend>
 void Packer<Backend>::find_sites(std::uint32_t i) {
-  // Partners (SPEC §3 2-contact reach for the largest size), relative to c_i, with their gaps;
+  // Partners (docs/physics.md §3 2-contact reach for the largest size), relative to c_i, with their gaps;
   // sorted by gap through a light (gap, code, index) key.
   const Vec3 ci{p_.x[i], p_.y[i], p_.z[i]};
   const double ri = p_.r[i];
@@ -509,7 +509,7 @@ void Packer<Backend>::retire(std::uint32_t s) {
   ++result_.retired;
 }
 
-// Fisher–Yates over 0..K-1 (SPEC §3: "evenly spaced angles shuffled").
+// Fisher–Yates over 0..K-1 (docs/physics.md §3: "evenly spaced angles shuffled").
 template <class Backend>
 void Packer<Backend>::shuffle_order() {
   for (std::size_t k = 0; k < order_.size(); ++k) order_[k] = static_cast<int>(k);
@@ -553,7 +553,7 @@ bool Packer<Backend>::compatible(std::int64_t a, std::int64_t b, double r) const
 }
 
 // Partners of s for a new particle of radius r: particles with centre distance <= r_s + r_j + 2r
-// (SPEC §3 2-contact) and walls within r_s + 2r, found through the exact grid.
+// (docs/physics.md §3 2-contact) and walls within r_s + 2r, found through the exact grid.
 template <class Backend>
 void Packer<Backend>::gather_partners(std::uint32_t s, double r) {
   near_.clear();

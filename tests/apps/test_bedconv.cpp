@@ -1,4 +1,4 @@
-// bedconv end to end (DESIGN.md "Command-line programs"): converts by extension, refuses bad
+// bedconv end to end (docs/architecture.md "Command-line programs"): converts by extension, refuses bad
 // input with exit status 2 and one line on stderr.
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -97,3 +97,27 @@ TEST_F(BedstatTest, MalformedPsdIsExit2WithOneLine) {
 }
 
 }  // namespace
+
+TEST_F(BedstatTest, DiameterQuantilesOnBothBases) {
+  // Nine 10 um particles and one 30 um one. By number D10 = D50 = D90 = 10 um (9 of 10 are
+  // small); by volume the big one holds 27 of the 36 volume units, so D10 = 10 um (the small ones
+  // reach 0.25 of the volume) and D50 = D90 = 30 um.
+  powderbed::bed::Bed b;
+  b.domain.upper = {4e-4, 4e-4, 4e-4};
+  for (int i = 0; i < 9; ++i) b.add(2e-5 + 3e-5 * i, 2e-5, 2e-5, 5e-6);
+  b.add(2e-4, 2e-4, 2e-4, 1.5e-5);
+  const std::string path = dir_ + "/two_sizes.h5";
+  powderbed::bed::write_bed_h5(b, path);
+  const auto r = run_app("bedstat", path + " --json --psd lognormal:d10=20e-6,d50=30e-6,d90=45e-6");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"diameter_quantiles\":{\"number\":{\"d10\":1e-05,\"d50\":1e-05,\"d90\":1e-05},"
+                       "\"volume\":{\"d10\":1e-05,\"d50\":3e-05,\"d90\":3e-05}}"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("\"psd_basis\":\"volume\""), std::string::npos) << r.out;  // the d-form default
+  const auto table = run_app("bedstat", path + " --psd gauss:mean=30e-6,sd=5e-6,min=20e-6,max=40e-6");
+  ASSERT_EQ(table.status, 0) << table.err;
+  EXPECT_NE(table.out.find("D50 diameter, volume basis (m)"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("D50 diameter, number basis (m)"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("--psd basis"), std::string::npos) << table.out;
+}

@@ -1,5 +1,5 @@
 // The hostile-but-fair probe of issue 14 as a table (docs/hardening.md): each case runs one
-// program on one bad input and checks the promise of DESIGN.md "Command-line programs": exit 2
+// program on one bad input and checks the promise of docs/architecture.md "Command-line programs": exit 2
 // (or the status the case names), ONE line on stderr naming the option/file/field, nothing on
 // stdout, and the scratch folder exactly as it was (no output, no temporary, every existing file
 // byte for byte). Files are made on demand: "@name" in a command is a file of the scratch folder

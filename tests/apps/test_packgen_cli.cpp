@@ -1,4 +1,4 @@
-// packgen end to end (SPEC.md §3, DESIGN.md "Command-line programs"): --json keys, bad input
+// packgen end to end (docs/physics.md §3, docs/architecture.md "Command-line programs"): --json keys, bad input
 // exits 2 with one line, an unreachable --target-density still writes the bed (exit 0).
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Bed file I/O (DESIGN.md "The bed file"): round trips, foreign formats, refusal of bad input
+// Bed file I/O (docs/bed-format.md): round trips, foreign formats, refusal of bad input
 // with one line naming file and field, and atomic writes.
 #include <gtest/gtest.h>
 #include <unistd.h>

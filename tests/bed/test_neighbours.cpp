@@ -1,4 +1,4 @@
-// Neighbour search (SPEC.md §2): cell list, kd-tree and brute force agree exactly with each other
+// Neighbour search (docs/physics.md §2): cell list, kd-tree and brute force agree exactly with each other
 // and with an independent minimum-image reference written here, on random polydisperse beds.
 #include <gtest/gtest.h>
 

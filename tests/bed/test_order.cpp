@@ -1,4 +1,4 @@
-// Bond-orientational order q6 (SPEC.md §2 statistics) against the closed-form lattice values.
+// Bond-orientational order q6 (docs/physics.md §2 statistics) against the closed-form lattice values.
 #include <gtest/gtest.h>
 
 #include <cmath>

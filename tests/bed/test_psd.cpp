@@ -1,4 +1,4 @@
-// Particle size distributions (SPEC.md §1): parsing, analytic moments, sampling, KS distance,
+// Particle size distributions (docs/physics.md §1): parsing, analytic moments, sampling, KS distance,
 // error messages.
 #include <gtest/gtest.h>
 
@@ -8,6 +8,7 @@
 #include <fstream>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "powderbed/bed/errors.hpp"
@@ -23,7 +24,7 @@ using powderbed::bed::SizeVariable;
 
 const std::string table_path = std::string(POWDERBED_TEST_DATA) + "/psd_table.csv";
 
-// [GZ] Table 3 bimodal bed (SPEC §1), as written in the issue.
+// [GZ] Table 3 bimodal bed (docs/physics.md §1), as written in the issue.
 const std::string bimodal =
     "gauss:mean=30e-6,sd=5e-6,min=20e-6,max=40e-6,count=550+"
     "gauss:mean=8e-6,sd=2e-6,min=4e-6,max=12e-6,count=3000";
@@ -336,7 +337,7 @@ TEST(Psd, QuantileInvertsTheCdf) {
 TEST(Psd, D10D50D90FitReproducesItsQuantiles) {
   // z90 = Phi^-1(0.9); sigma = ln(d90/d10) / (2 z90), mu = ln d50.
   const double z90 = 1.2815515655446004;
-  const Psd psd = Psd::parse("lognormal:d10=15e-6,d50=30e-6,d90=60e-6");
+  const Psd psd = Psd::parse("lognormal:d10=15e-6,d50=30e-6,d90=60e-6,basis=number");
   const auto& c = psd.components()[0];
   EXPECT_NEAR(c.mu, std::log(30e-6), 1e-12);
   EXPECT_NEAR(c.sigma, std::log(4.0) / (2 * z90), 1e-12);
@@ -347,7 +348,7 @@ TEST(Psd, D10D50D90FitReproducesItsQuantiles) {
   EXPECT_NEAR(psd.cdf_radius(30e-6), 0.9, 1e-6);
   // Skewed input: the median exactly, d10 and d90 by their geometric mean ratio (the least-
   // squares fit with mu pinned by d50 splits the misfit equally between them).
-  const Psd skew = Psd::parse("lognormal:d10=10e-6,d50=30e-6,d90=60e-6");
+  const Psd skew = Psd::parse("lognormal:d10=10e-6,d50=30e-6,d90=60e-6,basis=number");
   EXPECT_NEAR(skew.cdf_radius(15e-6), 0.5, 1e-6);
   const auto& s = skew.components()[0];
   const double q10 = std::exp(s.mu - z90 * s.sigma), q90 = std::exp(s.mu + z90 * s.sigma);
@@ -474,3 +475,121 @@ TEST(Psd, MalformedTableFilesNameFileAndLine) {
 }
 
 }  // namespace
+
+namespace {
+
+double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
+
+// Asymptotic sd of the volume-weighted sample q-quantile of N diameters from a lognormal with
+// number parameters mu, sigma (ln d). The weighted quantile m solves sum w_i (1{d_i <= m} - q)
+// = 0 with w = d^3; as an M-estimator its variance is E[w^2 (1{d <= m} - q)^2] / (N (dG/dm)^2)
+// with G(m) = E[w 1{d <= m}], dG/dm = w(m) f_n(m) = E[w] f_v(m), f_v the volume density.
+// Lognormal partial moments: E[d^k 1{d <= m}] = exp(k mu + k^2 sigma^2 / 2) Phi((ln m - mu -
+// k sigma^2) / sigma).
+double weighted_quantile_sd(double mu, double sigma, double q, double m, std::size_t n) {
+  const auto moment = [&](int k) { return std::exp(k * mu + 0.5 * k * k * sigma * sigma); };
+  const auto below = [&](int k) {
+    return moment(k) * normal_cdf((std::log(m) - mu - k * sigma * sigma) / sigma);
+  };
+  const double numerator = (1 - q) * (1 - q) * below(6) + q * q * (moment(6) - below(6));
+  const double mu_v = mu + 3 * sigma * sigma;
+  const double z = (std::log(m) - mu_v) / sigma;
+  const double f_v = std::exp(-0.5 * z * z) / (m * sigma * std::sqrt(2 * M_PI));
+  return std::sqrt(numerator / static_cast<double>(n)) / (moment(3) * f_v);
+}
+
+}  // namespace
+
+TEST(PsdBasis, VolumeD10D50D90AreTheVolumeQuantilesOfTheSample) {
+  // A 20-45 um powder as its data sheet gives it (laser diffraction: volume basis, the
+  // default), log-symmetric (20 x 45 = 30^2) so the fit passes through all three values.
+  const Psd psd = Psd::parse("lognormal:d10=20e-6,d50=30e-6,d90=45e-6");
+  const auto& c = psd.components()[0];
+  EXPECT_EQ(c.basis, powderbed::bed::PsdBasis::volume);
+  // Hatch-Choate: the number median lies 3 sigma^2 below the volume median in ln d.
+  EXPECT_NEAR(c.mu, std::log(30e-6) - 3 * c.sigma * c.sigma, 1e-12);
+  const std::size_t n = 20000;  // fixed seed
+  const auto radii = draw(psd, n, 41);
+  for (const auto& [q, d] : {std::pair{0.1, 20e-6}, std::pair{0.5, 30e-6}, std::pair{0.9, 45e-6}}) {
+    const double sample =
+        powderbed::bed::sample_diameter_quantile(radii, q, powderbed::bed::PsdBasis::volume);
+    // 4 sd of the weighted quantile (0.13 um at D50 here): a seed this far off happens with
+    // probability 6e-5, while reading the values by number (the old behaviour) puts the volume
+    // D50 at 30 exp(3 sigma^2) = 40.5 um, 80 sd away. The 5-sigma windows move the quantiles
+    // by less than 1e-6 relative.
+    const double sd = weighted_quantile_sd(c.mu, c.sigma, q, d, n);
+    EXPECT_NEAR(sample, d, 4 * sd) << "q = " << q << ", sd = " << sd;
+    EXPECT_LT(4 * sd, 0.05 * d);  // the test resolves the basis (a 3 sigma^2 = 0.30 shift in ln d)
+  }
+}
+
+TEST(PsdBasis, NumberBasisIsTheOldReading) {
+  const Psd psd = Psd::parse("lognormal:d10=20e-6,d50=30e-6,d90=45e-6,basis=number");
+  const auto& c = psd.components()[0];
+  const double z90 = 1.2815515655446004;
+  EXPECT_EQ(c.mu, std::log(30e-6));  // exactly the fit of before: mu = ln d50
+  EXPECT_NEAR(c.sigma, std::log(45.0 / 20.0) / (2 * z90), 1e-15);
+  // The number median of a sample: sd = sqrt(q (1 - q) / N) / f_n(m) = m sigma sqrt(2 pi) /
+  // (2 sqrt N) (0.14 um for N = 20000); 4 sd.
+  const std::size_t n = 20000;
+  const double d50 = powderbed::bed::sample_diameter_quantile(draw(psd, n, 43), 0.5,
+                                                              powderbed::bed::PsdBasis::number);
+  const double sd = 30e-6 * c.sigma * std::sqrt(2 * M_PI) / (2 * std::sqrt(double(n)));
+  EXPECT_NEAR(d50, 30e-6, 4 * sd);
+  // Forms that were number-based stay so, and an explicit basis=number changes no draw.
+  for (const std::string& spec : std::vector<std::string>{
+           "gauss:mean=30e-6,sd=5e-6,min=20e-6,max=40e-6", "lognormal:median=30e-6,gsd=1.4",
+           "table:file=" + table_path, "mono:d=30e-6"}) {
+    EXPECT_EQ(Psd::parse(spec).components()[0].basis, powderbed::bed::PsdBasis::number) << spec;
+    EXPECT_EQ(draw(Psd::parse(spec), 100, 3), draw(Psd::parse(spec + ",basis=number"), 100, 3))
+        << spec;
+  }
+}
+
+TEST(PsdBasis, VolumeTableBinsBecomeNumberFractions) {
+  // Two bins [10, 20] and [20, 30] um with half the volume each. Uniform by number within a
+  // bin, E[d^3] = (b^4 - a^4) / (4 (b - a)): 3750 and 16250 um^3, so the number fractions are
+  // 16250 : 3750, i.e. 0.8125 in the first bin.
+  const std::string dir = std::filesystem::temp_directory_path() / "powderbed_psd_volume_table";
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/t.csv";
+  std::ofstream(path) << "edge_low,edge_high,fraction\n10e-6,20e-6,0.5\n20e-6,30e-6,0.5\n";
+  const Psd psd = Psd::parse("table:file=" + path + ",basis=volume");
+  EXPECT_NEAR(psd.cdf_radius(10e-6), 0.8125, 1e-12);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(PsdBasis, VolumeGaussIsTheVolumeDensity) {
+  // gauss on the volume basis: the volume-weighted mean diameter sum d^4 / sum d^3 of a sample
+  // is the mean of the (symmetric, so untruncated) normal, 30 um. Its sampling sd comes from the
+  // sample itself (delta method for a ratio of means: 0.036 um here); 4 sd. Read by number
+  // instead the volume-weighted mean is 31.85 um, 50 sd away.
+  const Psd psd = Psd::parse("gauss:mean=30e-6,sd=5e-6,min=20e-6,max=40e-6,basis=volume");
+  const std::size_t n = 20000;
+  const auto radii = draw(psd, n, 47);
+  double a = 0, b = 0;
+  for (const double r : radii) {
+    a += std::pow(2 * r, 4);
+    b += std::pow(2 * r, 3);
+  }
+  const double mean = a / b;
+  double var = 0;
+  for (const double r : radii) {
+    const double d = 2 * r;
+    var += std::pow(std::pow(d, 4) - mean * std::pow(d, 3), 2);
+  }
+  const double sd = std::sqrt(var / double(n)) / (b / double(n)) / std::sqrt(double(n));
+  EXPECT_NEAR(mean, 30e-6, 4 * sd) << "sd = " << sd;
+  EXPECT_LT(4 * sd, 1e-6);
+  EXPECT_EQ(psd.min_radius(), 10e-6);
+  EXPECT_EQ(psd.max_radius(), 20e-6);
+}
+
+TEST(PsdBasis, UnknownBasisIsRefused) {
+  try {
+    Psd::parse("mono:d=30e-6,basis=mass");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("accepted: number, volume"), std::string::npos) << e.what();
+  }
+}

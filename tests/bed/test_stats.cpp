@@ -1,4 +1,4 @@
-// Bed statistics of SPEC.md §2 against closed forms: caps, lattices, crafted contacts, g(r) of
+// Bed statistics of docs/physics.md §2 against closed forms: caps, lattices, crafted contacts, g(r) of
 // an uncorrelated bed, and Laguerre cells of lattices.
 #include <gtest/gtest.h>
 

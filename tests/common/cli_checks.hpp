@@ -1,5 +1,5 @@
 #pragma once
-// The bad-input check of the end-to-end tests (DESIGN.md: exit 2, one line naming the problem,
+// The bad-input check of the end-to-end tests (docs/architecture.md "Command-line programs": exit 2, one line naming the problem,
 // no partial output): shared by the programs that write into a scratch folder.
 #include <gtest/gtest.h>
 

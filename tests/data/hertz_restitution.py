@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Restitution coefficient of the Hertz + zeta-damping contact of SPEC.md section 4, computed
+"""Restitution coefficient of the Hertz + zeta-damping contact of docs/physics.md §4, computed
 independently of the library (used once to write tests/data/hertz_restitution.csv).
 
 Contact law: m x'' = -max(0, K x^(3/2) + c x'),  K = 4/3 E* sqrt(R*),
@@ -45,7 +45,7 @@ if __name__ == "__main__":
         e2, t2 = restitution(z, h / 2)
         worst = max(worst, abs(e1 - e2))
         rows.append((z, e2, t2))
-    print("# e(zeta) of the Hertz + zeta-damping normal contact (SPEC.md section 4), independent of "
+    print("# e(zeta) of the Hertz + zeta-damping normal contact (docs/physics.md §4), independent of "
           "the library: dimensionless ODE X''=-max(0,X^1.5+2*sqrt(1.5)*zeta*X^0.25*X'), X(0)=0, "
           "X'(0)=1, classic RK4 at h=%g; halving h changes e by at most %.1e; made by "
           "tests/data/hertz_restitution.py (python3). tau_c: contact time in units of "

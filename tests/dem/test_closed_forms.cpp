@@ -1,4 +1,4 @@
-// Verification of the deposition solver against closed forms (SPEC.md §4, issue 4): rebound
+// Verification of the deposition solver against closed forms (docs/physics.md §4, issue 4): rebound
 // height, restitution coefficient, Hertz contact time, Stokes settling, floor force of a column.
 #include <gtest/gtest.h>
 

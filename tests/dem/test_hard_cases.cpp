@@ -1,6 +1,6 @@
 // Hard cases of the deposition solver (issue 4 "Hard cases are tests"): a full-stiffness settle
 // with the automatic step, the bimodal 4 um / 40 um mix against the floor, a settled bed held
-// for 1e6 steps, and friction at rest. Bounds come from Hertz (SPEC.md §4): a contact holding a
+// for 1e6 steps, and friction at rest. Bounds come from Hertz (docs/physics.md §4): a contact holding a
 // force F overlaps by delta = (3 F / (4 E* sqrt(R*)))^{2/3}, and one storing an energy U by
 // delta = (15 U / (8 E* sqrt(R*)))^{2/5}.
 #include <gtest/gtest.h>
@@ -108,7 +108,7 @@ TEST(HardCases, FullStiffnessSettlesWithAutomaticStep) {
 }
 
 TEST(HardCases, BimodalMixDoesNotTunnelThroughTheFloor) {
-  // The extremes of the SPEC §1 bimodal PSD: 4 large (40 um diameter) spheres dropped from
+  // The extremes of the docs/physics.md §1 bimodal PSD: 4 large (40 um diameter) spheres dropped from
   // 40 um onto 40 small (4 um) ones lying near the floor, and 20 more small ones dropped from
   // 85-125 um onto/among the large ones. E softened by 1e3 (the documented default of the
   // scene file; softer contacts overlap more, so it is the harder case for tunnelling), drag

@@ -1,4 +1,4 @@
-// Each law of SPEC.md §4 on its own: Hertz normal force, damping clamp, friction
+// Each law of docs/physics.md §4 on its own: Hertz normal force, damping clamp, friction
 // regularisation, Stokes drag, the Rayleigh step and the time-step bound.
 #include <gtest/gtest.h>
 
@@ -37,7 +37,7 @@ TEST(HertzNormal, DampingAddsTwoZetaSqrtMkAndNeverPulls) {
   const double fe = dem::hertz_elastic_force(p, r_star, delta);
   const double c = 2 * 0.3 * std::sqrt(m_star * dem::hertz_stiffness(p, r_star, delta));
   EXPECT_DOUBLE_EQ(dem::hertz_damped_force(p, r_star, m_star, delta, 0.01), fe + c * 0.01);
-  // Separating fast enough that F_e + c delta' < 0: the contact does not pull (SPEC §4).
+  // Separating fast enough that F_e + c delta' < 0: the contact does not pull (docs/physics.md §4).
   EXPECT_EQ(dem::hertz_damped_force(p, r_star, m_star, delta, -10 * fe / c), 0.0);
 }
 
@@ -83,7 +83,7 @@ TEST(StokesDrag, CoefficientAndTerminalSpeed) {
 }
 
 TEST(TimeStep, RayleighFormulaAndBound) {
-  // SPEC §4 with E = 193 GPa, nu = 0.26, rho = 7952, r = 5 um, evaluated by hand:
+  // docs/physics.md §4 with E = 193 GPa, nu = 0.26, rho = 7952, r = 5 um, evaluated by hand:
   // G = 193e9 / 2.52 = 7.6587e10 Pa, sqrt(rho/G) = 3.22225e-4 s/m,
   // t_R = pi 5e-6 3.22225e-4 / (0.1631 0.26 + 0.8766) = 5.50759e-9 s (6 digits: tolerance 1e-14 s).
   EXPECT_NEAR(dem::rayleigh_time_step(5e-6, 7952, 193e9, 0.26), 5.50759e-9, 1e-14);

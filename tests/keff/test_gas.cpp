@@ -1,4 +1,4 @@
-// Gas-lens conduction (Rong–Horio, SPEC.md §6): the Gauss–Legendre integral in ln l against a
+// Gas-lens conduction (Rong–Horio, docs/physics.md §6): the Gauss–Legendre integral in ln l against a
 // brute-force midpoint rule in ρ straight from the definition, for touching, apart, unequal and
 // wall geometries; the air polynomial; a gas-only network of two spheres against the series
 // of its three gas conductances; and the gas-only conductivity of a random bed against the
@@ -115,7 +115,7 @@ TEST(KeffGas, WallFactorMatchesBruteForce) {
 }
 
 TEST(KeffGas, AirPolynomial) {
-  // SPEC.md §6 at 300 K, evaluated by hand: 1.77282e-4 − 3.0474e-3 + 2.8278e-2 + 7.505e-4.
+  // docs/physics.md §6 at 300 K, evaluated by hand: 1.77282e-4 − 3.0474e-3 + 2.8278e-2 + 7.505e-4.
   EXPECT_NEAR(kf::air_conductivity(300), 0.026158382, 1e-12);  // the hand sum is exact to 1e-12
 }
 

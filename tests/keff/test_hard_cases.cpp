@@ -1,4 +1,4 @@
-// Hard cases of issue 6 for the effective-conductivity solver (SPEC.md §6) beyond the rattlers
+// Hard cases of issue 6 for the effective-conductivity solver (docs/physics.md §6) beyond the rattlers
 // and k_g = 0 of test_network.cpp: a bed at 2000 K where the T⁴ links dominate, the air
 // model's temperature-dependent k_g against a bisection of the one-sphere balance, a bed one
 // particle thick against its per-sphere series closed form, a bimodal bed of size ratio 1:8, and
@@ -86,7 +86,7 @@ double end_temperature(const kf::KeffScene& s, const kf::KeffResult& r, std::uin
                                                                      : r.temperature[j];
 }
 
-// A link's flow from j into i, written out from SPEC.md §6 independently of solve.cpp.
+// A link's flow from j into i, written out from docs/physics.md §6 independently of solve.cpp.
 double link_flow(const kf::KeffNetwork& net, const kf::KeffLink& l, double ti, double tj) {
   if (l.path == kf::HeatPath::radiation)
     return kf::kStefanBoltzmann * l.conductance * (std::pow(tj, 4) - std::pow(ti, 4));

@@ -1,4 +1,4 @@
-// Effective conductivity network (SPEC.md §6, issue 6): a simple cubic column of slightly
+// Effective conductivity network (docs/physics.md §6, issue 6): a simple cubic column of slightly
 // overlapping spheres between the walls against its closed-form series conductance, with and
 // without the Hertz correction; wall flows agree and Tellegen's theorem holds on a disordered
 // bed with both paths; rattlers and floating clusters are reported and left out of the solve.

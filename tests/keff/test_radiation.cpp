@@ -1,4 +1,4 @@
-// Radiation path of the effective-conductivity network (SPEC.md §6, issue 6): Monte-Carlo view
+// Radiation path of the effective-conductivity network (docs/physics.md §6, issue 6): Monte-Carlo view
 // factors (sphere on a plane, closed-box rows, reciprocity and its 1/√rays error, thread
 // independence) and the Newton solve of the nonlinear network (energy conservation, a closed
 // form for one sphere, few steps).
@@ -259,7 +259,7 @@ TEST(KeffRadiation, RadiosityModelLetsARadiationOnlySphereIgnoreItsEmissivity) {
   // A sphere that carries heat by radiation alone has no net exchange of its own: in the grey
   // enclosure its radiosity equals its blackbody power and its surface resistance carries
   // nothing, so the heat it passes between black walls is σ (T_h⁴ − T_c⁴) / (1/S_h + 1/S_c)
-  // whatever its ε (a re-radiating surface). SPEC's pair formula instead puts (1−ε)/(εA) in
+  // whatever its ε (a re-radiating surface). The pair formula of docs/physics.md §6 instead puts (1−ε)/(εA) in
   // each of its two links, and its flow falls with ε.
   const bed::Bed b = sphere_between_walls();
   kf::KeffScene s = radiation_only(900, 600);

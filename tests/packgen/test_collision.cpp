@@ -1,4 +1,4 @@
-// Collision back-ends (SPEC.md §3): the exact ones agree with brute force and with each other
+// Collision back-ends (docs/physics.md §3): the exact ones agree with brute force and with each other
 // bit for bit; the raster grid errs only within its spacing.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Closed-form contact positions (SPEC.md §3 2-contact and 3-contact) and their hard cases.
+// Closed-form contact positions (docs/physics.md §3 2-contact and 3-contact) and their hard cases.
 #include <gtest/gtest.h>
 
 #include <array>

@@ -1,4 +1,4 @@
-// Whole runs of pack() (SPEC.md §3): no overlap, every particle inside, sizes from the PSD,
+// Whole runs of pack() (docs/physics.md §3): no overlap, every particle inside, sizes from the PSD,
 // stop rules, phases, reproducibility and the input checks.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The published 2D study of [LP] (SPEC.md §3 table): 4.0 x 4.0 um square, raster spacing
+// The published 2D study of [LP] (docs/physics.md §3 table): 4.0 x 4.0 um square, raster spacing
 // h = 0.015 um, monodisperse r = 0.075 um, 0-contact and 1-contact. 10 samples per case
 // (seeds 1..10). Each mean must lie in the paper's range widened by 3 standard errors of our
 // mean (sd / sqrt(10); sd of the density about 0.004-0.008, of Z about 0.1): the paper's ranges
@@ -9,7 +9,7 @@
 // --directions 10, --max-failures 100, --retire-after 32. The paper gives neither K nor a stop
 // rule; K = 10 is inferred from the 1-contact density (it grows with K: about 0.626 at K = 8,
 // 0.636 at K = 10, 0.642 at K = 12, 0.647 at K = 16), the rest are packgen's defaults.
-// Contact tolerance: a raster bed leaves gaps of the order of h (SPEC §3), so a contact is a
+// Contact tolerance: a raster bed leaves gaps of the order of h (docs/physics.md §3), so a contact is a
 // surface gap <= g, i.e. tol = g / (2 r). The study finds the paper's 0-contact coordination at
 // g = 1.1-1.4 h and its 1-contact coordination at g = 2.0-2.3 h: no single gap reproduces both
 // (our finding, not a tuned fit). The test checks 0-contact at g = sqrt(2) h (the diagonal of a

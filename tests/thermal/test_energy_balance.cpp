@@ -1,7 +1,7 @@
-// Energy balance of a whole laser pass (SPEC.md §5, issue 5 "Verification tests"): absorbed
+// Energy balance of a whole laser pass (docs/physics.md §5, issue 5 "Verification tests"): absorbed
 // laser energy = change of internal energy + boundary outflow - surface gains. The solver's
 // state is the enthalpy and every flux is booked as it is applied, so the ledger closes to
-// round-off: far inside the 0.5 % SPEC.md allows. The ledger reads the internal energy from
+// round-off: far inside a 0.5 % budget. The ledger reads the internal energy from
 // that state; the tests also recompute it from the reported temperatures, independently.
 #include <gtest/gtest.h>
 

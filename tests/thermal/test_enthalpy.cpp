@@ -1,4 +1,4 @@
-// The enthalpy form of the apparent heat capacity (SPEC.md §5, enthalpy.hpp): across a window
+// The enthalpy form of the apparent heat capacity (docs/physics.md §5, enthalpy.hpp): across a window
 // the curve absorbs exactly the latent heat plus the sensible heat of the mean capacity, and
 // the tabulated inverse returns the temperature within a fraction of a kelvin.
 #include <gtest/gtest.h>
@@ -82,7 +82,7 @@ TEST(Enthalpy, VolumetricCurveIntegratesDensityTimesCapacity) {
 // The inverse is linear interpolation in a 65536-point table evenly spaced in enthalpy: about
 // 190 J/kg per entry (12.4 MJ/kg range). Where T(e) is smooth the error is ~1e-6 K; in an entry
 // that straddles a kink of T(e) (a window edge) it is at most step |1/c_a - 1/c_b| / 4
-// <= 190 / (4 * 452) = 0.1 K. SPEC.md asks nothing finer; 0.11 K is that bound.
+// <= 190 / (4 * 452) = 0.1 K. no result here needs finer; 0.11 K is that bound.
 TEST(Enthalpy, InverseRoundTripsWithinTheTableError) {
   for (const double window : {20.0, 1.0}) {
     const Curve c(window);

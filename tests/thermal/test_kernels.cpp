@@ -1,4 +1,4 @@
-// Each law of SPEC.md §5 on its own: apparent heat capacity, contact geometry, Beer–Lambert
+// Each law of docs/physics.md §5 on its own: apparent heat capacity, contact geometry, Beer–Lambert
 // laser with the Gusarov extinction, surface losses.
 #include <gtest/gtest.h>
 

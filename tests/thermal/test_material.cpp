@@ -1,5 +1,5 @@
-// Material tables (SPEC.md §5, material.hpp): the 316L file of [GZ] Table 1 loads with the
-// values of SPEC.md; malformed tables are refused with InputError naming file and line.
+// Material tables (docs/physics.md §5, material.hpp): the 316L file of [GZ] Table 1 loads with the
+// values of [GZ] Table 1; malformed tables are refused with InputError naming file and line.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -90,7 +90,7 @@ TEST(MaterialTable, RefusesMalformedTables) {
                InputError);
 }
 
-// SPEC.md §5: linear interpolation, linear extrapolation from the last two rows to 1400 K,
+// docs/physics.md §5: linear interpolation, linear extrapolation from the last two rows to 1400 K,
 // held to the melting window, liquid values beyond it ([GZ]: K stays solid in the liquid).
 TEST(Material, InterpolatesExtrapolatesAndHolds) {
   const thermal::Material m(test::table_316l(), thermal::PhaseChange{}, 1400,

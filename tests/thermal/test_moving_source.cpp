@@ -1,4 +1,4 @@
-// The substrate under a moving Gaussian source (SPEC.md §5.1 "Verification of the substrate
+// The substrate under a moving Gaussian source (docs/physics.md §5 "Verification of the substrate
 // under a moving source"): a bare substrate (a bed without particles), constant properties (the
 // table's at T0), no latent heat, only the laser on the top face. The solver is then the linear
 // heat equation rho c dT/dt = k lap T in the box, Dirichlet T = T0 on the sides and bottom, and

@@ -1,4 +1,4 @@
-// The finite-difference substrate of SPEC.md §5 against analytic conduction: with every effect
+// The finite-difference substrate of docs/physics.md §5 against analytic conduction: with every effect
 // off and a bed without particles the solver is pure substrate conduction with constant k, rho,
 // c (the properties at T0), Dirichlet sides and bottom and a zero-flux top face.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Two lumped particles exchanging heat through their contact (SPEC.md §5): with constant
+// Two lumped particles exchanging heat through their contact (docs/physics.md §5): with constant
 // properties and nothing else on, C1 dT1/dt = G (T2 - T1), C2 dT2/dt = G (T1 - T2), so
 // ΔT(t) = ΔT0 exp(-G (1/C1 + 1/C2) t) with G = k π a^2 / d.
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
-// Forward Euler on enthalpies (SPEC.md §5 "Time integration"), the effects composed once:
+// Forward Euler on enthalpies (docs/physics.md §5 "Time integration"), the effects composed once:
 // a particle kernel instantiated for each combination of the particle effects and a grid kernel
 // for constant or temperature-dependent conductivity, chosen through a table of function
-// pointers, so an effect that is off is absent from the loop (DESIGN.md "Effects").
+// pointers, so an effect that is off is absent from the loop (docs/architecture.md "Effects a scene calls for").
 #include <omp.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Backward Euler for stiff scenes (SPEC.md §5 "Time integration", issue: "an implicit option"):
+// Backward Euler for stiff scenes (docs/physics.md §5 "Time integration", issue: "an implicit option"):
 // particles and free substrate nodes are solved together, A T* = b, with capacities and
 // conductivities of the start of the step and radiation linearised about it
 // (A = C/dt + conductance Laplacian; symmetric positive definite, so conjugate gradients with a

@@ -1,5 +1,5 @@
 // Where the laser's power goes, for the two absorption models (scene.hpp LaserAbsorption):
-// Beer–Lambert on projected areas plus the beam that passes the powder (SPEC.md §5), or the
+// Beer–Lambert on projected areas plus the beam that passes the powder (docs/physics.md §5), or the
 // power maps of the ray tracer (ray_traced_laser.hpp) blended between traced beam positions.
 // Each model books every joule it deposits in the ledger where it deposits it.
 #include <algorithm>
@@ -28,7 +28,7 @@ double beer_lambert_particles(Sinter::State& s, double t, std::vector<double>& q
   return absorbed;
 }
 
-// Laser power that passes the powder onto the free top nodes (SPEC.md §5 top-face flux).
+// Laser power that passes the powder onto the free top nodes (docs/physics.md §5 top-face flux).
 void beer_lambert_substrate(Sinter::State& s, double t, double dt) {
   const SubstrateGeometry& g = s.g;
   const double xl = laser_x(s, t), yl = s.laser_y;

@@ -2,42 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/material_file.hpp"
 #include "powderbed/thermal/apparent_heat_capacity.hpp"
 
 namespace powderbed::thermal {
 
 namespace {
-
-std::vector<std::string> split_fields(const std::string& line) {
-  std::vector<std::string> fields;
-  std::stringstream in(line);
-  std::string field;
-  while (std::getline(in, field, ',')) {
-    const auto first = field.find_first_not_of(" \t\r");
-    const auto last = field.find_last_not_of(" \t\r");
-    fields.push_back(first == std::string::npos ? "" : field.substr(first, last - first + 1));
-  }
-  return fields;
-}
-
-double parse_value(const std::string& text, const std::string& where, const char* column) {
-  std::size_t used = 0;
-  double value = 0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || text.empty() || !std::isfinite(value) || value <= 0) {
-    throw InputError(where + ": " + column + " '" + text +
-                     "' is not a finite positive number (accepted: value > 0)");
-  }
-  return value;
-}
 
 double blend(double a, double b, double t, double t0, double t1) {
   return a + (b - a) * (t - t0) / (t1 - t0);
@@ -46,57 +18,20 @@ double blend(double a, double b, double t, double t0, double t1) {
 }  // namespace
 
 MaterialTable read_material_table(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open the material table");
+  const bed::MaterialFile file = bed::read_material_file(path);
+  if (file.solid.empty())
+    throw InputError(path + ": no property table (accepted: solid rows and one liquid row after "
+                     "the header temperature_K,...,phase)");
   MaterialTable table;
-  bool header = false, liquid = false;
-  std::string line;
-  for (std::size_t number = 1; std::getline(in, line); ++number) {
-    if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#') continue;
-    const std::string where = path + ":" + std::to_string(number);
-    const auto fields = split_fields(line);
-    if (!header) {  // the column names; the order is fixed
-      if (fields.size() != 5 || fields[0].rfind("temperature", 0) != 0) {
-        throw InputError(where + ": header '" + line + "' (accepted: temperature_K,"
-                         "specific_heat_J_per_kgK,conductivity_W_per_mK,density_kg_per_m3,phase)");
-      }
-      header = true;
-      continue;
-    }
-    if (fields.size() != 5) {
-      throw InputError(where + ": " + std::to_string(fields.size()) +
-                       " fields (accepted: 5: T, c, k, rho, phase)");
-    }
-    const double t = parse_value(fields[0], where, "temperature");
-    const double c = parse_value(fields[1], where, "specific heat");
-    const double k = parse_value(fields[2], where, "conductivity");
-    const double rho = parse_value(fields[3], where, "density");
-    if (fields[4] == "solid") {
-      if (liquid) throw InputError(where + ": solid row after the liquid row (accepted: solid "
-                                   "rows first, then one liquid row)");
-      if (!table.temperature.empty() && t <= table.temperature.back()) {
-        throw InputError(where + ": temperature " + fields[0] +
-                         " K does not increase (accepted: strictly increasing solid rows)");
-      }
-      table.temperature.push_back(t);
-      table.specific_heat.push_back(c);
-      table.conductivity.push_back(k);
-      table.density.push_back(rho);
-    } else if (fields[4] == "liquid") {
-      if (liquid) throw InputError(where + ": a second liquid row (accepted: one)");
-      liquid = true;
-      table.liquid_specific_heat = c;
-      table.liquid_conductivity = k;
-      table.liquid_density = rho;
-    } else {
-      throw InputError(where + ": phase '" + fields[4] + "' (accepted: solid or liquid)");
-    }
+  for (const auto& row : file.solid) {
+    table.temperature.push_back(row.temperature);
+    table.specific_heat.push_back(row.specific_heat);
+    table.conductivity.push_back(row.conductivity);
+    table.density.push_back(row.density);
   }
-  if (table.temperature.size() < 2 || !liquid) {
-    throw InputError(path + ": " + std::to_string(table.temperature.size()) + " solid rows and " +
-                     (liquid ? "one" : "no") +
-                     " liquid row (accepted: at least 2 solid rows and one liquid row)");
-  }
+  table.liquid_specific_heat = file.liquid->specific_heat;
+  table.liquid_conductivity = file.liquid->conductivity;
+  table.liquid_density = file.liquid->density;
   return table;
 }
 

@@ -48,7 +48,7 @@ Material scene_material(const SinterScene& scene, const MaterialTable& table) {
   throw InputError("--bed: " + what);
 }
 
-// SPEC.md §5: the bed rests on the substrate's top face, which is the bed domain's floor.
+// docs/physics.md §5: the bed rests on the substrate's top face, which is the bed domain's floor.
 void check_bed(const bed::Bed& bed) {
   if (bed.domain.dimension != 3) refuse_bed("a 2D bed (accepted: a 3D bed)");
   const double floor = bed.domain.lower[2];

@@ -1,5 +1,5 @@
 #pragma once
-// The one bed of DESIGN.md: particles as a structure of arrays plus the domain and provenance.
+// The one bed of docs/bed-format.md: particles as a structure of arrays plus the domain and provenance.
 #include <cstdint>
 #include <string>
 #include <vector>

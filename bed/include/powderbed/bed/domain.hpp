@@ -1,5 +1,5 @@
 #pragma once
-// The simulation box shared by every stage (DESIGN.md "/domain").
+// The simulation box shared by every stage (docs/bed-format.md, /domain).
 #include <array>
 
 namespace powderbed::bed {

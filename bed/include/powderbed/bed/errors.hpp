@@ -1,5 +1,5 @@
 #pragma once
-// The two error kinds of DESIGN.md "House style": every app's main maps them to exit 2 / 3.
+// The two error kinds of docs/architecture.md "House style": every app's main maps them to exit 2 / 3.
 #include <sstream>
 #include <stdexcept>
 #include <string>

@@ -2,7 +2,7 @@
 // A results file in HDF5 for the stages' time series (sinter runs, trajectories): datasets and
 // attributes by path, intermediate groups created on the way. Written under a temporary name
 // and renamed by commit(), so a failed run never leaves half a file under the requested name
-// (DESIGN.md "Command-line programs"). The HDF5 C API stays behind this interface.
+// (docs/architecture.md "Command-line programs"). The HDF5 C API stays behind this interface.
 #include <cstdint>
 #include <memory>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Particle size distributions of SPEC.md §1 and the PSD string syntax shared by all programs:
+// Particle size distributions of docs/physics.md §1 and the PSD string syntax shared by all programs:
 //   one or more components joined by '+', each
 //     mono:d=D | mono:r=R
 //     gauss:mean=M,sd=S,min=A,max=B[,on=radius|diameter]
@@ -8,12 +8,19 @@
 //     table:file=PATH[,on=radius|diameter]                  (CSV: bin edges and fractions)
 //   each optionally weighted by count=N (number of particles), frac=F (number fraction) or
 //   vfrac=F (volume fraction). Parameters are diameters unless on=radius. SI units (m).
+//   basis=number|volume on every kind says whether the sizes describe the number distribution or
+//   the volume (mass) distribution, as laser diffraction reports it. Default: volume for
+//   lognormal d10/d50/d90 (the values of powder data sheets), number for every other form. A
+//   volume-basis lognormal is stored as its number-basis twin, ln d_n = ln d_v - 3 sigma^2
+//   (Hatch & Choate 1929); a volume-basis table divides each bin's fraction by the bin's mean
+//   d^3; a volume-basis gauss becomes a fine table (psd_parse.cpp); mono is the same on both.
 //   Without weights the components get equal number fractions; count and frac/vfrac cannot be
 //   mixed; frac and vfrac values are normalised over the components.
 //   gauss: the mean may lie outside [min, max] (even <= 0: the window keeps sizes positive);
 //   sd = 0 is a point mass at the mean, allowed when min <= mean <= max.
 //   A lognormal without min/max is truncated at exp(mu -/+ 5 sigma) (5.7e-7 of its mass lies
-//   outside), so that every PSD has a finite largest particle (cell lists are sized from it).
+//   outside), so that every PSD has a finite largest particle (cell lists are sized from it);
+//   on the volume basis the window reaches 5 sigma beyond the volume median too.
 //   d10/d50/d90: mu = ln d50 and sigma = ln(d90/d10) / (2 z90), z90 = Phi^-1(0.9) = 1.28155
 //   (least squares on ln d10 = mu - z90 sigma, ln d90 = mu + z90 sigma with mu fixed by d50).
 //   Components are split at a '+' followed by a letter (so 1e+6 stays a number); a table path
@@ -29,11 +36,14 @@
 namespace powderbed::bed {
 
 enum class SizeVariable { radius, diameter };
+enum class PsdBasis { number, volume };
+const char* basis_name(PsdBasis basis);
 
 struct PsdComponent {
   enum class Kind { mono, gauss, lognormal, table };
   Kind kind = Kind::mono;
   SizeVariable on = SizeVariable::diameter;  // the variable the parameters below describe
+  PsdBasis basis = PsdBasis::number;  // the basis the user gave; the parameters below are by number
   double mean = 0;   // mono: the size; gauss: mean of the untruncated normal
   double sd = 0;     // gauss: sd of the untruncated normal
   double mu = 0;     // lognormal: mean of ln(size)
@@ -59,7 +69,7 @@ class Psd {
   const std::string& text() const { return text_; }
 
   // Draws one radius (m): picks a component by number fraction, then inverse-CDF sampling on
-  // its truncated window (SPEC §1). Uses 2 uniform draws.
+  // its truncated window (docs/physics.md §1). Uses 2 uniform draws.
   double sample_radius(Rng& rng) const;
   // Number-weighted CDF of the radius, for KS tests.
   double cdf_radius(double radius) const;
@@ -78,12 +88,17 @@ class Psd {
 
 // One component on its own, in radius (m) whatever `on` says (the PSD's members are these
 // mixed by number_fraction): E[r^k] for k = 1, 2, 3; P(R <= r); and the inverse CDF at
-// u in [0, 1) (SPEC §1), which is what sample_radius uses for its second draw.
+// u in [0, 1) (docs/physics.md §1), which is what sample_radius uses for its second draw.
 double radius_moment(const PsdComponent& component, int k);
 double cdf_radius(const PsdComponent& component, double radius);
 double quantile_radius(const PsdComponent& component, double u);
 // Probability mass of the untruncated gauss/lognormal inside [min, max] (1 for mono, table).
 double window_mass(const PsdComponent& component);
+
+// The q-quantile (0 < q < 1) of the diameters 2 r of `radii`, by number or by volume (each
+// particle weighted by r^3): the smallest sampled diameter whose cumulative weight reaches q.
+// 0 for no radii.
+double sample_diameter_quantile(std::vector<double> radii, double q, PsdBasis basis);
 
 // Kolmogorov–Smirnov distance sup |F_n(r) - F(r)| between sampled radii and the PSD.
 double ks_distance(std::vector<double> radii, const Psd& psd);

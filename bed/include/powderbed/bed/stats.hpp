@@ -1,5 +1,5 @@
 #pragma once
-// Bed statistics of SPEC.md §2.
+// Bed statistics of docs/physics.md §2.
 #include <cstddef>
 #include <map>
 #include <vector>

@@ -30,7 +30,7 @@ struct Overlap {
 // Largest overlap among particle pairs and (walls on) particle–wall contacts.
 Overlap max_overlap(const bed::Bed& bed, const Scene& scene);
 
-// Packing density (SPEC.md §2) of the bed's core, away from the walls' ordering and the rough
+// Packing density (docs/physics.md §2) of the bed's core, away from the walls' ordering and the rough
 // top: the box shrunk by `margin` from the floor and from the non-periodic side faces, up to
 // `margin` below the surface (the 90th percentile of the particle tops z + r, which a few
 // perched particles do not move). The solid volume is counted on a grid of points (cell

@@ -1,5 +1,5 @@
 #pragma once
-// Gravity of SPEC.md §4: F_grav = -m g z-hat (z is up in every bed).
+// Gravity of docs/physics.md §4: F_grav = -m g z-hat (z is up in every bed).
 
 namespace powderbed::dem {
 

@@ -1,11 +1,11 @@
 #pragma once
-// Hertz normal contact with the zeta viscous damping of SPEC.md §4 (after LAMMPS's
+// Hertz normal contact with the zeta viscous damping of docs/physics.md §4 (after LAMMPS's
 // gran_normal_hertz_force): stateless kernels over a small parameter struct.
 #include <cmath>
 
 namespace powderbed::dem {
 
-// E* of a material pair (SPEC §4): 1 / ((1 - nu_i^2)/E_i + (1 - nu_j^2)/E_j).
+// E* of a material pair (docs/physics.md §4): 1 / ((1 - nu_i^2)/E_i + (1 - nu_j^2)/E_j).
 inline double effective_modulus(double young_i, double poisson_i, double young_j,
                                 double poisson_j) {
   return 1.0 / ((1.0 - poisson_i * poisson_i) / young_i + (1.0 - poisson_j * poisson_j) / young_j);
@@ -16,18 +16,18 @@ struct HertzNormalParams {
   double damping_ratio = 0;      // zeta: 0 elastic, 1 critical
 };
 
-// Elastic part F_e = 4/3 E* sqrt(R*) delta^{3/2} (SPEC §4), delta > 0 the overlap.
+// Elastic part F_e = 4/3 E* sqrt(R*) delta^{3/2} (docs/physics.md §4), delta > 0 the overlap.
 inline double hertz_elastic_force(const HertzNormalParams& p, double reduced_radius, double delta) {
   return (4.0 / 3.0) * p.effective_modulus * std::sqrt(reduced_radius * delta) * delta;
 }
 
-// Contact stiffness k_n = dF_e/d delta = 2 E* sqrt(R* delta) (SPEC §4).
+// Contact stiffness k_n = dF_e/d delta = 2 E* sqrt(R* delta) (docs/physics.md §4).
 inline double hertz_stiffness(const HertzNormalParams& p, double reduced_radius, double delta) {
   return 2.0 * p.effective_modulus * std::sqrt(reduced_radius * delta);
 }
 
 // Damped normal force magnitude F_e + c delta', c = 2 zeta sqrt(m* k_n), delta' the approach
-// rate (> 0 closing), clamped at 0 so the contact never pulls (SPEC §4). The force on particle
+// rate (> 0 closing), clamped at 0 so the contact never pulls (docs/physics.md §4). The force on particle
 // i is -F n with n pointing from i to its partner.
 inline double hertz_damped_force(const HertzNormalParams& p, double reduced_radius,
                                  double reduced_mass, double delta, double approach_rate) {
@@ -42,7 +42,7 @@ inline double hertz_damped_force(const HertzNormalParams& p, double reduced_radi
 // The same law with the pair's constants taken out once (per neighbour-list build), so a step
 // needs no division: F_e = a delta^{3/2} with a = 4/3 E* sqrt(R*), and c delta' =
 // 2 zeta sqrt(m* 2 E* sqrt(R* delta)) delta' = b delta^{1/4} delta' with
-// b = 2 zeta sqrt(2 E* m* sqrt(R*)) (SPEC §4).
+// b = 2 zeta sqrt(2 E* m* sqrt(R*)) (docs/physics.md §4).
 struct HertzPairConstants {
   double elastic = 0;  // a, N m^{-3/2}
   double damping = 0;  // b, N s m^{-5/4}

@@ -1,5 +1,5 @@
 #pragma once
-// What a deposition scene specifies (SPEC.md §4): materials, fluid, gravity and the set of
+// What a deposition scene specifies (docs/physics.md §4): materials, fluid, gravity and the set of
 // physical effects switched on. The solver composes the chosen effects once, at start.
 #include <string>
 
@@ -27,7 +27,7 @@ enum class ContactLaw { hertz, linear };
 ContactLaw parse_contact_law(const std::string& text, const std::string& option = "contact.law");
 const char* contact_law_name(ContactLaw law);
 
-// The effects of DESIGN.md "Effects a scene calls for", one bit each.
+// The effects of docs/architecture.md "Effects a scene calls for", one bit each.
 enum Effect : unsigned {
   kGravity = 1u << 0,
   kHertz = 1u << 1,     // particle–particle contact (Scene::law: Hertz or linear)

@@ -1,5 +1,5 @@
 #pragma once
-// Continuous sliding friction of SPEC.md §4, regularised near zero slip.
+// Continuous sliding friction of docs/physics.md §4, regularised near zero slip.
 #include <cmath>
 
 namespace powderbed::dem {
@@ -17,7 +17,7 @@ struct SlidingFrictionParams {
 
 // Friction force on particle i for a normal force magnitude `normal_force` and tangential
 // relative velocity (vt_x, vt_y, vt_z) = tangential part of v_i - v_j:
-// F = -mu_d |F_n| v_t / sqrt(|v_t|^2 + v_reg^2) (SPEC §4). Writes the force into f.
+// F = -mu_d |F_n| v_t / sqrt(|v_t|^2 + v_reg^2) (docs/physics.md §4). Writes the force into f.
 inline void sliding_friction_force(const SlidingFrictionParams& p, double normal_force,
                                    double vt_x, double vt_y, double vt_z, double f[3]) {
   const double speed2 = vt_x * vt_x + vt_y * vt_y + vt_z * vt_z;

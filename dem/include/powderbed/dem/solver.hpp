@@ -1,5 +1,5 @@
 #pragma once
-// DEM drop deposition (SPEC.md §4): integrates the bed's particles under the scene's effects.
+// DEM drop deposition (docs/physics.md §4): integrates the bed's particles under the scene's effects.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -22,7 +22,7 @@ struct RestCriteria {
   double window = 1e-3;           // s
 };
 
-// The lid of the consolidation step ([KE], SPEC.md §6: "lower the lid onto the bed and release
+// The lid of the consolidation step ([KE], docs/physics.md §6: "lower the lid onto the bed and release
 // it"). After the settle, the box's top face comes down to the highest particle top and moves
 // down at `speed` until the bed pushes on it with pressure x (top area) or it has travelled
 // `travel` (whichever comes first; at least one must be set), stays there for `hold`, and goes

@@ -1,5 +1,5 @@
 #pragma once
-// Stable time step of a deposition (SPEC.md §4, DESIGN.md "Numerical stability").
+// Stable time step of a deposition (docs/physics.md §4, docs/architecture.md "Numerical stability").
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/dem/linear_normal.hpp"
 #include "powderbed/dem/scene.hpp"
@@ -7,7 +7,7 @@
 namespace powderbed::dem {
 
 // Rayleigh time step t_R = pi r sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu))
-// (SPEC §4).
+// (docs/physics.md §4).
 double rayleigh_time_step(double radius, double density, double young, double poisson);
 
 // Stable bound of the linear spring–dashpot law (linear_normal.hpp) for a contact of reduced

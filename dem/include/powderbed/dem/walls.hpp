@@ -1,5 +1,5 @@
 #pragma once
-// Box walls and floor (SPEC.md §4): the Hertz law of hertz_normal.hpp with the wall as a
+// Box walls and floor (docs/physics.md §4): the Hertz law of hertz_normal.hpp with the wall as a
 // sphere of infinite radius and mass, so R* = r_i and m* = m_i, and E* from the pair
 // (particle material, wall material).
 #include "powderbed/dem/hertz_normal.hpp"

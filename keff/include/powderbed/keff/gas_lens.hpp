@@ -1,5 +1,5 @@
 #pragma once
-// Particle–fluid–particle conduction of Rong & Horio (SPEC.md §6): each particle carries a gas
+// Particle–fluid–particle conduction of Rong & Horio (docs/physics.md §6): each particle carries a gas
 // lens of thickness `lens` r; heat crosses the gas where the lenses overlap, through the gap
 // l(ρ) between the two surfaces at distance ρ from the centre line:
 //   Q / ΔT = k_g ∫ 2π ρ / max(l_min, l(ρ)) dρ   over the lens-overlap circle.
@@ -7,7 +7,7 @@
 //
 // Choices (docs/keff.md): the integral runs outside the solid contact circle only (inside it the
 // path is solid and contact conduction carries it); a wall carries no lens of its own. The outer
-// edge of the region is where the two lenses intersect (SPEC's wording), capped at the smaller
+// edge of the region is where the two lenses intersect (the wording of docs/physics.md §6), capped at the smaller
 // sphere's radius where the gap is still defined, or, as MFiX's DES_CONDUCTION computes it for
 // [KE], where the larger particle's lens meets the smaller particle's surface.
 //

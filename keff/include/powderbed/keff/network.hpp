@@ -1,8 +1,8 @@
 #pragma once
-// The heat-path network of a bed between two isothermal walls (SPEC.md §6): one link per heat
+// The heat-path network of a bed between two isothermal walls (docs/physics.md §6): one link per heat
 // path and particle pair (or particle and wall). Conduction links carry G (T_j − T_i) with a
 // constant conductance G (W/K); radiation links carry σ G_r (T_j⁴ − T_i⁴) with the grey-body
-// exchange area G_r (m²) of SPEC.md §6.
+// exchange area G_r (m²) of docs/physics.md §6.
 #include <cstddef>
 #include <cstdint>
 #include <functional>

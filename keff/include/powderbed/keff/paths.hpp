@@ -1,5 +1,5 @@
 #pragma once
-// Conduction kernels of the effective-conductivity network (SPEC.md §6): gas conductivity,
+// Conduction kernels of the effective-conductivity network (docs/physics.md §6): gas conductivity,
 // Batchelor–O'Brien contact conductance and the Hertz correction of the contact radius for beds
 // settled with a softened modulus. Each returns a conductance (W/K) or a length.
 #include <cmath>
@@ -8,7 +8,7 @@
 
 namespace powderbed::keff {
 
-// Air conductivity of [KE] (SPEC.md §6), W/mK, fitted over 175–1900 K.
+// Air conductivity of [KE] (docs/physics.md §6), W/mK, fitted over 175–1900 K.
 inline double air_conductivity(double t) {
   return ((6.566e-12 * t - 3.386e-8) * t + 9.426e-5) * t + 7.505e-4;
 }
@@ -17,7 +17,7 @@ inline double air_conductivity_slope(double t) {
   return (3 * 6.566e-12 * t - 2 * 3.386e-8) * t + 9.426e-5;
 }
 
-// Batchelor–O'Brien contact conductance Q / ΔT = 2 k_s a (SPEC.md §6), with the calibration
+// Batchelor–O'Brien contact conductance Q / ΔT = 2 k_s a (docs/physics.md §6), with the calibration
 // factor A_c scaling the contact radius a.
 inline double contact_conductance(double solid_conductivity, double calibration, double radius) {
   return 2 * solid_conductivity * calibration * radius;
@@ -25,7 +25,7 @@ inline double contact_conductance(double solid_conductivity, double calibration,
 
 // A bed settled with Hertz contacts at E / S (S = young_scale, the DEM's softening) has overlaps
 // δ_s too large. Equating the soft force (4/3)(E*/S)√R* δ_s^{3/2} with the true Hertz force
-// (4/3) E* √R* δ_h^{3/2} (SPEC.md §6) gives δ_h = δ_s S^{-2/3}, and the Hertz contact radius is
+// (4/3) E* √R* δ_h^{3/2} (docs/physics.md §6) gives δ_h = δ_s S^{-2/3}, and the Hertz contact radius is
 // a = √(R* δ_h). For a wall R* = r (the wall's radius is infinite).
 inline double hertz_contact_radius(double reduced_radius, double soft_overlap, double young_scale) {
   if (soft_overlap <= 0) return 0;
@@ -34,7 +34,7 @@ inline double hertz_contact_radius(double reduced_radius, double soft_overlap, d
 
 // A bed settled with a linear spring k_n (the MFiX-DEM beds of [KE]) has overlaps δ_s set by
 // k_n, not by the material. Equating k_n δ_s with the Hertz force (4/3) E* √R* δ_h^{3/2}
-// (Kumar Yadav & Eshraghi 2016, SPEC.md §6) gives δ_h = (3 k_n δ_s / (4 E* √R*))^{2/3}, and
+// (Kumar Yadav & Eshraghi 2016, docs/physics.md §6) gives δ_h = (3 k_n δ_s / (4 E* √R*))^{2/3}, and
 // a = √(R* δ_h). For a wall R* = r and E* is the particle–wall modulus.
 inline double linear_spring_contact_radius(double reduced_radius, double soft_overlap,
                                            double stiffness, double effective_modulus) {

@@ -1,5 +1,5 @@
 #pragma once
-// Grey-body radiation links of the effective-conductivity network (SPEC.md §6), from the view
+// Grey-body radiation links of the effective-conductivity network (docs/physics.md §6), from the view
 // factors of view_factors.hpp. S_ij = A_i F_ij is the exchange area, A = 4π r². Monte-Carlo
 // F break reciprocity by their sampling error, so a pair's S is the mean of A_i F_ij and A_j F_ji:
 // one link per pair, and the heat flows are antisymmetric (the wall flows then agree). Rays that
@@ -7,7 +7,7 @@
 // exchange with each other through the bed's gaps with S = A_wall F_wall.
 //
 // Two models (scene.radiation_model):
-// - pair (SPEC.md §6): Q_ij = σ (T_i⁴ − T_j⁴) G_r with
+// - pair (docs/physics.md §6): Q_ij = σ (T_i⁴ − T_j⁴) G_r with
 //   1 / G_r = (1−ε_i)/(ε_i A_i) + 1/S_ij + (1−ε_j)/(ε_j A_j). A wall is a grey plane far larger
 //   than a particle, of which only the patch facing the particle exchanges with it: its surface
 //   resistance is taken over the particle's own area, (1−ε_w)/(ε_w A_i). Each link carries the

@@ -1,5 +1,5 @@
 #pragma once
-// What an effective-conductivity scene specifies (SPEC.md §6): the walls, the solid and gas
+// What an effective-conductivity scene specifies (docs/physics.md §6): the walls, the solid and gas
 // conductivities, the grey-body radiation settings and the heat paths switched on.
 #include <cstddef>
 #include <cstdint>
@@ -13,11 +13,11 @@
 
 namespace powderbed::keff {
 
-// constant: k_g as given; air: the [KE] polynomial of SPEC.md §6, each gas link at the mean
+// constant: k_g as given; air: the [KE] polynomial of docs/physics.md §6, each gas link at the mean
 // temperature of its two ends (the network is then nonlinear and solved by Newton).
 enum class GasModel { constant, air };
 
-// pair: SPEC.md §6's formula, one link per pair carrying both surface resistances; radiosity:
+// pair: docs/physics.md §6's formula, one link per pair carrying both surface resistances; radiosity:
 // the grey enclosure's network, one radiosity node per surface (radiation.hpp).
 enum class RadiationModel { pair, radiosity };
 
@@ -46,7 +46,7 @@ struct KeffScene {
   ContactRadiusParams contact;
   GasLensParams lens;
   bool contact_path = true, gas_path = true, radiation_path = false;
-  // Grey opaque spheres and walls (SPEC.md §6): one emissivity for every particle, one for both
+  // Grey opaque spheres and walls (docs/physics.md §6): one emissivity for every particle, one for both
   // walls; view factors from `rays` Monte-Carlo rays per particle, random streams from `seed`.
   double emissivity = 0.5, wall_emissivity = 0.5;
   // 100: the cheapest count whose k_eff is within 1 % of 1e5 rays' (docs/results/keff-accuracy.md).

@@ -1,6 +1,6 @@
 #pragma once
 // Steady state of the heat-path network between the walls and the effective conductivity
-// k_eff = (Q_wall / A_wall) · H / (T_hot − T_cold) (SPEC.md §6). Contact and constant-k_g gas
+// k_eff = (Q_wall / A_wall) · H / (T_hot − T_cold) (docs/physics.md §6). Contact and constant-k_g gas
 // links are linear (one conjugate-gradient solve); radiation links (T⁴) and gas links that follow
 // temperature make it nonlinear, solved by Newton with the analytic Jacobian (solve.cpp).
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Monte-Carlo view factors of a bed between the two isothermal walls (SPEC.md §6, radiation).
+// Monte-Carlo view factors of a bed between the two isothermal walls (docs/physics.md §6, radiation).
 // Rays leave uniform random points of each sphere's surface (Marsaglia's method) in
 // cosine-weighted directions about the outward normal (diffuse emission; [KE] drew uniform
 // hemisphere directions, which over-weights grazing rays). F_ij is the fraction of i's rays whose

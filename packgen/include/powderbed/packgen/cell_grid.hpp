@@ -1,5 +1,5 @@
 #pragma once
-// Exact collision back-end and partner index: a hierarchical uniform cell list (SPEC.md §3,
+// Exact collision back-end and partner index: a hierarchical uniform cell list (docs/physics.md §3,
 // "a hashed/multi-level grid for wide PSDs"). Level k has cells of size 2 r_max / 2^k; a particle
 // lives in the finest level whose cells are at least its diameter, so a small particle never
 // scans cells sized for the largest one. A monodisperse or narrow PSD (r_max / r_min < 2) gets

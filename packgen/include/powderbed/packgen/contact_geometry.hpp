@@ -1,5 +1,5 @@
 #pragma once
-// Closed-form positions of a new particle touching two or three partners (SPEC.md §3,
+// Closed-form positions of a new particle touching two or three partners (docs/physics.md §3,
 // 2-contact and 3-contact). A partner is a placed particle (|x - c| = R + r) or a wall plane
 // (n . x = offset + r: the new centre sits r inside the wall). The first partner is always a
 // particle. Subtracting its sphere equation from the others leaves linear equations, so
@@ -65,7 +65,7 @@ int touch_three_3d(const Partner& a, const Partner& b, const Partner& c, double 
 // The plane n . y = e (y = x - c_a) on which partner b's contact equation cuts the sphere
 // |y| = R_a + r of particle a (for a particle b: the plane of the circle of centres touching a
 // and b). It depends on the pair and r only, so a loop over the triples (a, b, c) of one new
-// particle a computes it once per partner and reuses it (SPEC §3 3-contact).
+// particle a computes it once per partner and reuses it (docs/physics.md §3 3-contact).
 struct PairPlane {
   Vec3 n;
   double e = 0;

@@ -1,7 +1,7 @@
 #pragma once
 // Exact collision back-end on nanoflann's dynamic kd-tree (KDTreeSingleIndexDynamicAdaptor):
 // a radius search of radius r + r_max around the candidate, each hit tested with the shared
-// exact predicate (particles.hpp), so it answers exactly as CellGrid does (SPEC.md §3).
+// exact predicate (particles.hpp), so it answers exactly as CellGrid does (docs/physics.md §3).
 #include <cstdint>
 #include <memory>
 

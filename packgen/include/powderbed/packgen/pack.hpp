@@ -1,5 +1,5 @@
 #pragma once
-// Geometric packing of SPEC.md §3 ([LP], extended to 3D): particles placed one at a time by
+// Geometric packing of docs/physics.md §3 ([LP], extended to 3D): particles placed one at a time by
 // 0/1/2/3-contact rules, checked by one of three collision back-ends.
 #include <cstddef>
 #include <cstdint>
@@ -16,7 +16,7 @@ namespace powderbed::packgen {
 
 enum class Collision { raster, grid, kdtree };
 
-// Which 3-contact site a 3D approach-3 try takes (SPEC §3 3-contact): `random` picks a random
+// Which 3-contact site a 3D approach-3 try takes (docs/physics.md §3 3-contact): `random` picks a random
 // particle and two random partners near it ([LP]-style tries); `lowest` fills the lowest free
 // site of all (site_heap.hpp: Bennett / Visscher–Bolsterli growth on the floor), O(N) and denser.
 enum class SiteOrder { random, lowest };
@@ -92,7 +92,7 @@ const char* collision_name(Collision c);
 SiteOrder parse_site_order(const std::string& text, const std::string& option = "--site-order");
 const char* site_order_name(SiteOrder s);
 
-// Packs the domain (SPEC §3); same inputs and seed give the same bed bit for bit, and the
+// Packs the domain (docs/physics.md §3); same inputs and seed give the same bed bit for bit, and the
 // exact back-ends (grid, kdtree) give the same bed as each other.
 PackResult pack(const bed::Domain& domain, const bed::Psd& psd, const PackOptions& options,
                 std::uint64_t seed);

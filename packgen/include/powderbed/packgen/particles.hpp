@@ -1,6 +1,6 @@
 #pragma once
 // The particles placed so far (structure of arrays) and the one exact overlap predicate that
-// every exact collision back-end shares, so that they answer bit for bit alike (SPEC.md §3).
+// every exact collision back-end shares, so that they answer bit for bit alike (docs/physics.md §3).
 #include <cstdint>
 #include <vector>
 
@@ -11,7 +11,7 @@ struct Particles {
   std::uint32_t size() const { return static_cast<std::uint32_t>(r.size()); }
 };
 
-// Relative tolerance of the exact tests (SPEC §3 "exact overlap tests with a small
+// Relative tolerance of the exact tests (docs/physics.md §3 "exact overlap tests with a small
 // tolerance"): a pair overlaps when d < (r_i + r_j)(1 - kTouchTolerance). Touching solutions
 // carry rounding errors of ~1e-15 relative, far below this, so they are accepted; an accepted
 // pair can overlap by at most 1e-12 relative, far below the 1e-9 that the tests allow.

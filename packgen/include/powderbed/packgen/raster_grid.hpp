@@ -1,5 +1,5 @@
 #pragma once
-// The status grid of [LP] (SPEC.md §3, "raster grid"): grid points of spacing h cover the
+// The status grid of [LP] (docs/physics.md §3, "raster grid"): grid points of spacing h cover the
 // domain; a placed particle sets the points inside it (|p - c| <= r) to 1; a candidate collides
 // when a point strictly inside it (|p - c| < r) has status 1 (the sum of statuses is > 0).
 // Approximate: overlaps up to about h pass and some valid positions are refused.

@@ -1,5 +1,5 @@
 #pragma once
-// "Lowest site first" 3-contact growth (SPEC.md §3 3-contact, after Bennett, J. Appl. Phys. 43,
+// "Lowest site first" 3-contact growth (docs/physics.md §3 3-contact, after Bennett, J. Appl. Phys. 43,
 // 2727 (1972) and Visscher & Bolsterli, Nature 239, 504 (1972)): every triple of partners that
 // a new particle could touch at once (particles, floor, walls) is a site; sites wait in a
 // min-heap keyed by the height of the new centre and the lowest free one is filled next.

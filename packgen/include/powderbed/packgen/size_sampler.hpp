@@ -1,5 +1,5 @@
 #pragma once
-// The sizes a packing run draws (SPEC.md §1, §3: "each new particle gets a size from the PSD").
+// The sizes a packing run draws (docs/physics.md §1, §3: "each new particle gets a size from the PSD").
 //   iid:        every size independent, Psd::sample_radius ([LP]'s rule, the default).
 //   stratified: the k-th size comes from u_k = frac(u_0 + k g), g = (sqrt 5 - 1) / 2 (the
 //               golden-ratio additive recurrence, a low-discrepancy sequence: every prefix of

@@ -1,5 +1,5 @@
 #pragma once
-// Apparent heat capacity of melting and vaporisation over a window ΔT (SPEC.md §5):
+// Apparent heat capacity of melting and vaporisation over a window ΔT (docs/physics.md §5):
 //   c = c_s                       T < T_m - ΔT/2
 //       (c_s + c_l)/2 + L_m/ΔT    |T - T_m| <= ΔT/2
 //       c_l                       between the windows

@@ -1,5 +1,5 @@
 #pragma once
-// What the laser and the surroundings see of a bed (SPEC.md §5): which particles are exposed at
+// What the laser and the surroundings see of a bed (docs/physics.md §5): which particles are exposed at
 // the top (they alone convect and radiate), how deep each particle lies below the top surface
 // (Beer–Lambert), and the layer height, porosity and mean diameter that give beta.
 #include <cstdint>

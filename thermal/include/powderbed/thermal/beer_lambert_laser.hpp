@@ -1,5 +1,5 @@
 #pragma once
-// Moving Gaussian laser with Beer–Lambert penetration (SPEC.md §5):
+// Moving Gaussian laser with Beer–Lambert penetration (docs/physics.md §5):
 //   I(r, z) = I0 exp(-beta z) exp(-2 r^2 / w^2),  I0 = 2 P / (π w^2),
 // absorbed power of a particle H_i = alpha I A_i with A_i = π r_i^2; beta from Gusarov:
 //   beta = 3 (1 - gamma) / (2 gamma D), gamma the porosity, D the mean diameter.

@@ -1,5 +1,5 @@
 #pragma once
-// Particle conduction through contacts (SPEC.md §5): Q = K (T_j - T_i) A_ij / |x_j - x_i|,
+// Particle conduction through contacts (docs/physics.md §5): Q = K (T_j - T_i) A_ij / |x_j - x_i|,
 // A_ij = π a^2 with a the radius of the circle in which two overlapping spheres intersect.
 #include <cmath>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Enthalpy form of the apparent heat capacity (SPEC.md §5). The solver keeps each particle's
+// Enthalpy form of the apparent heat capacity (docs/physics.md §5). The solver keeps each particle's
 // specific enthalpy h (J/kg) and each substrate node's volumetric enthalpy e (J/m^3) as its
 // state: a forward-Euler step adds energy exactly (energy is conserved to round-off whatever
 // the window ΔT), and T follows from the inverse h -> T. With e(T) = ∫ rho(T) c(T) dT the

@@ -1,6 +1,6 @@
 #pragma once
-// `sinter --explain` (DESIGN.md "Effects a scene calls for"): the scale analysis of [GZ]
-// (SPEC.md §5) for this scene and bed — each heat path's flux relative to the absorbed laser
+// `sinter --explain` (docs/architecture.md "Effects a scene calls for"): the scale analysis of [GZ]
+// (docs/physics.md §5) for this scene and bed — each heat path's flux relative to the absorbed laser
 // flux alpha I0 while a particle heats towards melting, the lumped-capacitance Biot numbers —
 // and which effects matter (ratio >= 1e-3) or could be switched off.
 #include <string>

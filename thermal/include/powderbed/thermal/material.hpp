@@ -1,21 +1,21 @@
 #pragma once
-// Temperature-dependent material of the DE–FD solver (SPEC.md §5): a solid property table read
+// Temperature-dependent material of the DE–FD solver (docs/physics.md §5): a solid property table read
 // from CSV, one liquid row, and the phase-change parameters of the apparent heat capacity.
 #include <string>
 #include <vector>
 
 namespace powderbed::thermal {
 
-// What a material CSV holds (columns temperature_K, specific_heat_J_per_kgK,
-// conductivity_W_per_mK, density_kg_per_m3, phase = solid | liquid; '#' lines are comments).
+// The property table of a material file (bed/material_file.hpp: columns temperature_K,
+// specific_heat_J_per_kgK, conductivity_W_per_mK, density_kg_per_m3, phase = solid | liquid).
 struct MaterialTable {
   std::vector<double> temperature, specific_heat, conductivity, density;  // solid rows
   double liquid_specific_heat = 0, liquid_conductivity = 0, liquid_density = 0;
 };
 
-// Reads and checks a table: at least two solid rows with strictly increasing temperature, one
-// liquid row, every value finite and positive. Throws InputError naming the file, the line and
-// what is accepted.
+// Reads the table of a material file with bed::read_material_file: at least two solid rows with
+// strictly increasing temperature, one liquid row, every value finite and positive. Throws
+// InputError naming the file, the line and what is accepted, or that the file has no table.
 MaterialTable read_material_table(const std::string& path);
 
 // Phase-change and scene-level material parameters ([GZ] Table 2 defaults).
@@ -45,7 +45,7 @@ class Material {
   double liquid_conductivity() const { return liquid_conductivity_; }
   double liquid_density() const { return table_.liquid_density; }
 
-  // Apparent heat capacity c(T), J/kgK (SPEC.md §5, the five-branch formula).
+  // Apparent heat capacity c(T), J/kgK (docs/physics.md §5, the five-branch formula).
   double apparent_heat_capacity(double t) const;
   double conductivity(double t) const;
   double density(double t) const;

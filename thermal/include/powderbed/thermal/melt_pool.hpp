@@ -1,5 +1,5 @@
 #pragma once
-// The melt pool as [GZ] measure it (SPEC.md §5): on the plane x = x_plane, the region that ever
+// The melt pool as [GZ] measure it (docs/physics.md §5): on the plane x = x_plane, the region that ever
 // reached T_m. Substrate: nodes of the grid plane nearest x_plane; depth below the top face and
 // width along the top row, each edge placed by linear interpolation of the peak temperature
 // between the last node at or above T_m and the next one. Particles: those the plane cuts (their

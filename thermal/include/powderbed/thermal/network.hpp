@@ -1,5 +1,5 @@
 #pragma once
-// The bed's conduction network (SPEC.md §5): particle pairs that overlap, with the shape factor
+// The bed's conduction network (docs/physics.md §5): particle pairs that overlap, with the shape factor
 // A_ij / |x_j - x_i| of their contact, and particles that overlap the substrate's top face,
 // with the shape factor A / h (h: centre height above the face) and the grid cell under them.
 #include <cstdint>

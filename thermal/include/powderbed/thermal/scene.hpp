@@ -1,5 +1,5 @@
 #pragma once
-// What a sinter scene specifies (SPEC.md §5, [GZ] Table 2 defaults): material, environment,
+// What a sinter scene specifies (docs/physics.md §5, [GZ] Table 2 defaults): material, environment,
 // laser path, substrate grid, time stepping and the set of effects switched on. The solver
 // composes the chosen effects once, at start.
 #include <array>
@@ -11,7 +11,7 @@
 
 namespace powderbed::thermal {
 
-// The effects of DESIGN.md "Effects a scene calls for", one bit each.
+// The effects of docs/architecture.md "Effects a scene calls for", one bit each.
 enum SinterEffect : unsigned {
   kConduction = 1u << 0,          // particle–particle contact conduction
   kSubstrateContact = 1u << 1,    // particle–substrate contact conduction
@@ -31,19 +31,19 @@ const char* sinter_effect_name(unsigned effect);
 
 enum class Integrator { explicit_euler, implicit_euler };
 
-// How the laser's power is split over the bed: `beer_lambert` (SPEC.md §5: I0 exp(-beta z) on
+// How the laser's power is split over the bed: `beer_lambert` (docs/physics.md §5: I0 exp(-beta z) on
 // each particle's projected area, Gusarov's beta, and what passes the powder onto the
 // substrate) or `ray_trace` (rays on the bed's own spheres, ray_traced_laser.hpp).
 enum class LaserAbsorption { beer_lambert, ray_trace };
 
-// What the laser crosses before it reaches the substrate (SPEC.md §5 writes exp(-beta H_layer)):
+// What the laser crosses before it reaches the substrate (docs/physics.md §5 writes exp(-beta H_layer)):
 // `layer`: the bed's layer height everywhere; `column`: the height of the bed above each top
 // node from the height map (bare spots between particles get the full beam).
 enum class SubstrateShading { layer, column };
 
 struct SinterScene {
   // Material ([GZ] Tables 1–2).
-  std::string material_table = "data/materials/316L.csv";
+  std::string material_table = "316L";  // a name of data/materials or a path to a material file
   PhaseChange phase_change;
   double hold_from = 1400;  // K: solid table extrapolated to here, then held
   LiquidConductivity liquid_conductivity = LiquidConductivity::solid;

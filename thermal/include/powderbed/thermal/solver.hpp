@@ -1,5 +1,5 @@
 #pragma once
-// The DE–FD laser thermal solver (SPEC.md §5): lumped particle enthalpies on a fixed bed
+// The DE–FD laser thermal solver (docs/physics.md §5): lumped particle enthalpies on a fixed bed
 // coupled to the finite-difference substrate, under a Gaussian laser moving along x.
 //
 // Time integration (explicit): each grid step dt_grid holds `substeps` particle steps

@@ -1,8 +1,8 @@
 #pragma once
-// The finite-difference substrate under the bed (SPEC.md §5): a box of nx × ny × nz nodes,
+// The finite-difference substrate under the bed (docs/physics.md §5): a box of nx × ny × nz nodes,
 // z from -depth (bottom, k = 0) to the bed's floor (top, k = nz - 1). Node-centred finite
 // volumes: interior nodes own dx dy dz, top nodes the half cell below the surface (the half-cell
-// balance SPEC.md accepts for the top flux). Dirichlet T = T0 on the four sides and the bottom.
+// balance docs/physics.md §5 describes for the top flux). Dirichlet T = T0 on the four sides and the bottom.
 // Face conductivity K_face = (K_a + K_b) / 2; second-order central differences.
 #include <cstddef>
 #include <vector>

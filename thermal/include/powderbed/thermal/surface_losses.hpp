@@ -1,5 +1,5 @@
 #pragma once
-// Losses of an exposed top particle (SPEC.md §5) over its projected area A = π r^2:
+// Losses of an exposed top particle (docs/physics.md §5) over its projected area A = π r^2:
 //   convection h (T_env - T) A,  radiation eps sigma (T_env^4 - T^4) A.
 #include "powderbed/bed/contact_geometry.hpp"
 

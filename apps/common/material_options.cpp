@@ -1,0 +1,132 @@
+#include "common/material_options.hpp"
+
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/json.hpp"
+#include "powderbed/bed/material_file.hpp"
+
+namespace powderbed::app {
+
+namespace {
+
+namespace po = boost::program_options;
+
+// What a material file fills, program by program: the option and the file's key. Two keys are
+// not scalars: "file" is the material file itself (sinter reads its table), "conductivity" the
+// table's solid conductivity at the bed's temperature (keff: the mean of the walls, or
+// --temperature).
+struct MaterialOption {
+  const char* app;
+  const char* option;
+  const char* key;
+};
+constexpr MaterialOption kMaterialOptions[] = {
+    {"deposit", "material.density", "density"},
+    {"deposit", "material.young", "young_modulus"},
+    {"deposit", "material.poisson", "poisson_ratio"},
+    {"sinter", "material.table", "file"},
+    {"sinter", "material.melting-point", "melting_point"},
+    {"sinter", "material.boiling-point", "boiling_point"},
+    {"sinter", "material.latent-melt", "latent_melt"},
+    {"sinter", "material.latent-vapour", "latent_vapour"},
+    {"sinter", "material.hold-from", "hold_from"},
+    {"sinter", "laser.absorptivity", "absorptivity"},
+    {"keff", "solid.conductivity", "conductivity"},
+};
+
+// The bed temperature keff's k_s is read at: --temperature, else the mean of the two walls.
+double keff_temperature(const po::variables_map& vm) {
+  if (vm.count("temperature")) return vm["temperature"].as<double>();
+  return 0.5 * (vm["t-hot"].as<double>() + vm["t-cold"].as<double>());
+}
+
+// Stores `value` as option `name`'s value (as if typed: no longer a default).
+void store(po::variables_map& vm, const std::string& name, boost::any value) {
+  static_cast<std::map<std::string, po::variable_value>&>(vm)[name] =
+      po::variable_value(std::move(value), false);
+}
+
+}  // namespace
+
+void add_material_options(po::options_description& desc, const char* app) {
+  std::string filled;
+  for (const auto& m : kMaterialOptions) {
+    if (std::string(m.app) != app) continue;
+    filled += (filled.empty() ? "" : ", ") + std::string(m.option);
+  }
+  const std::string help =
+      "material: a name of --list-materials (data/materials/NAME.csv) or a path to a material "
+      "CSV; fills " +
+      filled +
+      " (an option given beside it wins: on the command line always, in the scene file when "
+      "--material is in the scene file too)";
+  desc.add_options()("material", po::value<std::string>(), help.c_str())(
+      "list-materials", "print the shipped materials (name and description) and exit");
+}
+
+bool list_materials(const po::variables_map& vm) {
+  if (!vm.count("list-materials")) return false;
+  const auto materials = bed::shipped_materials();
+  if (vm.count("json")) {
+    bed::JsonWriter j;
+    j.begin_object().begin_array("materials");
+    for (const auto& m : materials) {
+      j.begin_object()
+          .value("name", m.name)
+          .value("description", m.description)
+          .value("path", m.path)
+          .end_object();
+    }
+    j.end_array().end_object();
+    std::cout << j.str() << '\n';
+    return true;
+  }
+  std::size_t width = 0;
+  for (const auto& m : materials) width = std::max(width, m.name.size());
+  for (const auto& m : materials)
+    std::cout << m.name << std::string(width + 2 - m.name.size(), ' ') << m.description << '\n';
+  return true;
+}
+
+std::string material_file(const std::string& name_or_path, const po::variables_map& vm,
+                          const std::string& option) {
+  namespace fs = std::filesystem;
+  const std::string path = bed::material_path(name_or_path, option);
+  if (fs::path(path).is_absolute() || fs::exists(path) || !vm.count("config")) return path;
+  const fs::path beside = fs::path(vm["config"].as<std::string>()).parent_path() / path;
+  return fs::exists(beside) ? beside.string() : path;
+}
+
+void apply_material(const char* app, po::variables_map& vm, const std::set<std::string>& typed) {
+  if (!vm.count("material")) return;
+  const std::string path = material_file(vm["material"].as<std::string>(), vm, "--material");
+  bed::MaterialFile file;
+  try {
+    file = bed::read_material_file(path);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--material: ") + e.what());
+  }
+  // Given beside it, an option wins: at the command line always, in the scene file unless
+  // --material itself was typed at the command line (then the scene's values give way).
+  const bool material_typed = typed.count("material") > 0;
+  for (const auto& m : kMaterialOptions) {
+    if (std::string(m.app) != app) continue;
+    const bool in_scene = vm.count(m.option) && !vm[m.option].defaulted();
+    if (typed.count(m.option) || (in_scene && !material_typed)) continue;
+    const std::string key = m.key;
+    if (key == "file") {
+      store(vm, m.option, path);
+    } else if (key == "conductivity") {
+      store(vm, m.option, file.solid_conductivity(keff_temperature(vm)));
+    } else if (const auto v = file.get(key)) {
+      store(vm, m.option, *v);
+    }
+  }
+}
+
+}  // namespace powderbed::app
