@@ -83,6 +83,21 @@ void RunWriter::snapshot(const Sinter& sinter) {
   s.steps.emplace_back(sinter.step(), sinter.time());
 }
 
+void RunWriter::fusion(const Fusion& f) {
+  Impl& s = *impl_;
+  s.out.write("/fusion/top_height", f.top, {s.g.ny, s.g.nx}, "m");
+  s.out.write("/fusion/state", f.state, {s.n}, "1");
+  s.out.attribute("/fusion", "threshold", f.threshold);
+  s.out.attribute("/fusion", "fused", static_cast<std::uint64_t>(f.fused));
+  s.out.attribute("/fusion", "vaporised", static_cast<std::uint64_t>(f.vaporised));
+  s.out.attribute("/fusion", "powder_mass_before", f.powder_mass_before);
+  s.out.attribute("/fusion", "powder_mass_after", f.powder_mass_after);
+  s.out.attribute("/fusion", "solid_mass_before", f.solid_mass_before);
+  s.out.attribute("/fusion", "solid_mass_after", f.solid_mass_after);
+  s.out.attribute("/fusion", "vaporised_mass", f.vaporised_mass);
+  s.out.attribute("/fusion", "mass_error", f.mass_error());
+}
+
 void RunWriter::finish(const Sinter& sinter, const SinterResult& result,
                        const std::vector<std::pair<std::string, double>>& summary) {
   Impl& s = *impl_;
@@ -97,6 +112,23 @@ void RunWriter::finish(const Sinter& sinter, const SinterResult& result,
   s.out.attribute("/melt", "depth", result.melt_pool.depth);
   s.out.attribute("/melt", "x_plane", g.x(g.nx / 2));
   s.out.attribute("/melt", "melting_point", sinter.material().phase_change().melting_point);
+  const auto& tracks = result.tracks;
+  const auto column = [&](const char* name, const char* units, auto field) {
+    std::vector<double> v;
+    for (const auto& t : tracks) v.push_back(field(t));
+    s.out.write(std::string("/tracks/") + name, v, {tracks.size()}, units);
+  };
+  column("width", "m", [](const TrackStats& t) { return t.pool.width; });
+  column("depth", "m", [](const TrackStats& t) { return t.pool.depth; });
+  column("height", "m", [](const TrackStats& t) { return t.pool.height; });
+  column("length", "m", [](const TrackStats& t) { return t.length; });
+  column("peak_temperature", "K", [](const TrackStats& t) { return t.peak_temperature; });
+  column("start_temperature", "K", [](const TrackStats& t) { return t.start_temperature; });
+  column("stored_energy", "J", [](const TrackStats& t) { return t.stored_energy; });
+  column("particles_molten", "1",
+         [](const TrackStats& t) { return static_cast<double>(t.particles_molten); });
+  column("t_start", "s", [](const TrackStats& t) { return t.t_start; });
+  column("t_end", "s", [](const TrackStats& t) { return t.t_end; });
   for (const auto& [name, value] : summary) s.out.attribute("/summary", name, value);
 
   s.out.commit();
