@@ -102,7 +102,9 @@ void add_options(po::options_description& desc) {
       ("out", po::value<std::string>(), "run file: HDF5 time series + XDMF sidecar")
       ("explain", po::bool_switch(), "print the scene's scale analysis and exit")
       ("fuse", po::bool_switch(),
-       "after the scan, fuse what melted wholly (T_m + window/2): /fusion in the run file")
+       "after the scan, fuse the particles that melted into the solid: /fusion in the run file")
+      ("fuse.melt-fraction", po::value<double>()->default_value(0.5),
+       "--fuse: the melt fraction a particle must have reached (0.5: T_m; 1: wholly liquid)")
       ("fused-bed", po::value<std::string>(), "--fuse: write the powder left as this bed (.h5)")
       ("power", po::value<double>()->default_value(d.power), "laser power P (W)")
       ("speed", po::value<double>()->default_value(d.speed), "scan speed v (m/s)")
@@ -458,7 +460,7 @@ int run(int argc, char** argv) {
       {"dt", r.dt_grid}, {"wall_time", wall}};
   std::optional<th::Fusion> fused;
   if (fuse) {
-    fused = th::fuse(bed, sinter);
+    fused = th::fuse(bed, sinter, vm["fuse.melt-fraction"].as<double>());
     writer.fusion(*fused);
     if (vm.count("fused-bed")) {
       fused->powder.provenance.stage = "sinter --fuse";

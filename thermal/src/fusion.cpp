@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "powderbed/bed/errors.hpp"
+
 namespace powderbed::thermal {
 
 namespace {
@@ -45,7 +47,9 @@ double solid_mass(const SubstrateGeometry& g, const TopHeight& top, double densi
   return density * volume;
 }
 
-Fusion fuse(const bed::Bed& bed, const Sinter& sinter) {
+Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction) {
+  require_in_range(melt_fraction > 0 && melt_fraction <= 1, "fuse.melt-fraction", melt_fraction,
+                   "0 < f <= 1");
   const SubstrateGeometry& g = sinter.grid();
   const PhaseChange& phase = sinter.material().phase_change();
   const double rho0 = sinter.material().density(sinter.scene().initial_temperature);
@@ -53,7 +57,7 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter) {
   const auto& mass = sinter.particle_mass();
   const auto now = sinter.particle_phase();
   Fusion f;
-  f.threshold = phase.melting_point + 0.5 * phase.window;
+  f.threshold = phase.melting_point + (melt_fraction - 0.5) * phase.window;
   f.top = sinter.top_height();
   if (f.top.empty()) f.top.assign(g.nx * g.ny, g.z_top);
   f.solid_mass_before = solid_mass(g, f.top, rho0);

@@ -93,7 +93,8 @@ struct Sinter::State {
 
   // Per-track statistics (track_stats.cpp): for each segment, its midpoint cross-section
   // (top-face columns, their coordinate along the plane) and its centre line (sample points);
-  // the window being measured, its section peaks (samples × nz) and particle peaks.
+  // the window being measured, its section peaks (samples × nz) and particle peaks, and their
+  // values when it opened.
   struct TrackProbe {
     std::vector<std::size_t> columns;
     std::vector<double> across;
@@ -103,6 +104,7 @@ struct Sinter::State {
   std::vector<TrackProbe> probes;
   std::size_t track = 0;  // the window being measured
   std::vector<double> section_peak, track_particle_peak;
+  std::vector<double> section_start, track_particle_start;  // at the window's start
   std::vector<std::uint8_t> line_molten;  // scratch: centre-line samples molten now
   TrackStats current;
   std::vector<TrackStats> tracks;

@@ -1,6 +1,8 @@
 // Melt pool statistics per scan segment (solver.hpp TrackStats). The window of segment m runs
 // from its start to the start of segment m + 1, so the pool a track leaves behind as the laser
-// jumps is its own, and the peaks of later tracks never enter it. Peaks are kept only where they
+// jumps is its own, and the peaks of later tracks never enter it. A node or particle counts in
+// a window only if it got hotter during it: a particle still molten from the track before (a
+// lone particle on the powder cools slowly) but cooling is not the new track's melt. Peaks are kept only where they
 // are measured: the nodes of the columns on the cross-section through the segment's midpoint,
 // and the particles; the centre line is read each step for the pool's length.
 #include <algorithm>
@@ -83,7 +85,14 @@ void open_window(Sinter::State& s, std::size_t m) {
   s.current = TrackStats{};
   s.current.t_start = s.time;
   s.current.start_temperature = mean_top_temperature(s, seg.x0, seg.y0);
-  s.section_peak.assign(s.probes[m].columns.size() * s.g.nz, 0.0);
+  const auto& p = s.probes[m];
+  const SubstrateGeometry& g = s.g;
+  s.section_start.resize(p.columns.size() * g.nz);
+  for (std::size_t q = 0; q < p.columns.size(); ++q)
+    for (std::size_t k = 0; k < g.nz; ++k)
+      s.section_start[q * g.nz + k] = s.node_temperature[p.columns[q] + g.nx * g.ny * k];
+  s.section_peak = s.section_start;
+  s.track_particle_start = s.temperature;
   s.track_particle_peak = s.temperature;
   s.line_molten.assign(s.probes[m].line.size(), 0);
 }
@@ -93,14 +102,22 @@ void close_window(Sinter::State& s) {
   const auto& p = s.probes[m];
   const ScanSegment& seg = s.schedule.segments()[m];
   const auto d = s.schedule.direction(m);
-  SectionInput in{&s.g, &p.columns, &p.across, p.step, &s.section_peak,
-                  &s.x, &s.y, &s.z, &s.radius, &s.track_particle_peak,
+  // What did not get hotter in the window takes no part in it.
+  const auto risen = [](std::vector<double> peak, const std::vector<double>& start) {
+    for (std::size_t i = 0; i < peak.size(); ++i)
+      if (!(peak[i] > start[i])) peak[i] = 0;
+    return peak;
+  };
+  const auto section = risen(s.section_peak, s.section_start);
+  const auto particles_risen = risen(s.track_particle_peak, s.track_particle_start);
+  SectionInput in{&s.g, &p.columns, &p.across, p.step, &section,
+                  &s.x, &s.y, &s.z, &s.radius, &particles_risen,
                   s.scene.phase_change.melting_point,
                   0.5 * (seg.x0 + seg.x1), 0.5 * (seg.y0 + seg.y1), d[0], d[1], &s.top};
   s.current.pool = measure_section(in);
   const double t_m = s.scene.phase_change.melting_point;
   for (std::size_t i = 0; i < s.x.size(); ++i)
-    if (s.track_particle_peak[i] >= t_m) ++s.current.particles_molten;
+    if (particles_risen[i] >= t_m) ++s.current.particles_molten;
   const auto [particles, substrate] = internal_energy(s);
   s.current.stored_energy = particles + substrate;
   s.current.t_end = s.time;

@@ -40,7 +40,8 @@ struct MeltPool {  // on the plane x = Lx/2 (melt_pool.hpp says how)
 
 // One segment of the scan path, measured over its window: from its start to the next segment's
 // (the jump after it included; the last one to t_end). Width and depth on the cross-section
-// through the segment's midpoint (melt_pool.hpp, measure_section), from the peaks of the window;
+// through the segment's midpoint (melt_pool.hpp, measure_section), from the peaks of the window
+// (of what got hotter in it: what is still molten from the track before but cooling is not);
 // length: the longest stretch of the segment's centre line molten at once (top face at or above
 // T_m, or a molten particle over it); peak temperature over the particles and the top face.
 // What the track leaves for the next: the stored energy above T0 (bed + substrate) at the end of
@@ -50,7 +51,7 @@ struct TrackStats {
   MeltPool pool;
   double length = 0;            // m
   double peak_temperature = 0;  // K
-  std::size_t particles_molten = 0;  // particles that reached T_m in the window
+  std::size_t particles_molten = 0;  // particles that got hotter and reached T_m in the window
   double start_temperature = 0;      // K
   double stored_energy = 0;          // J above T0 at the window's end
   double t_start = 0, t_end = 0;     // the window, s
