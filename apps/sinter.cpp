@@ -1,5 +1,7 @@
-// sinter: the DE–FD laser thermal solver (docs/sinter.md) on a bed: one laser track, melt pool on
-// the plane x = Lx/2, an HDF5 + XDMF time series, and the energy balance of the run.
+// sinter: the DE–FD laser thermal solver (docs/sinter.md) on a bed: one laser track or a scan
+// path (a hatch or a CSV of segments), the melt pool on the plane x = Lx/2 and per track, fusion
+// of what melted into a raised solid top (--fuse), an HDF5 + XDMF time series, and the energy
+// balance of the run.
 #include <unistd.h>
 
 #include <algorithm>
@@ -398,6 +400,10 @@ int run(int argc, char** argv) {
     outputs.push_back({"--out", out});
   }
   const bool fuse = vm["fuse"].as<bool>();
+  const double melt_fraction = vm["fuse.melt-fraction"].as<double>();
+  if (fuse && !(melt_fraction > 0 && melt_fraction <= 1))
+    throw InputError("--fuse.melt-fraction: " + std::to_string(melt_fraction) +
+                     " (accepted: 0 < f <= 1; 0.5 fuses what reached T_m, 1 what was wholly liquid)");
   if (vm.count("fused-bed")) {
     if (!fuse) throw InputError("--fused-bed: given without --fuse (accepted: --fuse --fused-bed BED.h5)");
     const std::string fused_bed = vm["fused-bed"].as<std::string>();
@@ -460,7 +466,7 @@ int run(int argc, char** argv) {
       {"dt", r.dt_grid}, {"wall_time", wall}};
   std::optional<th::Fusion> fused;
   if (fuse) {
-    fused = th::fuse(bed, sinter, vm["fuse.melt-fraction"].as<double>());
+    fused = th::fuse(bed, sinter, melt_fraction);
     writer.fusion(*fused);
     if (vm.count("fused-bed")) {
       fused->powder.provenance.stage = "sinter --fuse";

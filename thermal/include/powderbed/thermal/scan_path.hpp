@@ -6,8 +6,8 @@
 //
 // A path comes from a hatch (parallel tracks across a rectangular region, spacing h, one-way or
 // alternating, rotated by k × rotation about the region's centre on layer k: 67° per layer is
-// the usual choice, since no multiple of it below 360 × 67 returns to 0°), or from a CSV of
-// segments (header x0,y0,x1,y1,power,speed; SI units).
+// the usual choice, since 67 and 180 have no common factor and no two of 180 successive layers
+// scan along the same line), or from a CSV of segments (header x0,y0,x1,y1,power,speed; SI).
 #include <array>
 #include <cstddef>
 #include <string>
