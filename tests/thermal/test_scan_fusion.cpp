@@ -360,3 +360,20 @@ TEST(Fusion, SolverRunsOnTheRaisedTop) {
   top[0] = -1e-6;
   EXPECT_THROW(thermal::Sinter(b, scene, test::table_316l(), top), InputError);
 }
+
+// A hatch over the whole plate (the default region of sinter) lies on it: its clipped ends are
+// on the plate's edge exactly, at any rotation.
+TEST(ScanPath, HatchOverTheWholePlateStaysOnIt) {
+  const bed::Bed b = monolayer(160e-6, 120e-6);
+  for (const std::size_t layer : {0u, 1u, 2u, 3u}) {
+    auto scene = scene_for(b);
+    thermal::Hatch h;
+    h.spacing = 30e-6;
+    h.layer = layer;
+    h.region = {0, b.domain.length(0), 0, b.domain.length(1)};
+    h.power = kPower;
+    h.speed = 1.5;
+    scene.scan_path = thermal::hatch_segments(h);
+    EXPECT_NO_THROW(thermal::Sinter(b, scene, test::table_316l())) << "layer " << layer;
+  }
+}

@@ -59,8 +59,10 @@ std::vector<ScanSegment> hatch_segments(const Hatch& h) {
     auto [lo, hi] = clip_line(c, d, box);
     if (!(hi > lo)) continue;
     if (h.direction == HatchDirection::alternating && out.size() % 2 == 1) std::swap(lo, hi);
-    out.push_back({c[0] + lo * d[0], c[1] + lo * d[1], c[0] + hi * d[0], c[1] + hi * d[1],
-                   h.power, h.speed});
+    // On the region's edge exactly (the clip's round-off must not put an end outside it).
+    const auto x = [&](double t) { return std::clamp(c[0] + t * d[0], box[0], box[1]); };
+    const auto y = [&](double t) { return std::clamp(c[1] + t * d[1], box[2], box[3]); };
+    out.push_back({x(lo), y(lo), x(hi), y(hi), h.power, h.speed});
   }
   if (out.size() < count) {
     std::ostringstream msg;
