@@ -70,6 +70,12 @@ std::vector<th::ScanSegment> scan_path_of(const po::variables_map& vm, const th:
   const bool csv = vm.count("scan-path") > 0, hatch = vm.count("scan.hatch") > 0;
   if (csv && hatch)
     throw InputError("--scan-path, --scan.hatch: both given (accepted: one of them)");
+  if (!hatch) {  // a hatch option without the hatch is a mistake, not a default
+    for (const char* name : {"scan.tracks", "scan.direction", "scan.rotation", "scan.layer", "scan.region"})
+      if (vm.count(name) && !vm[name].defaulted())
+        throw InputError(std::string("--") + name + ": given without --scan.hatch (accepted: "
+                         "--scan.hatch H with it)");
+  }
   if (csv) return th::read_scan_csv(vm["scan-path"].as<std::string>());
   if (!hatch) return {};
   th::Hatch h;

@@ -308,9 +308,14 @@ TEST(SinterCli, HatchScanAndFusePrintsTracksAndWritesTheFusedBed) {
   EXPECT_EQ(static_cast<double>(left.n()), json_number(r.out, "powder_left"));
   const hid_t file = H5Fopen((dir + "/out.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   ASSERT_GE(file, 0);
-  for (const char* name : {"/fusion/top_height", "/fusion/state", "/tracks/width", "/tracks/depth"})
+  for (const char* name : {"/fusion/top_height", "/fusion/state", "/fusion/surface",
+                           "/tracks/width", "/tracks/depth"})
     EXPECT_GT(H5Lexists(file, name, H5P_DEFAULT), 0) << name;
   H5Fclose(file);
+  // ParaView gets the fused top as a surface of its own.
+  std::ifstream xmf(dir + "/out.xmf");
+  const std::string text((std::istreambuf_iterator<char>(xmf)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("<Grid Name=\"solid_top\""), std::string::npos);
 }
 
 // Issue 17's bad scan input: each exits 2 with one line naming it, and writes nothing.
@@ -339,6 +344,7 @@ TEST(SinterCli, BadScanPathsExit2) {
   refused("--scan-path " + csv("both", "10e-6,50e-6,150e-6,50e-6,100,1") + " --scan.hatch 30e-6",
           {"both"});
   refused("--scan.hatch 30e-6 --scan.jump-speed 0", {"scan.jump-speed"});
+  refused("--scan.rotation 67", {"scan.rotation", "without --scan.hatch"});
   refused("--fused-bed " + dir + "/out.fused.h5", {"--fused-bed", "--fuse"});
   refused("--fuse --fuse.melt-fraction 0", {"fuse.melt-fraction"});
 }

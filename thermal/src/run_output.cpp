@@ -33,6 +33,7 @@ struct RunWriter::Impl {
   SubstrateGeometry g;
   bool full;
   std::vector<std::pair<std::uint64_t, double>> steps;
+  bool fused = false;
   Impl(const std::string& path, std::size_t count, const SubstrateGeometry& grid, bool full_fields)
       : out(path), n(count), g(grid), full(full_fields) {}
 };
@@ -85,7 +86,19 @@ void RunWriter::snapshot(const Sinter& sinter) {
 
 void RunWriter::fusion(const Fusion& f) {
   Impl& s = *impl_;
-  s.out.write("/fusion/top_height", f.top, {s.g.ny, s.g.nx}, "m");
+  const SubstrateGeometry& g = s.g;
+  s.out.write("/fusion/top_height", f.top, {g.ny, g.nx}, "m");
+  // For ParaView: the surface's points and its height above the plate.
+  std::vector<double> surface, height;
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i) {
+      const double z = f.top[i + g.nx * j];
+      surface.insert(surface.end(), {g.x(i), g.y(j), z});
+      height.push_back(z - g.z_top);
+    }
+  s.out.write("/fusion/surface", surface, {g.ny, g.nx, 3}, "m");
+  s.out.write("/fusion/height", height, {g.ny, g.nx}, "m");
+  s.fused = true;
   s.out.write("/fusion/state", f.state, {s.n}, "1");
   s.out.attribute("/fusion", "threshold", f.threshold);
   s.out.attribute("/fusion", "fused", static_cast<std::uint64_t>(f.fused));
@@ -133,7 +146,7 @@ void RunWriter::finish(const Sinter& sinter, const SinterResult& result,
 
   s.out.commit();
   bed::write_text_file(bed::xdmf_sidecar_path(s.out.path()),
-                       detail::run_xdmf(bed::file_name_of(s.out.path()), s.n, g, s.steps));
+                       detail::run_xdmf(bed::file_name_of(s.out.path()), s.n, g, s.steps, s.fused));
 }
 
 }  // namespace powderbed::thermal

@@ -16,7 +16,9 @@
 //                          peak_temperature, start_temperature (K), stored_energy (J),
 //                          particles_molten, t_start, t_end (s), each M
 //   /fusion                (sinter --fuse) top_height ny×nx (the solid's top z per top-face
-//                          column, m), state N (0 powder, 1 fused, 2 vaporised); attrs
+//                          column, m), height ny×nx (above the plate), surface ny×nx×3 (the
+//                          columns' x, y, top z: the XDMF grid "solid_top"), state N (0
+//                          powder, 1 fused, 2 vaporised); attrs
 //                          threshold (K), fused, vaporised, powder_mass_before/after,
 //                          solid_mass_before/after (above the plate's top face), vaporised_mass
 //                          (kg), mass_error
