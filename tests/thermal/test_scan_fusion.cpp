@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <string>
 
@@ -251,6 +252,12 @@ TEST(ScanPath, IdenticalTracksFarApartAgree) {
   EXPECT_GT(two.start_temperature, one.start_temperature);
   EXPECT_DOUBLE_EQ(one.start_temperature, scene.initial_temperature);
   EXPECT_LT(r.energy.relative_error(), kBalance);
+  std::printf("  width %.2f / %.2f um, depth %.3f / %.3f um, length %.1f / %.1f um, peak %.0f / "
+              "%.0f K, molten %zu / %zu; second starts at %.1f K\n",
+              one.pool.width * 1e6, two.pool.width * 1e6, one.pool.depth * 1e6,
+              two.pool.depth * 1e6, one.length * 1e6, two.length * 1e6, one.peak_temperature,
+              two.peak_temperature, one.particles_molten, two.particles_molten,
+              two.start_temperature);
 }
 
 // Fusion moves mass from the powder to the solid and loses none: once on the flat plate, and
@@ -278,6 +285,8 @@ TEST(Fusion, MassConserved) {
   ASSERT_GT(f2.fused, 0u);
   EXPECT_DOUBLE_EQ(f2.solid_mass_before, f1.solid_mass_after);
   EXPECT_LT(f2.mass_error(), 1e-12);
+  std::printf("  fused %zu then %zu; mass error %.1e, %.1e; second run's balance %.1e\n", f1.fused,
+              f2.fused, f1.mass_error(), f2.mass_error(), r.energy.relative_error());
 }
 
 // A single track over a plate with one layer of powder fuses a stripe (the columns the solid
@@ -301,6 +310,8 @@ TEST(Fusion, SingleTrackFusesAStripeAsWideAsTheMelt) {
   const double dy = sinter.grid().dy;
   const double stripe = static_cast<double>(hi - lo + 1) * dy;
   EXPECT_NEAR(stripe, melt, dy) << "stripe " << stripe << " m, melt " << melt << " m";
+  std::printf("  stripe %.2f um, melt width %.2f um (dy %.1f um); %zu fused, %zu powder\n",
+              stripe * 1e6, melt * 1e6, dy * 1e6, f.fused, f.powder.n());
   // Unmelted particles stay powder: every particle the melt did not reach is in the bed left.
   EXPECT_EQ(f.powder.n() + f.fused, b.n());
   EXPECT_EQ(f.vaporised, 0u);
@@ -333,6 +344,8 @@ TEST(Fusion, HatchSpacingAndPowderLeftBetweenTracks) {
   EXPECT_LT(16e-6, 0.5 * width_near);
   EXPECT_GT(far, 0u);
   EXPECT_EQ(near, 0u);
+  std::printf("  h 110 um, melt width %.2f um: %zu unfused between; h 16 um, width %.2f um: %zu\n",
+              width_far * 1e6, far, width_near * 1e6, near);
 }
 
 // On a raised top the bed rests on the solid: a particle sitting on a 10 µm block fused there

@@ -72,9 +72,10 @@ MeltPool measure_section(const SectionInput& in) {
     if (!in.top->empty()) depth += (*in.top)[(*in.columns)[q]] - g.z_top;
     pool.depth = std::max(pool.depth, depth);
     double lo = across[q], hi = across[q];
-    if (q > 0 && at(q - 1, top) < t_m) lo -= in.step * crossing(at(q, top), at(q - 1, top), t_m);
+    if (q > 0 && at(q - 1, top) < t_m)
+      lo -= (across[q] - across[q - 1]) * crossing(at(q, top), at(q - 1, top), t_m);
     if (q + 1 < samples && at(q + 1, top) < t_m)
-      hi += in.step * crossing(at(q, top), at(q + 1, top), t_m);
+      hi += (across[q + 1] - across[q]) * crossing(at(q, top), at(q + 1, top), t_m);
     s_lo = std::min(s_lo, lo);
     s_hi = std::max(s_hi, hi);
   }

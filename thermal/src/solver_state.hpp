@@ -99,7 +99,7 @@ struct Sinter::State {
     std::vector<std::size_t> columns;
     std::vector<double> across;
     std::vector<std::array<double, 2>> line;
-    double step = 0, line_step = 0;
+    double line_step = 0;
   };
   std::vector<TrackProbe> probes;
   std::size_t track = 0;  // the window being measured

@@ -30,16 +30,21 @@ Sinter::State::TrackProbe make_probe(const Sinter::State& s, std::size_t m) {
   const auto d = s.schedule.direction(m);
   const double cx = 0.5 * (seg.x0 + seg.x1), cy = 0.5 * (seg.y0 + seg.y1);
   Sinter::State::TrackProbe p;
-  // Across: samples at the grid spacing along the normal (-dy, dx), over the whole grid.
-  p.step = std::abs(d[0]) * g.dy + std::abs(d[1]) * g.dx;  // a grid line's spacing on an axis
+  // Across: the columns nearest points along the normal (-dy, dx) at half the finer spacing,
+  // over the whole grid, each once, placed where its node projects onto the plane.
+  const double step = 0.5 * std::min(g.dx, g.dy);
   const double span = std::hypot(g.dx * static_cast<double>(g.nx - 1), g.dy * static_cast<double>(g.ny - 1));
-  const auto count = static_cast<long>(std::ceil(span / p.step));
+  const auto count = static_cast<long>(std::ceil(span / step));
   for (long q = -count; q <= count; ++q) {
-    const double a = static_cast<double>(q) * p.step;
+    const double a = static_cast<double>(q) * step;
     std::size_t column;
     if (!nearest_column(g, cx - a * d[1], cy + a * d[0], column)) continue;
+    if (std::find(p.columns.begin(), p.columns.end(), column) != p.columns.end()) continue;
+    const double x = g.x(column % g.nx), y = g.y(column / g.nx);
+    const double along = -(x - cx) * d[1] + (y - cy) * d[0];
+    if (!p.across.empty() && along <= p.across.back()) continue;  // keep them in order
     p.columns.push_back(column);
-    p.across.push_back(a);
+    p.across.push_back(along);
   }
   // Along: the centre line at half the finer grid spacing.
   p.line_step = 0.5 * std::min(g.dx, g.dy);
@@ -110,7 +115,7 @@ void close_window(Sinter::State& s) {
   };
   const auto section = risen(s.section_peak, s.section_start);
   const auto particles_risen = risen(s.track_particle_peak, s.track_particle_start);
-  SectionInput in{&s.g, &p.columns, &p.across, p.step, &section,
+  SectionInput in{&s.g, &p.columns, &p.across, &section,
                   &s.x, &s.y, &s.z, &s.radius, &particles_risen,
                   s.scene.phase_change.melting_point,
                   0.5 * (seg.x0 + seg.x1), 0.5 * (seg.y0 + seg.y1), d[0], d[1], &s.top};
