@@ -390,3 +390,24 @@ TEST(ScanPath, HatchOverTheWholePlateStaysOnIt) {
     EXPECT_NO_THROW(thermal::Sinter(b, scene, test::table_316l())) << "layer " << layer;
   }
 }
+
+// The per-track section works at any heading: on a bare plate (isotropic) a track at 45° melts
+// the pool a track along x melts, width within one grid cell, depth within a quarter cell.
+TEST(ScanPath, TrackHeadingDoesNotChangeItsPool) {
+  const bed::Bed b = test::empty_bed(240e-6, 240e-6, 40e-6);
+  const auto scene = scene_for(b);
+  const double c = 120e-6, half = 80e-6, diag = half / std::sqrt(2.0);
+  auto along_x = scene, oblique = scene;
+  // 100 W: the bare plate takes the whole beam (no powder) and melts ~50 µm wide.
+  along_x.scan_path = {{c - half, c, c + half, c, 100, 1.5}};
+  oblique.scan_path = {{c - diag, c - diag, c + diag, c + diag, 100, 1.5}};
+  thermal::Sinter a(b, along_x, test::table_316l()), o(b, oblique, test::table_316l());
+  const auto ra = a.run(nullptr, 0, nullptr), ro = o.run(nullptr, 0, nullptr);
+  const auto& ta = ra.tracks.at(0).pool;
+  const auto& to = ro.tracks.at(0).pool;
+  ASSERT_GT(ta.width, 2 * kDx);
+  EXPECT_NEAR(to.width, ta.width, kDx);
+  EXPECT_NEAR(to.depth, ta.depth, kDx / 4);
+  std::printf("  along x: width %.2f um, depth %.2f um; at 45 deg: %.2f um, %.2f um\n",
+              ta.width * 1e6, ta.depth * 1e6, to.width * 1e6, to.depth * 1e6);
+}
