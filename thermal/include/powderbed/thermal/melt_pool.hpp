@@ -22,4 +22,24 @@ struct MeltPoolInput {
 
 MeltPool measure_melt_pool(const MeltPoolInput& in);
 
+// The same measure on the vertical plane through (cx, cy) across the unit direction (dx, dy) of
+// a track of any heading: the top-face columns nearest the plane, in order along it (columns[q]:
+// the top-face index i + nx j, its node's position projected on the plane at across[q] m from
+// (cx, cy), increasing), with the peak temperatures of their nodes (peak[q nz + k]); particles
+// cut by the plane. Edges are interpolated between neighbouring columns as on a grid line. The
+// depth is measured from each column's top (a raised top lumps its solid into the top node: a
+// molten top node is molten through it).
+struct SectionInput {
+  const SubstrateGeometry* grid;
+  const std::vector<std::size_t>* columns;
+  const std::vector<double>* across;
+  const std::vector<double>* peak;
+  const std::vector<double>* x, *y, *z, *radius, *particle_peak;
+  double melting_point;
+  double cx, cy, dx, dy;
+  const TopHeight* top;  // a raised top: depth from each column's own top (empty: flat)
+};
+
+MeltPool measure_section(const SectionInput& in);
+
 }  // namespace powderbed::thermal
