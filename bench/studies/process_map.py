@@ -59,11 +59,22 @@ def track_pool(summary):
     return pool["width"], pool["depth"], float("nan")
 
 
-def run_point(bed, power, speed, extra):
+def track_of(bed, length):
+    """(x0, x1, y) of a track of `length` m centred on the bed's plate: the middle of a spread
+    strip, away from the heap at its start and the thin end the blade leaves."""
+    import h5py
+    with h5py.File(bed, "r") as f:
+        lower, upper = f["domain"].attrs["lower"], f["domain"].attrs["upper"]
+    cx, cy = 0.5 * (lower[0] + upper[0]), 0.5 * (lower[1] + upper[1])
+    return cx - 0.5 * length, cx + 0.5 * length, cy
+
+
+def run_point(bed, power, speed, track, extra):
     out = os.path.join(WORK, f"process-map-{power:g}W-{speed:g}ms.h5")
+    x0, x1, y = track
     args = [app("sinter"), "--config", SINTER_SCENE, "--bed", bed, "--out", out,
             "--power", str(power), "--speed", str(speed), "--threads", "1", "--snapshots", "1",
-            *extra]
+            "--laser.start-x", repr(x0), "--laser.end-x", repr(x1), "--laser.y", repr(y), *extra]
     summary, wall = run_json(args)
     width, depth, length = track_pool(summary)
     return {"power": power, "speed": speed, "width": width, "depth": depth, "length": length,
@@ -135,13 +146,18 @@ def main():
     parser.add_argument("--small", action="store_true", help="a 3 x 3 grid")
     parser.add_argument("--hatch", type=float, default=HATCH)
     parser.add_argument("--layer", type=float, default=LAYER)
-    parser.add_argument("--sinter-args", default="",
-                        help="extra sinter options, e.g. '--grid-spacing 1e-5'")
+    parser.add_argument("--track-length", type=float, default=0.6e-3,
+                        help="m, centred on the bed (default 0.6 mm)")
+    parser.add_argument("--sinter-args", default="--grid-spacing 1e-5",
+                        help="extra sinter options (default: the 10 um grid, within 1.6 um of "
+                             "the 2.5 um grid's depth at a tenth of the 5 um grid's time: "
+                             "docs/results/sinter-accuracy.md)")
     args = parser.parse_args()
     bed = args.bed or spread_layer()
     powers, speeds = (SMALL_POWERS, SMALL_SPEEDS) if args.small else (POWERS, SPEEDS)
     extra = args.sinter_args.split()
-    points = [run_point(bed, p, v, extra) for p in powers for v in speeds]
+    track = track_of(bed, args.track_length)
+    points = [run_point(bed, p, v, track, extra) for p in powers for v in speeds]
     plot(points, args.hatch, args.layer, os.path.join(RESULTS, "process-map.png"))
     with open(os.path.join(WORK, "process-map.json"), "w") as f:
         json.dump(points, f, indent=1)
@@ -151,7 +167,8 @@ def main():
 Regenerate: `POWDERBED_BUILD=build python3 bench/studies/process_map.py` (script docstring:
 the criteria and their sources). Bed: `{bed_name}`; scene `data/scenes/gz2016-sinter.ini`
 (316L, absorptivity and spot of [GZ]) with `--power` and `--speed` per point
-{('and `' + args.sinter_args + '`') if args.sinter_args else ''}; one track per run, one thread.
+{('and `' + args.sinter_args + '`') if args.sinter_args else ''}; one track of
+{args.track_length * 1e3:g} mm along x through the bed's centre per run, one thread.
 Machine: {platform.node()} ({os.cpu_count()} cores), {platform.platform()}.
 
 Criteria: keyhole W/D <= 1.5; lack of fusion (h/W)^2 + (t/D)^2 > 1 with h = {args.hatch * 1e6:.0f} um,
