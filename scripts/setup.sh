@@ -15,6 +15,7 @@ packages=(
   zlib1g-dev gzip  # gzipped dumps (bed/src/io_text.cpp) and their test
   # the exported decks run in ctest decks.* (docs/decks.md): LAMMPS, LIGGGHTS, mpirun for 2 ranks
   lammps liggghts mpi-default-bin
+  python3-gengeo  # GenGeo, the packing peer: its .geo files read back in ctest decks.gengeo
   clang libclang-rt-14-dev  # the bed-reader fuzz target (tests/fuzz, ~40 s build + 30 s run)
 )
 
