@@ -199,12 +199,15 @@ void liggghts_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws
     for (std::size_t t = 0; t < types * types; ++t) out << " " << num(value);
     out << "\n";
   };
-  std::string model;
+  // LIGGGHTS's wall/gran takes the normal model's settings after the wall's geometry, its pair
+  // style before it.
+  std::string model, settings;
   if (hertz) {
     per_type("youngsModulus", laws.young / laws.young_scale, laws.wall_young / laws.young_scale);
     per_type("poissonsRatio", laws.poisson, laws.wall_poisson);
     per_pair("coefficientRestitution", liggghts_hertz_restitution(laws.damping_ratio, "material.damping"));
     model = "model hertz tangential no_history";
+    settings = " limitForce on";  // deposit's Hertz force never pulls
   } else {
     // hooke/stiffness has one absolute dashpot per type pair: 2 zeta sqrt(m* k_n) for the
     // reduced mass of two particles of the mean mass (exact for equal particles).
@@ -222,11 +225,12 @@ void liggghts_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws
     per_pair("kt", laws.stiffness);
     per_pair("gamman_abs", gamma);
     per_pair("gammat_abs", gamma);
-    model = "model hooke/stiffness tangential no_history absolute_damping on";
+    model = "model hooke/stiffness tangential no_history";
+    settings = " absolute_damping on";
   }
   per_pair("coefficientFriction", laws.friction);
   if (laws.contact) {
-    out << "pair_style     gran " << model << (hertz ? " limitForce on" : "") << "\n"
+    out << "pair_style     gran " << model << settings << "\n"
         << "pair_coeff     * *\n";
   } else {
     out << "pair_style     none  # particle-particle contact is off in the scene\n";
@@ -239,7 +243,7 @@ void liggghts_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws
     for (int side = 0; side < 2; ++side) {
       out << "fix            wall_" << axis << (side ? "hi" : "lo") << " all wall/gran " << model
           << " primitive type " << types << " " << axis << "plane "
-          << num(side ? d.upper[a] : d.lower[a]) << (hertz ? " limitForce on" : "") << "\n";
+          << num(side ? d.upper[a] : d.lower[a]) << settings << "\n";
     }
   }
 }
