@@ -16,6 +16,7 @@ packages=(
   # the exported decks run in ctest decks.* (docs/decks.md): LAMMPS, LIGGGHTS, mpirun for 2 ranks;
   # LIGGGHTS is also the peer of bench/studies/deposit_speed.py and spread_peer.py
   lammps liggghts mpi-default-bin
+  python3-gengeo  # GenGeo, the packing peer: its .geo files read back in ctest decks.gengeo
   clang libclang-rt-14-dev  # the bed-reader fuzz target (tests/fuzz, ~40 s build + 30 s run)
 )
 

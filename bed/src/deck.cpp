@@ -194,39 +194,50 @@ void liggghts_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws
     for (std::size_t t = 0; t + 1 < types; ++t) out << " " << num(particles);
     out << " " << num(wall) << "\n";
   };
-  auto per_pair = [&](const char* name, double value) {
+  // A type-pair matrix: `pair` between particle types, `wall` between a particle type and the
+  // walls' (the last) type.
+  auto per_pair_wall = [&](const char* name, double pair, double wall) {
     out << "fix            prop_" << name << " all property/global " << name << " peratomtypepair " << n;
-    for (std::size_t t = 0; t < types * types; ++t) out << " " << num(value);
+    for (std::size_t i = 0; i < types; ++i)
+      for (std::size_t j = 0; j < types; ++j) out << " " << num(i + 1 == types || j + 1 == types ? wall : pair);
     out << "\n";
   };
-  std::string model;
+  auto per_pair = [&](const char* name, double value) { per_pair_wall(name, value, value); };
+  // LIGGGHTS's wall/gran takes the normal model's settings after the wall's geometry, its pair
+  // style before it.
+  std::string model, settings;
   if (hertz) {
     per_type("youngsModulus", laws.young / laws.young_scale, laws.wall_young / laws.young_scale);
     per_type("poissonsRatio", laws.poisson, laws.wall_poisson);
     per_pair("coefficientRestitution", liggghts_hertz_restitution(laws.damping_ratio, "material.damping"));
     model = "model hertz tangential no_history";
+    settings = " limitForce on";  // deposit's Hertz force never pulls
   } else {
     // hooke/stiffness has one absolute dashpot per type pair: 2 zeta sqrt(m* k_n) for the
-    // reduced mass of two particles of the mean mass (exact for equal particles).
+    // reduced mass of two particles of the mean mass, and of one against a wall (m* = m), exact
+    // for equal particles.
     double mass = 0;
     for (std::size_t i = 0; i < bed.n(); ++i) {
       const std::size_t t = bed.material.empty() ? 0 : bed.material[i];
       const double rho = laws.density.size() == 1 ? laws.density[0] : laws.density[t];
       mass += rho * 4.0 / 3.0 * std::numbers::pi * std::pow(bed.radius[i], 3);
     }
-    const double reduced = 0.5 * mass / static_cast<double>(bed.n());
-    const double gamma = 2 * laws.damping_ratio * std::sqrt(reduced * laws.stiffness);
-    out << "# linear law: one dashpot " << num(gamma) << " N s/m for the mean pair (m* = "
-        << num(reduced) << " kg); deposit's varies with each pair's m*\n";
+    const double mean = mass / static_cast<double>(bed.n());
+    const double gamma = 2 * laws.damping_ratio * std::sqrt(0.5 * mean * laws.stiffness);
+    const double gamma_wall = 2 * laws.damping_ratio * std::sqrt(mean * laws.stiffness);
+    out << "# linear law: one dashpot per type pair, " << num(gamma) << " N s/m for two particles of "
+        << "the mean mass " << num(mean) << " kg, " << num(gamma_wall) << " N s/m against a wall; "
+        << "deposit's varies with each pair's m*\n";
     per_pair("kn", laws.stiffness);
     per_pair("kt", laws.stiffness);
-    per_pair("gamman_abs", gamma);
-    per_pair("gammat_abs", gamma);
-    model = "model hooke/stiffness tangential no_history absolute_damping on";
+    per_pair_wall("gamman_abs", gamma, gamma_wall);
+    per_pair_wall("gammat_abs", gamma, gamma_wall);
+    model = "model hooke/stiffness tangential no_history";
+    settings = " absolute_damping on";
   }
   per_pair("coefficientFriction", laws.friction);
   if (laws.contact) {
-    out << "pair_style     gran " << model << (hertz ? " limitForce on" : "") << "\n"
+    out << "pair_style     gran " << model << settings << "\n"
         << "pair_coeff     * *\n";
   } else {
     out << "pair_style     none  # particle-particle contact is off in the scene\n";
@@ -239,7 +250,7 @@ void liggghts_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws
     for (int side = 0; side < 2; ++side) {
       out << "fix            wall_" << axis << (side ? "hi" : "lo") << " all wall/gran " << model
           << " primitive type " << types << " " << axis << "plane "
-          << num(side ? d.upper[a] : d.lower[a]) << (hertz ? " limitForce on" : "") << "\n";
+          << num(side ? d.upper[a] : d.lower[a]) << settings << "\n";
     }
   }
 }

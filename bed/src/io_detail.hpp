@@ -76,6 +76,17 @@ inline int significant_digits(std::string_view token) {
   return digits;
 }
 
+// 'text' in quotes, for error messages (built by append: GCC 12's -Wrestrict misreads
+// "'" + std::string).
+inline std::string quoted(std::string_view text) {
+  std::string q;
+  q.reserve(text.size() + 2);
+  q += '\'';
+  q.append(text);
+  q += '\'';
+  return q;
+}
+
 // Splits a line at spaces and tabs into `words` (views into `line`).
 void split_words(std::string_view line, std::vector<std::string_view>& words);
 

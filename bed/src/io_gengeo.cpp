@@ -26,25 +26,25 @@ class GeoReader {
   Bed read() {
     expect("LSMGeometry");
     if (words_.size() != 2 || (words_[1] != "1.2" && words_[1] != "1.1"))
-      fail("'" + line_ + "' (accepted: LSMGeometry 1.2)");
+      fail(detail::quoted(line_) + " (accepted: LSMGeometry 1.2)");
     expect("BoundingBox");
-    if (words_.size() != 7) fail("'" + line_ + "' (accepted: BoundingBox xmin ymin zmin xmax ymax zmax)");
+    if (words_.size() != 7) fail(detail::quoted(line_) + " (accepted: BoundingBox xmin ymin zmin xmax ymax zmax)");
     Domain& d = bed_.domain;
     for (int a = 0; a < 3; ++a) {
       d.lower[a] = number(1 + a);
       d.upper[a] = number(4 + a);
     }
     expect("PeriodicBoundaries");
-    if (words_.size() != 4) fail("'" + line_ + "' (accepted: PeriodicBoundaries px py pz, each 0 or 1)");
+    if (words_.size() != 4) fail(detail::quoted(line_) + " (accepted: PeriodicBoundaries px py pz, each 0 or 1)");
     for (int a = 0; a < 3; ++a) {
       if (words_[1 + a] != "0" && words_[1 + a] != "1")
-        fail("'" + line_ + "' (accepted: PeriodicBoundaries px py pz, each 0 or 1)");
+        fail(detail::quoted(line_) + " (accepted: PeriodicBoundaries px py pz, each 0 or 1)");
       d.periodic[a] = words_[1 + a] == "1";
     }
     next_words();
     if (words_.empty() || (words_[0] != "Dimension" && words_[0] != "Dimensions") || words_.size() != 2 ||
         (words_[1] != "3D" && words_[1] != "2D"))
-      fail("'" + line_ + "' (accepted: Dimension 3D or 2D)");
+      fail(detail::quoted(line_) + " (accepted: Dimension 3D or 2D)");
     d.dimension = words_[1] == "3D" ? 3 : 2;
     if (d.dimension == 2) {
       d.lower[2] = d.upper[2] = 0;  // GenGeo's 2D box is +-0.1 thick in z; beds are flat
@@ -56,7 +56,7 @@ class GeoReader {
     next_words();
     std::uint64_t count = 0;
     if (words_.size() != 1 || !detail::parse_uint(words_[0], count))
-      fail("'" + line_ + "' (accepted: the particle count)");
+      fail(detail::quoted(line_) + " (accepted: the particle count)");
     if (count > lines_.bytes_left() / 12 + 1)
       fail(std::to_string(count) + " particles declared but " + std::to_string(lines_.bytes_left()) +
            " bytes follow (truncated file?)");
@@ -64,7 +64,7 @@ class GeoReader {
     int digits = 0;
     for (std::uint64_t i = 0; i < count; ++i) {
       next_words();
-      if (words_.size() != 6) fail("'" + line_ + "' (accepted: x y z r id tag)");
+      if (words_.size() != 6) fail(detail::quoted(line_) + " (accepted: x y z r id tag)");
       bed_.x.push_back(number(0));
       bed_.y.push_back(number(1));
       bed_.z.push_back(d.dimension == 2 ? 0.0 : number(2));
@@ -100,12 +100,12 @@ class GeoReader {
 
   void expect(const char* keyword) {
     next_words();
-    if (words_[0] != keyword) fail("'" + line_ + "' where '" + keyword + "' belongs");
+    if (words_[0] != keyword) fail(detail::quoted(line_) + " where '" + keyword + "' belongs");
   }
 
   double number(std::size_t k) const {
     double v = 0;
-    if (!detail::parse_double(words_[k], v)) fail("'" + std::string(words_[k]) + "' (accepted: a number)");
+    if (!detail::parse_double(words_[k], v)) fail(detail::quoted(words_[k]) + " (accepted: a number)");
     return v;
   }
 

@@ -44,7 +44,7 @@ Bed read_yade_text(const std::string& path, const Domain* domain) {
     if (line[start] == '#') {
       detail::split_words(line.substr(start + 1), words);
       if (words.size() == 1 && words[0].substr(0, 6) == "format" && line.find("x_y_z_r") == std::string_view::npos)
-        fail("'" + std::string(line) + "' (accepted: #format x_y_z_r; export with yade.export.text)");
+        fail(detail::quoted(line) + " (accepted: #format x_y_z_r; export with yade.export.text)");
       continue;
     }
     detail::split_words(line, words);
@@ -52,12 +52,8 @@ Bed read_yade_text(const std::string& path, const Domain* domain) {
       fail(std::to_string(words.size()) + " columns (accepted: x y z r, as yade.export.text writes)");
     double v[4];
     for (int k = 0; k < 4; ++k) {
-      if (!detail::parse_double(words[k], v[k])) {
-        // Appended, not "'" + std::string(...): GCC 12 flags that form with a false -Wrestrict.
-        std::string what(1, '\'');
-        what.append(words[k]).append("' (accepted: a number)");
-        fail(what);
-      }
+      if (!detail::parse_double(words[k], v[k]))
+        fail(detail::quoted(words[k]) + " (accepted: a number)");
       digits = std::max(digits, detail::significant_digits(words[k]));
     }
     bed.add(v[0], v[1], v[2], v[3]);

@@ -29,8 +29,10 @@ __all__ = ["Bed", "InputError", "ProgramError", "PROGRAMS", "read_bed", "write_b
 
 
 def read_bed(path, domain=None):
-    """The bed in `path` (.h5, .csv with domain=(xlo, ylo, zlo, xhi, yhi, zhi), .dump), read by
-    the C++ bed library with all its checks; raises InputError (a ValueError) on a bad file."""
+    """The bed in `path` (.h5, .csv with domain=(xlo, ylo, zlo, xhi, yhi, zhi), .dump / .lammpstrj
+    (the last snapshot), LAMMPS .data, YADE .txt (domain optional), GenGeo .geo, .gz of the text
+    ones: docs/decks.md), read by the C++ bed library with all its checks; raises InputError (a
+    ValueError) on a bad file."""
     fields = _core.read_bed(str(path), None if domain is None else [float(v) for v in domain])
     return Bed(fields, source=str(path))
 

@@ -321,6 +321,26 @@ TEST_F(Foreign, DeckFilesCarryTheLawsAndTheDomain) {
   EXPECT_NE(lig.find("coefficientRestitution peratomtypepair 4 0.70735"), std::string::npos) << lig;
   EXPECT_NE(lig.find("primitive type 4 yplane"), std::string::npos);
 
+  // The linear law: LIGGGHTS takes a wall's model settings after its plane, and its dashpot for
+  // m* = m against a wall, sqrt(2) times the pair's m* = m/2 (one material here: equal masses).
+  DeckLaws linear = hertz_laws();
+  linear.law = "linear";
+  linear.stiffness = 1e3;
+  linear.density = {7952};
+  write_deck(simple_cubic_lattice(2, 1e-5), linear, DeckEngine::liggghts, path("lin.data"));
+  const std::string lin = slurp(path("in.lin.liggghts"));
+  EXPECT_NE(lin.find("primitive type 2 zplane 0 absolute_damping on\n"), std::string::npos) << lin;
+  const double mass = 7952 * 4.0 / 3.0 * 3.141592653589793 * 1e-15;  // r = 1e-5 m
+  const auto at = lin.find("gamman_abs peratomtypepair 2 ");
+  ASSERT_NE(at, std::string::npos) << lin;
+  std::istringstream row(lin.substr(at + 29, lin.find('\n', at) - at - 29));
+  double g[4] = {};
+  row >> g[0] >> g[1] >> g[2] >> g[3];
+  // Rows: particle-particle, particle-wall; wall-particle, wall-wall (unused).
+  EXPECT_NEAR(g[0], 2 * 0.1 * std::sqrt(0.5 * mass * 1e3), 1e-12 * g[0]);
+  EXPECT_NEAR(g[1], 2 * 0.1 * std::sqrt(mass * 1e3), 1e-12 * g[1]);
+  EXPECT_EQ(g[2], g[1]);
+
   DeckLaws too_damped = hertz_laws();
   too_damped.damping_ratio = 0.7;
   expect_input_error([&] { write_deck(bed, too_damped, DeckEngine::lammps, path("x.data")); },

@@ -42,13 +42,14 @@ def read_bed(path):
 CONTACT_STEPS = 2000
 
 
-def contact_run(work, launcher, env):
+def contact_run(work, launcher, env, linear=False):
     """A pressed lattice: 4 x 4 x 2 spheres of r = 20 um overlapping their neighbours and the floor
     by 2e-8 m (1e-3 r), periodic in x and y, with small shuffled velocities, given as a LAMMPS data
     file (bedconv and deposit read it). 2000 steps (~30 contact periods) of Hertz contact,
     damping, walls, gravity and drag in the engine and in deposit (friction off: the engines'
-    tangential laws differ from deposit's, docs/decks.md). Returns (largest centre difference,
-    largest motion)."""
+    tangential laws differ from deposit's, docs/decks.md); `linear`: the linear law with k_n =
+    1e3 N/m instead (equal spheres: LIGGGHTS's one dashpot per type pair is exact). Returns
+    (largest centre difference, largest motion)."""
     r, overlap, nx, nz = 20e-6, 2e-8, 4, 2
     s = 2 * r - overlap
     atoms, vel = [], []
@@ -60,15 +61,16 @@ def contact_run(work, launcher, env):
         f.write(f"pressed lattice\n\n# boundary p p f\n{len(atoms)} atoms\n1 atom types\n\n0 {nx * s!r} xlo xhi\n"
                 f"0 {nx * s!r} ylo yhi\n0 4e-4 zlo zhi\n\nAtoms # sphere\n\n" + "\n".join(atoms) +
                 "\n\nVelocities\n\n" + "\n".join(vel) + "\n")
+    law = ["--contact.law", "linear", "--contact.stiffness", "1e3"] if linear else []
     with open(os.path.join(work, "nofriction.ini"), "w") as f:
-        f.write("effects.friction = false\n")
+        f.write("effects.friction = false\n" + ("contact.law = linear\ncontact.stiffness = 1e3\n" if linear else ""))
     run([os.path.join(APPS, "bedconv"), "lattice.data", "lat.data", "--deck", ENGINE, "--deck-scene",
          "nofriction.ini", "--deck-steps", str(CONTACT_STEPS)], work)
     run(launcher + [EXE, "-in", f"in.lat.{ENGINE}", "-log", "none"], work, env)
     run([os.path.join(APPS, "bedconv"), f"lat.{ENGINE}.lammpstrj", "lat_last.h5"], work)
     dt = float(next(l.split()[1] for l in open(os.path.join(work, f"in.lat.{ENGINE}")) if l.startswith("timestep")))
     run([os.path.join(APPS, "deposit"), "--in", "lattice.data", "--dt", repr(dt), "--t-end", repr(CONTACT_STEPS * dt),
-         "--effects.friction", "false", "--seed", "1", "--out", "lat_ours.h5"], work)
+         "--effects.friction", "false", "--seed", "1", "--out", "lat_ours.h5"] + law, work)
     engine = read_bed(os.path.join(work, "lat_last.h5"))  # sorted by id (dump_modify sort id)
     ours = read_bed(os.path.join(work, "lat_ours.h5"))
     order = np.argsort(ours["id"])
@@ -173,9 +175,11 @@ def main():
             "domain of write_data"
         assert np.array_equal(final["radius"], bed["radius"][order]), "radii of write_data"
         contact_gap, contact_moved = contact_run(work, launcher, env)
+        linear_gap, linear_moved = contact_run(work, launcher, env, linear=True)
         print(f"{ENGINE} x{RANKS}: {len(bed['id'])} particles, 2 materials, periodic x y; step 0 exact, "
               f"moved {moved:.3g} m in {STEPS} steps, {gap:.3g} m from deposit's; pressed lattice: "
-              f"moved {contact_moved:.3g} m in {CONTACT_STEPS} steps, {contact_gap:.3g} m from deposit's")
+              f"moved {contact_moved:.3g} m in {CONTACT_STEPS} steps, {contact_gap:.3g} m from deposit's; "
+              f"linear law: moved {linear_moved:.3g} m, {linear_gap:.3g} m from deposit's")
         return 0
     finally:
         shutil.rmtree(work, ignore_errors=True)
