@@ -15,6 +15,7 @@
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
+#include "deposit_spread.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
@@ -124,6 +125,7 @@ void add_options(po::options_description& desc) {
       ("core-margin", po::value<double>(),
        "core density: margin from the floor, side walls and surface (m); default 2 mean "
        "diameters");
+  app::add_spread_options(desc);
   for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
     const std::string name = std::string("effects.") + dem::effect_name(bit);
     desc.add_options()(name.c_str(), po::value<bool>()->default_value(true),
@@ -184,6 +186,54 @@ bed::Bed insert_from_psd(const po::variables_map& vm, const bed::Domain& domain,
   return placed.bed;
 }
 
+}  // namespace
+
+namespace powderbed::app {
+
+// The scene of a drop or a spread from the options (material, wall, fluid, contact law, friction
+// model, effects).
+dem::Scene deposit_scene(const po::variables_map& vm) {
+  dem::Scene scene;
+  scene.material.young = vm["material.young"].as<double>();
+  if (!vm["trust-units"].as<bool>() && scene.material.young < 1e6) {
+    std::ostringstream msg;
+    msg << "material.young: " << scene.material.young << " Pa is below the 1 MPa of the softest "
+        << "powders: a unit slip? (accepted: E in Pa, e.g. 193e9 for 193 GPa; --trust-units if "
+           "it is meant)";
+    throw InputError(msg.str());
+  }
+  scene.material.poisson = vm["material.poisson"].as<double>();
+  scene.material.density = vm["material.density"].as<double>();
+  scene.material.damping = vm["material.damping"].as<double>();
+  scene.material.friction = vm["material.friction"].as<double>();
+  scene.material.rolling = vm["material.rolling"].as<double>();
+  scene.friction_model = dem::parse_friction_model(vm["friction.model"].as<std::string>());
+  scene.fluid_viscosity = vm["fluid.viscosity"].as<double>();
+  scene.wall.young = vm["wall.young"].as<double>();
+  scene.wall.poisson = vm["wall.poisson"].as<double>();
+  scene.gravity = vm["gravity"].as<double>();
+  scene.law = dem::parse_contact_law(vm["contact.law"].as<std::string>());
+  if (vm.count("contact.stiffness")) {
+    if (scene.law != dem::ContactLaw::linear)
+      throw InputError("contact.stiffness: given with contact.law = hertz (accepted: with "
+                       "contact.law = linear)");
+    scene.stiffness = vm["contact.stiffness"].as<double>();
+  } else if (scene.law == dem::ContactLaw::linear) {
+    throw InputError("contact.stiffness: missing with contact.law = linear (accepted: k_n > 0 N/m)");
+  }
+  scene.effects = 0;
+  for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
+    if (vm[std::string("effects.") + dem::effect_name(bit)].as<bool>()) scene.effects |= bit;
+  }
+  return scene;
+}
+}  // namespace powderbed::app
+
+namespace {
+
+using namespace powderbed;
+namespace po = app::po;
+
 // The core density, or why there is none: a bed less than two margins thick (a monolayer) has
 // no core away from the floor and the surface, and its density is a layer's (bedstat --layer).
 std::string core_text(const dem::CoreDensity& core, double margin) {
@@ -202,6 +252,7 @@ int run(int argc, char** argv) {
   add_options(desc);
   po::variables_map vm;
   if (!app::parse_options("deposit", kUsage, desc, {}, argc, argv, vm)) return 0;
+  if (app::spread_requested(vm)) return app::run_spread(vm, argc, argv);  // deposit_spread.cpp
 
   const std::string out = app::required<std::string>(vm, "out");
   const auto seed = app::required<std::uint64_t>(vm, "seed");
@@ -259,36 +310,7 @@ int run(int argc, char** argv) {
     throw InputError("--periodic: '" + periodic + "' (accepted: none, x, y, x,y)");
   }
 
-  dem::Scene scene;
-  scene.material.young = vm["material.young"].as<double>();
-  if (!vm["trust-units"].as<bool>() && scene.material.young < 1e6) {
-    std::ostringstream msg;
-    msg << "material.young: " << scene.material.young << " Pa is below the 1 MPa of the softest "
-        << "powders: a unit slip? (accepted: E in Pa, e.g. 193e9 for 193 GPa; --trust-units if "
-           "it is meant)";
-    throw InputError(msg.str());
-  }
-  scene.material.poisson = vm["material.poisson"].as<double>();
-  scene.material.density = vm["material.density"].as<double>();
-  scene.material.damping = vm["material.damping"].as<double>();
-  scene.material.friction = vm["material.friction"].as<double>();
-  scene.fluid_viscosity = vm["fluid.viscosity"].as<double>();
-  scene.wall.young = vm["wall.young"].as<double>();
-  scene.wall.poisson = vm["wall.poisson"].as<double>();
-  scene.gravity = vm["gravity"].as<double>();
-  scene.law = dem::parse_contact_law(vm["contact.law"].as<std::string>());
-  if (vm.count("contact.stiffness")) {
-    if (scene.law != dem::ContactLaw::linear)
-      throw InputError("contact.stiffness: given with contact.law = hertz (accepted: with "
-                       "contact.law = linear)");
-    scene.stiffness = vm["contact.stiffness"].as<double>();
-  } else if (scene.law == dem::ContactLaw::linear) {
-    throw InputError("contact.stiffness: missing with contact.law = linear (accepted: k_n > 0 N/m)");
-  }
-  scene.effects = 0;
-  for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
-    if (vm[std::string("effects.") + dem::effect_name(bit)].as<bool>()) scene.effects |= bit;
-  }
+  const dem::Scene scene = app::deposit_scene(vm);
 
   dem::RunSettings s;
   s.integrator = dem::parse_integrator(vm["integrator"].as<std::string>());

@@ -34,7 +34,7 @@ using detail::NeighbourList;
 using detail::ParticleView;
 
 // The walls a particle may touch, each with its own contact history.
-enum WallSlot { kPlate, kTool, kXLow, kXHigh, kYLow, kYHigh, kWallSlots };
+enum WallSlot { kPlate, kTool, kXLow, kXHigh, kYLow, kYHigh, kTop, kWallSlots };
 constexpr std::size_t kHistory = 6;  // F_s (3 values), then M_r (3)
 
 // The contact laws as the scene chose them, fixed for the run.
@@ -275,14 +275,17 @@ struct Run {
     }
   }
 
-  // The plate, the side faces that are not periodic and the tool, for every particle.
+  // The plate, the box's top and the side faces that are not periodic (a particle the tool
+  // throws up stays in the box, so the bed stays a valid bed file) and the tool.
   void wall_forces(bool update) {
     const double still[3] = {0, 0, 0};
     for (std::size_t i = 0; i < n(); ++i) {
       const double r = bed.radius[i];
       {
-        const double n[3] = {0, 0, -1};
+        double n[3] = {0, 0, -1};
         wall_contact(i, kPlate, r - (bed.z[i] - box.lower[2]), n, still, update);
+        n[2] = 1;
+        wall_contact(i, kTop, r - (box.upper[2] - bed.z[i]), n, still, update);
       }
       for (int axis = 0; axis < 2; ++axis) {
         if (box.periodic[axis]) continue;

@@ -36,7 +36,7 @@ using Dataset = Handle<H5Dclose>;
 using Attribute = Handle<H5Aclose>;
 
 constexpr const char* kGroup = "restart";
-constexpr std::size_t kWallValues = 36;  // 6 walls x (F_s, M_r)
+constexpr std::size_t kWallValues = 42;  // 7 walls x (F_s, M_r)
 
 void fail(const std::string& path, const std::string& what) {
   throw InputError(path + ": /restart: " + what);

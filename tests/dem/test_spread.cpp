@@ -144,7 +144,7 @@ TEST(RollingResistance, RollingSphereStopsWithinTheConstantTorqueDistance) {
   spin.wx = {0};
   spin.wy = {v0 / (kRadius - delta)};
   spin.wz = {0};
-  spin.wall_history.assign(36, 0.0);
+  spin.wall_history.assign(42, 0.0);
   spin.dt = 0.2 * dem::rayleigh_time_step(kRadius, 7952, s.material.young / kYoungScale, 0.26);
   dem::run_spread(b, s, st, &spin);
   ASSERT_TRUE(stopped);

@@ -1,8 +1,8 @@
 #pragma once
 // Spreading a powder layer with a recoater, layer after layer (docs/deposit-spread.md): the
 // granular loop with particle rotation, static (history) or sliding friction, rolling
-// resistance, the plate (the box's floor), the box's side faces that are not periodic, and the
-// moving tool of recoater.hpp. A run of its own beside run_deposition: its effects are chosen by
+// resistance, the plate (the box's floor), the box's top and the side faces that are not
+// periodic, and the moving tool of recoater.hpp. A run of its own beside run_deposition: its effects are chosen by
 // runtime switches once per contact (the loop is not instantiated per effect set, so the drop
 // solver's template table does not double), and it runs on one thread, in one fixed order, so
 // that a run is reproducible bit for bit and a continued run equals the uninterrupted one.
@@ -43,7 +43,7 @@ struct SpreadState {
   // Contacts with history, by particle id: ids (i < j in index order), F_s and M_r, 3 each.
   std::vector<std::uint64_t> pair_ids;   // 2 per contact
   std::vector<double> pair_history;      // 6 per contact
-  // Wall contacts (plate, tool, x low, x high, y low, y high) per particle: 6 x 6 values.
+  // Wall contacts (plate, tool, x low, x high, y low, y high, top) per particle: 7 x 6 values.
   std::vector<double> wall_history;
 };
 

@@ -1,0 +1,22 @@
+#pragma once
+// deposit's spreading mode (docs/deposit-spread.md): a recoater scene (recoater.tool = blade |
+// roller) spreads its supply layer after layer instead of dropping a bed. Its options, the
+// test that a run asks for it, and the run itself, kept apart from the drop's code.
+#include "common/options.hpp"
+#include "powderbed/dem/scene.hpp"
+
+namespace powderbed::app {
+
+// recoater.*, supply.*, --layers, --tool-forces, and the scene options the drop does not use
+// (friction.model, material.rolling: both solvers read them, only the spread accepts history
+// friction and rolling resistance).
+void add_spread_options(po::options_description& desc);
+// Whether the options name a recoater tool.
+bool spread_requested(const po::variables_map& vm);
+// Runs the spread and writes its beds; returns the exit status.
+int run_spread(const po::variables_map& vm, int argc, char** argv);
+
+// The scene of a drop or a spread from the options (defined in deposit.cpp).
+dem::Scene deposit_scene(const po::variables_map& vm);
+
+}  // namespace powderbed::app
