@@ -37,7 +37,9 @@ const char* const kUsage =
     "[--insert-z Z0,Z1 | --insert.enabled true --insert.rate R --insert.speed V] [--t-end T | --until-rest] [--dt DT] [--unsafe-dt] "
     "[--integrator verlet|rk4] [--young-scale S | --contact.law linear --contact.stiffness K] --seed S --out BED.h5 "
     "[--trajectory RUN.h5 --every K] [--lid [--lid.pressure P] [--lid.travel L | --lid.depth L] [--lid.speed V] "
-    "[--lid.hold T] [--lid.relax T] [--lid.release false]] [--crop-top true] [--core-margin M] [--json]";
+    "[--lid.hold T] [--lid.relax T] [--lid.release false]] [--crop-top true] [--core-margin M] [--json]\n"
+    "deposit --config SPREAD.ini (recoater.tool = blade|roller, docs/deposit-spread.md) --seed S --out BED.h5 "
+    "[--in SPREAD-BED.h5] [--layers N] [--tool-forces F.csv [--tool-forces-every K]] [--json]";
 
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);

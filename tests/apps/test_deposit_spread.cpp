@@ -5,6 +5,7 @@
 
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/bed/io.hpp"
@@ -62,6 +63,22 @@ TEST(DepositSpread, BadToolAndSupplyExit2WithOneLine) {
   EXPECT_EQ(r.err_lines(), 1) << r.err;
   EXPECT_NE(r.err.find("overlaps particle"), std::string::npos) << r.err;
   EXPECT_FALSE(std::ifstream(dir + "/out.h5").good());
+}
+
+TEST(DepositSpread, DropRefusesHistoryFrictionAndRollingResistance) {
+  // The drop solver has no particle rotation: history friction and rolling resistance are the
+  // spread's, and a drop that asks for them is refused, not run with the sliding law.
+  const std::string dir = test::scratch_dir("spread_drop");
+  const std::string drop = "--psd mono:d=30e-6 --count 10 --domain 0.3e-3,0.3e-3,0.3e-3 "
+                           "--t-end 1e-5 --seed 1 --out " + dir + "/out.h5 ";
+  for (const auto& [args, field] : {std::pair{"--friction.model history", "friction.model"},
+                                    std::pair{"--material.rolling 0.1", "material.rolling"},
+                                    std::pair{"--friction.model static", "friction.model"}}) {
+    const auto r = test::run_app("deposit", drop + args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_EQ(r.err_lines(), 1) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(field), std::string::npos) << args << ": " << r.err;
+  }
 }
 
 TEST(DepositSpread, ContinuedRunEqualsTheUninterruptedOneBitForBit) {
