@@ -53,7 +53,7 @@ void add_options(po::options_description& desc) {
       ("count", po::value<std::size_t>(), "number of particles to insert from --psd")
       ("domain", po::value<std::string>(), "box LX,LY,LZ (m), floor at z = 0")
       ("periodic", po::value<std::string>()->default_value("none"),
-       "periodic axes: none, x, y or x,y")
+       "periodic axes: none, x, y or x,y (a spread, recoater.tool: y unless given)")
       ("insert-z", po::value<std::string>(), "insertion region Z0,Z1 (m); default: the whole box")
       ("insert.enabled", po::value<bool>()->default_value(false),
        "insertion from the top (Kumar Yadav & Eshraghi 2016): the --count particles of --psd "

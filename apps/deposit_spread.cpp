@@ -113,6 +113,7 @@ void write_json_layer(bed::JsonWriter& j, const dem::LayerSummary& l) {
       .value("kinetic_energy", l.kinetic_energy)
       .value("max_speed", l.max_speed)
       .value("lost", static_cast<std::uint64_t>(l.lost))
+      .value("overflow", static_cast<std::uint64_t>(l.overflow))
       .end_object();
 }
 
@@ -145,6 +146,9 @@ void add_spread_options(po::options_description& desc) {
        "time before the tool moves, the supply settling (s)")
       ("recoater.settle", po::value<double>()->default_value(t.settle),
        "time after the tool stopped, the layer settling (s)")
+      ("recoater.overflow", po::value<bool>()->default_value(true),
+       "after each layer remove the powder pushed past the tool's end (the machine's overflow "
+       "slot; false keeps every particle)")
       ("recoater.layer-thickness", po::value<double>()->default_value(0),
        "how far the plate goes down before each layer after the first (m)")
       ("supply.x0", po::value<double>()->default_value(0), "supply region: start along x (m)")
@@ -211,7 +215,8 @@ int run_spread(const po::variables_map& vm, int argc, char** argv) {
     bed.domain = parse_domain_lengths(required<std::string>(vm, "domain"), "--domain");
     if (bed.domain.dimension != 3) throw InputError("--domain: 2D box (accepted: LX,LY,LZ)");
   }
-  const std::string periodic = vm["periodic"].as<std::string>();
+  // Periodic across (y) unless the scene says otherwise: a strip of a wider bed.
+  const std::string periodic = vm["periodic"].defaulted() ? "y" : vm["periodic"].as<std::string>();
   if (periodic != "none" && periodic != "x" && periodic != "y" && periodic != "x,y" && periodic != "xy") {
     throw InputError("--periodic: '" + periodic + "' (accepted: none, x, y, x,y)");
   }
@@ -232,6 +237,7 @@ int run_spread(const po::variables_map& vm, int argc, char** argv) {
   s.supply_height = vm["supply.height"].as<double>();
   s.supply = supply_maker(vm, seed);
   s.layers = layers;
+  s.remove_overflow = vm["recoater.overflow"].as<bool>();
   s.layer_thickness = vm["recoater.layer-thickness"].as<double>();
   s.young_scale = vm["young-scale"].as<double>();
   if (vm.count("dt")) s.dt = vm["dt"].as<double>();

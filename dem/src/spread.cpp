@@ -9,6 +9,7 @@
 #include <numbers>
 #include <sstream>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "box.hpp"
 #include "neighbour_list.hpp"
@@ -521,6 +522,48 @@ SpreadState to_state(const Run& run, const ActiveContacts& a) {
   return s;
 }
 
+// Removes the powder the tool pushed past its end — centres in front of its front face where it
+// stopped, the machine's overflow slot — from the bed and the state; returns how many.
+std::size_t remove_overflow(bed::Bed& bed, SpreadState& s, double front) {
+  std::vector<char> keep(bed.n());
+  std::unordered_set<std::uint64_t> gone;
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    keep[i] = bed.x[i] <= front ? 1 : 0;
+    if (!keep[i]) gone.insert(bed.id[i]);
+  }
+  const auto compact = [&](auto& values, std::size_t stride) {
+    if (values.empty()) return;
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < keep.size(); ++i) {
+      if (!keep[i]) continue;
+      std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(i * stride), stride,
+                  values.begin() + static_cast<std::ptrdiff_t>(k * stride));
+      ++k;
+    }
+    values.resize(k * stride);
+  };
+  for (auto* v : {&bed.x, &bed.y, &bed.z, &bed.radius, &bed.vx, &bed.vy, &bed.vz, &bed.temperature,
+                  &s.wx, &s.wy, &s.wz}) {
+    compact(*v, 1);
+  }
+  compact(bed.id, 1);
+  compact(bed.material, 1);
+  compact(bed.phase, 1);
+  compact(s.wall_history, kWallSlots * kHistory);
+  std::vector<std::uint64_t> ids;
+  std::vector<double> history;
+  for (std::size_t c = 0; c < s.pair_ids.size() / 2; ++c) {
+    if (gone.count(s.pair_ids[2 * c]) || gone.count(s.pair_ids[2 * c + 1])) continue;
+    ids.insert(ids.end(), s.pair_ids.begin() + static_cast<std::ptrdiff_t>(2 * c),
+               s.pair_ids.begin() + static_cast<std::ptrdiff_t>(2 * c + 2));
+    history.insert(history.end(), s.pair_history.begin() + static_cast<std::ptrdiff_t>(kHistory * c),
+                   s.pair_history.begin() + static_cast<std::ptrdiff_t>(kHistory * (c + 1)));
+  }
+  s.pair_ids = std::move(ids);
+  s.pair_history = std::move(history);
+  return gone.size();
+}
+
 double largest_overlap(const Run& run) {
   double worst = 0;
   const std::uint32_t* owner = run.list.owners();
@@ -733,6 +776,21 @@ SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings
       state.step = step;
       state.time = static_cast<double>(step) * run.dt;
       state.plate_offset = plate_offset;
+      if (settings.remove_overflow) {
+        out.overflow = remove_overflow(bed, state, tool.end + tool_half_extent(run.profile));
+        out.n = bed.n();
+        // The per-particle arrays anew from the state, as a continued run makes them.
+        for (auto* v : {&run.mass, &run.wx, &run.wy, &run.wz}) v->clear();
+        run.wall.clear();
+        run.grow();
+        run.wx = state.wx;
+        run.wy = state.wy;
+        run.wz = state.wz;
+        run.wall_history = state.wall_history;
+        carried = from_state(state, bed);
+        configure();
+        run.rebuild_with(carried);
+      }
       summary.layers.push_back(out);
       if (!finished) break;
       if (settings.layer_done) settings.layer_done(out, bed, state);

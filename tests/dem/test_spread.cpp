@@ -286,29 +286,48 @@ bed::Bed strip() {
 }
 
 TEST(Recoater, SpreadKeepsEveryParticle) {
+  // None lost through the plate or the tool; with the overflow removed, every particle is
+  // either in the bed or counted as overflow.
   const dem::Scene s = granular_scene(0.5, 0.05, dem::FrictionModel::history);
+  dem::SpreadSettings st = small_spread();
+  st.remove_overflow = false;
   bed::Bed b = strip();
-  const dem::SpreadSummary r = dem::run_spread(b, s, small_spread());
+  const dem::SpreadSummary r = dem::run_spread(b, s, st);
   ASSERT_EQ(r.layers.size(), 1u);
   EXPECT_GT(r.layers[0].supplied, 100u);
   EXPECT_EQ(b.n(), r.layers[0].supplied);
   EXPECT_EQ(r.layers[0].lost, 0u);
+  EXPECT_EQ(r.layers[0].overflow, 0u);
+  const double front = st.tool.end + 0.5 * st.tool.thickness;
+  std::size_t past = 0;
   for (std::size_t i = 0; i < b.n(); ++i) {
     EXPECT_GT(b.z[i], 0);
     EXPECT_TRUE(b.x[i] >= 0 && b.x[i] <= 1.5e-3);
+    past += b.x[i] > front ? 1 : 0;
   }
+  EXPECT_GT(past, 0u);  // the excess, pushed to the end
   // The blade left a layer behind it: some powder under the gap past the supply's back.
   EXPECT_GT(r.layers[0].density_under_gap, 0.05);
+
+  bed::Bed c = strip();
+  const dem::SpreadSummary with = dem::run_spread(c, s, small_spread());
+  EXPECT_EQ(with.layers[0].overflow, past);  // the same run up to the removal
+  EXPECT_EQ(c.n() + with.layers[0].overflow, with.layers[0].supplied);
+  for (std::size_t i = 0; i < c.n(); ++i) EXPECT_LE(c.x[i], front);
 }
 
 TEST(Recoater, ContinuedRunEqualsTheUninterruptedOneBitForBit) {
+  // The excess kept (no overflow removal), so that the heap's pair contacts carry history
+  // across the restart (deposit's test, DepositSpread.*, runs it with the removal).
   const dem::Scene s = granular_scene(0.5, 0.05, dem::FrictionModel::history);
   dem::SpreadSettings two = small_spread();
+  two.remove_overflow = false;
   two.layers = 2;
   bed::Bed whole = strip();
   const dem::SpreadSummary straight = dem::run_spread(whole, s, two);
 
   dem::SpreadSettings one = small_spread();
+  one.remove_overflow = false;
   bed::Bed first = strip();
   const dem::SpreadSummary half = dem::run_spread(first, s, one);
   // Through the file, as deposit --in does.

@@ -63,6 +63,7 @@ struct LayerSummary {
   // the supply's back and the tool's end (by centres, the quick look; bedstat measures layers).
   double density_under_gap = 0;
   std::size_t lost = 0;           // centres below the plate or outside non-periodic faces
+  std::size_t overflow = 0;       // removed past the tool's end (SpreadSettings::remove_overflow)
 };
 
 struct SpreadSettings {
@@ -74,6 +75,10 @@ struct SpreadSettings {
   double supply_x0 = 0, supply_x1 = 0, supply_height = 0;
   SupplyMaker supply;
   std::uint64_t layers = 1;       // layers to spread in this run
+  // After each layer, remove the powder the tool pushed past its end (centres in front of its
+  // front face where it stopped): the machine's overflow slot, so that the excess does not pile
+  // up over many layers. false keeps every particle.
+  bool remove_overflow = true;
   double layer_thickness = 0;     // m, how far the plate goes down between layers
   double young_scale = 1;
   double dt = 0;                  // s; 0: 0.2 x the Rayleigh step (time_step.hpp)
