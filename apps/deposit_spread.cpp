@@ -253,9 +253,11 @@ int run_spread(const po::variables_map& vm, int argc, char** argv) {
     };
   }
   ProgressBar bar("deposit", progress_interval(vm));
-  std::uint64_t layer_now = (restart ? restart->layers_done : 0) + 1;
-  s.progress = [&](double fraction) {
-    bar.draw(fraction, "layer " + std::to_string(layer_now));
+  const std::uint64_t first_layer = (restart ? restart->layers_done : 0) + 1;
+  std::uint64_t layer_now = first_layer;
+  s.progress = [&](double fraction) {  // of the layer; the bar shows the run's
+    const double done = static_cast<double>(layer_now - first_layer) + fraction;
+    bar.draw(done / static_cast<double>(layers), "layer " + std::to_string(layer_now));
   };
 
   const auto write = [&](const bed::Bed& b, const std::string& path, const dem::SpreadState& st) {

@@ -45,6 +45,9 @@ TEST(DepositSpread, BadToolAndSupplyExit2WithOneLine) {
       {"--recoater.tool brush", "recoater.tool"},
       {"--recoater.end 0.05e-3", "recoater.end"},
       {"--t-end 1", "--t-end"},
+      {"--supply.volume 1e-12", "supply.count / supply.volume"},
+      {"--supply.count 0", "supply.count / supply.volume"},
+      {"--periodic x", "--periodic"},
   };
   for (const auto& [args, field] : cases) {
     const auto r = test::run_app("deposit", base + args);
