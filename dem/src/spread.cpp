@@ -17,6 +17,7 @@
 #include "powderbed/dem/hertz_normal.hpp"
 #include "powderbed/dem/rolling_resistance.hpp"
 #include "powderbed/dem/sliding_friction.hpp"
+#include "powderbed/dem/stokes_drag.hpp"
 #include "powderbed/dem/tangential_history.hpp"
 #include "powderbed/dem/time_step.hpp"
 
@@ -165,7 +166,7 @@ struct Run {
   double dt = 0;
   double g[3] = {0, 0, 0};
   double e_pair = 0, e_wall = 0, g_pair = 0, g_wall = 0;
-  std::vector<double> mass, inv_mass, inv_inertia, wx, wy, wz, fx, fy, fz, tx, ty, tz;
+  std::vector<double> mass, inv_mass, inv_inertia, drag, wx, wy, wz, fx, fy, fz, tx, ty, tz;
   std::vector<double> wall_history;   // kWallSlots * kHistory per particle
   std::vector<Constants> wall;        // per particle
   NeighbourList list;
@@ -186,7 +187,7 @@ struct Run {
   // wall history, wall constants).
   void grow() {
     const std::size_t old = mass.size(), count = n();
-    for (auto* v : {&mass, &inv_mass, &inv_inertia, &fx, &fy, &fz, &tx, &ty, &tz}) v->resize(count);
+    for (auto* v : {&mass, &inv_mass, &inv_inertia, &drag, &fx, &fy, &fz, &tx, &ty, &tz}) v->resize(count);
     for (auto* v : {&wx, &wy, &wz}) v->resize(count, 0.0);
     wall_history.resize(count * kWallSlots * kHistory, 0.0);
     wall.resize(count);
@@ -195,6 +196,7 @@ struct Run {
       mass[i] = 4.0 / 3.0 * std::numbers::pi * r * r * r * scene.material.density;
       inv_mass[i] = 1.0 / mass[i];
       inv_inertia[i] = 1.0 / (0.4 * mass[i] * r * r);  // solid sphere, 2/5 m r^2
+      drag[i] = scene.has(kDrag) ? stokes_drag_coefficient({scene.fluid_viscosity}, r) : 0.0;
       wall[i] = make_constants(model, e_wall, g_wall, scene.stiffness, r, mass[i]);
       wall[i].rolling_inertia = 1.4 * mass[i] * r * r;
     }
@@ -354,15 +356,15 @@ struct Run {
   // Forces and torques; `update` advances the contact histories by one step (false: a fresh
   // evaluation of the same state, at a layer's start, that changes nothing).
   void forces(bool update) {
-    for (std::size_t i = 0; i < n(); ++i) {
-      fx[i] = mass[i] * g[0];
-      fy[i] = mass[i] * g[1];
-      fz[i] = mass[i] * g[2];
+    for (std::size_t i = 0; i < n(); ++i) {  // gravity and Stokes drag (stokes_drag.hpp)
+      fx[i] = mass[i] * g[0] - drag[i] * bed.vx[i];
+      fy[i] = mass[i] * g[1] - drag[i] * bed.vy[i];
+      fz[i] = mass[i] * g[2] - drag[i] * bed.vz[i];
       tx[i] = ty[i] = tz[i] = 0;
     }
     tool_force[0] = tool_force[1] = tool_force[2] = 0;
     wall_forces(update);
-    pair_forces(update);
+    if (scene.has(kHertz)) pair_forces(update);
   }
 
   void kick(double h) {
@@ -617,6 +619,10 @@ SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings
     throw InputError("recoater: the box must be 3D with z not periodic (accepted: periodic x, y)");
   }
   if (settings.with_tool) check_tool(settings.tool, run.box);
+  if (!scene.has(kWalls)) {
+    throw InputError("effects.walls: off in a spreading run (accepted: on; the plate and the tool "
+                     "are walls)");
+  }
   if (!(settings.layers >= 1)) throw InputError("--layers: 0 (accepted: N >= 1)");
   require_in_range(std::isfinite(settings.layer_thickness) && settings.layer_thickness >= 0,
                    "recoater.layer-thickness", settings.layer_thickness, "thickness >= 0 m");
@@ -780,7 +786,7 @@ SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings
         out.overflow = remove_overflow(bed, state, tool.end + tool_half_extent(run.profile));
         out.n = bed.n();
         // The per-particle arrays anew from the state, as a continued run makes them.
-        for (auto* v : {&run.mass, &run.wx, &run.wy, &run.wz}) v->clear();
+        for (auto* v : {&run.mass, &run.wx, &run.wy, &run.wz}) v->clear();  // grow() redoes them
         run.wall.clear();
         run.grow();
         run.wx = state.wx;

@@ -121,6 +121,21 @@ TEST(StaticFriction, SphereAboveTheFrictionAngleSlidesAtGTimesSinMinusMuCos) {
   }
 }
 
+TEST(SpreadRun, DragSlowsAFallingSphereAsStokesSays) {
+  // A sphere falling from rest in argon: v(t) = g tau (1 - exp(-t / tau)), tau = m / (6 pi mu r)
+  // (~19 ms at r = 15 um). Verlet sees the drag at the half-step velocity: an error of order
+  // dt / tau ~ 1e-5, so 1e-4 is a wide margin.
+  dem::Scene s = granular_scene(0.5, 0, dem::FrictionModel::history);
+  s.effects |= dem::kDrag;
+  bed::Bed b = test::box_bed(1e-3, 1e-3, 1e-3);
+  b.add(0.5e-3, 0.5e-3, 0.9e-3, kRadius);
+  dem::SpreadSettings st = granular_run(5e-3, 0);
+  const dem::SpreadSummary r = dem::run_spread(b, s, st);
+  const double tau = sphere_mass(kRadius) / (6 * std::numbers::pi * s.fluid_viscosity * kRadius);
+  const double expected = -kG * tau * (1 - std::exp(-r.sim_time / tau));
+  EXPECT_NEAR(b.vz[0], expected, 1e-4 * std::abs(expected));
+}
+
 TEST(RollingResistance, RollingSphereStopsWithinTheConstantTorqueDistance) {
   // A sphere rolling at v0 on the plate under the capped torque mu_r r m g decelerates at
   // a = mu_r g r arm / (I + m arm^2) = 5/7 mu_r g (arm = r less the overlap, 1e-5 of r), so it
