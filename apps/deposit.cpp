@@ -371,7 +371,10 @@ int run(int argc, char** argv) {
     bar.draw(p.t_end > 0 ? p.time / p.t_end : 1.0, detail);
   };
 
-  const dem::RunSummary r = dem::run_deposition(bed, scene, s);
+  // History friction and rolling resistance need particle rotation: the spreading run's loop
+  // without a tool (deposit_spread.cpp); every other drop runs the drop solver.
+  const dem::RunSummary r = app::rotating(scene) ? app::run_rotating_drop(bed, scene, s)
+                                                 : dem::run_deposition(bed, scene, s);
   bar.finish();
   const std::size_t removed = dem::remove_lost_particles(bed);
   // Particles leave the box only when a run goes wrong (a step beyond the stable bound, a bed
@@ -419,6 +422,7 @@ int run(int argc, char** argv) {
         .value("integrator", vm["integrator"].as<std::string>())
         .value("young_scale", s.young_scale)
         .value("contact_law", made.law)
+        .value("friction_model", dem::friction_model_name(scene.friction_model))
         .value("stiffness", scene.stiffness)
         .value("kinetic_energy", r.kinetic_energy)
         .value("max_speed", r.max_speed)

@@ -690,6 +690,7 @@ SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings
     run.list.configure(run.box, r_max, settings.skin > 0 ? settings.skin : 0.2 * r_max, bed.n());
   };
   std::uint64_t step = state.step;
+  double particle_steps = 0;  // the particles each step moved (a layer's overflow included)
   const auto advance = [&](std::uint64_t steps, auto&& before) {
     for (std::uint64_t s = 1; s <= steps; ++s) {
       before(s);
@@ -721,6 +722,7 @@ SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings
     run.forces(false);
     const auto steps = static_cast<std::uint64_t>(std::ceil(settings.t_end / run.dt - 1e-9));
     advance(steps, [](std::uint64_t) {});
+    particle_steps = static_cast<double>(bed.n()) * static_cast<double>(steps);
   } else {
     run.tool_on = true;
     for (std::uint64_t k = 0; k < settings.layers; ++k) {
@@ -770,6 +772,7 @@ SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings
         }
       });
       out.steps = step - first_step;
+      particle_steps += static_cast<double>(run.n()) * static_cast<double>(out.steps);
       out.sim_time = static_cast<double>(step) * run.dt;
       out.max_tool_force = force_max;
       out.mean_tool_force_x = moving > 0 ? force_x / static_cast<double>(moving) : 0.0;
@@ -817,8 +820,7 @@ SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings
   summary.neighbour_rebuilds = run.rebuilds;
   summary.state = state;
   summary.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  summary.particle_steps_per_s =
-      summary.wall_time > 0 ? static_cast<double>(bed.n()) * static_cast<double>(summary.steps) / summary.wall_time : 0;
+  summary.particle_steps_per_s = summary.wall_time > 0 ? particle_steps / summary.wall_time : 0;
   return summary;
 }
 

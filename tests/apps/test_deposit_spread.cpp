@@ -68,15 +68,22 @@ TEST(DepositSpread, BadToolAndSupplyExit2WithOneLine) {
   EXPECT_FALSE(std::ifstream(dir + "/out.h5").good());
 }
 
-TEST(DepositSpread, DropRefusesHistoryFrictionAndRollingResistance) {
-  // The drop solver has no particle rotation: history friction and rolling resistance are the
-  // spread's, and a drop that asks for them is refused, not run with the sliding law.
+TEST(DepositSpread, DropWithHistoryFrictionRunsInTheRotatingLoop) {
+  // History friction and rolling resistance need particle rotation: a --t-end drop runs in the
+  // spreading loop without a tool; what only the drop solver has is refused.
   const std::string dir = test::scratch_dir("spread_drop");
   const std::string drop = "--psd mono:d=30e-6 --count 10 --domain 0.3e-3,0.3e-3,0.3e-3 "
-                           "--t-end 1e-5 --seed 1 --out " + dir + "/out.h5 ";
-  for (const auto& [args, field] : {std::pair{"--friction.model history", "friction.model"},
-                                    std::pair{"--material.rolling 0.1", "material.rolling"},
-                                    std::pair{"--friction.model static", "friction.model"}}) {
+                           "--young-scale 1e3 --seed 1 --out " + dir + "/out.h5 ";
+  const auto ok = test::run_app("deposit", drop + "--t-end 1e-3 --friction.model history "
+                                                  "--material.rolling 0.1 --json");
+  ASSERT_EQ(ok.status, 0) << ok.err;
+  EXPECT_NE(ok.out.find("\"friction_model\":\"history\""), std::string::npos) << ok.out;
+  EXPECT_EQ(test::json_number(ok.out, "n"), 10);
+  EXPECT_GT(test::json_number(ok.out, "steps"), 0);
+  for (const auto& [args, field] :
+       {std::pair{"--t-end 1e-3 --friction.model history --lid", "friction.model"},
+        std::pair{"--until-rest --material.rolling 0.1", "material.rolling"},
+        std::pair{"--t-end 1e-3 --friction.model static", "friction.model"}}) {
     const auto r = test::run_app("deposit", drop + args);
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(r.err_lines(), 1) << args << ": " << r.err;
