@@ -607,18 +607,12 @@ void finish_layer(const Run& run, LayerSummary& out, double window_x0, double wi
   out.n = run.n();
 }
 
-}  // namespace
-
-SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings& settings,
-                         const SpreadState* restart) {
-  const auto started = std::chrono::steady_clock::now();
-  scene.validate();
-  Run run(bed, scene, settings);
-  run.box = Box::from(bed.domain);
+void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSettings& settings,
+                    const Box& box) {
   if (bed.domain.dimension != 3 || bed.domain.periodic[2]) {
     throw InputError("recoater: the box must be 3D with z not periodic (accepted: periodic x, y)");
   }
-  if (settings.with_tool) check_tool(settings.tool, run.box);
+  if (settings.with_tool) check_tool(settings.tool, box);
   if (!scene.has(kWalls)) {
     throw InputError("effects.walls: off in a spreading run (accepted: on; the plate and the tool "
                      "are walls)");
@@ -626,38 +620,59 @@ SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings
   if (!(settings.layers >= 1)) throw InputError("--layers: 0 (accepted: N >= 1)");
   require_in_range(std::isfinite(settings.layer_thickness) && settings.layer_thickness >= 0,
                    "recoater.layer-thickness", settings.layer_thickness, "thickness >= 0 m");
-  Model& m = run.model;
-  m.linear = scene.law == ContactLaw::linear;
-  m.damping = scene.has(kDamping);
-  m.friction = scene.has(kFriction) && scene.material.friction > 0;
-  m.history = scene.friction_model == FrictionModel::history;
-  m.mu = scene.material.friction;
-  m.sliding.coefficient = m.mu;
-  m.mu_r = scene.material.rolling;
-  m.zeta = scene.material.damping;
-  const Material& mat = scene.material;
-  const double young = mat.young / settings.young_scale, wall_young = scene.wall.young / settings.young_scale;
-  run.e_pair = effective_modulus(young, mat.poisson, young, mat.poisson);
-  run.e_wall = effective_modulus(young, mat.poisson, wall_young, scene.wall.poisson);
-  run.g_pair = effective_shear_modulus(young, mat.poisson, young, mat.poisson);
-  run.g_wall = effective_shear_modulus(young, mat.poisson, wall_young, scene.wall.poisson);
-  const double gravity = scene.has(kGravity) ? scene.gravity : 0.0;
-  run.g[0] = gravity * std::sin(settings.gravity_tilt);
-  run.g[2] = -gravity * std::cos(settings.gravity_tilt);
-  if (!bed.has_velocity()) {
-    bed.vx.assign(bed.n(), 0.0);
-    bed.vy.assign(bed.n(), 0.0);
-    bed.vz.assign(bed.n(), 0.0);
-  }
-  run.grow();
-  ActiveContacts carried;
+}
+
+// One call of run_spread: the run, its summary, the state a layer's end leaves and the
+// contacts it carries into the next list build.
+struct Spreader {
+  Spreader(bed::Bed& b, const Scene& sc, const SpreadSettings& st, const SpreadState* r)
+      : bed(b), scene(sc), settings(st), restart(r), run(b, sc, st) {}
+  bed::Bed& bed;
+  const Scene& scene;
+  const SpreadSettings& settings;
+  const SpreadState* restart;
+  Run run;
+  SpreadSummary summary;
   SpreadState state;
-  if (restart) {
-    if (restart->wx.size() != bed.n() || restart->wall_history.size() != bed.n() * kWallSlots * kHistory) {
+  ActiveContacts carried;
+  std::uint64_t step = 0;
+  double particle_steps = 0;  // the particles each step moved (a layer's overflow included)
+
+  // The contact model, the (softened) moduli, gravity, and the restart's state.
+  void set_up() {
+    Model& m = run.model;
+    m.linear = scene.law == ContactLaw::linear;
+    m.damping = scene.has(kDamping);
+    m.friction = scene.has(kFriction) && scene.material.friction > 0;
+    m.history = scene.friction_model == FrictionModel::history;
+    m.mu = scene.material.friction;
+    m.sliding.coefficient = m.mu;
+    m.mu_r = scene.material.rolling;
+    m.zeta = scene.material.damping;
+    const Material& mat = scene.material;
+    const double young = mat.young / settings.young_scale;
+    const double wall_young = scene.wall.young / settings.young_scale;
+    run.e_pair = effective_modulus(young, mat.poisson, young, mat.poisson);
+    run.e_wall = effective_modulus(young, mat.poisson, wall_young, scene.wall.poisson);
+    run.g_pair = effective_shear_modulus(young, mat.poisson, young, mat.poisson);
+    run.g_wall = effective_shear_modulus(young, mat.poisson, wall_young, scene.wall.poisson);
+    const double gravity = scene.has(kGravity) ? scene.gravity : 0.0;
+    run.g[0] = gravity * std::sin(settings.gravity_tilt);
+    run.g[2] = -gravity * std::cos(settings.gravity_tilt);
+    if (!bed.has_velocity()) {
+      bed.vx.assign(bed.n(), 0.0);
+      bed.vy.assign(bed.n(), 0.0);
+      bed.vz.assign(bed.n(), 0.0);
+    }
+    run.grow();
+    if (!restart) return;
+    if (restart->wx.size() != bed.n() ||
+        restart->wall_history.size() != bed.n() * kWallSlots * kHistory) {
       throw InputError("--in: the bed's /restart group does not match its particles (accepted: "
                        "a bed written by a spreading run, unchanged)");
     }
     state = *restart;
+    step = state.step;
     run.wx = restart->wx;
     run.wy = restart->wy;
     run.wz = restart->wz;
@@ -665,8 +680,8 @@ SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings
     carried = from_state(*restart, bed);
   }
 
-  SpreadSummary summary;
-  const auto set_time_step = [&] {
+  // The restart's step, the user's (checked against the bound) or the recommended one.
+  void set_time_step() {
     const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
     summary.dt_stable = bound.stable;
     if (restart) {
@@ -682,16 +697,20 @@ SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings
     } else {
       run.dt = bound.recommended;
     }
-    m.dt = run.dt;
-  };
-  const auto configure = [&] {
+    run.model.dt = run.dt;
+  }
+
+  // The neighbour list for the bed as it is now, with the carried contacts' history.
+  void rebuild() {
     double r_max = 0;
     for (const double r : bed.radius) r_max = std::max(r_max, r);
     run.list.configure(run.box, r_max, settings.skin > 0 ? settings.skin : 0.2 * r_max, bed.n());
-  };
-  std::uint64_t step = state.step;
-  double particle_steps = 0;  // the particles each step moved (a layer's overflow included)
-  const auto advance = [&](std::uint64_t steps, auto&& before) {
+    run.rebuild_with(carried);
+  }
+
+  // `steps` steps, `before(s)` ahead of the s-th; false when the observer stopped the run.
+  template <class Before>
+  bool advance(std::uint64_t steps, Before&& before) {
     for (std::uint64_t s = 1; s <= steps; ++s) {
       before(s);
       run.step(step + 1);
@@ -712,116 +731,135 @@ SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings
       }
     }
     return true;
-  };
+  }
 
-  if (!settings.with_tool) {
+  // The state of the run's end for a restart (layers_done is the caller's).
+  void save_state(std::uint64_t layers_done) {
+    carried = run.active();
+    state = to_state(run, carried);
+    state.layers_done = layers_done;
+    state.step = step;
+    state.time = static_cast<double>(step) * run.dt;
+  }
+
+  // Without a tool: settings.t_end of the granular loop.
+  void granular() {
     if (bed.n() == 0) throw InputError("deposit: the bed has no particles (accepted: N >= 1)");
     set_time_step();
-    configure();
-    run.rebuild_with(carried);
+    rebuild();
     run.forces(false);
     const auto steps = static_cast<std::uint64_t>(std::ceil(settings.t_end / run.dt - 1e-9));
     advance(steps, [](std::uint64_t) {});
     particle_steps = static_cast<double>(bed.n()) * static_cast<double>(steps);
+    save_state(state.layers_done);
+  }
+
+  // The overflow out of the bed and the state, and the per-particle arrays anew from the state,
+  // as a continued run makes them.
+  void drop_overflow(LayerSummary& out, double front) {
+    out.overflow = remove_overflow(bed, state, front);
+    out.n = bed.n();
+    for (auto* v : {&run.mass, &run.wx, &run.wy, &run.wz}) v->clear();  // grow() redoes them
+    run.wall.clear();
+    run.grow();
+    run.wx = state.wx;
+    run.wy = state.wy;
+    run.wz = state.wz;
+    run.wall_history = state.wall_history;
+    carried = from_state(state, bed);
+    rebuild();
+  }
+
+  // One layer: the tool back at its start and raised by the plate's descent, a new supply,
+  // the pass, the settling, the state; false when the observer stopped it.
+  bool layer() {
+    const auto layer_started = std::chrono::steady_clock::now();
+    const std::uint64_t number = state.layers_done + 1, first_step = step;
+    const Recoater& tool = settings.tool;
+    LayerSummary out;
+    out.layer = number;
+    // The plate goes down by a layer thickness before each layer after the first; the bed
+    // keeps the plate's frame, so the tool (and the supply above the powder) rise instead.
+    const double plate_offset = static_cast<double>(number - 1) * settings.layer_thickness;
+    const double bottom = run.box.lower[2] + tool.gap + plate_offset;
+    if (!(bottom < run.box.upper[2])) {
+      throw InputError("--layers: the tool rises above the box's top at layer " +
+                       std::to_string(number) + " (accepted: a taller box or fewer layers)");
+    }
+    run.profile = tool_profile(tool, bottom);
+    run.tool_x = tool.start;
+    run.tool_v = 0;
+    out.tool_bottom = bottom;
+    out.supplied = add_supply(run, number);
+    run.grow();
+    check_tool_clear(run);
+    if (run.dt == 0) set_time_step();
+    rebuild();
+    run.forces(false);
+    const auto delay = static_cast<std::uint64_t>(std::ceil(tool.delay / run.dt - 1e-9));
+    const auto moving =
+        static_cast<std::uint64_t>(std::ceil((tool.end - tool.start) / (tool.speed * run.dt) - 1e-9));
+    const auto settle = static_cast<std::uint64_t>(std::ceil(tool.settle / run.dt - 1e-9));
+    double force_x = 0, force_max = 0;
+    const bool finished = advance(delay + moving + settle, [&](std::uint64_t s) {
+      const double travelled =
+          static_cast<double>(std::min(moving, s > delay ? s - delay : 0)) * tool.speed * run.dt;
+      run.tool_x = std::min(tool.end, tool.start + travelled);
+      run.tool_v = s > delay && s <= delay + moving ? tool.speed : 0.0;
+      if (s > 1) {  // the force of the step before, at the position it had
+        const double* f = run.tool_force;
+        force_max = std::max(force_max, std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]));
+        if (s - 1 > delay && s - 1 <= delay + moving) force_x += f[0];
+      }
+    });
+    out.steps = step - first_step;
+    particle_steps += static_cast<double>(run.n()) * static_cast<double>(out.steps);
+    out.sim_time = static_cast<double>(step) * run.dt;
+    out.max_tool_force = force_max;
+    out.mean_tool_force_x = moving > 0 ? force_x / static_cast<double>(moving) : 0.0;
+    const double front = tool.end + tool_half_extent(run.profile);
+    finish_layer(run, out, settings.supply_x1, tool.end - tool_half_extent(run.profile), bottom);
+    out.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - layer_started).count();
+    save_state(number);
+    state.plate_offset = plate_offset;
+    if (settings.remove_overflow) drop_overflow(out, front);
+    summary.layers.push_back(out);
+    if (finished && settings.layer_done) settings.layer_done(out, bed, state);
+    return finished;
+  }
+
+  SpreadSummary finish(std::chrono::steady_clock::time_point started) {
+    summary.steps = step - (restart ? restart->step : 0);
+    summary.sim_time = static_cast<double>(step) * run.dt;
+    summary.dt = run.dt;
+    summary.max_overlap = largest_overlap(run);
+    summary.neighbour_rebuilds = run.rebuilds;
+    summary.state = state;
+    summary.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    summary.particle_steps_per_s = summary.wall_time > 0 ? particle_steps / summary.wall_time : 0;
+    return summary;
+  }
+};
+
+}  // namespace
+
+SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings& settings,
+                         const SpreadState* restart) {
+  const auto started = std::chrono::steady_clock::now();
+  scene.validate();
+  Spreader spread(bed, scene, settings, restart);
+  spread.run.box = Box::from(bed.domain);
+  check_settings(bed, scene, settings, spread.run.box);
+  spread.set_up();
+  if (!settings.with_tool) {
+    spread.granular();
   } else {
-    run.tool_on = true;
+    spread.run.tool_on = true;
     for (std::uint64_t k = 0; k < settings.layers; ++k) {
-      const auto layer_started = std::chrono::steady_clock::now();
-      const std::uint64_t layer = state.layers_done + 1;
-      const std::uint64_t first_step = step;
-      LayerSummary out;
-      out.layer = layer;
-      // The plate goes down by a layer thickness before each layer after the first; the bed
-      // keeps the plate's frame, so the tool (and the supply above the powder) rise instead.
-      const double plate_offset = static_cast<double>(layer - 1) * settings.layer_thickness;
-      const double bottom = run.box.lower[2] + settings.tool.gap + plate_offset;
-      run.profile = tool_profile(settings.tool, bottom);
-      run.tool_x = settings.tool.start;
-      run.tool_v = 0;
-      out.tool_bottom = bottom;
-      if (!(bottom < run.box.upper[2])) {
-        throw InputError("--layers: the tool rises above the box's top at layer " +
-                         std::to_string(layer) + " (accepted: a taller box or fewer layers)");
-      }
-      out.supplied = add_supply(run, layer);
-      run.grow();
-      check_tool_clear(run);
-      if (run.dt == 0) set_time_step();
-      configure();
-      run.rebuild_with(carried);
-      run.forces(false);
-      const Recoater& tool = settings.tool;
-      const auto delay = static_cast<std::uint64_t>(std::ceil(tool.delay / run.dt - 1e-9));
-      const auto moving =
-          static_cast<std::uint64_t>(std::ceil((tool.end - tool.start) / (tool.speed * run.dt) - 1e-9));
-      const auto settle = static_cast<std::uint64_t>(std::ceil(tool.settle / run.dt - 1e-9));
-      double force_x = 0, force_max = 0;
-      const auto move_tool = [&](std::uint64_t s) {
-        const bool on = s > delay && s <= delay + moving;
-        const double travelled = static_cast<double>(std::min(moving, s > delay ? s - delay : 0)) *
-                                 tool.speed * run.dt;
-        run.tool_x = std::min(tool.end, tool.start + travelled);
-        run.tool_v = on ? tool.speed : 0.0;
-      };
-      const bool finished = advance(delay + moving + settle, [&](std::uint64_t s) {
-        move_tool(s);
-        if (s > 1) {  // the force of the step before, at the position it had
-          const double* f = run.tool_force;
-          force_max = std::max(force_max, std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]));
-          if (s - 1 > delay && s - 1 <= delay + moving) force_x += f[0];
-        }
-      });
-      out.steps = step - first_step;
-      particle_steps += static_cast<double>(run.n()) * static_cast<double>(out.steps);
-      out.sim_time = static_cast<double>(step) * run.dt;
-      out.max_tool_force = force_max;
-      out.mean_tool_force_x = moving > 0 ? force_x / static_cast<double>(moving) : 0.0;
-      finish_layer(run, out, settings.supply_x1, tool.end - tool_half_extent(run.profile), bottom);
-      out.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - layer_started).count();
-      carried = run.active();
-      const std::uint64_t done = state.layers_done + 1;
-      state = to_state(run, carried);
-      state.layers_done = done;
-      state.step = step;
-      state.time = static_cast<double>(step) * run.dt;
-      state.plate_offset = plate_offset;
-      if (settings.remove_overflow) {
-        out.overflow = remove_overflow(bed, state, tool.end + tool_half_extent(run.profile));
-        out.n = bed.n();
-        // The per-particle arrays anew from the state, as a continued run makes them.
-        for (auto* v : {&run.mass, &run.wx, &run.wy, &run.wz}) v->clear();  // grow() redoes them
-        run.wall.clear();
-        run.grow();
-        run.wx = state.wx;
-        run.wy = state.wy;
-        run.wz = state.wz;
-        run.wall_history = state.wall_history;
-        carried = from_state(state, bed);
-        configure();
-        run.rebuild_with(carried);
-      }
-      summary.layers.push_back(out);
-      if (!finished) break;
-      if (settings.layer_done) settings.layer_done(out, bed, state);
+      if (!spread.layer()) break;  // the observer stopped the run
     }
   }
-  if (!settings.with_tool) {
-    carried = run.active();
-    const std::uint64_t done = state.layers_done;
-    state = to_state(run, carried);
-    state.layers_done = done;
-    state.step = step;
-    state.time = static_cast<double>(step) * run.dt;
-  }
-  summary.steps = step - (restart ? restart->step : 0);
-  summary.sim_time = static_cast<double>(step) * run.dt;
-  summary.dt = run.dt;
-  summary.max_overlap = largest_overlap(run);
-  summary.neighbour_rebuilds = run.rebuilds;
-  summary.state = state;
-  summary.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  summary.particle_steps_per_s = summary.wall_time > 0 ? particle_steps / summary.wall_time : 0;
-  return summary;
+  return spread.finish(started);
 }
 
 }  // namespace powderbed::dem
