@@ -192,10 +192,11 @@ dem::RunSummary run_rotating_drop(bed::Bed& bed, const dem::Scene& scene,
   s.unsafe_dt = settings.unsafe_dt;
   s.skin = settings.skin;
   if (settings.progress) {
-    s.progress = [&settings](double fraction) {
+    s.progress = [&settings](double fraction, double kinetic_energy) {
       dem::Progress p;
       p.time = fraction * settings.t_end;
       p.t_end = settings.t_end;
+      p.kinetic_energy = kinetic_energy;
       settings.progress(p);
     };
   }
@@ -311,9 +312,12 @@ int run_spread(const po::variables_map& vm, int argc, char** argv) {
   ProgressBar bar("deposit", progress_interval(vm));
   const std::uint64_t first_layer = (restart ? restart->layers_done : 0) + 1;
   std::uint64_t layer_now = first_layer;
-  s.progress = [&](double fraction) {  // of the layer; the bar shows the run's
+  s.progress = [&](double fraction, double kinetic_energy) {  // of the layer; the bar: the run's
     const double done = static_cast<double>(layer_now - first_layer) + fraction;
-    bar.draw(done / static_cast<double>(layers), "layer " + std::to_string(layer_now));
+    char detail[64];
+    std::snprintf(detail, sizeof detail, "layer %llu  KE = %.2e J",
+                  static_cast<unsigned long long>(layer_now), kinetic_energy);
+    bar.draw(done / static_cast<double>(layers), detail);
   };
 
   const auto write = [&](const bed::Bed& b, const std::string& path, const dem::SpreadState& st) {

@@ -724,7 +724,12 @@ struct Spreader {
         settings.tool_force(sample);
       }
       if (settings.progress && step % settings.progress_every == 0) {
-        settings.progress(static_cast<double>(s) / static_cast<double>(steps));
+        double energy = 0;
+        for (std::size_t i = 0; i < run.n(); ++i) {
+          energy += 0.5 * run.mass[i] *
+                    (bed.vx[i] * bed.vx[i] + bed.vy[i] * bed.vy[i] + bed.vz[i] * bed.vz[i]);
+        }
+        settings.progress(static_cast<double>(s) / static_cast<double>(steps), energy);
       }
       if (settings.observer && settings.observer(step, static_cast<double>(step) * run.dt, bed, run.wy)) {
         return false;

@@ -95,7 +95,9 @@ struct SpreadSettings {
   std::function<bool(std::uint64_t step, double time, const bed::Bed& bed,
                      const std::vector<double>& wy)>
       observer;                   // every step when set; true stops the run
-  std::function<void(double fraction)> progress;
+  // Every progress_every steps: the fraction of the layer (or of t_end) done and the kinetic
+  // energy (J).
+  std::function<void(double fraction, double kinetic_energy)> progress;
   std::uint64_t progress_every = 2000;
 };
 
