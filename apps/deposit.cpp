@@ -17,6 +17,7 @@
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
+#include "deposit_spread.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
@@ -38,7 +39,9 @@ const char* const kUsage =
     "[--insert-z Z0,Z1 | --insert.enabled true --insert.rate R --insert.speed V] [--t-end T | --until-rest] [--dt DT] [--unsafe-dt] "
     "[--integrator verlet|rk4] [--young-scale S | --contact.law linear --contact.stiffness K] --seed S --out BED.h5 "
     "[--trajectory RUN.h5 --every K] [--lid [--lid.pressure P] [--lid.travel L | --lid.depth L] [--lid.speed V] "
-    "[--lid.hold T] [--lid.relax T] [--lid.release false]] [--crop-top true] [--core-margin M] [--json]";
+    "[--lid.hold T] [--lid.relax T] [--lid.release false]] [--crop-top true] [--core-margin M] [--json]\n"
+    "deposit --config SPREAD.ini (recoater.tool = blade|roller, docs/deposit-spread.md) --seed S --out BED.h5 "
+    "[--in SPREAD-BED.h5] [--layers N] [--tool-forces F.csv [--tool-forces-every K]] [--json]";
 
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
@@ -53,7 +56,7 @@ void add_options(po::options_description& desc) {
       ("count", po::value<std::size_t>(), "number of particles to insert from --psd")
       ("domain", po::value<std::string>(), "box LX,LY,LZ (m), floor at z = 0")
       ("periodic", po::value<std::string>()->default_value("none"),
-       "periodic axes: none, x, y or x,y")
+       "periodic axes: none, x, y or x,y (a spread, recoater.tool: y unless given)")
       ("insert-z", po::value<std::string>(), "insertion region Z0,Z1 (m); default: the whole box")
       ("insert.enabled", po::value<bool>()->default_value(false),
        "insertion from the top (Kumar Yadav & Eshraghi 2016): the --count particles of --psd "
@@ -130,6 +133,7 @@ void add_options(po::options_description& desc) {
       ("core-margin", po::value<double>(),
        "core density: margin from the floor, side walls and surface (m); default 2 mean "
        "diameters");
+  app::add_spread_options(desc);
   for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
     const std::string name = std::string("effects.") + dem::effect_name(bit);
     desc.add_options()(name.c_str(), po::value<bool>()->default_value(true),
@@ -190,6 +194,54 @@ bed::Bed insert_from_psd(const po::variables_map& vm, const bed::Domain& domain,
   return placed.bed;
 }
 
+}  // namespace
+
+namespace powderbed::app {
+
+// The scene of a drop or a spread from the options (material, wall, fluid, contact law, friction
+// model, effects).
+dem::Scene deposit_scene(const po::variables_map& vm) {
+  dem::Scene scene;
+  scene.material.young = vm["material.young"].as<double>();
+  if (!vm["trust-units"].as<bool>() && scene.material.young < 1e6) {
+    std::ostringstream msg;
+    msg << "material.young: " << scene.material.young << " Pa is below the 1 MPa of the softest "
+        << "powders: a unit slip? (accepted: E in Pa, e.g. 193e9 for 193 GPa; --trust-units if "
+           "it is meant)";
+    throw InputError(msg.str());
+  }
+  scene.material.poisson = vm["material.poisson"].as<double>();
+  scene.material.density = vm["material.density"].as<double>();
+  scene.material.damping = vm["material.damping"].as<double>();
+  scene.material.friction = vm["material.friction"].as<double>();
+  scene.material.rolling = vm["material.rolling"].as<double>();
+  scene.friction_model = dem::parse_friction_model(vm["friction.model"].as<std::string>());
+  scene.fluid_viscosity = vm["fluid.viscosity"].as<double>();
+  scene.wall.young = vm["wall.young"].as<double>();
+  scene.wall.poisson = vm["wall.poisson"].as<double>();
+  scene.gravity = vm["gravity"].as<double>();
+  scene.law = dem::parse_contact_law(vm["contact.law"].as<std::string>());
+  if (vm.count("contact.stiffness")) {
+    if (scene.law != dem::ContactLaw::linear)
+      throw InputError("contact.stiffness: given with contact.law = hertz (accepted: with "
+                       "contact.law = linear)");
+    scene.stiffness = vm["contact.stiffness"].as<double>();
+  } else if (scene.law == dem::ContactLaw::linear) {
+    throw InputError("contact.stiffness: missing with contact.law = linear (accepted: k_n > 0 N/m)");
+  }
+  scene.effects = 0;
+  for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
+    if (vm[std::string("effects.") + dem::effect_name(bit)].as<bool>()) scene.effects |= bit;
+  }
+  return scene;
+}
+}  // namespace powderbed::app
+
+namespace {
+
+using namespace powderbed;
+namespace po = app::po;
+
 // The core density, or why there is none: a bed less than two margins thick (a monolayer) has
 // no core away from the floor and the surface, and its density is a layer's (bedstat --layer).
 std::string core_text(const dem::CoreDensity& core, double margin) {
@@ -208,6 +260,7 @@ int run(int argc, char** argv) {
   add_options(desc);
   po::variables_map vm;
   if (!app::parse_options("deposit", kUsage, desc, {}, argc, argv, vm)) return 0;
+  if (app::spread_requested(vm)) return app::run_spread(vm, argc, argv);  // deposit_spread.cpp
 
   const std::string out = app::required<std::string>(vm, "out");
   const auto seed = app::required<std::uint64_t>(vm, "seed");
@@ -268,36 +321,7 @@ int run(int argc, char** argv) {
     throw InputError("--periodic: '" + periodic + "' (accepted: none, x, y, x,y)");
   }
 
-  dem::Scene scene;
-  scene.material.young = vm["material.young"].as<double>();
-  if (!vm["trust-units"].as<bool>() && scene.material.young < 1e6) {
-    std::ostringstream msg;
-    msg << "material.young: " << scene.material.young << " Pa is below the 1 MPa of the softest "
-        << "powders: a unit slip? (accepted: E in Pa, e.g. 193e9 for 193 GPa; --trust-units if "
-           "it is meant)";
-    throw InputError(msg.str());
-  }
-  scene.material.poisson = vm["material.poisson"].as<double>();
-  scene.material.density = vm["material.density"].as<double>();
-  scene.material.damping = vm["material.damping"].as<double>();
-  scene.material.friction = vm["material.friction"].as<double>();
-  scene.fluid_viscosity = vm["fluid.viscosity"].as<double>();
-  scene.wall.young = vm["wall.young"].as<double>();
-  scene.wall.poisson = vm["wall.poisson"].as<double>();
-  scene.gravity = vm["gravity"].as<double>();
-  scene.law = dem::parse_contact_law(vm["contact.law"].as<std::string>());
-  if (vm.count("contact.stiffness")) {
-    if (scene.law != dem::ContactLaw::linear)
-      throw InputError("contact.stiffness: given with contact.law = hertz (accepted: with "
-                       "contact.law = linear)");
-    scene.stiffness = vm["contact.stiffness"].as<double>();
-  } else if (scene.law == dem::ContactLaw::linear) {
-    throw InputError("contact.stiffness: missing with contact.law = linear (accepted: k_n > 0 N/m)");
-  }
-  scene.effects = 0;
-  for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
-    if (vm[std::string("effects.") + dem::effect_name(bit)].as<bool>()) scene.effects |= bit;
-  }
+  const dem::Scene scene = app::deposit_scene(vm);
   if (vm.count("export-deck")) app::check_run_deck(scene, vm["export-deck"].as<std::string>());
 
   dem::RunSettings s;
@@ -357,7 +381,10 @@ int run(int argc, char** argv) {
     bar.draw(p.t_end > 0 ? p.time / p.t_end : 1.0, detail);
   };
 
-  const dem::RunSummary r = dem::run_deposition(bed, scene, s);
+  // History friction and rolling resistance need particle rotation: the spreading run's loop
+  // without a tool (deposit_spread.cpp); every other drop runs the drop solver.
+  const dem::RunSummary r = app::rotating(scene) ? app::run_rotating_drop(bed, scene, s)
+                                                 : dem::run_deposition(bed, scene, s);
   bar.finish();
   const std::size_t removed = dem::remove_lost_particles(bed);
   // Particles leave the box only when a run goes wrong (a step beyond the stable bound, a bed
@@ -407,6 +434,7 @@ int run(int argc, char** argv) {
         .value("integrator", vm["integrator"].as<std::string>())
         .value("young_scale", s.young_scale)
         .value("contact_law", made.law)
+        .value("friction_model", dem::friction_model_name(scene.friction_model))
         .value("stiffness", scene.stiffness)
         .value("kinetic_energy", r.kinetic_energy)
         .value("max_speed", r.max_speed)

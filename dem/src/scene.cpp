@@ -24,6 +24,16 @@ ContactLaw parse_contact_law(const std::string& text, const std::string& option)
   throw InputError(option + ": '" + text + "' is not a contact law (accepted: hertz, linear)");
 }
 
+FrictionModel parse_friction_model(const std::string& text, const std::string& option) {
+  if (text == "sliding") return FrictionModel::sliding;
+  if (text == "history") return FrictionModel::history;
+  throw InputError(option + ": '" + text + "' is not a friction model (accepted: sliding, history)");
+}
+
+const char* friction_model_name(FrictionModel model) {
+  return model == FrictionModel::history ? "history" : "sliding";
+}
+
 const char* contact_law_name(ContactLaw law) {
   return law == ContactLaw::linear ? "linear" : "hertz";
 }
@@ -41,6 +51,8 @@ void Scene::validate() const {
           "0 <= zeta <= 1");
   require(material.friction >= 0 && std::isfinite(material.friction), "material.friction",
           material.friction, "mu_d >= 0");
+  require(material.rolling >= 0 && std::isfinite(material.rolling), "material.rolling",
+          material.rolling, "mu_r >= 0");
   require(finite_positive(wall.young), "wall.young", wall.young, "E > 0 Pa");
   require(wall.poisson >= 0 && wall.poisson < 0.5, "wall.poisson", wall.poisson, "0 <= nu < 0.5");
   if (law == ContactLaw::linear) {

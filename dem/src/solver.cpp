@@ -392,6 +392,12 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   check_inputs(bed, settings);
   check_lid(settings.lid, scene);
   check_insertion(settings.insertion, settings, scene);
+  if (scene.friction_model != FrictionModel::sliding || scene.material.rolling > 0) {
+    throw InputError(std::string(scene.material.rolling > 0 ? "material.rolling" : "friction.model = history") +
+                     ": needs particle rotation, which only the spreading run has (accepted: "
+                     "friction.model = sliding and material.rolling = 0 for a drop, or a "
+                     "recoater scene, recoater.tool)");
+  }
   if (scene.law == ContactLaw::linear && settings.young_scale != 1) {
     std::ostringstream msg;
     msg << "--young-scale: " << settings.young_scale << " with contact.law = linear (accepted: "

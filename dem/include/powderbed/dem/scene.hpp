@@ -12,6 +12,9 @@ struct Material {
   double density = 7952;   // rho, kg/m^3
   double damping = 0.1;    // zeta (0 elastic, 1 critical), particle–particle and particle–wall
   double friction = 0.1;   // mu_d, particle–particle and particle–wall
+  // mu_r, rolling resistance of every contact (rolling_resistance.hpp; 0: off). Spreading runs
+  // only (spread.hpp): the drop solver has no particle rotation.
+  double rolling = 0;
 };
 
 struct WallMaterial {
@@ -26,6 +29,15 @@ enum class ContactLaw { hertz, linear };
 // "hertz" | "linear"; throws InputError naming `option` otherwise.
 ContactLaw parse_contact_law(const std::string& text, const std::string& option = "contact.law");
 const char* contact_law_name(ContactLaw law);
+
+// The friction law of every contact: sliding (sliding_friction.hpp, the regularised Coulomb law:
+// no static friction, a loaded particle creeps at ~ v_reg F_t / (mu F_n)) or history
+// (tangential_history.hpp: a spring capped at mu F_n, which holds a particle that is not pushed
+// beyond the cap; spreading runs only, spread.hpp, since it needs particle rotation).
+enum class FrictionModel { sliding, history };
+FrictionModel parse_friction_model(const std::string& text,
+                                   const std::string& option = "friction.model");
+const char* friction_model_name(FrictionModel model);
 
 // The effects of docs/architecture.md "Effects a scene calls for", one bit each.
 enum Effect : unsigned {
@@ -46,6 +58,7 @@ struct Scene {
   Material material;
   WallMaterial wall;
   ContactLaw law = ContactLaw::hertz;
+  FrictionModel friction_model = FrictionModel::sliding;
   double stiffness = 0;  // k_n, N/m, of the linear law (pairs and walls)
   double fluid_viscosity = 2.1e-5;  // mu_f, Pa s (argon at 293 K, [GZ] Table 2)
   double gravity = 9.81;            // g, m/s^2
@@ -54,7 +67,7 @@ struct Scene {
   bool has(unsigned effect) const { return (effects & effect) != 0; }
   // Throws InputError (naming the scene field, the value and the accepted range) for
   // non-positive E, rho, viscosity (when drag is on); nu outside [0, 0.5); zeta outside [0, 1];
-  // negative mu_d or g; damping or friction switched on with neither hertz nor walls; the
+  // negative mu_d, mu_r or g; damping or friction switched on with neither hertz nor walls; the
   // linear law with k_n <= 0.
   void validate() const;
 };

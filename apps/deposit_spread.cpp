@@ -1,0 +1,399 @@
+// deposit's spreading mode: options, the supply (packgen's 0-contact placement in the region in
+// front of the tool), the per-layer beds with their /restart group, the tool's force log and
+// the JSON summary. The physics is dem's run_spread (spread.hpp).
+#include "deposit_spread.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/app_main.hpp"
+#include "common/progress.hpp"
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/h5_output.hpp"
+#include "powderbed/bed/io.hpp"
+#include "powderbed/bed/json.hpp"
+#include "powderbed/bed/psd.hpp"
+#include "powderbed/dem/diagnostics.hpp"
+#include "powderbed/dem/spread.hpp"
+#include "powderbed/packgen/pack.hpp"
+
+namespace powderbed::app {
+
+namespace {
+
+// Options of the drop that a spread does not have: refused rather than ignored.
+constexpr const char* kDropOnly[] = {"t-end", "count", "insert-z", "trajectory"};
+
+dem::Recoater tool_from(const po::variables_map& vm) {
+  dem::Recoater t;
+  t.shape = dem::parse_tool_shape(vm["recoater.tool"].as<std::string>());
+  t.thickness = vm["recoater.thickness"].as<double>();
+  t.edge_radius = vm["recoater.edge-radius"].as<double>();
+  t.radius = vm["recoater.radius"].as<double>();
+  t.omega = vm["recoater.omega"].as<double>();
+  t.gap = vm["recoater.gap"].as<double>();
+  t.speed = vm["recoater.speed"].as<double>();
+  t.start = vm["recoater.start"].as<double>();
+  t.end = vm["recoater.end"].as<double>();
+  t.delay = vm["recoater.delay"].as<double>();
+  t.settle = vm["recoater.settle"].as<double>();
+  return t;
+}
+
+// The supply of a layer: supply.count particles of --psd, or as many as make supply.volume of
+// solid, placed without overlap at random in the region (packgen's 0-contact packing; a seed of
+// its own per layer, so that a continued run draws the same supply).
+dem::SupplyMaker supply_maker(const po::variables_map& vm, std::uint64_t seed) {
+  const bed::Psd psd = bed::Psd::parse(required<std::string>(vm, "psd"), "--psd");
+  const std::size_t count = vm["supply.count"].as<std::size_t>();
+  const double volume = vm["supply.volume"].as<double>();
+  if ((count > 0) == (volume > 0)) {
+    throw InputError("supply.count / supply.volume: " +
+                     std::string(count > 0 ? "both" : "neither") +
+                     " given (accepted: one of them, a count >= 1 or a volume > 0 m^3)");
+  }
+  return [psd, count, volume, seed](const bed::Domain& region, std::uint64_t layer) {
+    packgen::PackOptions options;
+    options.phases = {packgen::Phase{0, 1.0}};
+    options.max_failures = 100;
+    double space = 1;
+    for (int a = 0; a < 3; ++a) space *= region.upper[a] - region.lower[a];
+    if (count > 0) {
+      options.count = count;
+    } else {
+      options.target_density = volume / space;
+    }
+    packgen::validate(region, psd, options);
+    packgen::PackResult placed = packgen::pack(region, psd, options, seed + 0x9E3779B97F4A7C15ull * layer);
+    if (!placed.target_reached) {
+      double solid = 0;
+      for (const double r : placed.bed.radius) solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+      std::ostringstream msg;
+      msg << (count > 0 ? "supply.count: " : "supply.volume: ");
+      if (count > 0) {
+        msg << count << " particles";
+      } else {
+        msg << volume << " m^3";
+      }
+      msg << " do not fit the supply region " << region.upper[0] - region.lower[0] << " x "
+          << region.upper[1] - region.lower[1] << " x " << region.upper[2] - region.lower[2]
+          << " m of layer " << layer << " without overlap (" << placed.bed.n() << " particles, "
+          << solid << " m^3 placed; accepted: at most that, or a longer or taller region)";
+      throw InputError(msg.str());
+    }
+    return std::move(placed.bed);
+  };
+}
+
+// "<stem>-NNN.h5" for layer NNN of --out "<stem>.h5".
+std::string layer_path(const std::string& out, std::uint64_t layer) {
+  char suffix[32];
+  std::snprintf(suffix, sizeof suffix, "-%03llu.h5", static_cast<unsigned long long>(layer));
+  return out.substr(0, out.size() - 3) + suffix;
+}
+
+void write_json_layer(bed::JsonWriter& j, const dem::LayerSummary& l) {
+  j.begin_object()
+      .value("layer", l.layer)
+      .value("n", static_cast<std::uint64_t>(l.n))
+      .value("supplied", static_cast<std::uint64_t>(l.supplied))
+      .value("steps", l.steps)
+      .value("sim_time", l.sim_time)
+      .value("wall_time", l.wall_time)
+      .value("tool_bottom", l.tool_bottom)
+      .value("max_tool_force", l.max_tool_force)
+      .value("mean_tool_force_x", l.mean_tool_force_x)
+      .value("density_under_gap", l.density_under_gap)
+      .value("kinetic_energy", l.kinetic_energy)
+      .value("max_speed", l.max_speed)
+      .value("lost", static_cast<std::uint64_t>(l.lost))
+      .value("overflow", static_cast<std::uint64_t>(l.overflow))
+      .end_object();
+}
+
+}  // namespace
+
+void add_spread_options(po::options_description& desc) {
+  const dem::Recoater t;
+  desc.add_options()
+      ("friction.model", po::value<std::string>()->default_value("sliding"),
+       "friction law of every contact: sliding (regularised Coulomb, no static friction) or "
+       "history (tangential spring capped at mu F_n: static friction; spreading runs only)")
+      ("material.rolling", po::value<double>()->default_value(0),
+       "rolling resistance mu_r (EPSD model, docs/deposit-spread.md; 0: off; spreading runs only)")
+      ("recoater.tool", po::value<std::string>()->default_value(""),
+       "spread with a recoater instead of a drop: blade or roller (docs/deposit-spread.md)")
+      ("recoater.thickness", po::value<double>()->default_value(t.thickness),
+       "blade: thickness along x (m)")
+      ("recoater.edge-radius", po::value<double>()->default_value(t.edge_radius),
+       "blade: radius of its bottom edges (m; 0: sharp)")
+      ("recoater.radius", po::value<double>()->default_value(t.radius), "roller: radius (m)")
+      ("recoater.omega", po::value<double>()->default_value(t.omega),
+       "roller: spin about +y (rad/s; < 0 counter-rotating: the bottom moves along the travel)")
+      ("recoater.gap", po::value<double>()->default_value(t.gap),
+       "height of the tool's lowest point above the plate (m) in the first layer")
+      ("recoater.speed", po::value<double>()->default_value(t.speed), "tool speed along +x (m/s)")
+      ("recoater.start", po::value<double>()->default_value(t.start),
+       "x of the tool's centre (blade mid-plane, roller axis) at the start (m)")
+      ("recoater.end", po::value<double>()->default_value(t.end), "x where the tool stops (m)")
+      ("recoater.delay", po::value<double>()->default_value(t.delay),
+       "time before the tool moves, the supply settling (s)")
+      ("recoater.settle", po::value<double>()->default_value(t.settle),
+       "time after the tool stopped, the layer settling (s)")
+      ("recoater.overflow", po::value<bool>()->default_value(true),
+       "after each layer remove the powder pushed past the tool's end (the machine's overflow "
+       "slot; false keeps every particle)")
+      ("recoater.layer-thickness", po::value<double>()->default_value(0),
+       "how far the plate goes down before each layer after the first (m)")
+      ("supply.x0", po::value<double>()->default_value(0), "supply region: start along x (m)")
+      ("supply.x1", po::value<double>()->default_value(0), "supply region: end along x (m)")
+      ("supply.height", po::value<double>()->default_value(0),
+       "supply region: height above the plate or the powder under it (m)")
+      ("supply.count", po::value<std::size_t>()->default_value(0),
+       "supply per layer: particles of --psd (or supply.volume)")
+      ("supply.volume", po::value<double>()->default_value(0),
+       "supply per layer: solid volume of --psd particles (m^3; or supply.count)")
+      ("layers", po::value<std::uint64_t>()->default_value(1),
+       "layers to spread (with --in a spread bed: after its own); each is also written to "
+       "OUT-NNN.h5 when N > 1")
+      ("tool-forces", po::value<std::string>(),
+       "CSV of the tool's force on the powder over time: layer,time,x,fx,fy,fz (s, m, N)")
+      ("tool-forces-every", po::value<std::uint64_t>()->default_value(100),
+       "steps between two rows of --tool-forces");
+}
+
+bool rotating(const dem::Scene& scene) {
+  return scene.friction_model == dem::FrictionModel::history || scene.material.rolling > 0;
+}
+
+dem::RunSummary run_rotating_drop(bed::Bed& bed, const dem::Scene& scene,
+                                  const dem::RunSettings& settings) {
+  if (settings.until_rest || settings.lid.enabled || settings.insertion.enabled ||
+      settings.integrator != dem::Integrator::verlet || !settings.trajectory.empty()) {
+    throw InputError(std::string(scene.material.rolling > 0 ? "material.rolling"
+                                                             : "friction.model = history") +
+                     ": with --until-rest, the lid, insertion, --integrator rk4 or a trajectory "
+                     "(accepted: a --t-end drop with velocity Verlet; those need the drop solver, "
+                     "which has no particle rotation)");
+  }
+  dem::SpreadSettings s;
+  s.with_tool = false;
+  s.t_end = settings.t_end;
+  s.young_scale = settings.young_scale;
+  s.dt = settings.dt;
+  s.unsafe_dt = settings.unsafe_dt;
+  s.skin = settings.skin;
+  if (settings.progress) {
+    s.progress = [&settings](double fraction, double kinetic_energy) {
+      dem::Progress p;
+      p.time = fraction * settings.t_end;
+      p.t_end = settings.t_end;
+      p.kinetic_energy = kinetic_energy;
+      settings.progress(p);
+    };
+  }
+  const dem::SpreadSummary g = dem::run_spread(bed, scene, s);
+  dem::RunSummary r;
+  r.n = bed.n();
+  r.steps = g.steps;
+  r.sim_time = g.sim_time;
+  r.wall_time = g.wall_time;
+  r.particle_steps_per_s = g.particle_steps_per_s;
+  r.dt = g.dt;
+  r.dt_stable = g.dt_stable;
+  const dem::Overlap overlap = dem::max_overlap(bed, scene);  // pairs and walls, as a drop's
+  r.max_overlap = overlap.relative;
+  r.max_overlap_m = overlap.absolute;
+  if (scene.law == dem::ContactLaw::hertz) {
+    r.max_overlap_full_stiffness = overlap.relative * std::pow(settings.young_scale, -2.0 / 3.0);
+  }
+  r.neighbour_rebuilds = g.neighbour_rebuilds;
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    const double v2 = bed.vx[i] * bed.vx[i] + bed.vy[i] * bed.vy[i] + bed.vz[i] * bed.vz[i];
+    const double mass = 4.0 / 3.0 * std::numbers::pi * std::pow(bed.radius[i], 3) * scene.material.density;
+    r.kinetic_energy += 0.5 * mass * v2;
+    r.max_speed = std::max(r.max_speed, std::sqrt(v2));
+  }
+  return r;
+}
+
+bool spread_requested(const po::variables_map& vm) {
+  return vm.count("recoater.tool") && !vm["recoater.tool"].as<std::string>().empty();
+}
+
+int run_spread(const po::variables_map& vm, int argc, char** argv) {
+  const std::string out = required<std::string>(vm, "out");
+  const auto seed = required<std::uint64_t>(vm, "seed");
+  for (const char* name : kDropOnly) {
+    if (vm.count(name) && !vm[name].defaulted()) {
+      throw InputError(std::string("--") + name + ": given with recoater.tool (accepted: a drop "
+                       "option; a spread lasts the tool's travel and takes its particles from "
+                       "the supply)");
+    }
+  }
+  if (vm["until-rest"].as<bool>() || vm["lid"].as<bool>() || vm["lid.enabled"].as<bool>() ||
+      vm["insert.enabled"].as<bool>() || vm["integrator"].as<std::string>() != "verlet") {
+    throw InputError("recoater.tool: with --until-rest, the lid, insertion or --integrator rk4 "
+                     "(accepted: none of them; the spread integrates with velocity Verlet)");
+  }
+  const std::optional<std::string> forces_path =
+      vm.count("tool-forces") ? std::optional(vm["tool-forces"].as<std::string>()) : std::nullopt;
+  const auto layers = vm["layers"].as<std::uint64_t>();
+  {
+    std::vector<PathArg> inputs, outputs{{"--out", out}};
+    if (vm.count("in")) inputs.push_back({"--in", vm["in"].as<std::string>()});
+    check_extension({"--out", out}, {".h5"});
+    if (forces_path) {
+      check_extension({"--tool-forces", *forces_path}, {".csv"});
+      outputs.push_back({"--tool-forces", *forces_path});
+    }
+    check_paths(inputs, outputs);
+  }
+  if (layers == 0) throw InputError("--layers: 0 (accepted: N >= 1)");
+
+  bed::Bed bed;
+  std::optional<dem::SpreadState> restart;
+  if (vm.count("in")) {
+    const std::string in = vm["in"].as<std::string>();
+    if (bed::extension_of(in) != ".h5") {
+      throw InputError("--in: '" + in + "' with recoater.tool (accepted: an .h5 bed)");
+    }
+    bed = bed::read_bed_h5(in);
+    if (dem::has_spread_state(in)) restart = dem::read_spread_state(in, bed);
+  } else {
+    bed.domain = parse_domain_lengths(required<std::string>(vm, "domain"), "--domain");
+    if (bed.domain.dimension != 3) throw InputError("--domain: 2D box (accepted: LX,LY,LZ)");
+  }
+  // Periodic across (y) unless the scene says otherwise: a strip of a wider bed.
+  const std::string periodic = vm["periodic"].defaulted() ? "y" : vm["periodic"].as<std::string>();
+  if (periodic != "none" && periodic != "x" && periodic != "y" && periodic != "x,y" && periodic != "xy") {
+    throw InputError("--periodic: '" + periodic + "' (accepted: none, x, y, x,y)");
+  }
+  if (!vm.count("in")) {
+    bed.domain.periodic[0] = periodic == "x" || periodic == "x,y" || periodic == "xy";
+    bed.domain.periodic[1] = periodic == "y" || periodic == "x,y" || periodic == "xy";
+  }
+  if (bed.domain.periodic[0]) {
+    throw InputError("--periodic: x with recoater.tool (accepted: none or y; the tool travels "
+                     "along x between the box's end walls)");
+  }
+  const dem::Scene scene = deposit_scene(vm);
+
+  dem::SpreadSettings s;
+  s.tool = tool_from(vm);
+  s.supply_x0 = vm["supply.x0"].as<double>();
+  s.supply_x1 = vm["supply.x1"].as<double>();
+  s.supply_height = vm["supply.height"].as<double>();
+  s.supply = supply_maker(vm, seed);
+  s.layers = layers;
+  s.remove_overflow = vm["recoater.overflow"].as<bool>();
+  s.layer_thickness = vm["recoater.layer-thickness"].as<double>();
+  s.young_scale = vm["young-scale"].as<double>();
+  if (vm.count("dt")) s.dt = vm["dt"].as<double>();
+  s.unsafe_dt = vm["unsafe-dt"].as<bool>();
+  std::ostringstream forces;
+  forces << std::setprecision(17) << "layer,time,x,fx,fy,fz\n";
+  if (forces_path) {
+    s.tool_force_every = vm["tool-forces-every"].as<std::uint64_t>();
+    if (s.tool_force_every == 0) throw InputError("--tool-forces-every: 0 (accepted: K >= 1 steps)");
+    s.tool_force = [&forces](const dem::ToolForceSample& f) {
+      forces << f.layer << ',' << f.time << ',' << f.x << ',' << f.force[0] << ',' << f.force[1]
+             << ',' << f.force[2] << '\n';
+    };
+  }
+  ProgressBar bar("deposit", progress_interval(vm));
+  const std::uint64_t first_layer = (restart ? restart->layers_done : 0) + 1;
+  std::uint64_t layer_now = first_layer;
+  s.progress = [&](double fraction, double kinetic_energy) {  // of the layer; the bar: the run's
+    const double done = static_cast<double>(layer_now - first_layer) + fraction;
+    char detail[64];
+    std::snprintf(detail, sizeof detail, "layer %llu  KE = %.2e J",
+                  static_cast<unsigned long long>(layer_now), kinetic_energy);
+    bar.draw(done / static_cast<double>(layers), detail);
+  };
+
+  const auto write = [&](const bed::Bed& b, const std::string& path, const dem::SpreadState& st) {
+    bed::Bed copy = b;
+    copy.provenance.created_by = version_string("deposit");
+    copy.provenance.command_line = command_line(argc, argv);
+    copy.provenance.rng_seed = seed;
+    copy.provenance.stage = "deposit";
+    copy.provenance.scene = scene_text(vm);
+    bed::ContactProvenance& made = copy.provenance.contact;
+    made.law = dem::contact_law_name(scene.law);
+    made.young = scene.material.young;
+    made.poisson = scene.material.poisson;
+    made.wall_young = scene.wall.young;
+    made.wall_poisson = scene.wall.poisson;
+    made.young_scale = s.young_scale;
+    made.stiffness = scene.stiffness;
+    bed::write_bed_h5(copy, path);
+    dem::write_spread_state(path, st, copy);
+  };
+  if (layers > 1) {
+    s.layer_done = [&](const dem::LayerSummary& l, const bed::Bed& b, const dem::SpreadState& st) {
+      write(b, layer_path(out, l.layer), st);
+      layer_now = l.layer + 1;
+    };
+  }
+  const dem::SpreadSummary r = dem::run_spread(bed, scene, s, restart ? &*restart : nullptr);
+  bar.finish();
+  std::size_t lost = 0;
+  for (const auto& l : r.layers) lost = l.lost;
+  if (lost > vm["allow-lost"].as<std::size_t>()) {
+    std::ostringstream msg;
+    msg << lost << " of " << bed.n() << " particles left the box through the plate or a wall "
+        << "(accepted: at most --allow-lost " << vm["allow-lost"].as<std::size_t>()
+        << "); the time step may be beyond the stable bound or the tool too fast for the softening";
+    throw NumericalError(msg.str());
+  }
+  write(bed, out, r.state);
+  if (forces_path) bed::write_text_file(*forces_path, forces.str());
+
+  if (vm.count("json")) {
+    bed::JsonWriter j;
+    j.begin_object()
+        .value("n", static_cast<std::uint64_t>(bed.n()))
+        .value("steps", r.steps)
+        .value("sim_time", r.sim_time)
+        .value("wall_time", r.wall_time)
+        .value("particle_steps_per_s", r.particle_steps_per_s)
+        .value("dt", r.dt)
+        .value("dt_stable", r.dt_stable)
+        .value("young_scale", s.young_scale)
+        .value("contact_law", dem::contact_law_name(scene.law))
+        .value("friction_model", dem::friction_model_name(scene.friction_model))
+        .value("rolling", scene.material.rolling)
+        .value("tool", vm["recoater.tool"].as<std::string>())
+        .value("max_overlap", r.max_overlap)
+        .value("neighbour_rebuilds", r.neighbour_rebuilds)
+        .value("lost", static_cast<std::uint64_t>(lost))
+        .value("layers_done", r.state.layers_done);
+    j.begin_array("layers");
+    for (const auto& l : r.layers) write_json_layer(j, l);
+    j.end_array();
+    j.value("out", out).end_object();
+    std::cout << j.str() << '\n';
+  } else {
+    std::cout << "deposit: spread " << r.layers.size() << " layer(s) with a "
+              << vm["recoater.tool"].as<std::string>() << ", " << bed.n() << " particles ("
+              << lost << " lost), " << r.steps << " steps of " << r.dt << " s to t = "
+              << r.sim_time << " s, " << r.wall_time << " s wall";
+    if (!r.layers.empty()) {
+      std::cout << ", layer " << r.layers.back().layer << " density under the gap "
+                << r.layers.back().density_under_gap;
+    }
+    std::cout << " -> " << out << '\n';
+  }
+  return 0;
+}
+
+}  // namespace powderbed::app

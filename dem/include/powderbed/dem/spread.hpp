@@ -1,0 +1,129 @@
+#pragma once
+// Spreading a powder layer with a recoater, layer after layer (docs/deposit-spread.md): the
+// granular loop with particle rotation, static (history) or sliding friction, rolling
+// resistance, the plate (the box's floor), the box's top and the side faces that are not
+// periodic, and the moving tool of recoater.hpp. A run of its own beside run_deposition: its effects are chosen by
+// runtime switches once per contact (the loop is not instantiated per effect set, so the drop
+// solver's template table does not double), and it runs on one thread, in one fixed order, so
+// that a run is reproducible bit for bit and a continued run equals the uninterrupted one.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "powderbed/bed/bed.hpp"
+#include "powderbed/dem/recoater.hpp"
+#include "powderbed/dem/scene.hpp"
+
+namespace powderbed::dem {
+
+// The powder supply of a layer: the app fills `region` (a box in front of the tool, on the
+// plate or on the powder already there) with new particles without overlap and returns them
+// (ids are renumbered after the bed's). Throws InputError when they do not fit.
+using SupplyMaker = std::function<bed::Bed(const bed::Domain& region, std::uint64_t layer)>;
+
+struct ToolForceSample {
+  std::uint64_t layer = 0;
+  double time = 0;    // s
+  double x = 0;       // tool position, m
+  double force[3] = {0, 0, 0};  // force of the tool on the powder, N
+};
+
+// Everything a layer's end leaves for the next (the bed file's /restart group): with the bed's
+// positions and velocities this is the whole state, so a run continued from it equals the
+// uninterrupted one bit for bit.
+struct SpreadState {
+  std::uint64_t layers_done = 0;
+  std::uint64_t step = 0;         // steps since the first layer began
+  double dt = 0;                  // s, kept so a continued run uses the same step
+  double time = 0;                // simulated s (step * dt)
+  double tool_x = 0;              // where the tool stopped, m
+  double plate_offset = 0;        // how far the plate has gone down, m (layers_done - 1) * layer
+  std::vector<double> wx, wy, wz; // angular velocity per particle, rad/s
+  // Contacts with history, by particle id: ids (i < j in index order), F_s and M_r, 3 each.
+  std::vector<std::uint64_t> pair_ids;   // 2 per contact
+  std::vector<double> pair_history;      // 6 per contact
+  // Wall contacts (plate, tool, x low, x high, y low, y high, top) per particle: 7 x 6 values.
+  std::vector<double> wall_history;
+};
+
+struct LayerSummary {
+  std::uint64_t layer = 0;
+  std::size_t n = 0;              // particles after the layer
+  std::size_t supplied = 0;       // particles the layer's supply added
+  std::uint64_t steps = 0;
+  double sim_time = 0;            // s, at the layer's end
+  double wall_time = 0;           // s
+  double tool_bottom = 0;         // z of the tool's lowest point above the original plate, m
+  double max_tool_force = 0;      // N, largest |F| of the tool on the powder
+  double mean_tool_force_x = 0;   // N, mean x force while the tool moved
+  double kinetic_energy = 0;      // J, at the end
+  double max_speed = 0;           // m/s, at the end
+  // Solid fraction of the particles whose centres lie under the tool's lowest point, between
+  // the supply's back and the tool's end (by centres, the quick look; bedstat measures layers).
+  double density_under_gap = 0;
+  std::size_t lost = 0;           // centres below the plate or outside non-periodic faces
+  std::size_t overflow = 0;       // removed past the tool's end (SpreadSettings::remove_overflow)
+};
+
+struct SpreadSettings {
+  Recoater tool;
+  bool with_tool = true;          // false: a granular run of t_end without tool or supply
+  // Supply region along x (its y extent is the box's, its z starts on the plate or on the
+  // powder there and is `supply_height` tall); the maker fills it. No maker: no supply (the
+  // bed holds the powder).
+  double supply_x0 = 0, supply_x1 = 0, supply_height = 0;
+  SupplyMaker supply;
+  std::uint64_t layers = 1;       // layers to spread in this run
+  // After each layer, remove the powder the tool pushed past its end (centres in front of its
+  // front face where it stopped): the machine's overflow slot, so that the excess does not pile
+  // up over many layers. false keeps every particle.
+  bool remove_overflow = true;
+  double layer_thickness = 0;     // m, how far the plate goes down between layers
+  double young_scale = 1;
+  double dt = 0;                  // s; 0: 0.2 x the Rayleigh step (time_step.hpp)
+  bool unsafe_dt = false;
+  double skin = 0;                // m; 0: 0.2 x the largest radius
+  double t_end = 0;               // without tool: simulated time, s
+  // Gravity tilted by this angle about +y (rad): g = g (sin a, 0, -cos a), a plate inclined
+  // by a (tests of friction on a slope).
+  double gravity_tilt = 0;
+  std::uint64_t tool_force_every = 0;  // steps between samples (0: none)
+  std::function<void(const ToolForceSample&)> tool_force;
+  // After each layer, with the bed and the state a restart needs.
+  std::function<void(const LayerSummary&, const bed::Bed&, const SpreadState&)> layer_done;
+  std::function<bool(std::uint64_t step, double time, const bed::Bed& bed,
+                     const std::vector<double>& wy)>
+      observer;                   // every step when set; true stops the run
+  // Every progress_every steps: the fraction of the layer (or of t_end) done and the kinetic
+  // energy (J).
+  std::function<void(double fraction, double kinetic_energy)> progress;
+  std::uint64_t progress_every = 2000;
+};
+
+struct SpreadSummary {
+  std::vector<LayerSummary> layers;
+  std::uint64_t steps = 0;
+  double sim_time = 0, dt = 0, dt_stable = 0, wall_time = 0;
+  double particle_steps_per_s = 0;
+  double max_overlap = 0;         // largest overlap / smaller radius at the end (pairs)
+  std::uint64_t neighbour_rebuilds = 0;
+  SpreadState state;              // at the end (what the last bed's /restart holds)
+};
+
+// Spreads settings.layers layers on `bed` (in place; it may start empty), continuing from
+// `restart` when given (the state a bed's /restart group holds). Throws InputError for a bad
+// tool (gap <= 0, start >= end, speed <= 0, a blade thinner than twice its edge radius), a tool
+// that starts inside the powder, a supply region that overlaps the tool or leaves the box,
+// and NumericalError when the state goes
+// non-finite.
+SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings& settings,
+                         const SpreadState* restart = nullptr);
+
+// The /restart group of a bed file: written into an existing HDF5 bed file, read back
+// (InputError naming the file when it is missing or inconsistent with the bed).
+void write_spread_state(const std::string& h5_path, const SpreadState& state, const bed::Bed& bed);
+bool has_spread_state(const std::string& h5_path);
+SpreadState read_spread_state(const std::string& h5_path, const bed::Bed& bed);
+
+}  // namespace powderbed::dem

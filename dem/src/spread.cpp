@@ -1,0 +1,870 @@
+// The spreading run of spread.hpp: velocity Verlet on positions and rotations, contact history
+// per neighbour pair (kept across neighbour-list builds) and per particle and wall, the tool's
+// prescribed motion, the supply and the layers (docs/deposit-spread.md).
+#include "powderbed/dem/spread.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "box.hpp"
+#include "neighbour_list.hpp"
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/dem/hertz_normal.hpp"
+#include "powderbed/dem/rolling_resistance.hpp"
+#include "powderbed/dem/sliding_friction.hpp"
+#include "powderbed/dem/stokes_drag.hpp"
+#include "powderbed/dem/tangential_history.hpp"
+#include "powderbed/dem/time_step.hpp"
+
+namespace powderbed::dem {
+
+ToolShape parse_tool_shape(const std::string& text, const std::string& option) {
+  if (text == "blade") return ToolShape::blade;
+  if (text == "roller") return ToolShape::roller;
+  throw InputError(option + ": '" + text + "' is not a recoater tool (accepted: blade, roller)");
+}
+
+namespace {
+
+using detail::Box;
+using detail::NeighbourList;
+using detail::ParticleView;
+
+// The walls a particle may touch, each with its own contact history.
+enum WallSlot { kPlate, kTool, kXLow, kXHigh, kYLow, kYHigh, kTop, kWallSlots };
+constexpr std::size_t kHistory = 6;  // F_s (3 values), then M_r (3)
+
+// The contact laws as the scene chose them, fixed for the run.
+struct Model {
+  bool linear = false;
+  bool damping = false;
+  bool friction = false;
+  bool history = false;  // friction.model = history (else sliding)
+  double mu = 0, mu_r = 0, zeta = 0, dt = 0;
+  SlidingFrictionParams sliding;
+};
+
+// One contact's constants (per neighbour pair at a list build; per particle for the walls):
+// normal law a, b (Hertz, hertz_pair_constants) or k_n, c (linear); `shear` is 8 G* sqrt(R*)
+// (Hertz: k_t = shear sqrt(delta), Mindlin) or 2/7 k_n (linear: the ratio that gives a
+// sphere's tangential and normal oscillations one frequency, Schaefer, Dippel & Wolf 1996).
+struct Constants {
+  double reach = 0;  // r_i + r_j (pairs)
+  double reduced_radius = 0, reduced_mass = 0;
+  double elastic = 0, damping = 0, shear = 0;
+  double rolling_inertia = 0;  // I_r of rolling_resistance.hpp
+};
+
+Constants make_constants(const Model& m, double e_star, double g_star, double stiffness,
+                         double reduced_radius, double reduced_mass) {
+  Constants c;
+  c.reduced_radius = reduced_radius;
+  c.reduced_mass = reduced_mass;
+  if (m.linear) {
+    c.elastic = stiffness;
+    c.damping = 2.0 * m.zeta * std::sqrt(reduced_mass * stiffness);
+    c.shear = 2.0 / 7.0 * stiffness;
+  } else {
+    const HertzPairConstants h = hertz_pair_constants({e_star, m.zeta}, reduced_radius, reduced_mass);
+    c.elastic = h.elastic;
+    c.damping = h.damping;
+    c.shear = 8.0 * g_star * std::sqrt(reduced_radius);
+  }
+  return c;
+}
+
+inline void cross(const double a[3], const double b[3], double out[3]) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+// What one contact gives: the force on i (the partner gets -f) and the torques on both.
+struct ContactForce {
+  double f[3], ti[3], tj[3];
+};
+
+// The contact of i with its partner (a particle or a wall) at overlap delta along the unit
+// normal n from i towards the partner: the normal law, friction at the contact point (arms
+// arm_i, arm_j from the centres) and rolling resistance. dv = v_i - v_partner (a wall: the
+// velocity of its surface at the contact point), w_i, w_j the angular velocities (a wall: 0).
+// `h` is the contact's history (F_s, M_r).
+void contact(const Model& m, const Constants& k, double delta, const double n[3],
+             const double dv[3], const double wi[3], const double wj[3], double arm_i,
+             double arm_j, double* h, bool update, ContactForce& out) {
+  const double rate = dv[0] * n[0] + dv[1] * n[1] + dv[2] * n[2];  // > 0 closing
+  double fn, kn;
+  if (m.linear) {
+    fn = k.elastic * delta + (m.damping ? k.damping * rate : 0.0);
+    kn = k.elastic;
+  } else {
+    const double root = std::sqrt(delta);
+    fn = k.elastic * root * delta + (m.damping ? k.damping * std::sqrt(root) * rate : 0.0);
+    fn = fn > 0.0 ? fn : 0.0;
+    kn = 1.5 * k.elastic * root;  // 2 E* sqrt(R* delta)
+  }
+  const double load = std::abs(fn);  // the linear dashpot may pull; friction takes |F_n|
+  for (int a = 0; a < 3; ++a) {
+    out.f[a] = -fn * n[a];
+    out.ti[a] = 0;
+    out.tj[a] = 0;
+  }
+  if (m.friction) {
+    double w[3], spin[3];
+    for (int a = 0; a < 3; ++a) w[a] = arm_i * wi[a] + arm_j * wj[a];
+    cross(w, n, spin);
+    double vt[3];
+    const double vn = rate + spin[0] * n[0] + spin[1] * n[1] + spin[2] * n[2];
+    for (int a = 0; a < 3; ++a) vt[a] = dv[a] + spin[a] - vn * n[a];
+    double ft[3];
+    if (m.history) {
+      rotate_onto_tangent_plane(h, n);
+      const double kt = m.linear ? k.shear : k.shear * std::sqrt(delta);
+      const TangentialSpring spring{kt, m.damping ? 2.0 * m.zeta * std::sqrt(k.reduced_mass * kt) : 0.0};
+      tangential_history_force(spring, m.mu, load, vt, m.dt, update, h, ft);
+    } else {
+      sliding_friction_force(m.sliding, load, vt[0], vt[1], vt[2], ft);
+    }
+    double arm_n[3] = {arm_i * n[0], arm_i * n[1], arm_i * n[2]};
+    cross(arm_n, ft, out.ti);
+    for (int a = 0; a < 3; ++a) arm_n[a] = arm_j * n[a];
+    cross(arm_n, ft, out.tj);
+    for (int a = 0; a < 3; ++a) out.f[a] += ft[a];
+  }
+  if (m.mu_r > 0) {
+    const double wr[3] = {wi[0] - wj[0], wi[1] - wj[1], wi[2] - wj[2]};
+    double mr[3];
+    const double kr = rolling_stiffness(m.mu_r, k.reduced_radius, kn);
+    const RollingSpring spring{kr, m.damping ? 2.0 * m.zeta * std::sqrt(k.rolling_inertia * kr) : 0.0};
+    rolling_resistance_torque(spring, m.mu_r, k.reduced_radius, load, n, wr, m.dt, update, h + 3, mr);
+    for (int a = 0; a < 3; ++a) {
+      out.ti[a] += mr[a];
+      out.tj[a] -= mr[a];
+    }
+  }
+}
+
+// The contacts of the last force evaluation, in pair order (owner index ascending): what a
+// neighbour-list build, a new layer or a restart carries over.
+struct ActiveContacts {
+  std::vector<std::uint32_t> i, j;
+  std::vector<double> h;  // kHistory per contact
+};
+
+struct Run {
+  Run(bed::Bed& b, const Scene& sc, const SpreadSettings& st) : bed(b), scene(sc), settings(st) {}
+  bed::Bed& bed;
+  const Scene& scene;
+  const SpreadSettings& settings;
+  Model model;
+  Box box;
+  double dt = 0;
+  double g[3] = {0, 0, 0};
+  double e_pair = 0, e_wall = 0, g_pair = 0, g_wall = 0;
+  std::vector<double> mass, inv_mass, inv_inertia, drag, wx, wy, wz, fx, fy, fz, tx, ty, tz;
+  std::vector<double> wall_history;   // kWallSlots * kHistory per particle
+  std::vector<Constants> wall;        // per particle
+  NeighbourList list;
+  std::vector<Constants> pair;        // per list entry
+  std::vector<double> pair_history;   // kHistory per list entry
+  std::vector<std::uint8_t> touching; // per list entry: in contact at the last evaluation
+  std::uint64_t rebuilds = 0;
+  // The tool.
+  bool tool_on = false;
+  ToolProfile profile;
+  double tool_x = 0, tool_v = 0;
+  double tool_force[3] = {0, 0, 0};
+
+  std::size_t n() const { return bed.n(); }
+  ParticleView view() const { return {bed.x.data(), bed.y.data(), bed.z.data(), bed.radius.data(), n()}; }
+
+  // Per-particle arrays for particles appended since the last call (masses, zero rotation and
+  // wall history, wall constants).
+  void grow() {
+    const std::size_t old = mass.size(), count = n();
+    for (auto* v : {&mass, &inv_mass, &inv_inertia, &drag, &fx, &fy, &fz, &tx, &ty, &tz}) v->resize(count);
+    for (auto* v : {&wx, &wy, &wz}) v->resize(count, 0.0);
+    wall_history.resize(count * kWallSlots * kHistory, 0.0);
+    wall.resize(count);
+    for (std::size_t i = old; i < count; ++i) {
+      const double r = bed.radius[i];
+      mass[i] = 4.0 / 3.0 * std::numbers::pi * r * r * r * scene.material.density;
+      inv_mass[i] = 1.0 / mass[i];
+      inv_inertia[i] = 1.0 / (0.4 * mass[i] * r * r);  // solid sphere, 2/5 m r^2
+      drag[i] = scene.has(kDrag) ? stokes_drag_coefficient({scene.fluid_viscosity}, r) : 0.0;
+      wall[i] = make_constants(model, e_wall, g_wall, scene.stiffness, r, mass[i]);
+      wall[i].rolling_inertia = 1.4 * mass[i] * r * r;
+    }
+  }
+
+  ActiveContacts active() const {
+    ActiveContacts a;
+    const std::uint32_t* owner = list.owners();
+    const std::uint32_t* partner = list.partners();
+    for (std::size_t k = 0; k < touching.size(); ++k) {
+      if (!touching[k]) continue;
+      a.i.push_back(owner[k]);
+      a.j.push_back(partner[k]);
+      a.h.insert(a.h.end(), pair_history.begin() + static_cast<std::ptrdiff_t>(k * kHistory),
+                 pair_history.begin() + static_cast<std::ptrdiff_t>((k + 1) * kHistory));
+    }
+    return a;
+  }
+
+  // A list build that keeps the history of every contact: the new list's pair (i, j) takes
+  // the history the old one had (contacts are few per particle: a short scan).
+  void rebuild_with(const ActiveContacts& a) {
+    list.build(view(), 1);
+    const std::size_t entries = list.pair_entries();
+    pair.resize(entries);
+    pair_history.assign(entries * kHistory, 0.0);
+    touching.assign(entries, 0);
+    std::size_t first = 0;  // a's contacts of owner i start here (a is in owner order)
+    for (std::size_t i = 0; i < n(); ++i) {
+      while (first < a.i.size() && a.i[first] < i) ++first;
+      std::size_t last = first;
+      while (last < a.i.size() && a.i[last] == i) ++last;
+      const double ri = bed.radius[i], mi = mass[i];
+      std::size_t k = list.offset(i);
+      for (const std::uint32_t* it = list.begin(i); it != list.end(i); ++it, ++k) {
+        const std::uint32_t j = *it;
+        const double rj = bed.radius[j], mj = mass[j];
+        pair[k] = make_constants(model, e_pair, g_pair, scene.stiffness, ri * rj / (ri + rj),
+                                 mi * mj / (mi + mj));
+        pair[k].reach = ri + rj;
+        pair[k].rolling_inertia = rolling_inertia(mi, ri, mj, rj);
+        for (std::size_t c = first; c < last; ++c) {
+          if (a.j[c] != j) continue;
+          std::copy_n(a.h.begin() + static_cast<std::ptrdiff_t>(c * kHistory), kHistory,
+                      pair_history.begin() + static_cast<std::ptrdiff_t>(k * kHistory));
+          touching[k] = 1;
+        }
+      }
+      first = last;
+    }
+  }
+
+  void rebuild_if_needed() {
+    if (!list.moved_more_than(view(), 0.5 * list.skin(), 1)) return;
+    rebuild_with(active());
+    ++rebuilds;
+  }
+
+  void wall_contact(std::size_t i, WallSlot slot, double delta, const double n[3],
+                    const double wall_velocity[3], bool update) {
+    double* h = wall_history.data() + (i * kWallSlots + slot) * kHistory;
+    if (delta <= 0) {
+      std::fill_n(h, kHistory, 0.0);
+      return;
+    }
+    const double dv[3] = {bed.vx[i] - wall_velocity[0], bed.vy[i] - wall_velocity[1],
+                          bed.vz[i] - wall_velocity[2]};
+    const double wi[3] = {wx[i], wy[i], wz[i]}, still[3] = {0, 0, 0};
+    ContactForce c;
+    contact(model, wall[i], delta, n, dv, wi, still, bed.radius[i] - delta, 0.0, h, update, c);
+    fx[i] += c.f[0];
+    fy[i] += c.f[1];
+    fz[i] += c.f[2];
+    tx[i] += c.ti[0];
+    ty[i] += c.ti[1];
+    tz[i] += c.ti[2];
+    if (slot == kTool) {
+      for (int a = 0; a < 3; ++a) tool_force[a] += c.f[a];
+    }
+  }
+
+  // The plate, the box's top and the side faces that are not periodic (a particle the tool
+  // throws up stays in the box, so the bed stays a valid bed file) and the tool.
+  void wall_forces(bool update) {
+    const double still[3] = {0, 0, 0};
+    for (std::size_t i = 0; i < n(); ++i) {
+      const double r = bed.radius[i];
+      {
+        double n[3] = {0, 0, -1};
+        wall_contact(i, kPlate, r - (bed.z[i] - box.lower[2]), n, still, update);
+        n[2] = 1;
+        wall_contact(i, kTop, r - (box.upper[2] - bed.z[i]), n, still, update);
+      }
+      for (int axis = 0; axis < 2; ++axis) {
+        if (box.periodic[axis]) continue;
+        const double p = axis == 0 ? bed.x[i] : bed.y[i];
+        double n[3] = {0, 0, 0};
+        n[axis] = -1;
+        wall_contact(i, axis == 0 ? kXLow : kYLow, r - (p - box.lower[axis]), n, still, update);
+        n[axis] = 1;
+        wall_contact(i, axis == 0 ? kXHigh : kYHigh, r - (box.upper[axis] - p), n, still, update);
+      }
+      if (!tool_on) continue;
+      ToolContact t;
+      if (!tool_contact(profile, bed.x[i] - tool_x, bed.z[i], r, t)) {
+        std::fill_n(wall_history.data() + (i * kWallSlots + kTool) * kHistory, kHistory, 0.0);
+        continue;
+      }
+      // Surface velocity: the tool's translation plus its spin about the roller's axis.
+      const double ex = t.surface[0], ez = t.surface[2] - profile.z_low;
+      const double omega = settings.tool.shape == ToolShape::roller ? settings.tool.omega : 0.0;
+      const double v[3] = {tool_v + omega * ez, 0.0, -omega * ex};
+      wall_contact(i, kTool, t.delta, t.n, v, update);
+    }
+  }
+
+  void pair_forces(bool update) {
+    const std::uint32_t* owner = list.owners();
+    const std::uint32_t* partner = list.partners();
+    for (std::size_t k = 0; k < list.pair_entries(); ++k) {
+      const std::uint32_t i = owner[k], j = partner[k];
+      const double ex = box.image(0, bed.x[j] - bed.x[i]);
+      const double ey = box.image(1, bed.y[j] - bed.y[i]);
+      const double ez = box.image(2, bed.z[j] - bed.z[i]);
+      const double d2 = ex * ex + ey * ey + ez * ez, reach = pair[k].reach;
+      double* h = pair_history.data() + k * kHistory;
+      if (d2 >= reach * reach) {
+        if (touching[k]) {
+          std::fill_n(h, kHistory, 0.0);
+          touching[k] = 0;
+        }
+        continue;
+      }
+      touching[k] = 1;
+      const double d = std::sqrt(d2), delta = reach - d;
+      const double n[3] = {ex / d, ey / d, ez / d};
+      const double dv[3] = {bed.vx[i] - bed.vx[j], bed.vy[i] - bed.vy[j], bed.vz[i] - bed.vz[j]};
+      const double wi[3] = {wx[i], wy[i], wz[i]}, wj[3] = {wx[j], wy[j], wz[j]};
+      ContactForce c;
+      contact(model, pair[k], delta, n, dv, wi, wj, bed.radius[i] - 0.5 * delta,
+              bed.radius[j] - 0.5 * delta, h, update, c);
+      fx[i] += c.f[0];
+      fy[i] += c.f[1];
+      fz[i] += c.f[2];
+      fx[j] -= c.f[0];
+      fy[j] -= c.f[1];
+      fz[j] -= c.f[2];
+      tx[i] += c.ti[0];
+      ty[i] += c.ti[1];
+      tz[i] += c.ti[2];
+      tx[j] += c.tj[0];
+      ty[j] += c.tj[1];
+      tz[j] += c.tj[2];
+    }
+  }
+
+  // Forces and torques; `update` advances the contact histories by one step (false: a fresh
+  // evaluation of the same state, at a layer's start, that changes nothing).
+  void forces(bool update) {
+    for (std::size_t i = 0; i < n(); ++i) {  // gravity and Stokes drag (stokes_drag.hpp)
+      fx[i] = mass[i] * g[0] - drag[i] * bed.vx[i];
+      fy[i] = mass[i] * g[1] - drag[i] * bed.vy[i];
+      fz[i] = mass[i] * g[2] - drag[i] * bed.vz[i];
+      tx[i] = ty[i] = tz[i] = 0;
+    }
+    tool_force[0] = tool_force[1] = tool_force[2] = 0;
+    wall_forces(update);
+    if (scene.has(kHertz)) pair_forces(update);
+  }
+
+  void kick(double h) {
+    for (std::size_t i = 0; i < n(); ++i) {
+      bed.vx[i] += h * fx[i] * inv_mass[i];
+      bed.vy[i] += h * fy[i] * inv_mass[i];
+      bed.vz[i] += h * fz[i] * inv_mass[i];
+      wx[i] += h * tx[i] * inv_inertia[i];
+      wy[i] += h * ty[i] * inv_inertia[i];
+      wz[i] += h * tz[i] * inv_inertia[i];
+    }
+  }
+
+  void step(std::uint64_t step_number) {
+    kick(0.5 * dt);
+    for (std::size_t i = 0; i < n(); ++i) {
+      bed.x[i] = box.wrap(0, bed.x[i] + dt * bed.vx[i]);
+      bed.y[i] = box.wrap(1, bed.y[i] + dt * bed.vy[i]);
+      bed.z[i] += dt * bed.vz[i];
+    }
+    rebuild_if_needed();
+    forces(true);
+    kick(0.5 * dt);
+    for (std::size_t i = 0; i < n(); ++i) {
+      if (std::isfinite(bed.vx[i] + bed.vy[i] + bed.vz[i] + wx[i] + wy[i] + wz[i])) continue;
+      std::ostringstream msg;
+      msg << "particle id " << bed.id[i] << " (index " << i << ") has a non-finite velocity at "
+          << "step " << step_number << " (t = " << static_cast<double>(step_number) * dt
+          << " s); try a smaller --dt";
+      throw NumericalError(msg.str());
+    }
+  }
+};
+
+void check_tool(const Recoater& t, const Box& box) {
+  const auto require = require_in_range;  // bed/errors.hpp
+  const auto finite = [](double v) { return std::isfinite(v); };
+  require(finite(t.gap) && t.gap > 0, "recoater.gap", t.gap, "gap > 0 m above the plate");
+  require(finite(t.speed) && t.speed > 0, "recoater.speed", t.speed, "speed > 0 m/s");
+  require(finite(t.delay) && t.delay >= 0, "recoater.delay", t.delay, "delay >= 0 s");
+  require(finite(t.settle) && t.settle >= 0, "recoater.settle", t.settle, "settle >= 0 s");
+  require(finite(t.omega), "recoater.omega", t.omega, "a finite rad/s");
+  if (t.shape == ToolShape::blade) {
+    require(finite(t.thickness) && t.thickness > 0, "recoater.thickness", t.thickness,
+            "thickness > 0 m");
+    require(finite(t.edge_radius) && t.edge_radius >= 0 && 2 * t.edge_radius <= t.thickness,
+            "recoater.edge-radius", t.edge_radius, "0 <= edge radius <= thickness / 2");
+  } else {
+    require(finite(t.radius) && t.radius > 0, "recoater.radius", t.radius, "radius > 0 m");
+  }
+  require(finite(t.start) && t.start >= box.lower[0] && t.start <= box.upper[0], "recoater.start",
+          t.start, "a start inside the box along x");
+  if (!(finite(t.end) && t.end > t.start && t.end <= box.upper[0])) {
+    std::ostringstream msg;
+    msg << "recoater.end: " << t.end << " (accepted: recoater.start " << t.start
+        << " < end <= the box's end " << box.upper[0] << " m; the tool moves along +x)";
+    throw InputError(msg.str());
+  }
+  if (!(t.gap < box.length[2])) {
+    std::ostringstream msg;
+    msg << "recoater.gap: " << t.gap << " m is not below the box's top (accepted: gap < "
+        << box.length[2] << " m)";
+    throw InputError(msg.str());
+  }
+}
+
+// Appends the layer's supply to the bed: the region in front of the tool, on the plate or on the
+// powder already under it.
+std::size_t add_supply(Run& run, std::uint64_t layer) {
+  const SpreadSettings& s = run.settings;
+  if (!s.supply) return 0;  // the powder is already in the bed
+  const Box& box = run.box;
+  const double front = s.tool.start + tool_half_extent(run.profile);
+  if (!(s.supply_x0 >= front && s.supply_x1 > s.supply_x0 && s.supply_x1 <= box.upper[0])) {
+    std::ostringstream msg;
+    msg << "supply.x0, supply.x1: " << s.supply_x0 << ", " << s.supply_x1
+        << " (accepted: the tool's front " << front << " <= x0 < x1 <= the box's end "
+        << box.upper[0] << " m: the supply lies in front of the tool)";
+    throw InputError(msg.str());
+  }
+  bed::Bed& bed = run.bed;
+  double base = box.lower[2];
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    const double r = bed.radius[i];
+    if (bed.x[i] + r > s.supply_x0 && bed.x[i] - r < s.supply_x1) base = std::max(base, bed.z[i] + r);
+  }
+  bed::Domain region = bed.domain;
+  region.lower[0] = s.supply_x0;
+  region.upper[0] = s.supply_x1;
+  region.lower[2] = base;
+  region.upper[2] = base + s.supply_height;
+  if (!(s.supply_height > 0) || region.upper[2] > box.upper[2]) {
+    std::ostringstream msg;
+    msg << "supply.height: " << s.supply_height << " m on the powder at z = " << base
+        << " m does not fit the box (accepted: 0 < height <= " << box.upper[2] - base << " m)";
+    throw InputError(msg.str());
+  }
+  region.periodic = {false, false, false};
+  const bed::Bed more = s.supply(region, layer);
+  std::uint64_t next = 0;
+  for (const std::uint64_t id : bed.id) next = std::max(next, id + 1);
+  for (std::size_t k = 0; k < more.n(); ++k) {
+    bed.x.push_back(more.x[k]);
+    bed.y.push_back(more.y[k]);
+    bed.z.push_back(more.z[k]);
+    bed.radius.push_back(more.radius[k]);
+    bed.id.push_back(next++);
+    bed.vx.push_back(0);
+    bed.vy.push_back(0);
+    bed.vz.push_back(0);
+    if (!bed.material.empty()) bed.material.push_back(0);
+    if (!bed.temperature.empty()) bed.temperature.push_back(bed.temperature.front());
+    if (!bed.phase.empty()) bed.phase.push_back(0);
+  }
+  return more.n();
+}
+
+void check_tool_clear(const Run& run) {
+  for (std::size_t i = 0; i < run.n(); ++i) {
+    ToolContact t;
+    if (!tool_contact(run.profile, run.bed.x[i] - run.tool_x, run.bed.z[i], run.bed.radius[i], t))
+      continue;
+    std::ostringstream msg;
+    msg << "recoater.start: the tool at x = " << run.tool_x << " m overlaps particle id "
+        << run.bed.id[i] << " at (" << run.bed.x[i] << ", " << run.bed.z[i]
+        << ") (accepted: a tool that starts clear of the powder, behind it)";
+    throw InputError(msg.str());
+  }
+}
+
+ActiveContacts from_state(const SpreadState& s, const bed::Bed& bed) {
+  std::unordered_map<std::uint64_t, std::uint32_t> index;
+  for (std::size_t i = 0; i < bed.n(); ++i) index[bed.id[i]] = static_cast<std::uint32_t>(i);
+  ActiveContacts a;
+  const std::size_t count = s.pair_ids.size() / 2;
+  for (std::size_t c = 0; c < count; ++c) {
+    a.i.push_back(index.at(s.pair_ids[2 * c]));
+    a.j.push_back(index.at(s.pair_ids[2 * c + 1]));
+  }
+  a.h = s.pair_history;
+  return a;
+}
+
+SpreadState to_state(const Run& run, const ActiveContacts& a) {
+  SpreadState s;
+  s.dt = run.dt;
+  s.tool_x = run.tool_x;
+  s.wx = run.wx;
+  s.wy = run.wy;
+  s.wz = run.wz;
+  for (std::size_t c = 0; c < a.i.size(); ++c) {
+    s.pair_ids.push_back(run.bed.id[a.i[c]]);
+    s.pair_ids.push_back(run.bed.id[a.j[c]]);
+  }
+  s.pair_history = a.h;
+  s.wall_history = run.wall_history;
+  return s;
+}
+
+// Removes the powder the tool pushed past its end — centres in front of its front face where it
+// stopped, the machine's overflow slot — from the bed and the state; returns how many.
+std::size_t remove_overflow(bed::Bed& bed, SpreadState& s, double front) {
+  std::vector<char> keep(bed.n());
+  std::unordered_set<std::uint64_t> gone;
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    keep[i] = bed.x[i] <= front ? 1 : 0;
+    if (!keep[i]) gone.insert(bed.id[i]);
+  }
+  const auto compact = [&](auto& values, std::size_t stride) {
+    if (values.empty()) return;
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < keep.size(); ++i) {
+      if (!keep[i]) continue;
+      std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(i * stride), stride,
+                  values.begin() + static_cast<std::ptrdiff_t>(k * stride));
+      ++k;
+    }
+    values.resize(k * stride);
+  };
+  for (auto* v : {&bed.x, &bed.y, &bed.z, &bed.radius, &bed.vx, &bed.vy, &bed.vz, &bed.temperature,
+                  &s.wx, &s.wy, &s.wz}) {
+    compact(*v, 1);
+  }
+  compact(bed.id, 1);
+  compact(bed.material, 1);
+  compact(bed.phase, 1);
+  compact(s.wall_history, kWallSlots * kHistory);
+  std::vector<std::uint64_t> ids;
+  std::vector<double> history;
+  for (std::size_t c = 0; c < s.pair_ids.size() / 2; ++c) {
+    if (gone.count(s.pair_ids[2 * c]) || gone.count(s.pair_ids[2 * c + 1])) continue;
+    ids.insert(ids.end(), s.pair_ids.begin() + static_cast<std::ptrdiff_t>(2 * c),
+               s.pair_ids.begin() + static_cast<std::ptrdiff_t>(2 * c + 2));
+    history.insert(history.end(), s.pair_history.begin() + static_cast<std::ptrdiff_t>(kHistory * c),
+                   s.pair_history.begin() + static_cast<std::ptrdiff_t>(kHistory * (c + 1)));
+  }
+  s.pair_ids = std::move(ids);
+  s.pair_history = std::move(history);
+  return gone.size();
+}
+
+double largest_overlap(const Run& run) {
+  double worst = 0;
+  const std::uint32_t* owner = run.list.owners();
+  const std::uint32_t* partner = run.list.partners();
+  for (std::size_t k = 0; k < run.touching.size(); ++k) {
+    const std::uint32_t i = owner[k], j = partner[k];
+    const double ex = run.box.image(0, run.bed.x[j] - run.bed.x[i]);
+    const double ey = run.box.image(1, run.bed.y[j] - run.bed.y[i]);
+    const double ez = run.box.image(2, run.bed.z[j] - run.bed.z[i]);
+    const double delta = run.pair[k].reach - std::sqrt(ex * ex + ey * ey + ez * ez);
+    if (delta > 0) worst = std::max(worst, delta / std::min(run.bed.radius[i], run.bed.radius[j]));
+  }
+  return worst;
+}
+
+void finish_layer(const Run& run, LayerSummary& out, double window_x0, double window_x1,
+                  double bottom) {
+  const bed::Bed& bed = run.bed;
+  const Box& box = run.box;
+  double solid = 0;
+  for (std::size_t i = 0; i < run.n(); ++i) {
+    const double r = bed.radius[i];
+    out.kinetic_energy += 0.5 * run.mass[i] *
+                          (bed.vx[i] * bed.vx[i] + bed.vy[i] * bed.vy[i] + bed.vz[i] * bed.vz[i]);
+    out.max_speed = std::max(out.max_speed, std::sqrt(bed.vx[i] * bed.vx[i] +
+                                                      bed.vy[i] * bed.vy[i] + bed.vz[i] * bed.vz[i]));
+    bool outside = bed.z[i] < box.lower[2];
+    for (int a = 0; a < 2; ++a) {
+      const double p = a == 0 ? bed.x[i] : bed.y[i];
+      outside = outside || (!box.periodic[a] && (p < box.lower[a] || p > box.upper[a]));
+    }
+    out.lost += outside ? 1 : 0;
+    if (bed.x[i] >= window_x0 && bed.x[i] < window_x1 && bed.z[i] < bottom) {
+      solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    }
+  }
+  const double volume = (window_x1 - window_x0) * box.length[1] * (bottom - box.lower[2]);
+  out.density_under_gap = volume > 0 ? solid / volume : 0.0;
+  out.n = run.n();
+}
+
+void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSettings& settings,
+                    const Box& box) {
+  if (bed.domain.dimension != 3 || bed.domain.periodic[2]) {
+    throw InputError("recoater: the box must be 3D with z not periodic (accepted: periodic x, y)");
+  }
+  if (settings.with_tool) check_tool(settings.tool, box);
+  if (!scene.has(kWalls)) {
+    throw InputError("effects.walls: off in a spreading run (accepted: on; the plate and the tool "
+                     "are walls)");
+  }
+  if (!(settings.layers >= 1)) throw InputError("--layers: 0 (accepted: N >= 1)");
+  require_in_range(std::isfinite(settings.layer_thickness) && settings.layer_thickness >= 0,
+                   "recoater.layer-thickness", settings.layer_thickness, "thickness >= 0 m");
+}
+
+// One call of run_spread: the run, its summary, the state a layer's end leaves and the
+// contacts it carries into the next list build.
+struct Spreader {
+  Spreader(bed::Bed& b, const Scene& sc, const SpreadSettings& st, const SpreadState* r)
+      : bed(b), scene(sc), settings(st), restart(r), run(b, sc, st) {}
+  bed::Bed& bed;
+  const Scene& scene;
+  const SpreadSettings& settings;
+  const SpreadState* restart;
+  Run run;
+  SpreadSummary summary;
+  SpreadState state;
+  ActiveContacts carried;
+  std::uint64_t step = 0;
+  double particle_steps = 0;  // the particles each step moved (a layer's overflow included)
+
+  // The contact model, the (softened) moduli, gravity, and the restart's state.
+  void set_up() {
+    Model& m = run.model;
+    m.linear = scene.law == ContactLaw::linear;
+    m.damping = scene.has(kDamping);
+    m.friction = scene.has(kFriction) && scene.material.friction > 0;
+    m.history = scene.friction_model == FrictionModel::history;
+    m.mu = scene.material.friction;
+    m.sliding.coefficient = m.mu;
+    m.mu_r = scene.material.rolling;
+    m.zeta = scene.material.damping;
+    const Material& mat = scene.material;
+    const double young = mat.young / settings.young_scale;
+    const double wall_young = scene.wall.young / settings.young_scale;
+    run.e_pair = effective_modulus(young, mat.poisson, young, mat.poisson);
+    run.e_wall = effective_modulus(young, mat.poisson, wall_young, scene.wall.poisson);
+    run.g_pair = effective_shear_modulus(young, mat.poisson, young, mat.poisson);
+    run.g_wall = effective_shear_modulus(young, mat.poisson, wall_young, scene.wall.poisson);
+    const double gravity = scene.has(kGravity) ? scene.gravity : 0.0;
+    run.g[0] = gravity * std::sin(settings.gravity_tilt);
+    run.g[2] = -gravity * std::cos(settings.gravity_tilt);
+    if (!bed.has_velocity()) {
+      bed.vx.assign(bed.n(), 0.0);
+      bed.vy.assign(bed.n(), 0.0);
+      bed.vz.assign(bed.n(), 0.0);
+    }
+    run.grow();
+    if (!restart) return;
+    if (restart->wx.size() != bed.n() ||
+        restart->wall_history.size() != bed.n() * kWallSlots * kHistory) {
+      throw InputError("--in: the bed's /restart group does not match its particles (accepted: "
+                       "a bed written by a spreading run, unchanged)");
+    }
+    state = *restart;
+    step = state.step;
+    run.wx = restart->wx;
+    run.wy = restart->wy;
+    run.wz = restart->wz;
+    run.wall_history = restart->wall_history;
+    carried = from_state(*restart, bed);
+  }
+
+  // The restart's step, the user's (checked against the bound) or the recommended one.
+  void set_time_step() {
+    const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
+    summary.dt_stable = bound.stable;
+    if (restart) {
+      run.dt = restart->dt;
+    } else if (settings.dt > 0) {
+      if (settings.dt > bound.stable && !settings.unsafe_dt) {
+        std::ostringstream msg;
+        msg << "--dt: " << settings.dt << " s is above the stable bound " << bound.stable
+            << " s (accepted: dt <= " << bound.stable << " s, or add --unsafe-dt)";
+        throw InputError(msg.str());
+      }
+      run.dt = settings.dt;
+    } else {
+      run.dt = bound.recommended;
+    }
+    run.model.dt = run.dt;
+  }
+
+  // The neighbour list for the bed as it is now, with the carried contacts' history.
+  void rebuild() {
+    double r_max = 0;
+    for (const double r : bed.radius) r_max = std::max(r_max, r);
+    run.list.configure(run.box, r_max, settings.skin > 0 ? settings.skin : 0.2 * r_max, bed.n());
+    run.rebuild_with(carried);
+  }
+
+  // `steps` steps, `before(s)` ahead of the s-th; false when the observer stopped the run.
+  template <class Before>
+  bool advance(std::uint64_t steps, Before&& before) {
+    for (std::uint64_t s = 1; s <= steps; ++s) {
+      before(s);
+      run.step(step + 1);
+      ++step;
+      if (settings.tool_force && settings.tool_force_every > 0 && step % settings.tool_force_every == 0) {
+        ToolForceSample sample;
+        sample.layer = state.layers_done + 1;
+        sample.time = static_cast<double>(step) * run.dt;
+        sample.x = run.tool_x;
+        std::copy_n(run.tool_force, 3, sample.force);
+        settings.tool_force(sample);
+      }
+      if (settings.progress && step % settings.progress_every == 0) {
+        double energy = 0;
+        for (std::size_t i = 0; i < run.n(); ++i) {
+          energy += 0.5 * run.mass[i] *
+                    (bed.vx[i] * bed.vx[i] + bed.vy[i] * bed.vy[i] + bed.vz[i] * bed.vz[i]);
+        }
+        settings.progress(static_cast<double>(s) / static_cast<double>(steps), energy);
+      }
+      if (settings.observer && settings.observer(step, static_cast<double>(step) * run.dt, bed, run.wy)) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // The state of the run's end for a restart (layers_done is the caller's).
+  void save_state(std::uint64_t layers_done) {
+    carried = run.active();
+    state = to_state(run, carried);
+    state.layers_done = layers_done;
+    state.step = step;
+    state.time = static_cast<double>(step) * run.dt;
+  }
+
+  // Without a tool: settings.t_end of the granular loop.
+  void granular() {
+    if (bed.n() == 0) throw InputError("deposit: the bed has no particles (accepted: N >= 1)");
+    set_time_step();
+    rebuild();
+    run.forces(false);
+    const auto steps = static_cast<std::uint64_t>(std::ceil(settings.t_end / run.dt - 1e-9));
+    advance(steps, [](std::uint64_t) {});
+    particle_steps = static_cast<double>(bed.n()) * static_cast<double>(steps);
+    save_state(state.layers_done);
+  }
+
+  // The overflow out of the bed and the state, and the per-particle arrays anew from the state,
+  // as a continued run makes them.
+  void drop_overflow(LayerSummary& out, double front) {
+    out.overflow = remove_overflow(bed, state, front);
+    out.n = bed.n();
+    for (auto* v : {&run.mass, &run.wx, &run.wy, &run.wz}) v->clear();  // grow() redoes them
+    run.wall.clear();
+    run.grow();
+    run.wx = state.wx;
+    run.wy = state.wy;
+    run.wz = state.wz;
+    run.wall_history = state.wall_history;
+    carried = from_state(state, bed);
+    rebuild();
+  }
+
+  // One layer: the tool back at its start and raised by the plate's descent, a new supply,
+  // the pass, the settling, the state; false when the observer stopped it.
+  bool layer() {
+    const auto layer_started = std::chrono::steady_clock::now();
+    const std::uint64_t number = state.layers_done + 1, first_step = step;
+    const Recoater& tool = settings.tool;
+    LayerSummary out;
+    out.layer = number;
+    // The plate goes down by a layer thickness before each layer after the first; the bed
+    // keeps the plate's frame, so the tool (and the supply above the powder) rise instead.
+    const double plate_offset = static_cast<double>(number - 1) * settings.layer_thickness;
+    const double bottom = run.box.lower[2] + tool.gap + plate_offset;
+    if (!(bottom < run.box.upper[2])) {
+      throw InputError("--layers: the tool rises above the box's top at layer " +
+                       std::to_string(number) + " (accepted: a taller box or fewer layers)");
+    }
+    run.profile = tool_profile(tool, bottom);
+    run.tool_x = tool.start;
+    run.tool_v = 0;
+    out.tool_bottom = bottom;
+    out.supplied = add_supply(run, number);
+    run.grow();
+    check_tool_clear(run);
+    if (run.dt == 0) set_time_step();
+    rebuild();
+    run.forces(false);
+    const auto delay = static_cast<std::uint64_t>(std::ceil(tool.delay / run.dt - 1e-9));
+    const auto moving =
+        static_cast<std::uint64_t>(std::ceil((tool.end - tool.start) / (tool.speed * run.dt) - 1e-9));
+    const auto settle = static_cast<std::uint64_t>(std::ceil(tool.settle / run.dt - 1e-9));
+    double force_x = 0, force_max = 0;
+    const bool finished = advance(delay + moving + settle, [&](std::uint64_t s) {
+      const double travelled =
+          static_cast<double>(std::min(moving, s > delay ? s - delay : 0)) * tool.speed * run.dt;
+      run.tool_x = std::min(tool.end, tool.start + travelled);
+      run.tool_v = s > delay && s <= delay + moving ? tool.speed : 0.0;
+      if (s > 1) {  // the force of the step before, at the position it had
+        const double* f = run.tool_force;
+        force_max = std::max(force_max, std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]));
+        if (s - 1 > delay && s - 1 <= delay + moving) force_x += f[0];
+      }
+    });
+    out.steps = step - first_step;
+    particle_steps += static_cast<double>(run.n()) * static_cast<double>(out.steps);
+    out.sim_time = static_cast<double>(step) * run.dt;
+    out.max_tool_force = force_max;
+    out.mean_tool_force_x = moving > 0 ? force_x / static_cast<double>(moving) : 0.0;
+    const double front = tool.end + tool_half_extent(run.profile);
+    finish_layer(run, out, settings.supply_x1, tool.end - tool_half_extent(run.profile), bottom);
+    out.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - layer_started).count();
+    save_state(number);
+    state.plate_offset = plate_offset;
+    if (settings.remove_overflow) drop_overflow(out, front);
+    summary.layers.push_back(out);
+    if (finished && settings.layer_done) settings.layer_done(out, bed, state);
+    return finished;
+  }
+
+  SpreadSummary finish(std::chrono::steady_clock::time_point started) {
+    summary.steps = step - (restart ? restart->step : 0);
+    summary.sim_time = static_cast<double>(step) * run.dt;
+    summary.dt = run.dt;
+    summary.max_overlap = largest_overlap(run);
+    summary.neighbour_rebuilds = run.rebuilds;
+    summary.state = state;
+    summary.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    summary.particle_steps_per_s = summary.wall_time > 0 ? particle_steps / summary.wall_time : 0;
+    return summary;
+  }
+};
+
+}  // namespace
+
+SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings& settings,
+                         const SpreadState* restart) {
+  const auto started = std::chrono::steady_clock::now();
+  scene.validate();
+  Spreader spread(bed, scene, settings, restart);
+  spread.run.box = Box::from(bed.domain);
+  check_settings(bed, scene, settings, spread.run.box);
+  spread.set_up();
+  if (!settings.with_tool) {
+    spread.granular();
+  } else {
+    spread.run.tool_on = true;
+    for (std::uint64_t k = 0; k < settings.layers; ++k) {
+      if (!spread.layer()) break;  // the observer stopped the run
+    }
+  }
+  return spread.finish(started);
+}
+
+}  // namespace powderbed::dem

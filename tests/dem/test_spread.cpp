@@ -1,0 +1,422 @@
+// The spreading run (spread.hpp): static friction on a slope, rolling resistance, the tool's
+// geometry, a blade pushing one sphere or passing over it, particle count over a spread, and a
+// continued run against the uninterrupted one.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <utility>
+#include <unistd.h>
+
+#include "beds.hpp"
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/io.hpp"
+#include "powderbed/dem/hertz_normal.hpp"
+#include "powderbed/dem/recoater.hpp"
+#include "powderbed/dem/rolling_resistance.hpp"
+#include "powderbed/dem/sliding_friction.hpp"
+#include "powderbed/dem/spread.hpp"
+#include "powderbed/dem/tangential_history.hpp"
+#include "powderbed/dem/time_step.hpp"
+
+namespace {
+
+using namespace powderbed;
+
+constexpr double kRadius = 15e-6;
+constexpr double kYoungScale = 1e3;  // the scenes' softening (data/scenes/spread-blade.ini)
+constexpr double kG = 9.81;
+
+dem::Scene granular_scene(double mu, double mu_r, dem::FrictionModel model) {
+  dem::Scene s;  // 316L of [GZ]
+  s.material.friction = mu;
+  s.material.rolling = mu_r;
+  s.friction_model = model;
+  s.effects = dem::kGravity | dem::kHertz | dem::kDamping | dem::kFriction | dem::kWalls;
+  return s;
+}
+
+double sphere_mass(double r) { return 4.0 / 3.0 * std::numbers::pi * r * r * r * 7952; }
+
+// Hertz overlap of a sphere resting on the plate under a load: F = 4/3 E* sqrt(r) delta^{3/2}.
+double resting_overlap(const dem::Scene& s, double r, double load) {
+  const double young = s.material.young / kYoungScale;
+  const double e = dem::effective_modulus(young, s.material.poisson, s.wall.young / kYoungScale,
+                                          s.wall.poisson);
+  return std::pow(load / (4.0 / 3.0 * e * std::sqrt(r)), 2.0 / 3.0);
+}
+
+// One sphere resting on the plate of a periodic 1 x 1 x 1 mm box.
+bed::Bed one_sphere(const dem::Scene& s, double tilt, double x = 0.5e-3, double r = kRadius) {
+  bed::Bed b = test::box_bed(1e-3, 1e-3, 1e-3);
+  b.domain.periodic = {true, true, false};
+  b.add(x, 0.5e-3, r - resting_overlap(s, r, sphere_mass(r) * kG * std::cos(tilt)), r);
+  return b;
+}
+
+dem::SpreadSettings granular_run(double t_end, double tilt) {
+  dem::SpreadSettings st;
+  st.with_tool = false;
+  st.young_scale = kYoungScale;
+  st.t_end = t_end;
+  st.gravity_tilt = tilt;
+  return st;
+}
+
+// Largest speed over the last part of a run.
+double late_speed(bed::Bed& b, const dem::Scene& s, dem::SpreadSettings st, double from) {
+  double fastest = 0;
+  st.observer = [&](std::uint64_t, double t, const bed::Bed& bed, const std::vector<double>&) {
+    if (t >= from) fastest = std::max(fastest, std::hypot(bed.vx[0], bed.vy[0], bed.vz[0]));
+    return false;
+  };
+  dem::run_spread(b, s, st);
+  return fastest;
+}
+
+TEST(StaticFriction, SphereOnASlopeBelowTheFrictionAngleStandsWhereSlidingCreeps) {
+  // tan(theta) = 0.3 below mu = 0.5 and below mu_r = 0.5 (a sphere also needs the rolling
+  // resistance to hold the torque m g sin(theta) r, mu_r r m g cos(theta) >= that). Normal,
+  // tangential and rolling oscillations decay within ~50 us (zeta = 0.1 at ~3e5 rad/s), so by
+  // 3 ms the history model is still to ~1e-17 of its start; the sliding law cannot stand: its
+  // force mu F_n v / sqrt(v^2 + v_reg^2) balances m g sin(theta) at v = v_reg q / sqrt(1 - q^2),
+  // q = tan(theta) / mu: it creeps at 7.5e-6 m/s.
+  const double tilt = std::atan(0.3);
+  const dem::Scene history = granular_scene(0.5, 0.5, dem::FrictionModel::history);
+  bed::Bed standing = one_sphere(history, tilt);
+  EXPECT_LT(late_speed(standing, history, granular_run(4e-3, tilt), 3e-3), 1e-9);
+  EXPECT_NEAR(standing.x[0], 0.5e-3, 1e-9);
+
+  const dem::Scene sliding = granular_scene(0.5, 0.5, dem::FrictionModel::sliding);
+  bed::Bed creeping = one_sphere(sliding, tilt);
+  const double creep = late_speed(creeping, sliding, granular_run(4e-3, tilt), 3e-3);
+  // Within 1 %: the creep is steady once the transients have decayed (the rolling spring holds
+  // the rotation, so the centre moves at the contact's slip speed).
+  const double q = 0.3 / 0.5;
+  const double expected = dem::SlidingFrictionParams{}.regularisation_speed * q / std::sqrt(1 - q * q);
+  EXPECT_NEAR(creep, expected, 0.01 * expected);
+}
+
+TEST(StaticFriction, SphereAboveTheFrictionAngleSlidesAtGTimesSinMinusMuCos) {
+  // tan(30 deg) = 0.58 > 7/2 mu = 0.35: the contact slips throughout (a sphere rolls without
+  // slipping below that), so the centre accelerates at g (sin - mu cos) along the slope. The
+  // force is constant once the normal transient has decayed (~50 us), and velocity Verlet is
+  // exact for a constant force: 1e-3 of a covers the decayed transient with a wide margin.
+  const double tilt = std::numbers::pi / 6, mu = 0.1;
+  for (const auto model : {dem::FrictionModel::history, dem::FrictionModel::sliding}) {
+    const dem::Scene s = granular_scene(mu, 0, model);
+    bed::Bed b = one_sphere(s, tilt);
+    double v1 = 0, v2 = 0;
+    dem::SpreadSettings st = granular_run(3e-3, tilt);
+    st.observer = [&](std::uint64_t, double t, const bed::Bed& bed, const std::vector<double>&) {
+      if (v1 == 0 && t >= 1e-3) v1 = bed.vx[0];
+      if (v2 == 0 && t >= 3e-3 - 1e-12) v2 = bed.vx[0];
+      return false;
+    };
+    const dem::SpreadSummary r = dem::run_spread(b, s, st);
+    const double expected = kG * (std::sin(tilt) - mu * std::cos(tilt));
+    const double t1 = std::ceil(1e-3 / r.dt) * r.dt, t2 = r.sim_time;
+    EXPECT_NEAR((v2 - v1) / (t2 - t1), expected, 1e-3 * expected) << dem::friction_model_name(model);
+  }
+}
+
+TEST(SpreadRun, DragSlowsAFallingSphereAsStokesSays) {
+  // A sphere falling from rest in argon: v(t) = g tau (1 - exp(-t / tau)), tau = m / (6 pi mu r)
+  // (~19 ms at r = 15 um). Verlet sees the drag at the half-step velocity: an error of order
+  // dt / tau ~ 1e-5, so 1e-4 is a wide margin.
+  dem::Scene s = granular_scene(0.5, 0, dem::FrictionModel::history);
+  s.effects |= dem::kDrag;
+  bed::Bed b = test::box_bed(1e-3, 1e-3, 1e-3);
+  b.add(0.5e-3, 0.5e-3, 0.9e-3, kRadius);
+  dem::SpreadSettings st = granular_run(5e-3, 0);
+  const dem::SpreadSummary r = dem::run_spread(b, s, st);
+  const double tau = sphere_mass(kRadius) / (6 * std::numbers::pi * s.fluid_viscosity * kRadius);
+  const double expected = -kG * tau * (1 - std::exp(-r.sim_time / tau));
+  EXPECT_NEAR(b.vz[0], expected, 1e-4 * std::abs(expected));
+}
+
+TEST(RollingResistance, RollingSphereStopsWithinTheConstantTorqueDistance) {
+  // A sphere rolling at v0 on the plate under the capped torque mu_r r m g decelerates at
+  // a = mu_r g r arm / (I + m arm^2) = 5/7 mu_r g (arm = r less the overlap, 1e-5 of r), so it
+  // stops after v0^2 / (2 a) = 7 v0^2 / (10 mu_r g). 1 % covers the spring's loading (a rotation
+  // of cap / k_r ~ 1e-4 rad) and the normal transient at the start.
+  const double mu_r = 0.05, v0 = 0.01;
+  const dem::Scene s = granular_scene(0.5, mu_r, dem::FrictionModel::history);
+  bed::Bed b = test::box_bed(4e-3, 1e-3, 1e-3);
+  b.domain.periodic = {true, false, false};  // y walls 0.5 mm away: never touched
+  const double delta = resting_overlap(s, kRadius, sphere_mass(kRadius) * kG);
+  test::add_moving(b, 0.5e-3, 0.5e-3, kRadius - delta, kRadius, v0, 0, 0);
+  dem::SpreadState spin;  // rolling, not sliding, from the start: omega_y = v0 / arm
+  dem::SpreadSettings st = granular_run(0.04, 0);
+  double farthest = 0;
+  bool stopped = false;
+  st.observer = [&](std::uint64_t, double, const bed::Bed& bed, const std::vector<double>&) {
+    farthest = std::max(farthest, bed.x[0]);
+    stopped = stopped || bed.vx[0] < 1e-6 * v0;
+    return stopped;
+  };
+  spin.wx = {0};
+  spin.wy = {v0 / (kRadius - delta)};
+  spin.wz = {0};
+  spin.wall_history.assign(42, 0.0);
+  spin.dt = 0.2 * dem::rayleigh_time_step(kRadius, 7952, s.material.young / kYoungScale, 0.26);
+  dem::run_spread(b, s, st, &spin);
+  ASSERT_TRUE(stopped);
+  const double expected = 7 * v0 * v0 / (10 * mu_r * kG);
+  EXPECT_NEAR(farthest - 0.5e-3, expected, 0.01 * expected);
+}
+
+TEST(RecoaterGeometry, SharpAndRoundedBladeEdgesAndTheRollerCircle) {
+  dem::Recoater blade;
+  blade.thickness = 100e-6;
+  const dem::ToolProfile sharp = dem::tool_profile(blade, 50e-6);
+  dem::ToolContact c;
+  // In front of the face, 10 um below the bottom edge: the contact is the edge itself, at
+  // sqrt(5^2 + 10^2) um from the centre.
+  ASSERT_TRUE(dem::tool_contact(sharp, 55e-6, 40e-6, 12e-6, c));
+  EXPECT_NEAR(c.delta, 12e-6 - std::hypot(5e-6, 10e-6), 1e-15);
+  EXPECT_NEAR(c.n[0], -5 / std::hypot(5.0, 10.0), 1e-12);
+  EXPECT_NEAR(c.n[2], 10 / std::hypot(5.0, 10.0), 1e-12);
+  // Level with the face: a flat contact along -x.
+  ASSERT_TRUE(dem::tool_contact(sharp, 55e-6, 80e-6, 10e-6, c));
+  EXPECT_NEAR(c.delta, 5e-6, 1e-15);
+  EXPECT_DOUBLE_EQ(c.n[0], -1);
+  // Under the bottom face, pushed down.
+  ASSERT_TRUE(dem::tool_contact(sharp, 0, 45e-6, 10e-6, c));
+  EXPECT_NEAR(c.delta, 5e-6, 1e-15);
+  EXPECT_DOUBLE_EQ(c.n[2], 1);
+  // A 10 um edge radius takes the corner away: the core corner is (40, 60) um, 25 um from
+  // the centre, 15 um from the surface, more than the radius.
+  blade.edge_radius = 10e-6;
+  const dem::ToolProfile round = dem::tool_profile(blade, 50e-6);
+  EXPECT_FALSE(dem::tool_contact(round, 55e-6, 40e-6, 12e-6, c));
+  EXPECT_DOUBLE_EQ(dem::tool_half_extent(round), 50e-6);
+  ASSERT_TRUE(dem::tool_contact(round, 55e-6, 40e-6, 16e-6, c));
+  EXPECT_NEAR(c.delta, 1e-6, 1e-15);
+  dem::Recoater roller;
+  roller.shape = dem::ToolShape::roller;
+  roller.radius = 1e-3;
+  const dem::ToolProfile circle = dem::tool_profile(roller, 50e-6);
+  ASSERT_TRUE(dem::tool_contact(circle, 0, 45e-6, 10e-6, c));  // under the axis
+  EXPECT_NEAR(c.delta, 5e-6, 1e-15);
+  EXPECT_NEAR(c.surface[2], 50e-6, 1e-15);
+}
+
+// A 2 x 0.5 x 1 mm box with a blade 200 um thick from x = 0.3 to 1.2 mm.
+dem::SpreadSettings blade_run(double gap) {
+  dem::SpreadSettings st;
+  st.young_scale = kYoungScale;
+  st.tool.thickness = 200e-6;
+  st.tool.gap = gap;
+  st.tool.speed = 0.1;
+  st.tool.start = 0.3e-3;
+  st.tool.end = 1.2e-3;
+  return st;
+}
+
+bed::Bed sphere_on_plate(const dem::Scene& s, double x, double r) {
+  bed::Bed b = test::box_bed(2e-3, 0.5e-3, 1e-3);  // side walls 0.25 mm away: never touched
+  b.add(x, 0.25e-3, r - resting_overlap(s, r, sphere_mass(r) * kG), r);
+  return b;
+}
+
+TEST(Recoater, BladePushesASphereTallerThanTheGapAndLeavesNoneBehind) {
+  // A 40 um sphere resting on the plate (centre 20 um up). Sharp edge, 30 um gap: the edge
+  // meets the sphere 10 um below its centre's height, the contact normal 30 deg below the
+  // horizontal, which pushes it forwards (and a little down) all the way. Edge radius 10 um,
+  // 10 um gap: the rounding starts at the centre's height, so the push is horizontal. (A normal
+  // steeper than the friction angle wedges the sphere against the plate, and the softened
+  // contact lets the blade squeeze it through: docs/deposit-spread.md "Tool edges".)
+  const dem::Scene s = granular_scene(0.5, 0.05, dem::FrictionModel::history);
+  for (const auto& [edge, gap] : {std::pair{0.0, 30e-6}, std::pair{10e-6, 10e-6}}) {
+    bed::Bed b = sphere_on_plate(s, 0.6e-3, 20e-6);
+    dem::SpreadSettings st = blade_run(gap);
+    st.tool.edge_radius = edge;
+    double worst_lag = -1;  // how far the sphere's centre fell behind the blade's front face
+    st.observer = [&](std::uint64_t, double t, const bed::Bed& bed, const std::vector<double>&) {
+      const double front = std::min(st.tool.end, st.tool.start + st.tool.speed * t) + 100e-6;
+      worst_lag = std::max(worst_lag, front - bed.x[0]);
+      return false;
+    };
+    const dem::SpreadSummary r = dem::run_spread(b, s, st);
+    // It never gets behind the face (a sphere that passed under the edge would lag by > r).
+    EXPECT_LT(worst_lag, 0.0) << "edge radius " << edge;
+    EXPECT_GT(b.x[0], st.tool.end + 100e-6) << "edge radius " << edge;
+    EXPECT_GT(r.layers[0].max_tool_force, 0);
+    EXPECT_EQ(r.layers[0].lost, 0u);
+  }
+}
+
+TEST(Recoater, SphereUnderTheGapPassesUntouched) {
+  // A 20 um sphere under a 30 um gap: the blade never touches it, so it stays where it rests
+  // (no other force has an x component: 1e-15 m is rounding).
+  const dem::Scene s = granular_scene(0.5, 0.05, dem::FrictionModel::history);
+  bed::Bed b = sphere_on_plate(s, 0.6e-3, 10e-6);
+  const double x0 = b.x[0];
+  dem::SpreadSettings st = blade_run(30e-6);
+  double largest = 0;
+  st.tool_force_every = 1;
+  st.tool_force = [&](const dem::ToolForceSample& f) {
+    largest = std::max(largest, std::hypot(f.force[0], f.force[1], f.force[2]));
+  };
+  const dem::SpreadSummary r = dem::run_spread(b, s, st);
+  EXPECT_EQ(largest, 0.0);
+  EXPECT_EQ(r.layers[0].max_tool_force, 0.0);
+  EXPECT_NEAR(b.x[0], x0, 1e-15);
+}
+
+// A supply of spheres of radius 15 um on a cubic lattice of pitch 32 um filling the region.
+bed::Bed lattice_supply(const bed::Domain& region, std::uint64_t) {
+  bed::Bed b;
+  b.domain = region;
+  const double pitch = 32e-6, r = kRadius;
+  for (double z = region.lower[2] + r + 1e-6; z + r <= region.upper[2]; z += pitch)
+    for (double y = region.lower[1] + r + 1e-6; y + r <= region.upper[1]; y += pitch)
+      for (double x = region.lower[0] + r + 1e-6; x + r <= region.upper[0]; x += pitch)
+        b.add(x, y, z, r);
+  return b;
+}
+
+dem::SpreadSettings small_spread() {
+  dem::SpreadSettings st;
+  st.young_scale = kYoungScale;
+  st.tool.thickness = 100e-6;
+  st.tool.gap = 60e-6;
+  st.tool.speed = 0.2;
+  st.tool.start = 0.1e-3;
+  st.tool.end = 1.2e-3;
+  st.supply_x0 = 0.16e-3;
+  st.supply_x1 = 0.4e-3;
+  st.supply_height = 0.15e-3;
+  st.supply = lattice_supply;
+  st.layer_thickness = 30e-6;
+  return st;
+}
+
+bed::Bed strip() {
+  bed::Bed b = test::box_bed(1.5e-3, 0.3e-3, 0.6e-3);
+  b.domain.periodic = {false, true, false};
+  return b;
+}
+
+TEST(Recoater, SpreadKeepsEveryParticle) {
+  // None lost through the plate or the tool; with the overflow removed, every particle is
+  // either in the bed or counted as overflow.
+  const dem::Scene s = granular_scene(0.5, 0.05, dem::FrictionModel::history);
+  dem::SpreadSettings st = small_spread();
+  st.remove_overflow = false;
+  bed::Bed b = strip();
+  const dem::SpreadSummary r = dem::run_spread(b, s, st);
+  ASSERT_EQ(r.layers.size(), 1u);
+  EXPECT_GT(r.layers[0].supplied, 100u);
+  EXPECT_EQ(b.n(), r.layers[0].supplied);
+  EXPECT_EQ(r.layers[0].lost, 0u);
+  EXPECT_EQ(r.layers[0].overflow, 0u);
+  const double front = st.tool.end + 0.5 * st.tool.thickness;
+  std::size_t past = 0;
+  for (std::size_t i = 0; i < b.n(); ++i) {
+    EXPECT_GT(b.z[i], 0);
+    EXPECT_TRUE(b.x[i] >= 0 && b.x[i] <= 1.5e-3);
+    past += b.x[i] > front ? 1 : 0;
+  }
+  EXPECT_GT(past, 0u);  // the excess, pushed to the end
+  // The blade left a layer behind it: some powder under the gap past the supply's back.
+  EXPECT_GT(r.layers[0].density_under_gap, 0.05);
+
+  bed::Bed c = strip();
+  const dem::SpreadSummary with = dem::run_spread(c, s, small_spread());
+  EXPECT_EQ(with.layers[0].overflow, past);  // the same run up to the removal
+  EXPECT_EQ(c.n() + with.layers[0].overflow, with.layers[0].supplied);
+  for (std::size_t i = 0; i < c.n(); ++i) EXPECT_LE(c.x[i], front);
+}
+
+TEST(Recoater, ContinuedRunEqualsTheUninterruptedOneBitForBit) {
+  // The excess kept (no overflow removal), so that the heap's pair contacts carry history
+  // across the restart (deposit's test, DepositSpread.*, runs it with the removal).
+  const dem::Scene s = granular_scene(0.5, 0.05, dem::FrictionModel::history);
+  dem::SpreadSettings two = small_spread();
+  two.remove_overflow = false;
+  two.layers = 2;
+  bed::Bed whole = strip();
+  const dem::SpreadSummary straight = dem::run_spread(whole, s, two);
+
+  dem::SpreadSettings one = small_spread();
+  one.remove_overflow = false;
+  bed::Bed first = strip();
+  const dem::SpreadSummary half = dem::run_spread(first, s, one);
+  // Through the file, as deposit --in does.
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("spread-restart-" + std::to_string(getpid()) + ".h5")).string();
+  bed::write_bed_h5(first, path);
+  dem::write_spread_state(path, half.state, first);
+  ASSERT_TRUE(dem::has_spread_state(path));
+  bed::Bed again = bed::read_bed_h5(path);
+  const dem::SpreadState state = dem::read_spread_state(path, again);
+  std::filesystem::remove(path);
+  std::filesystem::remove(path.substr(0, path.size() - 3) + ".xmf");
+  EXPECT_EQ(state.layers_done, 1u);
+  EXPECT_GT(state.pair_ids.size(), 0u);
+  const dem::SpreadSummary rest = dem::run_spread(again, s, one, &state);
+  ASSERT_EQ(rest.layers.size(), 1u);
+  EXPECT_EQ(rest.layers[0].layer, 2u);
+  ASSERT_EQ(again.n(), whole.n());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < whole.n(); ++i) {
+    differ += (again.x[i] != whole.x[i] || again.y[i] != whole.y[i] || again.z[i] != whole.z[i] ||
+               again.vx[i] != whole.vx[i] || again.vz[i] != whole.vz[i] ||
+               rest.state.wy[i] != straight.state.wy[i] || again.id[i] != whole.id[i]) ? 1 : 0;
+  }
+  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(rest.state.step, straight.state.step);
+  EXPECT_EQ(rest.state.pair_history, straight.state.pair_history);
+}
+
+TEST(Recoater, BadToolOrSupplyIsRefused) {
+  const dem::Scene s = granular_scene(0.5, 0, dem::FrictionModel::history);
+  {
+    dem::SpreadSettings st = small_spread();
+    st.tool.gap = 0;
+    bed::Bed b = strip();
+    EXPECT_THROW(dem::run_spread(b, s, st), InputError);
+  }
+  {  // a particle where the blade starts
+    dem::SpreadSettings st = small_spread();
+    bed::Bed b = strip();
+    b.add(0.1e-3, 0.15e-3, 0.2e-3, kRadius);
+    EXPECT_THROW(dem::run_spread(b, s, st), InputError);
+  }
+  {  // a supply taller than the box
+    dem::SpreadSettings st = small_spread();
+    st.supply_height = 1e-3;
+    bed::Bed b = strip();
+    EXPECT_THROW(dem::run_spread(b, s, st), InputError);
+  }
+  {  // a supply behind the blade's front
+    dem::SpreadSettings st = small_spread();
+    st.supply_x0 = 0.12e-3;
+    bed::Bed b = strip();
+    EXPECT_THROW(dem::run_spread(b, s, st), InputError);
+  }
+}
+
+TEST(TangentialHistory, SpringHoldsBelowTheCapAndSlidesAtIt) {
+  const dem::TangentialSpring k{100.0, 0.0};
+  double spring[3] = {0, 0, 0}, f[3];
+  const double vt[3] = {1e-3, 0, 0};
+  dem::tangential_history_force(k, 0.5, 1.0, vt, 1e-3, true, spring, f);  // 1 um of slip
+  EXPECT_DOUBLE_EQ(f[0], -100.0 * 1e-6);
+  for (int s = 0; s < 10000; ++s) dem::tangential_history_force(k, 0.5, 1.0, vt, 1e-3, true, spring, f);
+  EXPECT_DOUBLE_EQ(f[0], -0.5);       // Coulomb: mu F_n
+  EXPECT_DOUBLE_EQ(spring[0], -0.5);  // the spring reset to the cap
+  const double still[3] = {0, 0, 0};
+  dem::tangential_history_force(k, 0.5, 1.0, still, 1e-3, true, spring, f);
+  EXPECT_DOUBLE_EQ(f[0], -0.5);  // stops slipping: holds
+  double turned[3] = {3, 4, 0};
+  const double n[3] = {0, 1, 0};
+  dem::rotate_onto_tangent_plane(turned, n);
+  EXPECT_DOUBLE_EQ(turned[0], 5);  // length kept
+  EXPECT_DOUBLE_EQ(turned[1], 0);
+}
+
+}  // namespace
