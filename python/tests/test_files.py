@@ -13,7 +13,11 @@ from powderbed._programs import executable
 UNITS = {"position": "m", "radius": "m", "velocity": "m/s", "temperature": "K",
          "particle_temperature": "K", "section_y": "K", "section_x": "K", "top": "K",
          "particle": "K", "substrate": "K", "id": "1", "phase": "1", "particle_phase": "1",
-         "material": "1", "polyvertex": "1"}
+         "material": "1", "polyvertex": "1",
+         # /tracks: the melt pool and what each scan segment leaves for the next
+         "width": "m", "depth": "m", "height": "m", "length": "m", "particles_molten": "1",
+         "peak_temperature": "K", "start_temperature": "K", "stored_energy": "J",
+         "t_start": "s", "t_end": "s"}
 
 
 def datasets(path):
