@@ -36,7 +36,9 @@ POWERS = [50, 100, 150, 200, 300]          # W
 SPEEDS = [0.25, 0.5, 1.0, 2.0, 3.0]        # m/s
 SMALL_POWERS, SMALL_SPEEDS = [100, 200, 300], [0.5, 1.0, 2.0]
 HATCH = 100e-6      # m: the hatch the lack-of-fusion criterion is evaluated for
-LAYER = 90e-6       # m: the spread layer's gap (data/scenes/spread-blade.ini)
+# m: the layer thickness t of the criterion is the plate's drop per layer (recoater.layer-thickness
+# of data/scenes/spread-blade.ini), what a machine calls the layer thickness, not the blade gap.
+LAYER = 45e-6
 
 
 def spread_layer():
@@ -85,8 +87,10 @@ def run_point(bed, power, speed, track, extra):
 def classify(p, hatch, layer):
     """The regions a point falls in (a point may be in several), or 'fused' when in none."""
     w, d, length = p["width"], p["depth"], p["length"]
-    if not (w > 0 and d > 0):
+    if not w > 0:
         return ["no melt"]
+    if not d > 0:  # the powder melts but not the solid under it: no bond to the layer below
+        return ["lack of fusion"]
     regions = []
     if w / d <= 1.5:
         regions.append("keyhole")
@@ -125,7 +129,7 @@ def plot(points, hatch, layer, path):
 
 
 def table(points, hatch, layer):
-    rows = ["| P (W) | v (m/s) | W (um) | D (um) | L (um) | W/D | L/W | LOF index | regions | "
+    rows = ["| P (W) | v (m/s) | W (um) | D (um) | L (um) | W/D | L/W | (h/W)^2+(t/D)^2 | regions | "
             "peak T (K) | vaporised | wall (s) |", "|" + "---|" * 12]
     for p in points:
         w, d, length = p["width"], p["depth"], p["length"]
@@ -146,6 +150,8 @@ def main():
     parser.add_argument("--small", action="store_true", help="a 3 x 3 grid")
     parser.add_argument("--hatch", type=float, default=HATCH)
     parser.add_argument("--layer", type=float, default=LAYER)
+    parser.add_argument("--from-json", action="store_true",
+                        help="redraw from out/studies/process-map.json instead of running sinter")
     parser.add_argument("--track-length", type=float, default=0.6e-3,
                         help="m, centred on the bed (default 0.6 mm)")
     parser.add_argument("--sinter-args", default="--grid-spacing 1e-5",
@@ -154,13 +160,18 @@ def main():
                              "docs/results/sinter-accuracy.md)")
     args = parser.parse_args()
     bed = args.bed or spread_layer()
-    powers, speeds = (SMALL_POWERS, SMALL_SPEEDS) if args.small else (POWERS, SPEEDS)
-    extra = args.sinter_args.split()
-    track = track_of(bed, args.track_length)
-    points = [run_point(bed, p, v, track, extra) for p in powers for v in speeds]
+    saved = os.path.join(WORK, "process-map.json")
+    if args.from_json:
+        with open(saved) as f:
+            points = json.load(f)
+    else:
+        powers, speeds = (SMALL_POWERS, SMALL_SPEEDS) if args.small else (POWERS, SPEEDS)
+        extra = args.sinter_args.split()
+        track = track_of(bed, args.track_length)
+        points = [run_point(bed, p, v, track, extra) for p in powers for v in speeds]
+        with open(saved, "w") as f:
+            json.dump(points, f, indent=1)
     plot(points, args.hatch, args.layer, os.path.join(RESULTS, "process-map.png"))
-    with open(os.path.join(WORK, "process-map.json"), "w") as f:
-        json.dump(points, f, indent=1)
     bed_name = os.path.relpath(bed, ROOT) if bed.startswith(ROOT) else os.path.basename(bed)
     text = f"""# Process map: power x speed on one powder layer
 
@@ -171,10 +182,18 @@ the criteria and their sources). Bed: `{bed_name}`; scene `data/scenes/gz2016-si
 {args.track_length * 1e3:g} mm along x through the bed's centre per run, one thread.
 Machine: {platform.node()} ({os.cpu_count()} cores), {platform.platform()}.
 
-Criteria: keyhole W/D <= 1.5; lack of fusion (h/W)^2 + (t/D)^2 > 1 with h = {args.hatch * 1e6:.0f} um,
-t = {args.layer * 1e6:.0f} um; balling L/W > pi (L: the longest stretch of the track's centre line
-molten at once). The model is conduction only (no recoil, evaporation or melt flow): points in
+W: the melt's width across the track (powder and solid); D: its depth below the solid's top
+(the plate here); L: the longest stretch of the track's centre line molten at once (at most the
+track's {args.track_length * 1e6:.0f} um). Criteria: keyhole W/D <= 1.5; lack of fusion
+(h/W)^2 + (t/D)^2 > 1 with hatch h = {args.hatch * 1e6:.0f} um and layer thickness
+t = {args.layer * 1e6:.0f} um (the plate's drop per layer), and wherever the powder melts but the
+solid under it does not (D = 0); balling L/W > pi. The model is conduction only (no recoil, evaporation or melt flow): points in
 the keyhole region say where its answer stops being trustworthy.
+
+Peak temperatures above the boiling point (3130 K) are particles that vaporised and kept
+absorbing: the model removes no vapour (docs/sinter.md), so read them as "vaporises", not as a
+temperature. The map's points are single tracks; the hatch enters only through h in the
+criterion, not through the heat one track leaves for the next (sinter's `--scan.hatch` runs that).
 
 ![process map](process-map.png)
 
