@@ -107,7 +107,7 @@ def plot(points, hatch, layer, path):
     import matplotlib.pyplot as plt
     colours = {"fused": "tab:green", "lack of fusion": "tab:orange", "keyhole": "tab:red",
                "balling": "tab:purple", "no melt": "tab:gray"}
-    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    fig, ax = plt.subplots(figsize=(7.6, 4.8))
     for p in points:
         regions = classify(p, hatch, layer)
         ax.scatter(p["speed"], p["power"], s=160, c=colours[regions[0]], edgecolors="k", zorder=3)
@@ -122,7 +122,12 @@ def plot(points, hatch, layer, path):
     ax.set_xlabel("scan speed (m/s)")
     ax.set_ylabel("laser power (W)")
     ax.set_title(f"single tracks, W/D in um; hatch {hatch * 1e6:.0f} um, layer {layer * 1e6:.0f} um")
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.02, 0.5))
+    ax.set_xscale("log")
+    speeds = sorted({p["speed"] for p in points})
+    ax.set_xticks(speeds, [f"{v:g}" for v in speeds])
+    ax.minorticks_off()
+    ax.margins(0.12)
     ax.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
