@@ -1,11 +1,14 @@
-// sinter: the DE–FD laser thermal solver (docs/sinter.md) on a bed: one laser track, melt pool on
-// the plane x = Lx/2, an HDF5 + XDMF time series, and the energy balance of the run.
+// sinter: the DE–FD laser thermal solver (docs/sinter.md) on a bed: one laser track or a scan
+// path (a hatch or a CSV of segments), the melt pool on the plane x = Lx/2 and per track, fusion
+// of what melted into a raised solid top (--fuse), an HDF5 + XDMF time series, and the energy
+// balance of the run.
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -20,6 +23,7 @@
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
 #include "powderbed/thermal/explain.hpp"
+#include "powderbed/thermal/fusion.hpp"
 #include "powderbed/thermal/run_output.hpp"
 #include "powderbed/thermal/solver.hpp"
 
@@ -31,18 +35,85 @@ namespace th = thermal;
 
 const char* const kUsage =
     "sinter --config SCENE.ini --bed BED.h5 --out RUN.h5 [--power P] [--speed V] [--spot W] "
-    "[--grid-spacing DX] [--dt DT] [--unsafe-dt] [--integrator explicit|implicit] [--json] "
-    "[--explain]";
+    "[--grid-spacing DX] [--dt DT] [--unsafe-dt] [--integrator explicit|implicit] "
+    "[--scan-path PATH.csv | --scan.hatch H [--scan.tracks N] [--scan.direction one-way|alternating] "
+    "[--scan.rotation DEG --scan.layer K] [--scan.region X0,X1,Y0,Y1]] [--scan.jump-speed V] "
+    "[--fuse [--fused-bed BED.h5]] [--json] [--explain]";
+
+// The scan path options (docs/sinter.md "Scan paths"): a CSV of segments or a hatch; neither
+// keeps the single track of laser.*.
+void add_scan_options(po::options_description& desc) {
+  const th::Hatch h;
+  const th::SinterScene d;
+  desc.add_options()
+      ("scan-path", po::value<std::string>(),
+       "CSV of segments, header x0,y0,x1,y1,power,speed (SI); replaces the single track")
+      ("scan.hatch", po::value<double>(), "hatch spacing h between tracks (m); replaces the single track")
+      ("scan.tracks", po::value<std::size_t>()->default_value(0),
+       "number of hatch tracks (0: as many as the region holds)")
+      ("scan.direction", po::value<std::string>()->default_value("alternating"),
+       "one-way (every track the same way) or alternating (serpentine)")
+      ("scan.rotation", po::value<double>()->default_value(h.rotation),
+       "hatch rotation per layer about the region's centre (degrees)")
+      ("scan.layer", po::value<std::size_t>()->default_value(0),
+       "layer k: the tracks run at k x rotation from +x")
+      ("scan.region", po::value<std::string>(),
+       "X0,X1,Y0,Y1: the rectangle the hatch covers (m); default the bed's x-y extent")
+      ("scan.jump-speed", po::value<double>()->default_value(d.jump_speed),
+       "speed of the jumps between segments, laser off (m/s)");
+}
+
+// The scene's scan path from --scan-path or scan.hatch (empty: the single track); the hatch's
+// tracks run at --power and --speed.
+std::vector<th::ScanSegment> scan_path_of(const po::variables_map& vm, const th::SinterScene& s,
+                                          const bed::Bed& bed) {
+  const bool csv = vm.count("scan-path") > 0, hatch = vm.count("scan.hatch") > 0;
+  if (csv && hatch)
+    throw InputError("--scan-path, --scan.hatch: both given (accepted: one of them)");
+  if (!hatch) {  // a hatch option without the hatch is a mistake, not a default
+    for (const char* name : {"scan.tracks", "scan.direction", "scan.rotation", "scan.layer", "scan.region"})
+      if (vm.count(name) && !vm[name].defaulted())
+        throw InputError(std::string("--") + name + ": given without --scan.hatch (accepted: "
+                         "--scan.hatch H with it)");
+  }
+  if (csv) return th::read_scan_csv(vm["scan-path"].as<std::string>());
+  if (!hatch) return {};
+  th::Hatch h;
+  h.spacing = vm["scan.hatch"].as<double>();
+  h.tracks = vm["scan.tracks"].as<std::size_t>();
+  const std::string direction = vm["scan.direction"].as<std::string>();
+  if (direction != "one-way" && direction != "alternating")
+    throw InputError("--scan.direction: '" + direction + "' (accepted: one-way, alternating)");
+  h.direction = direction == "one-way" ? th::HatchDirection::one_way : th::HatchDirection::alternating;
+  h.rotation = vm["scan.rotation"].as<double>();
+  if (!std::isfinite(h.rotation))
+    throw InputError("--scan.rotation: not a finite number (accepted: degrees, e.g. 67)");
+  h.layer = vm["scan.layer"].as<std::size_t>();
+  h.region = {bed.domain.lower[0], bed.domain.upper[0], bed.domain.lower[1], bed.domain.upper[1]};
+  if (vm.count("scan.region")) {
+    const auto r = app::parse_number_list(vm["scan.region"].as<std::string>(), 4, 4, "--scan.region");
+    h.region = {r[0], r[1], r[2], r[3]};
+  }
+  h.power = s.power;
+  h.speed = s.speed;
+  return th::hatch_segments(h);
+}
 
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
   app::add_threads_option(desc);
   app::add_progress_option(desc);
+  add_scan_options(desc);
   const th::SinterScene d;
   desc.add_options()
       ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump) resting on z = floor")
       ("out", po::value<std::string>(), "run file: HDF5 time series + XDMF sidecar")
       ("explain", po::bool_switch(), "print the scene's scale analysis and exit")
+      ("fuse", po::bool_switch(),
+       "after the scan, fuse the particles that melted into the solid: /fusion in the run file")
+      ("fuse.melt-fraction", po::value<double>()->default_value(0.5),
+       "--fuse: the melt fraction a particle must have reached (0.5: T_m; 1: wholly liquid)")
+      ("fused-bed", po::value<std::string>(), "--fuse: write the powder left as this bed (.h5)")
       ("power", po::value<double>()->default_value(d.power), "laser power P (W)")
       ("speed", po::value<double>()->default_value(d.speed), "scan speed v (m/s)")
       ("spot", po::value<double>()->default_value(d.spot_radius), "beam radius w at 1/e^2 (m)")
@@ -270,6 +341,56 @@ std::string explain_json(const th::ExplainReport& r) {
   return j.str() + '\n';
 }
 
+// --json "tracks": per scan segment, its melt pool and what it leaves for the next (SI).
+void tracks_json(bed::JsonWriter& j, const std::vector<th::TrackStats>& tracks) {
+  j.begin_array("tracks");
+  for (const auto& t : tracks) {
+    j.begin_object()
+        .value("width", t.pool.width)
+        .value("depth", t.pool.depth)
+        .value("height", t.pool.height)
+        .value("length", t.length)
+        .value("peak_temperature", t.peak_temperature)
+        .value("particles_molten", static_cast<std::uint64_t>(t.particles_molten))
+        .value("start_temperature", t.start_temperature)
+        .value("stored_energy", t.stored_energy)
+        .value("t_start", t.t_start)
+        .value("t_end", t.t_end)
+        .end_object();
+  }
+  j.end_array();
+}
+
+// --json "fusion": what fusion moved, in kg, and the solid's top above the plate, m.
+void fusion_json(bed::JsonWriter& j, const th::Fusion& f, const th::SubstrateGeometry& g) {
+  const auto [low, high] = std::minmax_element(f.top.begin(), f.top.end());
+  j.begin_object("fusion")
+      .value("threshold", f.threshold)
+      .value("fused", static_cast<std::uint64_t>(f.fused))
+      .value("vaporised", static_cast<std::uint64_t>(f.vaporised))
+      .value("powder_left", static_cast<std::uint64_t>(f.powder.n()))
+      .value("powder_mass_before", f.powder_mass_before)
+      .value("powder_mass_after", f.powder_mass_after)
+      .value("solid_mass_before", f.solid_mass_before)
+      .value("solid_mass_after", f.solid_mass_after)
+      .value("vaporised_mass", f.vaporised_mass)
+      .value("mass_error", f.mass_error())
+      .value("top_min", *low - g.z_top)
+      .value("top_max", *high - g.z_top)
+      .end_object();
+}
+
+// The text report's line per track (a scan path only: the single track's line is the run's).
+void print_tracks(const std::vector<th::TrackStats>& tracks) {
+  for (std::size_t m = 0; m < tracks.size(); ++m) {
+    const auto& t = tracks[m];
+    std::printf("sinter: track %zu: width %.1f um, depth %.1f um, height %.1f um, length %.1f um; "
+                "T_peak %.0f K; %zu particles molten; starts at %.0f K; %.3g J stored at its end\n",
+                m + 1, t.pool.width * 1e6, t.pool.depth * 1e6, t.pool.height * 1e6, t.length * 1e6,
+                t.peak_temperature, t.particles_molten, t.start_temperature, t.stored_energy);
+  }
+}
+
 int run(int argc, char** argv) {
   po::options_description desc("sinter options (SI units)");
   add_options(desc);
@@ -284,10 +405,25 @@ int run(int argc, char** argv) {
     app::check_extension({"--out", out}, {".h5"});
     outputs.push_back({"--out", out});
   }
-  app::check_paths({{"--bed", bed_path}}, outputs);
+  const bool fuse = vm["fuse"].as<bool>();
+  const double melt_fraction = vm["fuse.melt-fraction"].as<double>();
+  if (fuse && !(melt_fraction > 0 && melt_fraction <= 1))
+    throw InputError("--fuse.melt-fraction: " + std::to_string(melt_fraction) +
+                     " (accepted: 0 < f <= 1; 0.5 fuses what reached T_m, 1 what was wholly liquid)");
+  if (vm.count("fused-bed")) {
+    if (!fuse) throw InputError("--fused-bed: given without --fuse (accepted: --fuse --fused-bed BED.h5)");
+    const std::string fused_bed = vm["fused-bed"].as<std::string>();
+    app::check_extension({"--fused-bed", fused_bed}, {".h5"});
+    outputs.push_back({"--fused-bed", fused_bed});
+  }
+  std::vector<app::PathArg> inputs{{"--bed", bed_path}};
+  if (vm.count("scan-path")) inputs.push_back({"--scan-path", vm["scan-path"].as<std::string>()});
+  app::check_paths(inputs, outputs);
 
   bed::Bed bed = bed::read_bed_any(bed_path);
   th::SinterScene scene = make_scene(vm, bed.domain.length(0), bed.domain.length(1));
+  scene.scan_path = scan_path_of(vm, scene, bed);
+  scene.jump_speed = vm["scan.jump-speed"].as<double>();
   scene.unsafe_dt = vm["unsafe-dt"].as<bool>();
   if (!vm["trust-units"].as<bool>()) check_units(scene, bed);
   check_grid_memory(scene);
@@ -334,6 +470,15 @@ int run(int argc, char** argv) {
       {"energy_balance_error", r.energy.relative_error()},
       {"laser_absorbed", r.energy.absorbed()}, {"steps", static_cast<double>(r.steps)},
       {"dt", r.dt_grid}, {"wall_time", wall}};
+  std::optional<th::Fusion> fused;
+  if (fuse) {
+    fused = th::fuse(bed, sinter, melt_fraction);
+    writer.fusion(*fused);
+    if (vm.count("fused-bed")) {
+      fused->powder.provenance.stage = "sinter --fuse";
+      bed::write_bed_h5(fused->powder, vm["fused-bed"].as<std::string>());
+    }
+  }
   writer.finish(sinter, r, summary);
 
   if (vm.count("json")) {
@@ -351,6 +496,7 @@ int run(int argc, char** argv) {
         .value("energy_balance_error", r.energy.relative_error())
         .value("laser_absorption", vm["laser.absorption"].as<std::string>())
         .value("absorptance", r.absorptance);
+    tracks_json(j, r.tracks);
     if (r.traces.traces > 0) {
       const double n = static_cast<double>(r.traces.traces);
       j.begin_object("ray_trace")
@@ -365,8 +511,9 @@ int run(int argc, char** argv) {
           .end_object();
     }
     j.value("substrate_wetted", static_cast<std::uint64_t>(r.substrate_wetted))
-        .value("bridges", static_cast<std::uint64_t>(r.bridges))
-        .begin_object("energy")
+        .value("bridges", static_cast<std::uint64_t>(r.bridges));
+    if (fused) fusion_json(j, *fused, sinter.grid());
+    j.begin_object("energy")
         .value("laser_particles", r.energy.laser_particles)
         .value("laser_substrate", r.energy.laser_substrate)
         .value("convection", r.energy.convection)
@@ -400,6 +547,15 @@ int run(int argc, char** argv) {
                 r.max_temperature, r.particles_molten, bed.n(), r.particles_vaporised,
                 r.absorptance, r.energy.relative_error(), static_cast<unsigned long long>(r.steps), r.dt_grid,
                 wall, out.c_str());
+    if (!scene.scan_path.empty()) print_tracks(r.tracks);
+    if (fused) {
+      const auto [low, high] = std::minmax_element(fused->top.begin(), fused->top.end());
+      std::printf("sinter: fused %zu particles (%zu vaporised, %zu left as powder); solid top "
+                  "%.1f to %.1f um above the plate; mass conserved to %.1e\n",
+                  fused->fused, fused->vaporised, fused->powder.n(),
+                  (*low - sinter.grid().z_top) * 1e6, (*high - sinter.grid().z_top) * 1e6,
+                  fused->mass_error());
+    }
   }
   return 0;
 }

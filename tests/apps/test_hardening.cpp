@@ -666,6 +666,11 @@ std::vector<Case> all_cases() {
   add("sinter_out_no_folder", "sinter", si + "--out @nowhere/out.h5", 2, {"--out", "nowhere"});
   add("sinter_out_txt", "sinter", si + "--out @out.txt", 2, {"--out", ".txt"});
   add("sinter_substrate_depth_metres", "sinter", si + "--substrate.depth 0.3 --out @out.h5", 2, {"substrate.depth"});
+  add("sinter_hatch_zero", "sinter", si + "--scan.hatch 0 --out @out.h5", 2, {"scan.hatch"});
+  add("sinter_scan_path_missing", "sinter", si + "--scan-path @nowhere.csv --out @out.h5", 2,
+      {"--scan-path"});
+  add("sinter_fused_bed_is_bed", "sinter", si + "--fuse --fused-bed @wide.h5 --out @out.h5", 2,
+      {"--fused-bed", "input"});
   return t;
 }
 

@@ -286,3 +286,65 @@ TEST(SinterCli, BadRayTraceAndWettingOptionsExit2) {
   refused("--effects.wetting true --wetting.contact-angle 0",
           {"wetting.contact-angle", "accepted", "0 < theta < 180"});
 }
+
+// Issue 17: a hatch of three tracks over the small bed, fused: --json lists the tracks, fusion
+// conserves mass, the run file has /tracks and /fusion, the powder left is a bed of its own.
+TEST(SinterCli, HatchScanAndFusePrintsTracksAndWritesTheFusedBed) {
+  const std::string dir = test::scratch_dir("sinter_hatch");
+  const auto r = test::run_app(
+      "sinter", args(write_bed(small_bed(), dir), dir,
+                     "--scan.hatch 30e-6 --scan.tracks 3 --scan.region 10e-6,190e-6,10e-6,90e-6 "
+                     "--fuse --fused-bed " + dir + "/out.fused.h5 --json"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::size_t tracks = 0;
+  for (auto at = r.out.find("\"start_temperature\":"); at != std::string::npos;
+       at = r.out.find("\"start_temperature\":", at + 1))
+    ++tracks;
+  EXPECT_EQ(tracks, 3u) << r.out;
+  EXPECT_LT(json_number(r.out, "mass_error"), 1e-12) << r.out;
+  EXPECT_GT(json_number(r.out, "fused"), 0) << r.out;
+  EXPECT_LT(json_number(r.out, "energy_balance_error"), kBalance) << r.out;
+  const bed::Bed left = bed::read_bed_h5(dir + "/out.fused.h5");
+  EXPECT_EQ(static_cast<double>(left.n()), json_number(r.out, "powder_left"));
+  const hid_t file = H5Fopen((dir + "/out.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  for (const char* name : {"/fusion/top_height", "/fusion/state", "/fusion/surface",
+                           "/tracks/width", "/tracks/depth"})
+    EXPECT_GT(H5Lexists(file, name, H5P_DEFAULT), 0) << name;
+  H5Fclose(file);
+  // ParaView gets the fused top as a surface of its own.
+  std::ifstream xmf(dir + "/out.xmf");
+  const std::string text((std::istreambuf_iterator<char>(xmf)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("<Grid Name=\"solid_top\""), std::string::npos);
+}
+
+// Issue 17's bad scan input: each exits 2 with one line naming it, and writes nothing.
+TEST(SinterCli, BadScanPathsExit2) {
+  const std::string dir = test::scratch_dir("sinter_scan_bad");
+  const std::string bed_path = write_bed(small_bed(), dir);
+  const auto refused = [&](const std::string& extra, std::initializer_list<std::string> parts) {
+    SCOPED_TRACE(extra);
+    expect_refused(test::run_app("sinter", args(bed_path, dir, extra + " --json")), dir, parts);
+  };
+  const auto csv = [&](const std::string& name, const std::string& row) {
+    const std::string path = dir + "/" + name + ".csv";
+    std::ofstream(path) << "x0,y0,x1,y1,power,speed\n" << row << "\n";
+    return path;
+  };
+  refused("--scan.hatch 0", {"scan.hatch", "h > 0"});
+  refused("--scan.hatch -20e-6", {"scan.hatch", "h > 0"});
+  refused("--scan.hatch 30e-6 --scan.region 0,0.3e-3,0,0.1e-3", {"leaves the plate"});
+  refused("--scan.hatch 30e-6 --scan.direction sideways", {"scan.direction", "alternating"});
+  refused("--scan.hatch 30e-6 --scan.tracks 9", {"scan.tracks", "accepted"});
+  refused("--scan-path " + csv("outside", "10e-6,50e-6,250e-6,50e-6,100,1"),
+          {"segment 1", "leaves the plate"});
+  refused("--scan-path " + csv("slow", "10e-6,50e-6,150e-6,50e-6,100,0"), {"speed", "> 0"});
+  refused("--scan-path " + csv("dark", "10e-6,50e-6,150e-6,50e-6,-5,1"), {"power", ">= 0"});
+  refused("--scan-path " + csv("text", "10e-6,50e-6,150e-6,fifty,100,1"), {"fifty", "number"});
+  refused("--scan-path " + csv("both", "10e-6,50e-6,150e-6,50e-6,100,1") + " --scan.hatch 30e-6",
+          {"both"});
+  refused("--scan.hatch 30e-6 --scan.jump-speed 0", {"scan.jump-speed"});
+  refused("--scan.rotation 67", {"scan.rotation", "without --scan.hatch"});
+  refused("--fused-bed " + dir + "/out.fused.h5", {"--fused-bed", "--fuse"});
+  refused("--fuse --fuse.melt-fraction 0", {"fuse.melt-fraction"});
+}

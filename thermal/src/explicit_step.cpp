@@ -130,17 +130,26 @@ void boundary_outflow(Sinter::State& s, double dt) {
   };
   std::vector<double>& plane = s.plane_sums;  // reused: no allocation per step
   plane.assign(g.nz, 0.0);
+  const std::size_t first_top = g.index(0, 0, g.nz - 1);
+  // A raised top: the face between two top nodes is as thick as the thinner of the two.
+  const auto raised = [&](std::size_t a, std::size_t b) {
+    return std::min(s.top_thickness[a - first_top], s.top_thickness[b - first_top]);
+  };
 #pragma omp parallel for schedule(static) if (g.size() >= kParallelNodes)
   for (std::size_t kk = 1; kk < g.nz; ++kk) {
-    const double half = kk + 1 == g.nz ? 0.5 : 1.0;  // top nodes own half a cell
+    const bool top = kk + 1 == g.nz;
+    const double half = top ? 0.5 : 1.0;  // top nodes own half a cell
+    const auto side = [&](std::size_t a, std::size_t b, double shape) {
+      return flux(a, b, shape * (top && !s.top.empty() ? raised(a, b) : half));
+    };
     double sum = 0;
     for (std::size_t j = 1; j + 1 < g.ny; ++j) {
-      sum += flux(g.index(1, j, kk), g.index(0, j, kk), gx * half);
-      sum += flux(g.index(g.nx - 2, j, kk), g.index(g.nx - 1, j, kk), gx * half);
+      sum += side(g.index(1, j, kk), g.index(0, j, kk), gx);
+      sum += side(g.index(g.nx - 2, j, kk), g.index(g.nx - 1, j, kk), gx);
     }
     for (std::size_t i = 1; i + 1 < g.nx; ++i) {
-      sum += flux(g.index(i, 1, kk), g.index(i, 0, kk), gy * half);
-      sum += flux(g.index(i, g.ny - 2, kk), g.index(i, g.ny - 1, kk), gy * half);
+      sum += side(g.index(i, 1, kk), g.index(i, 0, kk), gy);
+      sum += side(g.index(i, g.ny - 2, kk), g.index(i, g.ny - 1, kk), gy);
     }
     if (kk == 1) {
       for (std::size_t j = 1; j + 1 < g.ny; ++j)
@@ -169,6 +178,35 @@ void update_peak_planes(Sinter::State& s) {
   for (std::size_t c = g.index(0, 0, g.nz - 1); c < g.size(); ++c) keep(c);
 }
 
+// The top layer of a raised top (fusion): each top node owns dx dy (dz/2 + δ) and meets its
+// neighbours over the thinner of the two thicknesses; the face below it is the flat grid's.
+template <bool Variable>
+void raised_top_layer(Sinter::State& s, double dt) {
+  const SubstrateGeometry& g = s.g;
+  const double gx = g.dy * g.dz / g.dx, gy = g.dx * g.dz / g.dy, gz = g.dx * g.dy / g.dz;
+  const std::size_t sx = 1, sy = g.nx, sz = g.nx * g.ny, k = g.nz - 1, first = g.index(0, 0, k);
+  const double* t = s.node_temperature.data();
+  const double* kk = s.node_k.data();
+  const double* thick = s.top_thickness.data();
+  const double k0 = s.k_fixed;
+  const auto face_k = [&](std::size_t a, std::size_t b) {
+    if constexpr (Variable) return 0.5 * (kk[a] + kk[b]);
+    else return k0;
+  };
+  for (std::size_t j = 1; j + 1 < g.ny; ++j) {
+    for (std::size_t i = 1; i + 1 < g.nx; ++i) {
+      const std::size_t c = g.index(i, j, k), col = c - first;
+      const double tc = t[c];
+      const auto lateral = [&](std::size_t nb, double shape) {
+        return face_k(c, nb) * shape * std::min(thick[col], thick[nb - first]) * (t[nb] - tc);
+      };
+      const double energy = lateral(c - sx, gx) + lateral(c + sx, gx) + lateral(c - sy, gy) +
+                            lateral(c + sy, gy) + face_k(c, c - sz) * gz * (t[c - sz] - tc);
+      s.e[c] += energy * dt / s.top_volume[col];
+    }
+  }
+}
+
 // Finite-volume update of every free node, then T = T(e) and, if properties vary, K = K(T).
 template <bool Variable>
 void grid_step(Sinter::State& s, double dt) {
@@ -179,8 +217,9 @@ void grid_step(Sinter::State& s, double dt) {
   double* t = s.node_temperature.data();
   double* kk = s.node_k.data();
   const double k0 = s.k_fixed;
+  const std::size_t k_end = s.top.empty() ? g.nz : g.nz - 1;  // a raised top layer: below
 #pragma omp parallel for schedule(static) if (g.size() >= kParallelNodes)
-  for (std::size_t k = 1; k < g.nz; ++k) {
+  for (std::size_t k = 1; k < k_end; ++k) {
     const bool top = k + 1 == g.nz;
     const double half = top ? 0.5 : 1.0;
     const double cx = 0.5 * gx * half * dt, cy = 0.5 * gy * half * dt, cz = 0.5 * gz * dt;
@@ -207,9 +246,14 @@ void grid_step(Sinter::State& s, double dt) {
       }
     }
   }
+  if (!s.top.empty()) raised_top_layer<Variable>(s, dt);
   // Energy from the laser and the particles (free nodes only, booked when it was produced).
-  const double top_volume = g.volume(g.nz - 1);
-  for (const auto& [node, energy] : s.sources) e[node] += energy / top_volume;
+  if (s.top.empty()) {
+    const double top_volume = g.volume(g.nz - 1);
+    for (const auto& [node, energy] : s.sources) e[node] += energy / top_volume;
+  } else {
+    for (const auto& [node, energy] : s.sources) e[node] += energy / top_node_volume(s, node);
+  }
   s.sources.clear();
   // Second pass: the update above read only the old temperatures.
   double hottest = s.node_max;

@@ -154,17 +154,19 @@ void implicit_step(Sinter::State& s, double dt) {
                     G * s.temperature[i];
     }
   }
+  const ScanSchedule::Beam beam = beam_at(s, t);
+  const LaserParams laser = laser_with_power(s, beam.power);  // power 0 while the laser is off
+  const double xl = beam.x, yl = beam.y;
   if (s.scene.has(kLaser)) {
-    const double xl = laser_x(s, t), w2 = s.laser.spot_radius * s.laser.spot_radius;
+    const double w2 = s.laser.spot_radius * s.laser.spot_radius;
     for (std::size_t i = 0; i < n; ++i) {
       if (s.gone[i]) continue;
-      const double dx = s.x[i] - xl, dy = s.y[i] - s.laser_y;
+      const double dx = s.x[i] - xl, dy = s.y[i] - yl;
       sys.rhs[static_cast<std::ptrdiff_t>(i)] +=
-          particle_laser_power(s.laser_factor[i], peak_intensity(s.laser), dx * dx + dy * dy, w2);
+          particle_laser_power(s.laser_factor[i], peak_intensity(laser), dx * dx + dy * dy, w2);
     }
   }
   const double gx = g.dy * g.dz / g.dx, gy = g.dx * g.dz / g.dy, gz = g.dx * g.dy / g.dz;
-  const double xl = laser_x(s, t);
   for (std::size_t k = 1; k < g.nz; ++k) {
     const double half = k + 1 == g.nz ? 0.5 : 1.0;
     for (std::size_t j = 1; j + 1 < g.ny; ++j) {
@@ -188,9 +190,9 @@ void implicit_step(Sinter::State& s, double dt) {
         if (j == 1) face(c - g.nx, gy * half);
         if (k == 1) face(c - g.nx * g.ny, gz);
         if (k + 1 == g.nz && s.scene.has(kLaserSubstrate)) {
-          const double dx = g.x(i) - xl, dy = g.y(j) - s.laser_y;
+          const double dx = g.x(i) - xl, dy = g.y(j) - yl;
           sys.rhs[u] +=
-              node_laser_power(s.laser, dx * dx + dy * dy, s.transmission[i + g.nx * j], g.dx, g.dy);
+              node_laser_power(laser, dx * dx + dy * dy, s.transmission[i + g.nx * j], g.dx, g.dy);
         }
       }
     }

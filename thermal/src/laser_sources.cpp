@@ -4,6 +4,7 @@
 // Each model books every joule it deposits in the ledger where it deposits it.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "powderbed/thermal/beer_lambert_laser.hpp"
 #include "solver_state.hpp"
@@ -13,9 +14,11 @@ namespace powderbed::thermal {
 namespace {
 
 double beer_lambert_particles(Sinter::State& s, double t, std::vector<double>& q) {
-  const double xl = laser_x(s, t), yl = s.laser_y;
+  const ScanSchedule::Beam beam = beam_at(s, t);
+  if (!beam.on) return 0;
+  const double xl = beam.x, yl = beam.y;
   const double w2 = s.laser.spot_radius * s.laser.spot_radius;
-  const double i0 = peak_intensity(s.laser);
+  const double i0 = peak_intensity(laser_with_power(s, beam.power));
   double absorbed = 0;
   for (std::size_t i = 0; i < s.x.size(); ++i) {
     const double dx = s.x[i] - xl, dy = s.y[i] - yl;
@@ -31,7 +34,10 @@ double beer_lambert_particles(Sinter::State& s, double t, std::vector<double>& q
 // Laser power that passes the powder onto the free top nodes (SPEC.md §5 top-face flux).
 void beer_lambert_substrate(Sinter::State& s, double t, double dt) {
   const SubstrateGeometry& g = s.g;
-  const double xl = laser_x(s, t), yl = s.laser_y;
+  const ScanSchedule::Beam beam = beam_at(s, t);
+  if (!beam.on) return;
+  const LaserParams laser = laser_with_power(s, beam.power);
+  const double xl = beam.x, yl = beam.y;
   const double reach = std::sqrt(kBeamCutoff2) * s.laser.spot_radius;
   const auto first = [](double lo, double spacing, std::size_t count, double v) {
     const double f = std::ceil((v - lo) / spacing);
@@ -48,8 +54,7 @@ void beer_lambert_substrate(Sinter::State& s, double t, double dt) {
     for (std::size_t i = i0; i < i1 && i + 1 < g.nx; ++i) {
       const double dx = g.x(i) - xl;
       const double energy =
-          node_laser_power(s.laser, dx * dx + dy * dy, s.transmission[i + g.nx * j], g.dx, g.dy) *
-          dt;
+          node_laser_power(laser, dx * dx + dy * dy, s.transmission[i + g.nx * j], g.dx, g.dy) * dt;
       s.sources.push_back({g.index(i, j, k), energy});
       absorbed += energy;
     }
@@ -57,35 +62,52 @@ void beer_lambert_substrate(Sinter::State& s, double t, double dt) {
   s.ledger.laser_substrate += absorbed;
 }
 
-// The traced positions k and k + 1 around the beam at time t, and the blend u of k + 1.
+// Traced beam position k of segment m: one key, in time order (segment 0's keys are k, so the
+// single track draws the random streams it always drew).
+constexpr unsigned kSegmentShift = 40;
+std::uint64_t trace_key(std::size_t m, std::uint64_t k) {
+  return (static_cast<std::uint64_t>(m) << kSegmentShift) | k;
+}
+std::size_t key_segment(std::uint64_t key) { return static_cast<std::size_t>(key >> kSegmentShift); }
+
+// The traced positions k and k + 1 around the beam at time t, the blend u of k + 1 and the
+// segment's power.
 struct Blend {
   const AbsorptionMap* a;
   const AbsorptionMap* b;
-  double u;
+  double u, power;
 };
 
-const AbsorptionMap& traced_map(const Sinter::State& s, std::uint64_t k) {
+const AbsorptionMap& traced_map(const Sinter::State& s, std::uint64_t key) {
   for (const auto& t : s.traced)
-    if (t.k == k) return t.map;
+    if (t.k == key) return t.map;
   throw std::logic_error("ray-traced laser: beam position not traced");  // prepare_traces' job
 }
 
-std::pair<std::uint64_t, double> trace_position(const Sinter::State& s, double t) {
-  const double f = std::max(0.0, (laser_x(s, t) - s.start_x) / s.trace_spacing);
+// The traced position below the beam on its segment (k) and how far past it the beam is (u).
+std::pair<std::uint64_t, double> trace_position(const Sinter::State& s,
+                                                const ScanSchedule::Beam& beam) {
+  const double f = std::max(0.0, beam.along / s.trace_spacing);
   const double k = std::floor(f);
   return {static_cast<std::uint64_t>(k), f - k};
 }
 
-Blend blend_at(const Sinter::State& s, double t) {
-  const auto [k, u] = trace_position(s, t);
-  return {&traced_map(s, k), &traced_map(s, k + 1), u};
+// nullopt while the laser is off.
+std::optional<Blend> blend_at(const Sinter::State& s, double t) {
+  const ScanSchedule::Beam beam = beam_at(s, t);
+  if (!beam.on) return std::nullopt;
+  const auto [k, u] = trace_position(s, beam);
+  return Blend{&traced_map(s, trace_key(beam.segment, k)),
+               &traced_map(s, trace_key(beam.segment, k + 1)), u, beam.power};
 }
 
 double ray_traced_particles(Sinter::State& s, double t, std::vector<double>& q) {
-  const Blend blend = blend_at(s, t);
+  const auto on = blend_at(s, t);
+  if (!on) return 0;
+  const Blend& blend = *on;
   double absorbed = 0;
   const auto add = [&](const AbsorptionMap& map, double weight) {
-    const double power = s.scene.power * weight;
+    const double power = blend.power * weight;
     for (const auto& e : map.particles) {
       if (s.gone[e.target]) continue;
       const double f = power * e.fraction;
@@ -99,10 +121,12 @@ double ray_traced_particles(Sinter::State& s, double t, std::vector<double>& q) 
 }
 
 void ray_traced_substrate(Sinter::State& s, double t, double dt) {
-  const Blend blend = blend_at(s, t);
+  const auto on = blend_at(s, t);
+  if (!on) return;
+  const Blend& blend = *on;
   double absorbed = 0, into_boundary = 0;
   const auto add = [&](const AbsorptionMap& map, double weight) {
-    const double energy = s.scene.power * weight * dt;
+    const double energy = blend.power * weight * dt;
     for (const auto& e : map.nodes) {
       const double de = energy * e.fraction;
       absorbed += de;
@@ -128,7 +152,7 @@ void update_absorptivities(Sinter::State& s) {
     s.node_alpha[c] = s.node_temperature[top + c] >= t_m ? liquid : solid;
 }
 
-void trace(Sinter::State& s, std::uint64_t k) {
+void trace(Sinter::State& s, std::uint64_t key) {
   if (s.vaporised_traced != s.vaporised) {  // rays pass where vaporised particles were
     std::vector<std::uint32_t> gone;
     for (std::size_t i = 0; i < s.x.size(); ++i)
@@ -137,8 +161,12 @@ void trace(Sinter::State& s, std::uint64_t k) {
     s.vaporised_traced = s.vaporised;
   }
   update_absorptivities(s);
-  const double x = s.start_x + static_cast<double>(k) * s.trace_spacing;
-  AbsorptionMap map = s.tracer->trace(x, s.laser_y, k, s.particle_alpha, s.node_alpha);
+  const std::size_t m = key_segment(key);
+  const ScanSegment& seg = s.schedule.segments()[m];
+  const auto d = s.schedule.direction(m);
+  const double along = static_cast<double>(key - trace_key(m, 0)) * s.trace_spacing;
+  AbsorptionMap map = s.tracer->trace(seg.x0 + along * d[0], seg.y0 + along * d[1], key,
+                                      s.particle_alpha, s.node_alpha);
   TraceSummary& sum = s.traces;
   ++sum.traces;
   sum.absorbed += map.absorptance();
@@ -147,7 +175,7 @@ void trace(Sinter::State& s, std::uint64_t k) {
   sum.outside += map.outside;
   sum.dropped += map.dropped;
   sum.hits += map.hits;
-  s.traced.push_back({k, std::move(map)});
+  s.traced.push_back({key, std::move(map)});
 }
 
 // Particle steps per grid step: the stable bound's, and as many as keep the laser's rise per
@@ -155,9 +183,11 @@ void trace(Sinter::State& s, std::uint64_t k) {
 void limit_particle_rise(Sinter::State& s) {
   const double c_min = s.per_kg.min_capacity();
   double rate = 0;
-  for (const auto& t : s.traced)
+  for (const auto& t : s.traced) {
+    const double power = s.schedule.segments()[key_segment(t.k)].power;
     for (const auto& e : t.map.particles)
-      rate = std::max(rate, s.scene.power * e.fraction / (s.mass[e.target] * c_min));
+      rate = std::max(rate, power * e.fraction / (s.mass[e.target] * c_min));
+  }
   const double needed = std::ceil(s.dt * rate / s.scene.max_particle_rise);
   s.substeps = std::max(s.substeps_stable, static_cast<std::size_t>(needed));
 }
@@ -178,40 +208,53 @@ void setup_laser(Sinter::State& s, const bed::Bed& bed) {
   s.node_alpha.assign(s.g.nx * s.g.ny, s.scene.absorptivity);
 }
 
-double absorbed_fraction(const Sinter::State& s, double x) {
+double absorbed_fraction(const Sinter::State& s, double x, double y) {
   if (s.tracer) {
     std::vector<double> particle_alpha(s.x.size(), s.scene.absorptivity);
     std::vector<double> node_alpha(s.g.nx * s.g.ny, s.scene.absorptivity);
-    const AbsorptionMap map = s.tracer->trace(x, s.laser_y, 0, particle_alpha, node_alpha);
+    const AbsorptionMap map = s.tracer->trace(x, y, 0, particle_alpha, node_alpha);
     return map.absorptance() / (1 - map.outside);
   }
   // Beer–Lambert: the particles' share plus the substrate's, summed as the kernels deposit them.
   const double w2 = s.laser.spot_radius * s.laser.spot_radius, i0 = peak_intensity(s.laser);
   double absorbed = 0;
   for (std::size_t i = 0; i < s.x.size(); ++i) {
-    const double dx = s.x[i] - x, dy = s.y[i] - s.laser_y;
+    const double dx = s.x[i] - x, dy = s.y[i] - y;
     absorbed += particle_laser_power(s.laser_factor[i], i0, dx * dx + dy * dy, w2);
   }
   const SubstrateGeometry& g = s.g;
   for (std::size_t j = 1; j + 1 < g.ny; ++j)
     for (std::size_t i = 1; i + 1 < g.nx; ++i) {
-      const double dx = g.x(i) - x, dy = g.y(j) - s.laser_y;
+      const double dx = g.x(i) - x, dy = g.y(j) - y;
       absorbed +=
           node_laser_power(s.laser, dx * dx + dy * dy, s.transmission[i + g.nx * j], g.dx, g.dy);
     }
   return absorbed / s.scene.power;
 }
 
+// The traced positions the beam needs over [t0, t1], on each segment it runs on then: from the
+// one below it at t0 (or the segment's start) to the one past it at t1 (or the segment's end).
 void prepare_traces(Sinter::State& s, double t0, double t1) {
-  const std::uint64_t first = trace_position(s, t0).first;
-  const std::uint64_t last = trace_position(s, t1).first + 1;
-  std::erase_if(s.traced, [&](const Sinter::State::TracedBeam& t) { return t.k < first; });
+  const ScanSchedule& path = s.schedule;
+  std::vector<std::uint64_t> needed;
+  for (std::size_t m = path.at(t0).segment; m < path.segments().size(); ++m) {
+    if (path.start(m) > t1) break;
+    if (path.end(m) <= t0) continue;
+    const auto k_at = [&](double t) {
+      return trace_position(s, path.on_segment(m, std::clamp(t, path.start(m), path.end(m)))).first;
+    };
+    const std::uint64_t last = k_at(t1) + 1;
+    for (std::uint64_t k = k_at(t0); k <= last; ++k) needed.push_back(trace_key(m, k));
+  }
+  if (needed.empty()) return;
+  std::erase_if(s.traced,
+                [&](const Sinter::State::TracedBeam& t) { return t.k < needed.front(); });
   bool added = false;
-  for (std::uint64_t k = first; k <= last; ++k) {
+  for (const std::uint64_t key : needed) {
     const bool have = std::any_of(s.traced.begin(), s.traced.end(),
-                                  [&](const Sinter::State::TracedBeam& t) { return t.k == k; });
+                                  [&](const Sinter::State::TracedBeam& t) { return t.k == key; });
     if (have) continue;
-    trace(s, k);
+    trace(s, key);
     added = true;
   }
   if (added) limit_particle_rise(s);

@@ -54,4 +54,43 @@ MeltPool measure_melt_pool(const MeltPoolInput& in) {
   return pool;
 }
 
+MeltPool measure_section(const SectionInput& in) {
+  const SubstrateGeometry& g = *in.grid;
+  const auto& peak = *in.peak;
+  const auto& across = *in.across;
+  const double t_m = in.melting_point;
+  const std::size_t nz = g.nz, top = nz - 1, samples = across.size();
+  const auto at = [&](std::size_t q, std::size_t k) { return peak[q * nz + k]; };
+  MeltPool pool;
+  double s_lo = std::numeric_limits<double>::infinity(), s_hi = -s_lo;
+  for (std::size_t q = 0; q < samples; ++q) {
+    if (at(q, top) < t_m) continue;
+    std::size_t k = top;
+    while (k > 0 && at(q, k - 1) >= t_m) --k;
+    double depth = g.z_top - g.z(k);
+    if (k > 0) depth += g.dz * crossing(at(q, k), at(q, k - 1), t_m);
+    if (!in.top->empty()) depth += (*in.top)[(*in.columns)[q]] - g.z_top;
+    pool.depth = std::max(pool.depth, depth);
+    double lo = across[q], hi = across[q];
+    if (q > 0 && at(q - 1, top) < t_m) lo -= in.step * crossing(at(q, top), at(q - 1, top), t_m);
+    if (q + 1 < samples && at(q + 1, top) < t_m)
+      hi += in.step * crossing(at(q, top), at(q + 1, top), t_m);
+    s_lo = std::min(s_lo, lo);
+    s_hi = std::max(s_hi, hi);
+  }
+  const auto& x = *in.x;
+  for (std::size_t p = 0; p < x.size(); ++p) {
+    const double r = (*in.radius)[p];
+    const double ox = x[p] - in.cx, oy = (*in.y)[p] - in.cy;
+    const double off = ox * in.dx + oy * in.dy;  // from the plane
+    if ((*in.particle_peak)[p] < t_m || std::abs(off) >= r) continue;
+    const double cut = std::sqrt(r * r - off * off), along = -ox * in.dy + oy * in.dx;
+    pool.height = std::max(pool.height, (*in.z)[p] + cut - g.z_top);
+    s_lo = std::min(s_lo, along - cut);
+    s_hi = std::max(s_hi, along + cut);
+  }
+  if (s_hi > s_lo) pool.width = s_hi - s_lo;
+  return pool;
+}
+
 }  // namespace powderbed::thermal

@@ -5,7 +5,8 @@
 
 namespace powderbed::thermal {
 
-ConductionNetwork build_network(const bed::Bed& bed, const SubstrateGeometry& grid) {
+ConductionNetwork build_network(const bed::Bed& bed, const SubstrateGeometry& grid,
+                                const TopHeight& top) {
   ConductionNetwork net;
   const std::size_t n = bed.n();
   std::vector<std::uint8_t> touched(n, 0);
@@ -20,7 +21,10 @@ ConductionNetwork build_network(const bed::Bed& bed, const SubstrateGeometry& gr
     }
   }
   for (std::size_t i = 0; i < n; ++i) {
-    const double h = bed.z[i] - grid.z_top;
+    double h = bed.z[i] - top_height_at(grid, top, bed.x[i], bed.y[i]);
+    // A centre at or below a raised top (a powder particle beside a fused one, whose volume
+    // fusion spread over its footprint) meets the solid as if sunk to half its radius.
+    if (h <= 0) h = 0.5 * bed.radius[i];
     const double a = plane_contact_radius(bed.radius[i], h);
     if (a <= 0) continue;
     net.substrate.push_back({static_cast<std::uint32_t>(i), conduction_shape_factor(a, h),

@@ -33,6 +33,7 @@ struct RunWriter::Impl {
   SubstrateGeometry g;
   bool full;
   std::vector<std::pair<std::uint64_t, double>> steps;
+  bool fused = false;
   Impl(const std::string& path, std::size_t count, const SubstrateGeometry& grid, bool full_fields)
       : out(path), n(count), g(grid), full(full_fields) {}
 };
@@ -83,6 +84,33 @@ void RunWriter::snapshot(const Sinter& sinter) {
   s.steps.emplace_back(sinter.step(), sinter.time());
 }
 
+void RunWriter::fusion(const Fusion& f) {
+  Impl& s = *impl_;
+  const SubstrateGeometry& g = s.g;
+  s.out.write("/fusion/top_height", f.top, {g.ny, g.nx}, "m");
+  // For ParaView: the surface's points and its height above the plate.
+  std::vector<double> surface, height;
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i) {
+      const double z = f.top[i + g.nx * j];
+      surface.insert(surface.end(), {g.x(i), g.y(j), z});
+      height.push_back(z - g.z_top);
+    }
+  s.out.write("/fusion/surface", surface, {g.ny, g.nx, 3}, "m");
+  s.out.write("/fusion/height", height, {g.ny, g.nx}, "m");
+  s.fused = true;
+  s.out.write("/fusion/state", f.state, {s.n}, "1");
+  s.out.attribute("/fusion", "threshold", f.threshold);
+  s.out.attribute("/fusion", "fused", static_cast<std::uint64_t>(f.fused));
+  s.out.attribute("/fusion", "vaporised", static_cast<std::uint64_t>(f.vaporised));
+  s.out.attribute("/fusion", "powder_mass_before", f.powder_mass_before);
+  s.out.attribute("/fusion", "powder_mass_after", f.powder_mass_after);
+  s.out.attribute("/fusion", "solid_mass_before", f.solid_mass_before);
+  s.out.attribute("/fusion", "solid_mass_after", f.solid_mass_after);
+  s.out.attribute("/fusion", "vaporised_mass", f.vaporised_mass);
+  s.out.attribute("/fusion", "mass_error", f.mass_error());
+}
+
 void RunWriter::finish(const Sinter& sinter, const SinterResult& result,
                        const std::vector<std::pair<std::string, double>>& summary) {
   Impl& s = *impl_;
@@ -97,11 +125,28 @@ void RunWriter::finish(const Sinter& sinter, const SinterResult& result,
   s.out.attribute("/melt", "depth", result.melt_pool.depth);
   s.out.attribute("/melt", "x_plane", g.x(g.nx / 2));
   s.out.attribute("/melt", "melting_point", sinter.material().phase_change().melting_point);
+  const auto& tracks = result.tracks;
+  const auto column = [&](const char* name, const char* units, auto field) {
+    std::vector<double> v;
+    for (const auto& t : tracks) v.push_back(field(t));
+    s.out.write(std::string("/tracks/") + name, v, {tracks.size()}, units);
+  };
+  column("width", "m", [](const TrackStats& t) { return t.pool.width; });
+  column("depth", "m", [](const TrackStats& t) { return t.pool.depth; });
+  column("height", "m", [](const TrackStats& t) { return t.pool.height; });
+  column("length", "m", [](const TrackStats& t) { return t.length; });
+  column("peak_temperature", "K", [](const TrackStats& t) { return t.peak_temperature; });
+  column("start_temperature", "K", [](const TrackStats& t) { return t.start_temperature; });
+  column("stored_energy", "J", [](const TrackStats& t) { return t.stored_energy; });
+  column("particles_molten", "1",
+         [](const TrackStats& t) { return static_cast<double>(t.particles_molten); });
+  column("t_start", "s", [](const TrackStats& t) { return t.t_start; });
+  column("t_end", "s", [](const TrackStats& t) { return t.t_end; });
   for (const auto& [name, value] : summary) s.out.attribute("/summary", name, value);
 
   s.out.commit();
   bed::write_text_file(bed::xdmf_sidecar_path(s.out.path()),
-                       detail::run_xdmf(bed::file_name_of(s.out.path()), s.n, g, s.steps));
+                       detail::run_xdmf(bed::file_name_of(s.out.path()), s.n, g, s.steps, s.fused));
 }
 
 }  // namespace powderbed::thermal

@@ -76,10 +76,24 @@ void plane(Writer& w, const SubstrateGeometry& g, const Plane& p, const Steps& s
   w.x << "  </Grid>\n";
 }
 
+// The fused solid's top: a curvilinear ny × nx surface through /fusion/surface (x, y, z per
+// column), at the run's last time.
+void solid_top(Writer& w, const SubstrateGeometry& g, double time) {
+  const std::string dims = std::to_string(g.ny) + " " + std::to_string(g.nx);
+  w.x << "  <Grid Name=\"solid_top\" GridType=\"Uniform\">\n"
+      << "   <Time Value=\"" << time << "\"/>\n"
+      << "   <Topology TopologyType=\"2DSMesh\" Dimensions=\"" << dims << "\"/>\n"
+      << "   <Geometry GeometryType=\"XYZ\">\n";
+  w.item(dims + " 3", "/fusion/surface");
+  w.x << "   </Geometry>\n";
+  w.attribute("height", dims, "/fusion/height");
+  w.x << "  </Grid>\n";
+}
+
 }  // namespace
 
 std::string run_xdmf(const std::string& h5, std::size_t count, const SubstrateGeometry& g,
-                     const Steps& steps) {
+                     const Steps& steps, bool fused) {
   Writer w;
   w.h5 = h5;
   w.x.precision(17);
@@ -87,6 +101,7 @@ std::string run_xdmf(const std::string& h5, std::size_t count, const SubstrateGe
   particles(w, count, steps);
   plane(w, g, {"top", 1, g.ny, g.z_top, g.y0}, steps);
   plane(w, g, {"section_y", g.nz, 1, g.z(0), g.y(g.ny / 2)}, steps);
+  if (fused && !steps.empty()) solid_top(w, g, steps.back().second);
   w.x << " </Domain>\n</Xdmf>\n";
   return w.x.str();
 }

@@ -2,7 +2,8 @@
 // The XDMF sidecar of a sinter run (docs/bed-format.md "A sinter run in ParaView"): three named
 // temporal collections, "particles" (Polyvertex), "top" (the substrate's top face) and
 // "section_y" (the substrate on y = Ly/2), so ParaView lists them as three blocks that can be
-// shown, hidden and filtered one by one.
+// shown, hidden and filtered one by one; with fusion a fourth, "solid_top" (the solid's raised
+// top surface after the scan, its height above the plate as "height").
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -14,6 +15,6 @@ namespace powderbed::thermal::detail {
 
 // `h5`: the run file's name beside the .xmf; `steps`: (step, time) in time order.
 std::string run_xdmf(const std::string& h5, std::size_t particles, const SubstrateGeometry& g,
-                     const std::vector<std::pair<std::uint64_t, double>>& steps);
+                     const std::vector<std::pair<std::uint64_t, double>>& steps, bool fused);
 
 }  // namespace powderbed::thermal::detail

@@ -48,8 +48,9 @@ Material scene_material(const SinterScene& scene, const MaterialTable& table) {
   throw InputError("--bed: " + what);
 }
 
-// SPEC.md §5: the bed rests on the substrate's top face, which is the bed domain's floor.
-void check_bed(const bed::Bed& bed) {
+// SPEC.md §5: the bed rests on the substrate's top face, which is the bed domain's floor (or on
+// the solid raised above it).
+void check_bed(const bed::Bed& bed, const SubstrateGeometry& g, const TopHeight& top) {
   if (bed.domain.dimension != 3) refuse_bed("a 2D bed (accepted: a 3D bed)");
   const double floor = bed.domain.lower[2];
   double lowest_bottom = std::numeric_limits<double>::infinity();
@@ -62,7 +63,8 @@ void check_bed(const bed::Bed& bed) {
           << " m (accepted: every centre above the bed domain's floor)";
       refuse_bed(msg.str());
     }
-    lowest_bottom = std::min(lowest_bottom, bed.z[i] - bed.radius[i]);
+    lowest_bottom = std::min(lowest_bottom, bed.z[i] - bed.radius[i] -
+                                                (top_height_at(g, top, bed.x[i], bed.y[i]) - floor));
     smallest = std::min(smallest, bed.radius[i]);
   }
   // A bed that floats (e.g. packed in a box whose floor is not the substrate) has no substrate
@@ -116,6 +118,8 @@ StableSteps compute_stable_steps(const Sinter::State& s) {
   out.grid_node = g.index(g.nx / 2, g.ny / 2, g.nz / 2);
   // Top nodes carry particle contacts too: C = (rho c)_min V/2, Σ G adds k_max A/h w.
   const double rho_c_min = s.per_m3.min_capacity();
+  // (A raised top's thicker top nodes have more capacity and, against it, conductances that grow
+  // no faster: the flat top's bound holds for them.)
   std::vector<double> contact(g.size(), 0.0);
   for (const auto& c : s.net.substrate)
     for (int w = 0; w < 4; ++w) contact[c.stencil.node[w]] += c.stencil.weight[w] * k_max * c.shape;
@@ -156,8 +160,9 @@ StableSteps compute_stable_steps(const Sinter::State& s) {
   return out;
 }
 
-// Internal energy of the particles and of the free substrate nodes, J, from T0 (the state's
-// enthalpies are measured from there).
+}  // namespace
+
+// The state's enthalpies are measured from T0.
 std::pair<double, double> internal_energy(const Sinter::State& s) {
   double particles = 0;
   for (std::size_t i = 0; i < s.x.size(); ++i) particles += s.mass[i] * s.h[i];
@@ -165,11 +170,13 @@ std::pair<double, double> internal_energy(const Sinter::State& s) {
   const SubstrateGeometry& g = s.g;
   for (std::size_t k = 1; k < g.nz; ++k)
     for (std::size_t j = 1; j + 1 < g.ny; ++j)
-      for (std::size_t i = 1; i + 1 < g.nx; ++i) substrate += g.volume(k) * s.e[g.index(i, j, k)];
+      for (std::size_t i = 1; i + 1 < g.nx; ++i) {
+        const std::size_t c = g.index(i, j, k);
+        substrate += (k + 1 == g.nz ? top_node_volume(s, c) : g.volume(k)) * s.e[c];
+      }
   return {particles, substrate};
 }
 
-}  // namespace
 
 double EnergyLedger::relative_error() const {
   const double in = absorbed() + convection + radiation;
@@ -194,28 +201,40 @@ Sinter::State::State(const SinterScene& sc, Material m)
 
 namespace {
 
-// The laser's path: track line, start, end and t_end, checked against the bed.
+// The laser's path, checked against the bed: the scene's scan path, or its single track along
+// x, and t_end.
 void setup_track(Sinter::State& s, const bed::Bed& bed) {
   const SinterScene& scene = s.scene;
   const SubstrateGeometry& g = s.g;
   const double lx = bed.domain.length(0), ly = bed.domain.length(1);
-  s.laser_y = std::isnan(scene.laser_y) ? g.y0 + 0.5 * ly : scene.laser_y;
-  s.start_x = std::isnan(scene.start_x) ? g.x0 - scene.spot_radius : scene.start_x;
+  if (!scene.scan_path.empty()) {
+    check_scan_path(scene.scan_path, scene.jump_speed, g.x0, g.x0 + lx, g.y0, g.y0 + ly);
+    s.schedule = ScanSchedule(scene.scan_path, scene.jump_speed);
+    s.t_end = std::isnan(scene.t_end) ? s.schedule.finish() : scene.t_end;
+    return;
+  }
+  const double laser_y = std::isnan(scene.laser_y) ? g.y0 + 0.5 * ly : scene.laser_y;
+  const double start_x = std::isnan(scene.start_x) ? g.x0 - scene.spot_radius : scene.start_x;
   const double end_x = std::isnan(scene.end_x) ? g.x0 + lx + scene.spot_radius : scene.end_x;
-  if (!(s.laser_y >= g.y0 && s.laser_y <= g.y0 + ly)) {
+  if (!(laser_y >= g.y0 && laser_y <= g.y0 + ly)) {
     std::ostringstream msg;
-    msg << "laser.y: " << s.laser_y << " m is outside the bed (accepted: " << g.y0 << " to "
+    msg << "laser.y: " << laser_y << " m is outside the bed (accepted: " << g.y0 << " to "
         << g.y0 + ly << " m)";
     throw InputError(msg.str());
   }
-  if (!(end_x > s.start_x && end_x > g.x0 && s.start_x < g.x0 + lx)) {
+  if (!(end_x > start_x && end_x > g.x0 && start_x < g.x0 + lx)) {
     std::ostringstream msg;
-    msg << "laser.start-x, laser.end-x: " << s.start_x << " to " << end_x
+    msg << "laser.start-x, laser.end-x: " << start_x << " to " << end_x
         << " m never crosses the bed (accepted: start < end, overlapping " << g.x0 << " to "
         << g.x0 + lx << " m)";
     throw InputError(msg.str());
   }
-  s.t_end = std::isnan(scene.t_end) ? (end_x - s.start_x) / scene.speed : scene.t_end;
+  s.t_end = std::isnan(scene.t_end) ? (end_x - start_x) / scene.speed : scene.t_end;
+  // A t_end past the track's end keeps the beam moving along its line (as the single track
+  // always did): the segment runs to t_end, a hair longer so that every step is on it.
+  const double run = std::max(end_x - start_x, scene.speed * s.t_end) * (1 + 1e-9);
+  s.schedule = ScanSchedule({{start_x, laser_y, start_x + run, laser_y, scene.power, scene.speed}},
+                            scene.jump_speed);
 }
 
 // Particles at T0: positions, masses, projected areas, Beer–Lambert factors, exposure.
@@ -292,11 +311,16 @@ void choose_steps(Sinter::State& s) {
   // (alpha I0 A_i / (m_i c_min) at the beam's peak) for particles the track can reach.
   double particle_dt = scene.safety * s.stable.particle;
   // (Ray tracing sets this limit from each traced map as the beam moves: prepare_traces.)
-  if (scene.has(kLaser) && scene.power > 0 && !s.tracer) {
-    const double i0 = peak_intensity(s.laser), c_min = s.per_kg.min_capacity();
+  // Particles within the beam's reach of a segment's line (the whole line: a bound, not a
+  // trajectory), at that segment's power.
+  for (std::size_t m = 0; m < s.schedule.segments().size() && scene.has(kLaser) && !s.tracer; ++m) {
+    const ScanSegment& seg = s.schedule.segments()[m];
+    if (!(seg.power > 0)) continue;
+    const auto d = s.schedule.direction(m);
+    const double i0 = peak_intensity(laser_with_power(s, seg.power)), c_min = s.per_kg.min_capacity();
     const double reach = std::sqrt(kBeamCutoff2) * scene.spot_radius;
     for (std::size_t i = 0; i < s.x.size(); ++i) {
-      if (std::abs(s.y[i] - s.laser_y) > reach) continue;
+      if (std::abs((s.x[i] - seg.x0) * d[1] - (s.y[i] - seg.y0) * d[0]) > reach) continue;
       const double rate = s.laser_factor[i] * i0 / (s.mass[i] * c_min);
       particle_dt = std::min(particle_dt, scene.max_particle_rise / rate);
     }
@@ -308,16 +332,57 @@ void choose_steps(Sinter::State& s) {
 
 }  // namespace
 
-Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTable& table) {
+namespace {
+
+// A raised top: one height per top-face column, none below z_top; the top nodes' volumes and
+// thicknesses.
+void setup_top(Sinter::State& s, TopHeight top) {
+  const SubstrateGeometry& g = s.g;
+  if (top.empty()) return;
+  if (top.size() != g.nx * g.ny) {
+    std::ostringstream msg;
+    msg << "solid top: " << top.size() << " column heights for a grid of " << g.nx << " x "
+        << g.ny << " top nodes (accepted: one height per top node)";
+    throw InputError(msg.str());
+  }
+  for (std::size_t c = 0; c < top.size(); ++c) {
+    if (!(top[c] >= g.z_top) || !std::isfinite(top[c])) {
+      std::ostringstream msg;
+      msg << "solid top: column " << c << " at z = " << top[c] << " m, below the plate's top "
+          << g.z_top << " m (accepted: heights >= the bed domain's floor)";
+      throw InputError(msg.str());
+    }
+  }
+  if (s.scene.integrator != Integrator::explicit_euler)
+    throw InputError("solid top: a raised top works with --integrator explicit only (accepted: "
+                     "--integrator explicit)");
+  s.top = std::move(top);
+  s.top_volume.resize(s.top.size());
+  s.top_thickness.resize(s.top.size());
+  for (std::size_t c = 0; c < s.top.size(); ++c) {
+    const double thick = 0.5 * g.dz + (s.top[c] - g.z_top);
+    s.top_volume[c] = g.dx * g.dy * thick;
+    s.top_thickness[c] = thick / g.dz;
+  }
+}
+
+}  // namespace
+
+Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTable& table)
+    : Sinter(bed, scene, table, TopHeight{}) {}
+
+Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTable& table,
+               TopHeight top) {
   scene.validate();
-  check_bed(bed);
   s_ = std::make_unique<State>(scene, scene_material(scene, table));
   State& s = *s_;
   s.g = make_grid(bed, scene);
+  setup_top(s, std::move(top));
+  check_bed(bed, s.g, s.top);
   setup_track(s, bed);
   s.vaporised_temperature = scene.phase_change.boiling_point + 0.5 * scene.phase_change.window;
   s.surface = analyse_surface(bed, s.g.z_top);
-  s.net = build_network(bed, s.g);
+  s.net = build_network(bed, s.g, s.top);
   s.layer_height = s.surface.layer_height;
   s.beta = bed.n() > 0 && scene.has(kPenetration)
                ? gusarov_extinction(s.surface.porosity, s.surface.mean_diameter)
@@ -329,6 +394,7 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
   setup_laser(s, bed);
   if (scene.has(kWetting)) setup_wetting(s);
   choose_steps(s);
+  setup_tracks(s);
 }
 
 Sinter::~Sinter() = default;
@@ -375,6 +441,7 @@ SinterResult Sinter::run(const std::function<void(const Sinter&)>& snapshot, std
     // Cheap watch on the particles every step (so a failure names its step); the grid every 64
     // steps and at the end.
     check_finite(s, s.step % 64 == 0 || s.time >= t_end * (1 - 1e-12));
+    watch_tracks(s);
     if (snapshot && every > 0 && s.step % every == 0) snapshot(*this);
     const auto now = std::chrono::steady_clock::now();
     if (progress && now - last_report > std::chrono::seconds(1)) {
@@ -423,9 +490,11 @@ SinterResult Sinter::run(const std::function<void(const Sinter&)>& snapshot, std
   MeltPoolInput in{&g, &s.node_peak, &s.x, &s.y, &s.z, &s.radius, &s.peak, t_m,
                    g.x0 + 0.5 * static_cast<double>(g.nx - 1) * g.dx};
   r.melt_pool = measure_melt_pool(in);
-  const double beam = s.scene.power * t_end;
+  const double beam = s.schedule.beam_energy(t_end);
   r.absorptance = beam > 0 ? s.ledger.absorbed() / beam : 0.0;
   r.traces = s.traces;
+  close_tracks(s);
+  r.tracks = s.tracks;
   r.substrate_wetted = s.wetted.size();
   r.bridges = s.bridges;
   return r;
@@ -436,11 +505,16 @@ double Sinter::dt() const { return s_->dt; }
 std::size_t Sinter::substeps() const { return s_->substeps; }
 double Sinter::t_end() const { return s_->t_end; }
 const SubstrateGeometry& Sinter::grid() const { return s_->g; }
+const TopHeight& Sinter::top_height() const { return s_->top; }
+const SinterScene& Sinter::scene() const { return s_->scene; }
+const std::vector<double>& Sinter::particle_mass() const { return s_->mass; }
 const BedSurface& Sinter::surface() const { return s_->surface; }
 const ConductionNetwork& Sinter::network() const { return s_->net; }
 const Material& Sinter::material() const { return s_->material; }
 double Sinter::extinction() const { return s_->beta; }
-double Sinter::absorptance_at(double x) const { return absorbed_fraction(*s_, x); }
+double Sinter::absorptance_at(double x) const {
+  return absorbed_fraction(*s_, x, s_->schedule.segments().front().y0);
+}
 double Sinter::time() const { return s_->time; }
 std::uint64_t Sinter::step() const { return s_->step; }
 const std::vector<double>& Sinter::particle_temperature() const { return s_->temperature; }

@@ -1,5 +1,6 @@
 #pragma once
 // The solver's state (private to libthermal): what setup computes once and the steps update.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -29,7 +30,8 @@ struct Sinter::State {
   ConductionNetwork net;
   LaserParams laser{};
   SurfaceParams environment{};
-  double beta = 0, layer_height = 0, laser_y = 0, start_x = 0, t_end = 0;
+  double beta = 0, layer_height = 0, t_end = 0;
+  ScanSchedule schedule;  // the laser's path: the scene's single track or its scan path
   double vaporised_temperature = 0;  // T_v + ΔT/2: beyond it a particle has left the bed
 
   // Particles (structure of arrays).
@@ -40,6 +42,11 @@ struct Sinter::State {
 
   // Substrate nodes.
   std::vector<double> e, node_temperature, node_k;
+  // A raised top (fusion): the column heights, and per top-face column the top node's volume
+  // dx dy (dz/2 + δ) and its thickness over dz, (dz/2 + δ)/dz, δ the height above z_top.
+  // All empty when the top is flat.
+  TopHeight top;
+  std::vector<double> top_volume, top_thickness;
   std::vector<double> transmission;  // per top-face node (i + nx j): laser fraction that arrives
   std::vector<double> node_peak;  // peak T on the planes update_peak_planes keeps, else T0
   double node_max = 0;            // highest node temperature so far
@@ -56,7 +63,8 @@ struct Sinter::State {
   double (*particle_laser)(Sinter::State&, double t, std::vector<double>& q) = nullptr;
   void (*substrate_laser)(Sinter::State&, double t, double dt) = nullptr;
   // Ray-traced laser: the tracer, the power maps of the traced beam positions around the beam
-  // (start_x + k trace_spacing), the absorptivity of each particle and top node by phase.
+  // (k trace_spacing from the start of segment m, keyed trace_key(m, k)), the absorptivity of
+  // each particle and top node by phase.
   std::unique_ptr<BeamTracer> tracer;
   struct TracedBeam {
     std::uint64_t k;
@@ -83,6 +91,24 @@ struct Sinter::State {
   std::size_t bridges = 0;  // pairs whose bridge has grown
   double k_max = 0;  // largest conductivity a run can reach (stability bounds)
 
+  // Per-track statistics (track_stats.cpp): for each segment, its midpoint cross-section
+  // (top-face columns, their coordinate along the plane) and its centre line (sample points);
+  // the window being measured, its section peaks (samples × nz) and particle peaks, and their
+  // values when it opened.
+  struct TrackProbe {
+    std::vector<std::size_t> columns;
+    std::vector<double> across;
+    std::vector<std::array<double, 2>> line;
+    double step = 0, line_step = 0;
+  };
+  std::vector<TrackProbe> probes;
+  std::size_t track = 0;  // the window being measured
+  std::vector<double> section_peak, track_particle_peak;
+  std::vector<double> section_start, track_particle_start;  // at the window's start
+  std::vector<std::uint8_t> line_molten;  // scratch: centre-line samples molten now
+  TrackStats current;
+  std::vector<TrackStats> tracks;
+
   StableSteps stable;
   double dt = 0;
   std::size_t substeps = 1;
@@ -102,9 +128,9 @@ void setup_laser(Sinter::State& s, const bed::Bed& bed);
 // Ray tracing: traces the beam positions [t0, t1] needs (with the phases of now) and sets the
 // particle substeps so the laser raises no particle by more than time.max-particle-rise.
 void prepare_traces(Sinter::State& s, double t0, double t1);
-// Fraction of the beam the bed of the start state absorbs with the beam centred at (x, laser y)
+// Fraction of the beam the bed of the start state absorbs with the beam centred at (x, y)
 // (ray tracing: of what reaches the substrate's extent).
-double absorbed_fraction(const Sinter::State& s, double x);
+double absorbed_fraction(const Sinter::State& s, double x, double y);
 // Wetting (wetting.cpp): set-up of the adjacency; after the particle steps of a grid step,
 // spreads the contacts of particles that have just melted; the exact exchange of the spread
 // substrate contacts over dt (energy handed to the grid as sources).
@@ -122,12 +148,32 @@ inline void particle_enthalpy_changed(Sinter::State& s, std::size_t i) {
   }
 }
 
+// Per-track statistics (track_stats.cpp): the probes of each segment and the first window;
+// after each step, the window's peaks (and a new window when the next segment has begun); at
+// the end, the last window closed into s.tracks.
+void setup_tracks(Sinter::State& s);
+void watch_tracks(Sinter::State& s);
+void close_tracks(Sinter::State& s);
+// Internal energy of the particles and of the free substrate nodes, J, from T0.
+std::pair<double, double> internal_energy(const Sinter::State& s);
+
 // One grid step of forward Euler (explicit_step.cpp): particles subcycle, then the grid.
 void explicit_step(Sinter::State& s, double dt);
 // One backward-Euler step of particles and free nodes together (implicit_step.cpp).
 void implicit_step(Sinter::State& s, double dt);
-// Laser centre at time t.
-inline double laser_x(const Sinter::State& s, double t) { return s.start_x + s.scene.speed * t; }
+// Volume of top node `node` (a raised top lumps the solid above z_top into it).
+inline double top_node_volume(const Sinter::State& s, std::size_t node) {
+  return s.top.empty() ? s.g.volume(s.g.nz - 1) : s.top_volume[node - s.g.index(0, 0, s.g.nz - 1)];
+}
+
+// The beam at time t (off between segments and after the path).
+inline ScanSchedule::Beam beam_at(const Sinter::State& s, double t) { return s.schedule.at(t); }
+// The laser's parameters with segment power p.
+inline LaserParams laser_with_power(const Sinter::State& s, double p) {
+  LaserParams l = s.laser;
+  l.power = p;
+  return l;
+}
 // Throws NumericalError if any temperature is non-finite, naming the particle or node; the
 // substrate nodes only when `grid` is set (the particles are few, the grid is not).
 void check_finite(const Sinter::State& s, bool grid = true);

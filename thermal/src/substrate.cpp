@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 namespace powderbed::thermal {
 
@@ -15,6 +17,39 @@ TopStencil top_stencil(const SubstrateGeometry& g, double x, double y) {
   return TopStencil{{g.index(i, j, k), g.index(i + 1, j, k), g.index(i, j + 1, k),
                      g.index(i + 1, j + 1, k)},
                     {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy}};
+}
+
+std::vector<std::pair<std::size_t, double>> top_footprint(const SubstrateGeometry& g, double x,
+                                                          double y, double a) {
+  std::vector<std::pair<std::size_t, double>> nodes;
+  const auto range = [](double lo, double spacing, std::size_t count, double v0, double v1) {
+    const double first = std::clamp(std::ceil((v0 - lo) / spacing), 0.0, double(count - 1));
+    const double last = std::clamp(std::floor((v1 - lo) / spacing), 0.0, double(count - 1));
+    return std::pair{static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
+  };
+  const auto [i0, i1] = range(g.x0, g.dx, g.nx, x - a, x + a);
+  const auto [j0, j1] = range(g.y0, g.dy, g.ny, y - a, y + a);
+  for (std::size_t j = j0; j <= j1; ++j)
+    for (std::size_t i = i0; i <= i1; ++i) {
+      const double dx = g.x(i) - x, dy = g.y(j) - y;
+      if (dx * dx + dy * dy <= a * a) nodes.push_back({g.index(i, j, g.nz - 1), 1.0});
+    }
+  if (nodes.empty()) {
+    const TopStencil st = top_stencil(g, x, y);
+    for (int w = 0; w < 4; ++w) nodes.push_back({st.node[w], st.weight[w]});
+    return nodes;
+  }
+  for (auto& node : nodes) node.second = 1.0 / static_cast<double>(nodes.size());
+  return nodes;
+}
+
+double top_height_at(const SubstrateGeometry& g, const TopHeight& top, double x, double y) {
+  if (top.empty()) return g.z_top;
+  const TopStencil st = top_stencil(g, x, y);
+  const std::size_t first = g.index(0, 0, g.nz - 1);
+  double h = 0;
+  for (int w = 0; w < 4; ++w) h += st.weight[w] * top[st.node[w] - first];
+  return h;
 }
 
 }  // namespace powderbed::thermal

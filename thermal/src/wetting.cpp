@@ -18,32 +18,6 @@ namespace powderbed::thermal {
 
 namespace {
 
-// The top nodes under a cap of base radius a centred over (x, y), equally weighted (their
-// cells are equal); the bilinear corners when the cap covers no node.
-std::vector<std::pair<std::size_t, double>> footprint(const SubstrateGeometry& g, double x,
-                                                      double y, double a) {
-  std::vector<std::pair<std::size_t, double>> nodes;
-  const auto range = [](double lo, double spacing, std::size_t count, double v0, double v1) {
-    const double first = std::clamp(std::ceil((v0 - lo) / spacing), 0.0, double(count - 1));
-    const double last = std::clamp(std::floor((v1 - lo) / spacing), 0.0, double(count - 1));
-    return std::pair{static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
-  };
-  const auto [i0, i1] = range(g.x0, g.dx, g.nx, x - a, x + a);
-  const auto [j0, j1] = range(g.y0, g.dy, g.ny, y - a, y + a);
-  for (std::size_t j = j0; j <= j1; ++j)
-    for (std::size_t i = i0; i <= i1; ++i) {
-      const double dx = g.x(i) - x, dy = g.y(j) - y;
-      if (dx * dx + dy * dy <= a * a) nodes.push_back({g.index(i, j, g.nz - 1), 1.0});
-    }
-  if (nodes.empty()) {
-    const TopStencil st = top_stencil(g, x, y);
-    for (int w = 0; w < 4; ++w) nodes.push_back({st.node[w], st.weight[w]});
-    return nodes;
-  }
-  for (auto& node : nodes) node.second = 1.0 / static_cast<double>(nodes.size());
-  return nodes;
-}
-
 void spread_on_substrate(Sinter::State& s, std::size_t i) {
   const std::int64_t c = s.substrate_of[i];
   if (c < 0) return;
@@ -54,7 +28,7 @@ void spread_on_substrate(Sinter::State& s, std::size_t i) {
       spherical_cap(4.0 / 3.0 * std::numbers::pi * r * r * r, s.scene.contact_angle * std::numbers::pi / 180);
   s.wetted.push_back({static_cast<std::uint32_t>(i),
                       conduction_shape_factor(cap.base_radius, cap.centroid_height),
-                      footprint(s.g, s.x[i], s.y[i], cap.base_radius)});
+                      top_footprint(s.g, s.x[i], s.y[i], cap.base_radius)});
   contact.shape = 0;  // out of the explicit network: wetted_exchange carries it
 }
 
@@ -122,7 +96,6 @@ double secant_capacity(const EnthalpyCurve& curve, double t, double t_other) {
 
 void wetted_exchange(Sinter::State& s, double dt) {
   const SubstrateGeometry& g = s.g;
-  const double top_volume = g.volume(g.nz - 1);
   const bool variable = s.scene.has(kVariableProperties);
   for (const auto& w : s.wetted) {
     const std::size_t i = w.particle;
@@ -136,7 +109,7 @@ void wetted_exchange(Sinter::State& s, double dt) {
     double inverse_capacity = 0, limit = std::numeric_limits<double>::infinity();
     for (const auto& [node, weight] : w.footprint) {
       if (g.fixed_top(node) || weight <= 0) continue;
-      const double tq = s.node_temperature[node];
+      const double tq = s.node_temperature[node], top_volume = top_node_volume(s, node);
       inverse_capacity += weight * weight / (top_volume * secant_capacity(s.per_m3, tq, tp));
       limit = std::min(limit, top_volume * std::abs(s.per_m3.enthalpy(tp) - s.e[node]) / weight);
     }

@@ -27,7 +27,9 @@ struct ConductionNetwork {
   std::vector<std::uint32_t> isolated;  // particles with no contact at all
 };
 
-// Periodic axes of the bed are ignored: the substrate has Dirichlet sides.
-ConductionNetwork build_network(const bed::Bed& bed, const SubstrateGeometry& grid);
+// Periodic axes of the bed are ignored: the substrate has Dirichlet sides. A raised top (empty:
+// flat) is met at its local height: h is the centre's height above it.
+ConductionNetwork build_network(const bed::Bed& bed, const SubstrateGeometry& grid,
+                                const TopHeight& top = {});
 
 }  // namespace powderbed::thermal

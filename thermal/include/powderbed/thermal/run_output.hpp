@@ -12,6 +12,16 @@
 //   /melt                  peak temperatures: particle N, section_x nz×ny (x = Lx/2),
 //                          section_y nz×nx, top ny×nx; attrs height, width, depth, x_plane,
 //                          melting_point
+//   /tracks                per scan segment (M of them): width, depth, height, length (m),
+//                          peak_temperature, start_temperature (K), stored_energy (J),
+//                          particles_molten, t_start, t_end (s), each M
+//   /fusion                (sinter --fuse) top_height ny×nx (the solid's top z per top-face
+//                          column, m), height ny×nx (above the plate), surface ny×nx×3 (the
+//                          columns' x, y, top z: the XDMF grid "solid_top"), state N (0
+//                          powder, 1 fused, 2 vaporised); attrs
+//                          threshold (K), fused, vaporised, powder_mass_before/after,
+//                          solid_mass_before/after (above the plate's top face), vaporised_mass
+//                          (kg), mass_error
 //   /summary               attrs: the numbers `sinter --json` prints
 //   /xdmf/polyvertex       0..N-1, the particles' Polyvertex cells for ParaView
 // Every dataset has its SI unit as the attribute `units` (K, m; "1" without unit).
@@ -21,6 +31,7 @@
 #include <vector>
 
 #include "powderbed/bed/bed.hpp"
+#include "powderbed/thermal/fusion.hpp"
 #include "powderbed/thermal/solver.hpp"
 
 namespace powderbed::thermal {
@@ -34,6 +45,8 @@ class RunWriter {
   RunWriter& operator=(const RunWriter&) = delete;
 
   void snapshot(const Sinter& sinter);
+  // Writes /fusion (before finish).
+  void fusion(const Fusion& fused);
   // Writes /melt and /summary (name -> value), commits the file and its .xmf sidecar.
   void finish(const Sinter& sinter, const SinterResult& result,
               const std::vector<std::pair<std::string, double>>& summary);

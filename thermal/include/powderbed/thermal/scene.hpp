@@ -8,6 +8,7 @@
 
 #include "powderbed/thermal/material.hpp"
 #include "powderbed/thermal/ray_traced_laser.hpp"
+#include "powderbed/thermal/scan_path.hpp"
 
 namespace powderbed::thermal {
 
@@ -59,6 +60,10 @@ struct SinterScene {
   double spot_radius = 54e-6;  // w, m
   double absorptivity = 0.33;  // alpha
   double laser_y = NAN, start_x = NAN, end_x = NAN;
+  // A scan path (scan_path.hpp) replaces that single track when it is not empty: its segments'
+  // ends lie on the plate, the laser is off while it jumps between them at `jump_speed`.
+  std::vector<ScanSegment> scan_path;
+  double jump_speed = 5;  // m/s: galvanometer scanners jump at a few m/s
   SubstrateShading substrate_shading = SubstrateShading::layer;
   LaserAbsorption absorption = LaserAbsorption::ray_trace;  // why: docs/sinter.md
   // Ray-trace only: alpha of molten surfaces (NaN: `absorptivity` in every phase), the rays,
@@ -80,7 +85,7 @@ struct SinterScene {
   // Accuracy limit of a particle step: the laser alone raises no particle by more than this
   // per step (K), so tiny particles under the beam subcycle instead of overshooting T_v.
   double max_particle_rise = 50;
-  double t_end = NAN;          // NaN: when the laser reaches end_x
+  double t_end = NAN;          // NaN: when the laser reaches end_x (or the path's end)
   unsigned effects = kAllSinterEffects | kWetting;
 
   bool has(unsigned effect) const { return (effects & effect) != 0; }

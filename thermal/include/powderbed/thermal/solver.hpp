@@ -38,6 +38,25 @@ struct MeltPool {  // on the plane x = Lx/2 (melt_pool.hpp says how)
   double height = 0, width = 0, depth = 0;  // m
 };
 
+// One segment of the scan path, measured over its window: from its start to the next segment's
+// (the jump after it included; the last one to t_end). Width and depth on the cross-section
+// through the segment's midpoint (melt_pool.hpp, measure_section), from the peaks of the window
+// (of what got hotter in it: what is still molten from the track before but cooling is not);
+// length: the longest stretch of the segment's centre line molten at once (top face at or above
+// T_m, or a molten particle over it); peak temperature over the particles and the top face.
+// What the track leaves for the next: the stored energy above T0 (bed + substrate) at the end of
+// its window, and the mean top-face temperature within one spot radius of its own start as it
+// starts (what the tracks before it left there).
+struct TrackStats {
+  MeltPool pool;
+  double length = 0;            // m
+  double peak_temperature = 0;  // K
+  std::size_t particles_molten = 0;  // particles that got hotter and reached T_m in the window
+  double start_temperature = 0;      // K
+  double stored_energy = 0;          // J above T0 at the window's end
+  double t_start = 0, t_end = 0;     // the window, s
+};
+
 struct StableSteps {
   double grid = 0;      // forward-Euler bound of the substrate, s
   double particle = 0;  // forward-Euler bound of the particles (inf: none)
@@ -70,6 +89,7 @@ struct SinterResult {
   double absorptance = 0;  // laser energy absorbed over the beam's energy P t_end
   TraceSummary traces;     // ray tracing only
   std::size_t substrate_wetted = 0, bridges = 0;  // wetting: spread caps and liquid bridges
+  std::vector<TrackStats> tracks;  // one per scan segment begun by t_end
 };
 
 class Sinter {
@@ -77,6 +97,9 @@ class Sinter {
   // Checks the bed against the substrate (3D, resting on its floor, nothing below it) and the
   // scene; throws InputError naming what is wrong.
   Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTable& table);
+  // On a raised solid top (fusion.hpp: one height per top-face column, none below the floor;
+  // explicit integrator only): the bed rests on it and its particles touch it at its height.
+  Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTable& table, TopHeight top);
   ~Sinter();
   Sinter(const Sinter&) = delete;
   Sinter& operator=(const Sinter&) = delete;
@@ -86,6 +109,9 @@ class Sinter {
   std::size_t substeps() const;  // particle steps per grid step
   double t_end() const;
   const SubstrateGeometry& grid() const;
+  const TopHeight& top_height() const;  // empty: flat at the grid's top face
+  const SinterScene& scene() const;
+  const std::vector<double>& particle_mass() const;  // rho(T0) 4/3 π r^3, kg
   const BedSurface& surface() const;
   const ConductionNetwork& network() const;
   const Material& material() const;

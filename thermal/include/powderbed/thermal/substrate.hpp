@@ -5,6 +5,7 @@
 // balance SPEC.md accepts for the top flux). Dirichlet T = T0 on the four sides and the bottom.
 // Face conductivity K_face = (K_a + K_b) / 2; second-order central differences.
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace powderbed::thermal {
@@ -40,5 +41,19 @@ struct TopStencil {
   double weight[4];
 };
 TopStencil top_stencil(const SubstrateGeometry& g, double x, double y);
+
+// The top nodes whose (x, y) lie within a disc of radius a centred over (x, y), equally weighted
+// (their cells are equal), or the bilinear corners when the disc covers no node: what a spread
+// cap touches (wetting) and where a fused particle's volume goes (fusion). Weights sum to 1.
+std::vector<std::pair<std::size_t, double>> top_footprint(const SubstrateGeometry& g, double x,
+                                                          double y, double a);
+
+// The solid's top surface over the grid: per top-face column i + nx j the height z of the solid
+// there, at or above the grid's top face z_top (fusion raises it); empty: flat at z_top.
+// The solver lumps the solid between z_top and the column's height into the column's top node
+// (docs/sinter.md "Fusion").
+using TopHeight = std::vector<double>;
+// The top at (x, y), bilinear in the column heights.
+double top_height_at(const SubstrateGeometry& g, const TopHeight& top, double x, double y);
 
 }  // namespace powderbed::thermal

@@ -1,0 +1,45 @@
+#pragma once
+// Fusion after a scan (docs/sinter.md "Fusion"): what melted becomes solid. A particle whose
+// peak temperature reached T_m + (f − 1/2) ΔT had a melt fraction f at some moment (the apparent
+// heat capacity spreads the latent heat evenly over the window ΔT around T_m): it leaves the
+// powder and its volume joins the solid, spread evenly over the top-face columns under its
+// projected disc (top_footprint), which raises the solid's top there by V w_c / (dx dy).
+// The default f = 1/2 fuses what reached T_m, the isotherm the melt pool is measured on, so the
+// fused stripe is the measured melt (the window is the model's smoothing of melting at T_m, not
+// a mushy zone it resolves); f = 1 fuses only what was wholly liquid. A particle below the
+// threshold stays powder (sintered, not fused); a vaporised one left as vapour. Substrate
+// nodes that melted are solid already and stay so.
+//
+// Conserved: mass. The solid above the plate's top face is ρ0 Σ_c dx dy (H_c − z_top) (every
+// column owns dx dy, as the deposit is counted), and a fused particle's mass is ρ0 V: the
+// weights sum to 1, so powder + solid + vapour after = powder + solid before, to round-off.
+// ρ0 = ρ(T0), the density the solver gives particle masses.
+#include <cstdint>
+#include <vector>
+
+#include "powderbed/bed/bed.hpp"
+#include "powderbed/thermal/solver.hpp"
+
+namespace powderbed::thermal {
+
+struct Fusion {
+  bed::Bed powder;                    // the particles left as powder (ids kept)
+  TopHeight top;                      // the solid's new top, per top-face column i + nx j, m
+  std::vector<std::uint8_t> state;    // per particle of the scanned bed: 0 powder, 1 fused, 2 vapour
+  std::size_t fused = 0, vaporised = 0;
+  double threshold = 0;               // K: T_m + (f - 1/2) ΔT
+  double powder_mass_before = 0, powder_mass_after = 0;  // kg
+  double solid_mass_before = 0, solid_mass_after = 0;    // kg, above the plate's top face
+  double vaporised_mass = 0;                             // kg
+  // (powder + solid after + vapour) - (powder + solid before), over the total: round-off.
+  double mass_error() const;
+};
+
+// Fuses the state `sinter` has reached on `bed` (the bed it was built on); melt_fraction f in
+// (0, 1] (InputError naming fuse.melt-fraction otherwise).
+Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction = 0.5);
+
+// Solid mass above the plate's top face of a top height map, kg.
+double solid_mass(const SubstrateGeometry& g, const TopHeight& top, double density);
+
+}  // namespace powderbed::thermal

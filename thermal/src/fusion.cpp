@@ -1,0 +1,92 @@
+#include "powderbed/thermal/fusion.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "powderbed/bed/errors.hpp"
+
+namespace powderbed::thermal {
+
+namespace {
+
+// The bed with only the particles `keep` marks (optional arrays follow when present).
+bed::Bed keep_particles(const bed::Bed& bed, const std::vector<std::uint8_t>& keep) {
+  bed::Bed out;
+  out.domain = bed.domain;
+  out.provenance = bed.provenance;
+  const auto copy = [&](const auto& from, auto& to) {
+    if (from.empty()) return;
+    for (std::size_t i = 0; i < keep.size(); ++i)
+      if (keep[i]) to.push_back(from[i]);
+  };
+  copy(bed.x, out.x);
+  copy(bed.y, out.y);
+  copy(bed.z, out.z);
+  copy(bed.radius, out.radius);
+  copy(bed.id, out.id);
+  copy(bed.vx, out.vx);
+  copy(bed.vy, out.vy);
+  copy(bed.vz, out.vz);
+  copy(bed.material, out.material);
+  copy(bed.temperature, out.temperature);
+  copy(bed.phase, out.phase);
+  return out;
+}
+
+}  // namespace
+
+double Fusion::mass_error() const {
+  const double before = powder_mass_before + solid_mass_before;
+  const double after = powder_mass_after + solid_mass_after + vaporised_mass;
+  return before > 0 ? std::abs(after - before) / before : 0.0;
+}
+
+double solid_mass(const SubstrateGeometry& g, const TopHeight& top, double density) {
+  double volume = 0;
+  for (const double h : top) volume += g.dx * g.dy * (h - g.z_top);
+  return density * volume;
+}
+
+Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction) {
+  require_in_range(melt_fraction > 0 && melt_fraction <= 1, "fuse.melt-fraction", melt_fraction,
+                   "0 < f <= 1");
+  const SubstrateGeometry& g = sinter.grid();
+  const PhaseChange& phase = sinter.material().phase_change();
+  const double rho0 = sinter.material().density(sinter.scene().initial_temperature);
+  const auto& peak = sinter.particle_max_temperature();
+  const auto& mass = sinter.particle_mass();
+  const auto now = sinter.particle_phase();
+  Fusion f;
+  f.threshold = phase.melting_point + (melt_fraction - 0.5) * phase.window;
+  f.top = sinter.top_height();
+  if (f.top.empty()) f.top.assign(g.nx * g.ny, g.z_top);
+  f.solid_mass_before = solid_mass(g, f.top, rho0);
+  f.state.assign(bed.n(), 0);
+  std::vector<std::uint8_t> keep(bed.n(), 1);
+  const std::size_t first_top = g.index(0, 0, g.nz - 1);
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    f.powder_mass_before += mass[i];
+    if (now[i] == 2) {  // vaporised: left the bed
+      f.state[i] = 2;
+      keep[i] = 0;
+      ++f.vaporised;
+      f.vaporised_mass += mass[i];
+      continue;
+    }
+    if (peak[i] < f.threshold) {
+      f.powder_mass_after += mass[i];
+      continue;
+    }
+    f.state[i] = 1;
+    keep[i] = 0;
+    ++f.fused;
+    const double volume = mass[i] / rho0;
+    for (const auto& [node, weight] : top_footprint(g, bed.x[i], bed.y[i], bed.radius[i]))
+      f.top[node - first_top] += volume * weight / (g.dx * g.dy);
+  }
+  f.solid_mass_after = solid_mass(g, f.top, rho0);
+  f.powder = keep_particles(bed, keep);
+  return f;
+}
+
+}  // namespace powderbed::thermal
