@@ -764,6 +764,12 @@ struct Spreader {
   void drop_overflow(LayerSummary& out, double front) {
     out.overflow = remove_overflow(bed, state, front);
     out.n = bed.n();
+    if (bed.n() == 0) {  // nothing left to spread on: a layer of nothing is not a result
+      throw InputError("recoater.end: the tool pushed all " + std::to_string(out.overflow) +
+                       " particles past its end at layer " + std::to_string(out.layer) +
+                       ", so no powder is left on the plate (accepted: a travel that leaves "
+                       "powder behind the tool, or recoater.overflow = false)");
+    }
     for (auto* v : {&run.mass, &run.wx, &run.wy, &run.wz}) v->clear();  // grow() redoes them
     run.wall.clear();
     run.grow();
