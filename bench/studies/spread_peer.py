@@ -10,7 +10,8 @@ folder instead, leaving the results file alone). Needs deposit, bedconv and beds
 Method, per seed (1, 2, 3; --seeds to choose):
 1. The initial particles: deposit with the scene and the seed, but the tool moving 1 nm with no
    delay and no settle (recoater.end = recoater.start + 1e-9, recoater.delay = 0,
-   recoater.settle = 0): the supply as deposit inserts it, before anything moves. `bedconv`
+   recoater.settle = 0, recoater.overflow = false): the supply as deposit inserts it, before
+   anything moves. `bedconv`
    writes it as a LAMMPS data file for LIGGGHTS (atom types raised to 2: the walls' type).
 2. deposit spreads the layer with the scene and the seed as given (the same supply: insertion
    depends on the seed only); its JSON gives the loop time, steps, particles and dt.
@@ -176,7 +177,9 @@ def initial_particles(work, scene_path, seed, overrides):
     path = os.path.join(work, f"initial-{seed}.h5")
     first = dict(overrides)
     start = float(Scene(scene_path, overrides).start)
-    first.update({"recoater.end": repr(start + 1e-9), "recoater.delay": "0", "recoater.settle": "0"})
+    # overflow off: the tool has not moved, so the whole supply lies past its end
+    first.update({"recoater.end": repr(start + 1e-9), "recoater.delay": "0", "recoater.settle": "0",
+                  "recoater.overflow": "false"})
     run_json([app("deposit"), "--config", scene_path, "--seed", str(seed), "--out", path,
               *option_args(first)])
     return path
