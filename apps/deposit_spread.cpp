@@ -355,6 +355,13 @@ int run_spread(const po::variables_map& vm, int argc, char** argv) {
         << "); the time step may be beyond the stable bound or the tool too fast for the softening";
     throw NumericalError(msg.str());
   }
+  if (bed.n() == 0) {  // a layer of nothing is not a result
+    throw InputError("recoater.end: the tool pushed the whole supply past its end (" +
+                     std::to_string(r.layers.empty() ? 0 : r.layers.back().overflow) +
+                     " particles into the overflow), " +
+                     "so no powder is left on the plate (accepted: a travel that leaves powder " +
+                     "behind the tool, or recoater.overflow = false)");
+  }
   write(bed, out, r.state);
   if (forces_path) bed::write_text_file(*forces_path, forces.str());
 

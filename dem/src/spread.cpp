@@ -764,12 +764,6 @@ struct Spreader {
   void drop_overflow(LayerSummary& out, double front) {
     out.overflow = remove_overflow(bed, state, front);
     out.n = bed.n();
-    if (bed.n() == 0) {  // nothing left to spread on: a layer of nothing is not a result
-      throw InputError("recoater.end: the tool pushed all " + std::to_string(out.overflow) +
-                       " particles past its end at layer " + std::to_string(out.layer) +
-                       ", so no powder is left on the plate (accepted: a travel that leaves "
-                       "powder behind the tool, or recoater.overflow = false)");
-    }
     for (auto* v : {&run.mass, &run.wx, &run.wy, &run.wz}) v->clear();  // grow() redoes them
     run.wall.clear();
     run.grow();
@@ -778,7 +772,7 @@ struct Spreader {
     run.wz = state.wz;
     run.wall_history = state.wall_history;
     carried = from_state(state, bed);
-    rebuild();
+    if (bed.n() > 0) rebuild();  // an empty bed has no cells to size (the next supply rebuilds)
   }
 
   // One layer: the tool back at its start and raised by the plate's descent, a new supply,
