@@ -5,18 +5,16 @@
 #include <utility>
 #include <vector>
 
+#include "powderbed/bed/height_map.hpp"
+
 namespace powderbed::thermal {
 
 TopStencil top_stencil(const SubstrateGeometry& g, double x, double y) {
-  const double fx_all = std::clamp((x - g.x0) / g.dx, 0.0, static_cast<double>(g.nx - 1));
-  const double fy_all = std::clamp((y - g.y0) / g.dy, 0.0, static_cast<double>(g.ny - 1));
-  const auto i = std::min(static_cast<std::size_t>(fx_all), g.nx - 2);
-  const auto j = std::min(static_cast<std::size_t>(fy_all), g.ny - 2);
-  const double fx = fx_all - static_cast<double>(i), fy = fy_all - static_cast<double>(j);
+  const bed::GridCell c = bed::grid_cell(g.x0, g.dx, g.nx, g.y0, g.dy, g.ny, x, y);
   const std::size_t k = g.nz - 1;
-  return TopStencil{{g.index(i, j, k), g.index(i + 1, j, k), g.index(i, j + 1, k),
-                     g.index(i + 1, j + 1, k)},
-                    {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy}};
+  return TopStencil{{g.index(c.i, c.j, k), g.index(c.i + 1, c.j, k), g.index(c.i, c.j + 1, k),
+                     g.index(c.i + 1, c.j + 1, k)},
+                    {(1 - c.fx) * (1 - c.fy), c.fx * (1 - c.fy), (1 - c.fx) * c.fy, c.fx * c.fy}};
 }
 
 std::vector<std::pair<std::size_t, double>> top_footprint(const SubstrateGeometry& g, double x,
@@ -50,6 +48,19 @@ double top_height_at(const SubstrateGeometry& g, const TopHeight& top, double x,
   double h = 0;
   for (int w = 0; w < 4; ++w) h += st.weight[w] * top[st.node[w] - first];
   return h;
+}
+
+bed::HeightMap top_surface(const SubstrateGeometry& g, const TopHeight& top) {
+  bed::HeightMap m;
+  if (top.empty()) return m;
+  m.nx = g.nx;
+  m.ny = g.ny;
+  m.x0 = g.x0;
+  m.y0 = g.y0;
+  m.dx = g.dx;
+  m.dy = g.dy;
+  m.z = top;
+  return m;
 }
 
 }  // namespace powderbed::thermal

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "powderbed/bed/height_map.hpp"
+
 namespace powderbed::thermal {
 
 struct SubstrateGeometry {
@@ -55,5 +57,8 @@ std::vector<std::pair<std::size_t, double>> top_footprint(const SubstrateGeometr
 using TopHeight = std::vector<double>;
 // The top at (x, y), bilinear in the column heights.
 double top_height_at(const SubstrateGeometry& g, const TopHeight& top, double x, double y);
+// The same surface as a height map over the top face's nodes (empty when `top` is: the flat
+// plate), for the spreading run's floor (dem/spread.hpp SpreadSettings::floor).
+bed::HeightMap top_surface(const SubstrateGeometry& g, const TopHeight& top);
 
 }  // namespace powderbed::thermal

@@ -1,0 +1,62 @@
+#pragma once
+// A surface z = h(x, y) given at the nodes of a regular grid (x0 + i dx, y0 + j dy), bilinear
+// between them and held at the edge value beyond the grid: the fused solid's top, which sinter
+// raises (thermal/fusion.hpp) and the next layer's powder is spread on (dem/spread.hpp). One
+// interpolation for both, so the powder rests on the surface the thermal grid conducts through.
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace powderbed::bed {
+
+// The grid cell around (x, y): its lower node (i, j) and the fractions (fx, fy) in [0, 1] across
+// it; positions beyond the grid are clamped onto its edge.
+struct GridCell {
+  std::size_t i = 0, j = 0;
+  double fx = 0, fy = 0;
+};
+
+inline GridCell grid_cell(double x0, double dx, std::size_t nx, double y0, double dy,
+                          std::size_t ny, double x, double y) {
+  const double ux = std::clamp((x - x0) / dx, 0.0, static_cast<double>(nx - 1));
+  const double uy = std::clamp((y - y0) / dy, 0.0, static_cast<double>(ny - 1));
+  GridCell c;
+  c.i = std::min(static_cast<std::size_t>(ux), nx - 2);
+  c.j = std::min(static_cast<std::size_t>(uy), ny - 2);
+  c.fx = ux - static_cast<double>(c.i);
+  c.fy = uy - static_cast<double>(c.j);
+  return c;
+}
+
+struct HeightMap {
+  std::size_t nx = 0, ny = 0;  // nodes along x and y (>= 2 each when not empty)
+  double x0 = 0, y0 = 0, dx = 0, dy = 0;
+  std::vector<double> z;       // per node i + nx j, m
+
+  bool empty() const { return z.empty(); }
+  GridCell cell(double x, double y) const { return grid_cell(x0, dx, nx, y0, dy, ny, x, y); }
+  double node(std::size_t i, std::size_t j) const { return z[i + nx * j]; }
+
+  // h(x, y), bilinear in the four nodes around (x, y).
+  double at(double x, double y) const {
+    const GridCell c = cell(x, y);
+    return (1 - c.fy) * ((1 - c.fx) * node(c.i, c.j) + c.fx * node(c.i + 1, c.j)) +
+           c.fy * ((1 - c.fx) * node(c.i, c.j + 1) + c.fx * node(c.i + 1, c.j + 1));
+  }
+  // (dh/dx, dh/dy) of the bilinear patch at (x, y) (zero across a clamped edge).
+  std::array<double, 2> slope(double x, double y) const {
+    const GridCell c = cell(x, y);
+    const double ux = (x - x0) / dx, uy = (y - y0) / dy;
+    const bool inside_x = ux > 0 && ux < static_cast<double>(nx - 1);
+    const bool inside_y = uy > 0 && uy < static_cast<double>(ny - 1);
+    const double sx = ((1 - c.fy) * (node(c.i + 1, c.j) - node(c.i, c.j)) +
+                       c.fy * (node(c.i + 1, c.j + 1) - node(c.i, c.j + 1))) / dx;
+    const double sy = ((1 - c.fx) * (node(c.i, c.j + 1) - node(c.i, c.j)) +
+                       c.fx * (node(c.i + 1, c.j + 1) - node(c.i + 1, c.j))) / dy;
+    return {inside_x ? sx : 0.0, inside_y ? sy : 0.0};
+  }
+  double highest() const { return empty() ? 0.0 : *std::max_element(z.begin(), z.end()); }
+};
+
+}  // namespace powderbed::bed
