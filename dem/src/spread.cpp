@@ -149,6 +149,31 @@ void contact(const Model& m, const Constants& k, double delta, const double n[3]
   }
 }
 
+// The point of a height map nearest a sphere's centre (x, y, z) of radius r, sampled at the
+// centre's foot and on rings of 0.35 r, 0.7 r and r around it (8 points each): a fused top is
+// steep (a particle's volume raised over its footprint), so the surface right under the centre
+// can be far lower than a step beside it that the sphere already touches. `offset` points from
+// the centre to the surface point; the distance never exceeds the vertical one at the foot.
+struct FloorPoint {
+  double offset[3];
+  double distance;
+};
+inline FloorPoint nearest_floor_point(const bed::HeightMap& floor, double x, double y, double z,
+                                      double r) {
+  FloorPoint best{{0, 0, floor.at(x, y) - z}, std::abs(floor.at(x, y) - z)};
+  constexpr int kRays = 8;
+  for (const double ring : {0.35, 0.7, 1.0}) {
+    for (int k = 0; k < kRays; ++k) {
+      const double a = 2 * std::numbers::pi * k / kRays;
+      const double dx = ring * r * std::cos(a), dy = ring * r * std::sin(a);
+      const double dz = floor.at(x + dx, y + dy) - z;
+      const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+      if (d < best.distance) best = {{dx, dy, dz}, d};
+    }
+  }
+  return best;
+}
+
 // The contacts of the last force evaluation, in pair order (owner index ascending): what a
 // neighbour-list build, a new layer or a restart carries over.
 struct ActiveContacts {
@@ -173,6 +198,8 @@ struct Run {
   std::vector<Constants> pair;        // per list entry
   std::vector<double> pair_history;   // kHistory per list entry
   std::vector<std::uint8_t> touching; // per list entry: in contact at the last evaluation
+  bed::HeightMap floor;               // the solid under the powder (empty: the flat plate)
+  double floor_top = 0;               // its highest point, m
   std::uint64_t rebuilds = 0;
   // The tool.
   bool tool_on = false;
@@ -278,16 +305,40 @@ struct Run {
     }
   }
 
+  // The plate, or the solid on it (SpreadSettings::floor): the contact is with the surface
+  // point nearest the centre among the points under the sphere's footprint that
+  // nearest_floor_point samples, along the line from the centre to it.
+  void plate_contact(std::size_t i, bool update) {
+    const double still[3] = {0, 0, 0};
+    const double r = bed.radius[i];
+    if (floor.empty()) {
+      const double n[3] = {0, 0, -1};
+      wall_contact(i, kPlate, r - (bed.z[i] - box.lower[2]), n, still, update);
+      return;
+    }
+    if (bed.z[i] - r > floor_top) {  // above the solid's highest point: no contact
+      wall_contact(i, kPlate, -1.0, still, still, update);
+      return;
+    }
+    const FloorPoint p = nearest_floor_point(floor, bed.x[i], bed.y[i], bed.z[i], r);
+    if (p.offset[2] >= 0) {  // the centre at or below the surface: push straight up
+      const double n[3] = {0, 0, -1};
+      wall_contact(i, kPlate, r + floor.at(bed.x[i], bed.y[i]) - bed.z[i], n, still, update);
+      return;
+    }
+    const double n[3] = {p.offset[0] / p.distance, p.offset[1] / p.distance, p.offset[2] / p.distance};
+    wall_contact(i, kPlate, r - p.distance, n, still, update);
+  }
+
   // The plate, the box's top and the side faces that are not periodic (a particle the tool
   // throws up stays in the box, so the bed stays a valid bed file) and the tool.
   void wall_forces(bool update) {
     const double still[3] = {0, 0, 0};
     for (std::size_t i = 0; i < n(); ++i) {
       const double r = bed.radius[i];
+      plate_contact(i, update);
       {
-        double n[3] = {0, 0, -1};
-        wall_contact(i, kPlate, r - (bed.z[i] - box.lower[2]), n, still, update);
-        n[2] = 1;
+        const double n[3] = {0, 0, 1};
         wall_contact(i, kTop, r - (box.upper[2] - bed.z[i]), n, still, update);
       }
       for (int axis = 0; axis < 2; ++axis) {
@@ -446,7 +497,7 @@ std::size_t add_supply(Run& run, std::uint64_t layer) {
     throw InputError(msg.str());
   }
   bed::Bed& bed = run.bed;
-  double base = box.lower[2];
+  double base = run.floor.empty() ? box.lower[2] : std::max(box.lower[2], run.floor.highest());
   for (std::size_t i = 0; i < bed.n(); ++i) {
     const double r = bed.radius[i];
     if (bed.x[i] + r > s.supply_x0 && bed.x[i] - r < s.supply_x1) base = std::max(base, bed.z[i] + r);
@@ -528,11 +579,38 @@ SpreadState to_state(const Run& run, const ActiveContacts& a) {
 // stopped, the machine's overflow slot — from the bed and the state; returns how many.
 std::size_t remove_overflow(bed::Bed& bed, SpreadState& s, double front) {
   std::vector<char> keep(bed.n());
-  std::unordered_set<std::uint64_t> gone;
+  for (std::size_t i = 0; i < bed.n(); ++i) keep[i] = bed.x[i] <= front ? 1 : 0;
+  return remove_particles(bed, s, keep);
+}
+
+}  // namespace
+
+std::size_t lift_onto_floor(bed::Bed& bed, const bed::HeightMap& floor) {
+  if (floor.empty()) return 0;
+  std::size_t lifted = 0;
   for (std::size_t i = 0; i < bed.n(); ++i) {
-    keep[i] = bed.x[i] <= front ? 1 : 0;
-    if (!keep[i]) gone.insert(bed.id[i]);
+    const double r = bed.radius[i];
+    bool moved = false;
+    // Up in steps of a tenth of the radius until the nearest surface point is r away.
+    const auto inside = [&] {
+      const FloorPoint p = nearest_floor_point(floor, bed.x[i], bed.y[i], bed.z[i], r);
+      return p.offset[2] >= 0 || p.distance < r;
+    };
+    for (int k = 0; k < 1000 && inside(); ++k) {
+      bed.z[i] += 0.1 * r;
+      moved = true;
+    }
+    if (!moved) continue;
+    if (bed.has_velocity()) bed.vx[i] = bed.vy[i] = bed.vz[i] = 0;
+    ++lifted;
   }
+  return lifted;
+}
+
+std::size_t remove_particles(bed::Bed& bed, SpreadState& s, const std::vector<char>& keep) {
+  std::unordered_set<std::uint64_t> gone;
+  for (std::size_t i = 0; i < bed.n(); ++i)
+    if (!keep[i]) gone.insert(bed.id[i]);
   const auto compact = [&](auto& values, std::size_t stride) {
     if (values.empty()) return;
     std::size_t k = 0;
@@ -565,6 +643,8 @@ std::size_t remove_overflow(bed::Bed& bed, SpreadState& s, double front) {
   s.pair_history = std::move(history);
   return gone.size();
 }
+
+namespace {
 
 double largest_overlap(const Run& run) {
   double worst = 0;
@@ -607,6 +687,26 @@ void finish_layer(const Run& run, LayerSummary& out, double window_x0, double wi
   out.n = run.n();
 }
 
+// A floor the run can stand on: a grid of at least 2 x 2 nodes with one height each, inside
+// the box.
+void check_floor(const bed::HeightMap& floor, const Box& box) {
+  if (floor.empty()) return;
+  if (floor.nx < 2 || floor.ny < 2 || floor.z.size() != floor.nx * floor.ny || !(floor.dx > 0) ||
+      !(floor.dy > 0)) {
+    throw InputError("floor: a height map of " + std::to_string(floor.z.size()) + " heights on " +
+                     std::to_string(floor.nx) + " x " + std::to_string(floor.ny) +
+                     " nodes (accepted: nx, ny >= 2, one height per node, spacings > 0)");
+  }
+  for (const double h : floor.z) {
+    if (!(h >= box.lower[2] && h < box.upper[2])) {
+      std::ostringstream msg;
+      msg << "floor: a height " << h << " m outside the box (accepted: the plate " << box.lower[2]
+          << " <= h < the box's top " << box.upper[2] << " m)";
+      throw InputError(msg.str());
+    }
+  }
+}
+
 void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSettings& settings,
                     const Box& box) {
   if (bed.domain.dimension != 3 || bed.domain.periodic[2]) {
@@ -620,6 +720,7 @@ void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSetting
   if (!(settings.layers >= 1)) throw InputError("--layers: 0 (accepted: N >= 1)");
   require_in_range(std::isfinite(settings.layer_thickness) && settings.layer_thickness >= 0,
                    "recoater.layer-thickness", settings.layer_thickness, "thickness >= 0 m");
+  check_floor(settings.floor, box);
 }
 
 // One call of run_spread: the run, its summary, the state a layer's end leaves and the
@@ -665,6 +766,9 @@ struct Spreader {
       bed.vz.assign(bed.n(), 0.0);
     }
     run.grow();
+    run.floor = settings.floor.empty() && restart ? restart->floor : settings.floor;
+    check_floor(run.floor, run.box);
+    run.floor_top = run.floor.highest();
     if (!restart) return;
     if (restart->wx.size() != bed.n() ||
         restart->wall_history.size() != bed.n() * kWallSlots * kHistory) {
@@ -742,6 +846,7 @@ struct Spreader {
   void save_state(std::uint64_t layers_done) {
     carried = run.active();
     state = to_state(run, carried);
+    state.floor = run.floor;
     state.layers_done = layers_done;
     state.step = step;
     state.time = static_cast<double>(step) * run.dt;

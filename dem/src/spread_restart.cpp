@@ -108,6 +108,15 @@ void write_spread_state(const std::string& path, const SpreadState& s, const bed
   write_set(group, "pair_ids", H5T_NATIVE_UINT64, s.pair_ids, 2, path);
   write_set(group, "pair_history", H5T_NATIVE_DOUBLE, s.pair_history, 6, path);
   write_set(group, "wall_history", H5T_NATIVE_DOUBLE, s.wall_history, kWallValues, path);
+  if (s.floor.empty()) return;
+  const bed::HeightMap& f = s.floor;  // the solid under the powder: heights per node, x fastest
+  write_attribute(group, "floor_nx", H5T_NATIVE_UINT64, static_cast<std::uint64_t>(f.nx), path);
+  write_attribute(group, "floor_ny", H5T_NATIVE_UINT64, static_cast<std::uint64_t>(f.ny), path);
+  write_attribute(group, "floor_x0", H5T_NATIVE_DOUBLE, f.x0, path);
+  write_attribute(group, "floor_y0", H5T_NATIVE_DOUBLE, f.y0, path);
+  write_attribute(group, "floor_dx", H5T_NATIVE_DOUBLE, f.dx, path);
+  write_attribute(group, "floor_dy", H5T_NATIVE_DOUBLE, f.dy, path);
+  write_set(group, "floor", H5T_NATIVE_DOUBLE, f.z, 1, path);
 }
 
 bool has_spread_state(const std::string& path) {
@@ -141,6 +150,19 @@ SpreadState read_spread_state(const std::string& path, const bed::Bed& bed) {
     s.wx.push_back(omega[3 * i]);
     s.wy.push_back(omega[3 * i + 1]);
     s.wz.push_back(omega[3 * i + 2]);
+  }
+  if (H5Lexists(group, "floor", H5P_DEFAULT) > 0) {
+    bed::HeightMap& f = s.floor;
+    f.nx = read_attribute<std::uint64_t>(group, "floor_nx", H5T_NATIVE_UINT64, path);
+    f.ny = read_attribute<std::uint64_t>(group, "floor_ny", H5T_NATIVE_UINT64, path);
+    f.x0 = read_attribute<double>(group, "floor_x0", H5T_NATIVE_DOUBLE, path);
+    f.y0 = read_attribute<double>(group, "floor_y0", H5T_NATIVE_DOUBLE, path);
+    f.dx = read_attribute<double>(group, "floor_dx", H5T_NATIVE_DOUBLE, path);
+    f.dy = read_attribute<double>(group, "floor_dy", H5T_NATIVE_DOUBLE, path);
+    f.z = read_set<double>(group, "floor", H5T_NATIVE_DOUBLE, 1, path);
+    if (f.z.size() != f.nx * f.ny) fail(path, "floor has " + std::to_string(f.z.size()) +
+                                              " heights for " + std::to_string(f.nx) + " x " +
+                                              std::to_string(f.ny) + " nodes");
   }
   const std::unordered_set<std::uint64_t> ids(bed.id.begin(), bed.id.end());
   for (const std::uint64_t id : s.pair_ids) {

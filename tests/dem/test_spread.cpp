@@ -420,3 +420,38 @@ TEST(TangentialHistory, SpringHoldsBelowTheCapAndSlidesAtIt) {
 }
 
 }  // namespace
+
+// The solid of earlier layers as the floor (SpreadSettings::floor, build): a sphere dropped over
+// a block raised 20 um comes to rest on it, at the block's height plus its radius less the Hertz
+// overlap of its weight (to 1 % of that overlap); on a slope of the height map its contact
+// pushes along the surface's normal, so a frictionless sphere slides downhill.
+TEST(SpreadFloor, SphereRestsOnTheRaisedSolidAndSlidesDownItsSlope) {
+  const dem::Scene s = granular_scene(0.5, 0.0, dem::FrictionModel::history);
+  bed::HeightMap floor;
+  floor.nx = floor.ny = 11;
+  floor.dx = floor.dy = 1e-4;
+  floor.z.assign(floor.nx * floor.ny, 20e-6);
+  bed::Bed b = one_sphere(s, 0.0);
+  b.z[0] += 40e-6;  // above the block, falling onto it
+  dem::SpreadSettings st = granular_run(30e-3, 0.0);
+  st.floor = floor;
+  dem::run_spread(b, s, st);
+  const double rest = 20e-6 + kRadius - resting_overlap(s, kRadius, sphere_mass(kRadius) * kG);
+  EXPECT_NEAR(b.z[0], rest, 0.01 * (kRadius + 20e-6 - rest));
+  EXPECT_LT(std::hypot(b.vx[0], b.vy[0], b.vz[0]), 1e-4);
+  // A ramp rising along +x (slope 0.2): without friction the sphere moves towards -x.
+  const dem::Scene slick = granular_scene(0.0, 0.0, dem::FrictionModel::sliding);
+  for (std::size_t j = 0; j < floor.ny; ++j)
+    for (std::size_t i = 0; i < floor.nx; ++i) floor.z[i + floor.nx * j] = 0.2 * floor.dx * static_cast<double>(i);
+  bed::Bed ramp = one_sphere(slick, 0.0);
+  ramp.z[0] = floor.at(ramp.x[0], ramp.y[0]) + 1.05 * kRadius * std::sqrt(1.04);
+  const double x0 = ramp.x[0];
+  dem::SpreadSettings sr = granular_run(2e-3, 0.0);
+  sr.floor = floor;
+  dem::run_spread(ramp, slick, sr);
+  EXPECT_LT(ramp.x[0], x0 - 1e-6);
+  // A floor outside the box is refused.
+  floor.z[0] = -1e-6;
+  sr.floor = floor;
+  EXPECT_THROW(dem::run_spread(ramp, slick, sr), InputError);
+}

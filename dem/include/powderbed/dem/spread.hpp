@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "powderbed/bed/bed.hpp"
+#include "powderbed/bed/height_map.hpp"
 #include "powderbed/dem/recoater.hpp"
 #include "powderbed/dem/scene.hpp"
 
@@ -45,6 +46,9 @@ struct SpreadState {
   std::vector<double> pair_history;      // 6 per contact
   // Wall contacts (plate, tool, x low, x high, y low, y high, top) per particle: 7 x 6 values.
   std::vector<double> wall_history;
+  // The solid the powder rests on (SpreadSettings::floor; empty: the flat plate). A continued
+  // run spreads on it when its settings give none.
+  bed::HeightMap floor;
 };
 
 struct LayerSummary {
@@ -80,6 +84,11 @@ struct SpreadSettings {
   // up over many layers. false keeps every particle.
   bool remove_overflow = true;
   double layer_thickness = 0;     // m, how far the plate goes down between layers
+  // The solid the powder is spread on (the fused top of earlier layers, build): a wall at
+  // z = floor.at(x, y) in the bed's frame, touched along its local normal; empty: the flat plate
+  // at the box's floor (or the restart's floor, when it has one). Heights at or above the box's
+  // floor.
+  bed::HeightMap floor;
   double young_scale = 1;
   double dt = 0;                  // s; 0: 0.2 x the Rayleigh step (time_step.hpp)
   bool unsafe_dt = false;
@@ -119,6 +128,18 @@ struct SpreadSummary {
 // non-finite.
 SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings& settings,
                          const SpreadState* restart = nullptr);
+
+// Removes the particles whose `keep` is 0 from the bed and from the state a restart needs (their
+// rotation, wall history and every contact they had), keeping the others' order; returns how
+// many went. What the overflow slot takes, and what fusion turns into solid (build).
+std::size_t remove_particles(bed::Bed& bed, SpreadState& state, const std::vector<char>& keep);
+
+// Lifts every particle the floor overlaps onto it (its centre r along the surface's normal from
+// the tangent plane under it, as the floor contact measures) and stops it; returns how many.
+// When fusion raises the solid under powder that stayed (a fused particle's volume spreads over
+// its footprint, under its neighbours too), the powder rides up on the growing solid instead of
+// starting the next layer deep inside a wall, which a softened contact would fire off at speed.
+std::size_t lift_onto_floor(bed::Bed& bed, const bed::HeightMap& floor);
 
 // The /restart group of a bed file: written into an existing HDF5 bed file, read back
 // (InputError naming the file when it is missing or inconsistent with the bed).
