@@ -33,7 +33,7 @@ struct RunWriter::Impl {
   SubstrateGeometry g;
   bool full;
   std::vector<std::pair<std::uint64_t, double>> steps;
-  bool fused = false;
+  bool fused = false, lof = false;
   Impl(const std::string& path, std::size_t count, const SubstrateGeometry& grid, bool full_fields)
       : out(path), n(count), g(grid), full(full_fields) {}
 };
@@ -111,6 +111,15 @@ void RunWriter::fusion(const Fusion& f) {
   s.out.attribute("/fusion", "mass_error", f.mass_error());
 }
 
+void RunWriter::lack_of_fusion(const LackOfFusion& lof) {
+  Impl& s = *impl_;
+  s.out.write("/fusion/lack_of_fusion", lof.map, {s.g.ny, s.g.nx}, "1");
+  s.out.attribute("/fusion", "lack_of_fusion_fraction", lof.fraction());
+  s.out.attribute("/fusion", "scanned_columns", static_cast<std::uint64_t>(lof.scanned));
+  s.out.attribute("/fusion", "unbonded_columns", static_cast<std::uint64_t>(lof.unbonded));
+  s.lof = true;
+}
+
 void RunWriter::finish(const Sinter& sinter, const SinterResult& result,
                        const std::vector<std::pair<std::string, double>>& summary) {
   Impl& s = *impl_;
@@ -146,7 +155,7 @@ void RunWriter::finish(const Sinter& sinter, const SinterResult& result,
 
   s.out.commit();
   bed::write_text_file(bed::xdmf_sidecar_path(s.out.path()),
-                       detail::run_xdmf(bed::file_name_of(s.out.path()), s.n, g, s.steps, s.fused));
+                       detail::run_xdmf(bed::file_name_of(s.out.path()), s.n, g, s.steps, s.fused, s.lof));
 }
 
 }  // namespace powderbed::thermal

@@ -78,7 +78,7 @@ void plane(Writer& w, const SubstrateGeometry& g, const Plane& p, const Steps& s
 
 // The fused solid's top: a curvilinear ny × nx surface through /fusion/surface (x, y, z per
 // column), at the run's last time.
-void solid_top(Writer& w, const SubstrateGeometry& g, double time) {
+void solid_top(Writer& w, const SubstrateGeometry& g, double time, bool lack_of_fusion) {
   const std::string dims = std::to_string(g.ny) + " " + std::to_string(g.nx);
   w.x << "  <Grid Name=\"solid_top\" GridType=\"Uniform\">\n"
       << "   <Time Value=\"" << time << "\"/>\n"
@@ -87,13 +87,14 @@ void solid_top(Writer& w, const SubstrateGeometry& g, double time) {
   w.item(dims + " 3", "/fusion/surface");
   w.x << "   </Geometry>\n";
   w.attribute("height", dims, "/fusion/height");
+  if (lack_of_fusion) w.attribute("lack_of_fusion", dims, "/fusion/lack_of_fusion", true);
   w.x << "  </Grid>\n";
 }
 
 }  // namespace
 
 std::string run_xdmf(const std::string& h5, std::size_t count, const SubstrateGeometry& g,
-                     const Steps& steps, bool fused) {
+                     const Steps& steps, bool fused, bool lack_of_fusion) {
   Writer w;
   w.h5 = h5;
   w.x.precision(17);
@@ -101,7 +102,7 @@ std::string run_xdmf(const std::string& h5, std::size_t count, const SubstrateGe
   particles(w, count, steps);
   plane(w, g, {"top", 1, g.ny, g.z_top, g.y0}, steps);
   plane(w, g, {"section_y", g.nz, 1, g.z(0), g.y(g.ny / 2)}, steps);
-  if (fused && !steps.empty()) solid_top(w, g, steps.back().second);
+  if (fused && !steps.empty()) solid_top(w, g, steps.back().second, lack_of_fusion);
   w.x << " </Domain>\n</Xdmf>\n";
   return w.x.str();
 }

@@ -3,7 +3,8 @@
 // temporal collections, "particles" (Polyvertex), "top" (the substrate's top face) and
 // "section_y" (the substrate on y = Ly/2), so ParaView lists them as three blocks that can be
 // shown, hidden and filtered one by one; with fusion a fourth, "solid_top" (the solid's raised
-// top surface after the scan, its height above the plate as "height").
+// top surface after the scan, its height above the plate as "height", and with a build's
+// lack-of-fusion map that map as "lack_of_fusion").
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -15,6 +16,7 @@ namespace powderbed::thermal::detail {
 
 // `h5`: the run file's name beside the .xmf; `steps`: (step, time) in time order.
 std::string run_xdmf(const std::string& h5, std::size_t particles, const SubstrateGeometry& g,
-                     const std::vector<std::pair<std::uint64_t, double>>& steps, bool fused);
+                     const std::vector<std::pair<std::uint64_t, double>>& steps, bool fused,
+                     bool lack_of_fusion);
 
 }  // namespace powderbed::thermal::detail

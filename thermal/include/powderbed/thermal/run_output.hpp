@@ -22,6 +22,9 @@
 //                          threshold (K), fused, vaporised, powder_mass_before/after,
 //                          solid_mass_before/after (above the plate's top face), vaporised_mass
 //                          (kg), mass_error
+//   /fusion/lack_of_fusion ny×nx (build: per top-face column 0 not scanned, 1 bonded to the
+//                          solid below, 2 lack of fusion; lack_of_fusion.hpp); attrs
+//                          lack_of_fusion_fraction, scanned_columns, unbonded_columns
 //   /summary               attrs: the numbers `sinter --json` prints
 //   /xdmf/polyvertex       0..N-1, the particles' Polyvertex cells for ParaView
 // Every dataset has its SI unit as the attribute `units` (K, m; "1" without unit).
@@ -32,6 +35,7 @@
 
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/thermal/fusion.hpp"
+#include "powderbed/thermal/lack_of_fusion.hpp"
 #include "powderbed/thermal/solver.hpp"
 
 namespace powderbed::thermal {
@@ -47,6 +51,8 @@ class RunWriter {
   void snapshot(const Sinter& sinter);
   // Writes /fusion (before finish).
   void fusion(const Fusion& fused);
+  // Writes /fusion/lack_of_fusion (after fusion, before finish).
+  void lack_of_fusion(const LackOfFusion& lof);
   // Writes /melt and /summary (name -> value), commits the file and its .xmf sidecar.
   void finish(const Sinter& sinter, const SinterResult& result,
               const std::vector<std::pair<std::string, double>>& summary);

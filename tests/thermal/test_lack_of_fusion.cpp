@@ -1,0 +1,116 @@
+// Lack of fusion (build, lack_of_fusion.hpp): a track over a bare plate bonds a stripe of the
+// solid as wide as its melt; hatched tracks more than twice the melt width apart leave unbonded
+// solid between them, tracks closer than half of it leave none.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/thermal/fusion.hpp"
+#include "powderbed/thermal/lack_of_fusion.hpp"
+#include "powderbed/thermal/scan_path.hpp"
+#include "powderbed/thermal/solver.hpp"
+#include "sinter_beds.hpp"
+
+using namespace powderbed;
+
+namespace {
+
+constexpr double kDx = 4e-6;     // grid spacing, m
+constexpr double kPower = 50;    // W at 1.5 m/s under a 20 um spot: a melt of ~40 um on 316L
+constexpr double kSpeed = 1.5;
+
+// [GZ]'s model (Beer–Lambert: deterministic and fast) on a grid of spacing kDx, 40 um deep.
+thermal::SinterScene scene_for(const bed::Bed& b) {
+  const auto nodes = [&](double l) { return static_cast<std::size_t>(std::llround(l / kDx)) + 1; };
+  auto scene = test::small_scene(thermal::kAllSinterEffects,
+                                 {nodes(b.domain.length(0)), nodes(b.domain.length(1)), 11}, 40e-6);
+  scene.power = kPower;
+  scene.speed = kSpeed;
+  scene.spot_radius = 20e-6;
+  return scene;
+}
+
+struct Scan {
+  thermal::SinterResult result;
+  thermal::LackOfFusion lof;
+  thermal::SubstrateGeometry grid;
+};
+
+Scan scan(const bed::Bed& b, const thermal::SinterScene& scene, double half_width) {
+  thermal::Sinter sinter(b, scene, test::table_316l());
+  Scan s{sinter.run(nullptr, 0, nullptr), {}, sinter.grid()};
+  s.lof = thermal::lack_of_fusion(sinter, scene.scan_path, half_width,
+                                  sinter.material().phase_change().melting_point);
+  return s;
+}
+
+}  // namespace
+
+// On a bare plate the melt is the solid's own: the bonded columns across the track's midpoint
+// span its melt width to within one column (each owns dy, so the extent is known to +-dy).
+TEST(LackOfFusion, TrackOverABarePlateBondsAStripeAsWideAsItsMelt) {
+  const bed::Bed b = test::empty_bed(240e-6, 160e-6, 40e-6);
+  auto scene = scene_for(b);
+  const double y = 0.5 * b.domain.length(1);
+  scene.scan_path = {{20e-6, y, 220e-6, y, kPower, kSpeed}};
+  const Scan s = scan(b, scene, 60e-6);
+  const double melt = s.result.tracks.at(0).pool.width;
+  ASSERT_GT(melt, 0);
+  const double stripe = thermal::bonded_width(s.lof, s.grid, 120e-6);
+  EXPECT_NEAR(stripe, melt, s.grid.dy) << "stripe " << stripe << " m, melt " << melt << " m";
+  // Scanned (within 60 um of the track) but outside the melt: unbonded.
+  EXPECT_GT(s.lof.unbonded, 0u);
+  std::printf("  stripe %.1f um, melt %.1f um (dy %.1f um); lack of fusion %.3f\n", stripe * 1e6,
+              melt * 1e6, s.grid.dy * 1e6, s.lof.fraction());
+}
+
+// Two tracks h apart, each answering for a strip h wide: h above twice the melt width leaves the
+// solid between them unbonded; h under half of it bonds the whole strip away from the tracks'
+// ends (where the beam starts and stops, within one spot radius).
+TEST(LackOfFusion, HatchSpacingDecidesLackOfFusionBetweenTracks) {
+  const bed::Bed b = test::empty_bed(240e-6, 240e-6, 40e-6);
+  const auto unbonded_between = [&](double spacing, double& width, double& fraction) {
+    auto scene = scene_for(b);
+    thermal::Hatch h;
+    h.spacing = spacing;
+    h.tracks = 2;
+    h.direction = thermal::HatchDirection::one_way;
+    h.region = {20e-6, 220e-6, 20e-6, 220e-6};
+    h.power = kPower;
+    h.speed = kSpeed;
+    scene.scan_path = thermal::hatch_segments(h);
+    const Scan s = scan(b, scene, 0.5 * spacing);
+    width = std::max(s.result.tracks.at(0).pool.width, s.result.tracks.at(1).pool.width);
+    fraction = s.lof.fraction();
+    std::size_t left = 0;
+    for (std::size_t j = 0; j < s.grid.ny; ++j)
+      for (std::size_t i = 0; i < s.grid.nx; ++i) {
+        const double x = s.grid.x(i);
+        if (x < 60e-6 || x > 180e-6) continue;
+        left += s.lof.map[i + s.grid.nx * j] == thermal::kUnbonded ? 1 : 0;
+      }
+    return left;
+  };
+  double far_width = 0, near_width = 0, far_fraction = 0, near_fraction = 0;
+  const std::size_t far = unbonded_between(110e-6, far_width, far_fraction);
+  const std::size_t near = unbonded_between(16e-6, near_width, near_fraction);
+  ASSERT_GT(far_width, 0);
+  EXPECT_GT(110e-6, 2 * far_width);
+  EXPECT_LT(16e-6, 0.5 * near_width);
+  EXPECT_GT(far, 0u);
+  EXPECT_GT(far_fraction, 0.2);
+  EXPECT_EQ(near, 0u);
+  std::printf("  h 110 um, melt %.1f um: %zu unbonded columns (fraction %.3f); h 16 um, melt %.1f "
+              "um: %zu (fraction %.3f)\n", far_width * 1e6, far, far_fraction, near_width * 1e6,
+              near, near_fraction);
+}
+
+// A half width that is not a positive length is refused, naming what it is.
+TEST(LackOfFusion, BadHalfWidthRefused) {
+  const bed::Bed b = test::empty_bed(120e-6, 120e-6, 40e-6);
+  auto scene = scene_for(b);
+  thermal::Sinter sinter(b, scene, test::table_316l());
+  EXPECT_THROW(thermal::lack_of_fusion(sinter, {}, 0.0, 1700), InputError);
+}

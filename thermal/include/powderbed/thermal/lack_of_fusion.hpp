@@ -1,0 +1,42 @@
+#pragma once
+// Lack of fusion after a scan (docs/build.md "Lack of fusion"): where the melt of this layer did
+// not reach the solid below it (the plate on the first layer, the fused top of the layers
+// before on the next ones), so that powder, or nothing, is left between them. Judged per
+// top-face column of the substrate grid, whose top node is the solid's top there (the solver
+// lumps the raised solid into it): the column is bonded when that node's peak temperature over
+// the scan reached the fusion threshold (T_m at the default melt fraction 1/2, the isotherm the
+// melt pool is measured on), and it lacks fusion when it did not. Only the scanned area counts:
+// the columns within `half_width` of a segment of the path (perpendicular to it, between its
+// ends): half the hatch spacing for a hatch, each track answering for its own strip of the
+// layer; the beam radius for a path without a spacing (a CSV path, one track).
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "powderbed/thermal/scan_path.hpp"
+#include "powderbed/thermal/solver.hpp"
+
+namespace powderbed::thermal {
+
+enum LackOfFusionCell : std::uint8_t { kNotScanned = 0, kBonded = 1, kUnbonded = 2 };
+
+struct LackOfFusion {
+  std::vector<std::uint8_t> map;  // per top-face column i + nx j: a LackOfFusionCell
+  std::size_t scanned = 0, unbonded = 0;
+  double threshold = 0;           // K
+  double half_width = 0;          // m
+  // Area fraction of the scanned columns that lack fusion (0 when nothing was scanned).
+  double fraction() const {
+    return scanned > 0 ? static_cast<double>(unbonded) / static_cast<double>(scanned) : 0.0;
+  }
+};
+
+// From the peak top-face temperatures of the run `sinter` has made along `path`.
+LackOfFusion lack_of_fusion(const Sinter& sinter, const std::vector<ScanSegment>& path,
+                            double half_width, double threshold);
+
+// The width of the bonded stripe across x = x_plane (the top-face column row nearest to it): the
+// bonded columns' count times dy: what a single track fuses of the solid under it.
+double bonded_width(const LackOfFusion& lof, const SubstrateGeometry& g, double x_plane);
+
+}  // namespace powderbed::thermal

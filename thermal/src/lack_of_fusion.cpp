@@ -1,0 +1,54 @@
+#include "powderbed/thermal/lack_of_fusion.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "powderbed/bed/errors.hpp"
+
+namespace powderbed::thermal {
+
+namespace {
+
+// Whether (x, y) lies within `half_width` of the segment, measured across it, between its ends.
+bool within_strip(const ScanSegment& s, double half_width, double x, double y) {
+  const double ex = s.x1 - s.x0, ey = s.y1 - s.y0, length = std::hypot(ex, ey);
+  const double along = ((x - s.x0) * ex + (y - s.y0) * ey) / length;
+  const double across = std::abs((y - s.y0) * ex - (x - s.x0) * ey) / length;
+  return along >= 0 && along <= length && across <= half_width;
+}
+
+}  // namespace
+
+LackOfFusion lack_of_fusion(const Sinter& sinter, const std::vector<ScanSegment>& path,
+                            double half_width, double threshold) {
+  require_in_range(half_width > 0 && std::isfinite(half_width), "lack-of-fusion half width",
+                   half_width, "a half width > 0 m");
+  const SubstrateGeometry& g = sinter.grid();
+  const auto& peak = sinter.substrate_peak_planes();
+  LackOfFusion out;
+  out.threshold = threshold;
+  out.half_width = half_width;
+  out.map.assign(g.nx * g.ny, kNotScanned);
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i) {
+      const bool scanned = std::any_of(path.begin(), path.end(), [&](const ScanSegment& s) {
+        return s.length() > 0 && within_strip(s, half_width, g.x(i), g.y(j));
+      });
+      if (!scanned) continue;
+      const bool bonded = peak[g.index(i, j, g.nz - 1)] >= threshold;
+      out.map[i + g.nx * j] = bonded ? kBonded : kUnbonded;
+      ++out.scanned;
+      out.unbonded += bonded ? 0 : 1;
+    }
+  return out;
+}
+
+double bonded_width(const LackOfFusion& lof, const SubstrateGeometry& g, double x_plane) {
+  const auto i = static_cast<std::size_t>(
+      std::clamp(std::lround((x_plane - g.x0) / g.dx), 0L, static_cast<long>(g.nx - 1)));
+  std::size_t bonded = 0;
+  for (std::size_t j = 0; j < g.ny; ++j) bonded += lof.map[i + g.nx * j] == kBonded ? 1 : 0;
+  return static_cast<double>(bonded) * g.dy;
+}
+
+}  // namespace powderbed::thermal
