@@ -17,6 +17,7 @@
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
+#include "deposit_options.hpp"
 #include "deposit_spread.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
@@ -42,104 +43,6 @@ const char* const kUsage =
     "[--lid.hold T] [--lid.relax T] [--lid.release false]] [--crop-top true] [--core-margin M] [--json]\n"
     "deposit --config SPREAD.ini (recoater.tool = blade|roller, docs/deposit-spread.md) --seed S --out BED.h5 "
     "[--in SPREAD-BED.h5] [--layers N] [--tool-forces F.csv [--tool-forces-every K]] [--json]";
-
-void add_options(po::options_description& desc) {
-  app::add_common_options(desc);
-  app::add_threads_option(desc);
-  app::add_progress_option(desc);
-  app::add_material_options(desc, "deposit");
-  const dem::Scene d;
-  const dem::LidSettings l;
-  desc.add_options()
-      ("in", po::value<std::string>(), "start from this bed (HDF5, CSV needs --domain)")
-      ("psd", po::value<std::string>(), "particle size distribution (see bed/psd.hpp syntax), m")
-      ("count", po::value<std::size_t>(), "number of particles to insert from --psd")
-      ("domain", po::value<std::string>(), "box LX,LY,LZ (m), floor at z = 0")
-      ("periodic", po::value<std::string>()->default_value("none"),
-       "periodic axes: none, x, y or x,y (a spread, recoater.tool: y unless given)")
-      ("insert-z", po::value<std::string>(), "insertion region Z0,Z1 (m); default: the whole box")
-      ("insert.enabled", po::value<bool>()->default_value(false),
-       "insertion from the top (Kumar Yadav & Eshraghi 2016): the --count particles of --psd "
-       "enter one by one at random positions in the top layer of the box (one diameter), "
-       "moving down, until the box is full; the rest of them are dropped")
-      ("insert.rate", po::value<double>()->default_value(0), "insertion: particles per second")
-      ("insert.speed", po::value<double>()->default_value(0),
-       "insertion: initial downward speed (m/s)")
-      ("insert.tries", po::value<std::size_t>()->default_value(100),
-       "insertion: random draws for a free spot per particle and insertion time")
-      ("insert.patience", po::value<double>()->default_value(0),
-       "insertion: the box is full once no particle has found a free spot for this long (s; 0: "
-       "twice the time to fall one diameter)")
-      ("t-end", po::value<double>(), "simulated time (s); with --until-rest the cap (default 1 s)")
-      ("until-rest", po::bool_switch(), "stop when the bed is at rest (rest.speed, rest.window)")
-      ("rest.speed", po::value<double>()->default_value(1e-4),
-       "rest: largest speed below this (m/s)")
-      ("rest.window", po::value<double>()->default_value(1e-3),
-       "rest: for this long (s of simulated time)")
-      ("dt", po::value<double>(), "time step (s); default 0.2 x the Rayleigh step of the smallest "
-                                  "particle (linear law: 0.2 x 1/omega_0 = sqrt(m*/k_n) of its "
-                                  "pair), or the drag relaxation time when shorter")
-      ("unsafe-dt", po::bool_switch(), "accept a --dt above the stable bound (with a warning)")
-      ("integrator", po::value<std::string>()->default_value("verlet"), "verlet or rk4")
-      ("young-scale", po::value<double>()->default_value(1.0),
-       "stiffness softening S of the Hertz law: E used = E / S (particles and walls)")
-      ("contact.law", po::value<std::string>()->default_value("hertz"),
-       "normal contact law of pairs and walls: hertz (from E, nu; softened by young-scale) or "
-       "linear (spring-dashpot F = k_n delta + c delta', contact.stiffness; the law of "
-       "Kumar Yadav & Eshraghi 2016's MFiX beds)")
-      ("contact.stiffness", po::value<double>(), "k_n of the linear law (N/m)")
-      ("seed", po::value<std::uint64_t>(), "random seed (insertion positions and sizes)")
-      ("out", po::value<std::string>(), "output bed (HDF5 + XDMF sidecar)")
-      ("allow-lost", po::value<std::size_t>()->default_value(0),
-       "particles that may leave the box during the run (more: exit 3, nothing written)")
-      ("trust-units", po::bool_switch(),
-       "skip the guard against unit slips (a Young's modulus below 1 MPa: GPa typed as Pa?)")
-      ("trajectory", po::value<std::string>(), "HDF5 time series of snapshots (+ .xmf)")
-      ("export-deck", po::value<std::string>(),
-       "also write the settled bed as a LAMMPS data file and a lammps or liggghts input deck with "
-       "this run's laws beside --out: BED.data, in.BED.<engine> (docs/decks.md)")
-      ("every", po::value<std::uint64_t>()->default_value(0), "steps between snapshots")
-      ("material.young", po::value<double>()->default_value(d.material.young), "E (Pa)")
-      ("material.poisson", po::value<double>()->default_value(d.material.poisson), "nu")
-      ("material.density", po::value<double>()->default_value(d.material.density), "rho (kg/m^3)")
-      ("material.damping", po::value<double>()->default_value(d.material.damping),
-       "damping ratio zeta in [0, 1]")
-      ("material.friction", po::value<double>()->default_value(d.material.friction),
-       "sliding friction mu_d")
-      ("fluid.viscosity", po::value<double>()->default_value(d.fluid_viscosity), "mu_f (Pa s)")
-      ("wall.young", po::value<double>()->default_value(d.wall.young), "wall E (Pa)")
-      ("wall.poisson", po::value<double>()->default_value(d.wall.poisson), "wall nu")
-      ("gravity", po::value<double>()->default_value(d.gravity), "g (m/s^2)")
-      ("lid", po::bool_switch(), "consolidate the settled bed with the lid (as lid.enabled)")
-      ("lid.enabled", po::value<bool>()->default_value(false),
-       "lid: after the settle, lower the box's top wall onto the bed, hold it, release it")
-      ("lid.speed", po::value<double>()->default_value(l.speed), "lid: lowering speed (m/s)")
-      ("lid.pressure", po::value<double>()->default_value(l.pressure),
-       "lid: stop lowering when the bed pushes on it with this pressure (Pa; 0: no target)")
-      ("lid.travel", po::value<double>()->default_value(l.travel),
-       "lid: stop lowering after this travel from the highest particle top (m; 0: no limit)")
-      ("lid.depth", po::value<double>()->default_value(l.depth),
-       "lid: instead of a travel, lower it to this depth below the bed's surface (the 90th "
-       "percentile of the particle tops), overlapping the top layer by it (m; 0: none)")
-      ("lid.hold", po::value<double>()->default_value(l.hold), "lid: time held in place (s)")
-      ("lid.release", po::value<bool>()->default_value(l.release),
-       "lid: true releases it after the hold; false keeps it as the bed's top face (the bed's "
-       "domain ends at the lid, for keff's hot wall)")
-      ("lid.relax", po::value<double>()->default_value(l.relax),
-       "lid: cap on the relaxation after the release (s; it ends earlier at rest)")
-      ("crop-top", po::value<bool>()->default_value(false),
-       "write the bed with the box's top at the highest particle top (z + r), so that a top "
-       "wall touches the bed (keff's wall)")
-      ("core-margin", po::value<double>(),
-       "core density: margin from the floor, side walls and surface (m); default 2 mean "
-       "diameters");
-  app::add_spread_options(desc);
-  for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
-    const std::string name = std::string("effects.") + dem::effect_name(bit);
-    desc.add_options()(name.c_str(), po::value<bool>()->default_value(true),
-                       "effect on/off (true/false)");
-  }
-}
 
 // The pool of the insertion (dem::InsertionSettings): --count radii drawn from --psd, parked at
 // the box's centre until the solver inserts them in order.
@@ -196,46 +99,6 @@ bed::Bed insert_from_psd(const po::variables_map& vm, const bed::Domain& domain,
 
 }  // namespace
 
-namespace powderbed::app {
-
-// The scene of a drop or a spread from the options (material, wall, fluid, contact law, friction
-// model, effects).
-dem::Scene deposit_scene(const po::variables_map& vm) {
-  dem::Scene scene;
-  scene.material.young = vm["material.young"].as<double>();
-  if (!vm["trust-units"].as<bool>() && scene.material.young < 1e6) {
-    std::ostringstream msg;
-    msg << "material.young: " << scene.material.young << " Pa is below the 1 MPa of the softest "
-        << "powders: a unit slip? (accepted: E in Pa, e.g. 193e9 for 193 GPa; --trust-units if "
-           "it is meant)";
-    throw InputError(msg.str());
-  }
-  scene.material.poisson = vm["material.poisson"].as<double>();
-  scene.material.density = vm["material.density"].as<double>();
-  scene.material.damping = vm["material.damping"].as<double>();
-  scene.material.friction = vm["material.friction"].as<double>();
-  scene.material.rolling = vm["material.rolling"].as<double>();
-  scene.friction_model = dem::parse_friction_model(vm["friction.model"].as<std::string>());
-  scene.fluid_viscosity = vm["fluid.viscosity"].as<double>();
-  scene.wall.young = vm["wall.young"].as<double>();
-  scene.wall.poisson = vm["wall.poisson"].as<double>();
-  scene.gravity = vm["gravity"].as<double>();
-  scene.law = dem::parse_contact_law(vm["contact.law"].as<std::string>());
-  if (vm.count("contact.stiffness")) {
-    if (scene.law != dem::ContactLaw::linear)
-      throw InputError("contact.stiffness: given with contact.law = hertz (accepted: with "
-                       "contact.law = linear)");
-    scene.stiffness = vm["contact.stiffness"].as<double>();
-  } else if (scene.law == dem::ContactLaw::linear) {
-    throw InputError("contact.stiffness: missing with contact.law = linear (accepted: k_n > 0 N/m)");
-  }
-  scene.effects = 0;
-  for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
-    if (vm[std::string("effects.") + dem::effect_name(bit)].as<bool>()) scene.effects |= bit;
-  }
-  return scene;
-}
-}  // namespace powderbed::app
 
 namespace {
 
@@ -257,7 +120,7 @@ std::string core_text(const dem::CoreDensity& core, double margin) {
 
 int run(int argc, char** argv) {
   po::options_description desc("deposit options (SI units)");
-  add_options(desc);
+  app::add_deposit_options(desc);
   po::variables_map vm;
   if (!app::parse_options("deposit", kUsage, desc, {}, argc, argv, vm)) return 0;
   if (app::spread_requested(vm)) return app::run_spread(vm, argc, argv);  // deposit_spread.cpp

@@ -16,6 +16,7 @@
 
 #include "common/app_main.hpp"
 #include "common/progress.hpp"
+#include "deposit_options.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/h5_output.hpp"
 #include "powderbed/bed/io.hpp"
@@ -120,6 +121,61 @@ void write_json_layer(bed::JsonWriter& j, const dem::LayerSummary& l) {
 }
 
 }  // namespace
+
+bed::Domain spread_box(const po::variables_map& vm, std::optional<bed::Domain> given) {
+  // Periodic across (y) unless the scene says otherwise: a strip of a wider bed.
+  const std::string periodic = vm["periodic"].defaulted() ? "y" : vm["periodic"].as<std::string>();
+  if (periodic != "none" && periodic != "x" && periodic != "y" && periodic != "x,y" && periodic != "xy") {
+    throw InputError("--periodic: '" + periodic + "' (accepted: none, x, y, x,y)");
+  }
+  bed::Domain d;
+  if (given) {
+    d = *given;
+  } else {
+    d = parse_domain_lengths(required<std::string>(vm, "domain"), "--domain");
+    if (d.dimension != 3) throw InputError("--domain: 2D box (accepted: LX,LY,LZ)");
+    d.periodic[0] = periodic == "x" || periodic == "x,y" || periodic == "xy";
+    d.periodic[1] = periodic == "y" || periodic == "x,y" || periodic == "xy";
+  }
+  if (d.periodic[0]) {
+    throw InputError("--periodic: x with recoater.tool (accepted: none or y; the tool travels "
+                     "along x between the box's end walls)");
+  }
+  return d;
+}
+
+dem::SpreadSettings spread_settings(const po::variables_map& vm, std::uint64_t seed) {
+  dem::SpreadSettings s;
+  s.tool = tool_from(vm);
+  s.supply_x0 = vm["supply.x0"].as<double>();
+  s.supply_x1 = vm["supply.x1"].as<double>();
+  s.supply_height = vm["supply.height"].as<double>();
+  s.supply = supply_maker(vm, seed);
+  s.layers = vm["layers"].as<std::uint64_t>();
+  s.remove_overflow = vm["recoater.overflow"].as<bool>();
+  s.layer_thickness = vm["recoater.layer-thickness"].as<double>();
+  s.young_scale = vm["young-scale"].as<double>();
+  if (vm.count("dt")) s.dt = vm["dt"].as<double>();
+  s.unsafe_dt = vm["unsafe-dt"].as<bool>();
+  return s;
+}
+
+void set_spread_provenance(bed::Bed& b, const po::variables_map& vm, const dem::Scene& scene,
+                           const char* program, int argc, char** argv) {
+  b.provenance.created_by = version_string(program);
+  b.provenance.command_line = command_line(argc, argv);
+  b.provenance.rng_seed = vm["seed"].as<std::uint64_t>();
+  b.provenance.stage = "deposit";
+  b.provenance.scene = scene_text(vm);
+  bed::ContactProvenance& made = b.provenance.contact;
+  made.law = dem::contact_law_name(scene.law);
+  made.young = scene.material.young;
+  made.poisson = scene.material.poisson;
+  made.wall_young = scene.wall.young;
+  made.wall_poisson = scene.wall.poisson;
+  made.young_scale = vm["young-scale"].as<double>();
+  made.stiffness = scene.stiffness;
+}
 
 void add_spread_options(po::options_description& desc) {
   const dem::Recoater t;
@@ -268,37 +324,12 @@ int run_spread(const po::variables_map& vm, int argc, char** argv) {
     }
     bed = bed::read_bed_h5(in);
     if (dem::has_spread_state(in)) restart = dem::read_spread_state(in, bed);
+    bed.domain = spread_box(vm, bed.domain);
   } else {
-    bed.domain = parse_domain_lengths(required<std::string>(vm, "domain"), "--domain");
-    if (bed.domain.dimension != 3) throw InputError("--domain: 2D box (accepted: LX,LY,LZ)");
-  }
-  // Periodic across (y) unless the scene says otherwise: a strip of a wider bed.
-  const std::string periodic = vm["periodic"].defaulted() ? "y" : vm["periodic"].as<std::string>();
-  if (periodic != "none" && periodic != "x" && periodic != "y" && periodic != "x,y" && periodic != "xy") {
-    throw InputError("--periodic: '" + periodic + "' (accepted: none, x, y, x,y)");
-  }
-  if (!vm.count("in")) {
-    bed.domain.periodic[0] = periodic == "x" || periodic == "x,y" || periodic == "xy";
-    bed.domain.periodic[1] = periodic == "y" || periodic == "x,y" || periodic == "xy";
-  }
-  if (bed.domain.periodic[0]) {
-    throw InputError("--periodic: x with recoater.tool (accepted: none or y; the tool travels "
-                     "along x between the box's end walls)");
+    bed.domain = spread_box(vm);
   }
   const dem::Scene scene = deposit_scene(vm);
-
-  dem::SpreadSettings s;
-  s.tool = tool_from(vm);
-  s.supply_x0 = vm["supply.x0"].as<double>();
-  s.supply_x1 = vm["supply.x1"].as<double>();
-  s.supply_height = vm["supply.height"].as<double>();
-  s.supply = supply_maker(vm, seed);
-  s.layers = layers;
-  s.remove_overflow = vm["recoater.overflow"].as<bool>();
-  s.layer_thickness = vm["recoater.layer-thickness"].as<double>();
-  s.young_scale = vm["young-scale"].as<double>();
-  if (vm.count("dt")) s.dt = vm["dt"].as<double>();
-  s.unsafe_dt = vm["unsafe-dt"].as<bool>();
+  dem::SpreadSettings s = spread_settings(vm, seed);
   std::ostringstream forces;
   forces << std::setprecision(17) << "layer,time,x,fx,fy,fz\n";
   if (forces_path) {
@@ -322,19 +353,7 @@ int run_spread(const po::variables_map& vm, int argc, char** argv) {
 
   const auto write = [&](const bed::Bed& b, const std::string& path, const dem::SpreadState& st) {
     bed::Bed copy = b;
-    copy.provenance.created_by = version_string("deposit");
-    copy.provenance.command_line = command_line(argc, argv);
-    copy.provenance.rng_seed = seed;
-    copy.provenance.stage = "deposit";
-    copy.provenance.scene = scene_text(vm);
-    bed::ContactProvenance& made = copy.provenance.contact;
-    made.law = dem::contact_law_name(scene.law);
-    made.young = scene.material.young;
-    made.poisson = scene.material.poisson;
-    made.wall_young = scene.wall.young;
-    made.wall_poisson = scene.wall.poisson;
-    made.young_scale = s.young_scale;
-    made.stiffness = scene.stiffness;
+    set_spread_provenance(copy, vm, scene, "deposit", argc, argv);
     bed::write_bed_h5(copy, path);
     dem::write_spread_state(path, st, copy);
   };

@@ -6,6 +6,9 @@
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/dem/scene.hpp"
 #include "powderbed/dem/solver.hpp"
+#include "powderbed/dem/spread.hpp"
+
+#include <optional>
 
 namespace powderbed::app {
 
@@ -15,6 +18,17 @@ namespace powderbed::app {
 void add_spread_options(po::options_description& desc);
 // Whether the options name a recoater tool.
 bool spread_requested(const po::variables_map& vm);
+// The spread's box: --domain with --periodic (y unless given) for a new bed, or `given` (an --in
+// bed's); throws InputError for a bad --periodic or a box periodic along x (the tool's travel).
+bed::Domain spread_box(const po::variables_map& vm,
+                       std::optional<bed::Domain> given = std::nullopt);
+// The spread's settings from the options: the tool, the supply (seeded per layer from `seed`),
+// --layers, the overflow, the layer thickness, the softening and the time step.
+dem::SpreadSettings spread_settings(const po::variables_map& vm, std::uint64_t seed);
+// The provenance a spread bed carries: `program` and its command line, --seed, the resolved
+// scene and the contact law as made (softening included).
+void set_spread_provenance(bed::Bed& b, const po::variables_map& vm, const dem::Scene& scene,
+                           const char* program, int argc, char** argv);
 // Runs the spread and writes its beds; returns the exit status.
 int run_spread(const po::variables_map& vm, int argc, char** argv);
 
@@ -26,8 +40,5 @@ bool rotating(const dem::Scene& scene);
 // has: --until-rest, the lid, insertion, RK4, a trajectory.
 dem::RunSummary run_rotating_drop(bed::Bed& bed, const dem::Scene& scene,
                                   const dem::RunSettings& settings);
-
-// The scene of a drop or a spread from the options (defined in deposit.cpp).
-dem::Scene deposit_scene(const po::variables_map& vm);
 
 }  // namespace powderbed::app

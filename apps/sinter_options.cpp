@@ -1,0 +1,315 @@
+// sinter's options and the scene they make (docs/sinter.md): shared by sinter and build, which
+// reads a sinter scene file for each layer's scan.
+#include "sinter_options.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "common/material_options.hpp"
+#include "common/progress.hpp"
+#include "common/threads.hpp"
+#include "powderbed/bed/errors.hpp"
+
+namespace powderbed::app {
+
+namespace {
+
+namespace th = thermal;
+
+// The scan path options (docs/sinter.md "Scan paths"): a CSV of segments or a hatch; neither
+// keeps the single track of laser.*.
+void add_scan_options(po::options_description& desc) {
+  const th::Hatch h;
+  const th::SinterScene d;
+  desc.add_options()
+      ("scan-path", po::value<std::string>(),
+       "CSV of segments, header x0,y0,x1,y1,power,speed (SI); replaces the single track")
+      ("scan.hatch", po::value<double>(), "hatch spacing h between tracks (m); replaces the single track")
+      ("scan.tracks", po::value<std::size_t>()->default_value(0),
+       "number of hatch tracks (0: as many as the region holds)")
+      ("scan.direction", po::value<std::string>()->default_value("alternating"),
+       "one-way (every track the same way) or alternating (serpentine)")
+      ("scan.rotation", po::value<double>()->default_value(h.rotation),
+       "hatch rotation per layer about the region's centre (degrees)")
+      ("scan.layer", po::value<std::size_t>()->default_value(0),
+       "layer k: the tracks run at k x rotation from +x")
+      ("scan.region", po::value<std::string>(),
+       "X0,X1,Y0,Y1: the rectangle the hatch covers (m); default the bed's x-y extent")
+      ("scan.jump-speed", po::value<double>()->default_value(d.jump_speed),
+       "speed of the jumps between segments, laser off (m/s)");
+}
+
+// The scene's scan path from --scan-path or scan.hatch (empty: the single track); the hatch's
+// tracks run at --power and --speed.
+std::vector<th::ScanSegment> scan_path_of(const po::variables_map& vm, const th::SinterScene& s,
+                                          const bed::Bed& bed, std::optional<std::size_t> layer) {
+  const bool csv = vm.count("scan-path") > 0, hatch = vm.count("scan.hatch") > 0;
+  if (csv && hatch)
+    throw InputError("--scan-path, --scan.hatch: both given (accepted: one of them)");
+  if (!hatch) {  // a hatch option without the hatch is a mistake, not a default
+    for (const char* name : {"scan.tracks", "scan.direction", "scan.rotation", "scan.layer", "scan.region"})
+      if (vm.count(name) && !vm[name].defaulted())
+        throw InputError(std::string("--") + name + ": given without --scan.hatch (accepted: "
+                         "--scan.hatch H with it)");
+  }
+  if (csv) return th::read_scan_csv(vm["scan-path"].as<std::string>());
+  if (!hatch) return {};
+  th::Hatch h;
+  h.spacing = vm["scan.hatch"].as<double>();
+  h.tracks = vm["scan.tracks"].as<std::size_t>();
+  const std::string direction = vm["scan.direction"].as<std::string>();
+  if (direction != "one-way" && direction != "alternating")
+    throw InputError("--scan.direction: '" + direction + "' (accepted: one-way, alternating)");
+  h.direction = direction == "one-way" ? th::HatchDirection::one_way : th::HatchDirection::alternating;
+  h.rotation = vm["scan.rotation"].as<double>();
+  if (!std::isfinite(h.rotation))
+    throw InputError("--scan.rotation: not a finite number (accepted: degrees, e.g. 67)");
+  h.layer = layer ? *layer : vm["scan.layer"].as<std::size_t>();
+  h.region = {bed.domain.lower[0], bed.domain.upper[0], bed.domain.lower[1], bed.domain.upper[1]};
+  if (vm.count("scan.region")) {
+    const auto r = parse_number_list(vm["scan.region"].as<std::string>(), 4, 4, "--scan.region");
+    h.region = {r[0], r[1], r[2], r[3]};
+  }
+  h.power = s.power;
+  h.speed = s.speed;
+  return th::hatch_segments(h);
+}
+
+}  // namespace
+
+void add_sinter_options(po::options_description& desc) {
+  add_common_options(desc);
+  add_threads_option(desc);
+  add_progress_option(desc);
+  add_material_options(desc, "sinter");
+  add_scan_options(desc);
+  const th::SinterScene d;
+  desc.add_options()
+      ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump) resting on z = floor")
+      ("out", po::value<std::string>(), "run file: HDF5 time series + XDMF sidecar")
+      ("explain", po::bool_switch(), "print the scene's scale analysis and exit")
+      ("fuse", po::bool_switch(),
+       "after the scan, fuse the particles that melted into the solid: /fusion in the run file")
+      ("fuse.melt-fraction", po::value<double>()->default_value(0.5),
+       "--fuse: the melt fraction a particle must have reached (0.5: T_m; 1: wholly liquid)")
+      ("fused-bed", po::value<std::string>(), "--fuse: write the powder left as this bed (.h5)")
+      ("power", po::value<double>()->default_value(d.power), "laser power P (W)")
+      ("speed", po::value<double>()->default_value(d.speed), "scan speed v (m/s)")
+      ("spot", po::value<double>()->default_value(d.spot_radius), "beam radius w at 1/e^2 (m)")
+      ("grid-spacing", po::value<double>(),
+       "substrate node spacing (m); overrides substrate.nodes (nodes = L / DX + 1, rounded)")
+      ("dt", po::value<double>(), "grid time step (s); default: safety x the stable bound")
+      ("unsafe-dt", po::bool_switch(), "accept a --dt above the stable bound (with a warning)")
+      ("integrator", po::value<std::string>()->default_value("explicit"),
+       "explicit (forward Euler, multirate) or implicit (backward Euler, Eigen CG)")
+      ("t-end", po::value<double>(), "simulated time (s); default: until the laser reaches its end")
+      ("snapshots", po::value<std::size_t>()->default_value(20),
+       "number of snapshots in the time series (besides t = 0)")
+      ("full-fields", po::bool_switch(), "also store the whole substrate field in each snapshot")
+      ("trust-units", po::bool_switch(),
+       "skip the guards against unit slips (a spot larger than the bed, over 10 kW, a substrate "
+       "deeper than 1 cm)")
+      ("laser.absorptivity", po::value<double>()->default_value(d.absorptivity), "alpha")
+      ("laser.y", po::value<double>(), "track line y (m); default Ly/2")
+      ("laser.start-x", po::value<double>(), "track start x (m); default one spot radius before")
+      ("laser.end-x", po::value<double>(), "track end x (m); default one spot radius past")
+      ("laser.absorption",
+       po::value<std::string>()->default_value(
+           d.absorption == th::LaserAbsorption::ray_trace ? "ray-trace" : "beer-lambert"),
+       "beer-lambert (exp(-beta z) on projected areas, Gusarov's beta) or ray-trace (rays on "
+       "the bed's own spheres and the substrate, absorbed alpha per hit, reflected)")
+      ("laser.substrate-shading", po::value<std::string>()->default_value("layer"),
+       "beer-lambert: beam reaching the substrate: layer (exp(-beta H_layer) everywhere) or "
+       "column (exp(-beta H) with H the bed height above each node; bare spots get the full beam)")
+      ("laser.absorptivity-liquid", po::value<double>(),
+       "ray-trace: alpha of molten surfaces (default: laser.absorptivity in every phase)")
+      ("laser.rays", po::value<std::size_t>()->default_value(d.rays.rays),
+       "ray-trace: rays per traced beam position")
+      ("laser.retrace-interval", po::value<double>()->default_value(d.retrace_interval),
+       "ray-trace: the beam is traced anew each time it moves this fraction of w")
+      ("laser.reflection", po::value<std::string>()->default_value("specular"),
+       "ray-trace: specular or diffuse (Lambert) reflection")
+      ("laser.ray-cutoff", po::value<double>()->default_value(d.rays.cutoff),
+       "ray-trace: a ray carrying less than this fraction of its power is dropped")
+      ("laser.ray-seed", po::value<std::uint64_t>()->default_value(d.rays.seed),
+       "ray-trace: seed of the rays' jitter")
+      ("wetting.contact-angle", po::value<double>()->default_value(d.contact_angle),
+       "effects.wetting: contact angle of the melt on the solid substrate (degrees)")
+      ("material.table", po::value<std::string>()->default_value(d.material_table),
+       "material file with the property table (solid rows + one liquid row): a name of "
+       "--list-materials or a path (relative paths: to the scene file's folder too)")
+      ("material.melting-point", po::value<double>()->default_value(d.phase_change.melting_point), "T_m (K)")
+      ("material.boiling-point", po::value<double>()->default_value(d.phase_change.boiling_point), "T_v (K)")
+      ("material.latent-melt", po::value<double>()->default_value(d.phase_change.latent_melt), "L_m (J/kg)")
+      ("material.latent-vapour", po::value<double>()->default_value(d.phase_change.latent_vapour), "L_v (J/kg)")
+      ("material.window", po::value<double>()->default_value(d.phase_change.window),
+       "phase-change window dT of the apparent heat capacity (K)")
+      ("material.hold-from", po::value<double>()->default_value(d.hold_from),
+       "solid properties extrapolated to this T, then held (K)")
+      ("material.liquid-conductivity", po::value<std::string>()->default_value("solid"),
+       "solid ([GZ]: the solid value held in the liquid) or table (the liquid row)")
+      ("environment.convection", po::value<double>()->default_value(d.convection), "h (W/m^2K)")
+      ("environment.emissivity", po::value<double>()->default_value(d.emissivity), "eps")
+      ("environment.temperature", po::value<double>()->default_value(d.environment_temperature), "T_env (K)")
+      ("environment.initial-temperature", po::value<double>()->default_value(d.initial_temperature),
+       "T0 of bed and substrate, and the substrate's Dirichlet value (K)")
+      ("substrate.depth", po::value<double>()->default_value(d.substrate_depth), "depth (m)")
+      ("substrate.nodes", po::value<std::string>()->default_value("201,101,61"), "NX,NY,NZ")
+      ("time.safety", po::value<double>()->default_value(d.safety), "fraction of the stable step")
+      ("time.max-particle-rise", po::value<double>()->default_value(d.max_particle_rise),
+       "particle steps subcycle so the laser raises no particle more than this per step (K)");
+  for (unsigned bit = 1; bit < (1u << th::kSinterEffectCount); bit <<= 1) {
+    const std::string name = std::string("effects.") + th::sinter_effect_name(bit);
+    desc.add_options()(name.c_str(), po::value<bool>()->default_value((d.effects & bit) != 0),
+                       "effect on/off");
+  }
+}
+
+namespace {
+
+th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
+  th::SinterScene s;
+  // A name of the shipped materials, or a path (relative: to the scene file's folder too).
+  s.material_table =
+      material_file(vm["material.table"].as<std::string>(), vm, "material.table");
+  s.phase_change.melting_point = vm["material.melting-point"].as<double>();
+  s.phase_change.boiling_point = vm["material.boiling-point"].as<double>();
+  s.phase_change.latent_melt = vm["material.latent-melt"].as<double>();
+  s.phase_change.latent_vapour = vm["material.latent-vapour"].as<double>();
+  s.phase_change.window = vm["material.window"].as<double>();
+  s.hold_from = vm["material.hold-from"].as<double>();
+  const std::string liquid = vm["material.liquid-conductivity"].as<std::string>();
+  if (liquid != "solid" && liquid != "table")
+    throw InputError("material.liquid-conductivity: '" + liquid + "' (accepted: solid, table)");
+  s.liquid_conductivity =
+      liquid == "solid" ? th::LiquidConductivity::solid : th::LiquidConductivity::table;
+  s.convection = vm["environment.convection"].as<double>();
+  s.emissivity = vm["environment.emissivity"].as<double>();
+  s.environment_temperature = vm["environment.temperature"].as<double>();
+  s.initial_temperature = vm["environment.initial-temperature"].as<double>();
+  s.power = vm["power"].as<double>();
+  s.speed = vm["speed"].as<double>();
+  s.spot_radius = vm["spot"].as<double>();
+  s.absorptivity = vm["laser.absorptivity"].as<double>();
+  if (vm.count("laser.y")) s.laser_y = vm["laser.y"].as<double>();
+  if (vm.count("laser.start-x")) s.start_x = vm["laser.start-x"].as<double>();
+  if (vm.count("laser.end-x")) s.end_x = vm["laser.end-x"].as<double>();
+  const std::string shading = vm["laser.substrate-shading"].as<std::string>();
+  if (shading != "layer" && shading != "column")
+    throw InputError("laser.substrate-shading: '" + shading + "' (accepted: layer, column)");
+  s.substrate_shading =
+      shading == "layer" ? th::SubstrateShading::layer : th::SubstrateShading::column;
+  const std::string absorption = vm["laser.absorption"].as<std::string>();
+  if (absorption != "beer-lambert" && absorption != "ray-trace")
+    throw InputError("laser.absorption: '" + absorption + "' (accepted: beer-lambert, ray-trace)");
+  s.absorption = absorption == "ray-trace" ? th::LaserAbsorption::ray_trace
+                                           : th::LaserAbsorption::beer_lambert;
+  if (vm.count("laser.absorptivity-liquid"))
+    s.absorptivity_liquid = vm["laser.absorptivity-liquid"].as<double>();
+  s.rays.rays = vm["laser.rays"].as<std::size_t>();
+  s.rays.cutoff = vm["laser.ray-cutoff"].as<double>();
+  s.rays.seed = vm["laser.ray-seed"].as<std::uint64_t>();
+  s.retrace_interval = vm["laser.retrace-interval"].as<double>();
+  const std::string reflection = vm["laser.reflection"].as<std::string>();
+  if (reflection != "specular" && reflection != "diffuse")
+    throw InputError("laser.reflection: '" + reflection + "' (accepted: specular, diffuse)");
+  s.rays.reflection =
+      reflection == "specular" ? th::Reflection::specular : th::Reflection::diffuse;
+  s.contact_angle = vm["wetting.contact-angle"].as<double>();
+  s.substrate_depth = vm["substrate.depth"].as<double>();
+  const auto nodes = parse_number_list(vm["substrate.nodes"].as<std::string>(), 3, 3,
+                                            "substrate.nodes");
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (!(nodes[a] >= 0 && nodes[a] == std::floor(nodes[a])))
+      throw InputError("substrate.nodes: '" + vm["substrate.nodes"].as<std::string>() +
+                       "' (accepted: three whole numbers >= 3)");
+    s.nodes[a] = static_cast<std::size_t>(nodes[a]);
+  }
+  if (vm.count("grid-spacing")) {
+    const double h = vm["grid-spacing"].as<double>();
+    if (!(h > 0 && std::isfinite(h)))
+      throw InputError("--grid-spacing: " + std::to_string(h) + " (accepted: DX > 0 m)");
+    const double lengths[3] = {lx, ly, s.substrate_depth};
+    for (std::size_t a = 0; a < 3; ++a)
+      s.nodes[a] = static_cast<std::size_t>(std::llround(lengths[a] / h)) + 1;
+  }
+  const std::string integrator = vm["integrator"].as<std::string>();
+  if (integrator != "explicit" && integrator != "implicit")
+    throw InputError("--integrator: '" + integrator + "' (accepted: explicit, implicit)");
+  s.integrator = integrator == "explicit" ? th::Integrator::explicit_euler
+                                          : th::Integrator::implicit_euler;
+  if (vm.count("dt")) {
+    s.dt = vm["dt"].as<double>();
+    if (!(s.dt > 0)) throw InputError("--dt: " + std::to_string(s.dt) + " (accepted: dt > 0 s)");
+  }
+  s.safety = vm["time.safety"].as<double>();
+  s.max_particle_rise = vm["time.max-particle-rise"].as<double>();
+  if (vm.count("t-end")) s.t_end = vm["t-end"].as<double>();
+  s.effects = 0;
+  for (unsigned bit = 1; bit < (1u << th::kSinterEffectCount); bit <<= 1)
+    if (vm[std::string("effects.") + th::sinter_effect_name(bit)].as<bool>()) s.effects |= bit;
+  return s;
+}
+
+// Guards against the unit slips users make (metres for micrometres, W for mW): each names the
+// likely mistake; --trust-units skips them where a huge value is meant.
+void check_units(const th::SinterScene& s, const bed::Bed& bed) {
+  const double size = std::max(bed.domain.length(0), bed.domain.length(1));
+  const auto refuse = [](const std::string& what) { throw InputError(what + " (--trust-units if it is meant)"); };
+  if (s.spot_radius > size) {
+    std::ostringstream msg;
+    msg << "--spot: w = " << s.spot_radius << " m is wider than the bed (" << size
+        << " m): a unit slip? (accepted: a beam radius in metres, e.g. 54e-6)";
+    refuse(msg.str());
+  }
+  if (s.power > 1e4) {
+    std::ostringstream msg;
+    msg << "--power: " << s.power << " W is beyond the lasers of powder-bed machines (accepted: up "
+           "to 1e4 W)";
+    refuse(msg.str());
+  }
+  if (s.substrate_depth > 1e-2) {
+    std::ostringstream msg;
+    msg << "substrate.depth: " << s.substrate_depth << " m: a unit slip? (accepted: a depth in "
+           "metres up to 1e-2, e.g. 0.3e-3)";
+    refuse(msg.str());
+  }
+}
+
+// A grid that cannot fit in memory is refused before anything is allocated: a step keeps about
+// eight doubles per node.
+void check_grid_memory(const th::SinterScene& s) {
+  const double nodes = static_cast<double>(s.nodes[0]) * static_cast<double>(s.nodes[1]) *
+                       static_cast<double>(s.nodes[2]);
+  const double bytes = 8.0 * sizeof(double) * nodes;
+  const double memory = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+                        static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+  if (bytes > memory) {
+    std::ostringstream msg;
+    msg << "substrate.nodes: " << s.nodes[0] << "," << s.nodes[1] << "," << s.nodes[2] << " ("
+        << nodes << " nodes) needs about " << bytes / (1u << 30) << " GiB; this machine has "
+        << memory / (1u << 30) << " GiB (accepted: fewer nodes, or a coarser --grid-spacing)";
+    throw InputError(msg.str());
+  }
+}
+
+}  // namespace
+
+thermal::SinterScene sinter_scene(const po::variables_map& vm, const bed::Bed& bed,
+                                  std::optional<std::size_t> layer) {
+  th::SinterScene scene = make_scene(vm, bed.domain.length(0), bed.domain.length(1));
+  scene.scan_path = scan_path_of(vm, scene, bed, layer);
+  scene.jump_speed = vm["scan.jump-speed"].as<double>();
+  scene.unsafe_dt = vm["unsafe-dt"].as<bool>();
+  if (!vm["trust-units"].as<bool>()) check_units(scene, bed);
+  check_grid_memory(scene);
+  return scene;
+}
+
+bool hatch_requested(const po::variables_map& vm) { return vm.count("scan.hatch") > 0; }
+
+}  // namespace powderbed::app

@@ -1,0 +1,25 @@
+#pragma once
+// sinter's options (the scene, the laser, the scan path, the substrate grid, the effects) and
+// the scene they make: one definition for sinter and for build's per-layer scans.
+#include <cstddef>
+#include <optional>
+
+#include "common/options.hpp"
+#include "powderbed/bed/bed.hpp"
+#include "powderbed/thermal/scene.hpp"
+
+namespace powderbed::app {
+
+// Every option of sinter (the common ones, threads, progress, --material among them).
+void add_sinter_options(po::options_description& desc);
+
+// The scene of the options on `bed` (its x-y extent sizes the substrate) with its scan path;
+// `layer` replaces scan.layer (the hatch's rotation step; build: the layer's number). Throws
+// InputError for a bad option, a unit slip (unless --trust-units) or a grid beyond memory.
+thermal::SinterScene sinter_scene(const po::variables_map& vm, const bed::Bed& bed,
+                                  std::optional<std::size_t> layer = std::nullopt);
+
+// Whether the options give a hatch (scan.hatch).
+bool hatch_requested(const po::variables_map& vm);
+
+}  // namespace powderbed::app
