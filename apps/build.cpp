@@ -1,0 +1,411 @@
+// build: a part layer after layer (docs/build.md). Each layer: the recoater spreads powder on the
+// solid of the layers before (deposit's recoater scene), the laser scans it (sinter's scene, the
+// hatch turned by its rotation each layer), what melted fuses into the solid's raised top, the
+// plate goes down, and the next layer is spread on that. Thin: the libraries do the physics
+// (dem::run_spread, thermal::Sinter, thermal::fuse, thermal::lack_of_fusion); this program
+// chains them in-process and writes each layer's files and the report.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/app_main.hpp"
+#include "common/options.hpp"
+#include "common/progress.hpp"
+#include "common/threads.hpp"
+#include "deposit_options.hpp"
+#include "deposit_spread.hpp"
+#include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/h5_output.hpp"
+#include "powderbed/bed/io.hpp"
+#include "powderbed/bed/json.hpp"
+#include "powderbed/dem/recoater.hpp"
+#include "powderbed/dem/spread.hpp"
+#include "powderbed/thermal/fusion.hpp"
+#include "powderbed/thermal/lack_of_fusion.hpp"
+#include "powderbed/thermal/run_output.hpp"
+#include "powderbed/thermal/solver.hpp"
+#include "sinter_options.hpp"
+
+namespace {
+
+using namespace powderbed;
+namespace fs = std::filesystem;
+namespace po = app::po;
+namespace th = thermal;
+
+const char* const kUsage =
+    "build --config BUILD.ini | --spread SPREAD.ini --sinter SINTER.ini --seed S --out DIR "
+    "[--layers N] [--in DIR/layer-NNN.h5] [--spread-args \"...\"] [--sinter-args \"...\"] "
+    "[--fuse.melt-fraction F] [--snapshots K] [--json]";
+
+void add_options(po::options_description& desc) {
+  app::add_common_options(desc);
+  app::add_threads_option(desc);
+  app::add_progress_option(desc);
+  desc.add_options()
+      ("spread", po::value<std::string>(),
+       "deposit recoater scene of every layer's spread (recoater.tool; relative: to the build "
+       "scene's folder)")
+      ("sinter", po::value<std::string>(),
+       "sinter scene of every layer's scan (a hatch turns by scan.rotation per layer; relative: "
+       "to the build scene's folder)")
+      ("spread-args", po::value<std::string>()->default_value(""),
+       "options for the spread stage, as deposit takes them (e.g. \"--recoater.speed 0.2\")")
+      ("sinter-args", po::value<std::string>()->default_value(""),
+       "options for the scan stage, as sinter takes them (e.g. \"--power 250\")")
+      ("layers", po::value<std::uint64_t>()->default_value(1),
+       "layers to build (with --in: after the ones its file has done)")
+      ("seed", po::value<std::uint64_t>(), "random seed of the supplies")
+      ("out", po::value<std::string>(), "folder for the layers' files and build.json (new or empty)")
+      ("in", po::value<std::string>(), "continue from a layer file DIR/layer-NNN.h5 of a build")
+      ("fuse.melt-fraction", po::value<double>()->default_value(0.5),
+       "the melt fraction a particle must have reached to fuse (0.5: T_m; 1: wholly liquid)")
+      ("snapshots", po::value<std::size_t>()->default_value(10),
+       "snapshots in each layer's scan file (besides t = 0)");
+}
+
+// A scene path as given, or beside the build scene when it is relative and not found here.
+std::string beside_config(const po::variables_map& vm, const char* option) {
+  const std::string path = app::required<std::string>(vm, option);
+  if (fs::path(path).is_absolute() || fs::exists(path) || !vm.count("config")) return path;
+  const fs::path there = fs::path(vm["config"].as<std::string>()).parent_path() / path;
+  return fs::exists(there) ? there.string() : path;
+}
+
+// The options of a stage (deposit or sinter) from its scene file and the extra arguments, parsed
+// as that program parses them; errors name the stage's option and file.
+po::variables_map parse_stage(const char* option, const char* program,
+                              void (*add)(po::options_description&), const std::string& scene,
+                              const std::string& extra) {
+  std::vector<std::string> args{program, "--config", scene};
+  std::istringstream words(extra);
+  for (std::string w; words >> w;) args.push_back(w);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  po::options_description desc;
+  add(desc);
+  po::variables_map vm;
+  try {
+    if (!app::parse_options(program, "", desc, {}, static_cast<int>(argv.size()), argv.data(), vm))
+      throw InputError("asks for help, a version or the config (accepted: scene options only)");
+  } catch (const std::exception& e) {
+    throw InputError(std::string("--") + option + ": " + scene + ": " + e.what());
+  }
+  return vm;
+}
+
+std::string layer_file(const std::string& out, std::uint64_t layer, const char* suffix) {
+  char name[48];
+  std::snprintf(name, sizeof name, "layer-%03llu%s.h5", static_cast<unsigned long long>(layer), suffix);
+  return (fs::path(out) / name).string();
+}
+
+// --out: a new folder (its parent must exist) or an empty one, so that no earlier build's
+// files are replaced.
+void prepare_out(const std::string& out) {
+  const fs::path dir(out);
+  if (fs::exists(dir)) {
+    if (!fs::is_directory(dir))
+      throw InputError("--out: '" + out + "' is a file (accepted: a new or empty folder)");
+    if (!fs::is_empty(dir))
+      throw InputError("--out: '" + out + "' is not empty (accepted: a new or empty folder, so "
+                       "that no earlier build's files are replaced)");
+    return;
+  }
+  const fs::path parent = dir.has_parent_path() && dir.parent_path() != "" ? dir.parent_path() : ".";
+  if (!fs::is_directory(parent))
+    throw InputError("--out: the folder '" + parent.string() + "' for '" + out +
+                     "' does not exist (accepted: a folder whose parent exists)");
+}
+
+// The solid fraction of the layer the scan met: the particles whose centres lie over the
+// scanned columns (each column owns dx dy around its node) and below the tool's bottom, over
+// the space between the solid's top and the tool's bottom there.
+double scanned_layer_density(const bed::Bed& bed, const th::SubstrateGeometry& g,
+                             const th::TopHeight& top, const th::LackOfFusion& lof, double bottom) {
+  double space = 0, solid = 0;
+  for (std::size_t c = 0; c < lof.map.size(); ++c)
+    if (lof.map[c] != th::kNotScanned)
+      space += g.dx * g.dy * std::max(0.0, bottom - (top.empty() ? g.z_top : top[c]));
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    const auto col = [&](double v, double v0, double d, std::size_t n) {
+      return static_cast<std::size_t>(std::clamp(std::lround((v - v0) / d), 0L, static_cast<long>(n - 1)));
+    };
+    const std::size_t c = col(bed.x[i], g.x0, g.dx, g.nx) + g.nx * col(bed.y[i], g.y0, g.dy, g.ny);
+    if (lof.map[c] == th::kNotScanned || bed.z[i] >= bottom) continue;
+    solid += 4.0 / 3.0 * std::numbers::pi * std::pow(bed.radius[i], 3);
+  }
+  return space > 0 ? solid / space : 0.0;
+}
+
+struct LayerReport {
+  std::uint64_t layer = 0;
+  dem::LayerSummary spread;
+  double tool_bottom = 0, clearance = 0;  // m: the tool's bottom above the plate, and above the solid
+  double density = 0;                      // scanned_layer_density
+  th::SinterResult scan;
+  double scan_wall = 0;
+  std::size_t scanned_particles = 0, fused = 0, vaporised = 0, powder_left = 0;
+  double fused_fraction = 0;               // of the powder's mass the scan met
+  double mass_error = 0, lack_of_fusion = 0, top_min = 0, top_max = 0;  // top: above the plate
+  double solid_mass = 0;                   // kg above the plate after the layer
+  std::size_t lifted = 0;                  // powder lifted onto the grown solid (lift_onto_floor)
+};
+
+void layer_json(bed::JsonWriter& j, const LayerReport& l) {
+  double width = 0, depth = 0;
+  for (const auto& t : l.scan.tracks) {
+    width += t.pool.width / static_cast<double>(l.scan.tracks.size());
+    depth += t.pool.depth / static_cast<double>(l.scan.tracks.size());
+  }
+  j.begin_object()
+      .value("layer", l.layer)
+      .value("particles_spread", static_cast<std::uint64_t>(l.scanned_particles))
+      .value("supplied", static_cast<std::uint64_t>(l.spread.supplied))
+      .value("overflow", static_cast<std::uint64_t>(l.spread.overflow))
+      .value("tool_bottom", l.tool_bottom)
+      .value("recoater_clearance", l.clearance)
+      .value("layer_density", l.density)
+      .value("spread_wall_time", l.spread.wall_time)
+      .value("tracks", static_cast<std::uint64_t>(l.scan.tracks.size()))
+      .value("mean_track_width", width)
+      .value("mean_track_depth", depth)
+      .value("max_temperature", l.scan.max_temperature)
+      .value("energy_balance_error", l.scan.energy.relative_error())
+      .value("scan_wall_time", l.scan_wall)
+      .value("fused", static_cast<std::uint64_t>(l.fused))
+      .value("vaporised", static_cast<std::uint64_t>(l.vaporised))
+      .value("powder_left", static_cast<std::uint64_t>(l.powder_left))
+      .value("powder_lifted", static_cast<std::uint64_t>(l.lifted))
+      .value("fused_fraction", l.fused_fraction)
+      .value("lack_of_fusion", l.lack_of_fusion)
+      .value("mass_error", l.mass_error)
+      .value("solid_top_min", l.top_min)
+      .value("solid_top_max", l.top_max)
+      .value("solid_mass", l.solid_mass)
+      .end_object();
+}
+
+// Everything a layer needs that stays from one layer to the next.
+struct Build {
+  po::variables_map dvm, svm;
+  dem::Scene scene;
+  dem::SpreadSettings spread;
+  th::MaterialTable table;
+  std::string out;
+  double melt_fraction = 0.5;
+  std::size_t snapshots = 10;
+  std::size_t scan_layer0 = 0;  // the sinter scene's scan.layer: the first layer's rotation step
+  std::string command_line;
+};
+
+// The tool's lowest point above the plate at layer k (the plate has gone down k - 1 layers).
+double tool_bottom(const Build& b, const bed::Bed& bed, std::uint64_t layer) {
+  return bed.domain.lower[2] + b.spread.tool.gap +
+         static_cast<double>(layer - 1) * b.spread.layer_thickness;
+}
+
+// The scan of layer k on the spread bed and its fusion; writes the scan file; returns the powder
+// that stays (fusion's keep flags), sets the solid's new top as the next spread's floor and
+// fills the report.
+std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::HeightMap& floor,
+                                std::uint64_t layer, app::ProgressBar& bar, double done,
+                                double share, LayerReport& rep) {
+  const th::SinterScene scene = app::sinter_scene(b.svm, bed, b.scan_layer0 + layer - 1);
+  th::Sinter sinter(bed, scene, b.table, floor.z);
+  bed::Bed labelled = bed;
+  labelled.provenance.created_by = app::version_string("build");
+  labelled.provenance.command_line = b.command_line;
+  labelled.provenance.stage = "build: scan of layer " + std::to_string(layer);
+  labelled.provenance.scene = app::scene_text(b.svm);
+  th::RunWriter writer(layer_file(b.out, layer, "-scan"), labelled, sinter, false);
+  const auto steps = static_cast<std::uint64_t>(std::ceil(sinter.t_end() / sinter.dt() * (1 - 1e-12)));
+  const std::uint64_t every = b.snapshots > 0 ? std::max<std::uint64_t>(1, steps / b.snapshots) : 0;
+  const auto start = std::chrono::steady_clock::now();
+  rep.scan = sinter.run([&](const th::Sinter& s) { writer.snapshot(s); }, every,
+                        [&](const th::SinterProgress& p) {
+                          bar.draw(done + share * p.time / p.t_end,
+                                   "layer " + std::to_string(layer) + " scan");
+                        });
+  rep.scan_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const th::Fusion fused = th::fuse(bed, sinter, b.melt_fraction);
+  const double half_width = app::hatch_requested(b.svm) ? 0.5 * b.svm["scan.hatch"].as<double>()
+                                                        : scene.spot_radius;
+  const std::vector<th::ScanSegment> path =
+      scene.scan_path.empty()
+          ? std::vector<th::ScanSegment>{{scene.start_x, scene.laser_y, scene.end_x, scene.laser_y,
+                                          scene.power, scene.speed}}
+          : scene.scan_path;
+  const th::LackOfFusion lof = th::lack_of_fusion(sinter, path, half_width, fused.threshold);
+  writer.fusion(fused);
+  writer.lack_of_fusion(lof);
+  writer.finish(sinter, rep.scan, {{"lack_of_fusion", lof.fraction()}});
+  const th::SubstrateGeometry& g = sinter.grid();
+  rep.density = scanned_layer_density(bed, g, floor.z, lof, rep.tool_bottom);
+  rep.scanned_particles = bed.n();
+  rep.fused = fused.fused;
+  rep.vaporised = fused.vaporised;
+  rep.powder_left = fused.powder.n();
+  rep.fused_fraction = fused.powder_mass_before > 0
+                           ? 1 - fused.powder_mass_after / fused.powder_mass_before : 0.0;
+  rep.mass_error = fused.mass_error();
+  rep.lack_of_fusion = lof.fraction();
+  const auto [low, high] = std::minmax_element(fused.top.begin(), fused.top.end());
+  rep.top_min = *low - g.z_top;
+  rep.top_max = *high - g.z_top;
+  rep.solid_mass = fused.solid_mass_after;
+  floor = th::top_surface(g, fused.top);
+  std::vector<char> keep(bed.n());
+  for (std::size_t i = 0; i < bed.n(); ++i) keep[i] = fused.state[i] == 0 ? 1 : 0;
+  return keep;
+}
+
+// Removes --out again when the build fails before it wrote anything there (it made the folder).
+struct OutFolderGuard {
+  std::string path;
+  bool made = false;
+  ~OutFolderGuard() {
+    std::error_code ignored;
+    if (made && fs::is_empty(path, ignored)) fs::remove(path, ignored);
+  }
+};
+
+int run(int argc, char** argv) {
+  po::options_description desc("build options (SI units)");
+  add_options(desc);
+  po::variables_map vm;
+  if (!app::parse_options("build", kUsage, desc, {}, argc, argv, vm)) return 0;
+  Build b;
+  b.out = app::required<std::string>(vm, "out");
+  const auto seed = app::required<std::uint64_t>(vm, "seed");
+  const auto layers = vm["layers"].as<std::uint64_t>();
+  if (layers < 1) throw InputError("--layers: 0 (accepted: N >= 1)");
+  b.melt_fraction = vm["fuse.melt-fraction"].as<double>();
+  if (!(b.melt_fraction > 0 && b.melt_fraction <= 1))
+    throw InputError("--fuse.melt-fraction: " + std::to_string(b.melt_fraction) +
+                     " (accepted: 0 < f <= 1; 0.5 fuses what reached T_m, 1 what was wholly liquid)");
+  b.snapshots = vm["snapshots"].as<std::size_t>();
+  b.command_line = app::command_line(argc, argv);
+  const std::string spread_scene = beside_config(vm, "spread");
+  const std::string sinter_scene = beside_config(vm, "sinter");
+  app::check_paths({{"--spread", spread_scene}, {"--sinter", sinter_scene}}, {});
+  if (vm.count("in")) app::check_paths({{"--in", vm["in"].as<std::string>()}}, {});
+  prepare_out(b.out);
+  app::apply_thread_team(vm);
+
+  b.dvm = parse_stage("spread", "deposit", app::add_deposit_options, spread_scene,
+                      vm["spread-args"].as<std::string>() + " --seed " + std::to_string(seed));
+  if (!app::spread_requested(b.dvm))
+    throw InputError("--spread: " + spread_scene + " names no recoater (accepted: a deposit scene "
+                     "with recoater.tool = blade or roller, docs/deposit-spread.md)");
+  b.svm = parse_stage("sinter", "sinter", app::add_sinter_options, sinter_scene,
+                      vm["sinter-args"].as<std::string>());
+  b.scan_layer0 = b.svm["scan.layer"].as<std::size_t>();
+  b.scene = app::deposit_scene(b.dvm);
+  b.spread = app::spread_settings(b.dvm, seed);
+  b.spread.layers = 1;
+
+  bed::Bed bed;
+  std::optional<dem::SpreadState> state;
+  if (vm.count("in")) {
+    const std::string in = vm["in"].as<std::string>();
+    bed = bed::read_bed_h5(in);
+    if (!dem::has_spread_state(in))
+      throw InputError("--in: '" + in + "' has no /restart group (accepted: a layer file "
+                       "DIR/layer-NNN.h5 of a build)");
+    state = dem::read_spread_state(in, bed);
+    bed.domain = app::spread_box(b.dvm, bed.domain);
+  } else {
+    bed.domain = app::spread_box(b.dvm);
+  }
+  // The scan stage checked before any layer is spread: its options, its path on the plate and
+  // its grid under the solid (a bed without particles: the scene and the grid alone).
+  b.table = th::read_material_table(app::sinter_scene(b.svm, bed).material_table);
+  {
+    bed::Bed empty;
+    empty.domain = bed.domain;
+    th::Sinter probe(empty, app::sinter_scene(b.svm, empty, b.scan_layer0),
+                     b.table, state ? state->floor.z : th::TopHeight{});
+  }
+  OutFolderGuard guard{b.out, fs::create_directories(b.out)};
+
+  const std::uint64_t first = (state ? state->layers_done : 0) + 1;
+  app::ProgressBar bar("build", app::progress_interval(vm));
+  std::vector<LayerReport> reports;
+  const auto started = std::chrono::steady_clock::now();
+  for (std::uint64_t layer = first; layer < first + layers; ++layer) {
+    const double done = static_cast<double>(layer - first) / static_cast<double>(layers);
+    const double share = 0.5 / static_cast<double>(layers);
+    LayerReport rep;
+    rep.layer = layer;
+    rep.tool_bottom = tool_bottom(b, bed, layer);
+    const double solid_top = state && !state->floor.empty() ? state->floor.highest() : bed.domain.lower[2];
+    rep.clearance = rep.tool_bottom - solid_top;
+    if (state && !state->floor.empty() && rep.clearance <= 0)
+      std::cerr << "build: warning: layer " << layer << ": the solid's top stands "
+                << -rep.clearance * 1e6 << " um above the recoater's bottom (the tool strikes the part)\n";
+    dem::SpreadSettings s = b.spread;
+    s.progress = [&](double f, double) { bar.draw(done + share * f, "layer " + std::to_string(layer) + " spread"); };
+    const dem::SpreadSummary spread = dem::run_spread(bed, b.scene, s, state ? &*state : nullptr);
+    rep.spread = spread.layers.back();
+    dem::SpreadState next = spread.state;
+    bed::Bed spread_bed = bed;
+    app::set_spread_provenance(spread_bed, b.dvm, b.scene, "build", argc, argv);
+    bed::write_bed_h5(spread_bed, layer_file(b.out, layer, "-spread"));
+
+    // The fused solid becomes the floor of the next layer's spread; the rest stays powder.
+    const std::vector<char> keep =
+        scan_and_fuse(b, spread_bed, next.floor, layer, bar, done + share, share, rep);
+    dem::remove_particles(bed, next, keep);
+    rep.lifted = dem::lift_onto_floor(bed, next.floor);
+    app::set_spread_provenance(bed, b.dvm, b.scene, "build", argc, argv);
+    bed.provenance.stage = "build: powder after layer " + std::to_string(layer);
+    const std::string layer_path = layer_file(b.out, layer, "");
+    bed::write_bed_h5(bed, layer_path);
+    dem::write_spread_state(layer_path, next, bed);
+    state = next;
+    reports.push_back(rep);
+  }
+  bar.finish();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+  bed::JsonWriter j;
+  j.begin_object()
+      .value("layers_done", state->layers_done)
+      .value("first_layer", first)
+      .value("particles", static_cast<std::uint64_t>(bed.n()))
+      .value("wall_time", wall);
+  j.begin_array("layers");
+  for (const auto& r : reports) layer_json(j, r);
+  j.end_array();
+  j.value("out", b.out).end_object();
+  bed::write_text_file((fs::path(b.out) / "build.json").string(), j.str() + "\n");
+  if (vm.count("json")) {
+    std::cout << j.str() << '\n';
+  } else {
+    for (const auto& r : reports)
+      std::printf("build: layer %llu: %zu particles spread (density %.3f over the scan), %zu fused "
+                  "(%.0f %% of the powder's mass), %zu vaporised; lack of fusion %.1f %% of the "
+                  "scanned area; solid top %.1f to %.1f um; mass conserved to %.1e; %.0f s spread "
+                  "+ %.0f s scan\n",
+                  static_cast<unsigned long long>(r.layer), r.scanned_particles, r.density, r.fused,
+                  100 * r.fused_fraction, r.vaporised, 100 * r.lack_of_fusion, r.top_min * 1e6,
+                  r.top_max * 1e6, r.mass_error, r.spread.wall_time, r.scan_wall);
+    std::printf("build: %zu layer(s) in %.0f s -> %s\n", reports.size(), wall, b.out.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return app::run_app("build", argc, argv, [&] { return run(argc, argv); });
+}
