@@ -17,29 +17,16 @@ using namespace powderbed;
 
 namespace {
 
-// A small build: 120 spheres of 30 um spread by a blade at 0.2 m/s over a 1.5 x 0.3 mm strip,
-// two tracks of 100 W at 1 m/s (Beer–Lambert, 20 um grid) over the strip behind the supply.
-std::string small_build(const std::string& dir, bool hatch = true) {
-  std::ofstream(dir + "/spread.ini")
-      << "psd = mono:d=30e-6\ndomain = 1.5e-3,0.3e-3,0.6e-3\nperiodic = y\nyoung-scale = 1e4\n"
-         "friction.model = history\n"
-         "[recoater]\ntool = blade\nthickness = 100e-6\ngap = 60e-6\nspeed = 0.2\n"
-         "start = 0.1e-3\nend = 1.2e-3\nlayer-thickness = 30e-6\ndelay = 3e-3\nsettle = 5e-3\n"
-         "[supply]\nx0 = 0.16e-3\nx1 = 0.4e-3\nheight = 0.2e-3\ncount = 120\n"
-         "[material]\nfriction = 0.5\nrolling = 0.05\n[effects]\ndrag = false\n";
-  std::ofstream(dir + "/scan.ini")
-      << "power = 100\nspeed = 1\nspot = 30e-6\ngrid-spacing = 20e-6\nsnapshots = 2\n"
-         "[laser]\nabsorption = beer-lambert\n[substrate]\ndepth = 0.1e-3\n"
-      << (hatch ? "[scan]\nhatch = 60e-6\ntracks = 2\nregion = 0.6e-3,1.1e-3,0.05e-3,0.25e-3\n" : "");
-  std::ofstream(dir + "/build.ini") << "spread = spread.ini\nsinter = scan.ini\nseed = 1\n";
-  return dir + "/build.ini";
-}
+// The small build (tests/data/build-small/): 120 spheres of 30 um spread by a blade over a
+// 1.5 x 0.3 mm strip, two tracks of 100 W at 1 m/s (Beer-Lambert, 20 um grid) behind the supply.
+const std::string kScenes = std::string(POWDERBED_TEST_DATA) + "/build-small";
+const std::string kConfig = kScenes + "/build.ini";
 
 }  // namespace
 
 TEST(BuildCli, BadInputExits2WithOneLineAndWritesNothing) {
   const std::string dir = test::scratch_dir("build_bad");
-  const std::string config = small_build(dir);
+  const std::string config = kConfig;
   std::ofstream(dir + "/off.csv") << "x0,y0,x1,y1,power,speed\n0.5e-3,0.1e-3,2.5e-3,0.1e-3,100,1\n";
   std::ofstream(dir + "/drop.ini") << "psd = mono:d=30e-6\ndomain = 1e-3,1e-3,1e-3\ncount = 10\n";
   std::filesystem::create_directories(dir + "/full");
@@ -49,16 +36,13 @@ TEST(BuildCli, BadInputExits2WithOneLineAndWritesNothing) {
       {"--layers 0" + out, "--layers"},
       {"--sinter-args '--scan.hatch 0'" + out, "scan.hatch"},
       {"--sinter-args '--scan.hatch -1e-6'" + out, "scan.hatch"},
-      {"--sinter " + dir + "/scan-csv.ini --sinter-args '--scan-path " + dir + "/off.csv'" + out,
+      {"--sinter " + kScenes + "/scan-track.ini --sinter-args '--scan-path " + dir + "/off.csv'" + out,
        "scan"},
       {"--spread " + dir + "/drop.ini" + out, "--spread"},
       {"--spread-args '--recoater.gap 0'" + out, "recoater.gap"},
       {"--out " + dir + "/full", "--out"},
       {"--in " + dir + "/missing.h5" + out, "--in"},
   };
-  small_build(dir, false);  // scan.ini without the hatch, for the CSV case
-  std::filesystem::rename(dir + "/scan.ini", dir + "/scan-csv.ini");
-  small_build(dir);
   for (const auto& [args, field] : cases) {
     const auto r = test::run_app("build", "--config " + config + " " + args);
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
@@ -71,7 +55,7 @@ TEST(BuildCli, BadInputExits2WithOneLineAndWritesNothing) {
 
 TEST(BuildCli, ContinuedBuildEqualsTheUninterruptedOneBitForBit) {
   const std::string dir = test::scratch_dir("build_restart");
-  const std::string config = small_build(dir);
+  const std::string config = kConfig;
   const auto whole = test::run_app("build", "--config " + config + " --layers 3 --threads 2 --json --out " + dir + "/whole");
   ASSERT_EQ(whole.status, 0) << whole.err;
   const auto first = test::run_app("build", "--config " + config + " --layers 2 --threads 1 --out " + dir + "/first");
