@@ -149,6 +149,7 @@ double scanned_layer_density(const bed::Bed& bed, const th::SubstrateGeometry& g
 struct LayerReport {
   std::uint64_t layer = 0;
   dem::LayerSummary spread;
+  std::uint64_t rebuilds = 0;              // the spread's neighbour-list builds
   double tool_bottom = 0, clearance = 0;  // m: the tool's bottom above the plate, and above the solid
   double density = 0;                      // scanned_layer_density
   th::SinterResult scan;
@@ -157,7 +158,7 @@ struct LayerReport {
   double fused_fraction = 0;               // of the powder's mass the scan met
   double mass_error = 0, lack_of_fusion = 0, top_min = 0, top_max = 0;  // top: above the plate
   double solid_mass = 0;                   // kg above the plate after the layer
-  std::size_t lifted = 0;                  // powder lifted onto the grown solid (lift_onto_floor)
+  std::size_t captured = 0;                // of the fused: powder the grown solid swallowed
 };
 
 void layer_json(bed::JsonWriter& j, const LayerReport& l) {
@@ -174,6 +175,8 @@ void layer_json(bed::JsonWriter& j, const LayerReport& l) {
       .value("tool_bottom", l.tool_bottom)
       .value("recoater_clearance", l.clearance)
       .value("layer_density", l.density)
+      .value("spread_steps", l.spread.steps)
+      .value("neighbour_rebuilds", l.rebuilds)
       .value("spread_wall_time", l.spread.wall_time)
       .value("tracks", static_cast<std::uint64_t>(l.scan.tracks.size()))
       .value("mean_track_width", width)
@@ -184,7 +187,7 @@ void layer_json(bed::JsonWriter& j, const LayerReport& l) {
       .value("fused", static_cast<std::uint64_t>(l.fused))
       .value("vaporised", static_cast<std::uint64_t>(l.vaporised))
       .value("powder_left", static_cast<std::uint64_t>(l.powder_left))
-      .value("powder_lifted", static_cast<std::uint64_t>(l.lifted))
+      .value("captured", static_cast<std::uint64_t>(l.captured))
       .value("fused_fraction", l.fused_fraction)
       .value("lack_of_fusion", l.lack_of_fusion)
       .value("mass_error", l.mass_error)
@@ -236,7 +239,9 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
                                    "layer " + std::to_string(layer) + " scan");
                         });
   rep.scan_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const th::Fusion fused = th::fuse(bed, sinter, b.melt_fraction);
+  // Powder the grown solid overlaps by more than 5 % of its radius joins it (fusion.hpp): the
+  // Hertz overlap of a resting particle under the scenes' softening is ~2 % of r.
+  const th::Fusion fused = th::fuse(bed, sinter, b.melt_fraction, 0.05);
   const double half_width = app::hatch_requested(b.svm) ? 0.5 * b.svm["scan.hatch"].as<double>()
                                                         : scene.spot_radius;
   const std::vector<th::ScanSegment> path =
@@ -252,6 +257,7 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   rep.density = scanned_layer_density(bed, g, floor.z, lof, rep.tool_bottom);
   rep.scanned_particles = bed.n();
   rep.fused = fused.fused;
+  rep.captured = fused.captured;
   rep.vaporised = fused.vaporised;
   rep.powder_left = fused.powder.n();
   rep.fused_fraction = fused.powder_mass_before > 0
@@ -356,6 +362,7 @@ int run(int argc, char** argv) {
     s.progress = [&](double f, double) { bar.draw(done + share * f, "layer " + std::to_string(layer) + " spread"); };
     const dem::SpreadSummary spread = dem::run_spread(bed, b.scene, s, state ? &*state : nullptr);
     rep.spread = spread.layers.back();
+    rep.rebuilds = spread.neighbour_rebuilds;
     dem::SpreadState next = spread.state;
     bed::Bed spread_bed = bed;
     app::set_spread_provenance(spread_bed, b.dvm, b.scene, "build", argc, argv);
@@ -365,7 +372,6 @@ int run(int argc, char** argv) {
     const std::vector<char> keep =
         scan_and_fuse(b, spread_bed, next.floor, layer, bar, done + share, share, rep);
     dem::remove_particles(bed, next, keep);
-    rep.lifted = dem::lift_onto_floor(bed, next.floor);
     app::set_spread_provenance(bed, b.dvm, b.scene, "build", argc, argv);
     bed.provenance.stage = "build: powder after layer " + std::to_string(layer);
     const std::string layer_path = layer_file(b.out, layer, "");

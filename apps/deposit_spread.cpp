@@ -295,6 +295,11 @@ int run_spread(const po::variables_map& vm, int argc, char** argv) {
                        "the supply)");
     }
   }
+  if (vm.count("export-deck")) {  // a deck has the bed's laws but no moving tool
+    throw InputError("--export-deck: with recoater.tool (accepted: a drop; for a spread bed, "
+                     "bedconv BED.h5 BED.data --deck lammps writes the bed and its laws without "
+                     "the recoater)");
+  }
   if (vm["until-rest"].as<bool>() || vm["lid"].as<bool>() || vm["lid.enabled"].as<bool>() ||
       vm["insert.enabled"].as<bool>() || vm["integrator"].as<std::string>() != "verlet") {
     throw InputError("recoater.tool: with --until-rest, the lid, insertion or --integrator rk4 "

@@ -149,31 +149,6 @@ void contact(const Model& m, const Constants& k, double delta, const double n[3]
   }
 }
 
-// The point of a height map nearest a sphere's centre (x, y, z) of radius r, sampled at the
-// centre's foot and on rings of 0.35 r, 0.7 r and r around it (8 points each): a fused top is
-// steep (a particle's volume raised over its footprint), so the surface right under the centre
-// can be far lower than a step beside it that the sphere already touches. `offset` points from
-// the centre to the surface point; the distance never exceeds the vertical one at the foot.
-struct FloorPoint {
-  double offset[3];
-  double distance;
-};
-inline FloorPoint nearest_floor_point(const bed::HeightMap& floor, double x, double y, double z,
-                                      double r) {
-  FloorPoint best{{0, 0, floor.at(x, y) - z}, std::abs(floor.at(x, y) - z)};
-  constexpr int kRays = 8;
-  for (const double ring : {0.35, 0.7, 1.0}) {
-    for (int k = 0; k < kRays; ++k) {
-      const double a = 2 * std::numbers::pi * k / kRays;
-      const double dx = ring * r * std::cos(a), dy = ring * r * std::sin(a);
-      const double dz = floor.at(x + dx, y + dy) - z;
-      const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
-      if (d < best.distance) best = {{dx, dy, dz}, d};
-    }
-  }
-  return best;
-}
-
 // The contacts of the last force evaluation, in pair order (owner index ascending): what a
 // neighbour-list build, a new layer or a restart carries over.
 struct ActiveContacts {
@@ -199,7 +174,36 @@ struct Run {
   std::vector<double> pair_history;   // kHistory per list entry
   std::vector<std::uint8_t> touching; // per list entry: in contact at the last evaluation
   bed::HeightMap floor;               // the solid under the powder (empty: the flat plate)
-  double floor_top = 0;               // its highest point, m
+  // The floor's highest and lowest node within reach of a sphere's footprint around each node
+  // (floor_reach: the largest radius they were made for): bounds that let a sphere high above
+  // the solid, or over a flat stretch of it, skip the sampled contact.
+  bed::HeightMap floor_high, floor_low;
+  double floor_reach = -1;
+
+  void bound_floor() {
+    double r_max = 0;
+    for (const double r : bed.radius) r_max = std::max(r_max, r);
+    if (floor.empty() || r_max <= floor_reach) return;
+    floor_reach = r_max;
+    floor_high = floor_low = floor;
+    const auto reach_x = static_cast<std::ptrdiff_t>(std::ceil(r_max / floor.dx)) + 1;
+    const auto reach_y = static_cast<std::ptrdiff_t>(std::ceil(r_max / floor.dy)) + 1;
+    const auto nx = static_cast<std::ptrdiff_t>(floor.nx), ny = static_cast<std::ptrdiff_t>(floor.ny);
+    for (std::ptrdiff_t j = 0; j < ny; ++j)
+      for (std::ptrdiff_t i = 0; i < nx; ++i) {
+        const auto at = [&](std::ptrdiff_t a, std::ptrdiff_t b) {
+          return floor.node(static_cast<std::size_t>(a), static_cast<std::size_t>(b));
+        };
+        double hi = at(i, j), lo = hi;
+        for (std::ptrdiff_t b = std::max<std::ptrdiff_t>(0, j - reach_y); b <= std::min(ny - 1, j + reach_y); ++b)
+          for (std::ptrdiff_t a = std::max<std::ptrdiff_t>(0, i - reach_x); a <= std::min(nx - 1, i + reach_x); ++a) {
+            hi = std::max(hi, at(a, b));
+            lo = std::min(lo, at(a, b));
+          }
+        floor_high.z[static_cast<std::size_t>(i + nx * j)] = hi;
+        floor_low.z[static_cast<std::size_t>(i + nx * j)] = lo;
+      }
+  }
   std::uint64_t rebuilds = 0;
   // The tool.
   bool tool_on = false;
@@ -307,7 +311,7 @@ struct Run {
 
   // The plate, or the solid on it (SpreadSettings::floor): the contact is with the surface
   // point nearest the centre among the points under the sphere's footprint that
-  // nearest_floor_point samples, along the line from the centre to it.
+  // HeightMap::nearest samples, along the line from the centre to it.
   void plate_contact(std::size_t i, bool update) {
     const double still[3] = {0, 0, 0};
     const double r = bed.radius[i];
@@ -316,14 +320,20 @@ struct Run {
       wall_contact(i, kPlate, r - (bed.z[i] - box.lower[2]), n, still, update);
       return;
     }
-    if (bed.z[i] - r > floor_top) {  // above the solid's highest point: no contact
+    const double high = floor_high.at(bed.x[i], bed.y[i]);
+    if (bed.z[i] - r > high) {  // above the solid's highest point within its reach: no contact
       wall_contact(i, kPlate, -1.0, still, still, update);
       return;
     }
-    const FloorPoint p = nearest_floor_point(floor, bed.x[i], bed.y[i], bed.z[i], r);
+    if (high - floor_low.at(bed.x[i], bed.y[i]) <= 1e-9) {  // flat under the whole footprint
+      const double n[3] = {0, 0, -1};
+      wall_contact(i, kPlate, r - (bed.z[i] - high), n, still, update);
+      return;
+    }
+    const bed::HeightMap::Nearest p = floor.nearest(bed.x[i], bed.y[i], bed.z[i], r);
     if (p.offset[2] >= 0) {  // the centre at or below the surface: push straight up
       const double n[3] = {0, 0, -1};
-      wall_contact(i, kPlate, r + floor.at(bed.x[i], bed.y[i]) - bed.z[i], n, still, update);
+      wall_contact(i, kPlate, r + p.offset[2], n, still, update);
       return;
     }
     const double n[3] = {p.offset[0] / p.distance, p.offset[1] / p.distance, p.offset[2] / p.distance};
@@ -585,28 +595,6 @@ std::size_t remove_overflow(bed::Bed& bed, SpreadState& s, double front) {
 
 }  // namespace
 
-std::size_t lift_onto_floor(bed::Bed& bed, const bed::HeightMap& floor) {
-  if (floor.empty()) return 0;
-  std::size_t lifted = 0;
-  for (std::size_t i = 0; i < bed.n(); ++i) {
-    const double r = bed.radius[i];
-    bool moved = false;
-    // Up in steps of a tenth of the radius until the nearest surface point is r away.
-    const auto inside = [&] {
-      const FloorPoint p = nearest_floor_point(floor, bed.x[i], bed.y[i], bed.z[i], r);
-      return p.offset[2] >= 0 || p.distance < r;
-    };
-    for (int k = 0; k < 1000 && inside(); ++k) {
-      bed.z[i] += 0.1 * r;
-      moved = true;
-    }
-    if (!moved) continue;
-    if (bed.has_velocity()) bed.vx[i] = bed.vy[i] = bed.vz[i] = 0;
-    ++lifted;
-  }
-  return lifted;
-}
-
 std::size_t remove_particles(bed::Bed& bed, SpreadState& s, const std::vector<char>& keep) {
   std::unordered_set<std::uint64_t> gone;
   for (std::size_t i = 0; i < bed.n(); ++i)
@@ -768,7 +756,6 @@ struct Spreader {
     run.grow();
     run.floor = settings.floor.empty() && restart ? restart->floor : settings.floor;
     check_floor(run.floor, run.box);
-    run.floor_top = run.floor.highest();
     if (!restart) return;
     if (restart->wx.size() != bed.n() ||
         restart->wall_history.size() != bed.n() * kWallSlots * kHistory) {
@@ -855,6 +842,7 @@ struct Spreader {
   // Without a tool: settings.t_end of the granular loop.
   void granular() {
     if (bed.n() == 0) throw InputError("deposit: the bed has no particles (accepted: N >= 1)");
+    run.bound_floor();
     set_time_step();
     rebuild();
     run.forces(false);
@@ -902,6 +890,7 @@ struct Spreader {
     out.tool_bottom = bottom;
     out.supplied = add_supply(run, number);
     run.grow();
+    run.bound_floor();
     check_tool_clear(run);
     if (run.dt == 0) set_time_step();
     rebuild();

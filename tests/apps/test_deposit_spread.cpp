@@ -48,6 +48,7 @@ TEST(DepositSpread, BadToolAndSupplyExit2WithOneLine) {
       {"--supply.volume 1e-12", "supply.count / supply.volume"},
       {"--supply.count 0", "supply.count / supply.volume"},
       {"--periodic x", "--periodic"},
+      {"--export-deck lammps", "--export-deck"},
       // A tool that does not travel pushes the whole supply into the overflow: no layer.
       {"--recoater.end 0.100001e-3 --recoater.delay 0 --recoater.settle 0", "no powder is left"},
   };

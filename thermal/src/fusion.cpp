@@ -47,7 +47,31 @@ double solid_mass(const SubstrateGeometry& g, const TopHeight& top, double densi
   return density * volume;
 }
 
-Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction) {
+// The powder (state 0) the solid's top overlaps by more than capture x r joins it, pass after
+// pass until a pass captures none (each raises the top, which may reach further particles).
+void capture_buried(const bed::Bed& bed, const SubstrateGeometry& g, const std::vector<double>& mass,
+                    double rho0, double capture, Fusion& f, std::vector<std::uint8_t>& keep) {
+  const std::size_t first_top = g.index(0, 0, g.nz - 1);
+  for (std::size_t pass = 0; pass < 100; ++pass) {
+    const bed::HeightMap top = top_surface(g, f.top);
+    std::vector<std::size_t> taken;
+    for (std::size_t i = 0; i < bed.n(); ++i)
+      if (f.state[i] == 0 && top.overlap(bed.x[i], bed.y[i], bed.z[i], bed.radius[i]) > capture * bed.radius[i])
+        taken.push_back(i);
+    if (taken.empty()) return;
+    for (const std::size_t i : taken) {
+      f.state[i] = 1;
+      keep[i] = 0;
+      ++f.fused;
+      ++f.captured;
+      f.powder_mass_after -= mass[i];
+      for (const auto& [node, weight] : top_footprint(g, bed.x[i], bed.y[i], bed.radius[i]))
+        f.top[node - first_top] += mass[i] / rho0 * weight / (g.dx * g.dy);
+    }
+  }
+}
+
+Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, double capture) {
   require_in_range(melt_fraction > 0 && melt_fraction <= 1, "fuse.melt-fraction", melt_fraction,
                    "0 < f <= 1");
   const SubstrateGeometry& g = sinter.grid();
@@ -84,6 +108,7 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction) {
     for (const auto& [node, weight] : top_footprint(g, bed.x[i], bed.y[i], bed.radius[i]))
       f.top[node - first_top] += volume * weight / (g.dx * g.dy);
   }
+  if (capture > 0) capture_buried(bed, g, mass, rho0, capture, f, keep);
   f.solid_mass_after = solid_mass(g, f.top, rho0);
   f.powder = keep_particles(bed, keep);
   return f;

@@ -5,7 +5,9 @@
 // interpolation for both, so the powder rests on the surface the thermal grid conducts through.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
+#include <numbers>
 #include <vector>
 
 namespace powderbed::bed {
@@ -57,6 +59,38 @@ struct HeightMap {
     return {inside_x ? sx : 0.0, inside_y ? sy : 0.0};
   }
   double highest() const { return empty() ? 0.0 : *std::max_element(z.begin(), z.end()); }
+
+  // The surface point nearest a sphere's centre (x, y, z) of radius r, sampled at the centre's
+  // foot and on rings of 0.35 r, 0.7 r and r around it (8 points each): a fused top is steep
+  // (a particle's volume raised over its footprint), so the surface right under the centre can
+  // be far lower than a step beside it that the sphere already touches. `offset` points from the
+  // centre to that point; offset[2] >= 0 when the centre is at or below the surface.
+  struct Nearest {
+    double offset[3];
+    double distance;
+  };
+  Nearest nearest(double x, double y, double zc, double r) const {
+    const double foot = at(x, y) - zc;
+    Nearest best{{0, 0, foot}, std::abs(foot)};
+    if (foot >= 0) return best;
+    constexpr int kRays = 8;
+    for (const double ring : {0.35, 0.7, 1.0}) {
+      for (int k = 0; k < kRays; ++k) {
+        const double a = 2 * std::numbers::pi * k / kRays;
+        const double ex = ring * r * std::cos(a), ey = ring * r * std::sin(a);
+        const double ez = at(x + ex, y + ey) - zc;
+        const double d = std::sqrt(ex * ex + ey * ey + ez * ez);
+        if (d < best.distance) best = {{ex, ey, ez}, d};
+      }
+    }
+    return best;
+  }
+  // How deep a sphere reaches into the surface: r less its distance to the nearest point, or r
+  // plus the depth of its centre below the surface (<= 0: clear of it).
+  double overlap(double x, double y, double zc, double r) const {
+    const Nearest p = nearest(x, y, zc, r);
+    return p.offset[2] >= 0 ? r + p.offset[2] : r - p.distance;
+  }
 };
 
 }  // namespace powderbed::bed

@@ -134,13 +134,6 @@ SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings
 // many went. What the overflow slot takes, and what fusion turns into solid (build).
 std::size_t remove_particles(bed::Bed& bed, SpreadState& state, const std::vector<char>& keep);
 
-// Lifts every particle the floor overlaps onto it (its centre r along the surface's normal from
-// the tangent plane under it, as the floor contact measures) and stops it; returns how many.
-// When fusion raises the solid under powder that stayed (a fused particle's volume spreads over
-// its footprint, under its neighbours too), the powder rides up on the growing solid instead of
-// starting the next layer deep inside a wall, which a softened contact would fire off at speed.
-std::size_t lift_onto_floor(bed::Bed& bed, const bed::HeightMap& floor);
-
 // The /restart group of a bed file: written into an existing HDF5 bed file, read back
 // (InputError naming the file when it is missing or inconsistent with the bed).
 void write_spread_state(const std::string& h5_path, const SpreadState& state, const bed::Bed& bed);

@@ -27,6 +27,7 @@ struct Fusion {
   TopHeight top;                      // the solid's new top, per top-face column i + nx j, m
   std::vector<std::uint8_t> state;    // per particle of the scanned bed: 0 powder, 1 fused, 2 vapour
   std::size_t fused = 0, vaporised = 0;
+  std::size_t captured = 0;           // of the fused: powder the grown solid swallowed (capture)
   double threshold = 0;               // K: T_m + (f - 1/2) ΔT
   double powder_mass_before = 0, powder_mass_after = 0;  // kg
   double solid_mass_before = 0, solid_mass_after = 0;    // kg, above the plate's top face
@@ -37,7 +38,16 @@ struct Fusion {
 
 // Fuses the state `sinter` has reached on `bed` (the bed it was built on); melt_fraction f in
 // (0, 1] (InputError naming fuse.melt-fraction otherwise).
-Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction = 0.5);
+//
+// capture c > 0 (build: the next layer is spread on what stays): a powder particle that the
+// grown solid overlaps by more than c r (bed::HeightMap::overlap, the spread's floor contact)
+// joins it too, its volume raised over its footprint as a fused one's, until none is left so
+// deep. A fused particle's volume spreads under its unfused neighbours as well; left where it
+// is, such a neighbour would start the next spread deep inside a wall, and a softened contact
+// fires it off at metres per second. Physically the melt pool draws in powder it touches (the
+// denudation of the zone beside a track). c = 0 captures nothing (sinter --fuse).
+Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction = 0.5,
+            double capture = 0);
 
 // Solid mass above the plate's top face of a top height map, kg.
 double solid_mass(const SubstrateGeometry& g, const TopHeight& top, double density);
