@@ -26,12 +26,15 @@ at the end, less 10 % of that at each end), with --plate and --gap set explicitl
   window area times t (layer 1: the gap): what weighing the powder a layer adds would give;
 - bed density: bedstat's density of the whole bed under the tool, [0, H_k];
 - coverage of the new slab, and Sa, Sq of the bed's top surface (bedstat --plate 0 --gap H_k);
+- the solid height (solid volume per plate area, bed density x H_k) in each quarter of the
+  window along x: whether the supply lasted the whole travel;
 and the JSON summary's numbers per layer: particles, supplied, overflow, the quick-look density
 by centres under the gap, wall time.
 
 With --work DIR the beds and deposit's JSON are kept there and a later call with the same DIR
-measures them without running deposit again (a run that was stopped: the layers whose beds exist,
-wall times from the beds' file times).
+measures them without running deposit again; --measure-only measures a stopped run (the layers
+whose beds exist, wall times from the beds' file times, the run's start time in DIR/started;
+particles from bedstat, no overflow or quick look: those are in deposit's JSON at the run's end).
 """
 import argparse
 import json
@@ -40,6 +43,7 @@ import platform
 import subprocess
 import sys
 import tempfile
+import time
 
 from common import ROOT, RESULTS, app, bedstat, write_text
 from spread_peer import Scene
@@ -53,12 +57,15 @@ def shown(path):
     return os.path.relpath(full, ROOT) if full.startswith(ROOT + os.sep) else os.path.basename(full)
 
 
-def run_deposit(scene, layers, seed, work):
-    """deposit's JSON summary (kept as work/deposit.json), running it unless that file exists."""
+def run_deposit(scene, layers, seed, work, measure_only):
+    """deposit's JSON summary (kept as work/deposit.json), running it unless that file exists;
+    None when the run did not finish (or, with measure_only, was not run here)."""
     saved = os.path.join(work, "deposit.json")
     if os.path.exists(saved):
         with open(saved) as f:
             return json.load(f)
+    if measure_only:
+        return None
     cmd = [app("deposit"), "--config", scene.path, "--seed", str(seed), "--threads", "1",
            "--layers", str(layers), "--out", os.path.join(work, "L.h5"), "--json"]
     with open(os.path.join(work, "deposit.err"), "w") as err:
@@ -73,14 +80,17 @@ def run_deposit(scene, layers, seed, work):
 
 
 def spread_stats(bed, plate, gap, window):
-    return bedstat([bed, "--spread", "--plate", repr(plate), "--gap", repr(gap),
-                    "--window", f"{window[0]!r},{window[1]!r}"])["spread"]
+    """bedstat's spread object of the bed, with the bed's particle count added as "n_bed"."""
+    entry = bedstat([bed, "--spread", "--plate", repr(plate), "--gap", repr(gap),
+                     "--window", f"{window[0]!r},{window[1]!r}"])
+    return dict(entry["spread"], n_bed=entry["n"])
 
 
 def measure(scene, work, layers, window, summary):
     t = float(scene.options["recoater.layer-thickness"])
     rows, prev_solid, prev_time = [], 0.0, None
-    started = os.path.getmtime(os.path.join(work, "deposit.err"))
+    with open(os.path.join(work, "started")) as f:
+        started = float(f.read())
     area = None
     for k in range(1, layers + 1):
         bed = os.path.join(work, f"L-{k:03d}.h5")
@@ -95,8 +105,14 @@ def measure(scene, work, layers, window, summary):
         row = {"layer": k, "top": top, "slab_density": slab["density"],
                "added_density": (solid - prev_solid) / (area * (top - low)),
                "bed_density": whole["density"], "coverage": slab["coverage"],
-               "sa": whole["sa"], "sq": whole["sq"], "slab_particles": slab["particles"]}
+               "sa": whole["sa"], "sq": whole["sq"], "mean_height": whole["mean_height"],
+               "slab_particles": slab["particles"], "n": whole["n_bed"]}
         prev_solid = solid
+        # the solid height (solid volume per plate area) in each quarter of the window: how even
+        # the bed is along the travel
+        edges = [window[0] + q * (window[1] - window[0]) / 4 for q in range(5)]
+        row["quarters"] = [spread_stats(bed, 0.0, top, (edges[q], edges[q + 1]))["density"] * top
+                           for q in range(4)]
         mtime = os.path.getmtime(bed)
         row["wall_file"] = mtime - (started if prev_time is None else prev_time)
         prev_time = mtime
@@ -113,15 +129,20 @@ def plot(rows, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     k = [r["layer"] for r in rows]
-    fig, ax = plt.subplots(figsize=(5.5, 3.4))
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(8.5, 3.4))
     ax.plot(k, [r["added_density"] for r in rows], "o-", label="added by the layer (mass)")
     ax.plot(k, [r["slab_density"] for r in rows], "s--", label="new layer's slab")
     ax.plot(k, [r["bed_density"] for r in rows], "^:", label="whole bed under the tool")
-    ax.set_xlabel("layer")
     ax.set_ylabel("solid fraction")
-    ax.set_xticks(k if len(k) <= 20 else k[::2])
-    ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
+    ax2.plot(k, [r["top"] * 1e6 for r in rows], "k-", label="tool bottom H_k")
+    ax2.plot(k, [r["mean_height"] * 1e6 for r in rows], "o-", label="mean surface height")
+    ax2.set_ylabel("height above the plate (µm)")
+    ax2.legend(fontsize=8)
+    for a in (ax, ax2):
+        a.set_xlabel("layer")
+        a.set_xticks(k if len(k) <= 20 else k[::2])
+        a.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
 
@@ -132,15 +153,18 @@ def main():
     parser.add_argument("seed", nargs="?", type=int, default=1)
     parser.add_argument("--scene", default=SCENE)
     parser.add_argument("--work", default=None, help="keep the beds here (and reuse them)")
+    parser.add_argument("--measure-only", action="store_true",
+                        help="with --work: measure the beds there, do not run deposit (a stopped run)")
     args = parser.parse_args()
     scene = Scene(os.path.abspath(args.scene), {})
     window = scene.window()
     with tempfile.TemporaryDirectory() as tmp:
         work = os.path.abspath(args.work) if args.work else tmp
         os.makedirs(work, exist_ok=True)
-        if not os.path.exists(os.path.join(work, "deposit.err")):
-            open(os.path.join(work, "deposit.err"), "w").close()
-        summary = run_deposit(scene, args.layers, args.seed, work)
+        if not os.path.exists(os.path.join(work, "started")):
+            with open(os.path.join(work, "started"), "w") as f:
+                f.write(repr(time.time()))
+        summary = run_deposit(scene, args.layers, args.seed, work, args.measure_only)
         rows = measure(scene, work, args.layers, window, summary)
     if not rows:
         sys.exit("spread_layers: no layer bed was written")
@@ -166,20 +190,25 @@ def main():
         f"Window x in [{window[0] * 1e3:.3f}, {window[1] * 1e3:.3f}] mm. In layer k the tool's bottom "
         f"is at H_k = gap + (k − 1) t. *Added*: the solid the layer added under the tool over the "
         "window, divided by the window area × t (layer 1: × the gap). *Slab*: bedstat's density of "
-        "[H_(k−1), H_k] (spheres cut exactly). *Bed*: bedstat's density of [0, H_k]. Coverage: of the new "
-        "slab. Sa, Sq: the bed's top surface. *Quick look*: deposit's JSON, by centres under the gap, "
+        "[H_(k−1), H_k] (spheres cut exactly). *Bed*: bedstat's density of [0, H_k]. Surface: bedstat's "
+        "mean height h̄ of the bed's top over the plate, the tool's bottom H_k − h̄ above it, coverage "
+        "of the new slab, Sa and Sq of the top surface. Solid height: solid volume per plate area in each "
+        "quarter of the window along x (from the start). *Quick look*: deposit's JSON, by centres under the gap, "
         "between the supply's back and the tool's end.",
         "",
-        "| layer | H_k (µm) | particles | overflow | added | slab | bed | quick look | coverage "
-        "| Sa (µm) | Sq (µm) | wall (s) |",
-        "|---" * 12 + "|",
+        "| layer | H_k (µm) | particles | overflow | added | slab | bed | quick look | h̄ (µm) "
+        "| H_k − h̄ (µm) | slab coverage | Sa (µm) | Sq (µm) | solid height by quarter of the window "
+        "(µm) | wall (s) |",
+        "|---" * 15 + "|",
     ]
     for r in rows:
         lines.append(
-            f"| {r['layer']} | {r['top'] * 1e6:.0f} | {r.get('n', '–')} | {r.get('overflow', '–')} | "
+            f"| {r['layer']} | {r['top'] * 1e6:.0f} | {r['n']} | {r.get('overflow', '–')} | "
             f"{r['added_density']:.3f} | {r['slab_density']:.3f} | {r['bed_density']:.3f} | "
             + (f"{r['quick']:.3f}" if "quick" in r else "–")
-            + f" | {r['coverage']:.3f} | {r['sa'] * 1e6:.1f} | {r['sq'] * 1e6:.1f} | "
+            + f" | {r['mean_height'] * 1e6:.1f} | {(r['top'] - r['mean_height']) * 1e6:.1f}"
+            f" | {r['coverage']:.3f} | {r['sa'] * 1e6:.1f} | {r['sq'] * 1e6:.1f} | "
+            + " / ".join(f"{h * 1e6:.0f}" for h in r["quarters"]) + " | "
             f"{r.get('wall', r['wall_file']):.0f} |")
     png = os.path.join(RESULTS, "spread-layers.png")
     plot(rows, png)
