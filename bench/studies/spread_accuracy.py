@@ -13,8 +13,9 @@ one run at a time, for these settings:
   sqrt(10) x the steps of 1e4);
 - at young-scale 1e4, --dt 0.5 x the default step (read from the 1e4 run's JSON "dt");
 - seeds: 1, 2, 3 at the 1e4 default (the seed spread), 1 and 2 for the other settings (the supply
-  is placed from the seed alone, so runs of one seed start from the same particles and differ by
-  the setting only: the per-seed differences are paired).
+  is placed from the seed alone, so runs of one seed start from the same particles; the spread is
+  chaotic, though, so the paired differences still carry trajectory divergence of the order of
+  the seed spread).
 Each bed is measured with `bedstat L.h5 --spread --window X0,X1 --json` (the gap the bed records,
 the plate at the floor; the window of bench/studies/spread_peer.py: the layer the blade leaves
 behind it, less 10 % of its length at each end): layer density, coverage, Sa, Sq. Reported with
@@ -163,8 +164,10 @@ def write_page(scene, args, groups, base_dt):
         "",
         "## Mean ± sd over the seeds, and the paired difference from the stiffest setting",
         "",
-        f"Δ: the mean over the seeds both settings ran of (setting − {REFERENCE}), seed by seed (the "
-        "same supply: the difference is the setting's alone).",
+        f"Δ: the mean over the seeds both settings ran of (setting − {REFERENCE}), seed by seed. Runs of "
+        "one seed start from the same supply, but the spread is chaotic (a change of dt alone moves "
+        "the layer by as much as a change of seed), so Δ is not the setting's bias alone: compare it "
+        "with the seed spread (sd).",
         "",
         "| young-scale | seeds | mean loop wall (s) | steps | layer density | Δ density | coverage "
         "| Δ coverage | Sa (µm) | Sq (µm) |",
