@@ -1,68 +1,230 @@
 #!/usr/bin/env python3
-"""Layer after layer: the blade scene spread LAYERS times on itself (issue 16, point 3).
+"""Layer after layer: a blade scene spread LAYERS times on itself (issue 16, point 3).
 
-Writes docs/results/spread-layers.md (and spread-layers.png when matplotlib is installed). Run
-from anywhere with python3 after building deposit (POWDERBED_BUILD selects the build folder):
+Writes docs/results/spread-layers.md and spread-layers.png (matplotlib, Agg). Run from anywhere
+with /usr/bin/python3 (numpy, matplotlib) after building deposit and bedstat (POWDERBED_BUILD
+selects the build folder):
     POWDERBED_BUILD=build python3 bench/studies/spread_layers.py [LAYERS] [SEED]
+        [--scene data/scenes/spread-blade.ini] [--work DIR]
 
-One run of `deposit --config data/scenes/spread-blade.ini --layers LAYERS` (default 20): each
-layer the plate goes down by recoater.layer-thickness (45 um), a new supply of 2500 particles
-falls in front of the blade, the blade spreads it and the excess past its end is removed
-(recoater.overflow). The table lists, per layer, the JSON summary's numbers: particles in the
-bed, the solid fraction by centres under the tool's lowest point between the supply's back and
-the tool's end (the whole bed under the gap, so it mixes the new layer with the ones below:
-a quick look, bedstat measures a layer), the tool's largest and mean x force, and wall time.
+One run of `deposit --config SCENE --seed SEED --layers LAYERS --threads 1` (default 20 layers
+of data/scenes/spread-blade.ini; the 20-layer study uses data/scenes/spread-blade-layers.ini, the
+same scene in a taller box and a strip half as wide, see its header): each layer the plate goes
+down by recoater.layer-thickness t (45 um), a new supply falls in front of the blade, the blade
+spreads it and the excess past its end is removed (recoater.overflow). deposit writes the bed
+after each layer, OUT-001.h5 ... OUT-NNN.h5; each is measured with `bedstat --spread`.
+
+The bed keeps the plate's frame (docs/deposit-spread.md): in layer k the tool's bottom is at
+H_k = gap + (k - 1) t above the floor. Per layer k, over the window the blade leaves behind it
+(bench/studies/spread_peer.py's rule: from the blade's front face at the start to its back face
+at the end, less 10 % of that at each end), with --plate and --gap set explicitly:
+- slab density: bedstat's density of the new layer's slab, --plate H_(k-1) --gap t (layer 1:
+  --plate 0 --gap gap): the solid volume, spheres cut exactly by the slab's planes, in
+  [H_(k-1), H_k] over the window, divided by the slab's volume;
+- added density: the solid the layer added under the tool, V_k - V_(k-1) with
+  V_k = phi(0, H_k) (window area) H_k from bedstat --plate 0 --gap H_k on bed k, divided by the
+  window area times t (layer 1: the gap): what weighing the powder a layer adds would give;
+- bed density: bedstat's density of the whole bed under the tool, [0, H_k];
+- coverage of the new slab, and Sa, Sq of the bed's top surface (bedstat --plate 0 --gap H_k);
+- the solid height (solid volume per plate area, bed density x H_k) in each quarter of the
+  window along x: whether the supply lasted the whole travel;
+and the JSON summary's numbers per layer: particles, supplied, overflow, the quick-look density
+by centres under the gap, wall time.
+
+With --work DIR the beds and deposit's JSON are kept there and a later call with the same DIR
+measures them without running deposit again; --measure-only measures a stopped run (the layers
+whose beds exist, wall times from the beds' file times, the run's start time in DIR/started;
+particles from bedstat, no overflow or quick look: those are in deposit's JSON at the run's end).
 """
+import argparse
+import json
 import os
+import platform
+import subprocess
 import sys
 import tempfile
+import time
 
-from common import ROOT, app, run_json, write_text
+from common import ROOT, RESULTS, app, bedstat, write_text
+from spread_peer import Scene
 
 SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
+MARKER = "<!-- discussion: kept when the script rewrites this page -->"
+
+
+def shown(path):
+    full = os.path.abspath(path)
+    return os.path.relpath(full, ROOT) if full.startswith(ROOT + os.sep) else os.path.basename(full)
+
+
+def run_deposit(scene, layers, seed, work, measure_only):
+    """deposit's JSON summary (kept as work/deposit.json), running it unless that file exists;
+    None when the run did not finish (or, with measure_only, was not run here)."""
+    saved = os.path.join(work, "deposit.json")
+    if os.path.exists(saved):
+        with open(saved) as f:
+            return json.load(f)
+    if measure_only:
+        return None
+    cmd = [app("deposit"), "--config", scene.path, "--seed", str(seed), "--threads", "1",
+           "--layers", str(layers), "--out", os.path.join(work, "L.h5"), "--json"]
+    with open(os.path.join(work, "deposit.err"), "w") as err:
+        proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=err, text=True)
+    if proc.returncode != 0:
+        print(f"spread_layers: deposit exited {proc.returncode} (see {work}/deposit.err); "
+              "measuring the layers it wrote", file=sys.stderr)
+        return None
+    with open(saved, "w") as f:
+        f.write(proc.stdout)
+    return json.loads(proc.stdout)
+
+
+def spread_stats(bed, plate, gap, window):
+    """bedstat's spread object of the bed, with the bed's particle count added as "n_bed"."""
+    entry = bedstat([bed, "--spread", "--plate", repr(plate), "--gap", repr(gap),
+                     "--window", f"{window[0]!r},{window[1]!r}"])
+    return dict(entry["spread"], n_bed=entry["n"])
+
+
+def measure(scene, work, layers, window, summary):
+    t = float(scene.options["recoater.layer-thickness"])
+    rows, prev_solid, prev_time = [], 0.0, None
+    with open(os.path.join(work, "started")) as f:
+        started = float(f.read())
+    area = None
+    for k in range(1, layers + 1):
+        bed = os.path.join(work, f"L-{k:03d}.h5")
+        if not os.path.exists(bed):
+            break
+        top = scene.gap + (k - 1) * t
+        low = 0.0 if k == 1 else top - t
+        slab = spread_stats(bed, low, top - low, window)
+        whole = spread_stats(bed, 0.0, top, window)
+        area = (window[1] - window[0]) * scene.ly
+        solid = whole["density"] * area * top
+        row = {"layer": k, "top": top, "slab_density": slab["density"],
+               "added_density": (solid - prev_solid) / (area * (top - low)),
+               "bed_density": whole["density"], "coverage": slab["coverage"],
+               "sa": whole["sa"], "sq": whole["sq"], "mean_height": whole["mean_height"],
+               "slab_particles": slab["particles"], "n": whole["n_bed"]}
+        prev_solid = solid
+        # the solid height (solid volume per plate area) in each quarter of the window: how even
+        # the bed is along the travel
+        edges = [window[0] + q * (window[1] - window[0]) / 4 for q in range(5)]
+        row["quarters"] = [spread_stats(bed, 0.0, top, (edges[q], edges[q + 1]))["density"] * top
+                           for q in range(4)]
+        mtime = os.path.getmtime(bed)
+        row["wall_file"] = mtime - (started if prev_time is None else prev_time)
+        prev_time = mtime
+        if summary:
+            s = summary["layers"][k - 1]
+            row.update(n=s["n"], supplied=s["supplied"], overflow=s["overflow"],
+                       quick=s["density_under_gap"], wall=s["wall_time"])
+        rows.append(row)
+    return rows
+
+
+def plot(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    k = [r["layer"] for r in rows]
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(8.5, 3.4))
+    ax.plot(k, [r["added_density"] for r in rows], "o-", label="added by the layer (mass)")
+    ax.plot(k, [r["slab_density"] for r in rows], "s--", label="new layer's slab")
+    ax.plot(k, [r["bed_density"] for r in rows], "^:", label="whole bed under the tool")
+    ax.set_ylabel("solid fraction")
+    ax.legend(fontsize=8)
+    ax2.plot(k, [r["top"] * 1e6 for r in rows], "k-", label="tool bottom H_k")
+    ax2.plot(k, [r["mean_height"] * 1e6 for r in rows], "o-", label="mean surface height")
+    ax2.set_ylabel("height above the plate (µm)")
+    ax2.legend(fontsize=8)
+    for a in (ax, ax2):
+        a.set_xlabel("layer")
+        a.set_xticks(k if len(k) <= 20 else k[::2])
+        a.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
 
 
 def main():
-    layers = int(sys.argv[1]) if len(sys.argv) > 1 else 20
-    seed = int(sys.argv[2]) if len(sys.argv) > 2 else 1
-    with tempfile.TemporaryDirectory() as work:
-        out, wall = run_json([app("deposit"), "--config", SCENE, "--seed", str(seed),
-                              "--layers", str(layers), "--out", os.path.join(work, "L.h5")])
-    rows = out["layers"]
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("layers", nargs="?", type=int, default=20)
+    parser.add_argument("seed", nargs="?", type=int, default=1)
+    parser.add_argument("--scene", default=SCENE)
+    parser.add_argument("--work", default=None, help="keep the beds here (and reuse them)")
+    parser.add_argument("--measure-only", action="store_true",
+                        help="with --work: measure the beds there, do not run deposit (a stopped run)")
+    args = parser.parse_args()
+    scene = Scene(os.path.abspath(args.scene), {})
+    window = scene.window()
+    with tempfile.TemporaryDirectory() as tmp:
+        work = os.path.abspath(args.work) if args.work else tmp
+        os.makedirs(work, exist_ok=True)
+        if not os.path.exists(os.path.join(work, "started")):
+            with open(os.path.join(work, "started"), "w") as f:
+                f.write(repr(time.time()))
+        summary = run_deposit(scene, args.layers, args.seed, work, args.measure_only)
+        rows = measure(scene, work, args.layers, window, summary)
+    if not rows:
+        sys.exit("spread_layers: no layer bed was written")
+    t = float(scene.options["recoater.layer-thickness"])
+    cmd = f"python3 bench/studies/spread_layers.py {args.layers} {args.seed}"
+    if os.path.abspath(args.scene) != SCENE:
+        cmd += f" --scene {shown(args.scene)}"
+    total = sum(r.get("wall", r["wall_file"]) for r in rows)
     lines = [
         "# Spreading layer after layer (blade scene)",
         "",
-        f"`python3 bench/studies/spread_layers.py {layers} {seed}`: data/scenes/spread-blade.ini "
-        f"(316L 15–45 µm, gap 90 µm, 0.1 m/s, layer thickness 45 µm, young-scale "
-        f"{out['young_scale']:g}), {layers} layers, seed {seed}, one thread; {wall:.0f} s wall "
-        f"for the whole run, {out['steps']} steps of {out['dt']:.3g} s.",
+        f"`{cmd}` (method in the script's docstring): `{shown(args.scene)}`, strip "
+        f"{scene.lx * 1e3:g} x {scene.ly * 1e3:g} mm periodic in y, box {scene.lz * 1e3:g} mm tall, "
+        f"gap {scene.gap * 1e6:.0f} um, {scene.speed * 1e3:.0f} mm/s, layer thickness {t * 1e6:.0f} um, "
+        f"supply {scene.options.get('supply.count', '?')} particles a layer, young-scale "
+        f"{scene.young_scale:g}; {len(rows)} of {args.layers} layers, seed {args.seed}, one thread; "
+        f"{total:.0f} s of wall time in all"
+        + (f", {summary['steps']} steps of {summary['dt']:.3g} s." if summary else "."),
+        f"Machine: {platform.node()} ({os.cpu_count()} cores, shared), {platform.platform()}, load "
+        f"average {os.getloadavg()[0]:.2f} / {os.getloadavg()[1]:.2f} / {os.getloadavg()[2]:.2f} "
+        "(1/5/15 min) when the page was written.",
         "",
-        "The density is the JSON summary's quick look: the solid fraction of the centres under "
-        "the tool's lowest point between the supply's back and the tool's end, i.e. the whole "
-        "bed under the gap (new layer and the ones below).",
+        f"Window x in [{window[0] * 1e3:.3f}, {window[1] * 1e3:.3f}] mm. In layer k the tool's bottom "
+        f"is at H_k = gap + (k − 1) t. *Added*: the solid the layer added under the tool over the "
+        "window, divided by the window area × t (layer 1: × the gap). *Slab*: bedstat's density of "
+        "[H_(k−1), H_k] (spheres cut exactly). *Bed*: bedstat's density of [0, H_k]. Surface: bedstat's "
+        "mean height h̄ of the bed's top over the plate, the tool's bottom H_k − h̄ above it, coverage "
+        "of the new slab, Sa and Sq of the top surface. Solid height: solid volume per plate area in each "
+        "quarter of the window along x (from the start). *Quick look*: deposit's JSON, by centres under the gap, "
+        "between the supply's back and the tool's end.",
         "",
-        "| layer | particles | supplied | overflow | density under the gap | max tool force (N) "
-        "| mean tool x force (N) | wall (s) |",
-        "|---|---|---|---|---|---|---|---|",
+        "| layer | H_k (µm) | particles | overflow | added | slab | bed | quick look | h̄ (µm) "
+        "| H_k − h̄ (µm) | slab coverage | Sa (µm) | Sq (µm) | solid height by quarter of the window "
+        "(µm) | wall (s) |",
+        "|---" * 15 + "|",
     ]
     for r in rows:
-        lines.append(f"| {r['layer']} | {r['n']} | {r['supplied']} | {r['overflow']} | "
-                     f"{r['density_under_gap']:.3f} | {r['max_tool_force']:.3g} | "
-                     f"{r['mean_tool_force_x']:.3g} | {r['wall_time']:.0f} |")
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(5, 3.2))
-        ax.plot([r["layer"] for r in rows], [r["density_under_gap"] for r in rows], "o-")
-        ax.set_xlabel("layer")
-        ax.set_ylabel("solid fraction under the gap")
-        fig.tight_layout()
-        fig.savefig(os.path.join(ROOT, "docs", "results", "spread-layers.png"), dpi=120)
-        lines += ["", "![density over layers](spread-layers.png)"]
-    except ImportError:
-        lines += ["", "(no plot: python3-matplotlib is not installed where this ran)"]
-    print(write_text("spread-layers.md", "\n".join(lines) + "\n"))
+        lines.append(
+            f"| {r['layer']} | {r['top'] * 1e6:.0f} | {r['n']} | {r.get('overflow', '–')} | "
+            f"{r['added_density']:.3f} | {r['slab_density']:.3f} | {r['bed_density']:.3f} | "
+            + (f"{r['quick']:.3f}" if "quick" in r else "–")
+            + f" | {r['mean_height'] * 1e6:.1f} | {(r['top'] - r['mean_height']) * 1e6:.1f}"
+            f" | {r['coverage']:.3f} | {r['sa'] * 1e6:.1f} | {r['sq'] * 1e6:.1f} | "
+            + " / ".join(f"{h * 1e6:.0f}" for h in r["quarters"]) + " | "
+            f"{r.get('wall', r['wall_file']):.0f} |")
+    png = os.path.join(RESULTS, "spread-layers.png")
+    plot(rows, png)
+    lines += ["", "![density over layers](spread-layers.png)"]
+    if args.work:
+        with open(os.path.join(work, "spread-layers-rows.json"), "w") as f:
+            json.dump(rows, f, indent=1)
+    # The hand-written discussion below the marker in the page survives a regeneration.
+    old = os.path.join(RESULTS, "spread-layers.md")
+    tail = ""
+    if os.path.exists(old):
+        with open(old) as f:
+            text = f.read()
+        if MARKER in text:
+            tail = text[text.index(MARKER):]
+    print(write_text("spread-layers.md", "\n".join(lines) + "\n" + ("\n" + tail if tail else "")))
 
 
 if __name__ == "__main__":
