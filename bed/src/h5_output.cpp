@@ -3,18 +3,12 @@
 #include <cstdio>
 
 #include "io_detail.hpp"
-#include "io_hdf5_handle.hpp"
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/h5_handle.hpp"
 
 namespace powderbed::bed {
 
-using detail::H5Attr;
-using detail::H5Dataset;
-using detail::H5File;
-using detail::H5Group;
-using detail::H5Space;
-using detail::H5Type;
-using H5Plist = detail::H5Handle<H5Pclose>;
+using H5Plist = H5Handle<H5Pclose>;
 
 struct H5Output::Impl {
   detail::AtomicFile atomic;
@@ -22,7 +16,7 @@ struct H5Output::Impl {
   H5Plist make_groups{H5Pcreate(H5P_LINK_CREATE)};
 
   explicit Impl(const std::string& path) : atomic(path) {
-    detail::silence_hdf5_errors();
+    silence_hdf5_errors();
     file = H5File(H5Fcreate(atomic.temp_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
     if (!file.valid()) fail("/", "cannot create HDF5 file");
     H5Pset_create_intermediate_group(make_groups, 1);
@@ -59,7 +53,7 @@ struct H5Output::Impl {
 
   void attribute(const std::string& object, const std::string& name, hid_t file_type,
                  hid_t mem_type, const void* data, hsize_t count) {
-    detail::H5Handle<H5Oclose> where(open_object(object));
+    H5Handle<H5Oclose> where(open_object(object));
     H5Space space(count == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &count, nullptr));
     H5Attr attr(H5Acreate2(where, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT));
     if (!attr.valid() || H5Awrite(attr, mem_type, data) < 0)

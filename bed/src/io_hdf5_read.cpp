@@ -17,21 +17,13 @@
 #include <vector>
 
 #include "io_detail.hpp"
-#include "io_hdf5_handle.hpp"
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/h5_handle.hpp"
 #include "powderbed/bed/io.hpp"
 
 namespace powderbed::bed {
 
 namespace {
-
-using detail::H5Attr;
-using detail::H5Dataset;
-using detail::H5File;
-using detail::H5Group;
-using detail::H5Handle;
-using detail::H5Space;
-using detail::H5Type;
 
 // Conversion exception handler: a value out of the memory type's range (or a float -> integer
 // truncation) aborts the read instead of being clamped.
@@ -649,7 +641,7 @@ class H5Reader {
 }  // namespace
 
 Bed read_bed_h5(const std::string& path) {
-  detail::silence_hdf5_errors();
+  silence_hdf5_errors();
   return H5Reader(path).read();
 }
 

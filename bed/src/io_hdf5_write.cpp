@@ -4,21 +4,14 @@
 #include <vector>
 
 #include "io_detail.hpp"
-#include "io_hdf5_handle.hpp"
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/h5_handle.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/xdmf.hpp"
 
 namespace powderbed::bed {
 
 namespace {
-
-using detail::H5Attr;
-using detail::H5Dataset;
-using detail::H5File;
-using detail::H5Group;
-using detail::H5Space;
-using detail::H5Type;
 
 class H5Writer {
  public:
@@ -173,7 +166,7 @@ std::string file_name_of(const std::string& path) {
 
 void write_bed_h5(const Bed& bed, const std::string& path) {
   bed.validate(path);
-  detail::silence_hdf5_errors();
+  silence_hdf5_errors();
   detail::AtomicFile h5(path);
   detail::AtomicFile xmf(detail::xdmf_path(path));
   H5Writer(path).write(bed, h5.temp_path());

@@ -19,7 +19,6 @@
 #include "normal_law.hpp"
 #include "powderbed/dem/scene.hpp"
 #include "powderbed/dem/sliding_friction.hpp"
-#include "powderbed/dem/walls.hpp"
 
 namespace powderbed::dem::detail {
 

@@ -8,32 +8,18 @@
 #include <vector>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/h5_handle.hpp"
 #include "powderbed/dem/spread.hpp"
 
 namespace powderbed::dem {
 
 namespace {
 
-template <herr_t (*Close)(hid_t)>
-class Handle {
- public:
-  explicit Handle(hid_t id) : id_(id) {}
-  ~Handle() {
-    if (id_ >= 0) Close(id_);
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  operator hid_t() const { return id_; }  // NOLINT: passes straight into the C API
-  bool valid() const { return id_ >= 0; }
-
- private:
-  hid_t id_;
-};
-using File = Handle<H5Fclose>;
-using Group = Handle<H5Gclose>;
-using Space = Handle<H5Sclose>;
-using Dataset = Handle<H5Dclose>;
-using Attribute = Handle<H5Aclose>;
+using bed::H5Attr;
+using bed::H5Dataset;
+using bed::H5File;
+using bed::H5Group;
+using bed::H5Space;
 
 constexpr const char* kGroup = "restart";
 constexpr std::size_t kWallValues = 42;  // 7 walls x (F_s, M_r)
@@ -46,8 +32,8 @@ template <class T>
 void write_set(hid_t group, const char* name, hid_t type, const std::vector<T>& data,
                std::size_t cols, const std::string& path) {
   const hsize_t dims[2] = {static_cast<hsize_t>(data.size() / cols), static_cast<hsize_t>(cols)};
-  Space space(H5Screate_simple(2, dims, nullptr));
-  Dataset set(H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  H5Space space(H5Screate_simple(2, dims, nullptr));
+  H5Dataset set(H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
   if (!set.valid() || (!data.empty() && H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0))
     fail(path, std::string("cannot write ") + name);
 }
@@ -55,9 +41,9 @@ void write_set(hid_t group, const char* name, hid_t type, const std::vector<T>& 
 template <class T>
 std::vector<T> read_set(hid_t group, const char* name, hid_t type, std::size_t cols,
                         const std::string& path) {
-  Dataset set(H5Dopen2(group, name, H5P_DEFAULT));
+  H5Dataset set(H5Dopen2(group, name, H5P_DEFAULT));
   if (!set.valid()) fail(path, std::string(name) + " is missing");
-  Space space(H5Dget_space(set));
+  H5Space space(H5Dget_space(set));
   hsize_t dims[2] = {0, 0};
   if (H5Sget_simple_extent_ndims(space) != 2 || H5Sget_simple_extent_dims(space, dims, nullptr) < 0 ||
       dims[1] != cols) {
@@ -71,14 +57,14 @@ std::vector<T> read_set(hid_t group, const char* name, hid_t type, std::size_t c
 
 template <class T>
 void write_attribute(hid_t group, const char* name, hid_t type, T value, const std::string& path) {
-  Space space(H5Screate(H5S_SCALAR));
-  Attribute attr(H5Acreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT));
+  H5Space space(H5Screate(H5S_SCALAR));
+  H5Attr attr(H5Acreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT));
   if (!attr.valid() || H5Awrite(attr, type, &value) < 0) fail(path, std::string("cannot write ") + name);
 }
 
 template <class T>
 T read_attribute(hid_t group, const char* name, hid_t type, const std::string& path) {
-  Attribute attr(H5Aopen(group, name, H5P_DEFAULT));
+  H5Attr attr(H5Aopen(group, name, H5P_DEFAULT));
   T value{};
   if (!attr.valid() || H5Aread(attr, type, &value) < 0) fail(path, std::string(name) + " is missing");
   return value;
@@ -87,10 +73,10 @@ T read_attribute(hid_t group, const char* name, hid_t type, const std::string& p
 }  // namespace
 
 void write_spread_state(const std::string& path, const SpreadState& s, const bed::Bed& bed) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  File file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+  bed::silence_hdf5_errors();
+  H5File file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
   if (!file.valid()) fail(path, "cannot open the bed file to add the group");
-  Group group(H5Gcreate2(file, kGroup, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  H5Group group(H5Gcreate2(file, kGroup, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
   if (!group.valid()) fail(path, "cannot create the group");
   write_attribute(group, "layers_done", H5T_NATIVE_UINT64, s.layers_done, path);
   write_attribute(group, "step", H5T_NATIVE_UINT64, s.step, path);
@@ -120,16 +106,16 @@ void write_spread_state(const std::string& path, const SpreadState& s, const bed
 }
 
 bool has_spread_state(const std::string& path) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  bed::silence_hdf5_errors();
+  H5File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   return file.valid() && H5Lexists(file, kGroup, H5P_DEFAULT) > 0;
 }
 
 SpreadState read_spread_state(const std::string& path, const bed::Bed& bed) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  bed::silence_hdf5_errors();
+  H5File file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!file.valid()) fail(path, "cannot open the file");
-  Group group(H5Gopen2(file, kGroup, H5P_DEFAULT));
+  H5Group group(H5Gopen2(file, kGroup, H5P_DEFAULT));
   if (!group.valid()) fail(path, "missing (accepted: a bed written at a layer's end by a spreading run)");
   SpreadState s;
   s.layers_done = read_attribute<std::uint64_t>(group, "layers_done", H5T_NATIVE_UINT64, path);

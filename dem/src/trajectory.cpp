@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/h5_handle.hpp"
 #include "powderbed/bed/h5_output.hpp"
 #include "powderbed/bed/temp_files.hpp"
 #include "powderbed/bed/xdmf.hpp"
@@ -17,26 +18,12 @@ namespace powderbed::dem {
 
 namespace {
 
-// One HDF5 identifier, closed by Close when it goes out of scope.
-template <herr_t (*Close)(hid_t)>
-class Handle {
- public:
-  explicit Handle(hid_t id) : id_(id) {}
-  ~Handle() {
-    if (id_ >= 0) Close(id_);
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  operator hid_t() const { return id_; }  // NOLINT: passes straight into the C API
-  bool valid() const { return id_ >= 0; }
-
- private:
-  hid_t id_;
-};
-using Space = Handle<H5Sclose>;
-using Dataset = Handle<H5Dclose>;
-using Group = Handle<H5Gclose>;
-using Attribute = Handle<H5Aclose>;
+using bed::H5Attr;
+using bed::H5Dataset;
+using bed::H5File;
+using bed::H5Group;
+using bed::H5Space;
+using bed::H5Type;
 
 void check(bool ok, const std::string& path, const std::string& what) {
   if (!ok) throw InputError("--trajectory: cannot write " + what + " to '" + path + "'");
@@ -45,11 +32,11 @@ void check(bool ok, const std::string& path, const std::string& what) {
 // Variable-length UTF-8, as the bed files' strings (h5py reads str, not bytes).
 void write_string_attribute(hid_t where, const char* name, const std::string& value,
                             const std::string& path) {
-  Handle<H5Tclose> type(H5Tcopy(H5T_C_S1));
+  H5Type type(H5Tcopy(H5T_C_S1));
   H5Tset_size(type, H5T_VARIABLE);
   H5Tset_cset(type, H5T_CSET_UTF8);
-  Space space(H5Screate(H5S_SCALAR));
-  Attribute attr(H5Acreate2(where, name, type, space, H5P_DEFAULT, H5P_DEFAULT));
+  H5Space space(H5Screate(H5S_SCALAR));
+  H5Attr attr(H5Acreate2(where, name, type, space, H5P_DEFAULT, H5P_DEFAULT));
   const char* text = value.c_str();
   check(attr.valid() && H5Awrite(attr, type, &text) >= 0, path, name);
 }
@@ -58,16 +45,16 @@ void write_string_attribute(hid_t where, const char* name, const std::string& va
 void write_dataset(hid_t where, const char* name, hid_t type, const void* data, hsize_t rows,
                    hsize_t cols, const char* units, const std::string& path) {
   const hsize_t dims[2] = {rows, cols};
-  Space space(H5Screate_simple(cols > 1 ? 2 : 1, dims, nullptr));
-  Dataset set(H5Dcreate2(where, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  H5Space space(H5Screate_simple(cols > 1 ? 2 : 1, dims, nullptr));
+  H5Dataset set(H5Dcreate2(where, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
   check(set.valid() && H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0, path, name);
   write_string_attribute(set, "units", units, path);
 }
 
 template <class T>
 void write_attribute(hid_t where, const char* name, hid_t type, T value, const std::string& path) {
-  Space space(H5Screate(H5S_SCALAR));
-  Attribute attr(H5Acreate2(where, name, type, space, H5P_DEFAULT, H5P_DEFAULT));
+  H5Space space(H5Screate(H5S_SCALAR));
+  H5Attr attr(H5Acreate2(where, name, type, space, H5P_DEFAULT, H5P_DEFAULT));
   check(attr.valid() && H5Awrite(attr, type, &value) >= 0, path, name);
 }
 
@@ -111,7 +98,7 @@ std::string trajectory_xdmf(const std::string& h5, std::size_t n,
 
 struct TrajectoryWriter::Impl {
   std::string path, temp;
-  hid_t file = -1;
+  H5File file;
   std::size_t n = 0;
   std::vector<std::pair<std::uint64_t, double>> snapshots;  // (step, time)
   std::vector<double> xyz;                                   // scratch N×3
@@ -120,15 +107,15 @@ struct TrajectoryWriter::Impl {
 
 TrajectoryWriter::TrajectoryWriter(const std::string& path, const bed::Bed& bed)
     : impl_(std::make_unique<Impl>()) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // our own one-line errors instead of HDF5's stack
+  bed::silence_hdf5_errors();
   impl_->path = path;
   // "<path>.tmp.<pid>", registered so that SIGINT/SIGTERM removes it (bed/temp_files.hpp).
   impl_->temp = bed::temp_path_for(path);
   impl_->n = bed.n();
   bed::remove_stale_temp_files(path);  // left by a SIGKILLed run
   bed::register_temp_file(impl_->temp);
-  impl_->file = H5Fcreate(impl_->temp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (impl_->file < 0) {
+  impl_->file = H5File(H5Fcreate(impl_->temp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+  if (!impl_->file.valid()) {
     bed::unregister_temp_file(impl_->temp);
     throw InputError("--trajectory: cannot create '" + path + "'");
   }
@@ -137,18 +124,18 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path, const bed::Bed& bed)
   write_attribute(impl_->file, "n", H5T_NATIVE_UINT64, static_cast<std::uint64_t>(bed.n()), path);
   write_dataset(impl_->file, "radius", H5T_NATIVE_DOUBLE, bed.radius.data(), bed.n(), 1, "m", path);
   write_dataset(impl_->file, "id", H5T_NATIVE_UINT64, bed.id.data(), bed.n(), 1, "1", path);
-  Group xdmf(H5Gcreate2(impl_->file, "xdmf", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  H5Group xdmf(H5Gcreate2(impl_->file, "xdmf", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
   check(xdmf.valid(), path, "/xdmf");
   const std::vector<std::uint64_t> cells = bed::polyvertex_connectivity(bed.n());
   write_dataset(impl_->file, bed::kPolyvertexDataset, H5T_NATIVE_UINT64, cells.data(), bed.n(), 1,
                 "1", path);
-  Group steps(H5Gcreate2(impl_->file, "steps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  H5Group steps(H5Gcreate2(impl_->file, "steps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
   check(steps.valid(), path, "/steps");
 }
 
 TrajectoryWriter::~TrajectoryWriter() {
-  if (impl_ && impl_->file >= 0) {
-    H5Fclose(impl_->file);
+  if (impl_ && impl_->file.valid()) {
+    impl_->file.close();
     std::remove(impl_->temp.c_str());
     bed::unregister_temp_file(impl_->temp);
   }
@@ -157,7 +144,7 @@ TrajectoryWriter::~TrajectoryWriter() {
 void TrajectoryWriter::write(std::uint64_t step, double time, const bed::Bed& bed) {
   Impl& s = *impl_;
   const std::string name = bed::step_group(step);
-  Group group(H5Gcreate2(s.file, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  H5Group group(H5Gcreate2(s.file, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
   check(group.valid(), s.path, name);
   write_attribute(group, "time", H5T_NATIVE_DOUBLE, time, s.path);
   write_attribute(group, "step", H5T_NATIVE_UINT64, step, s.path);
@@ -182,9 +169,8 @@ void TrajectoryWriter::write(std::uint64_t step, double time, const bed::Bed& be
 
 void TrajectoryWriter::close() {
   Impl& s = *impl_;
-  if (s.file < 0) return;
-  const bool closed = H5Fclose(s.file) >= 0;
-  s.file = -1;
+  if (!s.file.valid()) return;
+  const bool closed = s.file.close();
   const bool renamed = closed && std::rename(s.temp.c_str(), s.path.c_str()) == 0;
   if (!renamed) std::remove(s.temp.c_str());
   bed::unregister_temp_file(s.temp);

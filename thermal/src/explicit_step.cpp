@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "powderbed/thermal/beer_lambert_laser.hpp"
+#include "powderbed/thermal/contact_conduction.hpp"
 #include "powderbed/thermal/surface_losses.hpp"
 #include "solver_state.hpp"
 
@@ -49,9 +50,7 @@ void particle_step(Sinter::State& s, double t, double dt) {
     for (const auto& p : s.net.pairs) {
       if (s.gone[p.i] || s.gone[p.j]) continue;
       const double ti = s.temperature[p.i], tj = s.temperature[p.j];
-      double k = k_const;
-      if constexpr ((Mask & kBitVariable) != 0) k = 0.5 * (k_of(ti) + k_of(tj));
-      const double f = k * p.shape * (tj - ti);
+      const double f = conduction_flow(k_of(ti), k_of(tj), p.shape, tj - ti);
       q[p.i] += f;
       q[p.j] -= f;
     }
@@ -62,9 +61,7 @@ void particle_step(Sinter::State& s, double t, double dt) {
       double ts = 0;
       for (int w = 0; w < 4; ++w) ts += c.stencil.weight[w] * s.node_temperature[c.stencil.node[w]];
       const double ti = s.temperature[c.particle];
-      double k = k_const;
-      if constexpr ((Mask & kBitVariable) != 0) k = 0.5 * (k_of(ti) + k_of(ts));
-      const double f = k * c.shape * (ts - ti);
+      const double f = conduction_flow(k_of(ti), k_of(ts), c.shape, ts - ti);
       q[c.particle] += f;
       for (int w = 0; w < 4; ++w) {
         const double energy = c.stencil.weight[w] * f * dt;
@@ -126,7 +123,7 @@ void boundary_outflow(Sinter::State& s, double dt) {
   const auto& k = s.node_k;
   const double gx = g.dy * g.dz / g.dx, gy = g.dx * g.dz / g.dy, gz = g.dx * g.dy / g.dz;
   const auto flux = [&](std::size_t free, std::size_t fixed, double shape) {
-    return 0.5 * (k[free] + k[fixed]) * shape * (t[free] - t[fixed]);
+    return conduction_flow(k[fixed], k[free], shape, t[free] - t[fixed]);
   };
   std::vector<double>& plane = s.plane_sums;  // reused: no allocation per step
   plane.assign(g.nz, 0.0);
@@ -189,19 +186,22 @@ void raised_top_layer(Sinter::State& s, double dt) {
   const double* kk = s.node_k.data();
   const double* thick = s.top_thickness.data();
   const double k0 = s.k_fixed;
-  const auto face_k = [&](std::size_t a, std::size_t b) {
-    if constexpr (Variable) return 0.5 * (kk[a] + kk[b]);
+  const auto k_at = [&](std::size_t a) {
+    if constexpr (Variable) return kk[a];
     else return k0;
   };
   for (std::size_t j = 1; j + 1 < g.ny; ++j) {
     for (std::size_t i = 1; i + 1 < g.nx; ++i) {
       const std::size_t c = g.index(i, j, k), col = c - first;
       const double tc = t[c];
+      // A lateral face's conductance per metre of height, times the thinner of the two heights.
       const auto lateral = [&](std::size_t nb, double shape) {
-        return face_k(c, nb) * shape * std::min(thick[col], thick[nb - first]) * (t[nb] - tc);
+        return path_conductance(k_at(c), k_at(nb), shape) *
+               std::min(thick[col], thick[nb - first]) * (t[nb] - tc);
       };
       const double energy = lateral(c - sx, gx) + lateral(c + sx, gx) + lateral(c - sy, gy) +
-                            lateral(c + sy, gy) + face_k(c, c - sz) * gz * (t[c - sz] - tc);
+                            lateral(c + sy, gy) +
+                            conduction_flow(k_at(c), k_at(c - sz), gz, t[c - sz] - tc);
       s.e[c] += energy * dt / s.top_volume[col];
     }
   }

@@ -13,6 +13,7 @@
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/thermal/beer_lambert_laser.hpp"
+#include "powderbed/thermal/contact_conduction.hpp"
 #include "powderbed/thermal/surface_losses.hpp"
 #include "solver_state.hpp"
 
@@ -110,7 +111,7 @@ void implicit_step(Sinter::State& s, double dt) {
     for (const auto& p : s.net.pairs) {
       const bool off = s.gone[p.i] || s.gone[p.j];
       const double G =
-          off ? 0.0 : 0.5 * (k_of(s.temperature[p.i]) + k_of(s.temperature[p.j])) * p.shape;
+          off ? 0.0 : path_conductance(k_of(s.temperature[p.i]), k_of(s.temperature[p.j]), p.shape);
       couple(p.i, s.temperature[p.i], p.j, s.temperature[p.j], G);
     }
   }
@@ -118,8 +119,9 @@ void implicit_step(Sinter::State& s, double dt) {
     for (const auto& c : s.net.substrate) {
       double ts = 0;
       for (int w = 0; w < 4; ++w) ts += c.stencil.weight[w] * s.node_temperature[c.stencil.node[w]];
-      const double G =
-          s.gone[c.particle] ? 0.0 : 0.5 * (k_of(s.temperature[c.particle]) + k_of(ts)) * c.shape;
+      const double G = s.gone[c.particle]
+                           ? 0.0
+                           : path_conductance(k_of(s.temperature[c.particle]), k_of(ts), c.shape);
       // Q = G (Σ w_l T_l - T_i) into the particle, w_k Q out of node k: symmetric in (i, nodes).
       const auto pi = static_cast<std::ptrdiff_t>(c.particle);
       add(pi, pi, G);
@@ -180,7 +182,7 @@ void implicit_step(Sinter::State& s, double dt) {
         sys.guess[u] = tc;
         // Faces towards +x, +y, +z once each (and towards fixed nodes on the -x/-y/-z side).
         const auto face = [&](std::size_t nb, double shape) {
-          const double G = 0.5 * (s.node_k[c] + s.node_k[nb]) * shape;
+          const double G = path_conductance(s.node_k[c], s.node_k[nb], shape);
           couple(u, tc, unknown[nb], s.node_temperature[nb], G);
         };
         face(c + 1, gx * half);

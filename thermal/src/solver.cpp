@@ -253,7 +253,8 @@ void setup_particles(Sinter::State& s, const bed::Bed& bed) {
     const double r = bed.radius[i];
     s.mass[i] = rho0 * 4.0 / 3.0 * M_PI * r * r * r;
     s.area[i] = M_PI * r * r;
-    s.laser_factor[i] = s.scene.absorptivity * s.area[i] * std::exp(-s.beta * s.surface.depth[i]);
+    s.laser_factor[i] =
+        particle_laser_factor(s.scene.absorptivity, s.area[i], s.beta, s.surface.depth[i]);
     if (s.surface.exposed[i]) s.exposed.push_back(static_cast<std::uint32_t>(i));
   }
   s.h.assign(n, 0.0);  // enthalpies are measured from T0
@@ -278,7 +279,7 @@ void setup_substrate(Sinter::State& s) {
       const double above = s.scene.substrate_shading == SubstrateShading::layer
                                ? s.layer_height
                                : s.surface.column_height(g.x(i), g.y(j));
-      s.transmission[i + g.nx * j] = std::exp(-s.beta * above);
+      s.transmission[i + g.nx * j] = beer_lambert_transmission(s.beta, above);
     }
   }
   s.k_fixed = s.material.conductivity(t0);

@@ -97,6 +97,7 @@ double secant_capacity(const EnthalpyCurve& curve, double t, double t_other) {
 void wetted_exchange(Sinter::State& s, double dt) {
   const SubstrateGeometry& g = s.g;
   const bool variable = s.scene.has(kVariableProperties);
+  const auto k_of = [&](double t) { return variable ? s.conductivity(t) : s.k_fixed; };
   for (const auto& w : s.wetted) {
     const std::size_t i = w.particle;
     if (s.gone[i]) continue;
@@ -113,10 +114,10 @@ void wetted_exchange(Sinter::State& s, double dt) {
       inverse_capacity += weight * weight / (top_volume * secant_capacity(s.per_m3, tq, tp));
       limit = std::min(limit, top_volume * std::abs(s.per_m3.enthalpy(tp) - s.e[node]) / weight);
     }
-    const double k = variable ? 0.5 * (s.conductivity(tp) + s.conductivity(ts)) : s.k_fixed;
     const double c_particle = s.mass[i] * secant_capacity(s.per_kg, tp, ts);
     const double c_nodes = inverse_capacity > 0 ? 1 / inverse_capacity : 1e300;
-    double energy = exact_exchange(k * w.shape, c_particle, tp, c_nodes, ts, dt);
+    const double conductance = path_conductance(k_of(tp), k_of(ts), w.shape);
+    double energy = exact_exchange(conductance, c_particle, tp, c_nodes, ts, dt);
     // Nor the particle beyond the nodes' mean temperature.
     limit = std::min(limit, s.mass[i] * std::abs(s.per_kg.enthalpy(ts) - s.h[i]));
     energy = std::clamp(energy, -limit, limit);

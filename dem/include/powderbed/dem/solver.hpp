@@ -27,9 +27,9 @@ struct RestCriteria {
 // down at `speed` until the bed pushes on it with pressure x (top area) or it has travelled
 // `travel` (whichever comes first; at least one must be set), stays there for `hold`, and goes
 // back up to the top of the box at `speed`; the bed then relaxes until rest or for `relax` at
-// most. The lid is the top face of the box with the wall law of walls.hpp (the approach rate
-// counts its velocity), so it needs effects.walls; it moves between steps and costs nothing when
-// off.
+// most. The lid is the top face of the box with the walls' contact law (the scene's law with
+// R* = r_i, m* = m_i; the approach rate counts its velocity), so it needs effects.walls; it moves
+// between steps and costs nothing when off.
 struct LidSettings {
   bool enabled = false;
   double speed = 0.01;   // m/s

@@ -22,17 +22,32 @@ inline double peak_intensity(const LaserParams& p) {
   return 2 * p.power / (M_PI * p.spot_radius * p.spot_radius);
 }
 
+// The beam's profile I / I0 = exp(-2 r^2 / w^2) at horizontal distance^2 `r2` from its axis,
+// `w2` = w^2.
+inline double gaussian_profile(double r2, double w2) { return std::exp(-2 * r2 / w2); }
+
+// The share exp(-beta z) of the beam that passes `depth` z of powder of extinction `beta`.
+inline double beer_lambert_transmission(double beta, double depth) {
+  return std::exp(-beta * depth);
+}
+
 // Absorbed flux alpha I (W/m^2) at horizontal distance^2 `r2` from the beam axis, `depth` below
 // the bed's top surface.
 inline double absorbed_flux(const LaserParams& p, double r2, double depth) {
-  return p.absorptivity * peak_intensity(p) * std::exp(-p.extinction * depth) *
-         std::exp(-2 * r2 / (p.spot_radius * p.spot_radius));
+  return p.absorptivity * peak_intensity(p) * beer_lambert_transmission(p.extinction, depth) *
+         gaussian_profile(r2, p.spot_radius * p.spot_radius);
 }
 
-// H_i of a particle at horizontal distance^2 `r2` from the axis: laser_factor = alpha A_i
-// exp(-beta z_i) (fixed for a fixed bed), times I0 exp(-2 r^2 / w^2).
+// The part of H_i that is fixed for a fixed bed: alpha A_i exp(-beta z_i), W per W/m^2 of peak
+// intensity, for a particle of projected area `area` A_i at `depth` z_i.
+inline double particle_laser_factor(double absorptivity, double area, double beta, double depth) {
+  return absorptivity * area * beer_lambert_transmission(beta, depth);
+}
+
+// H_i of a particle at horizontal distance^2 `r2` from the axis: its particle_laser_factor
+// times I0 exp(-2 r^2 / w^2).
 inline double particle_laser_power(double laser_factor, double peak, double r2, double w2) {
-  return laser_factor * peak * std::exp(-2 * r2 / w2);
+  return laser_factor * peak * gaussian_profile(r2, w2);
 }
 
 // Power onto a top node of the substrate: alpha I(r, 0) times the fraction `transmission` of

@@ -1,10 +1,12 @@
 #pragma once
-// RAII ownership of HDF5 C API identifiers (hid_t), one small type per close function.
+// RAII ownership of HDF5 C API identifiers (hid_t), one small type per close function: bed's
+// files and the stages' own HDF5 groups (dem's trajectory and restart) close what they open on
+// every path, errors included. Including it needs HDF5's headers (HDF5_INCLUDE_DIRS).
 #include <hdf5.h>
 
 #include <utility>
 
-namespace powderbed::bed::detail {
+namespace powderbed::bed {
 
 template <herr_t (*Close)(hid_t)>
 class H5Handle {
@@ -52,4 +54,4 @@ using H5Type = H5Handle<H5Tclose>;
 // HDF5 prints its error stack to stderr by default; we report our own one-line errors instead.
 inline void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
-}  // namespace powderbed::bed::detail
+}  // namespace powderbed::bed
