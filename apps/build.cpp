@@ -68,6 +68,9 @@ void add_options(po::options_description& desc) {
       ("in", po::value<std::string>(), "continue from a layer file DIR/layer-NNN.h5 of a build")
       ("fuse.melt-fraction", po::value<double>()->default_value(0.5),
        "the melt fraction a particle must have reached to fuse (0.5: T_m; 1: wholly liquid)")
+      ("fuse.level", po::value<double>(),
+       "capillary levelling of each layer's deposit: a Gaussian of this standard deviation (m; "
+       "default half the beam radius; 0: none; thermal/fusion.hpp)")
       ("snapshots", po::value<std::size_t>()->default_value(10),
        "snapshots in each layer's scan file (besides t = 0)");
 }
@@ -205,6 +208,7 @@ struct Build {
   th::MaterialTable table;
   std::string out;
   double melt_fraction = 0.5;
+  double level = -1;            // fuse.level, m (< 0: half the beam radius)
   std::size_t snapshots = 10;
   std::size_t scan_layer0 = 0;  // the sinter scene's scan.layer: the first layer's rotation step
   std::string command_line;
@@ -239,9 +243,11 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
                                    "layer " + std::to_string(layer) + " scan");
                         });
   rep.scan_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  // Powder the grown solid overlaps by more than 5 % of its radius joins it (fusion.hpp): the
-  // Hertz overlap of a resting particle under the scenes' softening is ~2 % of r.
-  const th::Fusion fused = th::fuse(bed, sinter, b.melt_fraction, 0.05);
+  // The deposit levelled (by default over half the beam radius: the melt pool spans ~2 w across)
+  // before powder the grown solid overlaps by more than 5 % of its radius joins it (fusion.hpp):
+  // the Hertz overlap of a resting particle under the scenes' softening is ~2 % of r.
+  const double level = b.level >= 0 ? b.level : 0.5 * scene.spot_radius;
+  const th::Fusion fused = th::fuse(bed, sinter, b.melt_fraction, 0.05, level);
   const double half_width = app::hatch_requested(b.svm) ? 0.5 * b.svm["scan.hatch"].as<double>()
                                                         : scene.spot_radius;
   const std::vector<th::ScanSegment> path =
@@ -299,6 +305,10 @@ int run(int argc, char** argv) {
     throw InputError("--fuse.melt-fraction: " + std::to_string(b.melt_fraction) +
                      " (accepted: 0 < f <= 1; 0.5 fuses what reached T_m, 1 what was wholly liquid)");
   b.snapshots = vm["snapshots"].as<std::size_t>();
+  if (vm.count("fuse.level")) {
+    b.level = vm["fuse.level"].as<double>();
+    if (!(b.level >= 0)) throw InputError("--fuse.level: " + std::to_string(b.level) + " (accepted: a length >= 0 m)");
+  }
   b.command_line = app::command_line(argc, argv);
   const std::string spread_scene = beside_config(vm, "spread");
   const std::string sinter_scene = beside_config(vm, "sinter");

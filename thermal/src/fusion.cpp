@@ -71,7 +71,37 @@ void capture_buried(const bed::Bed& bed, const SubstrateGeometry& g, const std::
   }
 }
 
-Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, double capture) {
+// The rise of `top` over `before` spread by a Gaussian of standard deviation `length`: each
+// column's rise scattered to the columns within 3 length, by weights normalised over those that
+// exist (so the volume is kept to round-off at the plate's edges too).
+void level_deposit(const SubstrateGeometry& g, const TopHeight& before, double length, TopHeight& top) {
+  const auto reach = [&](double d) { return static_cast<long>(std::ceil(3 * length / d)); };
+  const long rx = reach(g.dx), ry = reach(g.dy);
+  const auto nx = static_cast<long>(g.nx), ny = static_cast<long>(g.ny);
+  TopHeight levelled = before;
+  std::vector<double> w;
+  for (long j = 0; j < ny; ++j)
+    for (long i = 0; i < nx; ++i) {
+      const double rise = top[static_cast<std::size_t>(i + nx * j)] - before[static_cast<std::size_t>(i + nx * j)];
+      if (rise == 0) continue;
+      double sum = 0;
+      w.clear();
+      for (long b = std::max(0L, j - ry); b <= std::min(ny - 1, j + ry); ++b)
+        for (long a = std::max(0L, i - rx); a <= std::min(nx - 1, i + rx); ++a) {
+          const double ex = static_cast<double>(a - i) * g.dx, ey = static_cast<double>(b - j) * g.dy;
+          w.push_back(std::exp(-(ex * ex + ey * ey) / (2 * length * length)));
+          sum += w.back();
+        }
+      std::size_t k = 0;
+      for (long b = std::max(0L, j - ry); b <= std::min(ny - 1, j + ry); ++b)
+        for (long a = std::max(0L, i - rx); a <= std::min(nx - 1, i + rx); ++a)
+          levelled[static_cast<std::size_t>(a + nx * b)] += rise * w[k++] / sum;
+    }
+  top = std::move(levelled);
+}
+
+Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, double capture,
+            double level) {
   require_in_range(melt_fraction > 0 && melt_fraction <= 1, "fuse.melt-fraction", melt_fraction,
                    "0 < f <= 1");
   const SubstrateGeometry& g = sinter.grid();
@@ -107,6 +137,12 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
     const double volume = mass[i] / rho0;
     for (const auto& [node, weight] : top_footprint(g, bed.x[i], bed.y[i], bed.radius[i]))
       f.top[node - first_top] += volume * weight / (g.dx * g.dy);
+  }
+  require_in_range(level >= 0 && std::isfinite(level), "fuse.level", level, "a length >= 0 m");
+  if (level > 0) {
+    TopHeight before = sinter.top_height();
+    if (before.empty()) before.assign(g.nx * g.ny, g.z_top);
+    level_deposit(g, before, level, f.top);
   }
   if (capture > 0) capture_buried(bed, g, mass, rho0, capture, f, keep);
   f.solid_mass_after = solid_mass(g, f.top, rho0);

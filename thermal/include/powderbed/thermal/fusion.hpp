@@ -46,8 +46,17 @@ struct Fusion {
 // is, such a neighbour would start the next spread deep inside a wall, and a softened contact
 // fires it off at metres per second. Physically the melt pool draws in powder it touches (the
 // denudation of the zone beside a track). c = 0 captures nothing (sinter --fuse).
+//
+// level L > 0 (build): the scan's deposit (the rise of the top over this fusion) is spread by a
+// Gaussian of standard deviation L over the columns, each column's rise shared among the columns
+// within 3 L by weights that sum to 1, so no volume is lost at the plate's edges. A stand-in for
+// the capillary levelling of the melt before it freezes: its capillary time sqrt(rho l^3 /
+// sigma) is ~25 us over l = 50 um (316L, sigma ~1.8 N/m), against the ~1 ms the track takes to
+// solidify, so the melt is level across the pool when it freezes; without it the solid keeps a
+// spike over each fused particle, between which a spread sphere finds pits with two walls. The
+// levelling comes before the capture. L = 0 keeps the deposit where it fell (sinter --fuse).
 Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction = 0.5,
-            double capture = 0);
+            double capture = 0, double level = 0);
 
 // Solid mass above the plate's top face of a top height map, kg.
 double solid_mass(const SubstrateGeometry& g, const TopHeight& top, double density);
