@@ -275,6 +275,9 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   rep.top_max = *high - g.z_top;
   rep.solid_mass = fused.solid_mass_after;
   floor = th::top_surface(g, fused.top);
+  // The spread is periodic across y, the thermal grid is not: the solid's two edge rows become
+  // one seam (their mean; the volume is kept), the top both the next spread and scan stand on.
+  floor.join_periodic_edges(bed.domain.periodic[0], bed.domain.periodic[1]);
   std::vector<char> keep(bed.n());
   for (std::size_t i = 0; i < bed.n(); ++i) keep[i] = fused.state[i] == 0 ? 1 : 0;
   return keep;

@@ -58,6 +58,25 @@ struct HeightMap {
                        c.fx * (node(c.i + 1, c.j + 1) - node(c.i + 1, c.j))) / dy;
     return {inside_x ? sx : 0.0, inside_y ? sy : 0.0};
   }
+  // A surface over a box periodic along x or y has one edge line, not two: the nodes of the two
+  // edge rows (columns) take their mean, which keeps their sum, so the volume under the surface
+  // (each node owning dx dy) is unchanged. A sphere crossing the seam then finds the surface it
+  // left, instead of a step it would be deep inside.
+  void join_periodic_edges(bool periodic_x, bool periodic_y) {
+    if (empty()) return;
+    if (periodic_y)
+      for (std::size_t i = 0; i < nx; ++i) {
+        double& a = z[i];
+        double& b = z[i + nx * (ny - 1)];
+        a = b = 0.5 * (a + b);
+      }
+    if (periodic_x)
+      for (std::size_t j = 0; j < ny; ++j) {
+        double& a = z[nx * j];
+        double& b = z[nx - 1 + nx * j];
+        a = b = 0.5 * (a + b);
+      }
+  }
   double highest() const { return empty() ? 0.0 : *std::max_element(z.begin(), z.end()); }
 
   // The surface point nearest a sphere's centre (x, y, z) of radius r, sampled at the centre's
