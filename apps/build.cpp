@@ -379,14 +379,17 @@ int run(int argc, char** argv) {
     rep.spread = spread.layers.back();
     rep.rebuilds = spread.neighbour_rebuilds;
     dem::SpreadState next = spread.state;
-    // What ends the spread with its bottom above the tool's is not in the layer: the blade
+    // What ends the spread with its bottom above the tool's, or behind where it starts, is not in the layer: the blade
     // scraped everything there, so it is in flight. Removed and counted (ejected): on the build
     // scene a few particles a layer are fired off by the floor (cause not yet found, docs/build.md),
     // and one still in the air would lift the next supply out of the box.
     {
+      // Thrown behind the tool's start too: the next layer's tool would start inside it.
+      const dem::Recoater& t = b.spread.tool;
+      const double behind = t.start + (t.shape == dem::ToolShape::blade ? 0.5 * t.thickness : t.radius);
       std::vector<char> keep(bed.n(), 1);
       for (std::size_t i = 0; i < bed.n(); ++i)
-        keep[i] = bed.z[i] - bed.radius[i] > rep.tool_bottom ? 0 : 1;
+        keep[i] = bed.z[i] - bed.radius[i] > rep.tool_bottom || bed.x[i] < behind ? 0 : 1;
       rep.ejected = dem::remove_particles(bed, next, keep);
     }
     bed::Bed spread_bed = bed;
