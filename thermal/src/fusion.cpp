@@ -47,30 +47,6 @@ double solid_mass(const SubstrateGeometry& g, const TopHeight& top, double densi
   return density * volume;
 }
 
-// The powder (state 0) the solid's top overlaps by more than capture x r joins it, pass after
-// pass until a pass captures none (each raises the top, which may reach further particles).
-void capture_buried(const bed::Bed& bed, const SubstrateGeometry& g, const std::vector<double>& mass,
-                    double rho0, double capture, Fusion& f, std::vector<std::uint8_t>& keep) {
-  const std::size_t first_top = g.index(0, 0, g.nz - 1);
-  for (std::size_t pass = 0; pass < 100; ++pass) {
-    const bed::HeightMap top = top_surface(g, f.top);
-    std::vector<std::size_t> taken;
-    for (std::size_t i = 0; i < bed.n(); ++i)
-      if (f.state[i] == 0 && top.overlap(bed.x[i], bed.y[i], bed.z[i], bed.radius[i]) > capture * bed.radius[i])
-        taken.push_back(i);
-    if (taken.empty()) return;
-    for (const std::size_t i : taken) {
-      f.state[i] = 1;
-      keep[i] = 0;
-      ++f.fused;
-      ++f.captured;
-      f.powder_mass_after -= mass[i];
-      for (const auto& [node, weight] : top_footprint(g, bed.x[i], bed.y[i], bed.radius[i]))
-        f.top[node - first_top] += mass[i] / rho0 * weight / (g.dx * g.dy);
-    }
-  }
-}
-
 // The rise of `top` over `before` spread by a Gaussian of standard deviation `length`: each
 // column's rise scattered to the columns within 3 length, by weights normalised over those that
 // exist (so the volume is kept to round-off at the plate's edges too).
@@ -98,6 +74,36 @@ void level_deposit(const SubstrateGeometry& g, const TopHeight& before, double l
           levelled[static_cast<std::size_t>(a + nx * b)] += rise * w[k++] / sum;
     }
   top = std::move(levelled);
+}
+
+// The powder (state 0) the solid's top overlaps by more than capture x r joins it, pass after
+// pass until a pass captures none (each raises the top, which may reach further particles). Each
+// pass's deposit is levelled over `level` like the scan's: a captured particle melts into the
+// pool as a fused one does, and left over its footprint its volume would stand ~1.3 r high on a
+// cell or two, a spike the floor contact's samples can miss until one strikes it.
+void capture_buried(const bed::Bed& bed, const SubstrateGeometry& g, const std::vector<double>& mass,
+                    double rho0, double capture, double level, Fusion& f,
+                    std::vector<std::uint8_t>& keep) {
+  const std::size_t first_top = g.index(0, 0, g.nz - 1);
+  for (std::size_t pass = 0; pass < 100; ++pass) {
+    const bed::HeightMap top = top_surface(g, f.top);
+    std::vector<std::size_t> taken;
+    for (std::size_t i = 0; i < bed.n(); ++i)
+      if (f.state[i] == 0 && top.overlap(bed.x[i], bed.y[i], bed.z[i], bed.radius[i]) > capture * bed.radius[i])
+        taken.push_back(i);
+    if (taken.empty()) return;
+    const TopHeight before = f.top;
+    for (const std::size_t i : taken) {
+      f.state[i] = 1;
+      keep[i] = 0;
+      ++f.fused;
+      ++f.captured;
+      f.powder_mass_after -= mass[i];
+      for (const auto& [node, weight] : top_footprint(g, bed.x[i], bed.y[i], bed.radius[i]))
+        f.top[node - first_top] += mass[i] / rho0 * weight / (g.dx * g.dy);
+    }
+    if (level > 0) level_deposit(g, before, level, f.top);
+  }
 }
 
 Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, double capture,
@@ -144,7 +150,7 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
     if (before.empty()) before.assign(g.nx * g.ny, g.z_top);
     level_deposit(g, before, level, f.top);
   }
-  if (capture > 0) capture_buried(bed, g, mass, rho0, capture, f, keep);
+  if (capture > 0) capture_buried(bed, g, mass, rho0, capture, level, f, keep);
   f.solid_mass_after = solid_mass(g, f.top, rho0);
   f.powder = keep_particles(bed, keep);
   return f;
