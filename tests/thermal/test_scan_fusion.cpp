@@ -469,8 +469,21 @@ TEST(Fusion, CaptureLeavesNoPowderBuriedInTheGrownSolid) {
   EXPECT_LE(deepest(both), 0.05);
   EXPECT_LE(deepest_dense(both), 0.06);
   EXPECT_LT(both.mass_error(), 1e-12);
+  // ... and capture stays beside the melt: a captured particle touches the pool, the columns the
+  // scan's levelled deposit reached (within 3 L + r of a fused particle), so it lies within
+  // 3 L + 2 r (and a grid cell) of one; levelled everywhere, the tails ran capture through the bed.
+  double farthest = 0;
+  for (std::size_t i = 0; i < b.n(); ++i) {
+    if (both.state[i] != 1 || plain.state[i] == 1) continue;
+    double nearest = 1;
+    for (std::size_t k = 0; k < b.n(); ++k)
+      if (plain.state[k] == 1) nearest = std::min(nearest, std::hypot(b.x[i] - b.x[k], b.y[i] - b.y[k]));
+    farthest = std::max(farthest, nearest);
+  }
+  EXPECT_LE(farthest, 3 * 10e-6 + 2 * kR + kDx);
   std::printf("  deepest powder in the solid: %.2f r without capture, %.3f r with (%zu fused, %zu "
-              "captured); levelled too: %.3f r (%.3f r by brute force; %.3f r unlevelled)\n",
+              "captured); levelled too: %.3f r (%.3f r by brute force; %.3f r unlevelled), the farthest "
+              "captured %.1f um from a fused one\n",
               deepest(plain), deepest(taken), plain.fused, taken.captured, deepest(both),
-              deepest_dense(both), deepest_dense(taken));
+              deepest_dense(both), deepest_dense(taken), farthest * 1e6);
 }
