@@ -240,6 +240,25 @@ TEST(LowestSite, TruncatedGaussianFillsTheBoxWithThePsd) {
   EXPECT_EQ(r.stop_reason, "max failures");
 }
 
+TEST(LowestSite, DefaultStopIsDenseAndCheap) {
+  // The same scene with the default stop (max_failures 100): the bed keeps the density of the
+  // old default (seeds 1-5 before the floor was closed to failed sizes: phi 0.518-0.547, median
+  // 0.538; after: 0.531-0.545), so phi > 0.528 (that median - 0.01). Before, every failed size
+  // paid n_T floor drops on a covered floor (attempts >= n_T x failed sizes: 1.3-2.6 k attempts
+  // per sphere); a size whose n_T drops failed now skips the floor, and so does every larger
+  // one (measured: 0.08-0.21 x n_T x failed sizes, 225-240 attempts per sphere, against ~170
+  // for max_failures 1), hence the bounds n_T x failures / 4 and 500 per sphere.
+  const bed::Psd psd = bed::Psd::parse("gauss:mean=0.6,sd=0.2,min=0.2,max=1.0,on=radius");
+  PackOptions o = lowest_options();
+  o.max_failures = PackOptions{}.max_failures;
+  const PackResult r = pack(box(3, 10, 10, 10), psd, o, 2);
+  expect_valid(r.bed);
+  EXPECT_EQ(r.stop_reason, "max failures");
+  EXPECT_GT(bed::packing_density(r.bed), 0.528);
+  EXPECT_LT(double(r.attempts), double(o.tries) * double(r.failed_placements) / 4);
+  EXPECT_LT(double(r.attempts), 500.0 * double(r.bed.n()));
+}
+
 TEST(SizeSampling, StratifiedBedHonoursThePsdAtSmallN) {
   // The polydisperse scene with stratified sizes (size_sampler.hpp). The run stops at
   // the first size that finds no site, so the placed sizes are a prefix of the golden-ratio
