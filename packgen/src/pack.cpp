@@ -494,14 +494,17 @@ bool Packer<Backend>::try_lowest(double r) {
 // r and every larger size for the rest of the run: n_T failed uniform drops bound the free
 // fraction of the floor (for that size) below 3 / n_T at 95 % confidence, and the floor only
 // fills up. Without this, every failed size of a full bed paid n_T floor attempts, most of a
-// default run's attempts (GenGeo scene, docs/results/packgen-speed.md: 1.2 of 1.6 M).
+// default run's attempts (GenGeo scene, docs/results/packgen-speed.md: 1.2 of 1.6 M). Below
+// kMinSweep drops a failed sweep bounds nothing worth closing on (n_T = 10: a third of the floor
+// could still be free), so small --tries keep the floor open.
 template <class Backend>
 bool Packer<Backend>::floor_sweep(double r) {
+  constexpr int kMinSweep = 100;  // 3 / n_T <= 3 % of the floor
   if (r >= floor_closed_from_) return false;
   for (int t = 0; t < o_.tries; ++t) {
     if (try_floor(r)) return true;
   }
-  floor_closed_from_ = r;
+  if (o_.tries >= kMinSweep) floor_closed_from_ = r;
   return false;
 }
 
