@@ -154,6 +154,7 @@ struct LayerReport {
   dem::LayerSummary spread;
   std::uint64_t rebuilds = 0;              // the spread's neighbour-list builds
   std::size_t ejected = 0;                 // in flight above the tool's bottom at the end, removed
+  std::size_t behind = 0;                  // behind the tool's start at the end, removed
   double tool_bottom = 0, clearance = 0;  // m: the tool's bottom above the plate, and above the solid
   double density = 0;                      // scanned_layer_density
   th::SinterResult scan;
@@ -182,6 +183,7 @@ void layer_json(bed::JsonWriter& j, const LayerReport& l) {
       .value("spread_steps", l.spread.steps)
       .value("neighbour_rebuilds", l.rebuilds)
       .value("ejected", static_cast<std::uint64_t>(l.ejected))
+      .value("behind_start", static_cast<std::uint64_t>(l.behind))
       .value("spread_wall_time", l.spread.wall_time)
       .value("tracks", static_cast<std::uint64_t>(l.scan.tracks.size()))
       .value("mean_track_width", width)
@@ -276,10 +278,9 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   rep.top_min = *low - g.z_top;
   rep.top_max = *high - g.z_top;
   rep.solid_mass = fused.solid_mass_after;
+  // The spread is periodic across y, the thermal grid is not: fuse joins the solid's two edge
+  // rows into one seam (their mean; the volume is kept) before it captures what the seam buries.
   floor = th::top_surface(g, fused.top);
-  // The spread is periodic across y, the thermal grid is not: the solid's two edge rows become
-  // one seam (their mean; the volume is kept), the top both the next spread and scan stand on.
-  floor.join_periodic_edges(bed.domain.periodic[0], bed.domain.periodic[1]);
   std::vector<char> keep(bed.n());
   for (std::size_t i = 0; i < bed.n(); ++i) keep[i] = fused.state[i] == 0 ? 1 : 0;
   return keep;
@@ -379,18 +380,21 @@ int run(int argc, char** argv) {
     rep.spread = spread.layers.back();
     rep.rebuilds = spread.neighbour_rebuilds;
     dem::SpreadState next = spread.state;
-    // What ends the spread with its bottom above the tool's, or behind where it starts, is not in the layer: the blade
-    // scraped everything there, so it is in flight. Removed and counted (ejected): on the build
-    // scene a few particles a layer are fired off by the floor (cause not yet found, docs/build.md),
-    // and one still in the air would lift the next supply out of the box.
+    // What ends the spread with its bottom above the tool's is not in the layer: the blade
+    // scraped everything there, so it is in flight (one still in the air would lift the next
+    // supply out of the box). What lies behind the tool's start ran back under it while the heap
+    // formed: the next layer's tool would start inside it. Both are removed and counted.
     {
-      // Thrown behind the tool's start too: the next layer's tool would start inside it.
       const dem::Recoater& t = b.spread.tool;
-      const double behind = t.start + (t.shape == dem::ToolShape::blade ? 0.5 * t.thickness : t.radius);
+      const double start = t.start + (t.shape == dem::ToolShape::blade ? 0.5 * t.thickness : t.radius);
       std::vector<char> keep(bed.n(), 1);
-      for (std::size_t i = 0; i < bed.n(); ++i)
-        keep[i] = bed.z[i] - bed.radius[i] > rep.tool_bottom || bed.x[i] < behind ? 0 : 1;
-      rep.ejected = dem::remove_particles(bed, next, keep);
+      for (std::size_t i = 0; i < bed.n(); ++i) {
+        const bool flying = bed.z[i] - bed.radius[i] > rep.tool_bottom;
+        rep.ejected += flying ? 1 : 0;
+        rep.behind += !flying && bed.x[i] < start ? 1 : 0;
+        keep[i] = flying || bed.x[i] < start ? 0 : 1;
+      }
+      dem::remove_particles(bed, next, keep);
     }
     bed::Bed spread_bed = bed;
     app::set_spread_provenance(spread_bed, b.dvm, b.scene, "build", argc, argv);

@@ -47,6 +47,21 @@ double solid_mass(const SubstrateGeometry& g, const TopHeight& top, double densi
   return density * volume;
 }
 
+// On a bed periodic along x or y whose grid spans that period, the solid's two edge rows are one
+// line (bed::HeightMap::join_periodic_edges: their mean, the volume kept). The grid itself is not
+// periodic, so a track crossing the seam raises one edge and not the other; left so, powder
+// resting at the low edge finds itself inside the step the moment the edges are joined.
+void join_seams(const bed::Bed& bed, const SubstrateGeometry& g, TopHeight& top) {
+  const auto spans = [&](int axis, double lower, double d, std::size_t n) {
+    return bed.domain.periodic[axis] &&
+           std::abs(lower - bed.domain.lower[axis]) < 1e-3 * d &&
+           std::abs(d * static_cast<double>(n - 1) - bed.domain.length(axis)) < 1e-3 * d;
+  };
+  bed::HeightMap m = top_surface(g, top);
+  m.join_periodic_edges(spans(0, g.x0, g.dx, g.nx), spans(1, g.y0, g.dy, g.ny));
+  top = std::move(m.z);
+}
+
 // The rise of `top` over `before` spread by a Gaussian of standard deviation `length`: each
 // column's rise scattered to the columns within 3 length, by weights normalised over those that
 // exist (so the volume is kept to round-off at the plate's edges too) and, given `pool`, that it
@@ -99,6 +114,7 @@ void capture_buried(const bed::Bed& bed, const SubstrateGeometry& g, const std::
   std::vector<std::uint8_t> pool(f.top.size());
   for (std::size_t c = 0; c < pool.size(); ++c) pool[c] = f.top[c] > unscanned[c] ? 1 : 0;
   for (std::size_t pass = 0; pass < 100; ++pass) {
+    join_seams(bed, g, f.top);
     const bed::HeightMap top = top_surface(g, f.top);
     std::vector<std::size_t> taken;
     for (std::size_t i = 0; i < bed.n(); ++i)
@@ -161,6 +177,7 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
   TopHeight before = sinter.top_height();
   if (before.empty()) before.assign(g.nx * g.ny, g.z_top);
   if (level > 0) level_deposit(g, before, level, f.top);
+  join_seams(bed, g, f.top);
   if (capture > 0) capture_buried(bed, g, mass, rho0, capture, level, before, f, keep);
   f.solid_mass_after = solid_mass(g, f.top, rho0);
   f.powder = keep_particles(bed, keep);

@@ -55,6 +55,11 @@ struct Fusion {
 // solidify, so the melt is level across the pool when it freezes; without it the solid keeps a
 // spike over each fused particle, between which a spread sphere finds pits with two walls. The
 // levelling comes before the capture. L = 0 keeps the deposit where it fell (sinter --fuse).
+//
+// On a bed periodic along x or y whose grid spans the period, the solid's two edge rows become
+// one seam (their mean, the volume kept) before the capture: the grid is not periodic, so a track
+// crossing the seam raises one edge only, and the powder by the other edge would be left inside
+// the step once the next spread joins them.
 Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction = 0.5,
             double capture = 0, double level = 0);
 
