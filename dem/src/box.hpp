@@ -24,9 +24,17 @@ struct Box {
     return b;
   }
   bool any_periodic() const { return periodic[0] || periodic[1] || periodic[2]; }
-  // Separation along `axis` under the minimum image on a periodic axis.
+  // Separation along `axis` under the minimum image on a periodic axis. Separations of wrapped
+  // coordinates are shorter than the box, so one subtraction nearly always does; the general
+  // rounding (a libm call without SSE4.1, a tenth of a pair's cost) is kept for the rest and
+  // gives the same result bit for bit where both apply.
   double image(int axis, double delta) const {
-    return periodic[axis] ? delta - length[axis] * std::nearbyint(delta / length[axis]) : delta;
+    if (!periodic[axis]) return delta;
+    const double half = 0.5 * length[axis];
+    if (delta > half && delta < 1.5 * length[axis]) return delta - length[axis];
+    if (delta < -half && delta > -1.5 * length[axis]) return delta + length[axis];
+    if (delta >= -half && delta <= half) return delta;
+    return delta - length[axis] * std::nearbyint(delta / length[axis]);
   }
   // Coordinate wrapped into [lower, upper) on a periodic axis.
   double wrap(int axis, double v) const {

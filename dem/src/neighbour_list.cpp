@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <omp.h>
@@ -76,6 +77,25 @@ void NeighbourList::for_each_candidate(const ParticleView& p, std::size_t i, F&&
   }
 }
 
+// Count partners, prefix-sum, then fill: both passes per particle, in parallel.
+void NeighbourList::fill_in_parallel(const ParticleView& p, int threads) {
+  const std::size_t n = p.n;
+  for_each_particle(n, threads, [&](std::size_t i) {
+    std::uint32_t k = 0;
+    for_each_candidate(p, i, [&](std::uint32_t) { ++k; });
+    offset_[i + 1] = k;
+  });
+  for (std::size_t i = 0; i < n; ++i) offset_[i + 1] += offset_[i];
+  partners_.resize(offset_[n]);
+  owners_.resize(offset_[n]);
+  for_each_particle(n, threads, [&](std::size_t i) {
+    std::uint32_t* out = partners_.data() + offset_[i];
+    for_each_candidate(p, i, [&](std::uint32_t j) { *out++ = j; });
+    std::fill(owners_.begin() + offset_[i], owners_.begin() + offset_[i + 1],
+              static_cast<std::uint32_t>(i));
+  });
+}
+
 void NeighbourList::build(const ParticleView& p, int threads, bool with_incident) {
   const std::size_t n = p.n;
   const std::size_t cells = static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2];
@@ -98,22 +118,20 @@ void NeighbourList::build(const ParticleView& p, int threads, bool with_incident
       cell_particles_[fill[particle_cell_[i]]++] = static_cast<std::uint32_t>(i);
     }
   }
-  // Count partners, prefix-sum, then fill: both passes per particle, in parallel.
   offset_.assign(n + 1, 0);
-  for_each_particle(n, threads, [&](std::size_t i) {
-    std::uint32_t k = 0;
-    for_each_candidate(p, i, [&](std::uint32_t) { ++k; });
-    offset_[i + 1] = k;
-  });
-  for (std::size_t i = 0; i < n; ++i) offset_[i + 1] += offset_[i];
-  partners_.resize(offset_[n]);
-  owners_.resize(offset_[n]);
-  for_each_particle(n, threads, [&](std::size_t i) {
-    std::uint32_t* out = partners_.data() + offset_[i];
-    for_each_candidate(p, i, [&](std::uint32_t j) { *out++ = j; });
-    std::fill(owners_.begin() + offset_[i], owners_.begin() + offset_[i + 1],
-              static_cast<std::uint32_t>(i));
-  });
+  if (threads <= 1) {  // one pass, appending in the order the parallel fill below writes
+    partners_.clear();
+    owners_.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      for_each_candidate(p, i, [&](std::uint32_t j) {
+        partners_.push_back(j);
+        owners_.push_back(static_cast<std::uint32_t>(i));
+      });
+      offset_[i + 1] = static_cast<std::uint32_t>(partners_.size());
+    }
+  } else {
+    fill_in_parallel(p, threads);
+  }
   if (with_incident) {
     // Serial fill in increasing i: a particle's pairs under lower indices arrive first, in the
     // order of those indices, then its own pairs are appended.
@@ -140,14 +158,24 @@ void NeighbourList::build(const ParticleView& p, int threads, bool with_incident
 namespace {
 
 // Whether some particle of [begin, end) moved more than sqrt(limit2) from (x0, y0, z0): a
-// restrict-qualified loop with an integer OR, which the compiler vectorises.
-bool any_moved(std::size_t begin, std::size_t end, double limit2, const double* __restrict x,
-               const double* __restrict y, const double* __restrict z,
-               const double* __restrict x0, const double* __restrict y0,
-               const double* __restrict z0) {
+// restrict-qualified loop with an integer OR, which the compiler vectorises. On a periodic axis
+// the separation takes its minimum image by one conditional shift by the length (`shift`; 0 on
+// other axes): both coordinates are wrapped into the box, so they are less than a length apart.
+bool any_moved(std::size_t begin, std::size_t end, double limit2, const Box& box,
+               const double* __restrict x, const double* __restrict y,
+               const double* __restrict z, const double* __restrict x0,
+               const double* __restrict y0, const double* __restrict z0) {
+  double shift[3], half[3];
+  for (int a = 0; a < 3; ++a) {
+    shift[a] = box.periodic[a] ? box.length[a] : 0.0;
+    half[a] = box.periodic[a] ? 0.5 * box.length[a] : std::numeric_limits<double>::infinity();
+  }
+  const auto image = [&](int a, double e) {
+    return e - shift[a] * static_cast<double>(e > half[a]) + shift[a] * static_cast<double>(e < -half[a]);
+  };
   unsigned moved = 0;
   for (std::size_t i = begin; i < end; ++i) {
-    const double ex = x[i] - x0[i], ey = y[i] - y0[i], ez = z[i] - z0[i];
+    const double ex = image(0, x[i] - x0[i]), ey = image(1, y[i] - y0[i]), ez = image(2, z[i] - z0[i]);
     moved |= static_cast<unsigned>(ex * ex + ey * ey + ez * ez > limit2);
   }
   return moved != 0;
@@ -157,24 +185,18 @@ bool any_moved(std::size_t begin, std::size_t end, double limit2, const double* 
 
 bool NeighbourList::moved_more_than(const ParticleView& p, double limit, int threads) const {
   const double limit2 = limit * limit;
-  if (!box_.any_periodic()) {
-    bool moved = false;
-    if (threads <= 1) return any_moved(0, p.n, limit2, p.x, p.y, p.z, x0_.data(), y0_.data(), z0_.data());
-#pragma omp parallel num_threads(threads) reduction(|| : moved)
-    {
-      const auto team = static_cast<std::size_t>(omp_get_num_threads());
-      const auto rank = static_cast<std::size_t>(omp_get_thread_num());
-      moved = any_moved(p.n * rank / team, p.n * (rank + 1) / team, limit2, p.x, p.y, p.z,
-                        x0_.data(), y0_.data(), z0_.data());
-    }
-    return moved;
+  if (threads <= 1) {
+    return any_moved(0, p.n, limit2, box_, p.x, p.y, p.z, x0_.data(), y0_.data(), z0_.data());
   }
-  return max_over_particles(p.n, threads, [&](std::size_t i) {
-    const double ex = box_.image(0, p.x[i] - x0_[i]);
-    const double ey = box_.image(1, p.y[i] - y0_[i]);
-    const double ez = box_.image(2, p.z[i] - z0_[i]);
-    return ex * ex + ey * ey + ez * ez;
-  }) > limit2;
+  bool moved = false;
+#pragma omp parallel num_threads(threads) reduction(|| : moved)
+  {
+    const auto team = static_cast<std::size_t>(omp_get_num_threads());
+    const auto rank = static_cast<std::size_t>(omp_get_thread_num());
+    moved = any_moved(p.n * rank / team, p.n * (rank + 1) / team, limit2, box_, p.x, p.y, p.z,
+                      x0_.data(), y0_.data(), z0_.data());
+  }
+  return moved;
 }
 
 }  // namespace powderbed::dem::detail

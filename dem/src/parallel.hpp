@@ -38,18 +38,4 @@ void for_each_chunk(std::size_t n, int threads, F&& body) {
   }
 }
 
-// max over particles of value(i) (>= 0).
-template <class F>
-double max_over_particles(std::size_t n, int threads, F&& value) {
-  double worst = 0;
-  if (threads <= 1) {
-    for (std::size_t i = 0; i < n; ++i) worst = std::max(worst, value(i));
-    return worst;
-  }
-  const long long count = static_cast<long long>(n);
-#pragma omp parallel for schedule(static) num_threads(threads) reduction(max : worst)
-  for (long long i = 0; i < count; ++i) worst = std::max(worst, value(static_cast<std::size_t>(i)));
-  return worst;
-}
-
 }  // namespace powderbed::dem::detail

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <unordered_map>
@@ -54,7 +55,6 @@ struct Model {
 // (Hertz: k_t = shear sqrt(delta), Mindlin) or 2/7 k_n (linear: the ratio that gives a
 // sphere's tangential and normal oscillations one frequency, Schaefer, Dippel & Wolf 1996).
 struct Constants {
-  double reach = 0;  // r_i + r_j (pairs)
   double reduced_radius = 0, reduced_mass = 0;
   double elastic = 0, damping = 0, shear = 0;
   double rolling_inertia = 0;  // I_r of rolling_resistance.hpp
@@ -168,9 +168,14 @@ struct Run {
   double e_pair = 0, e_wall = 0, g_pair = 0, g_wall = 0;
   std::vector<double> mass, inv_mass, inv_inertia, drag, wx, wy, wz, fx, fy, fz, tx, ty, tz;
   std::vector<double> wall_history;   // kWallSlots * kHistory per particle
+  // Per particle, bit `slot` set when that wall's history may be non-zero: a wall out of reach
+  // (most walls, most steps) then costs a test, not the write of its six zeros.
+  std::vector<std::uint8_t> wall_touch;
   std::vector<Constants> wall;        // per particle
   NeighbourList list;
   std::vector<Constants> pair;        // per list entry
+  std::vector<double> pair_reach;     // per list entry: r_i + r_j (apart from `pair`: every
+                                      // entry's is read every step, the rest only in contact)
   std::vector<double> pair_history;   // kHistory per list entry
   std::vector<std::uint8_t> touching; // per list entry: in contact at the last evaluation
   bed::HeightMap floor;               // the solid under the powder (empty: the flat plate)
@@ -221,6 +226,7 @@ struct Run {
     for (auto* v : {&mass, &inv_mass, &inv_inertia, &drag, &fx, &fy, &fz, &tx, &ty, &tz}) v->resize(count);
     for (auto* v : {&wx, &wy, &wz}) v->resize(count, 0.0);
     wall_history.resize(count * kWallSlots * kHistory, 0.0);
+    wall_touch.resize(count, 0);
     wall.resize(count);
     for (std::size_t i = old; i < count; ++i) {
       const double r = bed.radius[i];
@@ -253,6 +259,7 @@ struct Run {
     list.build(view(), 1);
     const std::size_t entries = list.pair_entries();
     pair.resize(entries);
+    pair_reach.resize(entries);
     pair_history.assign(entries * kHistory, 0.0);
     touching.assign(entries, 0);
     std::size_t first = 0;  // a's contacts of owner i start here (a is in owner order)
@@ -267,7 +274,7 @@ struct Run {
         const double rj = bed.radius[j], mj = mass[j];
         pair[k] = make_constants(model, e_pair, g_pair, scene.stiffness, ri * rj / (ri + rj),
                                  mi * mj / (mi + mj));
-        pair[k].reach = ri + rj;
+        pair_reach[k] = ri + rj;
         pair[k].rolling_inertia = rolling_inertia(mi, ri, mj, rj);
         for (std::size_t c = first; c < last; ++c) {
           if (a.j[c] != j) continue;
@@ -280,19 +287,74 @@ struct Run {
     }
   }
 
-  void rebuild_if_needed() {
-    if (!list.moved_more_than(view(), 0.5 * list.skin(), 1)) return;
+  // The drift x += dt v (wrapped on periodic axes), testing as it goes whether some particle
+  // moved more than half the skin since the list was built (minimum image: both coordinates lie
+  // in the box); the list is then rebuilt. One pass over the particles instead of two.
+  void drift_and_rebuild_if_needed() {
+    double* __restrict x = bed.x.data();
+    double* __restrict y = bed.y.data();
+    double* __restrict z = bed.z.data();
+    const double* __restrict vx = bed.vx.data();
+    const double* __restrict vy = bed.vy.data();
+    const double* __restrict vz = bed.vz.data();
+    const double* __restrict x0 = list.built_at(0);
+    const double* __restrict y0 = list.built_at(1);
+    const double* __restrict z0 = list.built_at(2);
+    double lo[2], hi[2], length[2], half[2];
+    for (int a = 0; a < 2; ++a) {  // z is never periodic (check_settings)
+      const bool p = box.periodic[a];
+      lo[a] = p ? box.lower[a] : -std::numeric_limits<double>::infinity();
+      hi[a] = p ? box.upper[a] : std::numeric_limits<double>::infinity();
+      length[a] = p ? box.length[a] : 0.0;
+      half[a] = p ? 0.5 * box.length[a] : std::numeric_limits<double>::infinity();
+    }
+    const double limit = 0.5 * list.skin(), limit2 = limit * limit;
+    const auto wrap = [&](int a, double v) {
+      return v - length[a] * static_cast<double>(v >= hi[a]) + length[a] * static_cast<double>(v < lo[a]);
+    };
+    const auto image = [&](int a, double e) {
+      return e - length[a] * static_cast<double>(e > half[a]) + length[a] * static_cast<double>(e < -half[a]);
+    };
+    unsigned moved = 0;
+    for (std::size_t i = 0, count = n(); i < count; ++i) {
+      x[i] = wrap(0, x[i] + dt * vx[i]);
+      y[i] = wrap(1, y[i] + dt * vy[i]);
+      z[i] += dt * vz[i];
+      const double ex = image(0, x[i] - x0[i]), ey = image(1, y[i] - y0[i]), ez = z[i] - z0[i];
+      moved |= static_cast<unsigned>(ex * ex + ey * ey + ez * ez > limit2);
+    }
+    if (!moved) return;
     rebuild_with(active());
     ++rebuilds;
   }
 
+  // The wall histories of a restart or of the particles left after an overflow, with the
+  // touch bits they imply.
+  void set_wall_history(const std::vector<double>& h) {
+    wall_history = h;
+    wall_touch.assign(n(), 0);
+    for (std::size_t i = 0; i < n(); ++i)
+      for (int slot = 0; slot < kWallSlots; ++slot) {
+        const double* v = wall_history.data() + (i * kWallSlots + slot) * kHistory;
+        if (std::any_of(v, v + kHistory, [](double x) { return x != 0.0; }))
+          wall_touch[i] |= static_cast<std::uint8_t>(1u << slot);
+      }
+  }
+
+  void leave_wall(std::size_t i, WallSlot slot) {
+    if (!(wall_touch[i] & (1u << slot))) return;
+    std::fill_n(wall_history.data() + (i * kWallSlots + slot) * kHistory, kHistory, 0.0);
+    wall_touch[i] &= static_cast<std::uint8_t>(~(1u << slot));
+  }
+
   void wall_contact(std::size_t i, WallSlot slot, double delta, const double n[3],
                     const double wall_velocity[3], bool update) {
-    double* h = wall_history.data() + (i * kWallSlots + slot) * kHistory;
     if (delta <= 0) {
-      std::fill_n(h, kHistory, 0.0);
+      leave_wall(i, slot);
       return;
     }
+    wall_touch[i] |= static_cast<std::uint8_t>(1u << slot);
+    double* h = wall_history.data() + (i * kWallSlots + slot) * kHistory;
     const double dv[3] = {bed.vx[i] - wall_velocity[0], bed.vy[i] - wall_velocity[1],
                           bed.vz[i] - wall_velocity[2]};
     const double wi[3] = {wx[i], wy[i], wz[i]}, still[3] = {0, 0, 0};
@@ -342,9 +404,25 @@ struct Run {
 
   // The plate, the box's top and the side faces that are not periodic (a particle the tool
   // throws up stays in the box, so the bed stays a valid bed file) and the tool.
+  // Whether particle i may touch a wall: the contact tests of wall_forces, plate_contact and
+  // tool_contact's first line, without their work. Most particles touch none most steps.
+  bool near_wall(std::size_t i) const {
+    const double r = bed.radius[i], x = bed.x[i], y = bed.y[i], z = bed.z[i];
+    bool near = floor.empty() ? r - (z - box.lower[2]) > 0 : !(z - r > floor_high.at(x, y));
+    near = near || r - (box.upper[2] - z) > 0;
+    if (!box.periodic[0]) near = near || r - (x - box.lower[0]) > 0 || r - (box.upper[0] - x) > 0;
+    if (!box.periodic[1]) near = near || r - (y - box.lower[1]) > 0 || r - (box.upper[1] - y) > 0;
+    if (tool_on) {
+      const double reach = r + profile.rounding;
+      near = near || !(std::abs(x - tool_x) - profile.half_width >= reach || profile.z_low - z >= reach);
+    }
+    return near;
+  }
+
   void wall_forces(bool update) {
     const double still[3] = {0, 0, 0};
     for (std::size_t i = 0; i < n(); ++i) {
+      if (!wall_touch[i] && !near_wall(i)) continue;  // no contact now, no history to drop
       const double r = bed.radius[i];
       plate_contact(i, update);
       {
@@ -363,7 +441,7 @@ struct Run {
       if (!tool_on) continue;
       ToolContact t;
       if (!tool_contact(profile, bed.x[i] - tool_x, bed.z[i], r, t)) {
-        std::fill_n(wall_history.data() + (i * kWallSlots + kTool) * kHistory, kHistory, 0.0);
+        leave_wall(i, kTool);
         continue;
       }
       // Surface velocity: the tool's translation plus its spin about the roller's axis.
@@ -382,7 +460,7 @@ struct Run {
       const double ex = box.image(0, bed.x[j] - bed.x[i]);
       const double ey = box.image(1, bed.y[j] - bed.y[i]);
       const double ez = box.image(2, bed.z[j] - bed.z[i]);
-      const double d2 = ex * ex + ey * ey + ez * ez, reach = pair[k].reach;
+      const double d2 = ex * ex + ey * ey + ez * ez, reach = pair_reach[k];
       double* h = pair_history.data() + k * kHistory;
       if (d2 >= reach * reach) {
         if (touching[k]) {
@@ -428,27 +506,28 @@ struct Run {
     if (scene.has(kHertz)) pair_forces(update);
   }
 
-  void kick(double h) {
-    for (std::size_t i = 0; i < n(); ++i) {
-      bed.vx[i] += h * fx[i] * inv_mass[i];
-      bed.vy[i] += h * fy[i] * inv_mass[i];
-      bed.vz[i] += h * fz[i] * inv_mass[i];
-      wx[i] += h * tx[i] * inv_inertia[i];
-      wy[i] += h * ty[i] * inv_inertia[i];
-      wz[i] += h * tz[i] * inv_inertia[i];
-    }
+  // v += h F / m and omega += h T / I; whether every velocity is still finite (a NaN fails
+  // the comparison, as Inf does), tested with no branch so the loops vectorise.
+  bool kick(double h) {
+    const std::size_t count = n();
+    const auto axis = [&](double* __restrict v, const double* __restrict f, const double* __restrict inv) {
+      unsigned finite = 1;
+      for (std::size_t i = 0; i < count; ++i) {
+        v[i] += h * f[i] * inv[i];
+        finite &= static_cast<unsigned>(std::abs(v[i]) <= std::numeric_limits<double>::max());
+      }
+      return finite;
+    };
+    return (axis(bed.vx.data(), fx.data(), inv_mass.data()) & axis(bed.vy.data(), fy.data(), inv_mass.data()) &
+            axis(bed.vz.data(), fz.data(), inv_mass.data()) & axis(wx.data(), tx.data(), inv_inertia.data()) &
+            axis(wy.data(), ty.data(), inv_inertia.data()) & axis(wz.data(), tz.data(), inv_inertia.data())) != 0;
   }
 
   void step(std::uint64_t step_number) {
     kick(0.5 * dt);
-    for (std::size_t i = 0; i < n(); ++i) {
-      bed.x[i] = box.wrap(0, bed.x[i] + dt * bed.vx[i]);
-      bed.y[i] = box.wrap(1, bed.y[i] + dt * bed.vy[i]);
-      bed.z[i] += dt * bed.vz[i];
-    }
-    rebuild_if_needed();
+    drift_and_rebuild_if_needed();
     forces(true);
-    kick(0.5 * dt);
+    if (kick(0.5 * dt)) return;
     for (std::size_t i = 0; i < n(); ++i) {
       if (std::isfinite(bed.vx[i] + bed.vy[i] + bed.vz[i] + wx[i] + wy[i] + wz[i])) continue;
       std::ostringstream msg;
@@ -643,7 +722,7 @@ double largest_overlap(const Run& run) {
     const double ex = run.box.image(0, run.bed.x[j] - run.bed.x[i]);
     const double ey = run.box.image(1, run.bed.y[j] - run.bed.y[i]);
     const double ez = run.box.image(2, run.bed.z[j] - run.bed.z[i]);
-    const double delta = run.pair[k].reach - std::sqrt(ex * ex + ey * ey + ez * ez);
+    const double delta = run.pair_reach[k] - std::sqrt(ex * ex + ey * ey + ez * ez);
     if (delta > 0) worst = std::max(worst, delta / std::min(run.bed.radius[i], run.bed.radius[j]));
   }
   return worst;
@@ -767,7 +846,7 @@ struct Spreader {
     run.wx = restart->wx;
     run.wy = restart->wy;
     run.wz = restart->wz;
-    run.wall_history = restart->wall_history;
+    run.set_wall_history(restart->wall_history);
     carried = from_state(*restart, bed);
   }
 
@@ -863,7 +942,7 @@ struct Spreader {
     run.wx = state.wx;
     run.wy = state.wy;
     run.wz = state.wz;
-    run.wall_history = state.wall_history;
+    run.set_wall_history(state.wall_history);
     carried = from_state(state, bed);
     if (bed.n() > 0) rebuild();  // an empty bed has no cells to size (the next supply rebuilds)
   }

@@ -63,6 +63,10 @@ struct ToolContact {
 // tool; false when they do not touch. A centre inside the core rectangle (a particle already
 // deep inside the tool, which the set-up refuses) is pushed out through the nearest side.
 inline bool tool_contact(const ToolProfile& p, double px, double pz, double r, ToolContact& c) {
+  // Beside or below the tool by more than the sphere's reach: no contact, without the root
+  // (the spread loop asks this of every particle every step; most are far from the tool).
+  const double reach = r + p.rounding;
+  if (std::abs(px) - p.half_width >= reach || p.z_low - pz >= reach) return false;
   const double qx = std::clamp(px, -p.half_width, p.half_width);
   const double qz = std::clamp(pz, p.z_low, p.z_high);
   double ex = px - qx, ez = pz - qz;  // from the core rectangle to the centre
