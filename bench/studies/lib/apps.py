@@ -178,6 +178,14 @@ def ke2016_bed(case, seed=1, depth=0.0):
         "--lid.depth", f"{depth * d / 2:.6g}"]))
 
 
+def ke2016_keff(case, bed, *options, tag="nominal"):
+    """keff with [KE]'s scene of `case` on `bed` and `options`: the --json summary with k_core;
+    the temperatures go to BED-T-<tag>.h5 beside the bed."""
+    s, _ = keff(ke2016_keff_scene(case), bed, *options, out=bed.replace(".h5", f"-T-{tag}.h5"),
+                core=True)
+    return s
+
+
 def ke2016_soft_bed(case, k_n):
     """[KE]'s unconsolidated bed of `case`, seed 1, deposited at the DEM stiffness k_n (N/m;
     the scene's is [KE]'s 1e5): (path, deposit summary, wall s), kept in KE2016_SOFT_WORK."""
