@@ -375,8 +375,8 @@ def main():
     with open(apps.KE2016_RESULTS, "w") as f:
         json.dump({f"{c}:{s}": v for (c, s), v in results.items()}, f)
     other = case_summary([r for seed in seeds for r in results[(BED_SEED_CASE, seed)]])
-    text = (page(results, seeds, report.machine(load)) + "\n".join(bed_seed_section(seed_rows, other))
-            + "\n")
+    text = (page(results, seeds, report.machine(load))
+            + "\n".join(bed_seed_section(seed_rows, other)) + "\n")
     print(report.write_page("keff-validation.md", text))
 
 
