@@ -54,10 +54,10 @@ def section(rows, seeds):
         "Within reach of the hot wall / touching it: particles with the wall inside their gas "
         "lens (0.2 r) / overlapping it (wall_links); the same for the floor.",
         "",
-        "| lid depth (r) | lid travel (D) | largest lid force (N) | hot wall: in lens / touching "
-        "| floor: in lens / touching | core porosity | box porosity | Z (bedstat) | "
-        "k_eff (W/mK) | k_core (W/mK) | k_eff / k_core | contact share |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+        *report.table_head("lid depth (r)", "lid travel (D)", "largest lid force (N)",
+                           "hot wall: in lens / touching", "floor: in lens / touching",
+                           "core porosity", "box porosity", "Z (bedstat)", "k_eff (W/mK)",
+                           "k_core (W/mK)", "k_eff / k_core", "contact share"),
     ]
     for p, rs in g.items():
         lid = [r["bed"]["dep"].get("lid", {}) for r in rs]

@@ -1,7 +1,7 @@
 """4. Emissivity: k_eff and the radiation share at 1000 and 1500 K on the seed-1 steel 1 mm bed
 against the particles' emissivity, with the walls at the same ε and at the scene's, in the pair
 formula and in the radiosity model."""
-from lib import apps
+from lib import apps, report
 
 from .shared import RAYS, base_bed, groups, keff
 
@@ -59,9 +59,9 @@ def section(wall_scene, rows):
         "radiosity model (`--radiation.model radiosity`: the grey enclosure, one radiosity node "
         "per surface, docs/keff.md) with particles and walls at ε.",
         "",
-        "| T (K) | ε | k_eff, particles and walls | radiation share | k_eff, particles | "
-        "radiation share | k_eff, radiosity model | radiation share | k_eff, radiation off |",
-        "|---|---|---|---|---|---|---|---|---|",
+        *report.table_head("T (K)", "ε", "k_eff, particles and walls", "radiation share",
+                           "k_eff, particles", "radiation share", "k_eff, radiosity model",
+                           "radiation share", "k_eff, radiation off"),
     ]
     for r in rows:
         L.append(f"| {r['t']} | {r['eps']:g} | {r['both']['k_eff']:.4f} | "

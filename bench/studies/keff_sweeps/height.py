@@ -2,6 +2,8 @@
 at 1000 K with radiation, against the 10 D bed."""
 import statistics
 
+from lib import report
+
 from .shared import D, RAYS, base_bed, deposit, groups, keff, pm, seed_spread, seeds_text
 
 HEIGHTS = [1, 2, 3, 5, 7, 10]  # box height H/D, insertion until full
@@ -54,10 +56,9 @@ def section(rows, seeds):
         f"radiation (ε 0.5, air k_g(T), {RAYS} rays). H/D (measured) is keff's wall-to-wall "
         "distance, floor to the highest particle top.",
         "",
-        "| H/D nominal | particles | H/D (floor to the hot wall) | box porosity | k_eff 300 K (W/mK) | "
-        "/ k_eff(10 D) | contact share | k_eff 1000 K, radiation | / k_eff(10 D) | "
-        "radiation share |",
-        "|---|---|---|---|---|---|---|---|---|---|",
+        *report.table_head("H/D nominal", "particles", "H/D (floor to the hot wall)",
+                           "box porosity", "k_eff 300 K (W/mK)", "/ k_eff(10 D)", "contact share",
+                           "k_eff 1000 K, radiation", "/ k_eff(10 D)", "radiation share"),
     ]
     for h, rs in g.items():
         c = [r["cold"]["k_eff"] for r in rs]

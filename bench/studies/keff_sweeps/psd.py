@@ -2,6 +2,8 @@
 monodisperse pool, k_eff and k_core against σ/D."""
 import statistics
 
+from lib import report
+
 from .shared import D, base_bed, bed_panel, deposit, groups, keff, pm, seed_spread, seeds_text
 
 SPREADS = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5]  # sigma/D
@@ -63,9 +65,9 @@ def section(rows, seeds):
            "σ. ")
         + "Sampled σ/D: bedstat's radius sd over its mean.",
         "",
-        "| σ/D nominal | --psd | pool / particles in the bed | sampled σ/D | core porosity | box porosity | "
-        "Z (bedstat) | k_eff (W/mK) | k_core (W/mK) | contact share | deposit wall (s) |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
+        *report.table_head("σ/D nominal", "--psd", "pool / particles in the bed", "sampled σ/D",
+                           "core porosity", "box porosity", "Z (bedstat)", "k_eff (W/mK)",
+                           "k_core (W/mK)", "contact share", "deposit wall (s)"),
     ]
     for spread, rs in g.items():
         L.append(

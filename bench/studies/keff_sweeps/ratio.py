@@ -1,6 +1,6 @@
 """2. Gas-to-solid conductivity ratio: k_s = k_g / ratio on the seed-1 steel 1 mm bed at 300 K,
 contact + gas, against Zehner–Bauer–Schlünder at the bed's core porosity."""
-from lib import apps, references
+from lib import apps, references, report
 
 from .shared import base_bed, keff
 
@@ -52,9 +52,8 @@ def section(eps_core, rows):
         "ZBS: Zehner–Bauer–Schlünder (point contacts, no radiation; bench/studies/lib/references.py "
         f"`zbs`) at the bed's core porosity {eps_core:.3f}.",
         "",
-        "| k_g / k_s | k_s (W/mK) | k_eff (W/mK) | k_eff / k_g | k_core / k_g | ZBS k/k_g | "
-        "k_core / ZBS | contact share | gas share |",
-        "|---|---|---|---|---|---|---|---|---|",
+        *report.table_head("k_g / k_s", "k_s (W/mK)", "k_eff (W/mK)", "k_eff / k_g", "k_core / k_g",
+                           "ZBS k/k_g", "k_core / ZBS", "contact share", "gas share"),
     ]
     for r in rows:
         s = r["run"]

@@ -1,6 +1,6 @@
 """1. Bed temperature, radiation off and on: k_eff at T on the seed-1 steel 1 mm and 3.2 mm beds,
 air's k_g(T) at each gas link, against [KE]'s measure of radiation σT³D/k_g(T)."""
-from lib import references
+from lib import references, report
 
 from .shared import RAYS, groups, keff, validation_bed
 
@@ -79,10 +79,9 @@ def section(temps):
         "walls at ε 0.5 or 0.9), seed-1 beds of steel 1 mm and steel 3.2 mm (its own scenes). "
         "In bold: the temperature where σT³D/k_g(T) = 0.5.",
         "",
-        "| bed | T (K) | k_g(T) (W/mK) | σT³D/k_g | k_eff, no radiation | contact / gas share | "
-        "k_eff, ε 0.5 | radiation adds | radiation share | k_eff, ε 0.9 | radiation adds | "
-        "radiation share |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+        *report.table_head("bed", "T (K)", "k_g(T) (W/mK)", "σT³D/k_g", "k_eff, no radiation",
+                           "contact / gas share", "k_eff, ε 0.5", "radiation adds",
+                           "radiation share", "k_eff, ε 0.9", "radiation adds", "radiation share"),
     ]
     for r in temps:
         off, e5, e9 = r["runs"]["off"], r["runs"][0.5], r["runs"][0.9]

@@ -4,7 +4,7 @@ stiffness k_n = 1e3 ... 1e6 N/m, read with the Hertz correction at its own k_n a
 geometric contact radius."""
 import statistics
 
-from lib import apps
+from lib import apps, report
 
 from .shared import D, base_bed, deposit, groups, keff, pm, record, seeds_text
 
@@ -74,8 +74,8 @@ def section(e_nom, k_bed, same, beds, seeds):
         "Hertz correction k_n δ_s = (4/3) E* √R* δ_h^{3/2} gives the overlap of a Hertz contact "
         "at E under the bed's forces, so a ∝ E^(-1/3) at the same packing. 300 K, contact + gas.",
         "",
-        "| E (GPa) | k_eff (W/mK) | vs E_nom | k_core (W/mK) | vs E_nom | contact share |",
-        "|---|---|---|---|---|---|",
+        *report.table_head("E (GPa)", "k_eff (W/mK)", "vs E_nom", "k_core (W/mK)", "vs E_nom",
+                           "contact share"),
     ]
     for e, s in same:
         L.append(f"| {e:g} | {s['k_eff']:.4f} | {(s['k_eff'] / ref['k_eff'] - 1) * 100:+.1f} % | "
@@ -88,10 +88,10 @@ def section(e_nom, k_bed, same, beds, seeds):
         "correction at their own k_n (the contacts of the real steel) and with the geometric "
         "radius of the soft overlap (what a soft bed gives without the correction).",
         "",
-        "| k_n (N/m) | max overlap / r | core porosity | Z (bedstat) | k_eff, Hertz | "
-        "k_eff, geometric | geometric / Hertz | k_core, Hertz | k_core, geometric | "
-        "contact share, Hertz / geometric | deposit wall (s) |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
+        *report.table_head("k_n (N/m)", "max overlap / r", "core porosity", "Z (bedstat)",
+                           "k_eff, Hertz", "k_eff, geometric", "geometric / Hertz", "k_core, Hertz",
+                           "k_core, geometric", "contact share, Hertz / geometric",
+                           "deposit wall (s)"),
     ]
     by = groups(beds, "k_n")
     for k_n, rs in by.items():
