@@ -173,9 +173,9 @@ def ke2016_bed(case, seed=1, depth=0.0):
     d = references.ke2016_case(case).diameter
     path = os.path.join(KE2016_WORK, f"{case}-seed{seed}-depth{depth:g}.h5")
     # --in on the command line replaces the scene's particle source (psd, count, insertion).
-    return (path, *cached_json(path, ke2016_deposit(case, seed) + [
-        "--in", base, "--t-end", "1e-4", "--lid.enabled", "true",
-        "--lid.depth", f"{depth * d / 2:.6g}"]))
+    args = ke2016_deposit(case, seed) + ["--in", base, "--t-end", "1e-4", "--lid.enabled", "true",
+                                         "--lid.depth", f"{depth * d / 2:.6g}"]
+    return (path, *cached_json(path, args))
 
 
 def ke2016_keff(case, bed, *options, tag="nominal"):
@@ -190,8 +190,8 @@ def ke2016_soft_bed(case, k_n):
     """[KE]'s unconsolidated bed of `case`, seed 1, deposited at the DEM stiffness k_n (N/m;
     the scene's is [KE]'s 1e5): (path, deposit summary, wall s), kept in KE2016_SOFT_WORK."""
     path = os.path.join(KE2016_SOFT_WORK, f"{case}-kn{k_n:g}.h5")
-    return (path, *cached_json(path, ke2016_deposit(case, 1) + ["--contact.stiffness",
-                                                                  f"{k_n:g}"]))
+    args = ke2016_deposit(case, 1) + ["--contact.stiffness", f"{k_n:g}"]
+    return (path, *cached_json(path, args))
 
 
 # The held-lid steel 1 mm bed of keff_speed.py and keff_accuracy.py, and keff_speed.py's stored
