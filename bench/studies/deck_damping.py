@@ -9,15 +9,15 @@ deposit's zeta gives, the naive mapping a user writes by hand.
 
 Writes docs/results/deck-damping.md. Needs the build's deposit and bedconv, lmp and liggghts.
 usage: python3 bench/studies/deck_damping.py"""
+import argparse
 import csv
 import os
 import re
 import subprocess
-import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(__file__))
-from common import ROOT, app, write_text  # noqa: E402
+from lib import report
+from lib.apps import ROOT, app
 
 ZETAS = [0.0, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5]
 R = 15e-6          # sphere radius, m (a 30 um powder particle)
@@ -167,6 +167,9 @@ def reference():
 
 
 def main():
+    argparse.ArgumentParser(description=__doc__,
+                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
+    load = report.load_average()
     ref = reference()
     rows = []
     with tempfile.TemporaryDirectory(prefix="powderbed_deck_damping_") as work:
@@ -195,6 +198,8 @@ def main():
         "",
         "Regenerate: `python3 bench/studies/deck_damping.py` (needs the build's deposit and bedconv, "
         "`lmp` from Debian's lammps 20220106 (LAMMPS 29 Sep 2021 update 2), `liggghts` 3.8.0).",
+        "",
+        report.machine(load),
         "",
         f"Head-on impacts of two 316L spheres (r = {R * 1e6:g} um, E = 193 GPa, nu = 0.26, "
         f"{V:g} m/s each) and a sphere's impact on the floor ({V:g} m/s), Hertz law, no gravity, drag or "
@@ -249,7 +254,7 @@ def main():
         "below v_reg = 1e-5 m/s, the engines' no-history laws a viscous force of the normal dashpot's rate; "
         "both are Coulomb while sliding.",
     ]
-    print(write_text("deck-damping.md", "\n".join(lines) + "\n"))
+    print(report.write_page("deck-damping.md", "\n".join(lines) + "\n"))
 
 
 if __name__ == "__main__":

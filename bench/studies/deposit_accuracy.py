@@ -12,15 +12,17 @@ tens of millions of steps to rest, about ten minutes since the pair loop was vec
 --layer 0,30e-6), h99 (99th percentile of particle tops), coordination Z (bedstat), max overlap
 / r (and the same force's overlap at full stiffness, x scale^(-2/3)), wall time.
 """
+import argparse
 import os
 import shutil
 import tempfile
 
 import numpy as np
 
-from common import ROOT, app, bedstat, read_bed, run_json, write_text
+from lib import report
+from lib.apps import app, bedstat, read_bed, run_json, scene
 
-SCENE = os.path.join(ROOT, "data", "scenes", "gz2016-deposit.ini")
+SCENE = scene("gz2016-deposit.ini")
 # (young-scale, dt as a fraction of the Rayleigh step, integrator)
 RUNS = [(1.0, 0.2, "verlet"), (1e1, 0.2, "verlet"), (1e2, 0.2, "verlet"), (1e3, 0.2, "verlet"), (1e4, 0.2, "verlet"),
         (1e3, 0.1, "verlet"), (1e3, 0.5, "verlet"), (1e3, 1.0, "verlet"),
@@ -35,6 +37,9 @@ def rayleigh_step(work, scale):
 
 
 def main():
+    argparse.ArgumentParser(description=__doc__,
+                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
+    load = report.load_average()
     work = tempfile.mkdtemp(prefix="deposit-accuracy-")
     rows = []
     for scale, fraction, integrator in RUNS:
@@ -57,6 +62,8 @@ def main():
         "docstring). Same 600 particles and start in every run (scene file, seed 1), one thread, "
         "each run stopped at rest. The reference is full stiffness, --young-scale 1 "
         "(E = 193 GPa, the paper's).",
+        "",
+        report.machine(load),
         "",
         "| young-scale | dt / t_Rayleigh | integrator | dt (s) | steps to rest | sim time (s) | wall time (s) | layer density 0-30 um | vs reference | h99 (um) | Z | max overlap / r | same force at full E | lost |",
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
@@ -84,7 +91,7 @@ def main():
         "(docs/results/deposit-gz2016.md) is --young-scale 1e3.",
         "",
     ]
-    write_text("deposit-accuracy.md", "\n".join(lines))
+    report.write_page("deposit-accuracy.md", "\n".join(lines))
     shutil.rmtree(work)
 
 

@@ -13,6 +13,7 @@ Definitions used in the table:
 - coordination Z: 2 x particle-particle contacts / N at bedstat's default tolerance, and the
   mean number of wall (floor) contacts per particle.
 """
+import argparse
 import math
 import os
 import shutil
@@ -21,9 +22,10 @@ import tempfile
 
 import numpy as np
 
-from common import ROOT, RESULTS, app, bedstat, read_bed, run_json, write_text
+from lib import report
+from lib.apps import app, bedstat, read_bed, run_json, scene
 
-SCENE = os.path.join(ROOT, "data", "scenes", "gz2016-deposit.ini")
+SCENE = scene("gz2016-deposit.ini")
 # The LIGGGHTS deck of the paper's deposition is the peer team's own script, not part of this
 # repository: its path comes from POWDERBED_GZ_PEER_DECK, and the peer row is left out without it
 # (docs/architecture.md "Performance habits": peers side by side).
@@ -109,6 +111,9 @@ def peer(work):
 
 
 def main():
+    argparse.ArgumentParser(description=__doc__,
+                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
+    load = report.load_average()
     work = tempfile.mkdtemp(prefix="deposit-gz2016-")
     results = {s: ours(work, s) for s in SCALES}
     lig = peer(work)
@@ -136,8 +141,8 @@ def main():
                     f"{heq * 1e6:.1f} | - | - | - |")
     default = SCALES[0]
     run, stat, centres, radii = results[default]
-    png = os.path.join(RESULTS, "deposit-gz2016.png")
-    os.makedirs(RESULTS, exist_ok=True)
+    png = os.path.join(report.RESULTS, "deposit-gz2016.png")
+    os.makedirs(report.RESULTS, exist_ok=True)
     picture(png, centres, radii, f"deposit, [GZ] scene, seed 1, young-scale {default:g}")
     text = "\n".join([
         "# The [GZ] 2016 deposition with deposit",
@@ -147,6 +152,8 @@ def main():
         "0.1 s, Hertz + zeta = 0.1 damping + mu = 0.1 sliding friction + argon drag + gravity + "
         "walls), seed 1, velocity Verlet at 0.2 x the Rayleigh step of the smallest particle, "
         "2 threads requested (a 600-particle bed runs on one).",
+        "",
+        report.machine(load),
         "",
         f"Default softening: --young-scale {default:g} (E = 193 MPa). Softening is needed for "
         "the run to be affordable (full stiffness needs dt = 1.5e-9 s, 68 million steps for "
@@ -169,7 +176,7 @@ def main():
         "![bed](deposit-gz2016.png)",
         "",
     ])
-    write_text("deposit-gz2016.md", text)
+    report.write_page("deposit-gz2016.md", text)
     shutil.rmtree(work)
 
 

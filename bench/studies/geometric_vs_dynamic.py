@@ -11,14 +11,15 @@ which a one-to-two-particle layer on a floor does not have). Writes
 docs/results/geometric-vs-dynamic.md and .png.
 Usage: bench/studies/geometric_vs_dynamic.py  (POWDERBED_BUILD = a Release build, default build/)
 """
+import argparse
 import os
 import subprocess
-import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(__file__))
-import numpy as np  # noqa: E402
-from common import RESULTS, ROOT, app, bedstat, read_bed, run_json, write_text  # noqa: E402
+import numpy as np
+
+from lib import report
+from lib.apps import ROOT, app, bedstat, read_bed, run_json, scene
 
 
 def domain_of(path):
@@ -27,7 +28,7 @@ def domain_of(path):
     with h5py.File(path, "r") as f:
         return np.array(f["domain"].attrs["lower"]), np.array(f["domain"].attrs["upper"])
 
-SCENE = os.path.join(ROOT, "data", "scenes", "gz2016-deposit.ini")
+SCENE = scene("gz2016-deposit.ini")
 PSD = "gauss:mean=27e-6,sd=4.25e-6,min=10e-6,max=50e-6,on=diameter"
 COUNT = 600
 # packgen's box: the scene's floor, 60 um (about two mean diameters) high, so that the 0/1/2-
@@ -95,6 +96,9 @@ def plot(rows, path):
 
 
 def main():
+    argparse.ArgumentParser(description=__doc__,
+                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
+    load = report.load_average()
     with tempfile.TemporaryDirectory() as workdir:
         made = beds(workdir)
         rows = []
@@ -105,11 +109,13 @@ def main():
             rows.append((label, stat, wall, inplane_rdf(path)))
         table = subprocess.run([app("bedstat")] + [p for _, p, _ in made] + ["--layer", "0,30e-6"],
                                capture_output=True, text=True, check=True).stdout
-    plot(rows, os.path.join(RESULTS, "geometric-vs-dynamic.png"))
+    plot(rows, os.path.join(report.RESULTS, "geometric-vs-dynamic.png"))
     lines = [
         "# Geometric and dynamic beds of the same powder",
         "",
         "Regenerate: `python3 bench/studies/geometric_vs_dynamic.py` (Release build in `build/`).",
+        "",
+        report.machine(load),
         "",
         f"PSD `{PSD}`, {COUNT} particles, seed {SEED}. deposit: `{os.path.relpath(SCENE, ROOT)}` "
         f"(1 × 0.5 mm floor, dropped from 0.2–0.3 mm, 0.1 s) with `--young-scale {YOUNG_SCALE}`. "
@@ -148,7 +154,7 @@ def main():
         "![contacts, in-plane g(r), phi(z)](geometric-vs-dynamic.png)",
         "",
     ]
-    print(write_text("geometric-vs-dynamic.md", "\n".join(lines)))
+    print(report.write_page("geometric-vs-dynamic.md", "\n".join(lines)))
 
 
 if __name__ == "__main__":

@@ -11,17 +11,16 @@ out/studies/keff-speed/deposit-1100.h5, made if missing). keff: data/scenes/ke20
 with radiation on (ε = 0.5; one case black, ε = 1) and the air polynomial for k_g
 (`--gas.model air`, each gas link at its own temperature), one thread.
 """
+import argparse
 import json
 import os
 import statistics
-import sys
 
 import numpy as np
 
-from common import RESULTS, ROOT, app, run_json, write_text
-from keff_speed import RUNS as SPEED_RUNS, WORK, build_note, deposit_bed
+from lib import apps, report
 
-SCENE = os.path.join(ROOT, "data", "scenes", "ke2016-steel-1mm.ini")
+SCENE = apps.scene("ke2016-steel-1mm.ini")
 RAYS = [100, 300, 1000, 3000, 10000, 30000, 100000]
 SEEDS = [1, 2, 3]
 TOLERANCES = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12]
@@ -39,14 +38,15 @@ RAY_CASES = CASES[:2] + [("T = 1500 K (±0.5 K)", ["--temperature", "1500"]),
 DEFAULT_RAYS = 100
 DEFAULT_TOLERANCE = 1e-10
 MISMATCH_LIMIT = 1e-8  # issue 6: hot and cold wall flows agree to 1e-8
-RUNS = os.path.join(WORK, "accuracy-runs.json")  # the last full run's measurements
+RUNS = os.path.join(apps.KEFF_SPEED_WORK, "accuracy-runs.json")  # the last full run's measurements
+PAGE = "keff-accuracy.md"
+SOFTENING = "softening"  # keff_softening.py's section of the page, kept as it is
 
 
 def keff(bed, case_args, *extra):
     """keff's --json summary and the whole-process wall time (one thread)."""
-    env = dict(os.environ, OMP_NUM_THREADS="1")
-    return run_json([app("keff"), "--config", SCENE, "--bed", bed, "--effects.radiation", "true",
-                     "--gas.model", "air", *case_args, *extra], env=env)
+    return apps.keff(SCENE, bed, "--effects.radiation", "true", "--gas.model", "air", *case_args,
+                     *extra, env=apps.omp_env(1))
 
 
 def mismatch(s):
@@ -155,9 +155,9 @@ def loosest_within(tol_tables, key, limit):
 def big_bed_ratio():
     """(mismatch / residual, mismatch, residual) of keff_speed.py's 100,000-particle radiation
     runs, the largest ratio, from its saved measurements; None when they are not there."""
-    if not os.path.exists(SPEED_RUNS):
+    if not os.path.exists(apps.KEFF_SPEED_RUNS):
         return None
-    with open(SPEED_RUNS) as f:
+    with open(apps.KEFF_SPEED_RUNS) as f:
         rows = json.load(f)["rows"]
     big = [m["summary"] for _, radiation, _, m in rows
            if radiation and m["summary"]["particles"] >= 100000]
@@ -204,17 +204,20 @@ def plot(rays_tables, tol_tables):
     ax2.set_title(f"Newton tolerance ({DEFAULT_RAYS:g} rays, seed 1)")
     ax2.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
     fig.tight_layout()
-    path = os.path.join(ROOT, "docs", "results", "keff-accuracy.png")
-    fig.savefig(path, dpi=110)
+    fig.savefig(os.path.join(report.RESULTS, "keff-accuracy.png"), dpi=110)
     plt.close(fig)
 
 
-def load():
-    with open("/proc/loadavg") as f:
-        return " ".join(f.read().split()[:3])
+def stored_machine(saved):
+    """The machine sentence of stored measurements; runs stored before it was recorded kept the
+    load averages and the keff build apart."""
+    return saved.get("machine") or (
+        f"Shared 2-core machine, load average (1, 5, 15 min) {saved['loads'][0]} at the start, "
+        f"{saved['loads'][1]} at the end; "
+        f"{saved.get('build', 'keff binary build time not recorded')}.")
 
 
-def report(rays_tables, tol_tables, loads, rays_best, tol_best, note):
+def page(rays_tables, tol_tables, rays_best, tol_best, machine):
     lines = [
         "# keff: accuracy against time",
         "",
@@ -233,8 +236,7 @@ def report(rays_tables, tol_tables, loads, rays_best, tol_best, note):
         "walls unless the case says ε = 1) and `--gas.model air` (k_g of each gas link at its "
         "temperature), one thread. "
         "Times: keff's own `wall_time` (after reading the bed) and the whole process, "
-        f"medians; shared 2-core machine, load average (1, 5, 15 min) {loads[0]} at the start, "
-        f"{loads[1]} at the end; {note}.",
+        "medians. " + machine,
         "",
         "## Rays per particle",
         "",
@@ -405,31 +407,32 @@ def findings(rays_tables, tol_tables, rays_best, tol_best):
 def main():
     """Measures and writes the page; with --report, rewrites the page from the measurements
     saved by the last full run (RUNS)."""
-    if "--report" in sys.argv:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--report", action="store_true",
+                        help="rewrite the page from the last full run's measurements")
+    if parser.parse_args().report:
         with open(RUNS) as f:
             saved = json.load(f)
-        rays, tols, loads = saved["rays"], saved["tols"], saved["loads"]
-        note = saved.get("build", "keff binary build time not recorded")
+        rays, tols, machine = saved["rays"], saved["tols"], stored_machine(saved)
     else:
-        loads, note = [load()], build_note()
-        bed, _ = deposit_bed(1100, 10)
+        load = report.load_average()
+        bed = apps.held_lid_bed(1100, 10)[0]
         rays = rays_study(bed)
         tols = tolerance_study(bed)
-        loads.append(load())
+        machine = report.machine(load, program=apps.app("keff"))
         with open(RUNS, "w") as f:
-            json.dump({"rays": rays, "tols": tols, "loads": loads, "build": note}, f)
+            json.dump({"rays": rays, "tols": tols, "machine": machine}, f)
     rays_tables = {label: ray_rows(runs) for label, runs in rays.items()}
     tol_tables = {label: tol_rows(runs) for label, runs in tols.items()}
     rays_best, tol_best = cheapest_rays(rays_tables), cheapest_tolerance(tol_tables)
     plot(rays_tables, tol_tables)
-    text = report(rays_tables, tol_tables, loads, rays_best, tol_best, note)
+    text = page(rays_tables, tol_tables, rays_best, tol_best, machine)
     # keff_softening.py's section of the page stays (it regenerates it on its own).
-    page = os.path.join(RESULTS, "keff-accuracy.md")
-    old = open(page).read() if os.path.exists(page) else ""
-    begin, end = "<!-- softening:begin -->", "<!-- softening:end -->"
-    if begin in old:
-        text = text.rstrip("\n") + "\n\n" + old[old.index(begin):old.index(end) + len(end)] + "\n"
-    print(write_text("keff-accuracy.md", text))
+    kept = report.marked_section(report.read_page(PAGE), SOFTENING)
+    if kept:
+        text = report.splice(text, SOFTENING, kept)
+    print(report.write_page(PAGE, text))
 
 
 if __name__ == "__main__":

@@ -14,54 +14,30 @@ Beds (kept in out/studies/keff-speed/):
   spheres touch exactly (overlap 0), so keff finds no contact area; the "+0.1 %" beds are the same
   centres with every radius grown by 0.1 %, which turns each touching pair into a contact.
 """
+import argparse
 import json
-import math
 import os
 import re
 import shutil
 import statistics
 import subprocess
-import sys
 import time
 
-from common import ROOT, app, write_text
-from keff_validation import scene_value
+from lib import apps, report
+from lib.apps import app
 
-WORK = os.path.join(ROOT, "out", "studies", "keff-speed")
-SCENE = os.path.join(ROOT, "data", "scenes", "ke2016-steel-1mm.ini")
-BED_SCENE = os.path.join(ROOT, "data", "scenes", "ke2016-steel-1mm-held-lid-bed.ini")
+WORK = apps.KEFF_SPEED_WORK
+SCENE = apps.scene("ke2016-steel-1mm.ini")
 REPEATS = 3
 THREADS = [1, 2]
 TEMPERATURE = 1000.0  # K: radiation carries ~half the heat of the 1 mm steel bed here
-RAYS = int(scene_value(SCENE, None, "rays"))  # the default (keff-accuracy.md chose it)
+RAYS = int(apps.scene_value(SCENE, None, "rays"))  # the default (keff-accuracy.md chose it)
 GROW = 1.001  # radius factor that gives packgen's touching spheres a contact
 # packgen beds: label, particles, box width in diameters
 PACKGEN = [(1100, 10), (10000, 15), (100000, 46)]
 VALIDATION = "deposit (validation bed)"
 PROFILED = "packgen 100,000 +0.1 %"  # the 100,000-particle bed with contacts
-RUNS = os.path.join(WORK, "speed-runs.json")  # the last full run's measurements
-
-
-def deposit_bed(count, width):
-    """The ke2016 steel 1 mm bed scene with `count` spheres in a box `width` diameters wide
-    (insertion height keeps the scene's 19 % solid fraction); cached with its summary."""
-    path = os.path.join(WORK, f"deposit-{count}.h5")
-    meta = path + ".json"
-    if not (os.path.exists(path) and os.path.exists(meta)):
-        os.makedirs(WORK, exist_ok=True)
-        d = 1e-3
-        height = math.ceil(count * 0.5236 / 0.19 / width ** 2) * d
-        args = [app("deposit"), "--config", BED_SCENE, "--seed", "1", "--threads", "1",
-                "--out", path, "--json"]
-        if count != 1100:
-            args += ["--count", str(count), "--domain", f"{width * d:g},{width * d:g},{height:g}",
-                     "--insert-z", f"0,{height:g}"]
-        start = time.perf_counter()
-        proc = subprocess.run(args, capture_output=True, text=True, check=True)
-        with open(meta, "w") as f:
-            json.dump({"summary": json.loads(proc.stdout), "wall": time.perf_counter() - start}, f)
-    with open(meta) as f:
-        return path, json.load(f)
+RUNS = apps.KEFF_SPEED_RUNS  # the last full run's measurements (keff_accuracy.py reads them)
 
 
 def packgen_bed(count, width):
@@ -104,15 +80,14 @@ def keff_run(bed, threads, radiation, extra=()):
     """One keff run: (summary, whole-process wall s, peak RSS MiB, user + system CPU s)."""
     args = [app("keff"), "--config", SCENE, "--bed", bed, "--temperature", f"{TEMPERATURE:g}",
             "--effects.radiation", "true" if radiation else "false", *extra, "--json"]
-    env = dict(os.environ, OMP_NUM_THREADS=str(threads))
-    report = os.path.join(WORK, "time-v.txt")
+    times = os.path.join(WORK, "time-v.txt")
     start = time.perf_counter()
-    proc = subprocess.run(["/usr/bin/time", "-v", "-o", report] + args, capture_output=True,
-                          text=True, env=env)
+    proc = subprocess.run(["/usr/bin/time", "-v", "-o", times] + args, capture_output=True,
+                          text=True, env=apps.omp_env(threads))
     wall = time.perf_counter() - start
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(args)} exited {proc.returncode}: {proc.stderr.strip()}")
-    fields = dict(line.strip().rsplit(": ", 1) for line in open(report) if ": " in line)
+    fields = dict(line.strip().rsplit(": ", 1) for line in open(times) if ": " in line)
     cpu = float(fields["User time (seconds)"]) + float(fields["System time (seconds)"])
     rss = int(fields["Maximum resident set size (kbytes)"]) / 1024
     return json.loads(proc.stdout), wall, rss, cpu
@@ -130,25 +105,19 @@ def measure(bed, threads, radiation):
             "rss": max(r[2] for r in runs), "cpu": statistics.median(r[3] for r in runs)}
 
 
-def build_note():
-    """When the keff binary was built and the last commit before that (the build is of that
-    commit plus the working tree of the time)."""
-    built = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime(os.path.getmtime(app("keff"))))
-    commit = subprocess.run(["git", "-C", ROOT, "log", "-1", "--format=%h", f"--before={built}"],
-                            capture_output=True, text=True).stdout.strip()
-    return f"keff binary built {built}, after commit {commit or '?'}"
-
-
-def load():
-    with open("/proc/loadavg") as f:
-        return " ".join(f.read().split()[:3])
+def stored_machine(saved):
+    """The machine sentence of stored measurements; runs stored before it was recorded kept the
+    load averages and the keff build apart."""
+    return saved.get("machine") or (
+        f"Shared 2-core machine; load average (1, 5, 15 min) at the start {saved['loads'][0]}, "
+        f"at the end {saved['loads'][1]}; {saved['build']}.")
 
 
 def fmt_s(t):
     return f"{t:.3f}" if t < 1 else f"{t:.2f}" if t < 10 else f"{t:.1f}"
 
 
-def report(beds, rows, loads, prof, note):
+def page(beds, rows, loads, prof, machine):
     lines = [
         "# keff speed",
         "",
@@ -167,8 +136,7 @@ def report(beds, rows, loads, prof, note):
         "sensitive to the other jobs on the machine than wall time; with 2 threads it includes "
         "the OpenMP threads' waiting). Peak memory: maximum resident set of the process "
         "(/usr/bin/time -v). Threads: OMP_NUM_THREADS (the view-factor rays run in parallel; "
-        "the answer is the same bit for bit). Shared 2-core machine; load average (1, 5, 15 min) "
-        f"at the start {loads[0]}, at the end {loads[1]}; {note}.",
+        "the answer is the same bit for bit). " + machine,
         "",
         "## Beds",
         "",
@@ -317,9 +285,8 @@ def profile(bed):
     data = os.path.join(WORK, "perf.data")
     args = [app("keff"), "--config", SCENE, "--bed", bed, "--temperature", f"{TEMPERATURE:g}",
             "--effects.radiation", "true"]
-    env = dict(os.environ, OMP_NUM_THREADS="1")
     subprocess.run(["perf", "record", "-q", "-F", "199", "-o", data] + args, check=True,
-                   capture_output=True, env=env)
+                   capture_output=True, env=apps.omp_env(1))
     text = subprocess.run(["perf", "report", "-i", data, "--stdio", "--sort", "symbol",
                            "--percent-limit", "1"], check=True, capture_output=True,
                           text=True).stdout
@@ -353,35 +320,40 @@ def measure_all(beds):
 def main():
     """Measures and writes the page; with --report, rewrites the page from the measurements
     saved by the last full run (RUNS)."""
-    if "--report" in sys.argv:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--report", action="store_true",
+                        help="rewrite the page from the last full run's measurements")
+    if parser.parse_args().report:
         with open(RUNS) as f:
             saved = json.load(f)
         beds = saved["beds"]
         by_label = {b["label"]: b for b in beds}
         rows = [(by_label[label], rad, threads, m) for label, rad, threads, m in saved["rows"]]
-        loads, prof, note = saved["loads"], saved["profile"], saved["build"]
+        loads, prof, machine = saved["loads"], saved["profile"], stored_machine(saved)
     else:
-        loads, note = [load()], build_note()
+        loads = [report.load_average()]
         beds = []
-        path, meta = deposit_bed(1100, 10)
+        path, summary, _ = apps.held_lid_bed(1100, 10)
         beds.append({"label": VALIDATION, "path": path, "how": "deposit, lid held",
-                     "box": "10 × 10", "make": meta["summary"]["wall_time"]})
+                     "box": "10 × 10", "make": summary["wall_time"]})
         for count, width in PACKGEN:
             placed, grown, s = packgen_bed(count, width)
             for label, p in ((f"packgen {count:,}", placed),
                              (f"packgen {count:,} +0.1 %", grown)):
                 beds.append({"label": label, "path": p, "how": "packgen 3 lowest",
                              "box": f"{width} × {width}", "make": s["wall_time"]})
-        path, meta = deposit_bed(10000, 30)
+        path, summary, _ = apps.held_lid_bed(10000, 30)
         beds.append({"label": "deposit 10,000", "path": path, "how": "deposit, lid held",
-                     "box": "30 × 30", "make": meta["summary"]["wall_time"]})
+                     "box": "30 × 30", "make": summary["wall_time"]})
         rows = measure_all(beds)
         prof = profile(next(b["path"] for b in beds if b["label"] == PROFILED))
-        loads.append(load())
+        loads.append(report.load_average())
+        machine = report.machine(loads[0], loads[1], program=app("keff"))
         with open(RUNS, "w") as f:
             json.dump({"beds": beds, "rows": [(b["label"], r, t, m) for b, r, t, m in rows],
-                       "loads": loads, "profile": prof, "build": note}, f)
-    print(write_text("keff-speed.md", report(beds, rows, loads, prof, note)))
+                       "loads": loads, "profile": prof, "machine": machine}, f)
+    print(report.write_page("keff-speed.md", page(beds, rows, loads, prof, machine)))
 
 
 if __name__ == "__main__":

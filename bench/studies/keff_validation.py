@@ -19,66 +19,27 @@ kept in out/studies/keff-validation/ (about half an hour of one core per seed th
 most of it the two copper cases, whose steps are short). keff: data/scenes/ke2016-<case>.ini
 (contact with the Hertz correction read from the bed, gas lens; radiation off).
 """
+import argparse
 import json
 import math
 import os
-import sys
 from concurrent.futures import ThreadPoolExecutor
-from itertools import product
 
 import numpy as np
 
-from common import ROOT, app, run_json, write_text
+from lib import apps, pce, references, report
 
-WORK = os.path.join(ROOT, "out", "studies", "keff-validation")
-SCENES = os.path.join(ROOT, "data", "scenes")
-# [KE] Table 2: uniform input ranges; Table 3: porosity mean ± sd over consolidation.
-CASES = [  # case, label, D (m), k_s range, k_g range, E range (GPa), Table 3 porosity
-    ("steel-1mm", "steel 1.0 mm", 1.0e-3, (12.11, 45.0), (0.025, 0.027), (190, 206), (0.410, 0.010)),
-    ("steel-3.2mm", "steel 3.2 mm", 3.2e-3, (12.11, 45.0), (0.025, 0.027), (190, 206), (0.418, 0.009)),
-    ("copper-0.25mm", "copper 0.25 mm", 0.25e-3, (393, 409), (0.025, 0.027), (110, 128), (0.415, 0.009)),
-    ("copper-0.15mm", "copper 0.15 mm", 0.15e-3, (393, 409), (0.025, 0.027), (110, 128), (0.416, 0.008)),
-    ("lead-1.6mm", "lead 1.6 mm", 1.6e-3, (34.24, 36.36), (0.025, 0.027), (13.8, 16), (0.416, 0.009)),
-]
-DEPTHS = [0.25, 0.5, 0.75, 1.0]  # lid depth below the surface, particle radii
+# [KE]'s cases (Table 2 ranges, Table 3 porosity) and lid depths (particle radii).
+CASES = references.KE2016_CASES
+DEPTHS = references.KE2016_LID_DEPTHS
 
 
-def bed_scene(case):
-    return os.path.join(SCENES, f"ke2016-{case}-bed.ini")
-
-
-def keff_scene(case):
-    return os.path.join(SCENES, f"ke2016-{case}.ini")
-
-
-def cached_run(path, args):
-    """Runs `args` writing `path` unless it and its summary are cached: (summary, wall s)."""
-    meta = path + ".json"
-    if os.path.exists(path) and os.path.exists(meta):
-        with open(meta) as f:
-            cached = json.load(f)
-        return cached["summary"], cached["wall"]
-    s, wall = run_json(args + ["--out", path])
-    with open(meta, "w") as f:
-        json.dump({"summary": s, "wall": wall}, f)
-    return s, wall
-
-
-def beds(case, diameter, seed):
+def beds(case, seed):
     """The unconsolidated bed and the four consolidated ones of `seed`: [(label, depth/r, path,
-    deposit summary, wall s)]."""
-    os.makedirs(WORK, exist_ok=True)
-    base = os.path.join(WORK, f"{case}-seed{seed}.h5")
-    common = [app("deposit"), "--config", bed_scene(case), "--seed", str(seed), "--threads", "1"]
-    s, wall = cached_run(base, common)
-    out = [("unconsolidated", 0.0, base, s, wall)]
-    # The consolidation starts from that bed: --in on the command line replaces the scene's
-    # particle source (psd, count, insertion).
+    deposit summary, wall s)] (lib/apps.py ke2016_bed: kept in out/studies/keff-validation/)."""
+    out = [("unconsolidated", 0.0, *apps.ke2016_bed(case, seed))]
     for depth in DEPTHS:
-        path = os.path.join(WORK, f"{case}-seed{seed}-depth{depth:g}.h5")
-        s, wall = cached_run(path, common + ["--in", base, "--t-end", "1e-4", "--lid.enabled",
-                                             "true", "--lid.depth", f"{depth * diameter / 2:.6g}"])
-        out.append((f"lid {depth:g} r", depth, path, s, wall))
+        out.append((f"lid {depth:g} r", depth, *apps.ke2016_bed(case, seed, depth)))
     return out
 
 
@@ -87,88 +48,7 @@ def make_all(seeds):
     jobs = [(c[0], c[2], seed) for seed in seeds for c in CASES]
     jobs.sort(key=lambda j: j[1])  # smallest particles (longest runs) first
     with ThreadPoolExecutor(max_workers=2) as pool:
-        return dict(zip(jobs, pool.map(lambda j: beds(*j), jobs)))
-
-
-# Second-order polynomial chaos on a Smolyak sparse grid (non-intrusive spectral projection).
-# Inputs uniform on their ranges, mapped to x in [-1, 1]^3; basis: the Legendre polynomials
-# orthonormal under the uniform density (1, sqrt(3) x, sqrt(5) (3x^2 - 1)/2), products of total
-# degree <= 2 (10 terms). Quadrature: Smolyak's combination of nested Clenshaw–Curtis rules
-# (1, 3, 5 points) at level 2, 25 points in 3D, exact for total degree 5 >= the degree 4 of the
-# products f psi_a that a quadratic response needs.
-CC_RULES = {  # level -> (points, weights under the uniform density on [-1, 1])
-    1: ([0.0], [1.0]),
-    2: ([-1.0, 0.0, 1.0], [1 / 6, 2 / 3, 1 / 6]),
-    3: ([-1.0, -math.sqrt(0.5), 0.0, math.sqrt(0.5), 1.0], [1 / 30, 4 / 15, 2 / 5, 4 / 15, 1 / 30]),
-}
-
-
-def smolyak_grid(dim=3, level=2):
-    """Points and weights of the Smolyak rule A(level + dim, dim) from CC_RULES."""
-    q = level + dim
-    grid = {}
-    for i in product(range(1, level + 2), repeat=dim):
-        s = sum(i)
-        if not (q - dim + 1 <= s <= q):
-            continue
-        coef = (-1) ** (q - s) * math.comb(dim - 1, q - s)
-        for idx in product(*(range(len(CC_RULES[k][0])) for k in i)):
-            point = tuple(round(CC_RULES[k][0][j], 15) for k, j in zip(i, idx))
-            weight = coef * math.prod(CC_RULES[k][1][j] for k, j in zip(i, idx))
-            grid[point] = grid.get(point, 0.0) + weight
-    return [(np.array(p), w) for p, w in grid.items() if abs(w) > 1e-15]
-
-
-def legendre(n, x):
-    return [1.0, math.sqrt(3) * x, math.sqrt(5) * (3 * x * x - 1) / 2][n]
-
-
-BASIS = [a for a in product(range(3), repeat=3) if sum(a) <= 2]
-
-
-def pce(f_values, grid):
-    """Mean, standard deviation and first-order Sobol indices of the response sampled at the
-    grid points."""
-    coef = {a: sum(w * f * math.prod(legendre(n, x) for n, x in zip(a, p))
-                   for (p, w), f in zip(grid, f_values)) for a in BASIS}
-    var = sum(c * c for a, c in coef.items() if any(a))
-    sobol = [sum(c * c for a, c in coef.items() if a[k] and sum(a) == a[k]) / var if var else 0.0
-             for k in range(3)]
-    return coef[(0, 0, 0)], math.sqrt(var), sobol
-
-
-def check_pce():
-    """The rule on a known quadratic: f = 1 + x + y^2 has mean 4/3, variance 1/3 + 4/45."""
-    grid = smolyak_grid()
-    assert len(grid) == 25, len(grid)
-    assert abs(sum(w for _, w in grid) - 1) < 1e-12
-    mean, sd, _ = pce([1 + p[0] + p[1] ** 2 for p, _ in grid], grid)
-    assert abs(mean - 4 / 3) < 1e-12 and abs(sd * sd - (1 / 3 + 4 / 45)) < 1e-12, (mean, sd)
-
-
-def core_gradient(path, s):
-    """k_core: the heat flux over the mean temperature gradient of the particles whose centres
-    lie more than 2 diameters from both walls (least-squares line T(z)), the bed's own
-    conductivity without the wall layers."""
-    import h5py
-    with h5py.File(path, "r") as f:
-        z = np.array(f["particles/position"])[:, 2]
-        d = 2 * float(np.max(f["particles/radius"]))
-        temp = np.array(f["particles/temperature"])
-        lo, hi = f["domain"].attrs["lower"], f["domain"].attrs["upper"]
-    core = (z > lo[2] + 2 * d) & (z < hi[2] - 2 * d)
-    slope, _ = np.polyfit(z[core], temp[core], 1)
-    flux = 0.5 * (s["heat_flow_hot"] + s["heat_flow_cold"]) / ((hi[0] - lo[0]) * (hi[1] - lo[1]))
-    return flux / slope
-
-
-def keff(case, bed, *extra, tag="nominal"):
-    """keff's --json summary with k_core; the temperatures go to BED-T-<tag>.h5."""
-    args = [app("keff"), "--config", keff_scene(case), "--bed", bed, *extra]
-    out = bed.replace(".h5", f"-T-{tag}.h5")
-    s, _ = run_json(args + ["--out", out])
-    s["k_core"] = core_gradient(out, s)
-    return s
+        return dict(zip(jobs, pool.map(lambda j: beds(j[0], j[2]), jobs)))
 
 
 def box_porosity(path):
@@ -186,20 +66,21 @@ def measure(case, ranges, bed_list, cached=None):
     the rows of an earlier run on the same beds (results.json), returned as they are."""
     if cached is not None and [r["label"] for r in cached] == [b[0] for b in bed_list]:
         return cached
-    grid = smolyak_grid()
+    grid = pce.smolyak_grid()
     rows = []
     for label, depth, path, dep, wall in bed_list:
-        nominal = keff(case, path)
+        nominal = apps.ke2016_keff(case, path)
         def at(job):
             k, point = job
             k_s, k_g, e = (lo + (x + 1) / 2 * (hi - lo) for x, (lo, hi) in zip(point, ranges))
-            s = keff(case, path, "--solid.conductivity", f"{k_s:.8g}", "--gas.conductivity",
-                     f"{k_g:.8g}", "--contact.young", f"{e * 1e9:.8g}", tag=f"pce{k}")
+            s = apps.ke2016_keff(case, path, "--solid.conductivity", f"{k_s:.8g}",
+                                 "--gas.conductivity", f"{k_g:.8g}", "--contact.young",
+                                 f"{e * 1e9:.8g}", tag=f"pce{k}")
             return s["k_eff"], s["k_core"]
         with ThreadPoolExecutor(max_workers=2) as pool:
             values = list(pool.map(at, enumerate(p for p, _ in grid)))
-        mean, sd, sobol = pce([v[0] for v in values], grid)
-        _, sd_core, _ = pce([v[1] for v in values], grid)
+        mean, sd, sobol = pce.pce([v[0] for v in values], grid)
+        _, sd_core, _ = pce.pce([v[1] for v in values], grid)
         rows.append({"label": label, "depth": depth, "n": dep["n"], "wall": wall,
                      "core_porosity": 1 - dep["core_density"], "box_porosity": box_porosity(path),
                      "k_eff": nominal["k_eff"], "k_core": nominal["k_core"],
@@ -230,7 +111,7 @@ def case_summary(rows):
             "sobol": np.mean([r["sobol"] for r in rows], axis=0)}
 
 
-def report(results, seeds):
+def page(results, seeds, machine):
     lines = [
         "# keff: the [KE] validation cases on beds made as [KE] made them",
         "",
@@ -247,6 +128,8 @@ def report(results, seeds):
         "`data/scenes/ke2016-<case>.ini` (contact conduction with the Hertz correction read from "
         "the bed: k_n δ_s = (4/3) E* √R* δ_h^{3/2}; Rong–Horio gas lens; radiation off; walls "
         "at 295 and 305 K).",
+        "",
+        machine,
         "",
         "Uncertainty as [KE]: consolidation = standard deviation of k over the five beds "
         "(unconsolidated and four depths); input = a second-order polynomial chaos in (k_s, k_g, "
@@ -305,9 +188,8 @@ def report(results, seeds):
 
 def weight(case, n):
     """Weight (N) of n spheres of the case (the bed scene's density)."""
-    d = next(c[2] for c in CASES if c[0] == case)
-    rho = next(float(line.split("=")[1]) for line in open(bed_scene(case))
-               if line.strip().startswith("density"))
+    d = references.ke2016_case(case).diameter
+    rho = apps.scene_value(apps.ke2016_bed_scene(case), "material", "density")
     return n * math.pi / 6 * d ** 3 * rho * 9.81
 
 
@@ -384,28 +266,25 @@ def findings(results, seeds, sums):
 # Bed generation ([KE]: eight beds of steel 1 mm from different random insertions, k_eff
 # sd 0.002 W/mK, neglected beside the other sources).
 BED_SEED_CASE = "steel-1mm"
-BED_SEEDS = 8
-KE_BED_SD = 0.002  # W/mK
+BED_SEEDS = references.KE2016_BED_SEEDS
+KE_BED_SD = references.KE2016_BED_SD  # W/mK
 
 
 def bed_seed_study(n):
-    """The unconsolidated bed of BED_SEED_CASE for seeds 1..n (the same command and cache as
-    beds(), two at a time) and the nominal keff on each: [{seed, n, core_porosity,
-    box_porosity, k_eff, k_core, contact, wall}]. keff results kept in bed-seeds.json."""
-    os.makedirs(WORK, exist_ok=True)
-    cache_path = os.path.join(WORK, "bed-seeds.json")
+    """The unconsolidated bed of BED_SEED_CASE for seeds 1..n (the same beds as beds(), two at a
+    time) and the nominal keff on each: [{seed, n, core_porosity, box_porosity, k_eff, k_core,
+    contact, wall}]. keff results kept in bed-seeds.json."""
+    cache_path = apps.KE2016_BED_SEEDS
     cache = {}
     if os.path.exists(cache_path):
         with open(cache_path) as f:
             cache = json.load(f)
 
     def one(seed):
-        path = os.path.join(WORK, f"{BED_SEED_CASE}-seed{seed}.h5")
-        s, wall = cached_run(path, [app("deposit"), "--config", bed_scene(BED_SEED_CASE),
-                                    "--seed", str(seed), "--threads", "1"])
+        path, s, wall = apps.ke2016_bed(BED_SEED_CASE, seed)
         if str(seed) in cache:
             return cache[str(seed)]
-        k = keff(BED_SEED_CASE, path)
+        k = apps.ke2016_keff(BED_SEED_CASE, path)
         row = {"seed": seed, "n": s["n"], "core_porosity": 1 - s["core_density"],
                "box_porosity": box_porosity(path), "k_eff": k["k_eff"], "k_core": k["k_core"],
                "contact": k["share"]["contact"], "wall": wall}
@@ -471,18 +350,20 @@ def bed_seed_section(rows, other):
 
 
 def main():
-    seeds = [1]
-    if "--seeds" in sys.argv:
-        seeds = list(range(1, int(sys.argv[sys.argv.index("--seeds") + 1]) + 1))
-    bed_seeds = BED_SEEDS
-    if "--bed-seeds" in sys.argv:
-        bed_seeds = int(sys.argv[sys.argv.index("--bed-seeds") + 1])
-    check_pce()
-    seed_rows = bed_seed_study(bed_seeds)
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--seeds", type=int, default=1,
+                        help="the consolidation/PCE study on seeds 1..N (default 1)")
+    parser.add_argument("--bed-seeds", type=int, default=BED_SEEDS,
+                        help=f"the bed-generation study on seeds 1..M (default {BED_SEEDS})")
+    args = parser.parse_args()
+    seeds = list(range(1, args.seeds + 1))
+    load = report.load_average()
+    seed_rows = bed_seed_study(args.bed_seeds)
     made = make_all(seeds)
     earlier = {}
-    if os.path.exists(os.path.join(WORK, "results.json")):
-        with open(os.path.join(WORK, "results.json")) as f:
+    if os.path.exists(apps.KE2016_RESULTS):
+        with open(apps.KE2016_RESULTS) as f:
             earlier = json.load(f)
     results = {}
     for case, label, d, ks, kg, e, _ in CASES:
@@ -491,11 +372,12 @@ def main():
                                             earlier.get(f"{case}:{seed}"))
             r = results[(case, seed)]
             print(label, seed, " ".join(f"{x['k_eff']:.4g}/{x['k_core']:.4g}" for x in r), flush=True)
-    with open(os.path.join(WORK, "results.json"), "w") as f:
+    with open(apps.KE2016_RESULTS, "w") as f:
         json.dump({f"{c}:{s}": v for (c, s), v in results.items()}, f)
     other = case_summary([r for seed in seeds for r in results[(BED_SEED_CASE, seed)]])
-    text = report(results, seeds) + "\n".join(bed_seed_section(seed_rows, other)) + "\n"
-    print(write_text("keff-validation.md", text))
+    text = (page(results, seeds, report.machine(load))
+            + "\n".join(bed_seed_section(seed_rows, other)) + "\n")
+    print(report.write_page("keff-validation.md", text))
 
 
 if __name__ == "__main__":

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Reproduces the 2D study of Luberto & de Payrebrune (docs/physics.md §3 table) with packgen.
+"""Reproduces the 2D study of Luberto & de Payrebrune with packgen (their ranges:
+lib/references.py LP_2D).
 
 --samples per paper case (seeds 1..N; the paper: 100) on the 4.0 x 4.0 um square with the raster
 collision grid of spacing h = 0.015 um and packgen's 2D defaults; the diameter reading of the Gauss
@@ -15,9 +16,9 @@ import os
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(__file__))
-from common import (RESULTS, app, coordination_at_gaps, read_bed, run_json,  # noqa: E402
-                    summary, write_text)
+from lib import references, report
+from lib.apps import app, coordination_at_gaps, read_bed, run_json
+from lib.report import summary
 
 H = 0.015e-6          # raster spacing of the paper
 DOMAIN = "4e-6,4e-6"
@@ -30,12 +31,7 @@ GAUSS_DIAMETER_WINDOW = "gauss:mean=0.075e-6,sd=0.0375e-6,min=0.0075e-6,max=0.07
 GAPS = [("h", 1.0), ("√2 h", math.sqrt(2)), ("2 h", 2.0)]
 SCAN = [0.1 * k for k in range(31)]  # g / h for the tolerance scan, 0 .. 3 h
 
-PAPER = {  # particles, density, coordination ranges of docs/physics.md §3
-    ("mono", 0): ((500, 520), (0.55, 0.57), (1.8, 2.1)),
-    ("mono", 1): ((560, 580), (0.62, 0.64), (3.25, 3.45)),
-    ("gauss", 0): ((325, 425), (0.42, 0.52), (1.3, 1.5)),
-    ("gauss", 1): ((525, 575), (0.68, 0.72), (3.3, 3.45)),
-}
+PAPER = references.LP_2D  # particles, density, coordination ranges [LP] report
 CASES = [  # label, psd, approach, paper key, samples option
     ("mono r = 0.075 µm, 0-contact", MONO, 0, ("mono", 0), "samples"),
     ("mono r = 0.075 µm, 1-contact", MONO, 1, ("mono", 1), "samples"),
@@ -143,6 +139,7 @@ def main():
     parser.add_argument("--alt-samples", type=int, default=20)
     parser.add_argument("--sens-samples", type=int, default=10)
     args = parser.parse_args()
+    load = report.load_average()
     results, sens = [], []
     with tempfile.TemporaryDirectory() as workdir:
         for case in CASES:
@@ -153,7 +150,7 @@ def main():
             print(f"{case[0]} {' '.join(extra)} ...", file=sys.stderr, flush=True)
             sens.append((index, extra, run_case(case[1], case[2], seeds or args.sens_samples,
                                                 workdir, extra)))
-    plot(results, os.path.join(RESULTS, "packgen-2d-study.png"))
+    plot(results, os.path.join(report.RESULTS, "packgen-2d-study.png"))
 
     lines = [
         "# packgen: the 2D study of Luberto & de Payrebrune",
@@ -161,6 +158,8 @@ def main():
         f"Regenerate: `POWDERBED_BUILD=build bench/studies/packgen_2d_study.py --samples "
         f"{args.samples} --alt-samples {args.alt_samples} --sens-samples {args.sens_samples}` "
         "(Release build; needs python3 with h5py, scipy, matplotlib).",
+        "",
+        report.machine(load),
         "",
         "Settings of the paper: 4.0 × 4.0 µm square, raster collision grid h = 0.015 µm "
         f"(`--collision raster --raster-spacing 1.5e-08`), {args.samples} samples per case "
@@ -208,7 +207,7 @@ def main():
                 lines.append(sens_line(CASES[index][0], "`" + " ".join(extra) + "`", rows))
     lines.append("")
     lines += why_section(results, sens)
-    path = write_text("packgen-2d-study.md", "\n".join(lines) + "\n")
+    path = report.write_page("packgen-2d-study.md", "\n".join(lines) + "\n")
     print(path)
 
 

@@ -9,13 +9,13 @@ retirement rule (--retire-after 32 / 256 / 0 = never) for approaches 1, 2 and 3 
 monodisperse cube: does retirement stop those runs early?
 Writes docs/results/packgen-3d.md. python3; POWDERBED_BUILD selects the build.
 """
+import argparse
 import os
-import sys
 import tempfile
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import common  # noqa: E402
+from lib import report
+from lib.apps import app, bedstat, run_json
 
 GAUSS = "gauss:mean=30e-6,sd=5e-6,min=20e-6,max=40e-6"
 BIMODAL = GAUSS + ",count=550+gauss:mean=8e-6,sd=2e-6,min=4e-6,max=12e-6,count=3000"
@@ -32,6 +32,9 @@ RETIRE = (32, 256, 0)  # 0: never retire
 
 
 def main():
+    argparse.ArgumentParser(description=__doc__,
+                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
+    load = report.load_average()
     start = time.perf_counter()
     lines = ["# packgen 3D beds: approaches side by side", "",
              "Regenerate: `python3 bench/studies/packgen_3d.py` (POWDERBED_BUILD = a Release build).",
@@ -45,9 +48,9 @@ def main():
         for label, domain, psd in SCENES:
             for name, args in RULES:
                 out = os.path.join(tmp, "bed.h5")
-                s, _ = common.run_json([common.app("packgen"), "--dim", "3", "--domain", domain, "--psd", psd,
-                                        "--seed", str(SEED), "--out", out] + args)
-                st = common.bedstat([out, "--psd", psd])
+                s, _ = run_json([app("packgen"), "--dim", "3", "--domain", domain, "--psd", psd,
+                                 "--seed", str(SEED), "--out", out] + args)
+                st = bedstat([out, "--psd", psd])
                 lines.append(f"| {label} | {name} | {s['n']} | {s['density']:.4f} | {s['coordination']:.3f} | "
                              f"{s['wall_time']:.3f} | {s['n'] / max(s['wall_time'], 1e-9):,.0f} | "
                              f"{st.get('ks_distance', 0.0):.4f} | {s['stop_reason']} |")
@@ -61,9 +64,9 @@ def main():
         for name, args in RULES[1:4]:
             for after in RETIRE:
                 out = os.path.join(tmp, "bed.h5")
-                s, _ = common.run_json([common.app("packgen"), "--dim", "3", "--domain", SCENES[0][1], "--psd",
-                                        SCENES[0][2], "--seed", str(SEED), "--retire-after", str(after),
-                                        "--out", out] + args)
+                s, _ = run_json([app("packgen"), "--dim", "3", "--domain", SCENES[0][1], "--psd",
+                                 SCENES[0][2], "--seed", str(SEED), "--retire-after", str(after),
+                                 "--out", out] + args)
                 rows[(name, after)] = s
                 lines.append(f"| {name} | {after if after else 'never'} | {s['n']} | {s['density']:.4f} | "
                              f"{s['coordination']:.3f} | {s['wall_time']:.3f} | {s['retired']} |")
@@ -76,8 +79,8 @@ def main():
                   "a loose random aggregate near the random-sequential-addition limit 0.384 of docs/physics.md §3), a 2-contact",
                   "one two (Z ≈ 4), and 3-contact at random sites fills holes high in the bed before low ones, which",
                   "the lowest-site order avoids (φ 0.58, Z ≈ 6)."]
-    lines += ["", f"Whole script: {time.perf_counter() - start:.0f} s.", ""]
-    common.write_text("packgen-3d.md", "\n".join(lines))
+    lines += ["", f"Whole script: {time.perf_counter() - start:.0f} s. {report.machine(load)}", ""]
+    report.write_page("packgen-3d.md", "\n".join(lines))
 
 
 if __name__ == "__main__":

@@ -14,8 +14,8 @@ import statistics
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(__file__))
-from common import RESULTS, app, coordination_at_gaps, read_bed, run_json, write_text  # noqa: E402
+from lib import report
+from lib.apps import app, coordination_at_gaps, read_bed, run_json
 
 UM = 1e-6
 R = 0.075 * UM
@@ -95,6 +95,7 @@ def main():
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--seeds", type=int, default=3)
     args = parser.parse_args()
+    load = report.load_average()
     backend_results, approach_results = [], []
     with tempfile.TemporaryDirectory() as workdir:
         for label, dim, domain, psd, approach, spacings in BACKEND_CASES:
@@ -115,13 +116,15 @@ def main():
                 table.append((approach, run(dim, domain, MONO, approach, "grid", None,
                                             args.seeds, workdir)))
             approach_results.append((label, table))
-    plot(backend_results, os.path.join(RESULTS, "packgen-collision.png"))
+    plot(backend_results, os.path.join(report.RESULTS, "packgen-collision.png"))
 
     lines = [
         "# packgen: accuracy of the collision back-ends, and the approaches",
         "",
         f"Regenerate: `POWDERBED_BUILD=build bench/studies/packgen_collision.py --seeds "
         f"{args.seeds}` (Release build; python3 with h5py, scipy, matplotlib).",
+        "",
+        report.machine(load),
         "",
         f"{args.seeds} seeds per row (1..{args.seeds}): counts are means, the wall time is the "
         "median of packgen's placement time (`wall_time` of `--json`, file writing excluded). "
@@ -161,7 +164,7 @@ def main():
                 f"| {1e6 * med(rows, 'wall_time') / avg(rows, 'n'):.1f} |")
         lines += ["", approach_conclusion(table), ""]
     lines += ["![raster spacing](packgen-collision.png)", ""]
-    path = write_text("packgen-collision.md", "\n".join(lines) + "\n")
+    path = report.write_page("packgen-collision.md", "\n".join(lines) + "\n")
     print(path)
 
 

@@ -11,20 +11,18 @@
 Writes docs/results/packgen-speed.md and packgen-speed.png. Run with python3 (h5py,
 numpy, scipy, matplotlib); POWDERBED_BUILD selects the build directory (default build/).
 """
+import argparse
 import math
 import os
 import resource
 import statistics
 import subprocess
-import sys
 import tempfile
 import time
 
-import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import common  # noqa: E402
+from lib import apps, report
 
 R_MONO = 0.5
 GAUSS = "gauss:mean=0.6,sd=0.2,min=0.2,max=1.0,on=radius"  # sd 0.2 chosen; radii, not diameters
@@ -63,16 +61,16 @@ def gengeo_available():
 
 
 def bedstat(path, extra):
-    out = common.bedstat([path, "--order", "--tol", str(TOL)] + extra)
+    out = apps.bedstat([path, "--order", "--tol", str(TOL)] + extra)
     return out
 
 
 def read_bed(path):
+    """Centres and radii of a bed file, or of GenGeo's CSV (x,y,z,r)."""
     if path.endswith(".csv"):
         a = np.loadtxt(path, delimiter=",", skiprows=1).reshape(-1, 4)
         return a[:, :3], a[:, 3]
-    with h5py.File(path, "r") as f:
-        return f["/particles/position"][...], f["/particles/radius"][...]
+    return apps.read_bed(path)
 
 
 def core_density(path, lx, ly, margin):
@@ -104,7 +102,7 @@ def scene_core(path, side, r_max):
     if np.any(hi <= lo):
         return float("nan"), float("nan"), top
     extra = ["--domain", f"0,0,0,{side},{side},{side}"] if path.endswith(".csv") else []
-    out = common.bedstat([path, "--layer", f"{margin},{top - margin}"] + extra)
+    out = apps.bedstat([path, "--layer", f"{margin},{top - margin}"] + extra)
     inside = np.all((xyz >= lo) & (xyz <= hi), axis=1)
     core = float(np.sum(4.0 / 3.0 * math.pi * r[inside] ** 3) / np.prod(hi - lo))
     return out["layer_density"], core, top
@@ -119,10 +117,10 @@ def packgen(tmp, name, domain, psd, seed, extra):
     """Runs packgen; the summary gets `user_cpu`: user CPU seconds of the whole process (placement,
     statistics of the --json summary and file output), from getrusage of the children."""
     out = os.path.join(tmp, f"{name}-{seed}.h5")
-    args = [common.app("packgen"), "--dim", "3", "--domain", domain, "--psd", psd, "--approach", "3",
+    args = [apps.app("packgen"), "--dim", "3", "--domain", domain, "--psd", psd, "--approach", "3",
             "--site-order", "lowest", "--seed", str(seed), "--out", out] + extra
     before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime
-    summary, wall = common.run_json(args)
+    summary, wall = apps.run_json(args)
     summary["user_cpu"] = resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime - before
     summary["process_wall"] = wall
     return summary, out
@@ -225,11 +223,11 @@ def plot(rows):
     ax.set_title("packgen 3D mono, approach 3, lowest site first")
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    os.makedirs(common.RESULTS, exist_ok=True)
-    fig.savefig(os.path.join(common.RESULTS, "packgen-speed.png"), dpi=120)
+    os.makedirs(report.RESULTS, exist_ok=True)
+    fig.savefig(os.path.join(report.RESULTS, "packgen-speed.png"), dpi=120)
 
 
-def report(rows, scenes, have_gengeo, elapsed):
+def page(rows, scenes, have_gengeo, elapsed, machine):
     spread = max(r["us_per_sphere"] for r in rows) / min(r["us_per_sphere"] for r in rows)
     big = rows[-1]
     lines = [
@@ -238,6 +236,8 @@ def report(rows, scenes, have_gengeo, elapsed):
         "Regenerate: `python3 bench/studies/packgen_speed.py` (POWDERBED_BUILD = a Release build;",
         f"this run took {elapsed:.0f} s). One core; times are packgen's own `wall_time` (placement only, not",
         "file output) and GenGeo's `generatePacking` call; medians of 3 seeds / 3 runs.",
+        "",
+        machine,
         "",
         "Rule: `packgen --dim 3 --approach 3 --site-order lowest` (docs/physics.md §3 3-contact, lowest free site first:",
         "Bennett 1972 / Visscher–Bolsterli 1972 growth on the floor; packgen/include/powderbed/packgen/site_heap.hpp).",
@@ -325,17 +325,20 @@ def report(rows, scenes, have_gengeo, elapsed):
         "shows how much the side walls alone take. With stratified sizes the KS",
         "distance is the sequence's discrepancy (≤ 0.01 for these N, tests/packgen/test_pack.cpp); with iid",
         "sizes it has median ≈ 0.83/√N (≈ 0.04 at N ≈ 480), so KS ≤ 0.02 at this N needs stratification.",
-        "The machine was shared (2 cores, several users), so wall times are inflated and noisy.",
+        "On a shared machine wall times are inflated and noisy (its load: the machine line above).",
         "",
         "Peer numbers quoted in issue 3 for GenGeo on radii 0.2–1.0: about 2,600 spheres at φ ≈ 0.68 in about 4 s",
         "(≈ 600 spheres/s), mean radius 0.32, KS 0.56 to the uniform request; monodisperse ~0.7 M spheres/s, Z ≈ 11.8,",
         "φ → 0.72 (a crystal).",
         "",
     ]
-    common.write_text("packgen-speed.md", "\n".join(lines))
+    report.write_page("packgen-speed.md", "\n".join(lines))
 
 
 def main():
+    argparse.ArgumentParser(description=__doc__,
+                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
+    load = report.load_average()
     start = time.perf_counter()
     with tempfile.TemporaryDirectory() as tmp:
         rows = scaling(tmp)
@@ -343,7 +346,7 @@ def main():
     if not have_gengeo:
         print("packgen_speed: GenGeo skipped: python3-gengeo is not installed (apt-get install -y python3-gengeo)")
     plot(rows)
-    report(rows, scenes, have_gengeo, time.perf_counter() - start)
+    page(rows, scenes, have_gengeo, time.perf_counter() - start, report.machine(load))
 
 
 if __name__ == "__main__":

@@ -24,14 +24,13 @@ import argparse
 import json
 import math
 import os
-import platform
 import subprocess
 
-from common import ROOT, app, run_json, write_text, RESULTS
+from lib import apps, report
 
-WORK = os.path.join(ROOT, "out", "studies")
-SPREAD_SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
-SINTER_SCENE = os.path.join(ROOT, "data", "scenes", "gz2016-sinter.ini")
+WORK = apps.WORK
+SPREAD_SCENE = apps.scene("spread-blade.ini")
+SINTER_SCENE = apps.GZ2016_SINTER_SCENE
 POWERS = [50, 100, 150, 200, 300]          # W
 SPEEDS = [0.25, 0.5, 1.0, 2.0, 3.0]        # m/s
 SMALL_POWERS, SMALL_SPEEDS = [100, 200, 300], [0.5, 1.0, 2.0]
@@ -46,7 +45,7 @@ def spread_layer():
     os.makedirs(WORK, exist_ok=True)
     path = os.path.join(WORK, "process-map-layer.h5")
     if not os.path.exists(path):
-        subprocess.run([app("deposit"), "--config", SPREAD_SCENE, "--seed", "1", "--threads", "1",
+        subprocess.run([apps.app("deposit"), "--config", SPREAD_SCENE, "--seed", "1", "--threads", "1",
                         "--out", path], check=True, capture_output=True)
     return path
 
@@ -72,12 +71,11 @@ def track_of(bed, length):
 
 
 def run_point(bed, power, speed, track, extra):
-    out = os.path.join(WORK, f"process-map-{power:g}W-{speed:g}ms.h5")
     x0, x1, y = track
-    args = [app("sinter"), "--config", SINTER_SCENE, "--bed", bed, "--out", out,
-            "--power", str(power), "--speed", str(speed), "--threads", "1", "--snapshots", "1",
-            "--laser.start-x", repr(x0), "--laser.end-x", repr(x1), "--laser.y", repr(y), *extra]
-    summary, wall = run_json(args)
+    summary, wall = apps.sinter(SINTER_SCENE, bed, f"process-map-{power:g}W-{speed:g}ms.h5",
+                                "--power", str(power), "--speed", str(speed), "--snapshots", "1",
+                                "--laser.start-x", repr(x0), "--laser.end-x", repr(x1),
+                                "--laser.y", repr(y), *extra)
     width, depth, length = track_pool(summary)
     return {"power": power, "speed": speed, "width": width, "depth": depth, "length": length,
             "peak": summary["max_temperature"], "vaporised": summary["particles_vaporised"],
@@ -168,16 +166,22 @@ def main():
     saved = os.path.join(WORK, "process-map.json")
     if args.from_json:
         with open(saved) as f:
-            points = json.load(f)
+            stored = json.load(f)
+        # Points stored before the machine was recorded with them are a bare list.
+        points, machine = ((stored, "Machine: not recorded with these points.")
+                           if isinstance(stored, list) else (stored["points"], stored["machine"]))
     else:
+        load = report.load_average()
         powers, speeds = (SMALL_POWERS, SMALL_SPEEDS) if args.small else (POWERS, SPEEDS)
         extra = args.sinter_args.split()
         track = track_of(bed, args.track_length)
         points = [run_point(bed, p, v, track, extra) for p in powers for v in speeds]
+        machine = report.machine(load)
         with open(saved, "w") as f:
-            json.dump(points, f, indent=1)
-    plot(points, args.hatch, args.layer, os.path.join(RESULTS, "process-map.png"))
-    bed_name = os.path.relpath(bed, ROOT) if bed.startswith(ROOT) else os.path.basename(bed)
+            json.dump({"points": points, "machine": machine}, f, indent=1)
+    plot(points, args.hatch, args.layer, os.path.join(report.RESULTS, "process-map.png"))
+    bed_name = (os.path.relpath(bed, apps.ROOT) if bed.startswith(apps.ROOT)
+                else os.path.basename(bed))
     text = f"""# Process map: power x speed on one powder layer
 
 Regenerate: `POWDERBED_BUILD=build python3 bench/studies/process_map.py` (script docstring:
@@ -185,7 +189,7 @@ the criteria and their sources). Bed: `{bed_name}`; scene `data/scenes/gz2016-si
 (316L, absorptivity and spot of [GZ]) with `--power` and `--speed` per point
 {('and `' + args.sinter_args + '`') if args.sinter_args else ''}; one track of
 {args.track_length * 1e3:g} mm along x through the bed's centre per run, one thread.
-Machine: {platform.node()} ({os.cpu_count()} cores), {platform.platform()}.
+{machine}
 
 W: the melt's width across the track (powder and solid); D: its depth below the solid's top
 (the plate here); L: the longest stretch of the track's centre line molten at once (at most the
@@ -204,7 +208,7 @@ criterion, not through the heat one track leaves for the next (sinter's `--scan.
 
 {table(points, args.hatch, args.layer)}
 """
-    write_text("process-map.md", text)
+    report.write_page("process-map.md", text)
 
 
 if __name__ == "__main__":

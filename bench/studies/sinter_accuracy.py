@@ -17,11 +17,13 @@ the rays decide where the power goes, the grid how it spreads. The implicit inte
 tracing or wetting yet, so its rows (and their explicit reference) use Beer-Lambert without
 wetting. Runs use one thread: they compare settings.
 """
+import argparse
 import os
 
-from common import write_text, RESULTS
-from sinter_common import gz2016_bed, pool_um, run_sinter
+from lib import apps, report
+from lib.apps import pool_um
 
+SCENE = apps.GZ2016_SINTER_SCENE
 T_CUT = "3.6e-4"
 # Why the defaults are what they are, read off the tables of the last regeneration.
 DEFAULTS = """## The documented defaults
@@ -78,19 +80,22 @@ def rays_table(title, rows, ref_label):
 
 
 def main():
-    bed = gz2016_bed()
+    argparse.ArgumentParser(description=__doc__,
+                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
+    load = report.load_average()
+    bed = apps.gz2016_bed()
     sections = []
 
     # Is the pool on x = Lx/2 complete at t = 3.6e-4 s?
-    full, wall_full = run_sinter(bed, "acc-full.h5")
-    cut, wall_cut = run_sinter(bed, "acc-cut.h5", "--t-end", T_CUT)
+    full, wall_full = apps.sinter(SCENE, bed, "acc-full.h5")
+    cut, wall_cut = apps.sinter(SCENE, bed, "acc-cut.h5", "--t-end", T_CUT)
     sections += ["## Stopping at t = 3.6e-4 s does not change the pool on x = Lx/2", "",
                  *rows_table("run", [("whole track", full, wall_full),
                                      ("t_end = 3.6e-4 s", cut, wall_cut)], "whole track"), ""]
 
     grid = []
     for h in ("10e-6", "5e-6", "2.5e-6"):
-        s, wall = run_sinter(bed, f"acc-grid-{h}.h5", "--grid-spacing", h)
+        s, wall = apps.sinter(SCENE, bed, f"acc-grid-{h}.h5", "--grid-spacing", h)
         grid.append((f"{float(h) * 1e6:g} um ({s['nodes']:,} nodes)", s, wall))
     sections += ["## Substrate grid spacing (default time step: 0.9 x its stable bound)", "",
                  *rows_table("spacing", grid, grid[-1][0]), ""]
@@ -101,24 +106,24 @@ def main():
     for label, dt in (("stable bound x 0.9 (default)", 0.9 * bound), ("bound x 0.5", 0.5 * bound),
                       ("bound x 0.25", 0.25 * bound), ("bound x 0.1", 0.1 * bound),
                       ("5e-9 s ([GZ])", 5e-9)):
-        s, wall = run_sinter(bed, "acc-dt.h5", "--dt", repr(dt), *coarse)
+        s, wall = apps.sinter(SCENE, bed, "acc-dt.h5", "--dt", repr(dt), *coarse)
         steps.append((f"{label}: {dt:.3g} s", s, wall))
     sections += ["## Time step (explicit, 10 um grid; t_end = 3.6e-4 s)", "",
                  *rows_table("dt", steps, steps[-1][0]), ""]
 
     windows = []
     for dT in ("1", "5", "20", "50", "100"):
-        s, wall = run_sinter(bed, "acc-window.h5", "--material.window", dT)
+        s, wall = apps.sinter(SCENE, bed, "acc-window.h5", "--material.window", dT)
         windows.append((f"{dT} K" + (" (default)" if dT == "20" else ""), s, wall))
     sections += ["## Phase-change window dT (apparent heat capacity)", "",
                  *rows_table("dT", windows, windows[0][0]), ""]
 
     beer = ("--laser.absorption", "beer-lambert", "--effects.wetting", "false")
-    s, wall = run_sinter(bed, "acc-explicit.h5", *beer, *coarse)
+    s, wall = apps.sinter(SCENE, bed, "acc-explicit.h5", *beer, *coarse)
     integrators = [(f"explicit, dt = {s['dt']:.3g} s", s, wall)]
     for dt in ("1.35e-6", "5e-6"):
-        s, wall = run_sinter(bed, "acc-implicit.h5", "--integrator", "implicit", "--dt", dt,
-                             *beer, *coarse)
+        s, wall = apps.sinter(SCENE, bed, "acc-implicit.h5", "--integrator", "implicit",
+                              "--dt", dt, *beer, *coarse)
         integrators.append((f"implicit, dt = {dt} s ({s['implicit_iterations']} CG iterations)",
                             s, wall))
     sections += ["## Explicit vs implicit (Beer-Lambert, no wetting; 10 um grid; t_end = 3.6e-4 s)",
@@ -126,14 +131,15 @@ def main():
 
     rays = []
     for n in ("500", "1000", "2000", "4000", "16000", "64000"):
-        s, wall = run_sinter(bed, "acc-rays.h5", "--laser.rays", n, *coarse)
+        s, wall = apps.sinter(SCENE, bed, "acc-rays.h5", "--laser.rays", n, *coarse)
         rays.append((f"{n} rays" + (" (default)" if n == "4000" else ""), s, wall))
     sections += ["## Rays per traced beam position (ray-traced laser; 10 um grid; t_end = 3.6e-4 s)",
                  "", *rays_table("rays", rays, rays[-1][0]), ""]
 
     retrace = []
     for f in ("0.4", "0.2", "0.1", "0.05", "0.025"):
-        s, wall = run_sinter(bed, "acc-retrace.h5", "--laser.retrace-interval", f, *coarse)
+        s, wall = apps.sinter(SCENE, bed, "acc-retrace.h5", "--laser.retrace-interval", f,
+                              *coarse)
         retrace.append((f"{f} w" + (" (default)" if f == "0.1" else ""), s, wall))
     sections += ["## Re-trace interval (ray-traced laser; 10 um grid; t_end = 3.6e-4 s)", "",
                  *rays_table("interval", retrace, retrace[-1][0]), ""]
@@ -157,7 +163,7 @@ def main():
     ax.grid(alpha=0.3, which="both")
     ax.legend()
     fig.tight_layout()
-    fig.savefig(os.path.join(RESULTS, "sinter-accuracy.png"), dpi=120)
+    fig.savefig(os.path.join(report.RESULTS, "sinter-accuracy.png"), dpi=120)
 
     text = ["# sinter: what accuracy costs in time", "",
             "Generated by `bench/studies/sinter_accuracy.py` on the [GZ] scene "
@@ -165,9 +171,9 @@ def main():
             "Each table changes one knob; 'largest change' is the largest of the height, width and "
             "depth differences against the finest run of that table. The melt pool is resolved "
             "to the grid for the depth (linear interpolation of the peak temperature between "
-            "nodes) and to the particles for height and width.", "", *sections, DEFAULTS,
-            "![accuracy vs time](sinter-accuracy.png)"]
-    print(write_text("sinter-accuracy.md", "\n".join(text) + "\n"))
+            "nodes) and to the particles for height and width.", "", report.machine(load), "",
+            *sections, DEFAULTS, "![accuracy vs time](sinter-accuracy.png)"]
+    print(report.write_page("sinter-accuracy.md", "\n".join(text) + "\n"))
 
 
 if __name__ == "__main__":

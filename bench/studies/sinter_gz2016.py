@@ -3,6 +3,8 @@
 deposit scene: writes docs/results/sinter-gz2016.md (+ the top-view and cross-section pictures)
 and docs/results/sinter-sweeps.md (+ sinter-sweeps.png). Run with python3:
     POWDERBED_BUILD=build python3 bench/studies/sinter_gz2016.py [--no-sweeps|--fig13-only]
+(--no-sweeps: the validation page only; --fig13-only: the Fig. 13 section of the sweeps page
+only, replaced in place.)
 
 The melt pool is measured as `sinter` does (thermal/include/powderbed/thermal/melt_pool.hpp):
 on the plane x = Lx/2, the region whose peak temperature reached T_m = 1700 K; height above the
@@ -10,21 +12,98 @@ substrate from the particles the plane cuts, depth below the substrate's top fac
 both. Every run uses the scene's defaults (explicit, 0.9 x the stable step, dT = 20 K) but
 for the laser model and wetting, which each table names.
 """
+import argparse
 import os
 import subprocess
-import sys
 
-from common import ROOT, RESULTS, write_text
-from sinter_common import (PAPER_EXPERIMENT, PAPER_MODEL, fig13_beds, gz2016_bed, pool_um,
-                           run_sinter, track_means)
+from lib import apps, references, report
+from lib.apps import pool_um
 
+SCENE = apps.GZ2016_SINTER_SCENE
+DEPOSIT_SCENE = apps.scene("gz2016-deposit.ini")
+PAPER_MODEL = references.GZ2016_MELT_POOL_MODEL
+PAPER_EXPERIMENT = references.GZ2016_MELT_POOL_EXPERIMENT
 POWERS = [40, 80, 120, 160, 200, 250, 300, 350, 400]       # W at 2.0 m/s
 SPEEDS = [0.4, 0.8, 1.2, 1.6, 2.0, 2.5, 3.0, 3.5, 4.0]     # m/s at 200 W
 
 
+# [GZ] Table 3 beds for Fig. 13, dropped in the deposit scene's box: young-scale 1e4 (the 4 um
+# fines set the time step; at the scene's 1e3 the bimodal bed takes ~30 min) and 60 ms of
+# settling: a fine falls at its Stokes speed 2 r^2 rho g / (9 mu) ~ 1.3 cm/s, ~25 ms from the
+# top of the drop (at 30 ms some were still in the air above the bed).
+FIG13_PSDS = [
+    ("550 of 30 +- 5 um", "gauss:mean=30e-6,sd=5e-6,min=20e-6,max=40e-6", 550),
+    ("+ 3000 of 8 +- 2 um", "gauss:mean=30e-6,sd=5e-6,min=20e-6,max=40e-6,count=550"
+                            "+gauss:mean=8e-6,sd=2e-6,min=4e-6,max=12e-6,count=3000", 3550),
+]
+
+
+def fig13_beds():
+    """[(name, bed path)] of the two Fig. 13 beds, deposited once (~2 min for the bimodal one)."""
+    os.makedirs(apps.WORK, exist_ok=True)
+    beds = []
+    for k, (name, psd, count) in enumerate(FIG13_PSDS):
+        path = os.path.join(apps.WORK, f"gz2016-fig13-{k}.h5")
+        if not os.path.exists(path):
+            subprocess.run([apps.app("deposit"), "--config", DEPOSIT_SCENE, "--psd", psd,
+                            "--count", str(count), "--young-scale", "1e4", "--t-end", "0.06",
+                            "--seed", "1", "--out", path], check=True, capture_output=True)
+        beds.append((name, path))
+    return beds
+
+
+def track_means(run_path, x_from=0.2e-3, x_to=0.8e-3, slices=121):
+    """Melt-pool height, width and depth along the track: on each plane x in [x_from, x_to]
+    (the steady part of the 1 mm track) the molten region is measured as on x = Lx/2 — the
+    particles the plane cuts whose peak reached T_m, and the top-face nodes of the substrate at
+    or above T_m in the node column nearest x; the depth from the peak temperatures of the
+    section y = Ly/2 (the track's centre line) in that column, interpolated to T_m between nodes
+    as melt_pool.cpp does. Returns {"height"|"width"|"depth": (mean, sd)} in um. One plane cuts
+    only a handful of 27 um particles, so single-plane numbers jump by a particle radius; the
+    mean over 121 planes shows the trend and the sd the spread."""
+    import h5py
+    import numpy as np
+    with h5py.File(run_path, "r") as f:
+        pos = np.array(f["particles/position"])
+        rad = np.array(f["particles/radius"])
+        peak = np.array(f["melt/particle"])
+        top = np.array(f["melt/top"])
+        section = np.array(f["melt/section_y"])  # nz x nx, k = nz - 1 the top face
+        t_m = float(f["melt"].attrs["melting_point"])
+        x0, y0, z_top = f["substrate"].attrs["origin"]
+        dx, dy, dz = f["substrate"].attrs["spacing"]
+    molten = peak >= t_m
+    widths, heights, depths = [], [], []
+    for x in np.linspace(x_from, x_to, slices):
+        off = pos[:, 0] - x
+        cut = molten & (np.abs(off) < rad)
+        half = np.sqrt(np.maximum(rad[cut] ** 2 - off[cut] ** 2, 0))
+        lo = list(pos[cut, 1] - half)
+        hi = list(pos[cut, 1] + half)
+        i = int(round((x - x0) / dx))
+        hot = np.nonzero(top[:, i] >= t_m)[0]
+        if hot.size:
+            lo.append(y0 + dy * hot.min())
+            hi.append(y0 + dy * hot.max())
+        widths.append(max(hi) - min(lo) if lo else 0.0)
+        heights.append(float((pos[cut, 2] + half).max() - z_top) if cut.any() else 0.0)
+        col = section[::-1, i]  # from the top face down
+        depth = 0.0
+        if col[0] >= t_m:
+            k = 0
+            while k + 1 < len(col) and col[k + 1] >= t_m:
+                k += 1
+            depth = k * dz
+            if k + 1 < len(col) and col[k] > col[k + 1]:
+                depth += dz * min(1.0, (col[k] - t_m) / (col[k] - col[k + 1]))
+        depths.append(depth)
+    return {name: (float(np.mean(v)) * 1e6, float(np.std(v)) * 1e6)
+            for name, v in (("height", heights), ("width", widths), ("depth", depths))}
+
+
 def picture(run_path, name, title):
-    prefix = os.path.join(RESULTS, name)
-    subprocess.run(["python3", os.path.join(ROOT, "scripts", "plot_sinter.py"), run_path,
+    prefix = os.path.join(report.RESULTS, name)
+    subprocess.run(["python3", os.path.join(apps.ROOT, "scripts", "plot_sinter.py"), run_path,
                     prefix, "--title", title], check=True)
     return os.path.basename(prefix)
 
@@ -47,8 +126,8 @@ def variant_runs(bed):
     for label, options in VARIANTS:
         for wetting in (False, True):
             tag = label.split(",")[0].split()[0].lower() + "-" + options[-1] + ("-wet" if wetting else "")
-            s, wall = run_sinter(bed, f"gz2016-{tag}.h5", *options, "--effects.wetting",
-                                 "true" if wetting else "false")
+            s, wall = apps.sinter(SCENE, bed, f"gz2016-{tag}.h5", *options, "--effects.wetting",
+                                  "true" if wetting else "false")
             s["track"] = track_means(s["out_path"])
             runs.append((label, wetting, s, wall))
     return runs
@@ -59,7 +138,7 @@ def fmt_track(track, key):
     return f"{mean:.1f} ± {sd:.1f}"
 
 
-def validation(bed):
+def validation(bed, machine):
     runs = variant_runs(bed)
     default = next(r for r in runs if (r[0], r[1]) == DEFAULT)
     beer = next(r for r in runs if r[0].startswith("Beer-Lambert, substrate exp") and not r[1])
@@ -75,9 +154,11 @@ def validation(bed):
         "the bed of `data/scenes/gz2016-deposit.ini`, seed 1 (600 particles, young-scale 1e3). "
         "One thread each.",
         "",
+        machine,
+        "",
         "Height, width and depth on the plane x = Lx/2 as `sinter` reports them; beside them the "
         "mean ± sd over 121 planes x = 0.2 ... 0.8 mm (the steady part of the track; "
-        "bench/studies/sinter_common.py `track_means`). Absorptance: laser energy absorbed over "
+        "bench/studies/sinter_gz2016.py `track_means`). Absorptance: laser energy absorbed over "
         "the beam's P t_end (the beam starts and ends one spot radius beyond the bed, so part of "
         "it falls outside the substrate); for ray tracing also the traced maps' absorbed over "
         "what reached the substrate's extent (`bed`).",
@@ -159,7 +240,7 @@ def validation(bed):
         "",
         f"![cross-section]({pic_bl}-section.png)",
     ]
-    return write_text("sinter-gz2016.md", "\n".join(lines) + "\n")
+    return report.write_page("sinter-gz2016.md", "\n".join(lines) + "\n")
 
 
 # The two models of the sweeps: the scene's default and Beer-Lambert as [GZ]'s text has it.
@@ -183,7 +264,7 @@ def sweep_table(title, unit, rows):
     return out
 
 
-def sweeps(bed):
+def sweeps(bed, machine):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -193,11 +274,11 @@ def sweeps(bed):
         tag = "default" if not options else "beer-lambert"
         power_rows, speed_rows = [], []
         for p in POWERS:
-            s, wall = run_sinter(bed, f"power-{tag}-{p}.h5", *options, "--power", str(p))
+            s, wall = apps.sinter(SCENE, bed, f"power-{tag}-{p}.h5", *options, "--power", str(p))
             s["track"] = track_means(s["out_path"])
             power_rows.append((p, s, wall))
         for v in SPEEDS:
-            s, wall = run_sinter(bed, f"speed-{tag}-{v}.h5", *options, "--speed", str(v))
+            s, wall = apps.sinter(SCENE, bed, f"speed-{tag}-{v}.h5", *options, "--speed", str(v))
             s["track"] = track_means(s["out_path"])
             speed_rows.append((v, s, wall))
         results.append((name, power_rows, speed_rows))
@@ -220,7 +301,7 @@ def sweeps(bed):
     axes[0].legend(fontsize=7)
     fig.suptitle("sinter on the [GZ] bed: track-mean melt pool (solid: default, dashed: Beer-Lambert)")
     fig.tight_layout()
-    fig.savefig(os.path.join(RESULTS, "sinter-sweeps.png"), dpi=120)
+    fig.savefig(os.path.join(report.RESULTS, "sinter-sweeps.png"), dpi=120)
     lines = [
         "# The [GZ] 2016 sweeps with sinter",
         "",
@@ -230,6 +311,8 @@ def sweeps(bed):
         "absorption, specular, with wetting) and for Beer-Lambert as [GZ]'s text has it without "
         "wetting. Melt pool on x = Lx/2 and track mean ± sd over 121 planes between x = 0.2 and "
         "0.8 mm, as in docs/results/sinter-gz2016.md. One thread each.",
+        "",
+        machine,
     ]
     for name, power_rows, speed_rows in results:
         lines += ["", f"## {name}: power at 2.0 m/s", "", *sweep_table("P", "W", power_rows),
@@ -244,7 +327,7 @@ def sweeps(bed):
         "",
         "![sweeps](sinter-sweeps.png)",
     ]
-    return write_text("sinter-sweeps.md", "\n".join(lines) + "\n")
+    return report.write_page("sinter-sweeps.md", "\n".join(lines) + "\n")
 
 
 def vaporised_by_size(run_path, boiling_point, split_diameter):
@@ -259,21 +342,21 @@ def vaporised_by_size(run_path, boiling_point, split_diameter):
     return int((gone & fine).sum()), int((gone & ~fine).sum()), int(fine.sum()), int((~fine).sum())
 
 
-def fig13():
+def fig13(machine):
     """[GZ] Fig. 13: 550 particles of 30 +- 5 um in [20, 40] um against the same plus 3,000 of
     8 +- 2 um in [4, 12] um, 200 W, 2 m/s: which particles vaporise, for both models."""
     rows = []
     for name, bed in fig13_beds():
         for model, options in SWEEP_MODELS:
             tag = "default" if not options else "beer-lambert"
-            s, wall = run_sinter(bed, f"fig13-{name}-{tag}.h5", *options)
+            s, wall = apps.sinter(SCENE, bed, f"fig13-{name}-{tag}.h5", *options)
             fine, coarse, n_fine, n_coarse = vaporised_by_size(s["out_path"], 3130.0, 16e-6)
             rows.append((name, model, s, wall, fine, coarse, n_fine, n_coarse))
     lines = [
         "",
         "## [GZ] Fig. 13: fines vaporise",
         "",
-        "Beds deposited by `bench/studies/sinter_common.py` `fig13_beds` (the deposit scene's box "
+        "Beds deposited by `bench/studies/sinter_gz2016.py` `fig13_beds` (the deposit scene's box "
         "and drop with the Table 3 PSDs, young-scale 1e4 to keep the fines' time step affordable "
         "(docs/results/deposit-accuracy.md has what softening costs) and 60 ms of settling, so "
         "the fines falling at their Stokes speed have landed), the "
@@ -281,6 +364,8 @@ def fig13():
         "fines are particles under 16 um in diameter. deposit draws each size from the mixture's "
         "number fractions (550 : 3000), so the bimodal bed's split is near, not exactly, "
         "550 + 3000 (the counts in brackets).",
+        "",
+        machine,
         "",
         "| bed | model | height / width / depth (um) | T_max (K) | absorptance | molten | "
         "vaporised fines (of) | vaporised coarse (of) | wall (s) |",
@@ -300,21 +385,26 @@ def fig13():
 
 
 def main():
-    """--no-sweeps: the validation page only; --fig13-only: the Fig. 13 section of the sweeps
-    page only (replaced in place)."""
-    bed = gz2016_bed()
-    path = os.path.join(RESULTS, "sinter-sweeps.md")
-    if "--fig13-only" in sys.argv:
-        with open(path) as f:
-            text = f.read().split("\n## [GZ] Fig. 13")[0].rstrip("\n")
-        write_text("sinter-sweeps.md", text + "\n" + "\n".join(fig13()) + "\n")
-        print(path)
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    only = parser.add_mutually_exclusive_group()
+    only.add_argument("--no-sweeps", action="store_true", help="the validation page only")
+    only.add_argument("--fig13-only", action="store_true",
+                      help="the Fig. 13 section of the sweeps page only (replaced in place)")
+    args = parser.parse_args()
+    load = report.load_average()
+    bed = apps.gz2016_bed()
+    path = os.path.join(report.RESULTS, "sinter-sweeps.md")
+    if args.fig13_only:
+        text = report.read_page("sinter-sweeps.md").split("\n## [GZ] Fig. 13")[0].rstrip("\n")
+        section = fig13(report.machine(load))
+        print(report.write_page("sinter-sweeps.md", text + "\n" + "\n".join(section) + "\n"))
         return
-    print(validation(bed))
-    if "--no-sweeps" not in sys.argv:
-        sweeps(bed)
+    print(validation(bed, report.machine(load)))
+    if not args.no_sweeps:
+        sweeps(bed, report.machine(load))
         with open(path, "a") as f:
-            f.write("\n".join(fig13()) + "\n")
+            f.write("\n".join(fig13(report.machine(load))) + "\n")
         print(path)
 
 

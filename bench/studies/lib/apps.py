@@ -1,0 +1,253 @@
+"""Running the project's programs from a study: where the build is, one run with --json, the
+bedstat, deposit, keff and sinter wrappers more than one study uses, reading the beds and run
+files the programs write, and the beds and stored runs one study takes from another (kept under
+out/studies/ and made there when missing, so that no study has to import another)."""
+import json
+import math
+import os
+import re
+import subprocess
+import time
+
+from . import references
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+# POWDERBED_BUILD selects the build folder (a Release build for the timings), default build/.
+BUILD = os.environ.get("POWDERBED_BUILD", os.path.join(ROOT, "build"))
+SCENES = os.path.join(ROOT, "data", "scenes")
+WORK = os.path.join(ROOT, "out", "studies")
+
+
+def app(name):
+    """The path of program `name` of the build."""
+    return os.path.join(BUILD, "apps", name)
+
+
+def scene(name):
+    """The path of a scene file of data/scenes/."""
+    return os.path.join(SCENES, name)
+
+
+def scene_value(path, section, key):
+    """A key of an INI scene as a number (section None: a key before the first [section]), so
+    that a study states the scene's value rather than a copy of it."""
+    current = None
+    for line in open(path):
+        line = line.split("#")[0].strip()
+        m = re.match(r"\[(.+)\]", line)
+        if m:
+            current = m.group(1)
+        elif "=" in line and current == section:
+            k, v = (x.strip() for x in line.split("=", 1))
+            if k == key:
+                return float(v)
+    raise KeyError(f"{key} in {path}")
+
+
+def omp_env(threads):
+    """The environment with OMP_NUM_THREADS = `threads`, for programs whose thread count is
+    OpenMP's (keff)."""
+    return dict(os.environ, OMP_NUM_THREADS=str(threads))
+
+
+def run_json(args, env=None):
+    """Runs a program with --json and returns (summary dict, wall seconds of the whole process)."""
+    start = time.perf_counter()
+    proc = subprocess.run(args + ["--json"], capture_output=True, text=True, env=env)
+    wall = time.perf_counter() - start
+    if proc.returncode != 0:
+        raise RuntimeError(f"{' '.join(args)} exited {proc.returncode}: {proc.stderr.strip()}")
+    return json.loads(proc.stdout), wall
+
+
+def cached_json(path, args, env=None):
+    """Runs `args` + `--out path` unless `path` is there with its record `path`.json (the --json
+    summary and the wall seconds of the run that made it): (summary, wall s). A study rerun, or
+    another study on the same beds, reads the record instead of remaking the file."""
+    meta = path + ".json"
+    if os.path.exists(path) and os.path.exists(meta):
+        with open(meta) as f:
+            cached = json.load(f)
+        return cached["summary"], cached["wall"]
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    s, wall = run_json(args + ["--out", path], env=env)
+    with open(meta, "w") as f:
+        json.dump({"summary": s, "wall": wall}, f)
+    return s, wall
+
+
+def bedstat(args, env=None):
+    """bedstat's --json entry of the one bed in `args` (its path and options): the element of
+    the "beds" array bedstat always prints."""
+    out, _ = run_json([app("bedstat"), *args], env=env)
+    return out["beds"][0]
+
+
+def read_bed(path):
+    """Centres (N x 3) and radii of a bed file (docs/bed-format.md); needs h5py and numpy."""
+    import h5py
+    import numpy as np
+    with h5py.File(path, "r") as f:
+        return np.array(f["particles/position"]), np.array(f["particles/radius"])
+
+
+def coordination_at_gaps(centres, radii, gaps):
+    """Z = 2 contacts / N (docs/physics.md §2) with a contact when the surface gap d - ri - rj <= g, for each
+    absolute gap g (m) in `gaps`: the raster-bed reading of a contact (docs/physics.md §3: gaps of order h).
+    Overlapping pairs (negative gap) count as contacts."""
+    import numpy as np
+    from scipy.spatial import cKDTree
+    n = len(radii)
+    if n < 2:
+        return [0.0 for _ in gaps]
+    pairs = cKDTree(centres).query_pairs(2 * radii.max() + max(gaps), output_type="ndarray")
+    i, j = pairs[:, 0], pairs[:, 1]
+    gap = np.linalg.norm(centres[i] - centres[j], axis=1) - radii[i] - radii[j]
+    return [2.0 * np.count_nonzero(gap <= g) / n for g in gaps]
+
+
+# ------------------------------------------------------------------------------------------------
+# keff
+
+def core_gradient(path, s):
+    """k_core: the heat flux over the mean temperature gradient of the particles whose centres
+    lie more than 2 diameters from both walls (least-squares line T(z)), the bed's own
+    conductivity without the wall layers. `path`: keff's temperatures (--out), `s` its summary."""
+    import h5py
+    import numpy as np
+    with h5py.File(path, "r") as f:
+        z = np.array(f["particles/position"])[:, 2]
+        d = 2 * float(np.max(f["particles/radius"]))
+        temp = np.array(f["particles/temperature"])
+        lo, hi = f["domain"].attrs["lower"], f["domain"].attrs["upper"]
+    core = (z > lo[2] + 2 * d) & (z < hi[2] - 2 * d)
+    slope, _ = np.polyfit(z[core], temp[core], 1)
+    flux = 0.5 * (s["heat_flow_hot"] + s["heat_flow_cold"]) / ((hi[0] - lo[0]) * (hi[1] - lo[1]))
+    return flux / slope
+
+
+def keff(scene_path, bed, *options, out=None, env=None, core=False):
+    """keff on `bed` with the scene and `options`: (--json summary, process wall s). `out`: where
+    the temperatures go (none written without); `core`: the summary gets k_core (core_gradient)
+    from them."""
+    args = [app("keff"), "--config", scene_path, "--bed", bed, *options]
+    if out:
+        args += ["--out", out]
+    s, wall = run_json(args, env=env)
+    if core:
+        s["k_core"] = core_gradient(out, s)
+    return s, wall
+
+
+# [KE]'s beds, made as [KE] made theirs (data/scenes/ke2016-<case>-bed.ini, one thread), for
+# keff_validation.py, keff_softening.py and keff_parameters.py; and the results one of them
+# stores for the others.
+KE2016_WORK = os.path.join(WORK, "keff-validation")
+KE2016_SOFT_WORK = os.path.join(WORK, "keff-softening")
+KE2016_RESULTS = os.path.join(KE2016_WORK, "results.json")  # keff_validation.py: per case, seed
+KE2016_BED_SEEDS = os.path.join(KE2016_WORK, "bed-seeds.json")  # keff_validation.py: per seed
+
+
+def ke2016_bed_scene(case):
+    return scene(f"ke2016-{case}-bed.ini")
+
+
+def ke2016_keff_scene(case):
+    return scene(f"ke2016-{case}.ini")
+
+
+def ke2016_deposit(case, seed):
+    """The deposit command of [KE]'s bed of `case` with `seed` (without --out)."""
+    return [app("deposit"), "--config", ke2016_bed_scene(case), "--seed", str(seed), "--threads",
+            "1"]
+
+
+def ke2016_bed(case, seed=1, depth=0.0):
+    """[KE]'s bed of `case` and `seed`: unconsolidated (depth 0), or that bed consolidated by the
+    top wall lowered `depth` particle radii below its surface, held, raised and relaxed
+    (docs/deposit-lid.md): (path, deposit summary, wall s), kept in KE2016_WORK."""
+    base = os.path.join(KE2016_WORK, f"{case}-seed{seed}.h5")
+    s, wall = cached_json(base, ke2016_deposit(case, seed))
+    if depth == 0:
+        return base, s, wall
+    d = references.ke2016_case(case).diameter
+    path = os.path.join(KE2016_WORK, f"{case}-seed{seed}-depth{depth:g}.h5")
+    # --in on the command line replaces the scene's particle source (psd, count, insertion).
+    args = ke2016_deposit(case, seed) + ["--in", base, "--t-end", "1e-4", "--lid.enabled", "true",
+                                         "--lid.depth", f"{depth * d / 2:.6g}"]
+    return (path, *cached_json(path, args))
+
+
+def ke2016_keff(case, bed, *options, tag="nominal"):
+    """keff with [KE]'s scene of `case` on `bed` and `options`: the --json summary with k_core;
+    the temperatures go to BED-T-<tag>.h5 beside the bed."""
+    s, _ = keff(ke2016_keff_scene(case), bed, *options, out=bed.replace(".h5", f"-T-{tag}.h5"),
+                core=True)
+    return s
+
+
+def ke2016_soft_bed(case, k_n):
+    """[KE]'s unconsolidated bed of `case`, seed 1, deposited at the DEM stiffness k_n (N/m;
+    the scene's is [KE]'s 1e5): (path, deposit summary, wall s), kept in KE2016_SOFT_WORK."""
+    path = os.path.join(KE2016_SOFT_WORK, f"{case}-kn{k_n:g}.h5")
+    args = ke2016_deposit(case, 1) + ["--contact.stiffness", f"{k_n:g}"]
+    return (path, *cached_json(path, args))
+
+
+# The held-lid steel 1 mm bed of keff_speed.py and keff_accuracy.py, and keff_speed.py's stored
+# measurements (keff_accuracy.py reads the 100,000-particle runs).
+KEFF_SPEED_WORK = os.path.join(WORK, "keff-speed")
+KEFF_SPEED_RUNS = os.path.join(KEFF_SPEED_WORK, "speed-runs.json")
+
+
+def held_lid_bed(count, width):
+    """data/scenes/ke2016-steel-1mm-held-lid-bed.ini, seed 1, with `count` spheres in a box
+    `width` diameters wide (the insertion height keeps the scene's 19 % solid fraction; 1,100
+    spheres, 10 wide, is the scene itself, the validation bed): (path, deposit summary, wall s),
+    kept in KEFF_SPEED_WORK."""
+    path = os.path.join(KEFF_SPEED_WORK, f"deposit-{count}.h5")
+    d = 1e-3
+    height = math.ceil(count * 0.5236 / 0.19 / width ** 2) * d
+    args = [app("deposit"), "--config", scene("ke2016-steel-1mm-held-lid-bed.ini"), "--seed", "1",
+            "--threads", "1"]
+    if count != 1100:
+        args += ["--count", str(count), "--domain", f"{width * d:g},{width * d:g},{height:g}",
+                 "--insert-z", f"0,{height:g}"]
+    return (path, *cached_json(path, args))
+
+
+# ------------------------------------------------------------------------------------------------
+# sinter on the [GZ] scene (sinter_accuracy.py, sinter_gz2016.py, sinter_speed.py, process_map.py)
+
+GZ2016_SINTER_SCENE = scene("gz2016-sinter.ini")
+
+
+def gz2016_bed():
+    """The bed of data/scenes/gz2016-deposit.ini with seed 1, kept in out/studies/ (about a
+    minute the first time)."""
+    os.makedirs(WORK, exist_ok=True)
+    path = os.path.join(WORK, "gz2016-deposit.h5")
+    if not os.path.exists(path):
+        subprocess.run([app("deposit"), "--config", scene("gz2016-deposit.ini"), "--seed", "1",
+                        "--out", path], check=True, capture_output=True)
+    return path
+
+
+def sinter(scene_path, bed, out, *options, threads=1):
+    """sinter on `bed` with the scene and `options`, its run file at `out` (a bare name: in
+    out/studies/): (--json summary with "out_path", process wall s). One thread by default: the
+    studies compare settings, not machines (sinter_speed.py measures threads)."""
+    out = os.path.join(WORK, out)
+    os.makedirs(os.path.dirname(out), exist_ok=True)
+    args = [app("sinter"), "--config", scene_path, "--bed", bed, "--out", out, *options]
+    if threads:
+        args += ["--threads", str(threads)]
+    summary, wall = run_json(args)
+    summary["out_path"] = out
+    return summary, wall
+
+
+def pool_um(summary):
+    """sinter's melt pool on x = Lx/2 (height, width, depth) in um."""
+    m = summary["melt_pool"]
+    return m["height"] * 1e6, m["width"] * 1e6, m["depth"] * 1e6

@@ -1,0 +1,72 @@
+"""lib/references.py against what the models are defined by and what the scenes were made from.
+Run from bench/studies (ctest sets PYTHONPATH to it): python3 -m pytest lib/tests"""
+import math
+
+import numpy as np
+import pytest
+
+from lib import apps, references
+
+
+def zbs_unit_cell(porosity, kappa, c=1.25):
+    """Zehner–Schlünder's unit cell integrated numerically: at radius r (cell radius 1, height 1)
+    the solid fills z(r) = B s / (1 + (B - 1) s), s = sqrt(1 - r^2), in series with the gas
+    above it, k_core/k_g = int_0^1 2 r dr / (1 - z + z / kappa); the core carries the area
+    fraction sqrt(1 - eps), gas alone the rest. With r = sin(t) the integrand is smooth; Gauss
+    rules on intervals halving towards t = 0 resolve its peak of height kappa there."""
+    b = c * ((1 - porosity) / porosity) ** (10 / 9)
+    x, w = np.polynomial.legendre.leggauss(32)
+    edges = [0.0] + [math.pi / 2 * 2.0 ** -k for k in range(40, -1, -1)]
+    core = 0.0
+    for lo, hi in zip(edges, edges[1:]):
+        t = lo + (x + 1) * (hi - lo) / 2
+        r, s = np.sin(t), np.cos(t)
+        z = b * s / (1 + (b - 1) * s)
+        core += float(np.sum(w * (hi - lo) / 2 * 2 * r * s / (1 - z + z / kappa)))
+    root = math.sqrt(1 - porosity)
+    return 1 - root + root * core
+
+
+@pytest.mark.parametrize("porosity", [0.36, 0.4, 0.45])
+@pytest.mark.parametrize("kappa", [10.0, 1e3, 1e4])
+def test_zbs_is_the_unit_cell(porosity, kappa):
+    assert references.zbs(porosity, kappa) == pytest.approx(zbs_unit_cell(porosity, kappa),
+                                                            rel=1e-10)
+
+
+@pytest.mark.parametrize("porosity", [0.36, 0.4, 0.45])
+def test_zbs_of_a_homogeneous_medium_is_one(porosity):
+    assert references.zbs(porosity, 1.0) == pytest.approx(1.0, rel=1e-12)
+
+
+def test_zbs_at_the_steel_bed():
+    # keff-parameters.md's ratio study: core porosity 0.397, k_g/k_s = 1e-4 and 1e-1
+    assert references.zbs(0.397, 1e4) == pytest.approx(22.6, abs=0.5)
+    assert references.zbs(0.397, 10.0) == pytest.approx(3.67, abs=0.05)
+
+
+@pytest.mark.parametrize("t, k", [(300, 0.0263), (600, 0.0469), (1000, 0.0667)])
+def test_k_air_follows_air_tables(t, k):
+    # air at 1 atm, Incropera & DeWitt, Fundamentals of Heat and Mass Transfer, Table A.4
+    assert references.k_air(t) == pytest.approx(k, rel=0.02)
+
+
+@pytest.mark.parametrize("case", references.KE2016_CASES, ids=lambda c: c.case)
+def test_ke2016_scenes_hold_the_middles_of_table_2(case):
+    """The keff and bed scenes take the middles of [KE]'s ranges (their headers say so)."""
+    keff_scene, bed_scene = apps.ke2016_keff_scene(case.case), apps.ke2016_bed_scene(case.case)
+    assert apps.scene_value(keff_scene, "solid", "conductivity") == pytest.approx(
+        sum(case.k_s) / 2, rel=1e-3)
+    assert apps.scene_value(keff_scene, "gas", "conductivity") == pytest.approx(
+        sum(case.k_g) / 2, rel=1e-3)
+    assert apps.scene_value(bed_scene, "material", "young") == pytest.approx(
+        sum(case.young) / 2 * 1e9, rel=1e-2)
+    psd = next(line.split("=", 1)[1].strip() for line in open(bed_scene)
+               if line.startswith("psd"))
+    assert psd == f"mono:d={case.diameter:g}"
+
+
+def test_ke2016_case_lookup():
+    assert references.ke2016_case("copper-0.15mm").diameter == 0.15e-3
+    with pytest.raises(StopIteration):
+        references.ke2016_case("gold")

@@ -1,0 +1,46 @@
+"""lib/report.py: the page helpers and the machine sentence. Run from bench/studies:
+python3 -m pytest lib/tests"""
+import os
+
+import pytest
+
+from lib import report
+
+
+def test_table_lines():
+    assert report.table_head("a", "b c") == ["| a | b c |", "|---|---|"]
+    assert report.table_row(1, 2.5, "x") == "| 1 | 2.5 | x |"
+
+
+def test_summary():
+    assert report.summary([1.0, 2.0, 3.0]) == (2.0, 1.0, 3.0, pytest.approx(1.0))
+    assert report.summary([4.0]) == (4.0, 4.0, 4.0, 0.0)
+
+
+def test_sections():
+    begin, end = report.section_markers("part")
+    block = f"{begin}\nnew\n{end}"
+    page = f"head\n\n{begin}\nold\n{end}\ntail\n"
+    assert report.marked_section(page, "part") == f"{begin}\nold\n{end}"
+    assert report.marked_section("head\n", "part") is None
+    assert report.splice(page, "part", block) == f"head\n\n{block}\ntail\n"
+    assert report.splice("head\n\n", "part", block) == f"head\n\n{block}\n"
+
+
+def test_write_page_replaces_whole(tmp_path, monkeypatch):
+    monkeypatch.setattr(report, "RESULTS", str(tmp_path))
+    assert report.read_page("p.md") == ""
+    path = report.write_page("p.md", "one\n")
+    report.write_page("p.md", "two\n")
+    assert path == os.path.join(str(tmp_path), "p.md")
+    assert report.read_page("p.md") == "two\n"
+    assert os.listdir(tmp_path) == ["p.md"]
+
+
+def test_machine_names_cores_loads_and_source():
+    text = report.machine("9.00 8.00 7.00", "1.00 2.00 3.00")
+    assert text.startswith("Machine: ") and text.endswith(".")
+    assert f"{os.cpu_count()} cores" in text
+    assert "9.00 8.00 7.00 before the runs, 1.00 2.00 3.00 after" in text
+    assert "source at commit " in text
+    assert len(report.load_average().split()) == 3
