@@ -36,6 +36,12 @@ using detail::Box;
 using detail::NeighbourList;
 using detail::ParticleView;
 
+double largest_radius(const bed::Bed& b) {
+  double r_max = 0;
+  for (const double r : b.radius) r_max = std::max(r_max, r);
+  return r_max;
+}
+
 // The walls a particle may touch, each with its own contact history.
 enum WallSlot { kPlate, kTool, kXLow, kXHigh, kYLow, kYHigh, kTop, kWallSlots };
 constexpr std::size_t kHistory = 6;  // F_s (3 values), then M_r (3)
@@ -50,31 +56,45 @@ struct Model {
   SlidingFrictionParams sliding;
 };
 
-// One contact's constants (per neighbour pair at a list build; per particle for the walls):
-// normal law a, b (Hertz, hertz_pair_constants) or k_n, c (linear); `shear` is 8 G* sqrt(R*)
-// (Hertz: k_t = shear sqrt(delta), Mindlin) or 2/7 k_n (linear: the ratio that gives a
-// sphere's tangential and normal oscillations one frequency, Schaefer, Dippel & Wolf 1996).
+// One contact's constants (per neighbour pair at a list build; per particle for the walls), each
+// the factor that multiplies a power of the overlap: for Hertz, F_n = a delta^{3/2} +
+// b delta^{1/4} delta' (hertz_pair_constants), k_t = `shear` delta^{1/2} with shear =
+// 8 G* sqrt(R*) (Mindlin), gamma_t = 2 zeta sqrt(m* k_t) = `shear_damping` delta^{1/4}, k_r =
+// `rolling` delta^{1/2} (rolling_stiffness of k_n = 2 E* sqrt(R* delta)) and C_r =
+// 2 zeta sqrt(I_r k_r) = `rolling_damping` delta^{1/4}; for the linear law the same names hold
+// the constants themselves (k_n, c, k_t = 2/7 k_n: the ratio that gives a sphere's tangential
+// and normal oscillations one frequency, Schaefer, Dippel & Wolf 1996). Taken out once, so a
+// contact needs two roots of the overlap, not eight. Damping off: the damping factors are 0.
 struct Constants {
-  double reduced_radius = 0, reduced_mass = 0;
-  double elastic = 0, damping = 0, shear = 0;
-  double rolling_inertia = 0;  // I_r of rolling_resistance.hpp
+  double reduced_radius = 0;
+  double elastic = 0, damping = 0;
+  double shear = 0, shear_damping = 0;
+  double rolling = 0, rolling_damping = 0;
 };
 
+// reduced_radius, reduced_mass and rolling_inertia (I_r of rolling_resistance.hpp) of the pair
+// or of a particle against a wall.
 Constants make_constants(const Model& m, double e_star, double g_star, double stiffness,
-                         double reduced_radius, double reduced_mass) {
+                         double reduced_radius, double reduced_mass, double rolling_inertia) {
   Constants c;
+  const double zeta = m.damping ? m.zeta : 0.0;
   c.reduced_radius = reduced_radius;
-  c.reduced_mass = reduced_mass;
+  double normal_stiffness;  // k_n (linear) or k_n / delta^{1/2} (Hertz)
   if (m.linear) {
     c.elastic = stiffness;
-    c.damping = 2.0 * m.zeta * std::sqrt(reduced_mass * stiffness);
+    c.damping = 2.0 * zeta * std::sqrt(reduced_mass * stiffness);
     c.shear = 2.0 / 7.0 * stiffness;
+    normal_stiffness = stiffness;
   } else {
-    const HertzPairConstants h = hertz_pair_constants({e_star, m.zeta}, reduced_radius, reduced_mass);
+    const HertzPairConstants h = hertz_pair_constants({e_star, zeta}, reduced_radius, reduced_mass);
     c.elastic = h.elastic;
     c.damping = h.damping;
     c.shear = 8.0 * g_star * std::sqrt(reduced_radius);
+    normal_stiffness = 1.5 * h.elastic;  // 2 E* sqrt(R*)
   }
+  c.shear_damping = 2.0 * zeta * std::sqrt(reduced_mass * c.shear);
+  c.rolling = rolling_stiffness(m.mu_r, reduced_radius, normal_stiffness);
+  c.rolling_damping = 2.0 * zeta * std::sqrt(rolling_inertia * c.rolling);
   return c;
 }
 
@@ -98,17 +118,11 @@ void contact(const Model& m, const Constants& k, double delta, const double n[3]
              const double dv[3], const double wi[3], const double wj[3], double arm_i,
              double arm_j, double* h, bool update, ContactForce& out) {
   const double rate = dv[0] * n[0] + dv[1] * n[1] + dv[2] * n[2];  // > 0 closing
-  double fn, kn;
-  if (m.linear) {
-    fn = k.elastic * delta + (m.damping ? k.damping * rate : 0.0);
-    kn = k.elastic;
-  } else {
-    const double root = std::sqrt(delta);
-    fn = k.elastic * root * delta + (m.damping ? k.damping * std::sqrt(root) * rate : 0.0);
-    fn = fn > 0.0 ? fn : 0.0;
-    kn = 1.5 * k.elastic * root;  // 2 E* sqrt(R* delta)
-  }
-  const double load = std::abs(fn);  // the linear dashpot may pull; friction takes |F_n|
+  const double root = m.linear ? 1.0 : std::sqrt(delta);  // the powers of Constants
+  const double quarter = m.linear ? 1.0 : std::sqrt(root);
+  double fn = k.elastic * root * delta + k.damping * quarter * rate;
+  if (!m.linear) fn = fn > 0.0 ? fn : 0.0;  // Hertz never pulls; the linear dashpot may
+  const double load = std::abs(fn);  // friction takes |F_n|
   for (int a = 0; a < 3; ++a) {
     out.f[a] = -fn * n[a];
     out.ti[a] = 0;
@@ -124,8 +138,7 @@ void contact(const Model& m, const Constants& k, double delta, const double n[3]
     double ft[3];
     if (m.history) {
       rotate_onto_tangent_plane(h, n);
-      const double kt = m.linear ? k.shear : k.shear * std::sqrt(delta);
-      const TangentialSpring spring{kt, m.damping ? 2.0 * m.zeta * std::sqrt(k.reduced_mass * kt) : 0.0};
+      const TangentialSpring spring{k.shear * root, k.shear_damping * quarter};
       tangential_history_force(spring, m.mu, load, vt, m.dt, update, h, ft);
     } else {
       sliding_friction_force(m.sliding, load, vt[0], vt[1], vt[2], ft);
@@ -139,8 +152,7 @@ void contact(const Model& m, const Constants& k, double delta, const double n[3]
   if (m.mu_r > 0) {
     const double wr[3] = {wi[0] - wj[0], wi[1] - wj[1], wi[2] - wj[2]};
     double mr[3];
-    const double kr = rolling_stiffness(m.mu_r, k.reduced_radius, kn);
-    const RollingSpring spring{kr, m.damping ? 2.0 * m.zeta * std::sqrt(k.rolling_inertia * kr) : 0.0};
+    const RollingSpring spring{k.rolling * root, k.rolling_damping * quarter};
     rolling_resistance_torque(spring, m.mu_r, k.reduced_radius, load, n, wr, m.dt, update, h + 3, mr);
     for (int a = 0; a < 3; ++a) {
       out.ti[a] += mr[a];
@@ -186,8 +198,7 @@ struct Run {
   double floor_reach = -1;
 
   void bound_floor() {
-    double r_max = 0;
-    for (const double r : bed.radius) r_max = std::max(r_max, r);
+    const double r_max = largest_radius(bed);
     if (floor.empty() || r_max <= floor_reach) return;
     floor_reach = r_max;
     floor_high = floor_low = floor;
@@ -234,8 +245,8 @@ struct Run {
       inv_mass[i] = 1.0 / mass[i];
       inv_inertia[i] = 1.0 / (0.4 * mass[i] * r * r);  // solid sphere, 2/5 m r^2
       drag[i] = scene.has(kDrag) ? stokes_drag_coefficient({scene.fluid_viscosity}, r) : 0.0;
-      wall[i] = make_constants(model, e_wall, g_wall, scene.stiffness, r, mass[i]);
-      wall[i].rolling_inertia = 1.4 * mass[i] * r * r;
+      // Against a wall: R* = r, m* = m, I_r = 7/5 m r^2 (rolling_resistance.hpp).
+      wall[i] = make_constants(model, e_wall, g_wall, scene.stiffness, r, mass[i], 1.4 * mass[i] * r * r);
     }
   }
 
@@ -273,9 +284,8 @@ struct Run {
         const std::uint32_t j = *it;
         const double rj = bed.radius[j], mj = mass[j];
         pair[k] = make_constants(model, e_pair, g_pair, scene.stiffness, ri * rj / (ri + rj),
-                                 mi * mj / (mi + mj));
+                                 mi * mj / (mi + mj), rolling_inertia(mi, ri, mj, rj));
         pair_reach[k] = ri + rj;
-        pair[k].rolling_inertia = rolling_inertia(mi, ri, mj, rj);
         for (std::size_t c = first; c < last; ++c) {
           if (a.j[c] != j) continue;
           std::copy_n(a.h.begin() + static_cast<std::ptrdiff_t>(c * kHistory), kHistory,
@@ -287,40 +297,47 @@ struct Run {
     }
   }
 
-  // The drift x += dt v (wrapped on periodic axes), testing as it goes whether some particle
-  // moved more than half the skin since the list was built (minimum image: both coordinates lie
-  // in the box); the list is then rebuilt. One pass over the particles instead of two.
-  void drift_and_rebuild_if_needed() {
+  // The first half kick v += h F / m and the drift x += dt v (wrapped on periodic axes), testing
+  // as it goes whether some particle moved more than half the skin since the list was built
+  // (minimum image: both coordinates lie in the box); the list is then rebuilt. One pass over
+  // the particles instead of three.
+  void kick_drift_and_rebuild_if_needed(double h) {
     double* __restrict x = bed.x.data();
     double* __restrict y = bed.y.data();
     double* __restrict z = bed.z.data();
-    const double* __restrict vx = bed.vx.data();
-    const double* __restrict vy = bed.vy.data();
-    const double* __restrict vz = bed.vz.data();
+    double* __restrict vx = bed.vx.data();
+    double* __restrict vy = bed.vy.data();
+    double* __restrict vz = bed.vz.data();
+    const double* __restrict ax = fx.data();
+    const double* __restrict ay = fy.data();
+    const double* __restrict az = fz.data();
+    const double* __restrict inv = inv_mass.data();
     const double* __restrict x0 = list.built_at(0);
     const double* __restrict y0 = list.built_at(1);
     const double* __restrict z0 = list.built_at(2);
-    double lo[2], hi[2], length[2], half[2];
-    for (int a = 0; a < 2; ++a) {  // z is never periodic (check_settings)
-      const bool p = box.periodic[a];
-      lo[a] = p ? box.lower[a] : -std::numeric_limits<double>::infinity();
-      hi[a] = p ? box.upper[a] : std::numeric_limits<double>::infinity();
-      length[a] = p ? box.length[a] : 0.0;
-      half[a] = p ? 0.5 * box.length[a] : std::numeric_limits<double>::infinity();
-    }
+    // Per periodic axis (x, y; z never is: check_settings) its bounds, length and half length;
+    // on other axes bounds and halves that never trigger the conditional shifts.
+    const double inf = std::numeric_limits<double>::infinity();
+    const bool px = box.periodic[0], py = box.periodic[1];
+    const double lx = px ? box.lower[0] : -inf, ux = px ? box.upper[0] : inf, Lx = px ? box.length[0] : 0.0;
+    const double ly = py ? box.lower[1] : -inf, uy = py ? box.upper[1] : inf, Ly = py ? box.length[1] : 0.0;
+    const double hx = px ? 0.5 * Lx : inf, hy = py ? 0.5 * Ly : inf;
     const double limit = 0.5 * list.skin(), limit2 = limit * limit;
-    const auto wrap = [&](int a, double v) {
-      return v - length[a] * static_cast<double>(v >= hi[a]) + length[a] * static_cast<double>(v < lo[a]);
-    };
-    const auto image = [&](int a, double e) {
-      return e - length[a] * static_cast<double>(e > half[a]) + length[a] * static_cast<double>(e < -half[a]);
-    };
     unsigned moved = 0;
     for (std::size_t i = 0, count = n(); i < count; ++i) {
-      x[i] = wrap(0, x[i] + dt * vx[i]);
-      y[i] = wrap(1, y[i] + dt * vy[i]);
+      vx[i] += h * ax[i] * inv[i];
+      vy[i] += h * ay[i] * inv[i];
+      vz[i] += h * az[i] * inv[i];
+      double xi = x[i] + dt * vx[i], yi = y[i] + dt * vy[i];
+      xi += (xi < lx ? Lx : 0.0) - (xi >= ux ? Lx : 0.0);
+      yi += (yi < ly ? Ly : 0.0) - (yi >= uy ? Ly : 0.0);
+      x[i] = xi;
+      y[i] = yi;
       z[i] += dt * vz[i];
-      const double ex = image(0, x[i] - x0[i]), ey = image(1, y[i] - y0[i]), ez = z[i] - z0[i];
+      double ex = xi - x0[i], ey = yi - y0[i];
+      const double ez = z[i] - z0[i];
+      ex += (ex < -hx ? Lx : 0.0) - (ex > hx ? Lx : 0.0);
+      ey += (ey < -hy ? Ly : 0.0) - (ey > hy ? Ly : 0.0);
       moved |= static_cast<unsigned>(ex * ex + ey * ey + ez * ez > limit2);
     }
     if (!moved) return;
@@ -452,63 +469,75 @@ struct Run {
     }
   }
 
+  // Local copies of the arrays' addresses: contact() is not inlined, and through a member the
+  // compiler would reload each address after every call.
   void pair_forces(bool update) {
     const std::uint32_t* owner = list.owners();
     const std::uint32_t* partner = list.partners();
-    for (std::size_t k = 0; k < list.pair_entries(); ++k) {
+    const double *x = bed.x.data(), *y = bed.y.data(), *z = bed.z.data(), *r = bed.radius.data();
+    const double *vx = bed.vx.data(), *vy = bed.vy.data(), *vz = bed.vz.data();
+    const double *ox = wx.data(), *oy = wy.data(), *oz = wz.data(), *reach_of = pair_reach.data();
+    double *ax = fx.data(), *ay = fy.data(), *az = fz.data(), *mx = tx.data(), *my = ty.data(), *mz = tz.data();
+    double* history = pair_history.data();
+    std::uint8_t* touch = touching.data();
+    const Constants* constants = pair.data();
+    for (std::size_t k = 0, entries = list.pair_entries(); k < entries; ++k) {
       const std::uint32_t i = owner[k], j = partner[k];
-      const double ex = box.image(0, bed.x[j] - bed.x[i]);
-      const double ey = box.image(1, bed.y[j] - bed.y[i]);
-      const double ez = box.image(2, bed.z[j] - bed.z[i]);
-      const double d2 = ex * ex + ey * ey + ez * ez, reach = pair_reach[k];
-      double* h = pair_history.data() + k * kHistory;
+      const double ex = box.image(0, x[j] - x[i]);
+      const double ey = box.image(1, y[j] - y[i]);
+      const double ez = box.image(2, z[j] - z[i]);
+      const double d2 = ex * ex + ey * ey + ez * ez, reach = reach_of[k];
+      double* h = history + k * kHistory;
       if (d2 >= reach * reach) {
-        if (touching[k]) {
+        if (touch[k]) {
           std::fill_n(h, kHistory, 0.0);
-          touching[k] = 0;
+          touch[k] = 0;
         }
         continue;
       }
-      touching[k] = 1;
-      const double d = std::sqrt(d2), delta = reach - d;
-      const double n[3] = {ex / d, ey / d, ez / d};
-      const double dv[3] = {bed.vx[i] - bed.vx[j], bed.vy[i] - bed.vy[j], bed.vz[i] - bed.vz[j]};
-      const double wi[3] = {wx[i], wy[i], wz[i]}, wj[3] = {wx[j], wy[j], wz[j]};
+      touch[k] = 1;
+      const double d = std::sqrt(d2), delta = reach - d, inv_d = 1.0 / d;
+      const double n[3] = {ex * inv_d, ey * inv_d, ez * inv_d};
+      const double dv[3] = {vx[i] - vx[j], vy[i] - vy[j], vz[i] - vz[j]};
+      const double wi[3] = {ox[i], oy[i], oz[i]}, wj[3] = {ox[j], oy[j], oz[j]};
       ContactForce c;
-      contact(model, pair[k], delta, n, dv, wi, wj, bed.radius[i] - 0.5 * delta,
-              bed.radius[j] - 0.5 * delta, h, update, c);
-      fx[i] += c.f[0];
-      fy[i] += c.f[1];
-      fz[i] += c.f[2];
-      fx[j] -= c.f[0];
-      fy[j] -= c.f[1];
-      fz[j] -= c.f[2];
-      tx[i] += c.ti[0];
-      ty[i] += c.ti[1];
-      tz[i] += c.ti[2];
-      tx[j] += c.tj[0];
-      ty[j] += c.tj[1];
-      tz[j] += c.tj[2];
+      contact(model, constants[k], delta, n, dv, wi, wj, r[i] - 0.5 * delta, r[j] - 0.5 * delta, h,
+              update, c);
+      ax[i] += c.f[0];
+      ay[i] += c.f[1];
+      az[i] += c.f[2];
+      ax[j] -= c.f[0];
+      ay[j] -= c.f[1];
+      az[j] -= c.f[2];
+      mx[i] += c.ti[0];
+      my[i] += c.ti[1];
+      mz[i] += c.ti[2];
+      mx[j] += c.tj[0];
+      my[j] += c.tj[1];
+      mz[j] += c.tj[2];
     }
   }
 
   // Forces and torques; `update` advances the contact histories by one step (false: a fresh
   // evaluation of the same state, at a layer's start, that changes nothing).
   void forces(bool update) {
-    for (std::size_t i = 0; i < n(); ++i) {  // gravity and Stokes drag (stokes_drag.hpp)
-      fx[i] = mass[i] * g[0] - drag[i] * bed.vx[i];
-      fy[i] = mass[i] * g[1] - drag[i] * bed.vy[i];
-      fz[i] = mass[i] * g[2] - drag[i] * bed.vz[i];
-      tx[i] = ty[i] = tz[i] = 0;
-    }
+    const auto body = [&](double* __restrict f, const double* __restrict v, double gravity) {
+      const double* __restrict m = mass.data();
+      const double* __restrict c = drag.data();
+      for (std::size_t i = 0, count = n(); i < count; ++i) f[i] = m[i] * gravity - c[i] * v[i];
+    };  // gravity and Stokes drag (stokes_drag.hpp)
+    body(fx.data(), bed.vx.data(), g[0]);
+    body(fy.data(), bed.vy.data(), g[1]);
+    body(fz.data(), bed.vz.data(), g[2]);
+    for (auto* t : {&tx, &ty, &tz}) std::fill(t->begin(), t->end(), 0.0);
     tool_force[0] = tool_force[1] = tool_force[2] = 0;
     wall_forces(update);
     if (scene.has(kHertz)) pair_forces(update);
   }
 
-  // v += h F / m and omega += h T / I; whether every velocity is still finite (a NaN fails
-  // the comparison, as Inf does), tested with no branch so the loops vectorise.
-  bool kick(double h) {
+  // v += h F / m and omega += h T / I (or omega only); whether every velocity is still finite
+  // (a NaN fails the comparison, as Inf does), tested with no branch so the loops vectorise.
+  bool kick(double h, bool translation = true) {
     const std::size_t count = n();
     const auto axis = [&](double* __restrict v, const double* __restrict f, const double* __restrict inv) {
       unsigned finite = 1;
@@ -518,14 +547,18 @@ struct Run {
       }
       return finite;
     };
-    return (axis(bed.vx.data(), fx.data(), inv_mass.data()) & axis(bed.vy.data(), fy.data(), inv_mass.data()) &
-            axis(bed.vz.data(), fz.data(), inv_mass.data()) & axis(wx.data(), tx.data(), inv_inertia.data()) &
-            axis(wy.data(), ty.data(), inv_inertia.data()) & axis(wz.data(), tz.data(), inv_inertia.data())) != 0;
+    unsigned finite = axis(wx.data(), tx.data(), inv_inertia.data()) &
+                      axis(wy.data(), ty.data(), inv_inertia.data()) & axis(wz.data(), tz.data(), inv_inertia.data());
+    if (translation) {
+      finite &= axis(bed.vx.data(), fx.data(), inv_mass.data()) & axis(bed.vy.data(), fy.data(), inv_mass.data()) &
+                axis(bed.vz.data(), fz.data(), inv_mass.data());
+    }
+    return finite != 0;
   }
 
   void step(std::uint64_t step_number) {
-    kick(0.5 * dt);
-    drift_and_rebuild_if_needed();
+    kick(0.5 * dt, false);
+    kick_drift_and_rebuild_if_needed(0.5 * dt);
     forces(true);
     if (kick(0.5 * dt)) return;
     for (std::size_t i = 0; i < n(); ++i) {
@@ -571,6 +604,26 @@ void check_tool(const Recoater& t, const Box& box) {
   }
 }
 
+// The particles of `b` in the order of the cells of side `cell` they lie in (x fastest, then y,
+// then z; ties by index): particles that touch lie close together in memory, so the contact loop
+// finds its partners in the nearest caches. The supply keeps much of this order after it falls
+// (the blade shears the heap but moves neighbours together): 5 % off the blade layer's time.
+std::vector<std::size_t> spatial_order(const bed::Bed& b, double cell) {
+  if (b.n() == 0) return {};
+  const auto at = [&](int a, double v) {
+    return static_cast<std::uint64_t>(std::max(0.0, std::floor((v - b.domain.lower[a]) / cell)));
+  };
+  const std::uint64_t nx = at(0, b.domain.upper[0]) + 1, ny = at(1, b.domain.upper[1]) + 1;
+  std::vector<std::uint64_t> key(b.n());
+  std::vector<std::size_t> order(b.n());
+  for (std::size_t i = 0; i < b.n(); ++i) {
+    key[i] = (at(2, b.z[i]) * ny + at(1, b.y[i])) * nx + at(0, b.x[i]);
+    order[i] = i;
+  }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return key[p] < key[q]; });
+  return order;
+}
+
 // Appends the layer's supply to the bed: the region in front of the tool, on the plate or on the
 // powder already under it.
 std::size_t add_supply(Run& run, std::uint64_t layer) {
@@ -606,7 +659,7 @@ std::size_t add_supply(Run& run, std::uint64_t layer) {
   const bed::Bed more = s.supply(region, layer);
   std::uint64_t next = 0;
   for (const std::uint64_t id : bed.id) next = std::max(next, id + 1);
-  for (std::size_t k = 0; k < more.n(); ++k) {
+  for (const std::size_t k : spatial_order(more, 2.0 * largest_radius(more))) {
     bed.x.push_back(more.x[k]);
     bed.y.push_back(more.y[k]);
     bed.z.push_back(more.z[k]);
@@ -872,8 +925,7 @@ struct Spreader {
 
   // The neighbour list for the bed as it is now, with the carried contacts' history.
   void rebuild() {
-    double r_max = 0;
-    for (const double r : bed.radius) r_max = std::max(r_max, r);
+    const double r_max = largest_radius(bed);
     run.list.configure(run.box, r_max, settings.skin > 0 ? settings.skin : 0.2 * r_max, bed.n());
     run.rebuild_with(carried);
   }

@@ -47,9 +47,9 @@ inline void rolling_resistance_torque(const RollingSpring& k, double mu_r, doubl
     m[a] = update ? torque[a] - k.stiffness * roll[a] * dt : torque[a];
   }
   const double cap = mu_r * reduced_radius * normal_force;
-  const double magnitude = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-  const bool full = magnitude > cap;
-  const double scale = full ? cap / magnitude : 1.0;
+  const double squared = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];  // the root only at the cap
+  const bool full = squared > cap * cap;
+  const double scale = full ? cap / std::sqrt(squared) : 1.0;
   for (int a = 0; a < 3; ++a) {
     m[a] *= scale;
     if (update) torque[a] = m[a];

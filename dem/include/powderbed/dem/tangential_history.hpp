@@ -23,10 +23,10 @@ inline double effective_shear_modulus(double young_i, double poisson_i, double y
 inline void rotate_onto_tangent_plane(double v[3], const double n[3]) {
   const double along = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
   if (along == 0.0) return;
-  const double before = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  const double before = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];  // squared lengths: one root
   for (int a = 0; a < 3; ++a) v[a] -= along * n[a];
-  const double after = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  const double scale = after > 0.0 ? before / after : 0.0;
+  const double after = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  const double scale = after > 0.0 ? std::sqrt(before / after) : 0.0;
   for (int a = 0; a < 3; ++a) v[a] *= scale;
 }
 
@@ -50,9 +50,9 @@ inline void tangential_history_force(const TangentialSpring& k, double mu, doubl
     f[a] = elastic[a] - k.damping * vt[a];
   }
   const double cap = mu * normal_force;
-  const double magnitude = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-  if (magnitude > cap) {
-    const double scale = cap / magnitude;
+  const double squared = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];  // the root only at the cap
+  if (squared > cap * cap) {
+    const double scale = cap / std::sqrt(squared);
     for (int a = 0; a < 3; ++a) {
       f[a] *= scale;
       elastic[a] = f[a] + k.damping * vt[a];
