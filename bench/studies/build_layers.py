@@ -15,12 +15,12 @@ build.json of an earlier run (its wall times and load are then that run's).
 import argparse
 import json
 import os
-import platform
 import subprocess
 import tempfile
 import time
 
-from common import ROOT, app, write_text
+from lib.apps import ROOT, app
+from lib.report import load_average, machine, write_page
 
 CONFIG = os.path.join(ROOT, "data", "scenes", "build-316L.ini")
 
@@ -28,14 +28,14 @@ CONFIG = os.path.join(ROOT, "data", "scenes", "build-316L.ini")
 def run_build(layers):
     with tempfile.TemporaryDirectory() as work:
         out = os.path.join(work, "run")
-        load = os.getloadavg()[0]
+        load = load_average()
         start = time.perf_counter()
         subprocess.run([app("build"), "--config", CONFIG, "--layers", str(layers), "--out", out,
                         "--threads", "1", "--progress", "0"], check=True, capture_output=True)
         wall = time.perf_counter() - start
         with open(os.path.join(out, "build.json")) as f:
             report = json.load(f)
-    return report, wall, (load, os.getloadavg()[0])
+    return report, wall, (load, load_average())
 
 
 def page(report, wall, load):
@@ -52,8 +52,7 @@ def page(report, wall, load):
         "1 m/s scan x 0.8–2.0 mm, turned 67° a layer (data/scenes/build-316L-scan.ini, 10 µm "
         "grid), and what melted fuses.",
         "",
-        f"Machine: {platform.node()} ({os.cpu_count()} cores, shared), {platform.platform()}; "
-        f"1-min load average {load[0]:.1f} before and {load[1]:.1f} after the run.",
+        machine(load[0], load[1], program=app("build")),
         "",
         f"**Whole run: {wall:.0f} s** (issue 17's goal: three layers in under 10 minutes); "
         f"the spreads {spread:.0f} s, the scans {scan:.0f} s, the rest (files) "
@@ -96,16 +95,17 @@ def main():
     parser.add_argument("layers", nargs="?", type=int, default=3)
     parser.add_argument("--from-json", help="a build.json of an earlier run, with --wall and --load")
     parser.add_argument("--wall", type=float, help="with --from-json: the run's wall time, s")
-    parser.add_argument("--load", default="nan,nan", help="with --from-json: load before,after")
+    parser.add_argument("--load", default="unknown,unknown",
+                        help="with --from-json: the load averages before,after (as recorded)")
     args = parser.parse_args()
     if args.from_json:
         with open(args.from_json) as f:
             report = json.load(f)
         wall = args.wall if args.wall else report["wall_time"]
-        load = tuple(float(v) for v in args.load.split(","))
+        load = tuple(args.load.split(","))
     else:
         report, wall, load = run_build(args.layers)
-    print(write_text("build-layers.md", page(report, wall, load)))
+    print(write_page("build-layers.md", page(report, wall, load)))
 
 
 if __name__ == "__main__":

@@ -28,13 +28,13 @@ later call reuses them (a run is repeated only when its JSON is missing).
 import argparse
 import json
 import os
-import platform
 import statistics
 import sys
 import tempfile
 
-from common import ROOT, RESULTS, app, bedstat, run_json, write_text
-from spread_peer import Scene
+from lib.apps import ROOT, app, bedstat, run_json
+from lib.report import RESULTS, machine, write_page
+from lib.spread_scene import Scene, shown_path
 
 SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
 # (label, young-scale, factor on the 1e4 default dt or None for the setting's own default, seeds)
@@ -45,11 +45,6 @@ SETTINGS = [
     ("1e3", 1e3, None, [1, 2]),
 ]
 REFERENCE = "1e3"     # the stiffest setting
-
-
-def shown(path):
-    full = os.path.abspath(path)
-    return os.path.relpath(full, ROOT) if full.startswith(ROOT + os.sep) else os.path.basename(full)
 
 
 def one_run(scene, work, label, young_scale, dt, seed):
@@ -129,23 +124,25 @@ def main():
                     base_dt = r["deposit"]["dt"]
                 runs.append(r)
             groups.append((label, runs))
-    write_page(scene, args, groups, base_dt)
+    write_study_page(scene, args, groups, base_dt)
 
 
-def write_page(scene, args, groups, base_dt):
+def write_study_page(scene, args, groups, base_dt):
     window = scene.window()
+    loads = [r["load"] for _, runs in groups for r in runs]
+    first_load, last_load = loads[0][0], loads[-1][1]
     rows = [
         "# Spread accuracy: softening and step against the layer (issue 16 point 6)",
         "",
         f"`python3 bench/studies/spread_accuracy.py{' --quick' if args.quick else ''}` (method in the "
-        f"script's docstring) on `{shown(args.scene)}`: one blade layer, strip {scene.lx * 1e3:g} x "
+        f"script's docstring) on `{shown_path(args.scene)}`: one blade layer, strip {scene.lx * 1e3:g} x "
         f"{scene.ly * 1e3:g} mm periodic in y, gap {scene.gap * 1e6:.0f} µm, "
         f"{scene.speed * 1e3:.0f} mm/s, E = {scene.young:.3g} Pa divided by the young-scale; the "
         f"1e4 default step is {base_dt:.4g} s. One thread, one run at a time under `nice -n 10`. Layer "
         f"statistics by `bedstat --spread` over x in [{window[0] * 1e3:.3f}, {window[1] * 1e3:.3f}] mm, "
         "plate at the floor, the gap the bed records.",
-        f"Machine: {platform.node()} ({os.cpu_count()} cores, shared with builds), "
-        f"{platform.platform()}; the 1-min load average before and after each run is in the table "
+        machine(f"{first_load:.2f} (1 min)", f"{last_load:.2f} (1 min)", program=app("deposit"))
+        + " The 1-min load average before and after each run is in the table "
         "(wall times are comparable only between runs at similar load).",
         "",
         "| young-scale | seed | dt (s) | steps | loop wall (s) | process wall (s) | load before/after "
@@ -202,7 +199,7 @@ def write_page(scene, args, groups, base_dt):
             text = f.read()
         if marker in text:
             tail = text[text.index(marker):]
-    print(write_text("spread-accuracy.md", "\n".join(rows) + ("\n" + tail if tail else "")))
+    print(write_page("spread-accuracy.md", "\n".join(rows) + ("\n" + tail if tail else "")))
 
 
 if __name__ == "__main__":

@@ -39,22 +39,17 @@ particles from bedstat, no overflow or quick look: those are in deposit's JSON a
 import argparse
 import json
 import os
-import platform
 import subprocess
 import sys
 import tempfile
 import time
 
-from common import ROOT, RESULTS, app, bedstat, write_text
-from spread_peer import Scene
+from lib.apps import ROOT, app, bedstat
+from lib.report import RESULTS, load_average, machine, write_page
+from lib.spread_scene import Scene, shown_path
 
 SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
 MARKER = "<!-- discussion: kept when the script rewrites this page -->"
-
-
-def shown(path):
-    full = os.path.abspath(path)
-    return os.path.relpath(full, ROOT) if full.startswith(ROOT + os.sep) else os.path.basename(full)
 
 
 def run_deposit(scene, layers, seed, work, measure_only):
@@ -164,6 +159,10 @@ def main():
         if not os.path.exists(os.path.join(work, "started")):
             with open(os.path.join(work, "started"), "w") as f:
                 f.write(repr(time.time()))
+            with open(os.path.join(work, "load-before"), "w") as f:
+                f.write(load_average())
+        with open(os.path.join(work, "load-before")) as f:
+            load_before = f.read().strip()
         summary = run_deposit(scene, args.layers, args.seed, work, args.measure_only)
         rows = measure(scene, work, args.layers, window, summary)
     if not rows:
@@ -171,21 +170,19 @@ def main():
     t = float(scene.options["recoater.layer-thickness"])
     cmd = f"python3 bench/studies/spread_layers.py {args.layers} {args.seed}"
     if os.path.abspath(args.scene) != SCENE:
-        cmd += f" --scene {shown(args.scene)}"
+        cmd += f" --scene {shown_path(args.scene)}"
     total = sum(r.get("wall", r["wall_file"]) for r in rows)
     lines = [
         "# Spreading layer after layer (blade scene)",
         "",
-        f"`{cmd}` (method in the script's docstring): `{shown(args.scene)}`, strip "
+        f"`{cmd}` (method in the script's docstring): `{shown_path(args.scene)}`, strip "
         f"{scene.lx * 1e3:g} x {scene.ly * 1e3:g} mm periodic in y, box {scene.lz * 1e3:g} mm tall, "
         f"gap {scene.gap * 1e6:.0f} um, {scene.speed * 1e3:.0f} mm/s, layer thickness {t * 1e6:.0f} um, "
         f"supply {scene.options.get('supply.count', '?')} particles a layer, young-scale "
         f"{scene.young_scale:g}; {len(rows)} of {args.layers} layers, seed {args.seed}, one thread; "
         f"{total:.0f} s of wall time in all"
         + (f", {summary['steps']} steps of {summary['dt']:.3g} s." if summary else "."),
-        f"Machine: {platform.node()} ({os.cpu_count()} cores, shared), {platform.platform()}, load "
-        f"average {os.getloadavg()[0]:.2f} / {os.getloadavg()[1]:.2f} / {os.getloadavg()[2]:.2f} "
-        "(1/5/15 min) when the page was written.",
+        machine(load_before, program=app("deposit")),
         "",
         f"Window x in [{window[0] * 1e3:.3f}, {window[1] * 1e3:.3f}] mm. In layer k the tool's bottom "
         f"is at H_k = gap + (k − 1) t. *Added*: the solid the layer added under the tool over the "
@@ -224,7 +221,7 @@ def main():
             text = f.read()
         if MARKER in text:
             tail = text[text.index(MARKER):]
-    print(write_text("spread-layers.md", "\n".join(lines) + "\n" + ("\n" + tail if tail else "")))
+    print(write_page("spread-layers.md", "\n".join(lines) + "\n" + ("\n" + tail if tail else "")))
 
 
 if __name__ == "__main__":

@@ -14,7 +14,11 @@ Method, per seed (1, 2, 3; --seeds to choose):
    anything moves. `bedconv`
    writes it as a LAMMPS data file for LIGGGHTS (atom types raised to 2: the walls' type).
 2. deposit spreads the layer with the scene and the seed as given (the same supply: insertion
-   depends on the seed only); its JSON gives the loop time, steps, particles and dt.
+   depends on the seed only); its JSON gives the loop time, steps, particles and dt. When the
+   scene has the gas's Stokes drag on (effects.drag), deposit spreads the layer a second time
+   without it ("deposit, no gas"): LIGGGHTS has no drag that grows with the radius (fix viscous
+   takes one coefficient per atom type), so the deck runs without gas, and it is this run that
+   is set beside LIGGGHTS (same physics); the run with the gas shows what the gas changes.
 3. LIGGGHTS runs bench/liggghts/spread-blade.liggghts from the data file with the same dt: the
    blade an STL box (bench/liggghts/blade_stl.py, the scene's thickness, bottom edge at the gap,
    centred on recoater.start, inset across by 1e-3 of the width since LIGGGHTS aborts on a mesh
@@ -28,9 +32,9 @@ Method, per seed (1, 2, 3; --seeds to choose):
    (the layer the blade leaves behind it, [start + t/2, end - t/2] for a blade of thickness t
    centred at recoater.start and stopping centred at recoater.end, less 10 % of it at each end;
    --window to set it), the initial particles as the feed.
-Reported: time per particle-step of each code and their ratio (LIGGGHTS / deposit: > 1 means
-deposit is faster), and the layer statistics of both beds side by side, with the mean and sd over
-seeds and whether the densities agree within the seeds' spread.
+Reported: time per particle-step of each code and their ratio (LIGGGHTS / deposit on the same
+physics: > 1 means deposit is faster), and the layer statistics of the beds side by side, with the
+mean and sd over seeds and whether the densities of the two codes agree within the seeds' spread.
 
 Only the blade is supported (a roller needs a rotating cylinder mesh; recoater.tool = roller is
 refused), only periodic y, and one layer. Testing without deposit's recoater: --liggghts-only
@@ -38,7 +42,6 @@ refused), only periodic y, and one layer. Testing without deposit's recoater: --
 Rayleigh step, e.g. the stand-in scene bench/studies/spread_peer_test.ini.
 """
 import argparse
-import configparser
 import math
 import os
 import re
@@ -48,7 +51,9 @@ import subprocess
 import sys
 import tempfile
 
-from common import ROOT, app, run_json, write_text
+from lib.apps import ROOT, app, run_json
+from lib.spread_scene import Scene, read_scene, shown_path
+from lib.report import load_average, machine, write_page
 
 sys.path.insert(0, os.path.join(ROOT, "bench", "liggghts"))
 import blade_stl  # noqa: E402
@@ -56,91 +61,11 @@ import blade_stl  # noqa: E402
 SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
 DECK = os.path.join(ROOT, "bench", "liggghts", "spread-blade.liggghts")
 SEEDS = [1, 2, 3]
+PEERED = "deposit, no gas"  # deposit on the deck's physics: the run set beside LIGGGHTS
 INSET = 1e-3          # blade inset across, fraction of the width (LIGGGHTS periodic faces)
-WINDOW_MARGIN = 0.1   # fraction of the travel left out at each end of the swept path
 SMALL_TRAVEL = 0.25   # --small: fraction of the travel beyond the blade's thickness
 SMALL_SETTLE = 1e-3   # --small: longest settle (s)
 SMALL_DELAY = 2e-3    # --small: longest delay before the blade moves (s)
-
-
-def read_scene(path):
-    """The scene's options as {dotted name: text}, as deposit reads it (INI sections map to
-    dotted names; keys before any section are top-level)."""
-    parser = configparser.ConfigParser(interpolation=None, inline_comment_prefixes=("#", ";"),
-                                       strict=False)
-    parser.optionxform = str
-    with open(path) as f:
-        parser.read_string("[__top__]\n" + f.read())
-    out = {}
-    for section in parser.sections():
-        for key, value in parser.items(section):
-            out[key if section == "__top__" else f"{section}.{key}"] = value.strip()
-    return out
-
-
-class Scene:
-    """The numbers of a spread scene the peer needs, with deposit's defaults where it has them."""
-
-    def __init__(self, path, overrides):
-        self.path = path
-        self.options = read_scene(path)
-        self.options.update(overrides)
-        o = self.options
-        if o.get("recoater.tool", "blade") != "blade":
-            sys.exit(f"spread_peer: {path}: recoater.tool = {o['recoater.tool']} (accepted: blade)")
-        if o.get("periodic", "none").replace(" ", "") != "y":
-            sys.exit(f"spread_peer: {path}: periodic = {o.get('periodic', 'none')} (accepted: y, "
-                     "what bench/liggghts/spread-blade.liggghts models)")
-        self.lx, self.ly, self.lz = (float(v) for v in o["domain"].split(","))
-        self.young = self.num("material.young", 193e9)
-        self.poisson = self.num("material.poisson", 0.26)
-        self.density = self.num("material.density", 7952)
-        self.damping = self.num("material.damping", 0.1)
-        self.friction = self.num("material.friction", 0.1)
-        self.rolling = self.num("material.rolling", 0.0)
-        # A spread needs static friction for its heap to stand (issue 16): history unless the
-        # scene asks for the sliding law.
-        self.tangential = "no_history" if o.get("friction.model") == "sliding" else "history"
-        self.wall_young = self.num("wall.young", 193e9)
-        self.wall_poisson = self.num("wall.poisson", 0.26)
-        self.young_scale = self.num("young-scale", 1.0)
-        self.gravity = self.num("gravity", 9.81)
-        self.gap = self.num("recoater.gap")
-        self.speed = self.num("recoater.speed")
-        self.start = self.num("recoater.start")
-        self.end = self.num("recoater.end")
-        self.thickness = self.num("recoater.thickness", 500e-6)
-        self.delay = self.num("recoater.delay", 0.0)
-        self.settle = self.num("recoater.settle", 0.0)
-        if self.num("recoater.edge-radius", 0.0) > 0:
-            print("spread_peer: recoater.edge-radius > 0: the STL blade has sharp edges", file=sys.stderr)
-
-    def num(self, key, default=None):
-        if key in self.options:
-            return float(self.options[key])
-        if default is None:
-            sys.exit(f"spread_peer: {self.path}: {key} missing (required)")
-        return default
-
-    def restitution(self):
-        """The restitution of LIGGGHTS's Hertz damping gamma_n = 2 sqrt(5/6) |beta| sqrt(m* k_n)
-        that equals deposit's c = 2 zeta sqrt(m* k_n): beta = zeta / sqrt(5/6), e = exp(pi beta /
-        sqrt(1 - beta^2)) with beta < 0 (as bench/liggghts/gz2016-speed.liggghts)."""
-        b = self.damping / math.sqrt(5.0 / 6.0)
-        if not b < 1:
-            sys.exit(f"spread_peer: material.damping {self.damping} has no LIGGGHTS restitution "
-                     "(accepted: < sqrt(5/6))")
-        return math.exp(-math.pi * b / math.sqrt(1 - b * b))
-
-    def window(self):
-        """The layer the blade leaves behind it: from its front face at the start (where the
-        supply begins) to its back face at the end, less WINDOW_MARGIN of that at each end."""
-        lo, hi = self.start + self.thickness / 2, self.end - self.thickness / 2
-        if not hi > lo:
-            sys.exit(f"spread_peer: the blade travels {self.end - self.start} m, less than its thickness "
-                     f"{self.thickness} m: it leaves no layer behind it (accepted: a longer travel or --window)")
-        margin = WINDOW_MARGIN * (hi - lo)
-        return lo + margin, hi - margin
 
 
 def liggghts_binary():
@@ -185,8 +110,8 @@ def initial_particles(work, scene_path, seed, overrides):
     return path
 
 
-def deposit_spread(work, scene_path, seed, overrides):
-    path = os.path.join(work, f"deposit-{seed}.h5")
+def deposit_spread(work, scene_path, seed, overrides, tag):
+    path = os.path.join(work, f"deposit-{tag}-{seed}.h5")
     s, _ = run_json([app("deposit"), "--config", scene_path, "--seed", str(seed), "--threads", "1",
                      "--out", path, *option_args(overrides)])
     steps = s["steps"]
@@ -279,15 +204,9 @@ def mean_sd(values):
     return statistics.mean(values), (statistics.stdev(values) if len(values) > 1 else 0.0)
 
 
-def shown_path(path):
-    """A path relative to the repository when it lies inside it (no machine's folders in results)."""
-    full = os.path.abspath(path)
-    return os.path.relpath(full, ROOT) if full.startswith(ROOT + os.sep) else os.path.basename(full)
-
-
-def report(scene, args, window, runs):
+def report(scene, args, window, runs, load_before):
     """The Markdown of the study from runs = [(seed, {code: (timing, stats)})]."""
-    codes = [c for c in ("deposit", "LIGGGHTS") if c in runs[0][1]]
+    codes = [c for c in ("deposit", PEERED, "LIGGGHTS") if c in runs[0][1]]
     lines = [
         "# Blade spread: deposit beside LIGGGHTS (issue 16 point 5)",
         "",
@@ -299,8 +218,17 @@ def report(scene, args, window, runs):
         f"rolling {scene.rolling:g}, restitution for LIGGGHTS {scene.restitution():.5f}, LIGGGHTS "
         f"tangential {scene.tangential}. "
         f"Layer statistics over x in [{window[0] * 1e3:.3f}, {window[1] * 1e3:.3f}] mm, plate at the floor, "
-        f"feed = the initial particles. One thread each; machine: {os.cpu_count()} cores, load average "
-        f"{os.getloadavg()[0]:.1f} at the end (a shared machine: the ratio is of runs under the same load).",
+        f"feed = the initial particles. One thread each, one run after the other (the ratio is of runs "
+        f"under the same load). {machine(load_before)}",
+        "",
+        "*deposit* is the scene as it is, with the argon's Stokes drag; *deposit, no gas* the same "
+        "spread without it, the physics of the LIGGGHTS deck (LIGGGHTS has no drag that grows with "
+        "the radius), and the run the two codes are compared on. Left as they differ: deposit's "
+        "rolling spring k_r = 2.25 mu_r^2 R*^2 k_n takes the Hertz contact's tangent stiffness "
+        "2 E* sqrt(R* delta), LIGGGHTS's epsd its secant 4/3 E* sqrt(R* delta) (so deposit's "
+        "spring is 1.5 times stiffer, the same cap mu_r R* F_n); deposit's tangential spring "
+        "stores a force turned with the contact (length kept), LIGGGHTS's a displacement "
+        "projected onto the tangent plane.",
         "",
         "| seed | code | particles | steps | loop time (s) | ns per particle-step | "
         + " | ".join(label for _, label, _ in STAT_ROWS) + " | slope d(d)/dx | KS D | KS p |",
@@ -329,20 +257,20 @@ def report(scene, args, window, runs):
         m, sd = mean_sd([by[code][0]["per_step"] * 1e9 for _, by in runs])
         cells.append(f"{m:.1f} ± {sd:.1f}")
     lines.append("| ns per particle-step | " + " | ".join(cells) + " |")
-    if len(codes) == 2:
-        ratios = [by["LIGGGHTS"][0]["per_step"] / by["deposit"][0]["per_step"] for _, by in runs]
-        dep = [by["deposit"][1]["density"] for _, by in runs]
+    if PEERED in codes and "LIGGGHTS" in codes:
+        ratios = [by["LIGGGHTS"][0]["per_step"] / by[PEERED][0]["per_step"] for _, by in runs]
+        dep = [by[PEERED][1]["density"] for _, by in runs]
         lig = [by["LIGGGHTS"][1]["density"] for _, by in runs]
         spread = max(mean_sd(dep)[1], mean_sd(lig)[1])
         diff = abs(statistics.mean(dep) - statistics.mean(lig))
         lines += [
             "",
-            f"Throughput: LIGGGHTS / deposit time per particle-step = "
+            "Throughput: LIGGGHTS / deposit (no gas) time per particle-step = "
             + ", ".join(f"{r:.2f}" for r in ratios) + f" (seeds {', '.join(str(s) for s, _ in runs)}); "
             f"mean {statistics.mean(ratios):.2f}. Goal (issue 16): >= 2: "
             f"{'met' if min(ratios) >= 2 else 'NOT met'}.",
             "",
-            f"Layer density: deposit {statistics.mean(dep):.4f}, LIGGGHTS {statistics.mean(lig):.4f}, "
+            f"Layer density: deposit (no gas) {statistics.mean(dep):.4f}, LIGGGHTS {statistics.mean(lig):.4f}, "
             f"difference {diff:.4f}"
             + ((f" against the larger seed sd {spread:.4f}: "
                 + ("within the seed spread." if diff <= spread else "NOT within the seed spread."))
@@ -370,6 +298,7 @@ def main():
     scene = Scene(args.scene, overrides)
     window = tuple(float(v) for v in args.window.split(",")) if args.window else scene.window()
     work = tempfile.mkdtemp(prefix="spread-peer-")
+    load_before = load_average()
     runs = []
     for seed in seeds:
         by_code = {}
@@ -378,15 +307,18 @@ def main():
             dt = rayleigh_dt(scene, bed_radii(initial)[0])
         else:
             initial = initial_particles(work, args.scene, seed, overrides)
-            dep = deposit_spread(work, args.scene, seed, overrides)
-            by_code["deposit"] = dep
+            if scene.drag:
+                by_code["deposit"] = deposit_spread(work, args.scene, seed, overrides, "gas")
+            dep = deposit_spread(work, args.scene, seed, {**overrides, "effects.drag": "false"},
+                                 "no-gas")
+            by_code[PEERED] = dep
             dt = dep["dt"]
         by_code["LIGGGHTS"] = liggghts_spread(work, scene, initial, seed, dt)
         codes = list(by_code)
         stats = layer_stats([by_code[c]["bed"] for c in codes], scene, window, initial)
         runs.append((seed, {c: (by_code[c], s) for c, s in zip(codes, stats)}))
         print(f"spread_peer: seed {seed} done", file=sys.stderr)
-    text = report(scene, args, window, runs)
+    text = report(scene, args, window, runs, load_before)
     if args.small or args.liggghts_only:
         path = os.path.join(work, "spread-peer-small.md")
         with open(path, "w") as f:
@@ -394,7 +326,7 @@ def main():
         print(text)
         print(f"spread_peer: wrote {path} (docs/results/spread-peer.md is written by a full run)")
     else:
-        print(f"spread_peer: wrote {write_text('spread-peer.md', text)}")
+        print(f"spread_peer: wrote {write_page('spread-peer.md', text)}")
     if args.keep or args.small or args.liggghts_only:
         print(f"spread_peer: work folder {work}")
     else:
