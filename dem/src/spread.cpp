@@ -297,21 +297,28 @@ struct Run {
     }
   }
 
-  // The first half kick v += h F / m and the drift x += dt v (wrapped on periodic axes), testing
-  // as it goes whether some particle moved more than half the skin since the list was built
-  // (minimum image: both coordinates lie in the box); the list is then rebuilt. One pass over
-  // the particles instead of three.
-  void kick_drift_and_rebuild_if_needed(double h) {
+  // One pass over the particles for the start of a step: the first half kick v += h F / m, the
+  // drift x += dt v (wrapped on periodic axes), the body forces at the half-step velocity
+  // (gravity and Stokes drag, stokes_drag.hpp; torques zeroed) and the test whether some particle
+  // moved more than half the skin since the list was built (minimum image: both coordinates lie
+  // in the box), after which the list is rebuilt. In separate loops these read the velocities
+  // three times.
+  void start_step(double h) {
     double* __restrict x = bed.x.data();
     double* __restrict y = bed.y.data();
     double* __restrict z = bed.z.data();
     double* __restrict vx = bed.vx.data();
     double* __restrict vy = bed.vy.data();
     double* __restrict vz = bed.vz.data();
-    const double* __restrict ax = fx.data();
-    const double* __restrict ay = fy.data();
-    const double* __restrict az = fz.data();
+    double* __restrict ax = fx.data();
+    double* __restrict ay = fy.data();
+    double* __restrict az = fz.data();
+    double* __restrict mx = tx.data();
+    double* __restrict my = ty.data();
+    double* __restrict mz = tz.data();
     const double* __restrict inv = inv_mass.data();
+    const double* __restrict m = mass.data();
+    const double* __restrict c = drag.data();
     const double* __restrict x0 = list.built_at(0);
     const double* __restrict y0 = list.built_at(1);
     const double* __restrict z0 = list.built_at(2);
@@ -339,6 +346,10 @@ struct Run {
       ex += (ex < -hx ? Lx : 0.0) - (ex > hx ? Lx : 0.0);
       ey += (ey < -hy ? Ly : 0.0) - (ey > hy ? Ly : 0.0);
       moved |= static_cast<unsigned>(ex * ex + ey * ey + ez * ez > limit2);
+      ax[i] = m[i] * g[0] - c[i] * vx[i];
+      ay[i] = m[i] * g[1] - c[i] * vy[i];
+      az[i] = m[i] * g[2] - c[i] * vz[i];
+      mx[i] = my[i] = mz[i] = 0;
     }
     if (!moved) return;
     rebuild_with(active());
@@ -518,21 +529,29 @@ struct Run {
     }
   }
 
-  // Forces and torques; `update` advances the contact histories by one step (false: a fresh
-  // evaluation of the same state, at a layer's start, that changes nothing).
-  void forces(bool update) {
-    const auto body = [&](double* __restrict f, const double* __restrict v, double gravity) {
-      const double* __restrict m = mass.data();
-      const double* __restrict c = drag.data();
-      for (std::size_t i = 0, count = n(); i < count; ++i) f[i] = m[i] * gravity - c[i] * v[i];
-    };  // gravity and Stokes drag (stokes_drag.hpp)
-    body(fx.data(), bed.vx.data(), g[0]);
-    body(fy.data(), bed.vy.data(), g[1]);
-    body(fz.data(), bed.vz.data(), g[2]);
-    for (auto* t : {&tx, &ty, &tz}) std::fill(t->begin(), t->end(), 0.0);
+  // Gravity and Stokes drag (stokes_drag.hpp) at the velocities as they are, torques zeroed:
+  // what start_step computes in its pass, for a layer's first evaluation.
+  void body_forces() {
+    for (std::size_t i = 0; i < n(); ++i) {
+      fx[i] = mass[i] * g[0] - drag[i] * bed.vx[i];
+      fy[i] = mass[i] * g[1] - drag[i] * bed.vy[i];
+      fz[i] = mass[i] * g[2] - drag[i] * bed.vz[i];
+      tx[i] = ty[i] = tz[i] = 0;
+    }
+  }
+
+  // The contact forces and torques added to the body forces; `update` advances the contact
+  // histories by one step (false: a fresh evaluation of the same state, at a layer's start, that
+  // changes nothing).
+  void contact_forces(bool update) {
     tool_force[0] = tool_force[1] = tool_force[2] = 0;
     wall_forces(update);
     if (scene.has(kHertz)) pair_forces(update);
+  }
+
+  void forces() {
+    body_forces();
+    contact_forces(false);
   }
 
   // v += h F / m and omega += h T / I (or omega only); whether every velocity is still finite
@@ -558,8 +577,8 @@ struct Run {
 
   void step(std::uint64_t step_number) {
     kick(0.5 * dt, false);
-    kick_drift_and_rebuild_if_needed(0.5 * dt);
-    forces(true);
+    start_step(0.5 * dt);
+    contact_forces(true);
     if (kick(0.5 * dt)) return;
     for (std::size_t i = 0; i < n(); ++i) {
       if (std::isfinite(bed.vx[i] + bed.vy[i] + bed.vz[i] + wx[i] + wy[i] + wz[i])) continue;
@@ -976,7 +995,7 @@ struct Spreader {
     run.bound_floor();
     set_time_step();
     rebuild();
-    run.forces(false);
+    run.forces();
     const auto steps = static_cast<std::uint64_t>(std::ceil(settings.t_end / run.dt - 1e-9));
     advance(steps, [](std::uint64_t) {});
     particle_steps = static_cast<double>(bed.n()) * static_cast<double>(steps);
@@ -1025,7 +1044,7 @@ struct Spreader {
     check_tool_clear(run);
     if (run.dt == 0) set_time_step();
     rebuild();
-    run.forces(false);
+    run.forces();
     const auto delay = static_cast<std::uint64_t>(std::ceil(tool.delay / run.dt - 1e-9));
     const auto moving =
         static_cast<std::uint64_t>(std::ceil((tool.end - tool.start) / (tool.speed * run.dt) - 1e-9));
