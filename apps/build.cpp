@@ -296,16 +296,13 @@ struct OutFolderGuard {
   }
 };
 
-int run(int argc, char** argv) {
-  po::options_description desc("build options (SI units)");
-  add_options(desc);
-  po::variables_map vm;
-  if (!app::parse_options("build", kUsage, desc, {}, argc, argv, vm)) return 0;
+// The build's own options, the stage scenes parsed by their programs' options, the checks made
+// before anything is written.
+Build read_build(const po::variables_map& vm, int argc, char** argv) {
   Build b;
   b.out = app::required<std::string>(vm, "out");
   const auto seed = app::required<std::uint64_t>(vm, "seed");
-  const auto layers = vm["layers"].as<std::uint64_t>();
-  if (layers < 1) throw InputError("--layers: 0 (accepted: N >= 1)");
+  if (vm["layers"].as<std::uint64_t>() < 1) throw InputError("--layers: 0 (accepted: N >= 1)");
   b.melt_fraction = vm["fuse.melt-fraction"].as<double>();
   if (!(b.melt_fraction > 0 && b.melt_fraction <= 1))
     throw InputError("--fuse.melt-fraction: " + std::to_string(b.melt_fraction) +
@@ -334,29 +331,128 @@ int run(int argc, char** argv) {
   b.scene = app::deposit_scene(b.dvm);
   b.spread = app::spread_settings(b.dvm, seed);
   b.spread.layers = 1;
+  return b;
+}
 
-  bed::Bed bed;
-  std::optional<dem::SpreadState> state;
-  if (vm.count("in")) {
-    const std::string in = vm["in"].as<std::string>();
-    bed = bed::read_bed_h5(in);
-    if (!dem::has_spread_state(in))
-      throw InputError("--in: '" + in + "' has no /restart group (accepted: a layer file "
-                       "DIR/layer-NNN.h5 of a build)");
-    state = dem::read_spread_state(in, bed);
-    bed.domain = app::spread_box(b.dvm, bed.domain);
-  } else {
+// The powder and the spread's state to continue from (--in), or an empty box.
+bed::Bed build_input(const po::variables_map& vm, const Build& b, std::optional<dem::SpreadState>& state) {
+  if (!vm.count("in")) {
+    bed::Bed bed;
     bed.domain = app::spread_box(b.dvm);
+    return bed;
   }
-  // The scan stage checked before any layer is spread: its options, its path on the plate and
-  // its grid under the solid (a bed without particles: the scene and the grid alone).
+  const std::string in = vm["in"].as<std::string>();
+  bed::Bed bed = bed::read_bed_h5(in);
+  if (!dem::has_spread_state(in))
+    throw InputError("--in: '" + in + "' has no /restart group (accepted: a layer file "
+                     "DIR/layer-NNN.h5 of a build)");
+  state = dem::read_spread_state(in, bed);
+  bed.domain = app::spread_box(b.dvm, bed.domain);
+  return bed;
+}
+
+// The scan stage checked before any layer is spread: its options, its path on the plate and its
+// grid under the solid (a bed without particles: the scene and the grid alone).
+void check_scan(Build& b, const bed::Bed& bed, const std::optional<dem::SpreadState>& state) {
   b.table = th::read_material_table(app::sinter_scene(b.svm, bed).material_table);
-  {
-    bed::Bed empty;
-    empty.domain = bed.domain;
-    th::Sinter probe(empty, app::sinter_scene(b.svm, empty, b.scan_layer0),
-                     b.table, state ? state->floor.z : th::TopHeight{});
+  bed::Bed empty;
+  empty.domain = bed.domain;
+  th::Sinter probe(empty, app::sinter_scene(b.svm, empty, b.scan_layer0), b.table,
+                   state ? state->floor.z : th::TopHeight{});
+}
+
+// What ends the spread with its bottom above the tool's is not in the layer: the blade scraped
+// everything there, so it is in flight (one still in the air would lift the next supply out of
+// the box). What lies behind the tool's start ran back under it while the heap formed: the next
+// layer's tool would start inside it. Both are removed and counted.
+void remove_out_of_layer(const Build& b, bed::Bed& bed, dem::SpreadState& next, LayerReport& rep) {
+  const dem::Recoater& t = b.spread.tool;
+  const double start = t.start + (t.shape == dem::ToolShape::blade ? 0.5 * t.thickness : t.radius);
+  std::vector<char> keep(bed.n(), 1);
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    const bool flying = bed.z[i] - bed.radius[i] > rep.tool_bottom;
+    rep.ejected += flying ? 1 : 0;
+    rep.behind += !flying && bed.x[i] < start ? 1 : 0;
+    keep[i] = flying || bed.x[i] < start ? 0 : 1;
   }
+  dem::remove_particles(bed, next, keep);
+}
+
+// One layer: spread on the solid (the state's floor), scan, fuse, write the layer's files; the
+// state becomes the next layer's.
+LayerReport build_layer(const Build& b, bed::Bed& bed, std::optional<dem::SpreadState>& state,
+                        std::uint64_t layer, app::ProgressBar& bar, double done, double share,
+                        int argc, char** argv) {
+  LayerReport rep;
+  rep.layer = layer;
+  rep.tool_bottom = tool_bottom(b, bed, layer);
+  const double solid_top = state && !state->floor.empty() ? state->floor.highest() : bed.domain.lower[2];
+  rep.clearance = rep.tool_bottom - solid_top;
+  if (state && !state->floor.empty() && rep.clearance <= 0)
+    std::cerr << "build: warning: layer " << layer << ": the solid's top stands "
+              << -rep.clearance * 1e6 << " um above the recoater's bottom (the tool strikes the part)\n";
+  dem::SpreadSettings s = b.spread;
+  s.progress = [&](double f, double) { bar.draw(done + share * f, "layer " + std::to_string(layer) + " spread"); };
+  const dem::SpreadSummary spread = dem::run_spread(bed, b.scene, s, state ? &*state : nullptr);
+  rep.spread = spread.layers.back();
+  rep.rebuilds = spread.neighbour_rebuilds;
+  dem::SpreadState next = spread.state;
+  remove_out_of_layer(b, bed, next, rep);
+  bed::Bed spread_bed = bed;
+  app::set_spread_provenance(spread_bed, b.dvm, b.scene, "build", argc, argv);
+  bed::write_bed_h5(spread_bed, layer_file(b.out, layer, "-spread"));
+
+  // The fused solid becomes the floor of the next layer's spread; the rest stays powder.
+  const std::vector<char> keep = scan_and_fuse(b, spread_bed, next.floor, layer, bar, done + share, share, rep);
+  dem::remove_particles(bed, next, keep);
+  app::set_spread_provenance(bed, b.dvm, b.scene, "build", argc, argv);
+  bed.provenance.stage = "build: powder after layer " + std::to_string(layer);
+  const std::string layer_path = layer_file(b.out, layer, "");
+  bed::write_bed_h5(bed, layer_path);
+  dem::write_spread_state(layer_path, next, bed);
+  state = next;
+  return rep;
+}
+
+// build.json, and the summary on stdout (the report itself with --json).
+void write_report(const po::variables_map& vm, const Build& b, const std::vector<LayerReport>& reports,
+                  const dem::SpreadState& state, std::uint64_t first, std::size_t particles, double wall) {
+  bed::JsonWriter j;
+  j.begin_object()
+      .value("layers_done", state.layers_done)
+      .value("first_layer", first)
+      .value("particles", static_cast<std::uint64_t>(particles))
+      .value("wall_time", wall);
+  j.begin_array("layers");
+  for (const auto& r : reports) layer_json(j, r);
+  j.end_array();
+  j.value("out", b.out).end_object();
+  bed::write_text_file((fs::path(b.out) / "build.json").string(), j.str() + "\n");
+  if (vm.count("json")) {
+    std::cout << j.str() << '\n';
+    return;
+  }
+  for (const auto& r : reports)
+    std::printf("build: layer %llu: %zu particles spread (density %.3f over the scan), %zu fused "
+                "(%.0f %% of the powder's mass), %zu vaporised; lack of fusion %.1f %% of the "
+                "scanned area; solid top %.1f to %.1f um; mass conserved to %.1e; %.0f s spread "
+                "+ %.0f s scan\n",
+                static_cast<unsigned long long>(r.layer), r.scanned_particles, r.density, r.fused,
+                100 * r.fused_fraction, r.vaporised, 100 * r.lack_of_fusion, r.top_min * 1e6,
+                r.top_max * 1e6, r.mass_error, r.spread.wall_time, r.scan_wall);
+  std::printf("build: %zu layer(s) in %.0f s -> %s\n", reports.size(), wall, b.out.c_str());
+}
+
+int run(int argc, char** argv) {
+  po::options_description desc("build options (SI units)");
+  add_options(desc);
+  po::variables_map vm;
+  if (!app::parse_options("build", kUsage, desc, {}, argc, argv, vm)) return 0;
+  Build b = read_build(vm, argc, argv);
+  const auto layers = vm["layers"].as<std::uint64_t>();
+  std::optional<dem::SpreadState> state;
+  bed::Bed bed = build_input(vm, b, state);
+  check_scan(b, bed, state);
   OutFolderGuard guard{b.out, fs::create_directories(b.out)};
 
   const std::uint64_t first = (state ? state->layers_done : 0) + 1;
@@ -366,79 +462,11 @@ int run(int argc, char** argv) {
   for (std::uint64_t layer = first; layer < first + layers; ++layer) {
     const double done = static_cast<double>(layer - first) / static_cast<double>(layers);
     const double share = 0.5 / static_cast<double>(layers);
-    LayerReport rep;
-    rep.layer = layer;
-    rep.tool_bottom = tool_bottom(b, bed, layer);
-    const double solid_top = state && !state->floor.empty() ? state->floor.highest() : bed.domain.lower[2];
-    rep.clearance = rep.tool_bottom - solid_top;
-    if (state && !state->floor.empty() && rep.clearance <= 0)
-      std::cerr << "build: warning: layer " << layer << ": the solid's top stands "
-                << -rep.clearance * 1e6 << " um above the recoater's bottom (the tool strikes the part)\n";
-    dem::SpreadSettings s = b.spread;
-    s.progress = [&](double f, double) { bar.draw(done + share * f, "layer " + std::to_string(layer) + " spread"); };
-    const dem::SpreadSummary spread = dem::run_spread(bed, b.scene, s, state ? &*state : nullptr);
-    rep.spread = spread.layers.back();
-    rep.rebuilds = spread.neighbour_rebuilds;
-    dem::SpreadState next = spread.state;
-    // What ends the spread with its bottom above the tool's is not in the layer: the blade
-    // scraped everything there, so it is in flight (one still in the air would lift the next
-    // supply out of the box). What lies behind the tool's start ran back under it while the heap
-    // formed: the next layer's tool would start inside it. Both are removed and counted.
-    {
-      const dem::Recoater& t = b.spread.tool;
-      const double start = t.start + (t.shape == dem::ToolShape::blade ? 0.5 * t.thickness : t.radius);
-      std::vector<char> keep(bed.n(), 1);
-      for (std::size_t i = 0; i < bed.n(); ++i) {
-        const bool flying = bed.z[i] - bed.radius[i] > rep.tool_bottom;
-        rep.ejected += flying ? 1 : 0;
-        rep.behind += !flying && bed.x[i] < start ? 1 : 0;
-        keep[i] = flying || bed.x[i] < start ? 0 : 1;
-      }
-      dem::remove_particles(bed, next, keep);
-    }
-    bed::Bed spread_bed = bed;
-    app::set_spread_provenance(spread_bed, b.dvm, b.scene, "build", argc, argv);
-    bed::write_bed_h5(spread_bed, layer_file(b.out, layer, "-spread"));
-
-    // The fused solid becomes the floor of the next layer's spread; the rest stays powder.
-    const std::vector<char> keep =
-        scan_and_fuse(b, spread_bed, next.floor, layer, bar, done + share, share, rep);
-    dem::remove_particles(bed, next, keep);
-    app::set_spread_provenance(bed, b.dvm, b.scene, "build", argc, argv);
-    bed.provenance.stage = "build: powder after layer " + std::to_string(layer);
-    const std::string layer_path = layer_file(b.out, layer, "");
-    bed::write_bed_h5(bed, layer_path);
-    dem::write_spread_state(layer_path, next, bed);
-    state = next;
-    reports.push_back(rep);
+    reports.push_back(build_layer(b, bed, state, layer, bar, done, share, argc, argv));
   }
   bar.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-
-  bed::JsonWriter j;
-  j.begin_object()
-      .value("layers_done", state->layers_done)
-      .value("first_layer", first)
-      .value("particles", static_cast<std::uint64_t>(bed.n()))
-      .value("wall_time", wall);
-  j.begin_array("layers");
-  for (const auto& r : reports) layer_json(j, r);
-  j.end_array();
-  j.value("out", b.out).end_object();
-  bed::write_text_file((fs::path(b.out) / "build.json").string(), j.str() + "\n");
-  if (vm.count("json")) {
-    std::cout << j.str() << '\n';
-  } else {
-    for (const auto& r : reports)
-      std::printf("build: layer %llu: %zu particles spread (density %.3f over the scan), %zu fused "
-                  "(%.0f %% of the powder's mass), %zu vaporised; lack of fusion %.1f %% of the "
-                  "scanned area; solid top %.1f to %.1f um; mass conserved to %.1e; %.0f s spread "
-                  "+ %.0f s scan\n",
-                  static_cast<unsigned long long>(r.layer), r.scanned_particles, r.density, r.fused,
-                  100 * r.fused_fraction, r.vaporised, 100 * r.lack_of_fusion, r.top_min * 1e6,
-                  r.top_max * 1e6, r.mass_error, r.spread.wall_time, r.scan_wall);
-    std::printf("build: %zu layer(s) in %.0f s -> %s\n", reports.size(), wall, b.out.c_str());
-  }
+  write_report(vm, b, reports, *state, first, bed.n(), wall);
   return 0;
 }
 

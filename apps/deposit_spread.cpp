@@ -285,9 +285,10 @@ bool spread_requested(const po::variables_map& vm) {
   return vm.count("recoater.tool") && !vm["recoater.tool"].as<std::string>().empty();
 }
 
-int run_spread(const po::variables_map& vm, int argc, char** argv) {
-  const std::string out = required<std::string>(vm, "out");
-  const auto seed = required<std::uint64_t>(vm, "seed");
+namespace {
+
+// The options a drop has and a spread refuses (one line each, exit 2).
+void refuse_drop_options(const po::variables_map& vm) {
   for (const char* name : kDropOnly) {
     if (vm.count(name) && !vm[name].defaulted()) {
       throw InputError(std::string("--") + name + ": given with recoater.tool (accepted: a drop "
@@ -305,71 +306,44 @@ int run_spread(const po::variables_map& vm, int argc, char** argv) {
     throw InputError("recoater.tool: with --until-rest, the lid, insertion or --integrator rk4 "
                      "(accepted: none of them; the spread integrates with velocity Verlet)");
   }
-  const std::optional<std::string> forces_path =
-      vm.count("tool-forces") ? std::optional(vm["tool-forces"].as<std::string>()) : std::nullopt;
-  const auto layers = vm["layers"].as<std::uint64_t>();
-  {
-    std::vector<PathArg> inputs, outputs{{"--out", out}};
-    if (vm.count("in")) inputs.push_back({"--in", vm["in"].as<std::string>()});
-    check_extension({"--out", out}, {".h5"});
-    if (forces_path) {
-      check_extension({"--tool-forces", *forces_path}, {".csv"});
-      outputs.push_back({"--tool-forces", *forces_path});
-    }
-    check_paths(inputs, outputs);
-  }
-  if (layers == 0) throw InputError("--layers: 0 (accepted: N >= 1)");
+}
 
-  bed::Bed bed;
-  std::optional<dem::SpreadState> restart;
-  if (vm.count("in")) {
-    const std::string in = vm["in"].as<std::string>();
-    if (bed::extension_of(in) != ".h5") {
-      throw InputError("--in: '" + in + "' with recoater.tool (accepted: an .h5 bed)");
-    }
-    bed = bed::read_bed_h5(in);
-    if (dem::has_spread_state(in)) restart = dem::read_spread_state(in, bed);
-    bed.domain = spread_box(vm, bed.domain);
-  } else {
+std::optional<std::string> tool_forces_path(const po::variables_map& vm) {
+  return vm.count("tool-forces") ? std::optional(vm["tool-forces"].as<std::string>()) : std::nullopt;
+}
+
+// The files of the run: extensions, inputs that exist, outputs that do not clash with them.
+void check_spread_paths(const po::variables_map& vm, const std::string& out) {
+  std::vector<PathArg> inputs, outputs{{"--out", out}};
+  if (vm.count("in")) inputs.push_back({"--in", vm["in"].as<std::string>()});
+  check_extension({"--out", out}, {".h5"});
+  if (const auto forces = tool_forces_path(vm)) {
+    check_extension({"--tool-forces", *forces}, {".csv"});
+    outputs.push_back({"--tool-forces", *forces});
+  }
+  check_paths(inputs, outputs);
+}
+
+// The bed to spread on: --in's (with its /restart state when it has one) or an empty box.
+bed::Bed spread_input(const po::variables_map& vm, std::optional<dem::SpreadState>& restart) {
+  if (!vm.count("in")) {
+    bed::Bed bed;
     bed.domain = spread_box(vm);
+    return bed;
   }
-  const dem::Scene scene = deposit_scene(vm);
-  dem::SpreadSettings s = spread_settings(vm, seed);
-  std::ostringstream forces;
-  forces << std::setprecision(17) << "layer,time,x,fx,fy,fz\n";
-  if (forces_path) {
-    s.tool_force_every = vm["tool-forces-every"].as<std::uint64_t>();
-    if (s.tool_force_every == 0) throw InputError("--tool-forces-every: 0 (accepted: K >= 1 steps)");
-    s.tool_force = [&forces](const dem::ToolForceSample& f) {
-      forces << f.layer << ',' << f.time << ',' << f.x << ',' << f.force[0] << ',' << f.force[1]
-             << ',' << f.force[2] << '\n';
-    };
+  const std::string in = vm["in"].as<std::string>();
+  if (bed::extension_of(in) != ".h5") {
+    throw InputError("--in: '" + in + "' with recoater.tool (accepted: an .h5 bed)");
   }
-  ProgressBar bar("deposit", progress_interval(vm));
-  const std::uint64_t first_layer = (restart ? restart->layers_done : 0) + 1;
-  std::uint64_t layer_now = first_layer;
-  s.progress = [&](double fraction, double kinetic_energy) {  // of the layer; the bar: the run's
-    const double done = static_cast<double>(layer_now - first_layer) + fraction;
-    char detail[64];
-    std::snprintf(detail, sizeof detail, "layer %llu  KE = %.2e J",
-                  static_cast<unsigned long long>(layer_now), kinetic_energy);
-    bar.draw(done / static_cast<double>(layers), detail);
-  };
+  bed::Bed bed = bed::read_bed_h5(in);
+  if (dem::has_spread_state(in)) restart = dem::read_spread_state(in, bed);
+  bed.domain = spread_box(vm, bed.domain);
+  return bed;
+}
 
-  const auto write = [&](const bed::Bed& b, const std::string& path, const dem::SpreadState& st) {
-    bed::Bed copy = b;
-    set_spread_provenance(copy, vm, scene, "deposit", argc, argv);
-    bed::write_bed_h5(copy, path);
-    dem::write_spread_state(path, st, copy);
-  };
-  if (layers > 1) {
-    s.layer_done = [&](const dem::LayerSummary& l, const bed::Bed& b, const dem::SpreadState& st) {
-      write(b, layer_path(out, l.layer), st);
-      layer_now = l.layer + 1;
-    };
-  }
-  const dem::SpreadSummary r = dem::run_spread(bed, scene, s, restart ? &*restart : nullptr);
-  bar.finish();
+// A spread that lost particles or left none is not a result.
+std::size_t check_spread_result(const po::variables_map& vm, const dem::SpreadSummary& r,
+                                const bed::Bed& bed) {
   std::size_t lost = 0;
   for (const auto& l : r.layers) lost = l.lost;
   if (lost > vm["allow-lost"].as<std::size_t>()) {
@@ -386,9 +360,12 @@ int run_spread(const po::variables_map& vm, int argc, char** argv) {
                      "so no powder is left on the plate (accepted: a travel that leaves powder " +
                      "behind the tool, or recoater.overflow = false)");
   }
-  write(bed, out, r.state);
-  if (forces_path) bed::write_text_file(*forces_path, forces.str());
+  return lost;
+}
 
+void print_spread_summary(const po::variables_map& vm, const dem::SpreadSummary& r,
+                          const dem::Scene& scene, const dem::SpreadSettings& s,
+                          const bed::Bed& bed, std::size_t lost, const std::string& out) {
   if (vm.count("json")) {
     bed::JsonWriter j;
     j.begin_object()
@@ -413,17 +390,72 @@ int run_spread(const po::variables_map& vm, int argc, char** argv) {
     j.end_array();
     j.value("out", out).end_object();
     std::cout << j.str() << '\n';
-  } else {
-    std::cout << "deposit: spread " << r.layers.size() << " layer(s) with a "
-              << vm["recoater.tool"].as<std::string>() << ", " << bed.n() << " particles ("
-              << lost << " lost), " << r.steps << " steps of " << r.dt << " s to t = "
-              << r.sim_time << " s, " << r.wall_time << " s wall";
-    if (!r.layers.empty()) {
-      std::cout << ", layer " << r.layers.back().layer << " density under the gap "
-                << r.layers.back().density_under_gap;
-    }
-    std::cout << " -> " << out << '\n';
+    return;
   }
+  std::cout << "deposit: spread " << r.layers.size() << " layer(s) with a "
+            << vm["recoater.tool"].as<std::string>() << ", " << bed.n() << " particles ("
+            << lost << " lost), " << r.steps << " steps of " << r.dt << " s to t = "
+            << r.sim_time << " s, " << r.wall_time << " s wall";
+  if (!r.layers.empty()) {
+    std::cout << ", layer " << r.layers.back().layer << " density under the gap "
+              << r.layers.back().density_under_gap;
+  }
+  std::cout << " -> " << out << '\n';
+}
+
+}  // namespace
+
+int run_spread(const po::variables_map& vm, int argc, char** argv) {
+  const std::string out = required<std::string>(vm, "out");
+  const auto seed = required<std::uint64_t>(vm, "seed");
+  refuse_drop_options(vm);
+  const std::optional<std::string> forces_path = tool_forces_path(vm);
+  const auto layers = vm["layers"].as<std::uint64_t>();
+  check_spread_paths(vm, out);
+  if (layers == 0) throw InputError("--layers: 0 (accepted: N >= 1)");
+
+  std::optional<dem::SpreadState> restart;
+  bed::Bed bed = spread_input(vm, restart);
+  const dem::Scene scene = deposit_scene(vm);
+  dem::SpreadSettings s = spread_settings(vm, seed);
+  std::ostringstream forces;
+  forces << std::setprecision(17) << "layer,time,x,fx,fy,fz\n";
+  if (forces_path) {
+    s.tool_force_every = vm["tool-forces-every"].as<std::uint64_t>();
+    if (s.tool_force_every == 0) throw InputError("--tool-forces-every: 0 (accepted: K >= 1 steps)");
+    s.tool_force = [&forces](const dem::ToolForceSample& f) {
+      forces << f.layer << ',' << f.time << ',' << f.x << ',' << f.force[0] << ',' << f.force[1]
+             << ',' << f.force[2] << '\n';
+    };
+  }
+  ProgressBar bar("deposit", progress_interval(vm));
+  const std::uint64_t first_layer = (restart ? restart->layers_done : 0) + 1;
+  std::uint64_t layer_now = first_layer;
+  s.progress = [&](double fraction, double kinetic_energy) {  // of the layer; the bar: the run's
+    const double done = static_cast<double>(layer_now - first_layer) + fraction;
+    char detail[64];
+    std::snprintf(detail, sizeof detail, "layer %llu  KE = %.2e J",
+                  static_cast<unsigned long long>(layer_now), kinetic_energy);
+    bar.draw(done / static_cast<double>(layers), detail);
+  };
+  const auto write = [&](const bed::Bed& b, const std::string& path, const dem::SpreadState& st) {
+    bed::Bed copy = b;
+    set_spread_provenance(copy, vm, scene, "deposit", argc, argv);
+    bed::write_bed_h5(copy, path);
+    dem::write_spread_state(path, st, copy);
+  };
+  if (layers > 1) {
+    s.layer_done = [&](const dem::LayerSummary& l, const bed::Bed& b, const dem::SpreadState& st) {
+      write(b, layer_path(out, l.layer), st);
+      layer_now = l.layer + 1;
+    };
+  }
+  const dem::SpreadSummary r = dem::run_spread(bed, scene, s, restart ? &*restart : nullptr);
+  bar.finish();
+  const std::size_t lost = check_spread_result(vm, r, bed);
+  write(bed, out, r.state);
+  if (forces_path) bed::write_text_file(*forces_path, forces.str());
+  print_spread_summary(vm, r, scene, s, bed, lost, out);
   return 0;
 }
 
