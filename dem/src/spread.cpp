@@ -185,7 +185,7 @@ struct Run {
   std::vector<std::uint8_t> wall_touch;
   std::vector<Constants> wall;        // per particle
   NeighbourList list;
-  std::vector<Constants> pair;        // per list entry
+  std::vector<Constants> pair;        // per list entry, made when it comes into contact
   std::vector<double> pair_reach;     // per list entry: r_i + r_j (apart from `pair`: every
                                       // entry's is read every step, the rest only in contact)
   std::vector<double> pair_history;   // kHistory per list entry
@@ -223,6 +223,7 @@ struct Run {
   std::uint64_t rebuilds = 0;
   // The tool.
   bool tool_on = false;
+  bool synced = true;  // step(): no second half kick pending
   ToolProfile profile;
   double tool_x = 0, tool_v = 0;
   double tool_force[3] = {0, 0, 0};
@@ -266,6 +267,14 @@ struct Run {
 
   // A list build that keeps the history of every contact: the new list's pair (i, j) takes
   // the history the old one had (contacts are few per particle: a short scan).
+  // The constants of the pair (i, j), made when it comes into contact (most list entries never
+  // do: the skin's margin).
+  Constants pair_constants(std::size_t i, std::size_t j) const {
+    const double ri = bed.radius[i], mi = mass[i], rj = bed.radius[j], mj = mass[j];
+    return make_constants(model, e_pair, g_pair, scene.stiffness, ri * rj / (ri + rj),
+                          mi * mj / (mi + mj), rolling_inertia(mi, ri, mj, rj));
+  }
+
   void rebuild_with(const ActiveContacts& a) {
     list.build(view(), 1);
     const std::size_t entries = list.pair_entries();
@@ -278,32 +287,30 @@ struct Run {
       while (first < a.i.size() && a.i[first] < i) ++first;
       std::size_t last = first;
       while (last < a.i.size() && a.i[last] == i) ++last;
-      const double ri = bed.radius[i], mi = mass[i];
       std::size_t k = list.offset(i);
       for (const std::uint32_t* it = list.begin(i); it != list.end(i); ++it, ++k) {
         const std::uint32_t j = *it;
-        const double rj = bed.radius[j], mj = mass[j];
-        pair[k] = make_constants(model, e_pair, g_pair, scene.stiffness, ri * rj / (ri + rj),
-                                 mi * mj / (mi + mj), rolling_inertia(mi, ri, mj, rj));
-        pair_reach[k] = ri + rj;
+        pair_reach[k] = bed.radius[i] + bed.radius[j];
         for (std::size_t c = first; c < last; ++c) {
           if (a.j[c] != j) continue;
           std::copy_n(a.h.begin() + static_cast<std::ptrdiff_t>(c * kHistory), kHistory,
                       pair_history.begin() + static_cast<std::ptrdiff_t>(k * kHistory));
           touching[k] = 1;
+          pair[k] = pair_constants(i, j);
         }
       }
       first = last;
     }
   }
 
-  // One pass over the particles for the start of a step: the first half kick v += h F / m, the
-  // drift x += dt v (wrapped on periodic axes), the body forces at the half-step velocity
-  // (gravity and Stokes drag, stokes_drag.hpp; torques zeroed) and the test whether some particle
-  // moved more than half the skin since the list was built (minimum image: both coordinates lie
-  // in the box), after which the list is rebuilt. In separate loops these read the velocities
-  // three times.
-  void start_step(double h) {
+  // One pass over the particles for the start of a step: the kick v += h F / m (the first half
+  // kick, with the last step's second when it is pending: step()), the drift x += dt v (wrapped
+  // on periodic axes), the body forces at the half-step velocity (gravity and Stokes drag,
+  // stokes_drag.hpp; torques zeroed) and the test whether some particle moved more than half the
+  // skin since the list was built (minimum image: both coordinates lie in the box), after which
+  // the list is rebuilt. In separate loops these read the velocities three times. False when a
+  // velocity is no longer finite.
+  bool start_step(double h) {
     double* __restrict x = bed.x.data();
     double* __restrict y = bed.y.data();
     double* __restrict z = bed.z.data();
@@ -330,7 +337,7 @@ struct Run {
     const double ly = py ? box.lower[1] : -inf, uy = py ? box.upper[1] : inf, Ly = py ? box.length[1] : 0.0;
     const double hx = px ? 0.5 * Lx : inf, hy = py ? 0.5 * Ly : inf;
     const double limit = 0.5 * list.skin(), limit2 = limit * limit;
-    unsigned moved = 0;
+    unsigned moved = 0, finite = 1;
     for (std::size_t i = 0, count = n(); i < count; ++i) {
       vx[i] += h * ax[i] * inv[i];
       vy[i] += h * ay[i] * inv[i];
@@ -346,14 +353,19 @@ struct Run {
       ex += (ex < -hx ? Lx : 0.0) - (ex > hx ? Lx : 0.0);
       ey += (ey < -hy ? Ly : 0.0) - (ey > hy ? Ly : 0.0);
       moved |= static_cast<unsigned>(ex * ex + ey * ey + ez * ez > limit2);
+      finite &= static_cast<unsigned>(std::abs(vx[i]) + std::abs(vy[i]) + std::abs(vz[i]) <=
+                                      std::numeric_limits<double>::max());
       ax[i] = m[i] * g[0] - c[i] * vx[i];
       ay[i] = m[i] * g[1] - c[i] * vy[i];
       az[i] = m[i] * g[2] - c[i] * vz[i];
       mx[i] = my[i] = mz[i] = 0;
     }
-    if (!moved) return;
-    rebuild_with(active());
-    ++rebuilds;
+    if (!finite) return false;  // no list of non-finite positions: the caller stops the run
+    if (moved) {
+      rebuild_with(active());
+      ++rebuilds;
+    }
+    return true;
   }
 
   // The wall histories of a restart or of the particles left after an overflow, with the
@@ -491,7 +503,7 @@ struct Run {
     double *ax = fx.data(), *ay = fy.data(), *az = fz.data(), *mx = tx.data(), *my = ty.data(), *mz = tz.data();
     double* history = pair_history.data();
     std::uint8_t* touch = touching.data();
-    const Constants* constants = pair.data();
+    Constants* constants = pair.data();
     for (std::size_t k = 0, entries = list.pair_entries(); k < entries; ++k) {
       const std::uint32_t i = owner[k], j = partner[k];
       const double ex = box.image(0, x[j] - x[i]);
@@ -506,6 +518,7 @@ struct Run {
         }
         continue;
       }
+      if (!touch[k]) constants[k] = pair_constants(i, j);
       touch[k] = 1;
       const double d = std::sqrt(d2), delta = reach - d, inv_d = 1.0 / d;
       const double n[3] = {ex * inv_d, ey * inv_d, ez * inv_d};
@@ -575,20 +588,47 @@ struct Run {
     return finite != 0;
   }
 
+  // Velocity Verlet with each step's second half kick deferred and taken with the next step's
+  // first, v += dt F / m in one pass instead of two (`synced`: no kick is pending, the
+  // velocities are a whole step's); sync() takes a pending one alone, where whole-step
+  // velocities are read (a layer's end, a restart's state). The forces see the half-step
+  // velocities either way.
   void step(std::uint64_t step_number) {
-    kick(0.5 * dt, false);
-    start_step(0.5 * dt);
+    const double h = synced ? 0.5 * dt : dt;
+    const bool finite = kick(h, false) & start_step(h);
+    if (!finite) throw_non_finite(step_number);
     contact_forces(true);
-    if (kick(0.5 * dt)) return;
-    for (std::size_t i = 0; i < n(); ++i) {
-      if (std::isfinite(bed.vx[i] + bed.vy[i] + bed.vz[i] + wx[i] + wy[i] + wz[i])) continue;
-      std::ostringstream msg;
-      msg << "particle id " << bed.id[i] << " (index " << i << ") has a non-finite velocity at "
-          << "step " << step_number << " (t = " << static_cast<double>(step_number) * dt
-          << " s); try a smaller --dt";
-      throw NumericalError(msg.str());
-    }
+    synced = false;
   }
+
+  void sync(std::uint64_t step_number) {
+    if (synced) return;
+    if (!kick(0.5 * dt)) throw_non_finite(step_number);
+    synced = true;
+  }
+
+  // The kinetic energy at the last whole step, whether or not its second half kick is pending.
+  double kinetic_energy() const {
+    const double h = synced ? 0.0 : 0.5 * dt;
+    double energy = 0;
+    for (std::size_t i = 0; i < n(); ++i) {
+      const double a = h * inv_mass[i];
+      const double vx = bed.vx[i] + a * fx[i], vy = bed.vy[i] + a * fy[i], vz = bed.vz[i] + a * fz[i];
+      energy += 0.5 * mass[i] * (vx * vx + vy * vy + vz * vz);
+    }
+    return energy;
+  }
+
+  [[noreturn]] void throw_non_finite(std::uint64_t step_number) const {
+    std::size_t i = 0;
+    while (i + 1 < n() && std::isfinite(bed.vx[i] + bed.vy[i] + bed.vz[i] + wx[i] + wy[i] + wz[i])) ++i;
+    std::ostringstream msg;
+    msg << "particle id " << bed.id[i] << " (index " << i << ") has a non-finite velocity at "
+        << "step " << step_number << " (t = " << static_cast<double>(step_number) * dt
+        << " s); try a smaller --dt";
+    throw NumericalError(msg.str());
+  }
+
 };
 
 void check_tool(const Recoater& t, const Box& box) {
@@ -949,7 +989,8 @@ struct Spreader {
     run.rebuild_with(carried);
   }
 
-  // `steps` steps, `before(s)` ahead of the s-th; false when the observer stopped the run.
+  // `steps` steps, `before(s)` ahead of the s-th, or fewer when the observer stops the run (false);
+  // the velocities are the last whole step's after.
   template <class Before>
   bool advance(std::uint64_t steps, Before&& before) {
     for (std::uint64_t s = 1; s <= steps; ++s) {
@@ -965,17 +1006,14 @@ struct Spreader {
         settings.tool_force(sample);
       }
       if (settings.progress && step % settings.progress_every == 0) {
-        double energy = 0;
-        for (std::size_t i = 0; i < run.n(); ++i) {
-          energy += 0.5 * run.mass[i] *
-                    (bed.vx[i] * bed.vx[i] + bed.vy[i] * bed.vy[i] + bed.vz[i] * bed.vz[i]);
-        }
-        settings.progress(static_cast<double>(s) / static_cast<double>(steps), energy);
+        settings.progress(static_cast<double>(s) / static_cast<double>(steps), run.kinetic_energy());
       }
-      if (settings.observer && settings.observer(step, static_cast<double>(step) * run.dt, bed, run.wy)) {
-        return false;
+      if (settings.observer) {  // it reads whole-step velocities: no kick stays pending
+        run.sync(step);
+        if (settings.observer(step, static_cast<double>(step) * run.dt, bed, run.wy)) return false;
       }
     }
+    run.sync(step);
     return true;
   }
 

@@ -97,13 +97,16 @@ struct SpreadSettings {
   // Gravity tilted by this angle about +y (rad): g = g (sin a, 0, -cos a), a plate inclined
   // by a (tests of friction on a slope).
   double gravity_tilt = 0;
+  // Every step when set, with the whole step's velocities; true stops the run. The velocities
+  // are then brought to each whole step (the second half kick is not merged with the next
+  // step's first), so a watched run's last bits differ from an unwatched one's.
+  std::function<bool(std::uint64_t step, double time, const bed::Bed& bed,
+                     const std::vector<double>& wy)>
+      observer;
   std::uint64_t tool_force_every = 0;  // steps between samples (0: none)
   std::function<void(const ToolForceSample&)> tool_force;
   // After each layer, with the bed and the state a restart needs.
   std::function<void(const LayerSummary&, const bed::Bed&, const SpreadState&)> layer_done;
-  std::function<bool(std::uint64_t step, double time, const bed::Bed& bed,
-                     const std::vector<double>& wy)>
-      observer;                   // every step when set; true stops the run
   // Every progress_every steps: the fraction of the layer (or of t_end) done and the kinetic
   // energy (J).
   std::function<void(double fraction, double kinetic_energy)> progress;
