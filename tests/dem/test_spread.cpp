@@ -419,6 +419,27 @@ TEST(TangentialHistory, SpringHoldsBelowTheCapAndSlidesAtIt) {
   EXPECT_DOUBLE_EQ(turned[1], 0);
 }
 
+// A contact at rest turns by less than 1e-6 rad a step, where the turn keeps the length only to
+// along^2 / 2 a step (tangential_history.hpp): a spring turned by 0.9e-6 rad a step for a
+// million steps (0.9 rad in all) keeps its length within the documented 1e-6. Turned by 2e-6 rad
+// a step it is rescaled every step and keeps it to round-off (1e-9 for a million steps; the
+// projection alone would lose 2e-6).
+TEST(TangentialHistory, SpringTurnedInSmallStepsKeepsItsLength) {
+  for (const auto& [turn, tolerance] : {std::pair{0.9e-6, 1e-6}, std::pair{2e-6, 1e-9}}) {
+    double spring[3] = {1, 0, 0};
+    double n[3] = {0, 0, 1};
+    for (int s = 1; s <= 1000000; ++s) {
+      const double a = turn * s;  // the normal turns about y
+      n[0] = std::sin(a);
+      n[2] = std::cos(a);
+      dem::rotate_onto_tangent_plane(spring, n);
+    }
+    const double length = std::sqrt(spring[0] * spring[0] + spring[1] * spring[1] + spring[2] * spring[2]);
+    EXPECT_NEAR(length, 1.0, tolerance) << "turn " << turn << " rad a step";
+    EXPECT_NEAR(spring[0] * n[0] + spring[1] * n[1] + spring[2] * n[2], 0.0, 1e-15);
+  }
+}
+
 }  // namespace
 
 // The solid of earlier layers as the floor (SpreadSettings::floor, build): a sphere dropped over
