@@ -168,6 +168,25 @@ struct ActiveContacts {
   std::vector<double> h;  // kHistory per contact
 };
 
+// The particles of `b` in the order of the cells of side `cell` they lie in (x fastest, then y,
+// then z; ties by index): particles that touch lie close together in memory, so the contact loop
+// finds its partners in the nearest caches.
+std::vector<std::size_t> spatial_order(const bed::Bed& b, double cell) {
+  if (b.n() == 0) return {};
+  const auto at = [&](int a, double v) {
+    return static_cast<std::uint64_t>(std::max(0.0, std::floor((v - b.domain.lower[a]) / cell)));
+  };
+  const std::uint64_t nx = at(0, b.domain.upper[0]) + 1, ny = at(1, b.domain.upper[1]) + 1;
+  std::vector<std::uint64_t> key(b.n());
+  std::vector<std::size_t> order(b.n());
+  for (std::size_t i = 0; i < b.n(); ++i) {
+    key[i] = (at(2, b.z[i]) * ny + at(1, b.y[i])) * nx + at(0, b.x[i]);
+    order[i] = i;
+  }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return key[p] < key[q]; });
+  return order;
+}
+
 struct Run {
   Run(bed::Bed& b, const Scene& sc, const SpreadSettings& st) : bed(b), scene(sc), settings(st) {}
   bed::Bed& bed;
@@ -267,6 +286,56 @@ struct Run {
 
   // A list build that keeps the history of every contact: the new list's pair (i, j) takes
   // the history the old one had (contacts are few per particle: a short scan).
+  // The particles reordered by the cells they lie in (spatial_order), everything kept per
+  // particle with them; a carried contact whose owner would come after its partner is turned
+  // round (its history is the force and torque on the owner: they change sign) and the
+  // contacts are put back in owner order, as rebuild_with reads them. Done at each layer's
+  // start: a spread carries powder millimetres along x, and a bed of several layers in supply
+  // order had its contact partners scattered through memory.
+  void sort_by_cell(ActiveContacts& carried) {
+    const std::vector<std::size_t> order = spatial_order(bed, 2.0 * largest_radius(bed));
+    const auto permute = [&](auto& values, std::size_t stride) {
+      if (values.empty()) return;
+      const auto old = values;
+      for (std::size_t k = 0; k < order.size(); ++k)
+        std::copy_n(old.begin() + static_cast<std::ptrdiff_t>(order[k] * stride), stride,
+                    values.begin() + static_cast<std::ptrdiff_t>(k * stride));
+    };
+    for (auto* v : {&bed.x, &bed.y, &bed.z, &bed.radius, &bed.vx, &bed.vy, &bed.vz, &bed.temperature,
+                    &mass, &inv_mass, &inv_inertia, &drag, &wx, &wy, &wz}) {
+      permute(*v, 1);
+    }
+    permute(bed.id, 1);
+    permute(bed.material, 1);
+    permute(bed.phase, 1);
+    permute(wall, 1);
+    permute(wall_touch, 1);
+    permute(wall_history, kWallSlots * kHistory);
+    std::vector<std::uint32_t> rank(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) rank[order[k]] = static_cast<std::uint32_t>(k);
+    ActiveContacts turned;
+    std::vector<std::size_t> by_owner(carried.i.size());
+    for (std::size_t c = 0; c < by_owner.size(); ++c) {
+      carried.i[c] = rank[carried.i[c]];
+      carried.j[c] = rank[carried.j[c]];
+      if (carried.i[c] > carried.j[c]) {
+        std::swap(carried.i[c], carried.j[c]);
+        for (std::size_t q = 0; q < kHistory; ++q) carried.h[c * kHistory + q] = -carried.h[c * kHistory + q];
+      }
+      by_owner[c] = c;
+    }
+    std::sort(by_owner.begin(), by_owner.end(), [&](std::size_t p, std::size_t q) {
+      return std::pair(carried.i[p], carried.j[p]) < std::pair(carried.i[q], carried.j[q]);
+    });
+    for (const std::size_t c : by_owner) {
+      turned.i.push_back(carried.i[c]);
+      turned.j.push_back(carried.j[c]);
+      turned.h.insert(turned.h.end(), carried.h.begin() + static_cast<std::ptrdiff_t>(c * kHistory),
+                      carried.h.begin() + static_cast<std::ptrdiff_t>((c + 1) * kHistory));
+    }
+    carried = std::move(turned);
+  }
+
   // The constants of the pair (i, j), made when it comes into contact (most list entries never
   // do: the skin's margin).
   Constants pair_constants(std::size_t i, std::size_t j) const {
@@ -663,26 +732,6 @@ void check_tool(const Recoater& t, const Box& box) {
   }
 }
 
-// The particles of `b` in the order of the cells of side `cell` they lie in (x fastest, then y,
-// then z; ties by index): particles that touch lie close together in memory, so the contact loop
-// finds its partners in the nearest caches. The supply keeps much of this order after it falls
-// (the blade shears the heap but moves neighbours together): 5 % off the blade layer's time.
-std::vector<std::size_t> spatial_order(const bed::Bed& b, double cell) {
-  if (b.n() == 0) return {};
-  const auto at = [&](int a, double v) {
-    return static_cast<std::uint64_t>(std::max(0.0, std::floor((v - b.domain.lower[a]) / cell)));
-  };
-  const std::uint64_t nx = at(0, b.domain.upper[0]) + 1, ny = at(1, b.domain.upper[1]) + 1;
-  std::vector<std::uint64_t> key(b.n());
-  std::vector<std::size_t> order(b.n());
-  for (std::size_t i = 0; i < b.n(); ++i) {
-    key[i] = (at(2, b.z[i]) * ny + at(1, b.y[i])) * nx + at(0, b.x[i]);
-    order[i] = i;
-  }
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return key[p] < key[q]; });
-  return order;
-}
-
 // Appends the layer's supply to the bed: the region in front of the tool, on the plate or on the
 // powder already under it.
 std::size_t add_supply(Run& run, std::uint64_t layer) {
@@ -718,7 +767,7 @@ std::size_t add_supply(Run& run, std::uint64_t layer) {
   const bed::Bed more = s.supply(region, layer);
   std::uint64_t next = 0;
   for (const std::uint64_t id : bed.id) next = std::max(next, id + 1);
-  for (const std::size_t k : spatial_order(more, 2.0 * largest_radius(more))) {
+  for (std::size_t k = 0; k < more.n(); ++k) {
     bed.x.push_back(more.x[k]);
     bed.y.push_back(more.y[k]);
     bed.z.push_back(more.z[k]);
@@ -1078,6 +1127,7 @@ struct Spreader {
     out.tool_bottom = bottom;
     out.supplied = add_supply(run, number);
     run.grow();
+    run.sort_by_cell(carried);
     run.bound_floor();
     check_tool_clear(run);
     if (run.dt == 0) set_time_step();
