@@ -106,8 +106,8 @@ void add_deposit_options(po::options_description& desc) {
        "core density: margin from the floor, side walls and surface (m); default 2 mean "
        "diameters");
   add_spread_options(desc);
-  for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
-    const std::string name = std::string("effects.") + dem::effect_name(bit);
+  for (const dem::EffectRow& effect : dem::kEffects) {
+    const std::string name = std::string("effects.") + effect.name;
     desc.add_options()(name.c_str(), po::value<bool>()->default_value(true),
                        "effect on/off (true/false)");
   }
@@ -145,8 +145,8 @@ dem::Scene deposit_scene(const po::variables_map& vm) {
     throw InputError("contact.stiffness: missing with contact.law = linear (accepted: k_n > 0 N/m)");
   }
   scene.effects = 0;
-  for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
-    if (vm[std::string("effects.") + dem::effect_name(bit)].as<bool>()) scene.effects |= bit;
+  for (const dem::EffectRow& effect : dem::kEffects) {
+    if (vm[std::string("effects.") + effect.name].as<bool>()) scene.effects |= effect.bit;
   }
   return scene;
 }

@@ -278,7 +278,8 @@ Steppers steppers_for(Integrator integrator) {
           &detail::compute_forces<E, Law>, &lid_force<Law>};
 }
 
-// The once-only dispatch: a table of the 64 effect sets, each a specialised loop, per law.
+// The once-only dispatch: a table of every effect set (scene.hpp kEffects), each a specialised
+// loop, per law.
 template <class Law, std::size_t... Masks>
 Steppers dispatch(unsigned effects, Integrator integrator, std::index_sequence<Masks...>) {
   using Maker = Steppers (*)(Integrator);
@@ -539,9 +540,9 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   c.rebuild();
 
   const unsigned effects = scene.effects & kAllEffects;
-  const Steppers steppers =
-      linear ? dispatch<detail::LinearLaw>(effects, settings.integrator, std::make_index_sequence<64>{})
-             : dispatch<detail::HertzLaw>(effects, settings.integrator, std::make_index_sequence<64>{});
+  constexpr auto masks = std::make_index_sequence<kAllEffects + 1>{};
+  const Steppers steppers = linear ? dispatch<detail::LinearLaw>(effects, settings.integrator, masks)
+                                   : dispatch<detail::HertzLaw>(effects, settings.integrator, masks);
   steppers.forces(c.arrays(), c.params, c.list, c.tables, c.threads);  // Verlet needs F(t0)
 
   const double t_end = settings.t_end > 0 ? settings.t_end : 1.0;
