@@ -83,6 +83,10 @@ using detail::ForceParams;
 using detail::NeighbourList;
 using detail::ParticleView;
 
+// The force loop compiled for one effect mask and law (forces.hpp compute_forces<E, Law>).
+using ForcesFn = void (*)(const ForceArrays&, const ForceParams&, const NeighbourList&,
+                          ContactTables&, int);
+
 // Everything one run owns; the bed's own x, y, z, vx, vy, vz arrays are the state.
 struct Context {
   Context(bed::Bed& b, const RunSettings& s) : bed(b), settings(s) {}
@@ -97,9 +101,12 @@ struct Context {
   std::vector<double> x0, y0, z0, u0, v0, w0, sx, sy, sz, su, sv, sw;
   NeighbourList list;
   ContactTables tables;
-  // The law's tabulation (tabulate_contacts<Law>), chosen once at start.
+  // The law's tabulation (tabulate_contacts<Law>) and the scene's force loop, chosen once at
+  // start (force_loop): the steps below are plain functions that call it once per force
+  // evaluation, so an effect that is off is absent from the loop over contacts, not tested in it.
   void (*tabulate)(ContactTables&, const ForceArrays&, const ForceParams&, const NeighbourList&,
                    double, int) = nullptr;
+  ForcesFn forces = nullptr;
   std::uint64_t rebuilds = 0;
 
   ParticleView view() const { return {bed.x.data(), bed.y.data(), bed.z.data(), bed.radius.data(), n}; }
@@ -112,6 +119,7 @@ struct Context {
     list.build(view(), threads, threads > 1);
     tabulate(tables, arrays(), params, list, list.skin(), threads);
   }
+  void compute_forces() { forces(arrays(), params, list, tables, threads); }
   void rebuild_if_needed() {
     if (list.moved_more_than(view(), 0.5 * list.skin(), threads)) {
       rebuild();
@@ -158,7 +166,6 @@ void drift(std::size_t begin, std::size_t end, double dt, const double* __restri
 }
 
 // Velocity Verlet (kick–drift–kick); velocity-dependent forces see the half-step velocity.
-template <unsigned E, class Law>
 void step_verlet(Context& c, std::uint64_t step) {
   const double dt = c.dt, half = 0.5 * c.dt;
   bed::Bed& b = c.bed;
@@ -181,14 +188,13 @@ void step_verlet(Context& c, std::uint64_t step) {
     }
   });
   c.rebuild_if_needed();
-  detail::compute_forces<E, Law>(c.arrays(), c.params, c.list, c.tables, c.threads);
+  c.compute_forces();
   detail::for_each_chunk(c.n, c.threads, kick_all);
   check_finite(c, step);
 }
 
 // Classic RK4 on (x, v) ([GZ]); four force evaluations per step on the same neighbour list
 // (stage positions stay within one step's travel, well inside the skin).
-template <unsigned E, class Law>
 void step_rk4(Context& c, std::uint64_t step) {
   const double dt = c.dt;
   bed::Bed& b = c.bed;
@@ -204,7 +210,7 @@ void step_rk4(Context& c, std::uint64_t step) {
   });
   // Stage k: derivative (v, F/m) at the current stage state in the bed arrays; weights 1,2,2,1.
   for (int stage = 0; stage < 4; ++stage) {
-    detail::compute_forces<E, Law>(c.arrays(), c.params, c.list, c.tables, c.threads);
+    c.compute_forces();
     const double weight = (stage == 0 || stage == 3) ? 1.0 : 2.0;
     const double next = stage < 2 ? 0.5 * dt : dt;  // offset of the next stage
     detail::for_each_particle(c.n, c.threads, [&](std::size_t i) {
@@ -263,29 +269,14 @@ double lid_force(const Context& c, bool damping) {
   return total;
 }
 
-using StepFn = void (*)(Context&, std::uint64_t);
-
-struct Steppers {
-  StepFn step;
-  void (*forces)(const ForceArrays&, const ForceParams&, const NeighbourList&, ContactTables&,
-                 int);
-  double (*lid_force)(const Context&, bool);
-};
-
-template <unsigned E, class Law>
-Steppers steppers_for(Integrator integrator) {
-  return {integrator == Integrator::rk4 ? &step_rk4<E, Law> : &step_verlet<E, Law>,
-          &detail::compute_forces<E, Law>, &lid_force<Law>};
-}
-
-// The once-only dispatch: a table of every effect set (scene.hpp kEffects), each a specialised
-// loop, per law.
+// The once-only dispatch: a table of the force loops of every effect set (scene.hpp kEffects),
+// per law. Only the force loop is compiled per set: the integrators around it are the same code
+// for every set (instantiating them per set doubled this file's compile time for nothing).
 template <class Law, std::size_t... Masks>
-Steppers dispatch(unsigned effects, Integrator integrator, std::index_sequence<Masks...>) {
-  using Maker = Steppers (*)(Integrator);
-  static constexpr std::array<Maker, sizeof...(Masks)> table{
-      &steppers_for<static_cast<unsigned>(Masks), Law>...};
-  return table[effects](integrator);
+ForcesFn force_loop(unsigned effects, std::index_sequence<Masks...>) {
+  static constexpr std::array<ForcesFn, sizeof...(Masks)> table{
+      &detail::compute_forces<static_cast<unsigned>(Masks), Law>...};
+  return table[effects];
 }
 
 // Serial sums, so that the rest test (and hence the run length) cannot depend on threads.
@@ -541,9 +532,11 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
 
   const unsigned effects = scene.effects & kAllEffects;
   constexpr auto masks = std::make_index_sequence<kAllEffects + 1>{};
-  const Steppers steppers = linear ? dispatch<detail::LinearLaw>(effects, settings.integrator, masks)
-                                   : dispatch<detail::HertzLaw>(effects, settings.integrator, masks);
-  steppers.forces(c.arrays(), c.params, c.list, c.tables, c.threads);  // Verlet needs F(t0)
+  c.forces = linear ? force_loop<detail::LinearLaw>(effects, masks)
+                    : force_loop<detail::HertzLaw>(effects, masks);
+  const auto step_once = settings.integrator == Integrator::rk4 ? &step_rk4 : &step_verlet;
+  const auto lid_force_of = linear ? &lid_force<detail::LinearLaw> : &lid_force<detail::HertzLaw>;
+  c.compute_forces();  // Verlet needs F(t0)
 
   const double t_end = settings.t_end > 0 ? settings.t_end : 1.0;
   const auto total_steps = static_cast<std::uint64_t>(std::ceil(t_end / c.dt - 1e-9));
@@ -572,7 +565,7 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
     std::uint64_t quiet_since = kNotQuiet;  // first step of the current quiet stretch
     while (step < last_step) {
       before();
-      steppers.step(c, step + 1);
+      step_once(c, step + 1);
       ++step;
       const double time = static_cast<double>(step) * c.dt;
       if (trajectory && step % settings.trajectory_every == 0) trajectory->write(step, time, bed);
@@ -691,7 +684,7 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
         builds = c.rebuilds;
         lid_at_build = box.upper[2];
       }
-      const double force = steppers.lid_force(c, damping);
+      const double force = lid_force_of(c, damping);
       out.max_force = std::max(out.max_force, force);
       return force;
     };
