@@ -35,7 +35,8 @@ struct H5Input::Impl {
     if (!exists(object)) fail(object, "missing");
     H5Attr attr(H5Aopen_by_name(file, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT));
     T value{};
-    if (!attr.valid() || H5Aread(attr, type, &value) < 0) fail(object, "attribute " + name + " is missing");
+    if (!attr.valid() || H5Aread(attr, type, &value) < 0)
+      fail(object, "attribute " + name + " is missing");
     return value;
   }
 

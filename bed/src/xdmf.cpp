@@ -24,9 +24,9 @@ namespace {
 
 void data_item(std::ostringstream& x, const std::string& dims, const XdmfField& f,
                const std::string& h5) {
-  x << "      <DataItem Dimensions=\"" << dims << "\" NumberType=\"" << (f.bytes ? "UChar" : "Float")
-    << "\" Precision=\"" << (f.bytes ? 1 : 8) << "\" Format=\"HDF\">" << h5 << ":" << f.dataset
-    << "</DataItem>\n";
+  x << "      <DataItem Dimensions=\"" << dims << "\" NumberType=\""
+    << (f.bytes ? "UChar" : "Float") << "\" Precision=\"" << (f.bytes ? 1 : 8)
+    << "\" Format=\"HDF\">" << h5 << ":" << f.dataset << "</DataItem>\n";
 }
 
 }  // namespace

@@ -73,7 +73,8 @@ bool has_spread_state(const std::string& path) {
 
 SpreadState read_spread_state(const std::string& path, const bed::Bed& bed) {
   const bed::H5Input in(path);
-  if (!in.exists(kGroup)) fail(path, "missing (accepted: a bed written at a layer's end by a spreading run)");
+  if (!in.exists(kGroup))
+    fail(path, "missing (accepted: a bed written at a layer's end by a spreading run)");
   const auto whole = [&](const char* name) { return in.uint64_attribute(kGroup, name); };
   const auto real = [&](const char* name) { return in.double_attribute(kGroup, name); };
   SpreadState s;

@@ -62,8 +62,8 @@ void TrajectoryWriter::close() {
   Impl& s = *impl_;
   s.out.commit();
   const std::string h5 = bed::file_name_of(s.out.path());
-  bed::write_text_file(bed::xdmf_sidecar_path(s.out.path()),
-                       bed::xdmf_document(bed::xdmf_particle_series("trajectory", s.n, h5, s.steps)));
+  const std::string grids = bed::xdmf_particle_series("trajectory", s.n, h5, s.steps);
+  bed::write_text_file(bed::xdmf_sidecar_path(s.out.path()), bed::xdmf_document(grids));
 }
 
 }  // namespace powderbed::dem
