@@ -97,57 +97,35 @@ bed::Bed insert_from_psd(const po::variables_map& vm, const bed::Domain& domain,
   return placed.bed;
 }
 
-}  // namespace
-
-
-namespace {
-
-using namespace powderbed;
-namespace po = app::po;
-
-// The core density, or why there is none: a bed less than two margins thick (a monolayer) has
-// no core away from the floor and the surface, and its density is a layer's (bedstat --layer).
-std::string core_text(const dem::CoreDensity& core, double margin) {
-  std::ostringstream out;
-  if (std::isnan(core.density)) {
-    out << "no core (the bed is thinner than 2 x --core-margin " << margin
-        << " m from floor and surface; see bedstat --layer for a layer's density)";
-  } else {
-    out << "core density " << core.density;
+// Inputs and outputs checked before the run, so a bad --out costs no simulation and never
+// replaces the input.
+void check_files(const po::variables_map& vm, const std::string& out) {
+  std::vector<app::PathArg> inputs, outputs{{"--out", out}};
+  if (vm.count("in")) inputs.push_back({"--in", vm["in"].as<std::string>()});
+  app::check_extension({"--out", out}, {".h5"});
+  if (vm.count("trajectory")) {
+    app::check_extension({"--trajectory", vm["trajectory"].as<std::string>()}, {".h5"});
+    outputs.push_back({"--trajectory", vm["trajectory"].as<std::string>()});
   }
-  return out.str();
+  if (vm.count("export-deck")) {
+    for (auto& p : app::deck_outputs(vm["export-deck"].as<std::string>(), out)) outputs.push_back(p);
+  }
+  app::check_paths(inputs, outputs);
 }
 
-int run(int argc, char** argv) {
-  po::options_description desc("deposit options (SI units)");
-  app::add_deposit_options(desc);
-  po::variables_map vm;
-  if (!app::parse_options("deposit", kUsage, desc, {}, argc, argv, vm)) return 0;
-  if (app::spread_requested(vm)) return app::run_spread(vm, argc, argv);  // deposit_spread.cpp
+struct Particles {
+  bed::Bed bed;
+  bool inserting = false;  // the bed is the pool of the insertion (dem::InsertionSettings)
+};
 
-  const std::string out = app::required<std::string>(vm, "out");
-  const auto seed = app::required<std::uint64_t>(vm, "seed");
-  // Inputs and outputs checked before the run, so a bad --out costs no simulation and never
-  // replaces the input.
-  {
-    std::vector<app::PathArg> inputs, outputs{{"--out", out}};
-    if (vm.count("in")) inputs.push_back({"--in", vm["in"].as<std::string>()});
-    app::check_extension({"--out", out}, {".h5"});
-    if (vm.count("trajectory")) {
-      app::check_extension({"--trajectory", vm["trajectory"].as<std::string>()}, {".h5"});
-      outputs.push_back({"--trajectory", vm["trajectory"].as<std::string>()});
-    }
-    if (vm.count("export-deck")) {
-      for (auto& p : app::deck_outputs(vm["export-deck"].as<std::string>(), out)) outputs.push_back(p);
-    }
-    app::check_paths(inputs, outputs);
-  }
+// One source of particles. A scene's psd (with its count and insertion) gives way to --in on
+// the command line, which wins over the scene (so a bed scene can re-run its own bed, e.g. to
+// consolidate it); both in the same place is refused.
+Particles particles(const po::variables_map& vm, const po::options_description& desc, int argc,
+                    char** argv, std::uint64_t seed) {
   if (!vm.count("in") && !vm.count("psd")) {
     throw InputError("--in / --psd: neither given (accepted: --in BED.h5 or --psd SPEC --count N)");
   }
-  // One source of particles. A scene's psd (with its count and insertion) gives way to --in on
-  // the command line, which wins over the scene (so a bed scene can re-run its own bed, e.g. to
-  // consolidate it); both in the same place is refused.
   po::variables_map command_line;
   po::store(po::command_line_parser(argc, argv).options(desc).run(), command_line);
   bool from_bed = vm.count("in") > 0;
@@ -156,37 +134,40 @@ int run(int argc, char** argv) {
       throw InputError("--in and --psd: both given (accepted: one source of particles)");
     from_bed = command_line.count("in") > 0;
   }
-  const bool inserting = !from_bed && vm["insert.enabled"].as<bool>();
+  Particles p;
+  p.inserting = !from_bed && vm["insert.enabled"].as<bool>();
   const bool insert_typed =
       command_line.count("insert.enabled") > 0 && !command_line["insert.enabled"].defaulted();
   if (from_bed && vm["insert.enabled"].as<bool>() && (insert_typed || !command_line.count("in"))) {
     throw InputError("insert.enabled: with --in (accepted: --psd SPEC --count N, the particles "
                      "to insert)");
   }
-
-  bed::Bed bed;
   if (from_bed) {
     std::optional<bed::Domain> domain;
     if (vm.count("domain")) domain = app::parse_domain_lengths(vm["domain"].as<std::string>(), "--domain");
-    bed = bed::read_bed_any(vm["in"].as<std::string>(), domain ? &*domain : nullptr);
-    if (domain) bed.domain = *domain;
+    p.bed = bed::read_bed_any(vm["in"].as<std::string>(), domain ? &*domain : nullptr);
+    if (domain) p.bed.domain = *domain;
   } else {
     const bed::Domain domain =
         app::parse_domain_lengths(app::required<std::string>(vm, "domain"), "--domain");
     if (domain.dimension != 3) throw InputError("--domain: 2D box (accepted: LX,LY,LZ)");
-    bed = inserting ? insertion_pool(vm, domain, seed) : insert_from_psd(vm, domain, seed);
+    p.bed = p.inserting ? insertion_pool(vm, domain, seed) : insert_from_psd(vm, domain, seed);
   }
+  return p;
+}
+
+void set_periodic(const po::variables_map& vm, bed::Domain& domain) {
   const std::string periodic = vm["periodic"].as<std::string>();
-  if (periodic == "x" || periodic == "x,y" || periodic == "xy") bed.domain.periodic[0] = true;
-  if (periodic == "y" || periodic == "x,y" || periodic == "xy") bed.domain.periodic[1] = true;
+  if (periodic == "x" || periodic == "x,y" || periodic == "xy") domain.periodic[0] = true;
+  if (periodic == "y" || periodic == "x,y" || periodic == "xy") domain.periodic[1] = true;
   if (periodic != "none" && periodic != "x" && periodic != "y" && periodic != "x,y" &&
       periodic != "xy") {
     throw InputError("--periodic: '" + periodic + "' (accepted: none, x, y, x,y)");
   }
+}
 
-  const dem::Scene scene = app::deposit_scene(vm);
-  if (vm.count("export-deck")) app::check_run_deck(scene, vm["export-deck"].as<std::string>());
-
+// The run's settings from the options; their ranges are dem::check_run_settings's to check.
+dem::RunSettings run_settings(const po::variables_map& vm, bool inserting, std::uint64_t seed) {
   dem::RunSettings s;
   s.integrator = dem::parse_integrator(vm["integrator"].as<std::string>());
   s.young_scale = vm["young-scale"].as<double>();
@@ -197,24 +178,12 @@ int run(int argc, char** argv) {
   }
   s.rest.max_speed = vm["rest.speed"].as<double>();
   s.rest.window = vm["rest.window"].as<double>();
-  if (vm.count("dt")) {
-    s.dt = vm["dt"].as<double>();
-    if (!(s.dt > 0)) throw InputError("--dt: " + std::to_string(s.dt) + " (accepted: dt > 0 s)");
-  }
+  if (vm.count("dt")) s.dt = vm["dt"].as<double>();
   s.unsafe_dt = vm["unsafe-dt"].as<bool>();
   s.threads = app::apply_thread_team(vm).size;
   if (vm.count("trajectory")) {
     s.trajectory = vm["trajectory"].as<std::string>();
     s.trajectory_every = vm["every"].as<std::uint64_t>();
-    if (s.trajectory_every == 0) throw InputError("--every: missing or 0 with --trajectory (accepted: K >= 1)");
-  }
-  if (s.unsafe_dt && s.dt > 0) {
-    scene.validate();
-    const auto bound = dem::time_step_bound(bed, scene, s.young_scale);
-    if (s.dt > bound.stable) {
-      std::cerr << "deposit: warning: --dt " << s.dt << " s is above the stable bound "
-                << bound.stable << " s (--unsafe-dt)\n";
-    }
   }
   s.lid.enabled = vm["lid"].as<bool>() || vm["lid.enabled"].as<bool>();
   s.lid.speed = vm["lid.speed"].as<double>();
@@ -230,6 +199,22 @@ int run(int argc, char** argv) {
   s.insertion.tries = vm["insert.tries"].as<std::size_t>();
   s.insertion.patience = vm["insert.patience"].as<double>();
   s.insertion.seed = seed;
+  return s;
+}
+
+// --unsafe-dt accepts a step above the stable bound; it still says so.
+void warn_unsafe_dt(const bed::Bed& bed, const dem::Scene& scene, const dem::RunSettings& s) {
+  if (!s.unsafe_dt || !(s.dt > 0)) return;
+  scene.validate();
+  const auto bound = dem::time_step_bound(bed, scene, s.young_scale);
+  if (s.dt > bound.stable) {
+    std::cerr << "deposit: warning: --dt " << s.dt << " s is above the stable bound "
+              << bound.stable << " s (--unsafe-dt)\n";
+  }
+}
+
+// --core-margin, by default two mean diameters of the bed.
+double core_margin(const po::variables_map& vm, const bed::Bed& bed) {
   double mean_diameter = 0;
   for (const double r : bed.radius) mean_diameter += 2 * r;
   mean_diameter /= static_cast<double>(std::max<std::size_t>(1, bed.n()));
@@ -237,6 +222,166 @@ int run(int argc, char** argv) {
   if (!(margin >= 0) || !std::isfinite(margin)) {
     throw InputError("--core-margin: " + std::to_string(margin) + " (accepted: M >= 0 m)");
   }
+  return margin;
+}
+
+// Removes the particles that left the box; returns how many. Particles leave the box only when
+// a run goes wrong (a step beyond the stable bound, a bed that does not fit its box): such a bed
+// is not a result, so more than --allow-lost is a NumericalError.
+std::size_t remove_lost(const po::variables_map& vm, bed::Bed& bed) {
+  const std::size_t removed = dem::remove_lost_particles(bed);
+  if (removed > vm["allow-lost"].as<std::size_t>()) {
+    std::ostringstream msg;
+    msg << removed << " of " << bed.n() + removed << " particles left the box during the run "
+        << "(accepted: at most --allow-lost " << vm["allow-lost"].as<std::size_t>()
+        << "); the time step may be beyond the stable bound (--unsafe-dt?) or the bed may not fit "
+           "its box";
+    throw NumericalError(msg.str());
+  }
+  return removed;
+}
+
+// The box's top at the highest particle top (--crop-top).
+void crop_top(bed::Bed& bed) {
+  if (bed.n() == 0) return;
+  double top = bed.domain.lower[2];
+  for (std::size_t i = 0; i < bed.n(); ++i) top = std::max(top, bed.z[i] + bed.radius[i]);
+  bed.domain.upper[2] = top;
+}
+
+// What made the bed: the program, its command line and seed, the scene, and the contact law
+// keff's Hertz correction reads.
+void record_provenance(bed::Bed& bed, const po::variables_map& vm, int argc, char** argv,
+                       std::uint64_t seed, const dem::Scene& scene, double young_scale) {
+  bed.provenance.created_by = app::version_string("deposit");
+  bed.provenance.command_line = app::command_line(argc, argv);
+  bed.provenance.rng_seed = seed;
+  bed.provenance.stage = "deposit";
+  bed.provenance.scene = app::scene_text(vm);
+  bed::ContactProvenance& made = bed.provenance.contact;
+  made.law = dem::contact_law_name(scene.law);
+  made.young = scene.material.young;
+  made.poisson = scene.material.poisson;
+  made.wall_young = scene.wall.young;
+  made.wall_poisson = scene.wall.poisson;
+  made.young_scale = young_scale;
+  made.stiffness = scene.stiffness;
+}
+
+// The core density, or why there is none: a bed less than two margins thick (a monolayer) has
+// no core away from the floor and the surface, and its density is a layer's (bedstat --layer).
+std::string core_text(const dem::CoreDensity& core, double margin) {
+  std::ostringstream out;
+  if (std::isnan(core.density)) {
+    out << "no core (the bed is thinner than 2 x --core-margin " << margin
+        << " m from floor and surface; see bedstat --layer for a layer's density)";
+  } else {
+    out << "core density " << core.density;
+  }
+  return out.str();
+}
+
+// What a run reports, on stdout as JSON (--json) or one line.
+struct Report {
+  const bed::Bed& bed;
+  const dem::Scene& scene;
+  const dem::RunSettings& settings;
+  const dem::RunSummary& run;
+  std::size_t removed;
+  dem::CoreDensity core;
+  double margin;
+  std::string integrator;
+  std::string out;
+};
+
+void print_lid_json(bed::JsonWriter& j, const dem::RunSummary& r, bool released) {
+  j.begin_object("lid")
+      .value("start_z", r.lid.start_z)
+      .value("stop_z", r.lid.stop_z)
+      .value("surface_z", r.lid.surface_z)
+      .value("travel", r.lid.start_z - r.lid.stop_z)
+      .value("target_force", r.lid.target_force)
+      .value("stop_force", r.lid.stop_force)
+      .value("max_force", r.lid.max_force)
+      .value("hold_end_force", r.lid.hold_end_force)
+      .value("hold_end_z", r.lid.hold_end_z)
+      .value("hold_late_force", r.lid.hold_late_force)
+      .value("stopped_by", r.lid.stopped_by)
+      .value("released", released)
+      .value("release_time", r.lid.release_time)
+      .end_object();
+}
+
+void print_json(const Report& p) {
+  const dem::RunSummary& r = p.run;
+  bed::JsonWriter j;
+  j.begin_object()
+      .value("n", static_cast<std::uint64_t>(p.bed.n()))
+      .value("steps", r.steps)
+      .value("sim_time", r.sim_time)
+      .value("wall_time", r.wall_time)
+      .value("particle_steps_per_s", r.particle_steps_per_s)
+      .value("dt", r.dt)
+      .value("dt_stable", r.dt_stable)
+      .value("integrator", p.integrator)
+      .value("young_scale", p.settings.young_scale)
+      .value("contact_law", dem::contact_law_name(p.scene.law))
+      .value("friction_model", dem::friction_model_name(p.scene.friction_model))
+      .value("stiffness", p.scene.stiffness)
+      .value("kinetic_energy", r.kinetic_energy)
+      .value("max_speed", r.max_speed)
+      .value("max_overlap", r.max_overlap)
+      .value("max_overlap_m", r.max_overlap_m)
+      .value("max_overlap_full_stiffness", r.max_overlap_full_stiffness)
+      .value("lost", static_cast<std::uint64_t>(p.removed))
+      .value("at_rest", r.at_rest)
+      .value("neighbour_rebuilds", r.neighbour_rebuilds)
+      .value("core_density", p.core.density)
+      .value("core_margin", p.margin)
+      .value("domain_top", p.bed.domain.upper[2]);
+  if (p.settings.insertion.enabled) {
+    j.begin_object("insertion")
+        .value("inserted", static_cast<std::uint64_t>(r.inserted))
+        .value("end_time", r.insertion_end)
+        .value("stopped_by", r.insertion_stopped_by)
+        .end_object();
+  }
+  if (r.lid_used) print_lid_json(j, r, p.settings.lid.release);
+  j.value("out", p.out).end_object();
+  std::cout << j.str() << '\n';
+}
+
+void print_text(const Report& p) {
+  const dem::RunSummary& r = p.run;
+  std::cout << "deposit: " << p.bed.n() << " particles (" << p.removed << " lost), " << r.steps
+            << " steps of " << r.dt << " s to t = " << r.sim_time << " s, " << r.wall_time
+            << " s wall, " << r.particle_steps_per_s << " particle-steps/s, max overlap "
+            << r.max_overlap << " r" << (r.at_rest ? ", at rest" : "") << ", "
+            << core_text(p.core, p.margin);
+  if (r.lid_used) {
+    std::cout << ", lid " << r.lid.start_z << " -> " << r.lid.stop_z << " m (" << r.lid.stopped_by
+              << ", max force " << r.lid.max_force << " N)";
+  }
+  std::cout << " -> " << p.out << '\n';
+}
+
+int run(int argc, char** argv) {
+  po::options_description desc("deposit options (SI units)");
+  app::add_deposit_options(desc);
+  po::variables_map vm;
+  if (!app::parse_options("deposit", kUsage, desc, {}, argc, argv, vm)) return 0;
+  if (app::spread_requested(vm)) return app::run_spread(vm, argc, argv);  // deposit_spread.cpp
+
+  const std::string out = app::required<std::string>(vm, "out");
+  const auto seed = app::required<std::uint64_t>(vm, "seed");
+  check_files(vm, out);
+  auto [bed, inserting] = particles(vm, desc, argc, argv, seed);
+  set_periodic(vm, bed.domain);
+  const dem::Scene scene = app::deposit_scene(vm);
+  if (vm.count("export-deck")) app::check_run_deck(scene, vm["export-deck"].as<std::string>());
+  dem::RunSettings s = run_settings(vm, inserting, seed);
+  warn_unsafe_dt(bed, scene, s);
+  const double margin = core_margin(vm, bed);
   app::ProgressBar bar("deposit", app::progress_interval(vm));
   s.progress = [&bar](const dem::Progress& p) {
     char detail[64];
@@ -249,104 +394,19 @@ int run(int argc, char** argv) {
   const dem::RunSummary r = app::rotating(scene) ? app::run_rotating_drop(bed, scene, s)
                                                  : dem::run_deposition(bed, scene, s);
   bar.finish();
-  const std::size_t removed = dem::remove_lost_particles(bed);
-  // Particles leave the box only when a run goes wrong (a step beyond the stable bound, a bed
-  // that does not fit its box): such a bed is not a result.
-  if (removed > vm["allow-lost"].as<std::size_t>()) {
-    std::ostringstream msg;
-    msg << removed << " of " << bed.n() + removed << " particles left the box during the run "
-        << "(accepted: at most --allow-lost " << vm["allow-lost"].as<std::size_t>()
-        << "); the time step may be beyond the stable bound (--unsafe-dt?) or the bed may not fit "
-           "its box";
-    throw NumericalError(msg.str());
-  }
-  if (vm["crop-top"].as<bool>() && bed.n() > 0) {
-    double top = bed.domain.lower[2];
-    for (std::size_t i = 0; i < bed.n(); ++i) top = std::max(top, bed.z[i] + bed.radius[i]);
-    bed.domain.upper[2] = top;
-  }
+  const std::size_t removed = remove_lost(vm, bed);
+  if (vm["crop-top"].as<bool>()) crop_top(bed);
   const dem::CoreDensity core = dem::core_density(bed, margin);
-
-  bed.provenance.created_by = app::version_string("deposit");
-  bed.provenance.command_line = app::command_line(argc, argv);
-  bed.provenance.rng_seed = seed;
-  bed.provenance.stage = "deposit";
-  bed.provenance.scene = app::scene_text(vm);
-  bed::ContactProvenance& made = bed.provenance.contact;  // what keff's Hertz correction reads
-  made.law = dem::contact_law_name(scene.law);
-  made.young = scene.material.young;
-  made.poisson = scene.material.poisson;
-  made.wall_young = scene.wall.young;
-  made.wall_poisson = scene.wall.poisson;
-  made.young_scale = s.young_scale;
-  made.stiffness = scene.stiffness;
+  record_provenance(bed, vm, argc, argv, seed, scene, s.young_scale);
   bed::write_bed_h5(bed, out);
   if (vm.count("export-deck"))
     app::export_run_deck(bed, scene, s.young_scale, r.dt, vm["export-deck"].as<std::string>(), out);
-
+  const std::string integrator = vm["integrator"].as<std::string>();
+  const Report report{bed, scene, s, r, removed, core, margin, integrator, out};
   if (vm.count("json")) {
-    bed::JsonWriter j;
-    j.begin_object()
-        .value("n", static_cast<std::uint64_t>(bed.n()))
-        .value("steps", r.steps)
-        .value("sim_time", r.sim_time)
-        .value("wall_time", r.wall_time)
-        .value("particle_steps_per_s", r.particle_steps_per_s)
-        .value("dt", r.dt)
-        .value("dt_stable", r.dt_stable)
-        .value("integrator", vm["integrator"].as<std::string>())
-        .value("young_scale", s.young_scale)
-        .value("contact_law", made.law)
-        .value("friction_model", dem::friction_model_name(scene.friction_model))
-        .value("stiffness", scene.stiffness)
-        .value("kinetic_energy", r.kinetic_energy)
-        .value("max_speed", r.max_speed)
-        .value("max_overlap", r.max_overlap)
-        .value("max_overlap_m", r.max_overlap_m)
-        .value("max_overlap_full_stiffness", r.max_overlap_full_stiffness)
-        .value("lost", static_cast<std::uint64_t>(removed))
-        .value("at_rest", r.at_rest)
-        .value("neighbour_rebuilds", r.neighbour_rebuilds)
-        .value("core_density", core.density)
-        .value("core_margin", margin)
-        .value("domain_top", bed.domain.upper[2]);
-    if (inserting) {
-      j.begin_object("insertion")
-          .value("inserted", static_cast<std::uint64_t>(r.inserted))
-          .value("end_time", r.insertion_end)
-          .value("stopped_by", r.insertion_stopped_by)
-          .end_object();
-    }
-    if (r.lid_used) {
-      j.begin_object("lid")
-          .value("start_z", r.lid.start_z)
-          .value("stop_z", r.lid.stop_z)
-          .value("surface_z", r.lid.surface_z)
-          .value("travel", r.lid.start_z - r.lid.stop_z)
-          .value("target_force", r.lid.target_force)
-          .value("stop_force", r.lid.stop_force)
-          .value("max_force", r.lid.max_force)
-          .value("hold_end_force", r.lid.hold_end_force)
-          .value("hold_end_z", r.lid.hold_end_z)
-          .value("hold_late_force", r.lid.hold_late_force)
-          .value("stopped_by", r.lid.stopped_by)
-          .value("released", s.lid.release)
-          .value("release_time", r.lid.release_time)
-          .end_object();
-    }
-    j.value("out", out).end_object();
-    std::cout << j.str() << '\n';
+    print_json(report);
   } else {
-    std::cout << "deposit: " << bed.n() << " particles (" << removed << " lost), " << r.steps
-              << " steps of " << r.dt << " s to t = " << r.sim_time << " s, " << r.wall_time
-              << " s wall, " << r.particle_steps_per_s << " particle-steps/s, max overlap "
-              << r.max_overlap << " r" << (r.at_rest ? ", at rest" : "") << ", "
-              << core_text(core, margin);
-    if (r.lid_used) {
-      std::cout << ", lid " << r.lid.start_z << " -> " << r.lid.stop_z << " m (" << r.lid.stopped_by
-                << ", max force " << r.lid.max_force << " N)";
-    }
-    std::cout << " -> " << out << '\n';
+    print_text(report);
   }
   return 0;
 }

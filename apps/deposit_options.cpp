@@ -15,13 +15,10 @@
 
 namespace powderbed::app {
 
-void add_deposit_options(po::options_description& desc) {
-  add_common_options(desc);
-  add_threads_option(desc);
-  add_progress_option(desc);
-  add_material_options(desc, "deposit");
-  const dem::Scene d;
-  const dem::LidSettings l;
+namespace {
+
+// Where the particles come from: a bed, a PSD placed in the box, or the insertion's pool.
+void add_source_options(po::options_description& desc) {
   desc.add_options()
       ("in", po::value<std::string>(), "start from this bed (HDF5, CSV needs --domain)")
       ("psd", po::value<std::string>(), "particle size distribution (see bed/psd.hpp syntax), m")
@@ -41,16 +38,21 @@ void add_deposit_options(po::options_description& desc) {
        "insertion: random draws for a free spot per particle and insertion time")
       ("insert.patience", po::value<double>()->default_value(0),
        "insertion: the box is full once no particle has found a free spot for this long (s; 0: "
-       "twice the time to fall one diameter)")
+       "twice the time to fall one diameter)");
+}
+
+// How long and how the drop runs, and what it writes.
+void add_run_options(po::options_description& desc) {
+  desc.add_options()
       ("t-end", po::value<double>(), "simulated time (s); with --until-rest the cap (default 1 s)")
       ("until-rest", po::bool_switch(), "stop when the bed is at rest (rest.speed, rest.window)")
       ("rest.speed", po::value<double>()->default_value(1e-4),
        "rest: largest speed below this (m/s)")
       ("rest.window", po::value<double>()->default_value(1e-3),
        "rest: for this long (s of simulated time)")
-      ("dt", po::value<double>(), "time step (s); default 0.2 x the Rayleigh step of the smallest "
-                                  "particle (linear law: 0.2 x 1/omega_0 = sqrt(m*/k_n) of its "
-                                  "pair), or the drag relaxation time when shorter")
+      ("dt", po::value<double>(), "time step (s); default (and 0): 0.2 x the Rayleigh step of the "
+                                  "smallest particle (linear law: 0.2 x 1/omega_0 = sqrt(m*/k_n) of "
+                                  "its pair), or the drag relaxation time when shorter")
       ("unsafe-dt", po::bool_switch(), "accept a --dt above the stable bound (with a warning)")
       ("integrator", po::value<std::string>()->default_value("verlet"), "verlet or rk4")
       ("young-scale", po::value<double>()->default_value(1.0),
@@ -70,7 +72,13 @@ void add_deposit_options(po::options_description& desc) {
       ("export-deck", po::value<std::string>(),
        "also write the settled bed as a LAMMPS data file and a lammps or liggghts input deck with "
        "this run's laws beside --out: BED.data, in.BED.<engine> (docs/decks.md)")
-      ("every", po::value<std::uint64_t>()->default_value(0), "steps between snapshots")
+      ("every", po::value<std::uint64_t>()->default_value(0), "steps between snapshots");
+}
+
+// The scene's material, walls, fluid and gravity (the effects: add_deposit_options).
+void add_scene_options(po::options_description& desc) {
+  const dem::Scene d;
+  desc.add_options()
       ("material.young", po::value<double>()->default_value(d.material.young), "E (Pa)")
       ("material.poisson", po::value<double>()->default_value(d.material.poisson), "nu")
       ("material.density", po::value<double>()->default_value(d.material.density), "rho (kg/m^3)")
@@ -81,7 +89,13 @@ void add_deposit_options(po::options_description& desc) {
       ("fluid.viscosity", po::value<double>()->default_value(d.fluid_viscosity), "mu_f (Pa s)")
       ("wall.young", po::value<double>()->default_value(d.wall.young), "wall E (Pa)")
       ("wall.poisson", po::value<double>()->default_value(d.wall.poisson), "wall nu")
-      ("gravity", po::value<double>()->default_value(d.gravity), "g (m/s^2)")
+      ("gravity", po::value<double>()->default_value(d.gravity), "g (m/s^2)");
+}
+
+// The lid's consolidation after the settle (dem::LidSettings).
+void add_lid_options(po::options_description& desc) {
+  const dem::LidSettings l;
+  desc.add_options()
       ("lid", po::bool_switch(), "consolidate the settled bed with the lid (as lid.enabled)")
       ("lid.enabled", po::value<bool>()->default_value(false),
        "lid: after the settle, lower the box's top wall onto the bed, hold it, release it")
@@ -98,16 +112,35 @@ void add_deposit_options(po::options_description& desc) {
        "lid: true releases it after the hold; false keeps it as the bed's top face (the bed's "
        "domain ends at the lid, for keff's hot wall)")
       ("lid.relax", po::value<double>()->default_value(l.relax),
-       "lid: cap on the relaxation after the release (s; it ends earlier at rest)")
+       "lid: cap on the relaxation after the release (s; it ends earlier at rest)");
+}
+
+// What is measured on and done to the settled bed before it is written.
+void add_result_options(po::options_description& desc) {
+  desc.add_options()
       ("crop-top", po::value<bool>()->default_value(false),
        "write the bed with the box's top at the highest particle top (z + r), so that a top "
        "wall touches the bed (keff's wall)")
       ("core-margin", po::value<double>(),
        "core density: margin from the floor, side walls and surface (m); default 2 mean "
        "diameters");
+}
+
+}  // namespace
+
+void add_deposit_options(po::options_description& desc) {
+  add_common_options(desc);
+  add_threads_option(desc);
+  add_progress_option(desc);
+  add_material_options(desc, "deposit");
+  add_source_options(desc);
+  add_run_options(desc);
+  add_scene_options(desc);
+  add_lid_options(desc);
+  add_result_options(desc);
   add_spread_options(desc);
-  for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
-    const std::string name = std::string("effects.") + dem::effect_name(bit);
+  for (const dem::EffectRow& effect : dem::kEffects) {
+    const std::string name = std::string("effects.") + effect.name;
     desc.add_options()(name.c_str(), po::value<bool>()->default_value(true),
                        "effect on/off (true/false)");
   }
@@ -145,8 +178,8 @@ dem::Scene deposit_scene(const po::variables_map& vm) {
     throw InputError("contact.stiffness: missing with contact.law = linear (accepted: k_n > 0 N/m)");
   }
   scene.effects = 0;
-  for (unsigned bit = 1; bit <= dem::kWalls; bit <<= 1) {
-    if (vm[std::string("effects.") + dem::effect_name(bit)].as<bool>()) scene.effects |= bit;
+  for (const dem::EffectRow& effect : dem::kEffects) {
+    if (vm[std::string("effects.") + effect.name].as<bool>()) scene.effects |= effect.bit;
   }
   return scene;
 }

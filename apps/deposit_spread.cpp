@@ -232,6 +232,7 @@ bool rotating(const dem::Scene& scene) {
 
 dem::RunSummary run_rotating_drop(bed::Bed& bed, const dem::Scene& scene,
                                   const dem::RunSettings& settings) {
+  dem::check_run_settings(settings);  // run_spread reads a negative dt as "the recommended one"
   if (settings.until_rest || settings.lid.enabled || settings.insertion.enabled ||
       settings.integrator != dem::Integrator::verlet || !settings.trajectory.empty()) {
     throw InputError(std::string(scene.material.rolling > 0 ? "material.rolling"

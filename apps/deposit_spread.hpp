@@ -36,8 +36,9 @@ int run_spread(const po::variables_map& vm, int argc, char** argv);
 // which only the spreading run's loop has.
 bool rotating(const dem::Scene& scene);
 // A drop of `settings.t_end` in that loop, without a tool (spread.hpp, SpreadSettings::with_tool
-// false), summarised as the drop solver's run. Throws InputError for what only the drop solver
-// has: --until-rest, the lid, insertion, RK4, a trajectory.
+// false), summarised as the drop solver's run. Throws InputError for settings out of range
+// (dem::check_run_settings) and for what only the drop solver has: --until-rest, the lid,
+// insertion, RK4, a trajectory.
 dem::RunSummary run_rotating_drop(bed::Bed& bed, const dem::Scene& scene,
                                   const dem::RunSettings& settings);
 

@@ -1,7 +1,7 @@
 // What each effect of a deposition scene costs per step, and that an effect switched off costs
-// nothing (docs/architecture.md "Effects a scene calls for"): the solver picks, once per run, a step loop
-// compiled for the scene's 6-bit effect mask, so a loop with friction off is the loop of a build
-// that never had friction. Two benchmark families on the same beds, one thread, E = 193 GPa:
+// nothing (docs/architecture.md "Effects a scene calls for"): the solver picks, once per run, a force
+// loop compiled for the scene's effect mask (dem/scene.hpp kEffects), so a loop with friction off
+// is the loop of a build that never had friction. Two benchmark families on the same beds, one thread, E = 193 GPa:
 //   BM_Step/<mask>: steps with the effects of <mask> on (kAllEffects, then each bit off in turn);
 //   BM_StepZeroed/<effect>: all bits on but that effect's coefficient set to 0 (mu_d = 0,
 //     zeta = 0, g = 0): the effect's code runs and adds nothing, which is what a run-time switch

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <string_view>
 
 #include "powderbed/bed/deck_damping.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -90,9 +91,7 @@ void apply_scene_text(const std::string& ini, const std::string& source, DeckSce
     else if (key == "young-scale") s.young_scale = num();
     else if (key == "dt") s.dt = num();
     else if (key.rfind("effects.", 0) == 0) {
-      unsigned bit = 0;
-      for (unsigned b = 1; b <= dem::kWalls; b <<= 1)
-        if (key == std::string("effects.") + dem::effect_name(b)) bit = b;
+      const unsigned bit = dem::effect_bit(std::string_view(key).substr(key.find('.') + 1));
       if (bit == 0) throw InputError(source + ": unknown effect '" + key + "'");
       if (to_bool(key, value, source)) sc.effects |= bit;
       else sc.effects &= ~bit;
@@ -127,8 +126,8 @@ bed::DeckLaws deck_laws(const DeckScene& s, const std::vector<double>& density,
     laws.origin.push_back(what + ": " + origin_of(s, key));
   };
   std::string effects;
-  for (unsigned b = 1; b <= dem::kWalls; b <<= 1)
-    effects += std::string(" ") + dem::effect_name(b) + (sc.has(b) ? "=on" : "=off");
+  for (const dem::EffectRow& effect : dem::kEffects)
+    effects += std::string(" ") + effect.name + (sc.has(effect.bit) ? "=on" : "=off");
   laws.origin.push_back("effects" + effects + ": " + origin_of(s, "effects.hertz"));
   line("contact law " + laws.law, "contact.law");
   if (laws.law == "hertz") {

@@ -1,6 +1,7 @@
 #include "powderbed/bed/h5_output.hpp"
 
 #include <cstdio>
+#include <optional>
 
 #include "io_detail.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -11,19 +12,26 @@ namespace powderbed::bed {
 using H5Plist = H5Handle<H5Pclose>;
 
 struct H5Output::Impl {
-  detail::AtomicFile atomic;
+  std::string path;
+  std::optional<detail::AtomicFile> atomic;  // Mode::create: the temporary and its rename
   H5File file;
   H5Plist make_groups{H5Pcreate(H5P_LINK_CREATE)};
 
-  explicit Impl(const std::string& path) : atomic(path) {
+  Impl(const std::string& destination, Mode mode) : path(destination) {
     silence_hdf5_errors();
-    file = H5File(H5Fcreate(atomic.temp_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
-    if (!file.valid()) fail("/", "cannot create HDF5 file");
+    if (mode == Mode::create) {
+      atomic.emplace(path);
+      file = H5File(H5Fcreate(atomic->temp_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+      if (!file.valid()) fail("/", "cannot create HDF5 file");
+    } else {
+      file = H5File(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+      if (!file.valid()) fail("/", "cannot open the HDF5 file to add to it");
+    }
     H5Pset_create_intermediate_group(make_groups, 1);
   }
 
   [[noreturn]] void fail(const std::string& object, const std::string& what) const {
-    throw InputError(atomic.path() + ": " + object + ": " + what);
+    throw InputError(path + ": " + object + ": " + what);
   }
 
   void dataset(const std::string& name, hid_t file_type, hid_t mem_type, const void* data,
@@ -61,7 +69,8 @@ struct H5Output::Impl {
   }
 };
 
-H5Output::H5Output(const std::string& path) : impl_(std::make_unique<Impl>(path)) {}
+H5Output::H5Output(const std::string& path, Mode mode)
+    : impl_(std::make_unique<Impl>(path, mode)) {}
 H5Output::~H5Output() = default;
 
 void H5Output::write(const std::string& name, const std::vector<double>& data,
@@ -108,10 +117,10 @@ void H5Output::attribute(const std::string& object, const std::string& name,
 
 void H5Output::commit() {
   if (!impl_->file.close()) impl_->fail("/", "cannot close HDF5 file (disk full?)");
-  impl_->atomic.commit();
+  if (impl_->atomic) impl_->atomic->commit();
 }
 
-const std::string& H5Output::path() const { return impl_->atomic.path(); }
+const std::string& H5Output::path() const { return impl_->path; }
 
 std::string step_group(std::uint64_t step) {
   char digits[32];

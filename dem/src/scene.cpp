@@ -6,18 +6,6 @@
 
 namespace powderbed::dem {
 
-const char* effect_name(unsigned effect) {
-  switch (effect) {
-    case kGravity: return "gravity";
-    case kHertz: return "hertz";
-    case kDamping: return "damping";
-    case kFriction: return "friction";
-    case kDrag: return "drag";
-    case kWalls: return "walls";
-    default: return "unknown";
-  }
-}
-
 ContactLaw parse_contact_law(const std::string& text, const std::string& option) {
   if (text == "hertz") return ContactLaw::hertz;
   if (text == "linear") return ContactLaw::linear;
@@ -65,7 +53,7 @@ void Scene::validate() const {
             "mu_f > 0 Pa s when drag is on");
   }
   if ((has(kDamping) || has(kFriction)) && !has(kHertz) && !has(kWalls)) {
-    throw InputError(std::string("effects.") + (has(kDamping) ? "damping" : "friction") +
+    throw InputError(std::string("effects.") + effect_name(has(kDamping) ? kDamping : kFriction) +
                      ": on without a contact to act on (accepted: with effects.hertz or "
                      "effects.walls on)");
   }

@@ -83,6 +83,10 @@ using detail::ForceParams;
 using detail::NeighbourList;
 using detail::ParticleView;
 
+// The force loop compiled for one effect mask and law (forces.hpp compute_forces<E, Law>).
+using ForcesFn = void (*)(const ForceArrays&, const ForceParams&, const NeighbourList&,
+                          ContactTables&, int);
+
 // Everything one run owns; the bed's own x, y, z, vx, vy, vz arrays are the state.
 struct Context {
   Context(bed::Bed& b, const RunSettings& s) : bed(b), settings(s) {}
@@ -97,9 +101,12 @@ struct Context {
   std::vector<double> x0, y0, z0, u0, v0, w0, sx, sy, sz, su, sv, sw;
   NeighbourList list;
   ContactTables tables;
-  // The law's tabulation (tabulate_contacts<Law>), chosen once at start.
+  // The law's tabulation (tabulate_contacts<Law>) and the scene's force loop, chosen once at
+  // start (force_loop): the steps below are plain functions that call it once per force
+  // evaluation, so an effect that is off is absent from the loop over contacts, not tested in it.
   void (*tabulate)(ContactTables&, const ForceArrays&, const ForceParams&, const NeighbourList&,
                    double, int) = nullptr;
+  ForcesFn forces = nullptr;
   std::uint64_t rebuilds = 0;
 
   ParticleView view() const { return {bed.x.data(), bed.y.data(), bed.z.data(), bed.radius.data(), n}; }
@@ -112,6 +119,7 @@ struct Context {
     list.build(view(), threads, threads > 1);
     tabulate(tables, arrays(), params, list, list.skin(), threads);
   }
+  void compute_forces() { forces(arrays(), params, list, tables, threads); }
   void rebuild_if_needed() {
     if (list.moved_more_than(view(), 0.5 * list.skin(), threads)) {
       rebuild();
@@ -158,7 +166,6 @@ void drift(std::size_t begin, std::size_t end, double dt, const double* __restri
 }
 
 // Velocity Verlet (kick–drift–kick); velocity-dependent forces see the half-step velocity.
-template <unsigned E, class Law>
 void step_verlet(Context& c, std::uint64_t step) {
   const double dt = c.dt, half = 0.5 * c.dt;
   bed::Bed& b = c.bed;
@@ -181,14 +188,13 @@ void step_verlet(Context& c, std::uint64_t step) {
     }
   });
   c.rebuild_if_needed();
-  detail::compute_forces<E, Law>(c.arrays(), c.params, c.list, c.tables, c.threads);
+  c.compute_forces();
   detail::for_each_chunk(c.n, c.threads, kick_all);
   check_finite(c, step);
 }
 
 // Classic RK4 on (x, v) ([GZ]); four force evaluations per step on the same neighbour list
 // (stage positions stay within one step's travel, well inside the skin).
-template <unsigned E, class Law>
 void step_rk4(Context& c, std::uint64_t step) {
   const double dt = c.dt;
   bed::Bed& b = c.bed;
@@ -204,7 +210,7 @@ void step_rk4(Context& c, std::uint64_t step) {
   });
   // Stage k: derivative (v, F/m) at the current stage state in the bed arrays; weights 1,2,2,1.
   for (int stage = 0; stage < 4; ++stage) {
-    detail::compute_forces<E, Law>(c.arrays(), c.params, c.list, c.tables, c.threads);
+    c.compute_forces();
     const double weight = (stage == 0 || stage == 3) ? 1.0 : 2.0;
     const double next = stage < 2 ? 0.5 * dt : dt;  // offset of the next stage
     detail::for_each_particle(c.n, c.threads, [&](std::size_t i) {
@@ -263,28 +269,14 @@ double lid_force(const Context& c, bool damping) {
   return total;
 }
 
-using StepFn = void (*)(Context&, std::uint64_t);
-
-struct Steppers {
-  StepFn step;
-  void (*forces)(const ForceArrays&, const ForceParams&, const NeighbourList&, ContactTables&,
-                 int);
-  double (*lid_force)(const Context&, bool);
-};
-
-template <unsigned E, class Law>
-Steppers steppers_for(Integrator integrator) {
-  return {integrator == Integrator::rk4 ? &step_rk4<E, Law> : &step_verlet<E, Law>,
-          &detail::compute_forces<E, Law>, &lid_force<Law>};
-}
-
-// The once-only dispatch: a table of the 64 effect sets, each a specialised loop, per law.
+// The once-only dispatch: a table of the force loops of every effect set (scene.hpp kEffects),
+// per law. Only the force loop is compiled per set: the integrators around it are the same code
+// for every set (instantiating them per set doubled this file's compile time for nothing).
 template <class Law, std::size_t... Masks>
-Steppers dispatch(unsigned effects, Integrator integrator, std::index_sequence<Masks...>) {
-  using Maker = Steppers (*)(Integrator);
-  static constexpr std::array<Maker, sizeof...(Masks)> table{
-      &steppers_for<static_cast<unsigned>(Masks), Law>...};
-  return table[effects](integrator);
+ForcesFn force_loop(unsigned effects, std::index_sequence<Masks...>) {
+  static constexpr std::array<ForcesFn, sizeof...(Masks)> table{
+      &detail::compute_forces<static_cast<unsigned>(Masks), Law>...};
+  return table[effects];
 }
 
 // Serial sums, so that the rest test (and hence the run length) cannot depend on threads.
@@ -300,7 +292,7 @@ void kinetic_state(const Context& c, double& energy, double& max_speed) {
   max_speed = std::sqrt(max2);
 }
 
-void check_inputs(const bed::Bed& bed, const RunSettings& s) {
+void check_bed(const bed::Bed& bed) {
   if (bed.domain.dimension != 3) {
     throw InputError("deposit: the bed is 2D (accepted: 3D beds only)");
   }
@@ -321,25 +313,7 @@ void check_inputs(const bed::Bed& bed, const RunSettings& s) {
       }
     }
   }
-  const auto bad = [](const char* what, double v, const char* accepted) {
-    std::ostringstream msg;
-    msg << what << ": " << v << " is out of range (accepted: " << accepted << ")";
-    throw InputError(msg.str());
-  };
-  if (!(s.t_end >= 0) || !std::isfinite(s.t_end)) bad("--t-end", s.t_end, "T >= 0 s");
-  if (!s.until_rest && !(s.t_end > 0)) bad("--t-end", s.t_end, "T > 0 s, or --until-rest");
-  if (!(s.dt >= 0) || !std::isfinite(s.dt)) bad("--dt", s.dt, "dt > 0 s");
-  if (!(s.skin >= 0) || !std::isfinite(s.skin)) bad("skin", s.skin, ">= 0 m");
-  if (!s.trajectory.empty() && s.trajectory_every == 0) {
-    throw InputError("--every: 0 with --trajectory (accepted: K >= 1 steps)");
-  }
-  if (!(s.rest.max_speed > 0) || !(s.rest.window >= 0) || !(s.rest.kinetic_energy >= 0)) {
-    bad("rest criteria", s.rest.max_speed, "speed > 0, window >= 0, energy >= 0");
-  }
 }
-
-// The held lid's servo (LidSettings::hold): full speed once the force is 10 % off the target.
-constexpr double kServoGain = 10;
 
 void check_insertion(const InsertionSettings& ins, const RunSettings& s, const Scene& scene) {
   if (!ins.enabled) return;
@@ -383,13 +357,12 @@ void check_lid(const LidSettings& lid, const Scene& scene) {
   }
 }
 
-}  // namespace
-
-RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
-  const auto started = std::chrono::steady_clock::now();
+// Everything run_deposition refuses, before any work.
+void check_run(const bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
   scene.validate();
   bed.validate("deposit input bed");
-  check_inputs(bed, settings);
+  check_bed(bed);
+  check_run_settings(settings);
   check_lid(settings.lid, scene);
   check_insertion(settings.insertion, settings, scene);
   if (scene.friction_model != FrictionModel::sliding || scene.material.rolling > 0) {
@@ -404,13 +377,11 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
         << "1; the linear law's stiffness is contact.stiffness)";
     throw InputError(msg.str());
   }
-  const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
+}
 
-  Context c(bed, settings);
-  c.n = bed.n();
-  c.threads = bed.n() < settings.parallel_min_particles ? 1
-              : settings.threads > 0 ? settings.threads
-                                     : omp_get_max_threads();
+// The step: the settings' (refused above the stable bound without unsafe_dt) or the bound's
+// recommendation.
+double chosen_dt(const TimeStepBound& bound, const RunSettings& settings) {
   if (settings.dt > 0) {
     if (settings.dt > bound.stable && !settings.unsafe_dt) {
       std::ostringstream msg;
@@ -419,30 +390,41 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
           << bound.stable << " s, or add --unsafe-dt)";
       throw InputError(msg.str());
     }
-    c.dt = settings.dt;
-  } else {
-    if (!std::isfinite(bound.recommended)) {
-      throw InputError("--dt: no effect bounds the time step (hertz, walls and drag are off; "
-                       "accepted: give --dt explicitly)");
-    }
-    c.dt = bound.recommended;
+    return settings.dt;
   }
+  if (!std::isfinite(bound.recommended)) {
+    throw InputError("--dt: no effect bounds the time step (hertz, walls and drag are off; "
+                     "accepted: give --dt explicitly)");
+  }
+  return bound.recommended;
+}
 
+// The scene's laws and constants in the force parameters, and the law's tabulation.
+void set_up_laws(Context& c, const Scene& scene) {
   const Material& mat = scene.material;
-  const double young = mat.young / settings.young_scale;
-  const double wall_young = scene.wall.young / settings.young_scale;
+  const double scale = c.settings.young_scale;
+  const double young = mat.young / scale, wall_young = scene.wall.young / scale;
   c.params.pair.hertz = {effective_modulus(young, mat.poisson, young, mat.poisson), mat.damping};
   c.params.wall.hertz = {effective_modulus(young, mat.poisson, wall_young, scene.wall.poisson),
                          mat.damping};
   c.params.pair.linear = {scene.stiffness, mat.damping};
   c.params.wall.linear = {scene.stiffness, mat.damping};
-  const bool linear = scene.law == ContactLaw::linear;
-  c.tabulate = linear ? &detail::tabulate_contacts<detail::LinearLaw>
-                      : &detail::tabulate_contacts<detail::HertzLaw>;
+  c.tabulate = scene.law == ContactLaw::linear ? &detail::tabulate_contacts<detail::LinearLaw>
+                                               : &detail::tabulate_contacts<detail::HertzLaw>;
   c.params.friction.coefficient = mat.friction;
   c.params.gravity.acceleration = scene.gravity;
-  c.params.box = Box::from(bed.domain);
+  c.params.box = Box::from(c.bed.domain);
+}
 
+struct Totals {
+  double r_max = 0;       // m, the largest radius
+  double total_mass = 0;  // kg
+};
+
+// Velocities (zero when the bed has none), masses, drag coefficients, the integrator's arrays,
+// the neighbour list's cells and the walls' constants, for all of the bed's particles.
+Totals set_up_particles(Context& c, const Scene& scene) {
+  bed::Bed& bed = c.bed;
   const std::size_t n = c.n;
   if (!bed.has_velocity()) {
     bed.vx.assign(n, 0.0);
@@ -453,41 +435,177 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   c.inv_mass.resize(n);
   c.drag.resize(n);
   for (auto* v : {&c.fx, &c.fy, &c.fz}) v->assign(n, 0.0);
-  double r_max = 0, total_mass = 0;
+  Totals totals;
   for (std::size_t i = 0; i < n; ++i) {
     const double r = bed.radius[i];
-    c.mass[i] = 4.0 / 3.0 * std::numbers::pi * r * r * r * mat.density;
+    c.mass[i] = 4.0 / 3.0 * std::numbers::pi * r * r * r * scene.material.density;
     c.inv_mass[i] = 1.0 / c.mass[i];
     c.drag[i] = stokes_drag_coefficient({scene.fluid_viscosity}, r);
-    r_max = std::max(r_max, r);
-    total_mass += c.mass[i];
+    totals.r_max = std::max(totals.r_max, r);
+    totals.total_mass += c.mass[i];
   }
-  if (settings.integrator == Integrator::rk4) {
+  if (c.settings.integrator == Integrator::rk4) {
     for (auto* v : {&c.x0, &c.y0, &c.z0, &c.u0, &c.v0, &c.w0, &c.sx, &c.sy, &c.sz, &c.su, &c.sv,
                     &c.sw}) {
       v->assign(n, 0.0);
     }
   }
-  const double skin = settings.skin > 0 ? settings.skin : 0.2 * r_max;
-  c.list.configure(c.params.box, r_max, skin, n);
-  if (linear) {
+  const double skin = c.settings.skin > 0 ? c.settings.skin : 0.2 * totals.r_max;
+  c.list.configure(c.params.box, totals.r_max, skin, n);
+  if (scene.law == ContactLaw::linear) {
     detail::tabulate_wall_constants<detail::LinearLaw>(c.tables, c.arrays(), c.params);
   } else {
     detail::tabulate_wall_constants<detail::HertzLaw>(c.tables, c.arrays(), c.params);
   }
+  return totals;
+}
 
-  // Insertion (solver.hpp InsertionSettings): the pool's particle c.n is the next to enter, so
-  // the per-particle tables above, made for the whole pool, stay indexed as they are.
-  const InsertionSettings& ins = settings.insertion;
-  const std::size_t pool = n;
-  bool inserting = ins.enabled;
-  bed::Rng insert_rng(ins.seed);
-  // Time a new particle needs to fall one largest diameter (from `speed`, under gravity), twice.
-  const double g = scene.has(kGravity) ? scene.gravity : 0.0;
-  const double fall = g > 0 ? (std::sqrt(ins.speed * ins.speed + 2 * g * 2 * r_max) - ins.speed) / g
-                            : 2 * r_max / ins.speed;
-  const double patience = ins.patience > 0 ? ins.patience : 2 * fall;
-  const auto try_insert = [&] {
+constexpr std::uint64_t kNotQuiet = ~std::uint64_t{0};
+
+// What the phases of a run (settle, lid) share: the state, the step count, the snapshots and the
+// rest test.
+struct Run {
+  Run(bed::Bed& b, const Scene& sc, const RunSettings& s) : scene(sc), settings(s), c(b, s) {}
+  const Scene& scene;
+  const RunSettings& settings;
+  Context c;
+  void (*step_once)(Context&, std::uint64_t) = nullptr;  // step_verlet or step_rk4
+  std::optional<TrajectoryWriter> trajectory;
+  std::uint64_t step = 0;
+  bool stopped = false;    // by the observer: no later phase runs
+  bool inserting = false;  // particles still enter (Insertion): rest is not tested
+  double rest_energy = 0;  // J, RestCriteria::kinetic_energy or its default
+  std::uint64_t rest_every = 1, window_steps = 0;
+  RunSummary summary;
+
+  double time() const { return static_cast<double>(step) * c.dt; }
+  double time_at(std::uint64_t at) const { return static_cast<double>(at) * c.dt; }
+
+  // Steps until `last_step`, rest (with until_rest) or the observer's stop; `before` runs before
+  // each step, `after` after it (true ends the phase). Returns true when the phase ended at rest.
+  // Progress reports the phase's end as `progress_end` (s).
+  template <class Before, class After>
+  bool advance(std::uint64_t last_step, bool until_rest, double progress_end, Before&& before,
+               After&& after) {
+    std::uint64_t quiet_since = kNotQuiet;  // first step of the current quiet stretch
+    while (step < last_step) {
+      before();
+      step_once(c, step + 1);
+      ++step;
+      const double now = time();
+      if (trajectory && step % settings.trajectory_every == 0) trajectory->write(step, now, c.bed);
+      if (settings.observer && step % settings.observe_every == 0 &&
+          settings.observer(step, now, c.bed)) {
+        stopped = true;
+        return false;
+      }
+      if (after()) return false;
+      if (until_rest && !inserting && step % rest_every == 0 && quiet_for_window(quiet_since)) {
+        return true;
+      }
+      if (settings.progress && step % settings.progress_every == 0) report(progress_end);
+    }
+    return false;
+  }
+  // The rest test (RestCriteria) at this step: true once the bed has been quiet for the window.
+  bool quiet_for_window(std::uint64_t& quiet_since) const {
+    double ke, vmax;
+    kinetic_state(c, ke, vmax);
+    if (ke < rest_energy && vmax < settings.rest.max_speed) {
+      if (quiet_since == kNotQuiet) quiet_since = step;
+      return step - quiet_since >= window_steps;
+    }
+    quiet_since = kNotQuiet;
+    return false;
+  }
+  void report(double progress_end) const {
+    Progress p;
+    p.step = step;
+    p.time = time();
+    p.t_end = progress_end;
+    kinetic_state(c, p.kinetic_energy, p.max_speed);
+    settings.progress(p);
+  }
+};
+
+const auto nothing = [] {};
+const auto never = [] { return false; };
+
+// Insertion (solver.hpp InsertionSettings): the pool's particle c.n is the next to enter, so the
+// per-particle tables, made for the whole pool, stay indexed as they are.
+class Insertion {
+ public:
+  Insertion(Run& run, double r_max)
+      : run_(run), ins_(run.settings.insertion), pool_(run.c.n), r_max_(r_max), rng_(ins_.seed) {
+    // Time a new particle needs to fall one largest diameter (from `speed`, under gravity), twice.
+    const double g = run.scene.has(kGravity) ? run.scene.gravity : 0.0;
+    const double v = ins_.speed;
+    const double fall = g > 0 ? (std::sqrt(v * v + 2 * g * 2 * r_max) - v) / g : 2 * r_max / v;
+    patience_ = ins_.patience > 0 ? ins_.patience : 2 * fall;
+    run.inserting = ins_.enabled;
+    if (run.inserting) {
+      run.c.n = 0;
+      try_insert();
+    }
+  }
+
+  // Before each step: the particles due by now (one at t = 0, then `rate` per second) enter
+  // while there is room; insertion ends with the pool in or the box full.
+  void insert_due() {
+    Context& c = run_.c;
+    if (!run_.inserting) return;
+    const double time = run_.time();
+    const auto due = std::min<std::size_t>(
+        pool_, 1 + static_cast<std::size_t>(std::floor(ins_.rate * time)));
+    const std::size_t before = c.n;
+    while (c.n < due) {
+      if (try_insert()) {
+        failing_since_ = kNotFailing;
+        continue;
+      }
+      if (failing_since_ == kNotFailing) failing_since_ = time;
+      break;
+    }
+    if (c.n != before) {
+      c.rebuild();
+      ++c.rebuilds;
+    }
+    if (c.n == pool_) {
+      end("pool", time);
+    } else if (failing_since_ != kNotFailing && time - failing_since_ >= patience_) {
+      end("full", time);
+    }
+    if (!run_.inserting && run_.settings.rest.kinetic_energy <= 0) {  // the rest criterion's mass
+      double inserted_mass = 0;
+      for (std::size_t i = 0; i < c.n; ++i) inserted_mass += c.mass[i];
+      const double v = run_.settings.rest.max_speed;
+      run_.rest_energy = 1e-2 * 0.5 * inserted_mass * v * v;
+    }
+  }
+
+  // Ends insertion: the pool's rest is dropped, the bed shrinks to the inserted particles.
+  void end(const char* why, double time) {
+    Context& c = run_.c;
+    bed::Bed& bed = c.bed;
+    run_.inserting = false;
+    run_.summary.inserted = c.n;
+    run_.summary.insertion_end = time;
+    run_.summary.insertion_stopped_by = why;
+    for (auto* v : {&bed.x, &bed.y, &bed.z, &bed.radius, &bed.vx, &bed.vy, &bed.vz}) v->resize(c.n);
+    bed.id.resize(c.n);
+    if (!bed.material.empty()) bed.material.resize(c.n);
+    if (!bed.temperature.empty()) bed.temperature.resize(c.n);
+    if (!bed.phase.empty()) bed.phase.resize(c.n);
+  }
+
+ private:
+  static constexpr double kNotFailing = -1;
+
+  // The next particle of the pool at a free spot of the top layer (one largest diameter under
+  // the top face, inside the side faces), moving down at `speed`; false after `tries` draws.
+  bool try_insert() {
+    Context& c = run_.c;
+    bed::Bed& bed = c.bed;
     const std::size_t k = c.n;
     const double r = bed.radius[k];
     const Box& box = c.params.box;
@@ -496,12 +614,11 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
       lo[a] = box.lower[a] + (box.periodic[a] ? 0.0 : r);
       hi[a] = box.upper[a] - (box.periodic[a] ? 0.0 : r);
     }
-    lo[2] = box.upper[2] - 2 * r_max + r;  // the top layer, one largest diameter
+    lo[2] = box.upper[2] - 2 * r_max_ + r;
     hi[2] = box.upper[2] - r;
-    for (std::size_t t = 0; t < ins.tries; ++t) {
-      const double p[3] = {bed::uniform(insert_rng, lo[0], hi[0]),
-                           bed::uniform(insert_rng, lo[1], hi[1]),
-                           bed::uniform(insert_rng, lo[2], hi[2])};
+    for (std::size_t t = 0; t < ins_.tries; ++t) {
+      const double p[3] = {bed::uniform(rng_, lo[0], hi[0]), bed::uniform(rng_, lo[1], hi[1]),
+                           bed::uniform(rng_, lo[2], hi[2])};
       bool free = true;
       for (std::size_t j = 0; j < c.n && free; ++j) {
         const double dx = box.image(0, bed.x[j] - p[0]), dy = box.image(1, bed.y[j] - p[1]),
@@ -514,291 +631,223 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
       bed.z[k] = p[2];
       bed.vx[k] = 0;
       bed.vy[k] = 0;
-      bed.vz[k] = -ins.speed;
+      bed.vz[k] = -ins_.speed;
       ++c.n;
       return true;
     }
     return false;
-  };
-  RunSummary summary;
-  const auto end_insertion = [&](const char* why, double time) {
-    inserting = false;
-    summary.inserted = c.n;
-    summary.insertion_end = time;
-    summary.insertion_stopped_by = why;
-    for (auto* v : {&bed.x, &bed.y, &bed.z, &bed.radius, &bed.vx, &bed.vy, &bed.vz}) v->resize(c.n);
-    bed.id.resize(c.n);
-    if (!bed.material.empty()) bed.material.resize(c.n);
-    if (!bed.temperature.empty()) bed.temperature.resize(c.n);
-    if (!bed.phase.empty()) bed.phase.resize(c.n);
-  };
-  if (inserting) {
-    c.n = 0;
-    try_insert();
-  }
-  c.rebuild();
-
-  const unsigned effects = scene.effects & kAllEffects;
-  const Steppers steppers =
-      linear ? dispatch<detail::LinearLaw>(effects, settings.integrator, std::make_index_sequence<64>{})
-             : dispatch<detail::HertzLaw>(effects, settings.integrator, std::make_index_sequence<64>{});
-  steppers.forces(c.arrays(), c.params, c.list, c.tables, c.threads);  // Verlet needs F(t0)
-
-  const double t_end = settings.t_end > 0 ? settings.t_end : 1.0;
-  const auto total_steps = static_cast<std::uint64_t>(std::ceil(t_end / c.dt - 1e-9));
-  double rest_energy = settings.rest.kinetic_energy > 0
-                                 ? settings.rest.kinetic_energy
-                                 : 1e-2 * 0.5 * total_mass * settings.rest.max_speed *
-                                       settings.rest.max_speed;
-  // Rest checks: about ten per window (at most every 100 steps), never every step.
-  const auto rest_every = static_cast<std::uint64_t>(
-      std::clamp(std::floor(settings.rest.window / c.dt / 10.0), 1.0, 100.0));
-  const auto window_steps = static_cast<std::uint64_t>(std::ceil(settings.rest.window / c.dt));
-  constexpr std::uint64_t kNotQuiet = ~std::uint64_t{0};
-
-  std::optional<TrajectoryWriter> trajectory;
-  if (!settings.trajectory.empty()) {
-    trajectory.emplace(settings.trajectory, bed);
-    trajectory->write(0, 0.0, bed);
   }
 
-  std::uint64_t step = 0;
-  // Steps until `last_step`, rest (with until_rest) or the observer's stop; `before` runs before
-  // each step, `after` after it (true ends the phase). Returns true when the phase ended at rest.
-  bool stopped = false;  // by the observer: no later phase runs
-  const auto advance = [&](std::uint64_t last_step, bool until_rest, double progress_end,
-                           auto&& before, auto&& after) {
-    std::uint64_t quiet_since = kNotQuiet;  // first step of the current quiet stretch
-    while (step < last_step) {
-      before();
-      steppers.step(c, step + 1);
-      ++step;
-      const double time = static_cast<double>(step) * c.dt;
-      if (trajectory && step % settings.trajectory_every == 0) trajectory->write(step, time, bed);
-      if (settings.observer && step % settings.observe_every == 0 &&
-          settings.observer(step, time, bed)) {
-        stopped = true;
-        return false;
-      }
-      if (after()) return false;
-      const bool report = settings.progress && step % settings.progress_every == 0;
-      if (until_rest && !inserting && step % rest_every == 0) {
-        double ke, vmax;
-        kinetic_state(c, ke, vmax);
-        if (ke < rest_energy && vmax < settings.rest.max_speed) {
-          if (quiet_since == kNotQuiet) quiet_since = step;
-          if (step - quiet_since >= window_steps) return true;
-        } else {
-          quiet_since = kNotQuiet;
-        }
-      }
-      if (report) {
-        Progress p;
-        p.step = step;
-        p.time = time;
-        p.t_end = progress_end;
-        kinetic_state(c, p.kinetic_energy, p.max_speed);
-        settings.progress(p);
-      }
+  Run& run_;
+  const InsertionSettings& ins_;
+  std::size_t pool_;
+  double r_max_;
+  bed::Rng rng_;
+  double patience_ = 0;
+  double failing_since_ = kNotFailing;  // start of the current run of failed insertions
+};
+
+// The lid (solver.hpp LidSettings): the box's top face, moved between steps, lowered onto the
+// bed, held, then released (the bed relaxes) or kept as the bed's top face.
+class LidPhase {
+ public:
+  LidPhase(Run& run, double (*force)(const Context&, bool))
+      : run_(run), c_(run.c), lid_(run.settings.lid), out_(run.summary.lid), box_(c_.params.box),
+        force_(force), damping_(run.scene.has(kDamping)), top_(box_.upper[2]) {}
+
+  void run() {
+    run_.summary.lid_used = true;
+    lower();
+    if (!run_.stopped) hold();
+    if (!lid_.release) {  // the lid stays: it is the bed's top face from now on
+      c_.bed.domain.upper[2] = box_.upper[2];
+      run_.summary.at_rest = false;
+      return;
     }
-    return false;
-  };
-  const auto nothing = [] {};
-  const auto never = [] { return false; };
-  constexpr double kNotFailing = -1;
-  double failing_since = kNotFailing;  // start of the current run of failed insertions
-  const auto insert_due = [&] {
-    if (!inserting) return;
-    const double time = static_cast<double>(step) * c.dt;
-    const auto due = std::min<std::size_t>(
-        pool, 1 + static_cast<std::size_t>(std::floor(ins.rate * time)));
-    const std::size_t before = c.n;
-    while (c.n < due) {
-      if (try_insert()) {
-        failing_since = kNotFailing;
-        continue;
-      }
-      if (failing_since == kNotFailing) failing_since = time;
-      break;
-    }
-    if (c.n != before) {
-      c.rebuild();
-      ++c.rebuilds;
-    }
-    if (c.n == pool) {
-      end_insertion("pool", time);
-    } else if (failing_since != kNotFailing && time - failing_since >= patience) {
-      end_insertion("full", time);
-    }
-    if (!inserting && settings.rest.kinetic_energy <= 0) {  // the rest criterion's mass
-      double inserted_mass = 0;
-      for (std::size_t i = 0; i < c.n; ++i) inserted_mass += c.mass[i];
-      rest_energy = 1e-2 * 0.5 * inserted_mass * settings.rest.max_speed * settings.rest.max_speed;
-    }
-  };
-  summary.at_rest = advance(total_steps, settings.until_rest, t_end, insert_due, never);
-  if (inserting) end_insertion("time", static_cast<double>(step) * c.dt);
-  if (settings.lid.enabled && !stopped) {
-    // The lid (solver.hpp LidSettings): the box's top face, moved between steps.
-    const LidSettings& lid = settings.lid;
-    LidSummary& out = summary.lid;
-    summary.lid_used = true;
-    Box& box = c.params.box;
-    const double top = box.upper[2];
-    double highest = box.lower[2], r_min = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < c.n; ++i) {
+    release();
+    if (run_.stopped) return;
+    c_.rebuild();
+    ++c_.rebuilds;
+    const auto relax_steps = static_cast<std::uint64_t>(std::ceil(lid_.relax / c_.dt - 1e-9));
+    run_.summary.at_rest = advance(relax_steps, true, nothing, never);
+  }
+
+ private:
+  // The held lid's servo (LidSettings::hold): full speed once the force is 10 % off the target.
+  static constexpr double kServoGain = 10;
+
+  // Where the lowering starts (the highest particle top) and how far it may go: to the target
+  // force, the travel or depth asked for, or one smallest diameter above the floor.
+  void plan_travel() {
+    const bed::Bed& bed = c_.bed;
+    double highest = box_.lower[2], r_min = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < c_.n; ++i) {
       highest = std::max(highest, bed.z[i] + bed.radius[i]);
       r_min = std::min(r_min, bed.radius[i]);
     }
-    out.start_z = std::min(top, highest);
-    out.target_force = lid.pressure * box.length[0] * box.length[1];
+    out_.start_z = std::min(top_, highest);
+    out_.target_force = lid_.pressure * box_.length[0] * box_.length[1];
     // No bed is thinner than one particle: the lid stops one smallest diameter above the floor.
-    const double floor_travel = std::max(0.0, out.start_z - (box.lower[2] + 2 * r_min));
-    double requested = lid.travel;
-    if (lid.depth > 0) {  // to `depth` below the surface, the 90th percentile of the tops
-      std::vector<double> tops(c.n);
-      for (std::size_t i = 0; i < c.n; ++i) tops[i] = bed.z[i] + bed.radius[i];
-      const auto k = tops.begin() + static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(c.n - 1));
+    floor_travel_ = std::max(0.0, out_.start_z - (box_.lower[2] + 2 * r_min));
+    requested_ = lid_.travel;
+    if (lid_.depth > 0) {  // to `depth` below the surface, the 90th percentile of the tops
+      std::vector<double> tops(c_.n);
+      for (std::size_t i = 0; i < c_.n; ++i) tops[i] = bed.z[i] + bed.radius[i];
+      const auto k = tops.begin() + static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(c_.n - 1));
       std::nth_element(tops.begin(), k, tops.end());
-      out.surface_z = *k;
-      requested = std::max(0.0, out.start_z - (out.surface_z - lid.depth));
+      out_.surface_z = *k;
+      requested_ = std::max(0.0, out_.start_z - (out_.surface_z - lid_.depth));
     }
-    const double travel = requested > 0 ? std::min(requested, floor_travel) : floor_travel;
-    const double per_step = lid.speed * c.dt;
-    const bool damping = scene.has(kDamping);
-    box.upper[2] = out.start_z;
-    c.rebuild();
-    ++c.rebuilds;
-    // The face tables list the particles within r + skin of the lid at a build; particles move
-    // at most skin/2 before the next one, so a rebuild whenever the lid has moved skin/2 keeps
-    // every particle that can touch it listed.
-    double lid_at_build = box.upper[2];
-    std::uint64_t builds = c.rebuilds, lowered = 0;
-    const auto rebuild_if_lid_moved = [&] {
-      if (std::abs(lid_at_build - box.upper[2]) > 0.5 * c.list.skin()) {
-        c.rebuild();
-        ++c.rebuilds;
-      }
-    };
-    const auto lower = [&] {
-      ++lowered;
-      box.upper[2] = out.start_z - std::min(travel, static_cast<double>(lowered) * per_step);
-      rebuild_if_lid_moved();
-    };
-    const auto record = [&] {
-      if (c.rebuilds != builds) {  // here or in the step's own rebuild_if_needed
-        builds = c.rebuilds;
-        lid_at_build = box.upper[2];
-      }
-      const double force = steppers.lid_force(c, damping);
-      out.max_force = std::max(out.max_force, force);
-      return force;
-    };
-    const auto lowered_enough = [&] {
-      out.stop_force = record();
-      if (out.target_force > 0 && out.stop_force >= out.target_force) {
-        out.stopped_by = "force";
-      } else if (static_cast<double>(lowered) * per_step >= travel) {
-        out.stopped_by = requested > 0 && requested <= floor_travel
-                             ? (lid.depth > 0 ? "depth" : "travel")
-                             : "floor";
-      }
-      return !out.stopped_by.empty();
-    };
-    c.params.top_velocity = -lid.speed;
-    const auto lowering_steps = static_cast<std::uint64_t>(std::ceil(travel / per_step)) + 1;
-    advance(step + lowering_steps, false, static_cast<double>(step + lowering_steps) * c.dt,
-            lower, lowered_enough);
-    if (out.stopped_by.empty()) out.stopped_by = "floor";  // travel 0: the lid could not move
-    out.stop_z = box.upper[2];
-    c.params.top_velocity = 0;
-    if (!stopped) {
-      const auto hold_steps = static_cast<std::uint64_t>(std::ceil(lid.hold / c.dt - 1e-9));
-      double late_sum = 0;
-      std::uint64_t late = 0;
-      const std::uint64_t hold_start = step;
-      const auto track = [&] {
-        out.hold_end_force = record();
-        if (2 * (step - hold_start) >= hold_steps) {
-          late_sum += out.hold_end_force;
-          ++late;
-        }
-        return false;
-      };
-      // Pressure held: the servo of LidSettings::hold, never below the floor limit, never above
-      // where the lid started; the face tables follow it either way.
-      const double lowest = out.start_z - floor_travel;
-      const auto servo = [&] {
-        const double error = (out.target_force - out.hold_end_force) / out.target_force;
-        const double v = lid.speed * std::clamp(kServoGain * error, -1.0, 1.0);
-        box.upper[2] = std::clamp(box.upper[2] - v * c.dt, lowest, top);
-        c.params.top_velocity = -v;
-        rebuild_if_lid_moved();
-      };
-      out.hold_end_force = out.stop_force;
-      const double last = static_cast<double>(step + hold_steps) * c.dt;
-      if (out.target_force > 0)
-        advance(step + hold_steps, false, last, servo, track);
-      else
-        advance(step + hold_steps, false, last, nothing, track);
-      c.params.top_velocity = 0;
-      out.hold_end_z = box.upper[2];
-      out.hold_late_force = late ? late_sum / static_cast<double>(late) : out.hold_end_force;
-    }
-    if (!lid.release) {  // the lid stays: it is the bed's top face from now on
-      bed.domain.upper[2] = box.upper[2];
-      summary.at_rest = false;
-    } else {
-      // The release: raised back to the top of the box at lid.speed ([KE]: "raised again"), so
-      // that the bed unloads as slowly as it was loaded; at once, a bed pressed on stiff
-      // linear springs throws its top layers up.
-      out.release_time = static_cast<double>(step) * c.dt;
-      c.params.top_velocity = lid.speed;
-      const auto raise = [&] {
-        box.upper[2] = std::min(top, box.upper[2] + per_step);
-        rebuild_if_lid_moved();
-      };
-      const auto raised = [&] {
-        record();
-        return box.upper[2] >= top;
-      };
-      const auto raising_steps =
-          static_cast<std::uint64_t>(std::ceil((top - box.upper[2]) / per_step)) + 1;
-      if (!stopped)
-        advance(step + raising_steps, false, static_cast<double>(step + raising_steps) * c.dt,
-                raise, raised);
-      c.params.top_velocity = 0;
-      box.upper[2] = top;
-    }
-    if (!stopped && lid.release) {
-      c.rebuild();
-      ++c.rebuilds;
-      const auto relax_steps = static_cast<std::uint64_t>(std::ceil(lid.relax / c.dt - 1e-9));
-      summary.at_rest = advance(step + relax_steps, true,
-                                static_cast<double>(step + relax_steps) * c.dt, nothing, never);
-    }
-  }
-  if (trajectory) {
-    if (step % settings.trajectory_every != 0) trajectory->write(step, static_cast<double>(step) * c.dt, bed);
-    trajectory->close();
+    travel_ = requested_ > 0 ? std::min(requested_, floor_travel_) : floor_travel_;
+    per_step_ = lid_.speed * c_.dt;
   }
 
+  void lower() {
+    plan_travel();
+    box_.upper[2] = out_.start_z;
+    c_.rebuild();
+    ++c_.rebuilds;
+    lid_at_build_ = box_.upper[2];
+    builds_ = c_.rebuilds;
+    std::uint64_t lowered = 0;
+    const auto move = [&] {
+      ++lowered;
+      box_.upper[2] = out_.start_z - std::min(travel_, static_cast<double>(lowered) * per_step_);
+      rebuild_if_lid_moved();
+    };
+    const auto lowered_enough = [&] {
+      out_.stop_force = record();
+      if (out_.target_force > 0 && out_.stop_force >= out_.target_force) {
+        out_.stopped_by = "force";
+      } else if (static_cast<double>(lowered) * per_step_ >= travel_) {
+        out_.stopped_by = requested_ > 0 && requested_ <= floor_travel_
+                              ? (lid_.depth > 0 ? "depth" : "travel")
+                              : "floor";
+      }
+      return !out_.stopped_by.empty();
+    };
+    c_.params.top_velocity = -lid_.speed;
+    const auto lowering_steps = static_cast<std::uint64_t>(std::ceil(travel_ / per_step_)) + 1;
+    advance(lowering_steps, false, move, lowered_enough);
+    if (out_.stopped_by.empty()) out_.stopped_by = "floor";  // travel 0: the lid could not move
+    out_.stop_z = box_.upper[2];
+    c_.params.top_velocity = 0;
+  }
+
+  // Held for lid.hold: with a pressure by the servo of LidSettings::hold, never below the floor
+  // limit, never above where the lid started; in place otherwise.
+  void hold() {
+    const auto hold_steps = static_cast<std::uint64_t>(std::ceil(lid_.hold / c_.dt - 1e-9));
+    double late_sum = 0;
+    std::uint64_t late = 0;
+    const std::uint64_t hold_start = run_.step;
+    const auto track = [&] {
+      out_.hold_end_force = record();
+      if (2 * (run_.step - hold_start) >= hold_steps) {
+        late_sum += out_.hold_end_force;
+        ++late;
+      }
+      return false;
+    };
+    const double lowest = out_.start_z - floor_travel_;
+    const auto servo = [&] {
+      const double error = (out_.target_force - out_.hold_end_force) / out_.target_force;
+      const double v = lid_.speed * std::clamp(kServoGain * error, -1.0, 1.0);
+      box_.upper[2] = std::clamp(box_.upper[2] - v * c_.dt, lowest, top_);
+      c_.params.top_velocity = -v;
+      rebuild_if_lid_moved();
+    };
+    out_.hold_end_force = out_.stop_force;
+    if (out_.target_force > 0)
+      advance(hold_steps, false, servo, track);
+    else
+      advance(hold_steps, false, nothing, track);
+    c_.params.top_velocity = 0;
+    out_.hold_end_z = box_.upper[2];
+    out_.hold_late_force = late ? late_sum / static_cast<double>(late) : out_.hold_end_force;
+  }
+
+  // Raised back to the top of the box at lid.speed ([KE]: "raised again"), so that the bed
+  // unloads as slowly as it was loaded; at once, a bed pressed on stiff linear springs throws
+  // its top layers up.
+  void release() {
+    out_.release_time = run_.time();
+    c_.params.top_velocity = lid_.speed;
+    const auto raise = [&] {
+      box_.upper[2] = std::min(top_, box_.upper[2] + per_step_);
+      rebuild_if_lid_moved();
+    };
+    const auto raised = [&] {
+      record();
+      return box_.upper[2] >= top_;
+    };
+    const auto raising_steps =
+        static_cast<std::uint64_t>(std::ceil((top_ - box_.upper[2]) / per_step_)) + 1;
+    if (!run_.stopped) advance(raising_steps, false, raise, raised);
+    c_.params.top_velocity = 0;
+    box_.upper[2] = top_;
+  }
+
+  // `steps` more steps of the run (Run::advance), the progress bar's end at their end.
+  template <class Before, class After>
+  bool advance(std::uint64_t steps, bool until_rest, Before&& before, After&& after) {
+    const std::uint64_t last = run_.step + steps;
+    return run_.advance(last, until_rest, run_.time_at(last), before, after);
+  }
+
+  // The face tables list the particles within r + skin of the lid at a build; particles move at
+  // most skin/2 before the next one, so a rebuild whenever the lid has moved skin/2 keeps every
+  // particle that can touch it listed.
+  void rebuild_if_lid_moved() {
+    if (std::abs(lid_at_build_ - box_.upper[2]) > 0.5 * c_.list.skin()) {
+      c_.rebuild();
+      ++c_.rebuilds;
+    }
+  }
+  // The bed's force on the lid now (its largest so far kept).
+  double record() {
+    if (c_.rebuilds != builds_) {  // here or in the step's own rebuild_if_needed
+      builds_ = c_.rebuilds;
+      lid_at_build_ = box_.upper[2];
+    }
+    const double force = force_(c_, damping_);
+    out_.max_force = std::max(out_.max_force, force);
+    return force;
+  }
+
+  Run& run_;
+  Context& c_;
+  const LidSettings& lid_;
+  LidSummary& out_;
+  Box& box_;
+  double (*force_)(const Context&, bool);  // lid_force<Law>
+  bool damping_;
+  double top_;                 // m, the box's top face
+  double floor_travel_ = 0, requested_ = 0, travel_ = 0, per_step_ = 0;  // m
+  double lid_at_build_ = 0;    // m, where the lid was at the last list build
+  std::uint64_t builds_ = 0;   // c.rebuilds when lid_at_build_ was taken
+};
+
+// The summary of the end state: steps, energies, overlaps, lost particles.
+void summarise(Run& run, const TimeStepBound& bound) {
+  const Context& c = run.c;
+  RunSummary& summary = run.summary;
   summary.n = c.n;
-  summary.steps = step;
-  summary.sim_time = static_cast<double>(step) * c.dt;
+  summary.steps = run.step;
+  summary.sim_time = run.time();
   summary.dt = c.dt;
   summary.dt_stable = bound.stable;
   kinetic_state(c, summary.kinetic_energy, summary.max_speed);
-  const Overlap overlap = max_overlap(bed, scene);
+  const Overlap overlap = max_overlap(c.bed, run.scene);
   summary.max_overlap = overlap.relative;
   summary.max_overlap_m = overlap.absolute;
-  if (scene.law == ContactLaw::linear) {
+  if (run.scene.law == ContactLaw::linear) {
     // The Hertz overlap at the materials' E* under the same force k_n delta:
     // delta_h = (3 k_n delta / (4 E* sqrt(R*)))^{2/3} (the equivalence of [KE]).
     const double e_star = overlap.wall ? c.params.wall.hertz.effective_modulus
                                        : c.params.pair.hertz.effective_modulus;
     const double full = overlap.absolute > 0
-                            ? std::pow(3 * scene.stiffness * overlap.absolute /
+                            ? std::pow(3 * run.scene.stiffness * overlap.absolute /
                                            (4 * e_star * std::sqrt(overlap.reduced_radius)),
                                        2.0 / 3.0)
                             : 0.0;
@@ -806,31 +855,96 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
         overlap.absolute > 0 ? overlap.relative * full / overlap.absolute : 0.0;
   } else {
     summary.max_overlap_full_stiffness =
-        overlap.relative * std::pow(settings.young_scale, -2.0 / 3.0);
+        overlap.relative * std::pow(run.settings.young_scale, -2.0 / 3.0);
   }
+  const Box& box = c.params.box;
   for (std::size_t i = 0; i < c.n; ++i) {
-    const double p[3] = {bed.x[i], bed.y[i], bed.z[i]};
+    const double p[3] = {c.bed.x[i], c.bed.y[i], c.bed.z[i]};
     for (int a = 0; a < 3; ++a) {
-      if (!c.params.box.periodic[a] && (p[a] < c.params.box.lower[a] || p[a] > c.params.box.upper[a])) {
+      if (!box.periodic[a] && (p[a] < box.lower[a] || p[a] > box.upper[a])) {
         ++summary.lost;
         break;
       }
     }
   }
   summary.neighbour_rebuilds = c.rebuilds;
-  if (settings.progress) {
-    Progress p;
-    p.step = step;
-    p.time = summary.sim_time;
-    p.t_end = summary.sim_time;
-    p.kinetic_energy = summary.kinetic_energy;
-    p.max_speed = summary.max_speed;
-    settings.progress(p);
+}
+
+}  // namespace
+
+void check_run_settings(const RunSettings& s) {
+  const auto bad = [](const char* what, double v, const char* accepted) {
+    std::ostringstream msg;
+    msg << what << ": " << v << " is out of range (accepted: " << accepted << ")";
+    throw InputError(msg.str());
+  };
+  if (!(s.t_end >= 0) || !std::isfinite(s.t_end)) bad("--t-end", s.t_end, "T >= 0 s");
+  if (!s.until_rest && !(s.t_end > 0)) bad("--t-end", s.t_end, "T > 0 s, or --until-rest");
+  if (!(s.dt >= 0) || !std::isfinite(s.dt)) bad("--dt", s.dt, "dt > 0 s");
+  if (!(s.skin >= 0) || !std::isfinite(s.skin)) bad("skin", s.skin, ">= 0 m");
+  if (!s.trajectory.empty() && s.trajectory_every == 0) {
+    throw InputError("--every: 0 with --trajectory (accepted: K >= 1 steps)");
   }
+  if (!(s.rest.max_speed > 0) || !(s.rest.window >= 0) || !(s.rest.kinetic_energy >= 0)) {
+    bad("rest criteria", s.rest.max_speed, "speed > 0, window >= 0, energy >= 0");
+  }
+}
+
+RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
+  const auto started = std::chrono::steady_clock::now();
+  check_run(bed, scene, settings);
+  const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
+  Run run(bed, scene, settings);
+  Context& c = run.c;
+  c.n = bed.n();
+  c.threads = bed.n() < settings.parallel_min_particles ? 1
+              : settings.threads > 0 ? settings.threads
+                                     : omp_get_max_threads();
+  c.dt = chosen_dt(bound, settings);
+  set_up_laws(c, scene);
+  const Totals totals = set_up_particles(c, scene);
+  Insertion insertion(run, totals.r_max);
+  c.rebuild();
+
+  const bool linear = scene.law == ContactLaw::linear;
+  constexpr auto masks = std::make_index_sequence<kAllEffects + 1>{};
+  c.forces = linear ? force_loop<detail::LinearLaw>(scene.effects & kAllEffects, masks)
+                    : force_loop<detail::HertzLaw>(scene.effects & kAllEffects, masks);
+  run.step_once = settings.integrator == Integrator::rk4 ? &step_rk4 : &step_verlet;
+  c.compute_forces();  // Verlet needs F(t0)
+
+  const double t_end = settings.t_end > 0 ? settings.t_end : 1.0;
+  const auto total_steps = static_cast<std::uint64_t>(std::ceil(t_end / c.dt - 1e-9));
+  const RestCriteria& rest = settings.rest;
+  run.rest_energy = rest.kinetic_energy > 0
+                        ? rest.kinetic_energy
+                        : 1e-2 * 0.5 * totals.total_mass * rest.max_speed * rest.max_speed;
+  // Rest checks: about ten per window (at most every 100 steps), never every step.
+  run.rest_every = static_cast<std::uint64_t>(
+      std::clamp(std::floor(rest.window / c.dt / 10.0), 1.0, 100.0));
+  run.window_steps = static_cast<std::uint64_t>(std::ceil(rest.window / c.dt));
+  if (!settings.trajectory.empty()) {
+    run.trajectory.emplace(settings.trajectory, bed);
+    run.trajectory->write(0, 0.0, bed);
+  }
+
+  run.summary.at_rest = run.advance(total_steps, settings.until_rest, t_end,
+                                    [&] { insertion.insert_due(); }, never);
+  if (run.inserting) insertion.end("time", run.time());
+  if (settings.lid.enabled && !run.stopped) {
+    LidPhase(run, linear ? &lid_force<detail::LinearLaw> : &lid_force<detail::HertzLaw>).run();
+  }
+  if (run.trajectory) {
+    if (run.step % settings.trajectory_every != 0) run.trajectory->write(run.step, run.time(), bed);
+    run.trajectory->close();
+  }
+  summarise(run, bound);
+  if (settings.progress) run.report(run.summary.sim_time);
+  RunSummary& summary = run.summary;
   summary.wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  summary.particle_steps_per_s =
-      summary.wall_time > 0 ? static_cast<double>(c.n) * static_cast<double>(step) / summary.wall_time : 0;
+  const double particle_steps = static_cast<double>(c.n) * static_cast<double>(run.step);
+  summary.particle_steps_per_s = summary.wall_time > 0 ? particle_steps / summary.wall_time : 0;
   return summary;
 }
 

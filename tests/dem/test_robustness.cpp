@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -11,9 +12,11 @@
 
 #include "beds.hpp"
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/h5_input.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/solver.hpp"
 #include "powderbed/dem/time_step.hpp"
+#include "powderbed/dem/trajectory.hpp"
 
 using namespace powderbed;
 
@@ -198,6 +201,44 @@ TEST(Trajectory, WritesTimeSeriesAndXdmfCollection) {
   std::size_t grids = 0;
   for (auto p = x.find("<Time "); p != std::string::npos; p = x.find("<Time ", p + 1)) ++grids;
   EXPECT_EQ(grids, 5u);  // steps 0, 25, 50, 75, 100
+  std::remove(path.c_str());
+  std::remove(xmf.c_str());
+}
+
+// The XDMF names a dataset only where the file has it: a snapshot of a bed without velocities
+// (bedconv's dumps without vx vy vz) gets no velocity attribute, a later one with them does.
+TEST(Trajectory, XdmfNamesOnlyDatasetsThatExist) {
+  bed::Bed b = test::box_bed(0.3e-3, 0.3e-3, 0.3e-3);
+  const double lo[3] = {0, 0, 0}, hi[3] = {0.3e-3, 0.3e-3, 0.3e-3};
+  test::add_random(b, 5, 10e-6, 20e-6, lo, hi, 3);
+  ASSERT_FALSE(b.has_velocity());
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("powderbed_dem_traj_xdmf_" + std::to_string(::getpid()) + ".h5"))
+                               .string();
+  dem::TrajectoryWriter writer(path, b);
+  writer.write(0, 0.0, b);
+  b.vx.assign(b.n(), 1.0);
+  b.vy.assign(b.n(), 0.0);
+  b.vz.assign(b.n(), -1.0);
+  writer.write(10, 1e-6, b);
+  writer.close();
+  const std::string xmf = path.substr(0, path.size() - 3) + ".xmf";
+  std::ifstream in(xmf);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string x = text.str();
+  const bed::H5Input h5(path);
+  const std::string file = path.substr(path.rfind('/') + 1) + ":";
+  std::size_t items = 0;
+  for (auto p = x.find(file); p != std::string::npos; p = x.find(file, p + 1), ++items) {
+    const std::size_t begin = p + file.size();
+    const std::string dataset = x.substr(begin, x.find('<', begin) - begin);
+    EXPECT_TRUE(h5.exists(dataset)) << dataset;
+  }
+  EXPECT_EQ(items, 2u * 3u + 1u);  // topology, position, radius per grid; velocity in the second
+  const auto velocity = x.find("Name=\"velocity\"");
+  EXPECT_GT(velocity, x.find("step 10\""));
+  EXPECT_EQ(x.find("Name=\"velocity\"", velocity + 1), std::string::npos);
   std::remove(path.c_str());
   std::remove(xmf.c_str());
 }

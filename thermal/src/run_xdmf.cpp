@@ -32,22 +32,17 @@ struct Writer {
   }
 };
 
-void particles(Writer& w, std::size_t count, const Steps& steps) {
-  const std::string n = std::to_string(count);
-  w.x << "  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+// The particles' temperature and phase at each snapshot, on the positions and radii of the bed.
+std::string particles(const std::string& h5, std::size_t count, const Steps& steps) {
+  std::vector<bed::XdmfParticleStep> grids;
   for (const auto& [step, time] : steps) {
     const std::string group = bed::step_group(step);
-    w.begin_step("particles", step, time);
-    w.x << bed::xdmf_polyvertex_topology(count, w.h5, "     ")
-        << "     <Geometry GeometryType=\"XYZ\">\n";
-    w.item(n + " 3", "/particles/position");
-    w.x << "     </Geometry>\n";
-    w.attribute("radius", n, "/particles/radius");
-    w.attribute("temperature", n, group + "/particle_temperature");
-    w.attribute("phase", n, group + "/particle_phase", true);
-    w.x << "    </Grid>\n";
+    grids.push_back({step, time, "/particles/position",
+                     {{"radius", "/particles/radius"},
+                      {"temperature", group + "/particle_temperature"},
+                      {"phase", group + "/particle_phase", false, true}}});
   }
-  w.x << "  </Grid>\n";
+  return bed::xdmf_particle_series("particles", count, h5, grids);
 }
 
 // A plane of substrate nodes as a CoRectMesh: dimensions and origin/spacing in z, y, x order.
@@ -98,13 +93,11 @@ std::string run_xdmf(const std::string& h5, std::size_t count, const SubstrateGe
   Writer w;
   w.h5 = h5;
   w.x.precision(17);
-  w.x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n";
-  particles(w, count, steps);
+  w.x << particles(h5, count, steps);
   plane(w, g, {"top", 1, g.ny, g.z_top, g.y0}, steps);
   plane(w, g, {"section_y", g.nz, 1, g.z(0), g.y(g.ny / 2)}, steps);
   if (fused && !steps.empty()) solid_top(w, g, steps.back().second, lack_of_fusion);
-  w.x << " </Domain>\n</Xdmf>\n";
-  return w.x.str();
+  return bed::xdmf_document(w.x.str());
 }
 
 }  // namespace powderbed::thermal::detail

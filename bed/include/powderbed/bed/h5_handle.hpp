@@ -1,7 +1,8 @@
 #pragma once
 // RAII ownership of HDF5 C API identifiers (hid_t), one small type per close function: bed's
-// files and the stages' own HDF5 groups (dem's trajectory and restart) close what they open on
-// every path, errors included. Including it needs HDF5's headers (HDF5_INCLUDE_DIRS).
+// files, H5Output and H5Input close what they open on every path, errors included. Including it
+// needs HDF5's headers (HDF5_INCLUDE_DIRS), which only bed has: the stages go through H5Output
+// and H5Input.
 #include <hdf5.h>
 
 #include <utility>

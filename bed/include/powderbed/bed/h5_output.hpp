@@ -13,8 +13,12 @@ namespace powderbed::bed {
 
 class H5Output {
  public:
-  // Creates `<path>.tmp.<pid>`; throws InputError naming `path` when it cannot.
-  explicit H5Output(const std::string& path);
+  // create: a new file, written as `<path>.tmp.<pid>` and renamed by commit(). append: adds to
+  // the existing HDF5 file `path` in place (the spread's /restart group, added to the bed file
+  // just written), so a failure leaves what it had written.
+  enum class Mode { create, append };
+  // Throws InputError naming `path` when it cannot create (or open) the file.
+  explicit H5Output(const std::string& path, Mode mode = Mode::create);
   ~H5Output();  // removes the temporary unless commit() succeeded
   H5Output(const H5Output&) = delete;
   H5Output& operator=(const H5Output&) = delete;
@@ -37,7 +41,7 @@ class H5Output {
   void attribute(const std::string& object, const std::string& name, std::uint64_t value);
   void attribute(const std::string& object, const std::string& name, const std::string& value);
 
-  // Closes the file and renames it into place; throws InputError on failure.
+  // Closes the file and renames it into place (create); throws InputError on failure.
   void commit();
   const std::string& path() const;
 

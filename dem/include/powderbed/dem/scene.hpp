@@ -1,7 +1,9 @@
 #pragma once
 // What a deposition scene specifies (docs/physics.md §4): materials, fluid, gravity and the set of
 // physical effects switched on. The solver composes the chosen effects once, at start.
+#include <iterator>
 #include <string>
+#include <string_view>
 
 namespace powderbed::dem {
 
@@ -39,7 +41,8 @@ FrictionModel parse_friction_model(const std::string& text,
                                    const std::string& option = "friction.model");
 const char* friction_model_name(FrictionModel model);
 
-// The effects of docs/architecture.md "Effects a scene calls for", one bit each.
+// The effects of docs/architecture.md "Effects a scene calls for", one bit each: the name the
+// force loop tests at compile time (dem/src/forces.hpp).
 enum Effect : unsigned {
   kGravity = 1u << 0,
   kHertz = 1u << 1,     // particle–particle contact (Scene::law: Hertz or linear)
@@ -48,11 +51,39 @@ enum Effect : unsigned {
   kDrag = 1u << 4,      // Stokes drag
   kWalls = 1u << 5,     // Hertz contact with the box faces that are not periodic
 };
-constexpr unsigned kAllEffects = 0x3fu;
-constexpr unsigned kEffectCount = 6;
 
-// Scene name of one effect bit ("gravity", "hertz", ...), as in the scene's [effects] section.
-const char* effect_name(unsigned effect);
+// The effect list: one row per effect, in bit order. Everything that lists the effects is made
+// from it: the mask of all of them, their count (the solver's dispatch table has 2^count force
+// loops), their scene names (deposit's [effects] options, the decks' comments).
+struct EffectRow {
+  Effect bit;
+  const char* name;  // in the scene's [effects] section
+};
+inline constexpr EffectRow kEffects[] = {
+    {kGravity, "gravity"}, {kHertz, "hertz"}, {kDamping, "damping"},
+    {kFriction, "friction"}, {kDrag, "drag"}, {kWalls, "walls"},
+};
+inline constexpr unsigned kEffectCount = std::size(kEffects);
+inline constexpr unsigned kAllEffects = (1u << kEffectCount) - 1;
+// Row k holds bit k, so the rows are the bits of kAllEffects, each once.
+static_assert([] {
+  for (unsigned k = 0; k < kEffectCount; ++k)
+    if (kEffects[k].bit != 1u << k) return false;
+  return true;
+}(), "kEffects: row k must hold the bit 1 << k");
+
+// Scene name of one effect bit ("gravity", "hertz", ...), "unknown" for anything else.
+constexpr const char* effect_name(unsigned effect) {
+  for (const EffectRow& row : kEffects)
+    if (row.bit == effect) return row.name;
+  return "unknown";
+}
+// The bit of the effect named `name` in a scene's [effects] section; 0 when none is.
+constexpr unsigned effect_bit(std::string_view name) {
+  for (const EffectRow& row : kEffects)
+    if (name == row.name) return row.bit;
+  return 0;
+}
 
 struct Scene {
   Material material;

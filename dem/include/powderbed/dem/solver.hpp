@@ -148,6 +148,11 @@ struct RunSummary {
   LidSummary lid;               // when lid_used; at_rest then says whether the relaxation ended at rest
 };
 
+// Throws InputError for settings out of range: t_end < 0 (or 0 without until_rest), dt < 0,
+// a negative skin, trajectory_every 0 with a trajectory, rest criteria out of range. Run by
+// run_deposition; for callers that hand the settings to another solver (deposit's rotating drop).
+void check_run_settings(const RunSettings& settings);
+
 // Integrates the bed in place (positions and velocities; velocities are created at zero when
 // the bed has none; with settings.insertion the bed is the pool of InsertionSettings), then,
 // with settings.lid.enabled, consolidates it with the lid. The

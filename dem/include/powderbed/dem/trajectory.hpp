@@ -7,10 +7,11 @@
 //   /xdmf/polyvertex uint64 N  0..N-1, the Polyvertex cells ParaView's filters need
 //   /steps/<k>     group per snapshot (k: the step in 12 digits, lexical order = time order),
 //                  attr time (s), attr step; datasets position N×3, velocity N×3 (when the
-//                  bed has velocities)
+//                  snapshot's bed has velocities; the .xmf names it in those snapshots only)
 // Every dataset has its SI unit as the attribute `units` (m, m/s; "1" without unit).
 // The file is written under a temporary name and renamed on close(), so an interrupted run
-// leaves no half trajectory under the requested name.
+// leaves no half trajectory under the requested name (bed::H5Output); the constructor and
+// close() throw InputError naming the file when it cannot be written.
 #include <cstdint>
 #include <memory>
 #include <string>
