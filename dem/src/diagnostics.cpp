@@ -9,6 +9,7 @@
 
 #include "box.hpp"
 #include "neighbour_list.hpp"
+#include "powderbed/dem/contact_moduli.hpp"
 #include "powderbed/dem/hertz_normal.hpp"
 #include "powderbed/dem/linear_normal.hpp"
 
@@ -68,15 +69,11 @@ void for_each_wall_overlap(const bed::Bed& bed, F&& f) {
 }
 
 HertzNormalParams pair_params(const Scene& s, double young_scale) {
-  const double e = s.material.young / young_scale;
-  return {effective_modulus(e, s.material.poisson, e, s.material.poisson),
-          s.has(kDamping) ? s.material.damping : 0.0};
+  return {contact_moduli(s, young_scale).pair, s.has(kDamping) ? s.material.damping : 0.0};
 }
 
 HertzNormalParams wall_params(const Scene& s, double young_scale) {
-  return {effective_modulus(s.material.young / young_scale, s.material.poisson,
-                            s.wall.young / young_scale, s.wall.poisson),
-          s.has(kDamping) ? s.material.damping : 0.0};
+  return {contact_moduli(s, young_scale).wall, s.has(kDamping) ? s.material.damping : 0.0};
 }
 
 }  // namespace

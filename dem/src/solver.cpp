@@ -19,6 +19,8 @@
 #include "parallel.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/random.hpp"
+#include "powderbed/bed/softening.hpp"
+#include "powderbed/dem/contact_moduli.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/stokes_drag.hpp"
 #include "powderbed/dem/time_step.hpp"
@@ -402,11 +404,9 @@ double chosen_dt(const TimeStepBound& bound, const RunSettings& settings) {
 // The scene's laws and constants in the force parameters, and the law's tabulation.
 void set_up_laws(Context& c, const Scene& scene) {
   const Material& mat = scene.material;
-  const double scale = c.settings.young_scale;
-  const double young = mat.young / scale, wall_young = scene.wall.young / scale;
-  c.params.pair.hertz = {effective_modulus(young, mat.poisson, young, mat.poisson), mat.damping};
-  c.params.wall.hertz = {effective_modulus(young, mat.poisson, wall_young, scene.wall.poisson),
-                         mat.damping};
+  const ContactModuli moduli = contact_moduli(scene, c.settings.young_scale);
+  c.params.pair.hertz = {moduli.pair, mat.damping};
+  c.params.wall.hertz = {moduli.wall, mat.damping};
   c.params.pair.linear = {scene.stiffness, mat.damping};
   c.params.wall.linear = {scene.stiffness, mat.damping};
   c.tabulate = scene.law == ContactLaw::linear ? &detail::tabulate_contacts<detail::LinearLaw>
@@ -842,20 +842,17 @@ void summarise(Run& run, const TimeStepBound& bound) {
   summary.max_overlap = overlap.relative;
   summary.max_overlap_m = overlap.absolute;
   if (run.scene.law == ContactLaw::linear) {
-    // The Hertz overlap at the materials' E* under the same force k_n delta:
-    // delta_h = (3 k_n delta / (4 E* sqrt(R*)))^{2/3} (the equivalence of [KE]).
+    // The Hertz overlap at the materials' E* under the same force k_n delta (bed/softening.hpp).
     const double e_star = overlap.wall ? c.params.wall.hertz.effective_modulus
                                        : c.params.pair.hertz.effective_modulus;
-    const double full = overlap.absolute > 0
-                            ? std::pow(3 * run.scene.stiffness * overlap.absolute /
-                                           (4 * e_star * std::sqrt(overlap.reduced_radius)),
-                                       2.0 / 3.0)
-                            : 0.0;
+    const double full = overlap.absolute > 0 ? bed::hertz_overlap_of_linear(overlap.absolute, run.scene.stiffness,
+                                                                            e_star, overlap.reduced_radius)
+                                             : 0.0;
     summary.max_overlap_full_stiffness =
         overlap.absolute > 0 ? overlap.relative * full / overlap.absolute : 0.0;
   } else {
     summary.max_overlap_full_stiffness =
-        overlap.relative * std::pow(run.settings.young_scale, -2.0 / 3.0);
+        bed::hertz_overlap_of_softened(overlap.relative, run.settings.young_scale);
   }
   const Box& box = c.params.box;
   for (std::size_t i = 0; i < c.n; ++i) {

@@ -15,6 +15,7 @@
 #include "box.hpp"
 #include "neighbour_list.hpp"
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/dem/contact_moduli.hpp"
 #include "powderbed/dem/hertz_normal.hpp"
 #include "powderbed/dem/rolling_resistance.hpp"
 #include "powderbed/dem/sliding_friction.hpp"
@@ -978,13 +979,11 @@ struct Spreader {
     m.sliding.coefficient = m.mu;
     m.mu_r = scene.material.rolling;
     m.zeta = scene.material.damping;
-    const Material& mat = scene.material;
-    const double young = mat.young / settings.young_scale;
-    const double wall_young = scene.wall.young / settings.young_scale;
-    run.e_pair = effective_modulus(young, mat.poisson, young, mat.poisson);
-    run.e_wall = effective_modulus(young, mat.poisson, wall_young, scene.wall.poisson);
-    run.g_pair = effective_shear_modulus(young, mat.poisson, young, mat.poisson);
-    run.g_wall = effective_shear_modulus(young, mat.poisson, wall_young, scene.wall.poisson);
+    const ContactModuli moduli = contact_moduli(scene, settings.young_scale);
+    run.e_pair = moduli.pair;
+    run.e_wall = moduli.wall;
+    run.g_pair = moduli.pair_shear;
+    run.g_wall = moduli.wall_shear;
     const double gravity = scene.has(kGravity) ? scene.gravity : 0.0;
     run.g[0] = gravity * std::sin(settings.gravity_tilt);
     run.g[2] = -gravity * std::cos(settings.gravity_tilt);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/dem/contact_moduli.hpp"
 #include "powderbed/dem/linear_normal.hpp"
 #include "powderbed/dem/stokes_drag.hpp"
 
@@ -41,12 +42,12 @@ TimeStepBound time_step_bound(const bed::Bed& bed, const Scene& scene, double yo
     bound.limited_by = "contact";
   } else if (scene.has(kHertz) || scene.has(kWalls)) {
     const Material& m = scene.material;
-    double t = rayleigh_time_step(r_min, m.density, m.young / young_scale, m.poisson);
+    const ContactModuli moduli = contact_moduli(scene, young_scale);
+    double t = rayleigh_time_step(r_min, m.density, moduli.young, m.poisson);
     if (scene.has(kWalls)) {
       // A softer wall gives a longer contact; a stiffer one does not shorten the particle's own
       // Rayleigh step below that of the pair E* of two particles of the stiffer material.
-      t = std::min(t, rayleigh_time_step(r_min, m.density,
-                                         std::max(m.young, scene.wall.young) / young_scale,
+      t = std::min(t, rayleigh_time_step(r_min, m.density, std::max(moduli.young, moduli.wall_young),
                                          m.poisson));
     }
     bound.stable = t;

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "powderbed/bed/contact_geometry.hpp"
+#include "powderbed/bed/softening.hpp"
 
 namespace powderbed::keff {
 
@@ -23,25 +24,26 @@ inline double contact_conductance(double solid_conductivity, double calibration,
   return 2 * solid_conductivity * calibration * radius;
 }
 
-// A bed settled with Hertz contacts at E / S (S = young_scale, the DEM's softening) has overlaps
-// δ_s too large. Equating the soft force (4/3)(E*/S)√R* δ_s^{3/2} with the true Hertz force
-// (4/3) E* √R* δ_h^{3/2} (docs/physics.md §6) gives δ_h = δ_s S^{-2/3}, and the Hertz contact radius is
-// a = √(R* δ_h). For a wall R* = r (the wall's radius is infinite).
-inline double hertz_contact_radius(double reduced_radius, double soft_overlap, double young_scale) {
-  if (soft_overlap <= 0) return 0;
-  return std::sqrt(reduced_radius * soft_overlap * std::pow(young_scale, -2.0 / 3.0));
+// The Hertz contact radius a = sqrt(R* delta_h) of an overlap delta_h at the true moduli
+// (bed/softening.hpp turns the DEM's overlap into it). For a wall R* = r (its radius is
+// infinite).
+inline double hertz_contact_radius(double reduced_radius, double hertz_overlap) {
+  return hertz_overlap > 0 ? std::sqrt(reduced_radius * hertz_overlap) : 0.0;
 }
 
-// A bed settled with a linear spring k_n (the MFiX-DEM beds of [KE]) has overlaps δ_s set by
-// k_n, not by the material. Equating k_n δ_s with the Hertz force (4/3) E* √R* δ_h^{3/2}
-// (Kumar Yadav & Eshraghi 2016, docs/physics.md §6) gives δ_h = (3 k_n δ_s / (4 E* √R*))^{2/3}, and
-// a = √(R* δ_h). For a wall R* = r and E* is the particle–wall modulus.
+// A bed settled with Hertz contacts at E / S (S = young_scale, the DEM's softening).
+inline double softened_contact_radius(double reduced_radius, double soft_overlap, double young_scale) {
+  if (soft_overlap <= 0) return 0;
+  return hertz_contact_radius(reduced_radius, bed::hertz_overlap_of_softened(soft_overlap, young_scale));
+}
+
+// A bed settled with a linear spring k_n (the MFiX-DEM beds of [KE]); E* the true modulus of the
+// pair or of the particle on the wall.
 inline double linear_spring_contact_radius(double reduced_radius, double soft_overlap,
                                            double stiffness, double effective_modulus) {
   if (soft_overlap <= 0) return 0;
-  const double hertz_overlap = std::cbrt(std::pow(
-      3 * stiffness * soft_overlap / (4 * effective_modulus * std::sqrt(reduced_radius)), 2));
-  return std::sqrt(reduced_radius * hertz_overlap);
+  return hertz_contact_radius(
+      reduced_radius, bed::hertz_overlap_of_linear(soft_overlap, stiffness, effective_modulus, reduced_radius));
 }
 
 // The normal law of the DEM run that made the bed (bed::ContactProvenance).
@@ -65,7 +67,7 @@ inline double pair_contact_radius(const ContactRadiusParams& p, double r_i, doub
   const double reduced = r_i * r_j / (r_i + r_j), overlap = r_i + r_j - d;
   if (p.law == BedContactLaw::linear)
     return linear_spring_contact_radius(reduced, overlap, p.stiffness, p.pair_modulus);
-  return hertz_contact_radius(reduced, overlap, p.young_scale);
+  return softened_contact_radius(reduced, overlap, p.young_scale);
 }
 
 // Particle–wall contact radius, the centre `h` from the wall plane: a = √(r² − h²) geometric.
@@ -73,7 +75,7 @@ inline double wall_contact_radius(const ContactRadiusParams& p, double r, double
   if (!p.hertz_correction) return bed::plane_contact_radius(r, h);
   if (p.law == BedContactLaw::linear)
     return linear_spring_contact_radius(r, r - h, p.stiffness, p.wall_modulus);
-  return hertz_contact_radius(r, r - h, p.young_scale);
+  return softened_contact_radius(r, r - h, p.young_scale);
 }
 
 }  // namespace powderbed::keff
