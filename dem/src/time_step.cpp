@@ -14,8 +14,7 @@ namespace powderbed::dem {
 
 // docs/physics.md §4: t_R = pi r sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu)).
 double rayleigh_time_step(double radius, double density, double young, double poisson) {
-  const double shear = young / (2.0 * (1.0 + poisson));
-  return std::numbers::pi * radius * std::sqrt(density / shear) / (0.1631 * poisson + 0.8766);
+  return std::numbers::pi * radius * std::sqrt(density / shear_modulus(young, poisson)) / (0.1631 * poisson + 0.8766);
 }
 
 double linear_stable_time_step(const LinearNormalParams& p, double reduced_mass) {

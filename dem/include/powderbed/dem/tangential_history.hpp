@@ -9,13 +9,15 @@
 
 namespace powderbed::dem {
 
+// An isotropic material's shear modulus G = E / (2 (1 + nu)).
+inline double shear_modulus(double young, double poisson) { return young / (2.0 * (1.0 + poisson)); }
+
 // Mindlin's tangential stiffness k_t = 8 G* sqrt(R* delta) with G* the pair's effective shear
-// modulus, 1 / G* = (2 - nu_i) / G_i + (2 - nu_j) / G_j and G = E / (2 (1 + nu)).
+// modulus, 1 / G* = (2 - nu_i) / G_i + (2 - nu_j) / G_j.
 inline double effective_shear_modulus(double young_i, double poisson_i, double young_j,
                                       double poisson_j) {
-  const double shear_i = young_i / (2.0 * (1.0 + poisson_i));
-  const double shear_j = young_j / (2.0 * (1.0 + poisson_j));
-  return 1.0 / ((2.0 - poisson_i) / shear_i + (2.0 - poisson_j) / shear_j);
+  return 1.0 / ((2.0 - poisson_i) / shear_modulus(young_i, poisson_i) +
+                (2.0 - poisson_j) / shear_modulus(young_j, poisson_j));
 }
 
 // Turns a stored tangential vector onto the plane normal to the current unit normal n,
