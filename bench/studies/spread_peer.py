@@ -45,6 +45,7 @@ import argparse
 import math
 import os
 import re
+import resource
 import shutil
 import statistics
 import subprocess
@@ -110,14 +111,26 @@ def initial_particles(work, scene_path, seed, overrides):
     return path
 
 
+def child_cpu():
+    """CPU seconds (user + system) of the finished child processes so far: a run's own CPU time
+    is the difference around it, which a second job on the machine inflates far less than the
+    wall time (it still shares the caches)."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 def deposit_spread(work, scene_path, seed, overrides, tag):
     path = os.path.join(work, f"deposit-{tag}-{seed}.h5")
+    cpu = child_cpu()
     s, _ = run_json([app("deposit"), "--config", scene_path, "--seed", str(seed), "--threads", "1",
                      "--out", path, *option_args(overrides)])
+    cpu = child_cpu() - cpu
     steps = s["steps"]
     n = s["n"] if "n" in s else s["layers"][-1]["n"]
     per = 1.0 / s["particle_steps_per_s"] if s.get("particle_steps_per_s") else s["wall_time"] / (n * steps)
+    particle_steps = s["particle_steps_per_s"] * s["wall_time"]
     return {"bed": path, "loop": s["wall_time"], "steps": steps, "n": n, "per_step": per,
+            "cpu_per_step": cpu / particle_steps,
             "dt": s["dt"], "lost": s.get("lost", 0)}
 
 
@@ -171,7 +184,9 @@ def liggghts_spread(work, scene, initial, seed, dt):
     args = [liggghts_binary(), "-in", DECK, "-log", os.path.join(work, f"liggghts-{seed}.log")]
     for key, value in variables.items():
         args += ["-var", key, value]
+    cpu = child_cpu()
     proc = subprocess.run(args, capture_output=True, text=True, cwd=work)
+    cpu = child_cpu() - cpu
     if proc.returncode != 0 or not os.path.exists(dump):
         sys.exit(f"spread_peer: liggghts exited {proc.returncode}:\n{proc.stdout[-3000:]}{proc.stderr[-2000:]}")
     loops = re.findall(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", proc.stdout)
@@ -180,7 +195,8 @@ def liggghts_spread(work, scene, initial, seed, dt):
     steps = sum(int(s) for _, s, _ in loops)
     atoms = int(loops[-1][2]) if loops else 0
     return {"bed": dump, "loop": loop, "steps": steps, "n": atoms,
-            "per_step": loop / particle_steps if particle_steps else float("nan"), "dt": dt}
+            "per_step": loop / particle_steps if particle_steps else float("nan"),
+            "cpu_per_step": cpu / particle_steps if particle_steps else float("nan"), "dt": dt}
 
 
 def layer_stats(beds, scene, window, feed):
@@ -230,16 +246,16 @@ def report(scene, args, window, runs, load_before):
         "stores a force turned with the contact (length kept), LIGGGHTS's a displacement "
         "projected onto the tangent plane.",
         "",
-        "| seed | code | particles | steps | loop time (s) | ns per particle-step | "
+        "| seed | code | particles | steps | loop time (s) | ns per particle-step | CPU ns per particle-step | "
         + " | ".join(label for _, label, _ in STAT_ROWS) + " | slope d(d)/dx | KS D | KS p |",
-        "|---" * (9 + len(STAT_ROWS)) + "|",
+        "|---" * (10 + len(STAT_ROWS)) + "|",
     ]
     for seed, by_code in runs:
         for code in codes:
             t, s = by_code[code]
             ks = s.get("psd_ks", {})
             lines.append(f"| {seed} | {code} | {t['n']} | {t['steps']} | {t['loop']:.2f} | "
-                         f"{t['per_step'] * 1e9:.1f} | "
+                         f"{t['per_step'] * 1e9:.1f} | {t['cpu_per_step'] * 1e9:.1f} | "
                          + " | ".join(fmt(s[key], style) for key, _, style in STAT_ROWS)
                          + f" | {s['segregation']['slope']:.3g} | {ks.get('d', float('nan')):.4f} | "
                          f"{ks.get('p', float('nan')):.3g} |")
@@ -252,13 +268,15 @@ def report(scene, args, window, runs, load_before):
             m, sd = mean_sd([by[code][1][key] for _, by in runs])
             cells.append(f"{fmt(m, style)} ± {fmt(sd, style)}")
         lines.append(f"| {label} | " + " | ".join(cells) + " |")
-    cells = []
-    for code in codes:
-        m, sd = mean_sd([by[code][0]["per_step"] * 1e9 for _, by in runs])
-        cells.append(f"{m:.1f} ± {sd:.1f}")
-    lines.append("| ns per particle-step | " + " | ".join(cells) + " |")
+    for key, label in (("per_step", "ns per particle-step"), ("cpu_per_step", "CPU ns per particle-step")):
+        cells = []
+        for code in codes:
+            m, sd = mean_sd([by[code][0][key] * 1e9 for _, by in runs])
+            cells.append(f"{m:.1f} ± {sd:.1f}")
+        lines.append(f"| {label} | " + " | ".join(cells) + " |")
     if PEERED in codes and "LIGGGHTS" in codes:
         ratios = [by["LIGGGHTS"][0]["per_step"] / by[PEERED][0]["per_step"] for _, by in runs]
+        cpu_ratios = [by["LIGGGHTS"][0]["cpu_per_step"] / by[PEERED][0]["cpu_per_step"] for _, by in runs]
         dep = [by[PEERED][1]["density"] for _, by in runs]
         lig = [by["LIGGGHTS"][1]["density"] for _, by in runs]
         spread = max(mean_sd(dep)[1], mean_sd(lig)[1])
@@ -267,8 +285,11 @@ def report(scene, args, window, runs, load_before):
             "",
             "Throughput: LIGGGHTS / deposit (no gas) time per particle-step = "
             + ", ".join(f"{r:.2f}" for r in ratios) + f" (seeds {', '.join(str(s) for s, _ in runs)}); "
-            f"mean {statistics.mean(ratios):.2f}. Goal (issue 16): >= 2: "
-            f"{'met' if min(ratios) >= 2 else 'NOT met'}.",
+            f"mean {statistics.mean(ratios):.2f}; in CPU time (the process's user + system time: "
+            "what a second job on the machine inflates far less) "
+            + ", ".join(f"{r:.2f}" for r in cpu_ratios) + f", mean {statistics.mean(cpu_ratios):.2f}. "
+            f"Goal (issue 16): >= 2: {'met' if min(ratios) >= 2 else 'NOT met'} in loop time, "
+            f"{'met' if min(cpu_ratios) >= 2 else 'NOT met'} in CPU time.",
             "",
             f"Layer density: deposit (no gas) {statistics.mean(dep):.4f}, LIGGGHTS {statistics.mean(lig):.4f}, "
             f"difference {diff:.4f}"
