@@ -162,9 +162,9 @@ void add_sinter_options(po::options_description& desc) {
       ("time.safety", po::value<double>()->default_value(d.safety), "fraction of the stable step")
       ("time.max-particle-rise", po::value<double>()->default_value(d.max_particle_rise),
        "particle steps subcycle so the laser raises no particle more than this per step (K)");
-  for (unsigned bit = 1; bit < (1u << th::kSinterEffectCount); bit <<= 1) {
-    const std::string name = std::string("effects.") + th::sinter_effect_name(bit);
-    desc.add_options()(name.c_str(), po::value<bool>()->default_value((d.effects & bit) != 0),
+  for (const th::SinterEffectRow& row : th::kSinterEffects) {
+    const std::string name = std::string("effects.") + row.name;
+    desc.add_options()(name.c_str(), po::value<bool>()->default_value(d.has(row.effect)),
                        "effect on/off");
   }
 }
@@ -250,8 +250,8 @@ th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
   s.max_particle_rise = vm["time.max-particle-rise"].as<double>();
   if (vm.count("t-end")) s.t_end = vm["t-end"].as<double>();
   s.effects = 0;
-  for (unsigned bit = 1; bit < (1u << th::kSinterEffectCount); bit <<= 1)
-    if (vm[std::string("effects.") + th::sinter_effect_name(bit)].as<bool>()) s.effects |= bit;
+  for (const th::SinterEffectRow& row : th::kSinterEffects)
+    if (vm[std::string("effects.") + row.name].as<bool>()) s.effects |= row.effect;
   return s;
 }
 
