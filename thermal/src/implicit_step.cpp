@@ -5,12 +5,20 @@
 // diagonal preconditioner). The enthalpies are then advanced by the fluxes evaluated at T*
 // through the same booked flux routines as the explicit step, so energy stays exactly
 // conserved whatever dt is; T* is only the temperature at which the fluxes are evaluated.
+//
+// The step is composed from the scene's effects once, when the system is built
+// (effect_kernels.hpp): the effects that change the work per contact, exposed particle or top
+// node are template arguments of the step; those that switch a whole loop on or off are tested
+// once, before it.
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
 
+#include "effect_kernels.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/thermal/beer_lambert_laser.hpp"
 #include "powderbed/thermal/contact_conduction.hpp"
@@ -49,18 +57,29 @@ struct ImplicitSystem {
   Assembler assembler;
   Eigen::VectorXd rhs, guess, solution;
   Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
+  // The step for the scene's effects, chosen when the system is built.
+  void (*step)(Sinter::State&, double dt) = nullptr;
 };
 
 void ImplicitSystemDeleter::operator()(ImplicitSystem* p) const { delete p; }
 
-void implicit_step(Sinter::State& s, double dt) {
+namespace {
+
+// The effects that change the step's work per element: conductivities that follow temperature
+// in every contact conductance, the surface losses of each exposed particle, the laser on each
+// top node.
+constexpr std::array kStepEffects{kVariableProperties, kConvection, kRadiation, kLaserSubstrate};
+
+template <unsigned Effects>
+void composed_step(Sinter::State& s, double dt) {
   const SubstrateGeometry& g = s.g;
   const std::size_t n = s.x.size();
-  const bool variable = s.scene.has(kVariableProperties);
-  const auto k_of = [&](double t) { return variable ? s.conductivity(t) : s.k_fixed; };
+  const auto k_of = [&](double t) {
+    if constexpr ((Effects & kVariableProperties) != 0) return s.conductivity(t);
+    else return s.k_fixed;
+  };
 
-  if (!s.implicit) {
-    s.implicit.reset(new ImplicitSystem);
+  if (s.implicit->unknown.empty()) {
     // Unknowns: particles first, then free nodes in index order.
     s.implicit->unknown.assign(g.size(), -1);
     std::ptrdiff_t count = static_cast<std::ptrdiff_t>(n);
@@ -145,11 +164,11 @@ void implicit_step(Sinter::State& s, double dt) {
   for (const auto i : s.exposed) {
     const auto r = static_cast<std::ptrdiff_t>(i);
     const double on = s.gone[i] ? 0.0 : 1.0;
-    if (s.scene.has(kConvection)) {
+    if constexpr ((Effects & kConvection) != 0) {
       add(r, r, on * s.environment.convection * s.area[i]);
       sys.rhs[r] += on * s.environment.convection * s.area[i] * s.environment.environment;
     }
-    if (s.scene.has(kRadiation)) {
+    if constexpr ((Effects & kRadiation) != 0) {
       const double G = on * radiation_conductance(s.environment, s.temperature[i], s.area[i]);
       add(r, r, G);
       sys.rhs[r] += on * radiation_gain(s.environment, s.temperature[i], s.area[i]) +
@@ -191,10 +210,12 @@ void implicit_step(Sinter::State& s, double dt) {
         if (i == 1) face(c - 1, gx * half);
         if (j == 1) face(c - g.nx, gy * half);
         if (k == 1) face(c - g.nx * g.ny, gz);
-        if (k + 1 == g.nz && s.scene.has(kLaserSubstrate)) {
-          const double dx = g.x(i) - xl, dy = g.y(j) - yl;
-          sys.rhs[u] +=
-              node_laser_power(laser, dx * dx + dy * dy, s.transmission[i + g.nx * j], g.dx, g.dy);
+        if constexpr ((Effects & kLaserSubstrate) != 0) {
+          if (k + 1 == g.nz) {
+            const double dx = g.x(i) - xl, dy = g.y(j) - yl;
+            sys.rhs[u] += node_laser_power(laser, dx * dx + dy * dy, s.transmission[i + g.nx * j],
+                                           g.dx, g.dy);
+          }
         }
       }
     }
@@ -237,6 +258,25 @@ void implicit_step(Sinter::State& s, double dt) {
   for (std::size_t c = 0; c < g.size(); ++c)
     if (unknown[c] >= 0) s.node_temperature[c] = solution[unknown[c]];
   explicit_step(s, dt);
+}
+
+using StepKernel = void (*)(Sinter::State&, double);
+
+template <std::size_t... I>
+constexpr std::array<StepKernel, sizeof...(I)> step_kernels(std::index_sequence<I...>) {
+  return {&composed_step<effects_of_index(kStepEffects, I)>...};
+}
+constexpr auto kStepKernels =
+    step_kernels(std::make_index_sequence<std::size_t{1} << kStepEffects.size()>{});
+
+}  // namespace
+
+void implicit_step(Sinter::State& s, double dt) {
+  if (!s.implicit) {
+    s.implicit.reset(new ImplicitSystem);
+    s.implicit->step = kStepKernels[index_of_effects(kStepEffects, s.scene.effects)];
+  }
+  s.implicit->step(s, dt);
 }
 
 }  // namespace powderbed::thermal
