@@ -200,6 +200,149 @@ std::string profile_csv(const kf::TemperatureProfile& p, const kf::KeffScene& sc
   return text;
 }
 
+// l_min removes the gas lens's singularity at contact (1 um by default, Rong & Horio): a gap
+// of a tenth of a millimetre is a slip of units, not a model.
+void check_units(const po::variables_map& vm, const kf::KeffScene& scene) {
+  if (vm["trust-units"].as<bool>() || scene.lens.min_gap <= 1e-4) return;
+  std::ostringstream msg;
+  msg << "gas.min-gap: " << scene.lens.min_gap << " m: a unit slip? (accepted: l_min in metres "
+      << "up to 1e-4, e.g. 1e-6; --trust-units if it is meant)";
+  throw InputError(msg.str());
+}
+
+// Inputs and outputs checked before the work: a folder where the profile goes, or --out = the
+// bed, must not cost a solve or an existing file.
+void check_files(const po::variables_map& vm) {
+  std::vector<app::PathArg> outputs;
+  if (vm.count("out")) {
+    const std::string out = vm["out"].as<std::string>();
+    app::check_extension({"--out", out}, {".h5"});
+    outputs = {{"--out", out}, {"--out (its profile)", profile_path_of(out)}};
+  }
+  app::check_paths({{"--bed", vm["bed"].as<std::string>()}}, outputs);
+}
+
+// The contact.* options that must agree with the bed's record of its DEM run.
+kf::ContactOptions contact_options(const po::variables_map& vm) {
+  kf::ContactOptions given;
+  if (vm.count("contact.law")) given.law = vm["contact.law"].as<std::string>();
+  if (vm.count("contact.young-scale")) given.young_scale = vm["contact.young-scale"].as<double>();
+  if (vm.count("contact.stiffness")) given.stiffness = vm["contact.stiffness"].as<double>();
+  if (vm.count("contact.young")) given.young = vm["contact.young"].as<double>();
+  return given;
+}
+
+// The network (view factors with progress on stderr) and its steady state; `wall` gets the
+// wall time in seconds. Throws NumericalError when no heat path joins the walls.
+kf::KeffResult solve(const po::variables_map& vm, const bed::Bed& bed, const kf::KeffScene& scene,
+                     kf::KeffNetwork& network, double& wall) {
+  const auto start = std::chrono::steady_clock::now();
+  app::ProgressBar bar("keff", app::progress_interval(vm));
+  std::function<void(double)> progress;
+  if (scene.radiation_path)
+    progress = [&bar](double fraction) { bar.draw(fraction, "view factors"); };
+  network = kf::build_keff_network(bed, scene, progress);
+  bar.finish();
+  kf::KeffResult r = kf::solve_keff(bed, scene, network);
+  // No conducting path from wall to wall gives k_eff = 0 up to round-off: not a result.
+  if (!(r.k_eff > 0) || !std::isfinite(r.k_eff)) {
+    std::ostringstream msg;
+    msg << "k_eff = " << r.k_eff << " W/mK: no heat path joins the two walls ("
+        << r.rattlers.size() << " of " << bed.n()
+        << " particles isolated; accepted: a bed whose particles connect the walls, e.g. a "
+           "settled bed from deposit)";
+    throw NumericalError(msg.str());
+  }
+  wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+// --out: the bed with the particle temperatures and, beside it, the binned profile; returns
+// the profile's path. The two files are written together or not at all.
+std::string write_outputs(const po::variables_map& vm, bed::Bed& bed, const kf::KeffScene& scene,
+                          const kf::KeffResult& r, std::size_t bins, int argc, char** argv) {
+  const std::string out = vm["out"].as<std::string>();
+  const std::string profile_path = profile_path_of(out);
+  const kf::TemperatureProfile profile =
+      kf::temperature_profile(bed, scene.axis, r.temperature, r.rattlers, bins);
+  bed.temperature = r.temperature;
+  bed.provenance.created_by = app::version_string("keff");
+  bed.provenance.command_line = app::command_line(argc, argv);
+  bed.provenance.stage = "keff";
+  bed.provenance.scene = app::scene_text(vm);
+  bed::write_bed_h5(bed, out);
+  try {
+    bed::write_text_file(profile_path, profile_csv(profile, scene));
+  } catch (const InputError&) {
+    std::filesystem::remove(out);  // the run's files all or none
+    std::filesystem::remove(bed::xdmf_sidecar_path(out));
+    throw;
+  }
+  return profile_path;
+}
+
+// What a run found, for the report.
+struct RunReport {
+  const bed::Bed& bed;
+  const kf::KeffScene& scene;
+  const kf::KeffNetwork& network;
+  const kf::KeffResult& result;
+  double wall;
+  std::string profile_path;  // empty without --out
+};
+
+// --json: k_eff, the wall flows, each path's share and the solve's counters (SI).
+std::string result_json(const RunReport& run) {
+  const kf::KeffResult& r = run.result;
+  const kf::KeffScene& scene = run.scene;
+  bed::JsonWriter j;
+  j.begin_object()
+      .value("k_eff", r.k_eff)
+      .value("heat_flow_hot", r.heat_flow_hot)
+      .value("heat_flow_cold", r.heat_flow_cold)
+      .begin_object("share")
+      .value("contact", r.share_contact)
+      .value("gas", r.share_gas)
+      .value("radiation", r.share_radiation)
+      .end_object()
+      .value("hertz_correction", scene.contact.hertz_correction)
+      .value("contact_law", run.bed.provenance.contact.law)
+      .value("rattlers", static_cast<std::uint64_t>(r.rattlers.size()))
+      .value("newton_iterations", static_cast<std::uint64_t>(r.newton_iterations))
+      .value("newton_residual", r.residual)
+      .value("solver_iterations", static_cast<std::uint64_t>(r.solver_iterations))
+      .value("particles", static_cast<std::uint64_t>(run.bed.n()))
+      .value("contact_links", static_cast<std::uint64_t>(r.contact_links))
+      .value("gas_links", static_cast<std::uint64_t>(r.gas_links))
+      .value("radiation_links", static_cast<std::uint64_t>(r.radiation_links))
+      .value("rays", static_cast<std::uint64_t>(scene.radiation_path ? scene.rays : 0))
+      .value("radiation_model", scene.radiation_model == kf::RadiationModel::radiosity
+                                    ? "radiosity"
+                                    : "pair")
+      .value("lost_rays", static_cast<std::uint64_t>(r.lost_rays))
+      .value("view_factor_error", run.network.reciprocity_error)
+      .value("gas_conductivity", scene.gas_path ? scene.gas_conductivity_used() : 0.0)
+      .value("t_hot", scene.hot_temperature)
+      .value("t_cold", scene.cold_temperature)
+      .value("wall_time", run.wall);
+  if (!run.profile_path.empty()) j.value("profile", run.profile_path);
+  j.end_object();
+  return j.str() + '\n';
+}
+
+// The text report: one line, and where the profile went.
+void print_result(const RunReport& run) {
+  const kf::KeffResult& r = run.result;
+  std::printf("keff: k_eff = %.6g W/mK; wall flows %.6g / %.6g W (hot / cold); contact %.1f %%, "
+              "gas %.1f %%, radiation %.1f %%; %zu rattlers of %zu particles; %zu Newton "
+              "step%s; %.3g s\n",
+              r.k_eff, r.heat_flow_hot, r.heat_flow_cold, 100 * r.share_contact,
+              100 * r.share_gas, 100 * r.share_radiation, r.rattlers.size(), run.bed.n(),
+              r.newton_iterations, r.newton_iterations == 1 ? "" : "s", run.wall);
+  if (!run.profile_path.empty())
+    std::printf("keff: temperature profile in %s\n", run.profile_path.c_str());
+}
+
 int run(int argc, char** argv) {
   po::options_description desc("keff options (SI units)");
   add_options(desc);
@@ -210,117 +353,20 @@ int run(int argc, char** argv) {
   po::variables_map command_line;  // what the command line alone says (walls)
   po::store(po::command_line_parser(argc, argv).options(desc).run(), command_line);
   kf::KeffScene scene = make_scene(vm, command_line);
-  // l_min removes the gas lens's singularity at contact (1 um by default, Rong & Horio): a gap
-  // of a tenth of a millimetre is a slip of units, not a model.
-  if (!vm["trust-units"].as<bool>() && scene.lens.min_gap > 1e-4) {
-    std::ostringstream msg;
-    msg << "gas.min-gap: " << scene.lens.min_gap << " m: a unit slip? (accepted: l_min in metres "
-        << "up to 1e-4, e.g. 1e-6; --trust-units if it is meant)";
-    throw InputError(msg.str());
-  }
-  // Inputs and outputs checked before the work: a folder where the profile goes, or --out = the
-  // bed, must not cost a solve or an existing file.
+  check_units(vm, scene);
   const auto bins = app::option_in_range<std::size_t>(vm, "profile-bins", 0, 1000000);
-  std::vector<app::PathArg> outputs;
-  if (vm.count("out")) {
-    const std::string out = vm["out"].as<std::string>();
-    app::check_extension({"--out", out}, {".h5"});
-    outputs = {{"--out", out}, {"--out (its profile)", profile_path_of(out)}};
-  }
-  app::check_paths({{"--bed", vm["bed"].as<std::string>()}}, outputs);
+  check_files(vm);
   bed::Bed bed = bed::read_bed_any(vm["bed"].as<std::string>());
-  kf::ContactOptions given;
-  if (vm.count("contact.law")) given.law = vm["contact.law"].as<std::string>();
-  if (vm.count("contact.young-scale")) given.young_scale = vm["contact.young-scale"].as<double>();
-  if (vm.count("contact.stiffness")) given.stiffness = vm["contact.stiffness"].as<double>();
-  if (vm.count("contact.young")) given.young = vm["contact.young"].as<double>();
-  scene.contact =
-      kf::contact_radius_params(bed.provenance.contact, scene.contact.hertz_correction, given);
-
-  const auto start = std::chrono::steady_clock::now();
-  app::ProgressBar bar("keff", app::progress_interval(vm));
-  std::function<void(double)> progress;
-  if (scene.radiation_path)
-    progress = [&bar](double fraction) { bar.draw(fraction, "view factors"); };
-  const kf::KeffNetwork network = kf::build_keff_network(bed, scene, progress);
-  bar.finish();
-  const kf::KeffResult r = kf::solve_keff(bed, scene, network);
-  // No conducting path from wall to wall gives k_eff = 0 up to round-off: not a result.
-  if (!(r.k_eff > 0) || !std::isfinite(r.k_eff)) {
-    std::ostringstream msg;
-    msg << "k_eff = " << r.k_eff << " W/mK: no heat path joins the two walls ("
-        << r.rattlers.size() << " of " << bed.n()
-        << " particles isolated; accepted: a bed whose particles connect the walls, e.g. a "
-           "settled bed from deposit)";
-    throw NumericalError(msg.str());
-  }
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  std::string profile_path;
-  if (vm.count("out")) {
-    const std::string out = vm["out"].as<std::string>();
-    profile_path = profile_path_of(out);
-    const kf::TemperatureProfile profile = kf::temperature_profile(
-        bed, scene.axis, r.temperature, r.rattlers, bins);
-    bed.temperature = r.temperature;
-    bed.provenance.created_by = app::version_string("keff");
-    bed.provenance.command_line = app::command_line(argc, argv);
-    bed.provenance.stage = "keff";
-    bed.provenance.scene = app::scene_text(vm);
-    bed::write_bed_h5(bed, out);
-    try {
-      bed::write_text_file(profile_path, profile_csv(profile, scene));
-    } catch (const InputError&) {
-      std::filesystem::remove(out);  // the run's files all or none
-      std::filesystem::remove(bed::xdmf_sidecar_path(out));
-      throw;
-    }
-  }
-  if (vm.count("json")) {
-    bed::JsonWriter j;
-    j.begin_object()
-        .value("k_eff", r.k_eff)
-        .value("heat_flow_hot", r.heat_flow_hot)
-        .value("heat_flow_cold", r.heat_flow_cold)
-        .begin_object("share")
-        .value("contact", r.share_contact)
-        .value("gas", r.share_gas)
-        .value("radiation", r.share_radiation)
-        .end_object()
-        .value("hertz_correction", scene.contact.hertz_correction)
-        .value("contact_law", bed.provenance.contact.law)
-        .value("rattlers", static_cast<std::uint64_t>(r.rattlers.size()))
-        .value("newton_iterations", static_cast<std::uint64_t>(r.newton_iterations))
-        .value("newton_residual", r.residual)
-        .value("solver_iterations", static_cast<std::uint64_t>(r.solver_iterations))
-        .value("particles", static_cast<std::uint64_t>(bed.n()))
-        .value("contact_links", static_cast<std::uint64_t>(r.contact_links))
-        .value("gas_links", static_cast<std::uint64_t>(r.gas_links))
-        .value("radiation_links", static_cast<std::uint64_t>(r.radiation_links))
-        .value("rays", static_cast<std::uint64_t>(scene.radiation_path ? scene.rays : 0))
-        .value("radiation_model", scene.radiation_model == kf::RadiationModel::radiosity
-                                      ? "radiosity"
-                                      : "pair")
-        .value("lost_rays", static_cast<std::uint64_t>(r.lost_rays))
-        .value("view_factor_error", network.reciprocity_error)
-        .value("gas_conductivity", scene.gas_path ? scene.gas_conductivity_used() : 0.0)
-        .value("t_hot", scene.hot_temperature)
-        .value("t_cold", scene.cold_temperature)
-        .value("wall_time", wall);
-    if (!profile_path.empty()) j.value("profile", profile_path);
-    j.end_object();
-    std::cout << j.str() << '\n';
-  } else {
-    std::printf("keff: k_eff = %.6g W/mK; wall flows %.6g / %.6g W (hot / cold); contact %.1f %%, "
-                "gas %.1f %%, radiation %.1f %%; %zu rattlers of %zu particles; %zu Newton "
-                "step%s; %.3g s\n",
-                r.k_eff, r.heat_flow_hot, r.heat_flow_cold, 100 * r.share_contact,
-                100 * r.share_gas, 100 * r.share_radiation, r.rattlers.size(), bed.n(),
-                r.newton_iterations, r.newton_iterations == 1 ? "" : "s", wall);
-    if (!profile_path.empty())
-      std::printf("keff: temperature profile in %s\n", profile_path.c_str());
-  }
+  scene.contact = kf::contact_radius_params(bed.provenance.contact,
+                                            scene.contact.hertz_correction, contact_options(vm));
+  kf::KeffNetwork network;
+  double wall = 0;
+  const kf::KeffResult r = solve(vm, bed, scene, network, wall);
+  const std::string profile_path =
+      vm.count("out") ? write_outputs(vm, bed, scene, r, bins, argc, argv) : "";
+  const RunReport report{bed, scene, network, r, wall, profile_path};
+  if (vm.count("json")) std::cout << result_json(report);
+  else print_result(report);
   return 0;
 }
 

@@ -114,15 +114,113 @@ void print_tracks(const std::vector<th::TrackStats>& tracks) {
   }
 }
 
-int run(int argc, char** argv) {
-  po::options_description desc("sinter options (SI units)");
-  app::add_sinter_options(desc);
-  po::variables_map vm;
-  if (!app::parse_options("sinter", kUsage, desc, {}, argc, argv, vm)) return 0;
-  const std::string bed_path = app::required<std::string>(vm, "bed");
-  const bool explain_only = vm["explain"].as<bool>();
-  const std::string out = explain_only && !vm.count("out") ? "" : app::required<std::string>(vm, "out");
-  app::apply_thread_team(vm);
+// --json "ray_trace": how the traced beam positions split the power, fractions of the beam.
+void ray_trace_json(bed::JsonWriter& j, const th::TraceSummary& t) {
+  const double n = static_cast<double>(t.traces);
+  j.begin_object("ray_trace")
+      .value("traces", static_cast<std::uint64_t>(t.traces))
+      .value("bed_absorptance", t.bed_absorptance())
+      .value("particles", t.absorbed_particles / n)
+      .value("substrate", (t.absorbed - t.absorbed_particles) / n)
+      .value("escaped", t.escaped / n)
+      .value("outside", t.outside / n)
+      .value("dropped", t.dropped / n)
+      .value("hits_per_ray", t.hits / n)
+      .end_object();
+}
+
+// --json "energy": the run's ledger, J.
+void energy_json(bed::JsonWriter& j, const th::EnergyLedger& e) {
+  j.begin_object("energy")
+      .value("laser_particles", e.laser_particles)
+      .value("laser_substrate", e.laser_substrate)
+      .value("convection", e.convection)
+      .value("radiation", e.radiation)
+      .value("boundary", e.boundary)
+      .value("internal_particles", e.internal_particles)
+      .value("internal_substrate", e.internal_substrate)
+      .end_object();
+}
+
+// What a run made, for the report: the result, the fusion (--fuse), the wall time in seconds.
+struct RunReport {
+  const bed::Bed& bed;
+  const th::Sinter& sinter;
+  const th::SinterResult& result;
+  const std::optional<th::Fusion>& fused;
+  double wall;
+  std::string out;
+};
+
+// --json: the melt pool, the tracks, the ledger and the run's steps (SI).
+std::string result_json(const po::variables_map& vm, const RunReport& run) {
+  const th::SinterResult& r = run.result;
+  const th::Sinter& sinter = run.sinter;
+  bed::JsonWriter j;
+  j.begin_object()
+      .begin_object("melt_pool")
+      .value("height", r.melt_pool.height)
+      .value("width", r.melt_pool.width)
+      .value("depth", r.melt_pool.depth)
+      .end_object()
+      .value("max_temperature", r.max_temperature)
+      .value("particles", static_cast<std::uint64_t>(run.bed.n()))
+      .value("particles_molten", static_cast<std::uint64_t>(r.particles_molten))
+      .value("particles_vaporised", static_cast<std::uint64_t>(r.particles_vaporised))
+      .value("energy_balance_error", r.energy.relative_error())
+      .value("laser_absorption", vm["laser.absorption"].as<std::string>())
+      .value("absorptance", r.absorptance);
+  tracks_json(j, r.tracks);
+  if (r.traces.traces > 0) ray_trace_json(j, r.traces);
+  j.value("substrate_wetted", static_cast<std::uint64_t>(r.substrate_wetted))
+      .value("bridges", static_cast<std::uint64_t>(r.bridges));
+  if (run.fused) fusion_json(j, *run.fused, sinter.grid());
+  energy_json(j, r.energy);
+  j.value("steps", r.steps)
+      .value("particle_steps", r.particle_steps)
+      .value("dt", r.dt_grid)
+      .value("dt_particle", r.dt_particle)
+      .value("dt_stable_grid", sinter.stable_steps().grid)
+      .value("dt_stable_particle", sinter.stable_steps().particle)
+      .value("t_end", r.t_end)
+      .value("integrator", vm["integrator"].as<std::string>())
+      .value("implicit_iterations", static_cast<std::uint64_t>(r.implicit_iterations))
+      .value("nodes", static_cast<std::uint64_t>(sinter.grid().size()))
+      .value("extinction", sinter.extinction())
+      .value("porosity", sinter.surface().porosity)
+      .value("layer_height", sinter.surface().layer_height)
+      .value("wall_time", run.wall)
+      .value("out", run.out)
+      .end_object();
+  return j.str() + '\n';
+}
+
+// The text report: the run's line, a line per track of a scan path, the fusion's line.
+void print_result(const th::SinterScene& scene, const RunReport& run) {
+  const th::SinterResult& r = run.result;
+  std::printf("sinter: melt pool height %.1f um, width %.1f um, depth %.1f um; T_max %.0f K; "
+              "%zu of %zu particles molten, %zu vaporised; absorptance %.3f; energy balance "
+              "%.1e; %llu steps of %.3g s, %.1f s wall -> %s\n",
+              r.melt_pool.height * 1e6, r.melt_pool.width * 1e6, r.melt_pool.depth * 1e6,
+              r.max_temperature, r.particles_molten, run.bed.n(), r.particles_vaporised,
+              r.absorptance, r.energy.relative_error(), static_cast<unsigned long long>(r.steps),
+              r.dt_grid, run.wall, run.out.c_str());
+  if (!scene.scan_path.empty()) print_tracks(r.tracks);
+  if (run.fused) {
+    const th::Fusion& fused = *run.fused;
+    const double z_top = run.sinter.grid().z_top;
+    const auto [low, high] = std::minmax_element(fused.top.begin(), fused.top.end());
+    std::printf("sinter: fused %zu particles (%zu vaporised, %zu left as powder); solid top "
+                "%.1f to %.1f um above the plate; mass conserved to %.1e\n",
+                fused.fused, fused.vaporised, fused.powder.n(), (*low - z_top) * 1e6,
+                (*high - z_top) * 1e6, fused.mass_error());
+  }
+}
+
+// The files a run reads and writes, checked before any work: --out and --fused-bed end in .h5
+// and can be written, the bed and the scan path can be read; --fuse's options agree.
+void check_files(const po::variables_map& vm, const std::string& bed_path,
+                 const std::string& out) {
   std::vector<app::PathArg> outputs;
   if (!out.empty()) {
     app::check_extension({"--out", out}, {".h5"});
@@ -142,9 +240,69 @@ int run(int argc, char** argv) {
   std::vector<app::PathArg> inputs{{"--bed", bed_path}};
   if (vm.count("scan-path")) inputs.push_back({"--scan-path", vm["scan-path"].as<std::string>()});
   app::check_paths(inputs, outputs);
+}
+
+// The scan, snapshots into `writer` (--snapshots of them besides t = 0), progress on stderr;
+// `wall` gets its wall time in seconds.
+th::SinterResult scan(const po::variables_map& vm, th::Sinter& sinter, th::RunWriter& writer,
+                      double& wall) {
+  const auto steps_total =
+      static_cast<std::uint64_t>(std::ceil(sinter.t_end() / sinter.dt() * (1 - 1e-12)));
+  const std::size_t snapshots = vm["snapshots"].as<std::size_t>();
+  const std::uint64_t every = snapshots > 0 ? std::max<std::uint64_t>(1, steps_total / snapshots) : 0;
+  const auto start = std::chrono::steady_clock::now();
+  app::ProgressBar bar("sinter", app::progress_interval(vm));
+  const auto progress = [&bar](const th::SinterProgress& p) {
+    char detail[64];
+    std::snprintf(detail, sizeof detail, "t = %.3e s  T_max(particles) = %.0f K", p.time,
+                  p.max_temperature);
+    bar.draw(p.time / p.t_end, detail);
+  };
+  const th::SinterResult r = sinter.run(
+      [&](const th::Sinter& s) { writer.snapshot(s); }, every, progress);
+  bar.finish();
+  wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+// The run file's /summary: the headline numbers, SI.
+std::vector<std::pair<std::string, double>> summary_of(const th::SinterResult& r, double wall) {
+  return {{"melt_pool_height", r.melt_pool.height}, {"melt_pool_width", r.melt_pool.width},
+          {"melt_pool_depth", r.melt_pool.depth}, {"max_temperature", r.max_temperature},
+          {"particles_molten", static_cast<double>(r.particles_molten)},
+          {"particles_vaporised", static_cast<double>(r.particles_vaporised)},
+          {"energy_balance_error", r.energy.relative_error()},
+          {"laser_absorbed", r.energy.absorbed()}, {"steps", static_cast<double>(r.steps)},
+          {"dt", r.dt_grid}, {"wall_time", wall}};
+}
+
+// --fuse: what melted fused into the solid's top, written to the run file (and the powder left
+// to --fused-bed); nothing without --fuse.
+std::optional<th::Fusion> fuse_if_asked(const po::variables_map& vm, const bed::Bed& bed,
+                                        const th::Sinter& sinter, th::RunWriter& writer) {
+  if (!vm["fuse"].as<bool>()) return std::nullopt;
+  th::Fusion fused = th::fuse(bed, sinter, vm["fuse.melt-fraction"].as<double>());
+  writer.fusion(fused);
+  if (vm.count("fused-bed")) {
+    fused.powder.provenance.stage = "sinter --fuse";
+    bed::write_bed_h5(fused.powder, vm["fused-bed"].as<std::string>());
+  }
+  return fused;
+}
+
+int run(int argc, char** argv) {
+  po::options_description desc("sinter options (SI units)");
+  app::add_sinter_options(desc);
+  po::variables_map vm;
+  if (!app::parse_options("sinter", kUsage, desc, {}, argc, argv, vm)) return 0;
+  const std::string bed_path = app::required<std::string>(vm, "bed");
+  const bool explain_only = vm["explain"].as<bool>();
+  const std::string out = explain_only && !vm.count("out") ? "" : app::required<std::string>(vm, "out");
+  app::apply_thread_team(vm);
+  check_files(vm, bed_path, out);
 
   bed::Bed bed = bed::read_bed_any(bed_path);
-  th::SinterScene scene = app::sinter_scene(vm, bed);
+  const th::SinterScene scene = app::sinter_scene(vm, bed);
   const th::MaterialTable table = th::read_material_table(scene.material_table);
   th::Sinter sinter(bed, scene, table);
   if (scene.unsafe_dt && scene.dt > sinter.stable_steps().grid &&
@@ -163,118 +321,13 @@ int run(int argc, char** argv) {
   bed.provenance.stage = "sinter";
   bed.provenance.scene = app::scene_text(vm);
   th::RunWriter writer(out, bed, sinter, vm["full-fields"].as<bool>());
-  const auto steps_total =
-      static_cast<std::uint64_t>(std::ceil(sinter.t_end() / sinter.dt() * (1 - 1e-12)));
-  const std::size_t snapshots = vm["snapshots"].as<std::size_t>();
-  const std::uint64_t every = snapshots > 0 ? std::max<std::uint64_t>(1, steps_total / snapshots) : 0;
-  const auto start = std::chrono::steady_clock::now();
-  app::ProgressBar bar("sinter", app::progress_interval(vm));
-  const auto progress = [&bar](const th::SinterProgress& p) {
-    char detail[64];
-    std::snprintf(detail, sizeof detail, "t = %.3e s  T_max(particles) = %.0f K", p.time,
-                  p.max_temperature);
-    bar.draw(p.time / p.t_end, detail);
-  };
-  const th::SinterResult r = sinter.run(
-      [&](const th::Sinter& s) { writer.snapshot(s); }, every, progress);
-  bar.finish();
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  const std::vector<std::pair<std::string, double>> summary{
-      {"melt_pool_height", r.melt_pool.height}, {"melt_pool_width", r.melt_pool.width},
-      {"melt_pool_depth", r.melt_pool.depth}, {"max_temperature", r.max_temperature},
-      {"particles_molten", static_cast<double>(r.particles_molten)},
-      {"particles_vaporised", static_cast<double>(r.particles_vaporised)},
-      {"energy_balance_error", r.energy.relative_error()},
-      {"laser_absorbed", r.energy.absorbed()}, {"steps", static_cast<double>(r.steps)},
-      {"dt", r.dt_grid}, {"wall_time", wall}};
-  std::optional<th::Fusion> fused;
-  if (fuse) {
-    fused = th::fuse(bed, sinter, melt_fraction);
-    writer.fusion(*fused);
-    if (vm.count("fused-bed")) {
-      fused->powder.provenance.stage = "sinter --fuse";
-      bed::write_bed_h5(fused->powder, vm["fused-bed"].as<std::string>());
-    }
-  }
-  writer.finish(sinter, r, summary);
-
-  if (vm.count("json")) {
-    bed::JsonWriter j;
-    j.begin_object()
-        .begin_object("melt_pool")
-        .value("height", r.melt_pool.height)
-        .value("width", r.melt_pool.width)
-        .value("depth", r.melt_pool.depth)
-        .end_object()
-        .value("max_temperature", r.max_temperature)
-        .value("particles", static_cast<std::uint64_t>(bed.n()))
-        .value("particles_molten", static_cast<std::uint64_t>(r.particles_molten))
-        .value("particles_vaporised", static_cast<std::uint64_t>(r.particles_vaporised))
-        .value("energy_balance_error", r.energy.relative_error())
-        .value("laser_absorption", vm["laser.absorption"].as<std::string>())
-        .value("absorptance", r.absorptance);
-    tracks_json(j, r.tracks);
-    if (r.traces.traces > 0) {
-      const double n = static_cast<double>(r.traces.traces);
-      j.begin_object("ray_trace")
-          .value("traces", static_cast<std::uint64_t>(r.traces.traces))
-          .value("bed_absorptance", r.traces.bed_absorptance())
-          .value("particles", r.traces.absorbed_particles / n)
-          .value("substrate", (r.traces.absorbed - r.traces.absorbed_particles) / n)
-          .value("escaped", r.traces.escaped / n)
-          .value("outside", r.traces.outside / n)
-          .value("dropped", r.traces.dropped / n)
-          .value("hits_per_ray", r.traces.hits / n)
-          .end_object();
-    }
-    j.value("substrate_wetted", static_cast<std::uint64_t>(r.substrate_wetted))
-        .value("bridges", static_cast<std::uint64_t>(r.bridges));
-    if (fused) fusion_json(j, *fused, sinter.grid());
-    j.begin_object("energy")
-        .value("laser_particles", r.energy.laser_particles)
-        .value("laser_substrate", r.energy.laser_substrate)
-        .value("convection", r.energy.convection)
-        .value("radiation", r.energy.radiation)
-        .value("boundary", r.energy.boundary)
-        .value("internal_particles", r.energy.internal_particles)
-        .value("internal_substrate", r.energy.internal_substrate)
-        .end_object()
-        .value("steps", r.steps)
-        .value("particle_steps", r.particle_steps)
-        .value("dt", r.dt_grid)
-        .value("dt_particle", r.dt_particle)
-        .value("dt_stable_grid", sinter.stable_steps().grid)
-        .value("dt_stable_particle", sinter.stable_steps().particle)
-        .value("t_end", r.t_end)
-        .value("integrator", vm["integrator"].as<std::string>())
-        .value("implicit_iterations", static_cast<std::uint64_t>(r.implicit_iterations))
-        .value("nodes", static_cast<std::uint64_t>(sinter.grid().size()))
-        .value("extinction", sinter.extinction())
-        .value("porosity", sinter.surface().porosity)
-        .value("layer_height", sinter.surface().layer_height)
-        .value("wall_time", wall)
-        .value("out", out)
-        .end_object();
-    std::cout << j.str() << '\n';
-  } else {
-    std::printf("sinter: melt pool height %.1f um, width %.1f um, depth %.1f um; T_max %.0f K; "
-                "%zu of %zu particles molten, %zu vaporised; absorptance %.3f; energy balance "
-                "%.1e; %llu steps of %.3g s, %.1f s wall -> %s\n",
-                r.melt_pool.height * 1e6, r.melt_pool.width * 1e6, r.melt_pool.depth * 1e6,
-                r.max_temperature, r.particles_molten, bed.n(), r.particles_vaporised,
-                r.absorptance, r.energy.relative_error(), static_cast<unsigned long long>(r.steps), r.dt_grid,
-                wall, out.c_str());
-    if (!scene.scan_path.empty()) print_tracks(r.tracks);
-    if (fused) {
-      const auto [low, high] = std::minmax_element(fused->top.begin(), fused->top.end());
-      std::printf("sinter: fused %zu particles (%zu vaporised, %zu left as powder); solid top "
-                  "%.1f to %.1f um above the plate; mass conserved to %.1e\n",
-                  fused->fused, fused->vaporised, fused->powder.n(),
-                  (*low - sinter.grid().z_top) * 1e6, (*high - sinter.grid().z_top) * 1e6,
-                  fused->mass_error());
-    }
-  }
+  double wall = 0;
+  const th::SinterResult r = scan(vm, sinter, writer, wall);
+  const std::optional<th::Fusion> fused = fuse_if_asked(vm, bed, sinter, writer);
+  writer.finish(sinter, r, summary_of(r, wall));
+  const RunReport report{bed, sinter, r, fused, wall, out};
+  if (vm.count("json")) std::cout << result_json(vm, report);
+  else print_result(scene, report);
   return 0;
 }
 

@@ -79,14 +79,9 @@ std::vector<th::ScanSegment> scan_path_of(const po::variables_map& vm, const th:
   return th::hatch_segments(h);
 }
 
-}  // namespace
-
-void add_sinter_options(po::options_description& desc) {
-  add_common_options(desc);
-  add_threads_option(desc);
-  add_progress_option(desc);
-  add_material_options(desc, "sinter");
-  add_scan_options(desc);
+// The run: its files, --explain and --fuse, the laser's headline numbers, the grid spacing and
+// the steps.
+void add_run_options(po::options_description& desc) {
   const th::SinterScene d;
   desc.add_options()
       ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump) resting on z = floor")
@@ -112,7 +107,13 @@ void add_sinter_options(po::options_description& desc) {
       ("full-fields", po::bool_switch(), "also store the whole substrate field in each snapshot")
       ("trust-units", po::bool_switch(),
        "skip the guards against unit slips (a spot larger than the bed, over 10 kW, a substrate "
-       "deeper than 1 cm)")
+       "deeper than 1 cm)");
+}
+
+// The laser's absorption (Beer–Lambert or ray tracing) and track line; wetting's contact angle.
+void add_laser_options(po::options_description& desc) {
+  const th::SinterScene d;
+  desc.add_options()
       ("laser.absorptivity", po::value<double>()->default_value(d.absorptivity), "alpha")
       ("laser.y", po::value<double>(), "track line y (m); default Ly/2")
       ("laser.start-x", po::value<double>(), "track start x (m); default one spot radius before")
@@ -138,7 +139,14 @@ void add_sinter_options(po::options_description& desc) {
       ("laser.ray-seed", po::value<std::uint64_t>()->default_value(d.rays.seed),
        "ray-trace: seed of the rays' jitter")
       ("wetting.contact-angle", po::value<double>()->default_value(d.contact_angle),
-       "effects.wetting: contact angle of the melt on the solid substrate (degrees)")
+       "effects.wetting: contact angle of the melt on the solid substrate (degrees)");
+}
+
+// The material's phase change and properties, the environment, the substrate and the steps'
+// safety margins.
+void add_material_and_grid_options(po::options_description& desc) {
+  const th::SinterScene d;
+  desc.add_options()
       ("material.table", po::value<std::string>()->default_value(d.material_table),
        "material file with the property table (solid rows + one liquid row): a name of "
        "--list-materials or a path (relative paths: to the scene file's folder too)")
@@ -162,17 +170,36 @@ void add_sinter_options(po::options_description& desc) {
       ("time.safety", po::value<double>()->default_value(d.safety), "fraction of the stable step")
       ("time.max-particle-rise", po::value<double>()->default_value(d.max_particle_rise),
        "particle steps subcycle so the laser raises no particle more than this per step (K)");
-  for (unsigned bit = 1; bit < (1u << th::kSinterEffectCount); bit <<= 1) {
-    const std::string name = std::string("effects.") + th::sinter_effect_name(bit);
-    desc.add_options()(name.c_str(), po::value<bool>()->default_value((d.effects & bit) != 0),
+}
+
+// effects.NAME: one switch per row of the scene's list of effects.
+void add_effect_options(po::options_description& desc) {
+  const th::SinterScene d;
+  for (const th::SinterEffectRow& row : th::kSinterEffects) {
+    const std::string name = std::string("effects.") + row.name;
+    desc.add_options()(name.c_str(), po::value<bool>()->default_value(d.has(row.effect)),
                        "effect on/off");
   }
 }
 
+}  // namespace
+
+void add_sinter_options(po::options_description& desc) {
+  add_common_options(desc);
+  add_threads_option(desc);
+  add_progress_option(desc);
+  add_material_options(desc, "sinter");
+  add_scan_options(desc);
+  add_run_options(desc);
+  add_laser_options(desc);
+  add_material_and_grid_options(desc);
+  add_effect_options(desc);
+}
+
 namespace {
 
-th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
-  th::SinterScene s;
+// material.*, environment.*: the material and what surrounds the bed.
+void set_material(const po::variables_map& vm, th::SinterScene& s) {
   // A name of the shipped materials, or a path (relative: to the scene file's folder too).
   s.material_table =
       material_file(vm["material.table"].as<std::string>(), vm, "material.table");
@@ -191,6 +218,10 @@ th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
   s.emissivity = vm["environment.emissivity"].as<double>();
   s.environment_temperature = vm["environment.temperature"].as<double>();
   s.initial_temperature = vm["environment.initial-temperature"].as<double>();
+}
+
+// The laser: power, speed, spot, the track line, the absorption model and its rays; wetting.
+void set_laser(const po::variables_map& vm, th::SinterScene& s) {
   s.power = vm["power"].as<double>();
   s.speed = vm["speed"].as<double>();
   s.spot_radius = vm["spot"].as<double>();
@@ -220,6 +251,10 @@ th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
   s.rays.reflection =
       reflection == "specular" ? th::Reflection::specular : th::Reflection::diffuse;
   s.contact_angle = vm["wetting.contact-angle"].as<double>();
+}
+
+// The substrate: its depth and nodes (--grid-spacing: from the bed's x-y extent lx, ly).
+void set_grid(const po::variables_map& vm, double lx, double ly, th::SinterScene& s) {
   s.substrate_depth = vm["substrate.depth"].as<double>();
   const auto nodes = parse_number_list(vm["substrate.nodes"].as<std::string>(), 3, 3,
                                             "substrate.nodes");
@@ -237,6 +272,10 @@ th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
     for (std::size_t a = 0; a < 3; ++a)
       s.nodes[a] = static_cast<std::size_t>(std::llround(lengths[a] / h)) + 1;
   }
+}
+
+// The integrator, the steps and the end of the run.
+void set_time(const po::variables_map& vm, th::SinterScene& s) {
   const std::string integrator = vm["integrator"].as<std::string>();
   if (integrator != "explicit" && integrator != "implicit")
     throw InputError("--integrator: '" + integrator + "' (accepted: explicit, implicit)");
@@ -249,9 +288,17 @@ th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
   s.safety = vm["time.safety"].as<double>();
   s.max_particle_rise = vm["time.max-particle-rise"].as<double>();
   if (vm.count("t-end")) s.t_end = vm["t-end"].as<double>();
+}
+
+th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
+  th::SinterScene s;
+  set_material(vm, s);
+  set_laser(vm, s);
+  set_grid(vm, lx, ly, s);
+  set_time(vm, s);
   s.effects = 0;
-  for (unsigned bit = 1; bit < (1u << th::kSinterEffectCount); bit <<= 1)
-    if (vm[std::string("effects.") + th::sinter_effect_name(bit)].as<bool>()) s.effects |= bit;
+  for (const th::SinterEffectRow& row : th::kSinterEffects)
+    if (vm[std::string("effects.") + row.name].as<bool>()) s.effects |= row.effect;
   return s;
 }
 

@@ -3,8 +3,10 @@
 // the chosen effects and a grid kernel for constant or variable conductivity, so switching an
 // effect off removes its work rather than skipping it per contact. Two beds:
 // - particles: 20,000 spheres on a 3 x 3 x 3-node substrate (the particle step dominates);
-// - grid: no particles on 101 x 51 x 31 nodes (the grid step dominates).
-// Each benchmark runs one grid step of the solver with the effects named in its label.
+// - grid: no particles on 101 x 51 x 31 nodes (the grid step dominates);
+// - implicit: 2,500 spheres on 41 x 21 x 11 nodes under backward Euler, whose matrix assembly
+//   composes conduction, the surface losses and the laser on the substrate the same way.
+// Each benchmark runs 20 grid steps of the solver with the effects named in its label.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -38,16 +40,15 @@ const thermal::MaterialTable& table() {
   return t;
 }
 
-// Times 20 grid steps of `bed` under `scene` (its step set to the scene's stable default).
+// Times 20 grid steps of `bed` under `scene` (its step, unless set, the scene's stable default).
 void time_steps(benchmark::State& state, const bed::Bed& bed, thermal::SinterScene scene,
                 std::int64_t items_per_step) {
   scene.laser_y = 0.5 * bed.domain.length(1);
   scene.start_x = 0;
   scene.speed = 1e-6;  // the beam stays on the bed
   scene.t_end = 1;
-  const thermal::Sinter probe(bed, scene, table());
-  scene.dt = probe.dt();
-  scene.t_end = 20 * probe.dt();
+  if (!(scene.dt > 0)) scene.dt = thermal::Sinter(bed, scene, table()).dt();
+  scene.t_end = 20 * scene.dt;
   for (auto _ : state) {
     state.PauseTiming();
     thermal::Sinter sinter(bed, scene, table());
@@ -78,6 +79,19 @@ void grid(benchmark::State& state, unsigned effects_off) {
   time_steps(state, bed, scene, 101 * 51 * 31);
 }
 
+// Backward Euler at 1e-5 s, a few times the explicit bound of this grid (as
+// tests/thermal/test_substrate.cpp steps it); wetting works with the explicit integrator only.
+void implicit(benchmark::State& state, unsigned effects_off) {
+  static const bed::Bed bed = lattice_bed(50);
+  thermal::SinterScene scene;
+  scene.absorption = thermal::LaserAbsorption::beer_lambert;
+  scene.integrator = thermal::Integrator::implicit_euler;
+  scene.nodes = {41, 21, 11};
+  scene.dt = 1e-5;
+  scene.effects = thermal::kAllSinterEffects & ~effects_off;
+  time_steps(state, bed, scene, static_cast<std::int64_t>(bed.n() + 41 * 21 * 11));
+}
+
 }  // namespace
 
 BENCHMARK_CAPTURE(particles, all_effects, 0u)->Unit(benchmark::kMillisecond);
@@ -95,5 +109,10 @@ BENCHMARK_CAPTURE(particles, only_laser,
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grid, all_effects, 0u)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(grid, constant_properties, thermal::kVariableProperties)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(implicit, all_effects, 0u)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(implicit, constant_properties, thermal::kVariableProperties)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(implicit, no_laser_substrate, thermal::kLaserSubstrate)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -68,7 +68,10 @@ struct LinkFlow {
   double q, d_i, d_j;
 };
 
-// The network's state: temperatures of the particles and the wall values.
+// The network's state: temperatures of the particles and the wall values. Whether gas links
+// follow temperature (the air model) changes every gas link's flow: the flows, the residual and
+// the Jacobian take it as a template argument, chosen once per solve (solve_keff), never tested
+// per link.
 struct State {
   const KeffNetwork& net;
   const std::vector<std::ptrdiff_t>& unknown;
@@ -79,6 +82,7 @@ struct State {
   }
   // Conduction: G (T_j − T_i), with the air model G k_g(T̄) / k_ref, T̄ = (T_i + T_j) / 2, whose
   // slopes carry k_g'(T̄) / 2 (T_j − T_i) as well; radiation: σ G_r (T_j⁴ − T_i⁴).
+  template <bool GasFollows>
   LinkFlow flow(const KeffLink& l, const std::vector<double>& t) const {
     const double ti = t[l.i], tj = temperature(t, l.j);
     if (l.path == HeatPath::radiation) {
@@ -86,27 +90,30 @@ struct State {
       return {s * (tj * tj * tj * tj - ti * ti * ti * ti), -4 * s * ti * ti * ti,
               4 * s * tj * tj * tj};
     }
-    if (l.path == HeatPath::gas && net.gas_follows_temperature) {
-      const double mean = (ti + tj) / 2, g = l.conductance / net.gas_reference;
-      const double k = air_conductivity(mean), dk_half = air_conductivity_slope(mean) / 2;
-      return {g * k * (tj - ti), g * (dk_half * (tj - ti) - k), g * (dk_half * (tj - ti) + k)};
+    if constexpr (GasFollows) {
+      if (l.path == HeatPath::gas) {
+        const double mean = (ti + tj) / 2, g = l.conductance / net.gas_reference;
+        const double k = air_conductivity(mean), dk_half = air_conductivity_slope(mean) / 2;
+        return {g * k * (tj - ti), g * (dk_half * (tj - ti) - k), g * (dk_half * (tj - ti) + k)};
+      }
     }
     return {l.conductance * (tj - ti), -l.conductance, l.conductance};
   }
+  template <bool GasFollows>
   bool nonlinear() const {
     for (const KeffLink& l : net.links)
-      if (l.path == HeatPath::radiation || (l.path == HeatPath::gas && net.gas_follows_temperature))
-        return true;
+      if (l.path == HeatPath::radiation || (GasFollows && l.path == HeatPath::gas)) return true;
     return false;
   }
   // Net heat flow into each unknown particle, and ‖R‖ / ‖Σ|q|‖.
+  template <bool GasFollows>
   double residual(const std::vector<double>& t, Eigen::VectorXd& r) const {
     Eigen::VectorXd scale = Eigen::VectorXd::Zero(r.size());
     r.setZero();
     for (const KeffLink& l : net.links) {
       const std::ptrdiff_t u = unknown[l.i];
       if (u < 0) continue;
-      const double q = flow(l, t).q;
+      const double q = flow<GasFollows>(l, t).q;
       r[u] += q;
       scale[u] += std::abs(q);
       if (is_wall(l.j)) continue;
@@ -118,13 +125,14 @@ struct State {
   }
   // −∂R/∂T: R_i gains q and R_j loses it, so row i holds −∂q/∂T_i, −∂q/∂T_j and row j
   // ∂q/∂T_i, ∂q/∂T_j.
+  template <bool GasFollows>
   Matrix jacobian(const std::vector<double>& t, std::ptrdiff_t count) const {
     std::vector<Eigen::Triplet<double>> triplets;
     triplets.reserve(net.links.size() * 4);
     for (const KeffLink& l : net.links) {
       const std::ptrdiff_t u = unknown[l.i];
       if (u < 0) continue;
-      const LinkFlow f = flow(l, t);
+      const LinkFlow f = flow<GasFollows>(l, t);
       triplets.emplace_back(u, u, -f.d_i);
       if (is_wall(l.j)) continue;
       const std::ptrdiff_t v = unknown[l.j];
@@ -192,17 +200,19 @@ std::vector<double> linear_solve(const State& s, std::ptrdiff_t count, std::size
 
 // Newton from `t` to ‖R‖ / ‖Σ|q|‖ ≤ tolerance (the wall-flow mismatch is the sum of the R);
 // fills the counters of `r`.
+template <bool GasFollows>
 void newton(const State& s, std::ptrdiff_t count, double tolerance, std::vector<double>& t,
             KeffResult& r) {
   Eigen::VectorXd res(count), trial_res(count);
-  double rel = s.residual(t, res);
+  double rel = s.residual<GasFollows>(t, res);
   std::vector<double> trial;
   while (rel > tolerance) {
     if (r.newton_iterations == kMaxNewton)
       throw NumericalError("keff: Newton did not converge in " + std::to_string(kMaxNewton) +
                            " steps (relative residual " + std::to_string(rel) + ")");
     ++r.newton_iterations;
-    const Matrix jacobian = s.jacobian(t, count);  // the solver keeps a reference to it
+    // The solver keeps a reference to the matrix.
+    const Matrix jacobian = s.jacobian<GasFollows>(t, count);
     Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> solver;
     solver.setTolerance(kTolerance);
     solver.compute(jacobian);
@@ -220,7 +230,7 @@ void newton(const State& s, std::ptrdiff_t count, double tolerance, std::vector<
           trial[p] += fraction * step[s.unknown[p]];
           positive &= trial[p] > 0;
         }
-      const double trial_rel = positive ? s.residual(trial, trial_res) : HUGE_VAL;
+      const double trial_rel = positive ? s.residual<GasFollows>(trial, trial_res) : HUGE_VAL;
       if (trial_rel < rel) {
         t.swap(trial);
         res.swap(trial_res);
@@ -234,6 +244,26 @@ void newton(const State& s, std::ptrdiff_t count, double tolerance, std::vector<
     }
   }
   r.residual = rel;
+}
+
+// The temperatures (the linear start, then Newton when a link is nonlinear), the wall flows
+// and each path's dissipation Σ q ΔT at them.
+template <bool GasFollows>
+void solve_network(const State& s, std::ptrdiff_t count, std::size_t nodes, double tolerance,
+                   KeffResult& r, double (&dissipation)[3]) {
+  r.temperature = linear_solve(s, count, nodes, r.solver_iterations);
+  if (s.nonlinear<GasFollows>())
+    newton<GasFollows>(s, count, tolerance, r.temperature, r);
+  else
+    r.newton_iterations = 1;
+  for (const KeffLink& l : s.net.links) {
+    if (s.unknown[l.i] < 0) continue;  // a rattler cluster's internal links carry nothing
+    const double q = s.flow<GasFollows>(l, r.temperature).q;  // from j into i
+    if (l.j == kHotWall) r.heat_flow_hot += q;
+    if (l.j == kColdWall) r.heat_flow_cold -= q;
+    dissipation[static_cast<int>(l.path)] += q * (s.temperature(r.temperature, l.j) -
+                                                  r.temperature[l.i]);
+  }
 }
 
 }  // namespace
@@ -279,21 +309,11 @@ KeffResult solve_keff(const bed::Bed& bed, const KeffScene& scene, const KeffNet
   }
 
   const State state{network, unknown, t_hot, t_cold};
-  r.temperature = linear_solve(state, count, nodes, r.solver_iterations);
-  if (state.nonlinear())
-    newton(state, count, scene.newton_tolerance, r.temperature, r);
-  else
-    r.newton_iterations = 1;
-
   double dissipation[3] = {0, 0, 0};  // Σ q ΔT by path (Tellegen)
-  for (const KeffLink& l : network.links) {
-    if (unknown[l.i] < 0) continue;  // a rattler cluster's internal links carry nothing
-    const double q = state.flow(l, r.temperature).q;  // from j into i
-    if (l.j == kHotWall) r.heat_flow_hot += q;
-    if (l.j == kColdWall) r.heat_flow_cold -= q;
-    dissipation[static_cast<int>(l.path)] += q * (state.temperature(r.temperature, l.j) -
-                                                  r.temperature[l.i]);
-  }
+  if (network.gas_follows_temperature)
+    solve_network<true>(state, count, nodes, scene.newton_tolerance, r, dissipation);
+  else
+    solve_network<false>(state, count, nodes, scene.newton_tolerance, r, dissipation);
   // Wall to wall through the gaps: the same flow leaves the hot wall and enters the cold one.
   const double direct = kStefanBoltzmann * network.wall_exchange *
                         (t_hot * t_hot * t_hot * t_hot - t_cold * t_cold * t_cold * t_cold);

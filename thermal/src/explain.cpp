@@ -21,9 +21,39 @@ std::string verdict(double ratio, bool on) {
   return on ? "negligible: switching it off saves time" : "negligible (off)";
 }
 
-}  // namespace
+// Conduction through this bed's contacts over the laser flux: k Σ shape (T_m - T0) per projected
+// area, the mean over the particles that have such contacts (`shape`: Σ A/L per particle, `dt`:
+// T_m - T0).
+double contact_ratio(const bed::Bed& bed, const std::vector<double>& shape, double k, double dt,
+                     double laser_flux) {
+  double sum = 0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    if (shape[i] <= 0) continue;
+    sum += k * shape[i] * dt / (M_PI * bed.radius[i] * bed.radius[i]);
+    ++count;
+  }
+  return count > 0 ? sum / static_cast<double>(count) / laser_flux : 0.0;
+}
 
-ExplainReport explain(const bed::Bed& bed, const SinterScene& scene, const Sinter& sinter) {
+// The conduction ratios: [GZ]'s scale estimate and this bed's particle pairs and floor contacts;
+// contact circles of a settled bed are small (a/r ~ 1e-2), so these are far below the estimate.
+void conduction_ratios(const bed::Bed& bed, const Sinter& sinter, double k, double dt,
+                       double r_mean, ExplainReport& r) {
+  const std::size_t n = bed.n();
+  std::vector<double> pair_shape(n, 0.0), floor_shape(n, 0.0);
+  for (const auto& p : sinter.network().pairs) {
+    pair_shape[p.i] += p.shape;
+    pair_shape[p.j] += p.shape;
+  }
+  for (const auto& c : sinter.network().substrate) floor_shape[c.particle] += c.shape;
+  r.conduction_scale = n > 0 ? k * dt / (2 * r_mean) / r.laser_flux : 0.0;
+  r.conduction_ratio = contact_ratio(bed, pair_shape, k, dt, r.laser_flux);
+  r.substrate_ratio = contact_ratio(bed, floor_shape, k, dt, r.laser_flux);
+}
+
+// The scale analysis's numbers (all but the text).
+ExplainReport scale_numbers(const bed::Bed& bed, const SinterScene& scene, const Sinter& sinter) {
   ExplainReport r;
   const Material& m = sinter.material();
   const PhaseChange& pc = m.phase_change();
@@ -33,28 +63,7 @@ ExplainReport explain(const bed::Bed& bed, const SinterScene& scene, const Sinte
   const std::size_t n = bed.n();
   double r_mean = 0;
   for (const double radius : bed.radius) r_mean += radius / static_cast<double>(n > 0 ? n : 1);
-
-  // Conduction through this bed's contacts: Σ k A/L (T_m - T0) per projected area; contact
-  // circles of a settled bed are small (a/r ~ 1e-2), so this is far below the scale estimate.
-  std::vector<double> pair_shape(n, 0.0), floor_shape(n, 0.0);
-  for (const auto& p : sinter.network().pairs) {
-    pair_shape[p.i] += p.shape;
-    pair_shape[p.j] += p.shape;
-  }
-  for (const auto& c : sinter.network().substrate) floor_shape[c.particle] += c.shape;
-  const auto mean_ratio = [&](const std::vector<double>& shape) {
-    double sum = 0;
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (shape[i] <= 0) continue;
-      sum += k * shape[i] * (t_m - t0) / (M_PI * bed.radius[i] * bed.radius[i]);
-      ++count;
-    }
-    return count > 0 ? sum / static_cast<double>(count) / r.laser_flux : 0.0;
-  };
-  r.conduction_scale = n > 0 ? k * (t_m - t0) / (2 * r_mean) / r.laser_flux : 0.0;
-  r.conduction_ratio = mean_ratio(pair_shape);
-  r.substrate_ratio = mean_ratio(floor_shape);
+  conduction_ratios(bed, sinter, k, t_m - t0, r_mean, r);
   const double te = scene.environment_temperature;
   r.convection_ratio = scene.convection * (t_v - te) / r.laser_flux;
   r.radiation_ratio =
@@ -67,17 +76,18 @@ ExplainReport explain(const bed::Bed& bed, const SinterScene& scene, const Sinte
   r.dwell_time = scene.spot_radius / scene.speed;
   const double c_mean = m.solid_specific_heat(0.5 * (t0 + t_m));
   r.heating_time = m.density(t0) * 4.0 / 3.0 * r_mean * c_mean * (t_m - t0) / r.laser_flux;
-
   const auto& grid = sinter.grid();
   r.absorptance = sinter.absorptance_at(grid.x0 + 0.5 * static_cast<double>(grid.nx - 1) * grid.dx);
   const SpreadCap cap = spherical_cap(4.0 / 3.0 * M_PI * r_mean * r_mean * r_mean,
                                       scene.contact_angle * M_PI / 180);
   r.wetting_time = m.density(t0) * 4.0 / 3.0 * M_PI * r_mean * r_mean * r_mean * c_mean /
                    (k * conduction_shape_factor(cap.base_radius, cap.centroid_height));
-  const bool particles_melt = r.heating_time < r.dwell_time;
-  const bool wetting_matters = n > 0 && !sinter.network().substrate.empty() && particles_melt &&
-                               r.wetting_time < r.dwell_time;
+  return r;
+}
 
+// The printed report: one row per number with its verdict, then the time steps.
+std::string report_text(const ExplainReport& r, const SinterScene& scene, const Sinter& sinter,
+                        bool wetting_matters) {
   std::ostringstream out;
   char line[200];
   const auto row = [&](const char* name, double value, const std::string& note) {
@@ -117,12 +127,22 @@ ExplainReport explain(const bed::Bed& bed, const SinterScene& scene, const Sinte
       std::string(wetting_matters ? "shorter than the dwell, particles melt: wetting matters"
                                   : "particles do not melt or touch the substrate: negligible") +
           (scene.has(kWetting) ? " (on)" : wetting_matters ? " but is OFF" : " (off)"));
-  row("phase change window (K)", pc.window,
+  row("phase change window (K)", sinter.material().phase_change().window,
       scene.has(kPhaseChange) ? "phase change on" : "phase change OFF: no latent heat");
   out << "Time steps: grid bound " << sinter.stable_steps().grid << " s, particle bound "
       << sinter.stable_steps().particle << " s, run step " << sinter.dt() << " s with "
       << sinter.substeps() << " particle step(s) per grid step.\n";
-  r.text = out.str();
+  return out.str();
+}
+
+}  // namespace
+
+ExplainReport explain(const bed::Bed& bed, const SinterScene& scene, const Sinter& sinter) {
+  ExplainReport r = scale_numbers(bed, scene, sinter);
+  const bool particles_melt = r.heating_time < r.dwell_time;
+  const bool wetting_matters = bed.n() > 0 && !sinter.network().substrate.empty() &&
+                               particles_melt && r.wetting_time < r.dwell_time;
+  r.text = report_text(r, scene, sinter, wetting_matters);
   return r;
 }
 

@@ -1,7 +1,8 @@
 // Forward Euler on enthalpies (docs/physics.md §5 "Time integration"), the effects composed once:
-// a particle kernel instantiated for each combination of the particle effects and a grid kernel
-// for constant or temperature-dependent conductivity, chosen through a table of function
-// pointers, so an effect that is off is absent from the loop (docs/architecture.md "Effects a scene calls for").
+// a particle kernel instantiated for each combination of the particle effects (effect_kernels.hpp)
+// and a grid kernel for constant or temperature-dependent conductivity, chosen through a table of
+// function pointers, so an effect that is off is absent from the loop (docs/architecture.md
+// "Effects a scene calls for").
 #include <omp.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <utility>
 
+#include "effect_kernels.hpp"
 #include "powderbed/thermal/beer_lambert_laser.hpp"
 #include "powderbed/thermal/contact_conduction.hpp"
 #include "powderbed/thermal/surface_losses.hpp"
@@ -18,17 +20,9 @@ namespace powderbed::thermal {
 
 namespace {
 
-// The particle effects that shape the kernel, as bits of its template mask.
-enum ParticleBit : unsigned {
-  kBitConduction = 1,
-  kBitSubstrate = 2,
-  kBitConvection = 4,
-  kBitRadiation = 8,
-  kBitLaser = 16,
-  kBitVariable = 32,
-};
-constexpr unsigned kParticleMasks = 64;
-
+// The effects that shape the particle kernel (effect_kernels.hpp).
+constexpr std::array kParticleEffects{kConduction, kSubstrateContact, kConvection, kRadiation,
+                                      kLaser, kVariableProperties};
 
 // Grids below this many nodes run their loops on one thread: a step's work is then tens of
 // microseconds, less than a team's fork and barrier, and on a loaded machine a barrier that
@@ -36,17 +30,17 @@ constexpr unsigned kParticleMasks = 64;
 // with two threads than with one).
 constexpr std::size_t kParallelNodes = 1u << 16;
 
-template <unsigned Mask>
+template <unsigned Effects>
 void particle_step(Sinter::State& s, double t, double dt) {
   const std::size_t n = s.x.size();
   auto& q = s.heat;
   std::fill(q.begin(), q.end(), 0.0);
   const double k_const = s.k_fixed;
   const auto k_of = [&](double temp) {
-    if constexpr ((Mask & kBitVariable) != 0) return s.conductivity(temp);
+    if constexpr ((Effects & kVariableProperties) != 0) return s.conductivity(temp);
     else return k_const;
   };
-  if constexpr ((Mask & kBitConduction) != 0) {
+  if constexpr ((Effects & kConduction) != 0) {
     for (const auto& p : s.net.pairs) {
       if (s.gone[p.i] || s.gone[p.j]) continue;
       const double ti = s.temperature[p.i], tj = s.temperature[p.j];
@@ -55,7 +49,7 @@ void particle_step(Sinter::State& s, double t, double dt) {
       q[p.j] -= f;
     }
   }
-  if constexpr ((Mask & kBitSubstrate) != 0) {
+  if constexpr ((Effects & kSubstrateContact) != 0) {
     for (const auto& c : s.net.substrate) {
       if (s.gone[c.particle]) continue;
       double ts = 0;
@@ -70,16 +64,16 @@ void particle_step(Sinter::State& s, double t, double dt) {
       }
     }
   }
-  if constexpr ((Mask & (kBitConvection | kBitRadiation)) != 0) {
+  if constexpr ((Effects & (kConvection | kRadiation)) != 0) {
     double convection = 0, radiation = 0;
     for (const auto i : s.exposed) {
       if (s.gone[i]) continue;
-      if constexpr ((Mask & kBitConvection) != 0) {
+      if constexpr ((Effects & kConvection) != 0) {
         const double f = convection_gain(s.environment, s.temperature[i], s.area[i]);
         q[i] += f;
         convection += f;
       }
-      if constexpr ((Mask & kBitRadiation) != 0) {
+      if constexpr ((Effects & kRadiation) != 0) {
         const double f = radiation_gain(s.environment, s.temperature[i], s.area[i]);
         q[i] += f;
         radiation += f;
@@ -88,7 +82,7 @@ void particle_step(Sinter::State& s, double t, double dt) {
     s.ledger.convection += convection * dt;
     s.ledger.radiation += radiation * dt;
   }
-  if constexpr ((Mask & kBitLaser) != 0) s.ledger.laser_particles += s.particle_laser(s, t, q) * dt;
+  if constexpr ((Effects & kLaser) != 0) s.ledger.laser_particles += s.particle_laser(s, t, q) * dt;
   for (std::size_t i = 0; i < n; ++i) {
     if (s.gone[i]) continue;
     s.h[i] += dt * q[i] / s.mass[i];
@@ -98,22 +92,12 @@ void particle_step(Sinter::State& s, double t, double dt) {
 
 using ParticleKernel = void (*)(Sinter::State&, double, double);
 
-template <std::size_t... M>
-constexpr std::array<ParticleKernel, sizeof...(M)> particle_kernels(std::index_sequence<M...>) {
-  return {&particle_step<static_cast<unsigned>(M)>...};
+template <std::size_t... I>
+constexpr std::array<ParticleKernel, sizeof...(I)> particle_kernels(std::index_sequence<I...>) {
+  return {&particle_step<effects_of_index(kParticleEffects, I)>...};
 }
-constexpr auto kParticleKernels = particle_kernels(std::make_index_sequence<kParticleMasks>{});
-
-unsigned particle_mask(const SinterScene& scene) {
-  unsigned mask = 0;
-  if (scene.has(kConduction)) mask |= kBitConduction;
-  if (scene.has(kSubstrateContact)) mask |= kBitSubstrate;
-  if (scene.has(kConvection)) mask |= kBitConvection;
-  if (scene.has(kRadiation)) mask |= kBitRadiation;
-  if (scene.has(kLaser)) mask |= kBitLaser;
-  if (scene.has(kVariableProperties)) mask |= kBitVariable;
-  return mask;
-}
+constexpr auto kParticleKernels =
+    particle_kernels(std::make_index_sequence<std::size_t{1} << kParticleEffects.size()>{});
 
 // Heat from the free nodes into the Dirichlet sides and bottom over dt, with the face fluxes
 // the grid step uses.
@@ -277,7 +261,7 @@ void grid_step(Sinter::State& s, double dt) {
 }  // namespace
 
 void explicit_step(Sinter::State& s, double dt) {
-  const ParticleKernel particles = kParticleKernels[particle_mask(s.scene)];
+  const ParticleKernel particles = kParticleKernels[index_of_effects(kParticleEffects, s.scene.effects)];
   if (s.tracer && s.scene.has(kLaser | kLaserSubstrate)) prepare_traces(s, s.time, s.time + dt);
   if (!s.x.empty()) {
     const double dt_p = dt / static_cast<double>(s.substeps);

@@ -6,22 +6,6 @@
 
 namespace powderbed::thermal {
 
-const char* sinter_effect_name(unsigned effect) {
-  switch (effect) {
-    case kConduction: return "conduction";
-    case kSubstrateContact: return "substrate-contact";
-    case kConvection: return "convection";
-    case kRadiation: return "radiation";
-    case kLaser: return "laser";
-    case kPenetration: return "penetration";
-    case kLaserSubstrate: return "laser-substrate";
-    case kPhaseChange: return "phase-change";
-    case kVariableProperties: return "variable-properties";
-    case kWetting: return "wetting";
-    default: return "unknown";
-  }
-}
-
 namespace {
 
 bool positive(double v) { return std::isfinite(v) && v > 0; }

@@ -424,37 +424,12 @@ void check_finite(const Sinter::State& s, bool grid) {
   }
 }
 
-SinterResult Sinter::run(const std::function<void(const Sinter&)>& snapshot, std::uint64_t every,
-                         const std::function<void(const SinterProgress&)>& progress) {
-  State& s = *s_;
-  // Measured from here, not from T0: a test may start particles or nodes elsewhere.
-  const auto [particles_start, substrate_start] = internal_energy(s);
-  const auto started = std::chrono::steady_clock::now();
-  auto last_report = started;
-  if (snapshot) snapshot(*this);
-  const double t_end = s.t_end;
-  while (s.time < t_end * (1 - 1e-12)) {
-    const double dt = std::min(s.dt, t_end - s.time);
-    if (s.scene.integrator == Integrator::explicit_euler) explicit_step(s, dt);
-    else implicit_step(s, dt);
-    s.time += dt;
-    ++s.step;
-    // Cheap watch on the particles every step (so a failure names its step); the grid every 64
-    // steps and at the end.
-    check_finite(s, s.step % 64 == 0 || s.time >= t_end * (1 - 1e-12));
-    watch_tracks(s);
-    if (snapshot && every > 0 && s.step % every == 0) snapshot(*this);
-    const auto now = std::chrono::steady_clock::now();
-    if (progress && now - last_report > std::chrono::seconds(1)) {
-      last_report = now;
-      double hottest = 0;
-      for (const double t : s.temperature) hottest = std::max(hottest, t);
-      progress({s.time, t_end, hottest, s.step});
-    }
-  }
-  check_finite(s);
-  if (snapshot && (every == 0 || s.step % every != 0)) snapshot(*this);
+namespace {
 
+// The run's result from its end state, its energies measured against those at its start;
+// throws NumericalError if the energy balance is broken.
+SinterResult summarise(Sinter::State& s, double particles_start, double substrate_start) {
+  const double t_end = s.t_end;
   SinterResult r;
   r.steps = s.step;
   r.particle_steps = s.particle_steps;
@@ -499,6 +474,42 @@ SinterResult Sinter::run(const std::function<void(const Sinter&)>& snapshot, std
   r.substrate_wetted = s.wetted.size();
   r.bridges = s.bridges;
   return r;
+}
+
+}  // namespace
+
+SinterResult Sinter::run(const std::function<void(const Sinter&)>& snapshot, std::uint64_t every,
+                         const std::function<void(const SinterProgress&)>& progress) {
+  State& s = *s_;
+  // Measured from here, not from T0: a test may start particles or nodes elsewhere.
+  const auto [particles_start, substrate_start] = internal_energy(s);
+  const auto started = std::chrono::steady_clock::now();
+  auto last_report = started;
+  if (snapshot) snapshot(*this);
+  const double t_end = s.t_end;
+  while (s.time < t_end * (1 - 1e-12)) {
+    const double dt = std::min(s.dt, t_end - s.time);
+    if (s.scene.integrator == Integrator::explicit_euler) explicit_step(s, dt);
+    else implicit_step(s, dt);
+    s.time += dt;
+    ++s.step;
+    // Cheap watch on the particles every step (so a failure names its step); the grid every 64
+    // steps and at the end.
+    check_finite(s, s.step % 64 == 0 || s.time >= t_end * (1 - 1e-12));
+    watch_tracks(s);
+    if (snapshot && every > 0 && s.step % every == 0) snapshot(*this);
+    const auto now = std::chrono::steady_clock::now();
+    if (progress && now - last_report > std::chrono::seconds(1)) {
+      last_report = now;
+      double hottest = 0;
+      for (const double t : s.temperature) hottest = std::max(hottest, t);
+      progress({s.time, t_end, hottest, s.step});
+    }
+  }
+  check_finite(s);
+  if (snapshot && (every == 0 || s.step % every != 0)) snapshot(*this);
+
+  return summarise(s, particles_start, substrate_start);
 }
 
 const StableSteps& Sinter::stable_steps() const { return s_->stable; }

@@ -131,6 +131,14 @@ void prepare_traces(Sinter::State& s, double t0, double t1);
 // Fraction of the beam the bed of the start state absorbs with the beam centred at (x, y)
 // (ray tracing: of what reaches the substrate's extent).
 double absorbed_fraction(const Sinter::State& s, double x, double y);
+// Conductivity at temperature t: the table's with variable-properties (Variable), else held at
+// T0. A template argument, so a loop over contacts chooses once, not per contact.
+template <bool Variable>
+double conductivity_at(const Sinter::State& s, double t) {
+  if constexpr (Variable) return s.conductivity(t);
+  else return s.k_fixed;
+}
+
 // Wetting (wetting.cpp): set-up of the adjacency; after the particle steps of a grid step,
 // spreads the contacts of particles that have just melted; the exact exchange of the spread
 // substrate contacts over dt (energy handed to the grid as sources).

@@ -94,10 +94,13 @@ double secant_capacity(const EnthalpyCurve& curve, double t, double t_other) {
   return (curve.enthalpy(t_other) - curve.enthalpy(t)) / span;
 }
 
-void wetted_exchange(Sinter::State& s, double dt) {
+namespace {
+
+// The exchange, with conductivities that follow temperature (Variable) or are held at T0: a
+// template argument, chosen once per step (wetted_exchange), not per contact.
+template <bool Variable>
+void exchange_wetted(Sinter::State& s, double dt) {
   const SubstrateGeometry& g = s.g;
-  const bool variable = s.scene.has(kVariableProperties);
-  const auto k_of = [&](double t) { return variable ? s.conductivity(t) : s.k_fixed; };
   for (const auto& w : s.wetted) {
     const std::size_t i = w.particle;
     if (s.gone[i]) continue;
@@ -116,7 +119,8 @@ void wetted_exchange(Sinter::State& s, double dt) {
     }
     const double c_particle = s.mass[i] * secant_capacity(s.per_kg, tp, ts);
     const double c_nodes = inverse_capacity > 0 ? 1 / inverse_capacity : 1e300;
-    const double conductance = path_conductance(k_of(tp), k_of(ts), w.shape);
+    const double conductance = path_conductance(conductivity_at<Variable>(s, tp),
+                                                conductivity_at<Variable>(s, ts), w.shape);
     double energy = exact_exchange(conductance, c_particle, tp, c_nodes, ts, dt);
     // Nor the particle beyond the nodes' mean temperature.
     limit = std::min(limit, s.mass[i] * std::abs(s.per_kg.enthalpy(ts) - s.h[i]));
@@ -128,6 +132,13 @@ void wetted_exchange(Sinter::State& s, double dt) {
       else s.sources.push_back({node, -weight * energy});
     }
   }
+}
+
+}  // namespace
+
+void wetted_exchange(Sinter::State& s, double dt) {
+  if (s.scene.has(kVariableProperties)) exchange_wetted<true>(s, dt);
+  else exchange_wetted<false>(s, dt);
 }
 
 }  // namespace powderbed::thermal

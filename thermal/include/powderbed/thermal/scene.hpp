@@ -25,10 +25,27 @@ enum SinterEffect : unsigned {
   kVariableProperties = 1u << 8,  // c, k, rho from the table (off: held at T0)
   kWetting = 1u << 9,             // molten particles spread on what they touch (wetting.hpp)
 };
-constexpr unsigned kSinterEffectCount = 10;
+// The list of the effects: one row each, its bit and its scene name (the option effects.NAME,
+// which sinter's options are made from); the solver's kernels name the effects that shape them
+// by these bits (thermal/src/effect_kernels.hpp).
+struct SinterEffectRow {
+  SinterEffect effect;
+  const char* name;
+};
+inline constexpr SinterEffectRow kSinterEffects[] = {
+    {kConduction, "conduction"},
+    {kSubstrateContact, "substrate-contact"},
+    {kConvection, "convection"},
+    {kRadiation, "radiation"},
+    {kLaser, "laser"},
+    {kPenetration, "penetration"},
+    {kLaserSubstrate, "laser-substrate"},
+    {kPhaseChange, "phase-change"},
+    {kVariableProperties, "variable-properties"},
+    {kWetting, "wetting"},
+};
 // The effects of [GZ]'s model (wetting goes beyond it).
 constexpr unsigned kAllSinterEffects = (1u << 9) - 1;
-const char* sinter_effect_name(unsigned effect);
 
 enum class Integrator { explicit_euler, implicit_euler };
 
