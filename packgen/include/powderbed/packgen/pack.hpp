@@ -31,7 +31,6 @@ struct Phase {
 struct PackProgress {
   std::size_t n = 0;
   double density = 0;
-  double elapsed = 0;  // s
   double fraction_done = 0;  // 0..1, best guess from the stop rule in force
 };
 
