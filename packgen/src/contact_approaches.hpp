@@ -21,8 +21,9 @@ namespace powderbed::packgen::detail {
 template <class Backend>
 class ContactApproaches {
  public:
-  explicit ContactApproaches(PlacementCore<Backend>& core) : core_(core), o_(core.options()) {
-    order_.resize(static_cast<std::size_t>(o_.directions));
+  explicit ContactApproaches(PlacementCore<Backend>& core)
+      : core_(core), o_(core.options()), directions_(directions_for(o_, core.dim())) {
+    order_.resize(static_cast<std::size_t>(directions_));
     if (o_.count > 0) {  // no regrowth of the per-particle arrays in a --count run
       slot_.reserve(o_.count);
       active_.reserve(o_.count);
@@ -64,6 +65,7 @@ class ContactApproaches {
 
   PlacementCore<Backend>& core_;
   const PackOptions& o_;
+  const int directions_;  // K
   // The partner list: active_ holds the particles that may still have free surface, slot_ each
   // one's place in it, fails_ its failed tries in a row.
   std::vector<std::uint32_t> active_, slot_;
@@ -152,7 +154,7 @@ template <class Backend>
 bool ContactApproaches<Backend>::try_one(std::uint32_t s, double r) {
   const Vec3 c = centre(s);
   const double rho = core_.particles().r[s] + r;
-  const int k_max = o_.directions;
+  const int k_max = directions_;
   bed::Rng& rng = core_.rng();
   if (core_.dim() == 2) {
     const double step = 2 * kPi / k_max;
@@ -193,10 +195,10 @@ bool ContactApproaches<Backend>::touch_two(std::uint32_t s, std::int64_t q, doub
   }
   Circle circle;
   if (!touch_two_3d(a, b, r, circle)) return false;
-  const double step = 2 * kPi / o_.directions;
+  const double step = 2 * kPi / directions_;
   const double offset = bed::uniform(core_.rng(), 0, step);
   shuffle_order();
-  for (int k = 0; k < o_.directions; ++k) {
+  for (int k = 0; k < directions_; ++k) {
     if (core_.accept(circle.at(offset + step * order_[static_cast<std::size_t>(k)]), r)) {
       return true;
     }
