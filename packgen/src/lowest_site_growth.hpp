@@ -69,10 +69,10 @@ class LowestSiteGrowth {
  private:
   static constexpr double kPi = std::numbers::pi;
 
-  // find_sites' new particle i: its centre and radius, itself as a partner at the origin (the
-  // geometry is relative to c_i), how many of its partners are paired, and per size the box the
-  // new centre must lie in, relative to c_i (inside() widened to its largest tolerance over the
-  // domain, so it never refuses what inside() accepts).
+  // find_sites' new particle i, passed to its steps: its centre and radius, itself as a partner
+  // at the origin (the geometry is relative to c_i), how many of its partners are paired, and
+  // per size the box the new centre must lie in, relative to c_i (inside() widened to its
+  // largest tolerance over the domain, so it never refuses what inside() accepts).
   struct NewParticle {
     std::uint32_t i = 0;
     Vec3 c;
@@ -98,12 +98,12 @@ class LowestSiteGrowth {
   bool try_floor(double r);
   // find_sites and its steps, in order.
   void find_sites(std::uint32_t i);
-  void gather_site_partners();
+  void gather_site_partners(const NewParticle& n);
   void load_free_test();
-  void prepare_sizes();
-  void collect_live();
+  void prepare_sizes(NewParticle& n);
+  void collect_live(const NewParticle& n);
   bool live_in_reach(const LivePartner& pu, const LivePartner& pv) const;
-  void pair_sites(const LivePartner& pu, const LivePartner& pv);
+  void pair_sites(const NewParticle& n, const LivePartner& pu, const LivePartner& pv);
   static bool in_box(const Vec3& x, const std::array<double, 6>& b) {
     return x.x >= b[0] && x.x <= b[1] && x.y >= b[2] && x.y <= b[3] && x.z >= b[4] && x.z <= b[5];
   }
@@ -121,9 +121,8 @@ class LowestSiteGrowth {
   // from it up skip the floor from then on (+inf: the floor is open).
   double floor_closed_from_ = std::numeric_limits<double>::infinity();
   // find_sites scratch for the new particle: its partners (nearest surface first), their pair
-  // planes per size, the open circles, the partners paired, and the particle partners for the
+  // planes per size, the open circles, the live partners, and the particle partners for the
   // free test (relative to c_i: lx_ .. lr_; absolute: gx_ .. gz_).
-  NewParticle new_;
   std::vector<SiteNear> near_site_, sorted_site_;
   std::vector<std::tuple<double, std::int64_t, std::size_t>> order_site_;
   std::vector<PairPlane> planes_;
@@ -226,16 +225,16 @@ bool LowestSiteGrowth<Backend>::try_floor(double r) {
 template <class Backend>
 void LowestSiteGrowth<Backend>::find_sites(std::uint32_t i) {
   const Particles& p = core_.particles();
-  new_ = NewParticle{i, {p.x[i], p.y[i], p.z[i]}, p.r[i], Partner::particle({0, 0, 0}, p.r[i])};
-  abc_[0] = new_.origin;
-  gather_site_partners();
+  NewParticle n{i, {p.x[i], p.y[i], p.z[i]}, p.r[i], Partner::particle({0, 0, 0}, p.r[i])};
+  abc_[0] = n.origin;
+  gather_site_partners(n);
   load_free_test();
-  new_.paired = std::min(near_site_.size(), kSitePartners);
-  prepare_sizes();
-  collect_live();
+  n.paired = std::min(near_site_.size(), kSitePartners);
+  prepare_sizes(n);
+  collect_live(n);
   for (std::size_t lu = 0; lu < live_.size(); ++lu) {
     for (std::size_t lv = lu + 1; lv < live_.size(); ++lv) {
-      if (live_in_reach(live_[lu], live_[lv])) pair_sites(live_[lu], live_[lv]);
+      if (live_in_reach(live_[lu], live_[lv])) pair_sites(n, live_[lu], live_[lv]);
     }
   }
 }
@@ -243,13 +242,13 @@ void LowestSiteGrowth<Backend>::find_sites(std::uint32_t i) {
 // The partners of the new particle (docs/physics.md §3 2-contact reach for the largest size),
 // relative to c_i, with their gaps; sorted by gap through a light (gap, code, index) key.
 template <class Backend>
-void LowestSiteGrowth<Backend>::gather_site_partners() {
+void LowestSiteGrowth<Backend>::gather_site_partners(const NewParticle& n) {
   const Particles& p = core_.particles();
-  const Vec3 ci = new_.c;
-  const double ri = new_.r, r_max = core_.r_max();
+  const Vec3 ci = n.c;
+  const double ri = n.r, r_max = core_.r_max();
   near_site_.clear();
   core_.partners().for_each_within(ci.x, ci.y, ci.z, ri + 2 * r_max, [&](std::uint32_t j) {
-    if (j == new_.i) return false;
+    if (j == n.i) return false;
     const Vec3 d{p.x[j] - ci.x, p.y[j] - ci.y, p.z[j] - ci.z};
     near_site_.push_back({Partner::particle(d, p.r[j]), norm(d) - ri - p.r[j], j});
     return false;
@@ -298,8 +297,8 @@ void LowestSiteGrowth<Backend>::load_free_test() {
 // Per size: the pair plane of each paired partner (only the kSitePartners nearest are paired)
 // and whether its circle of sites is open, and the box the new centre must lie in.
 template <class Backend>
-void LowestSiteGrowth<Backend>::prepare_sizes() {
-  const std::size_t m = new_.paired;
+void LowestSiteGrowth<Backend>::prepare_sizes(NewParticle& n) {
+  const std::size_t m = n.paired;
   planes_.resize(2 * m);
   open_.resize(2 * m);
   const bed::Domain& d = core_.domain();
@@ -307,15 +306,15 @@ void LowestSiteGrowth<Backend>::prepare_sizes() {
     const double r = radii_[k];
     const auto row = static_cast<std::size_t>(k) * m;
     for (std::size_t u = 0; u < m; ++u) {
-      planes_[row + u] = pair_plane(new_.origin, near_site_[u].partner, r);
-      open_[row + u] = !circle_covered(planes_[row + u], new_.r + r, r);
+      planes_[row + u] = pair_plane(n.origin, near_site_[u].partner, r);
+      open_[row + u] = !circle_covered(planes_[row + u], n.r + r, r);
     }
-    const double c[3] = {new_.c.x, new_.c.y, new_.c.z};
+    const double c[3] = {n.c.x, n.c.y, n.c.z};
     for (int a = 0; a < 3; ++a) {
       const double tol =
           kInsideTolerance * (r + std::max(std::abs(d.lower[a]), std::abs(d.upper[a])));
-      new_.box[k][2 * a] = d.lower[a] + r - tol - c[a];
-      new_.box[k][2 * a + 1] = d.upper[a] - r + tol - c[a];
+      n.box[k][2 * a] = d.lower[a] + r - tol - c[a];
+      n.box[k][2 * a + 1] = d.upper[a] - r + tol - c[a];
     }
   }
 }
@@ -323,8 +322,8 @@ void LowestSiteGrowth<Backend>::prepare_sizes() {
 // Only partners with an open circle for some size can give a site; they keep the order of all
 // partners, so the pairs, and so the sites and their tie draws, come in the same order.
 template <class Backend>
-void LowestSiteGrowth<Backend>::collect_live() {
-  const std::size_t m = new_.paired;
+void LowestSiteGrowth<Backend>::collect_live(const NewParticle& n) {
+  const std::size_t m = n.paired;
   live_.clear();
   for (std::size_t u = 0; u < m; ++u) {
     if (open_[u] || (sizes_ == 2 && open_[m + u])) {
@@ -350,21 +349,22 @@ bool LowestSiteGrowth<Backend>::live_in_reach(const LivePartner& pu,
 // The sites of the new particle with partners u and v: per size the two trilaterated points
 // (y[0] on the +u side, y[1] on the -u side), each side kept for the first size it is free for.
 template <class Backend>
-void LowestSiteGrowth<Backend>::pair_sites(const LivePartner& pu, const LivePartner& pv) {
+void LowestSiteGrowth<Backend>::pair_sites(const NewParticle& n, const LivePartner& pu,
+                                           const LivePartner& pv) {
   const SiteNear& su = near_site_[pu.index];
   const SiteNear& sv = near_site_[pv.index];
   bool found[2] = {false, false};
   for (int k = 0; k < sizes_; ++k) {
     const double r = radii_[k];
-    const auto row = static_cast<std::size_t>(k) * new_.paired;
+    const auto row = static_cast<std::size_t>(k) * n.paired;
     const std::size_t u = row + pu.index, v = row + pv.index;
     if (!open_[u] || !open_[v]) continue;
     std::array<Vec3, 2> y;
-    if (trilaterate(planes_[u], planes_[v], new_.r + r, y) == 0) continue;
+    if (trilaterate(planes_[u], planes_[v], n.r + r, y) == 0) continue;
     for (std::size_t side = 0; side < 2; ++side) {
       const Vec3& x = y[side];
-      if (found[side] || !in_box(x, new_.box[k])) continue;
-      const Vec3 c = new_.c + x;  // the centre the site stores
+      if (found[side] || !in_box(x, n.box[k])) continue;
+      const Vec3 c = n.c + x;  // the centre the site stores
       if (!free_locally(c, r)) continue;
       abc_[1] = su.partner;
       abc_[2] = sv.partner;
@@ -372,7 +372,7 @@ void LowestSiteGrowth<Backend>::pair_sites(const LivePartner& pu, const LivePart
       found[side] = true;
       ++core_.result().sites;
       sites_.push({c.z, c.x, c.y, static_cast<std::uint32_t>(core_.rng()() >> 32),
-                   static_cast<std::int32_t>(new_.i), static_cast<std::int32_t>(su.code),
+                   static_cast<std::int32_t>(n.i), static_cast<std::int32_t>(su.code),
                    static_cast<std::int32_t>(sv.code), static_cast<std::uint8_t>(side), 0,
                    static_cast<std::uint8_t>(k)});
     }
