@@ -157,6 +157,89 @@ bed::DeckLaws laws_for(const bed::Bed& b, const std::string& in, const po::varia
   return laws;
 }
 
+// What to convert: IN, OUT and the options that change what is written, checked against each
+// other before any file is touched.
+struct Request {
+  std::string in, out, in_ext;
+  bool data_out = false, all = false, deck = false;
+  double tol = 0;
+  bed::DeckEngine engine = bed::DeckEngine::lammps;
+};
+
+Request request_of(const po::variables_map& vm) {
+  Request r;
+  r.in = vm["in"].as<std::string>();
+  r.out = vm["out"].as<std::string>();
+  r.in_ext = bed::readable_extension_of(r.in);
+  r.data_out = bed::extension_of(r.out) == ".data";
+  r.all = vm["all-snapshots"].as<bool>();
+  r.deck = vm.count("deck") > 0;
+  if (vm.count("density") && !r.data_out)
+    throw InputError("--density: only used for .data output (OUT is '" + r.out + "')");
+  if (r.deck && !r.data_out)
+    throw InputError("--deck: OUT must be the deck's .data file (OUT is '" + r.out + "')");
+  if (!r.deck && (vm.count("deck-scene") || !vm["deck-steps"].defaulted()))
+    throw InputError("--deck-scene / --deck-steps: only with --deck");
+  if (r.all && r.in_ext != ".dump" && r.in_ext != ".lammpstrj")
+    throw InputError("--all-snapshots: IN must be a .dump or .lammpstrj (IN is '" + r.in + "')");
+  if (vm.count("dt") && !r.deck && !r.all)
+    throw InputError("--dt: only with --deck or --all-snapshots");
+  if (vm.count("dt") && !(vm["dt"].as<double>() > 0))
+    throw InputError("--dt: " + std::to_string(vm["dt"].as<double>()) + " (accepted: dt > 0 s)");
+  r.tol = vm["tol"].as<double>();
+  if (!(r.tol >= 0)) throw InputError("--tol: " + std::to_string(r.tol) + " (accepted: T >= 0)");
+  if (r.deck) r.engine = bed::parse_deck_engine(vm["deck"].as<std::string>(), "--deck");
+  return r;
+}
+
+// Before any reading or writing (docs/hardening.md): the extensions, the input a file, the
+// outputs' folders writable and no output the input.
+void check_files(const Request& r, const bed::DeckFiles& files, const po::variables_map& vm) {
+  app::check_extension({"IN", r.in}, {".h5", ".csv", ".dump", ".lammpstrj", ".data", ".txt", ".geo",
+                                      ".gz"});
+  if (r.all) app::check_extension({"OUT", r.out}, {".h5"});
+  else app::check_extension({"OUT", r.out}, {".h5", ".csv", ".data"});
+  std::vector<app::PathArg> outputs{{"OUT", r.out}};
+  if (r.deck) outputs.push_back({"deck", files.input});
+  std::vector<app::PathArg> inputs{{"IN", r.in}};
+  if (vm.count("deck-scene")) {
+    inputs.push_back({"--deck-scene", vm["deck-scene"].as<std::string>()});
+  }
+  app::check_paths(inputs, outputs);
+}
+
+// IN as a bed: a CSV needs --domain, a YADE text may have one, other formats carry their own.
+bed::Bed read_input(const Request& r, const po::variables_map& vm) {
+  if (vm.count("domain")) {
+    if (r.in_ext != ".csv" && r.in_ext != ".txt")
+      throw InputError("--domain: only for CSV or YADE input ('" + r.in +
+                       "' carries its own domain)");
+    const bed::Domain domain = app::parse_domain_bounds(vm["domain"].as<std::string>(), "--domain");
+    return bed::read_bed_any(r.in, &domain);
+  }
+  if (r.in_ext == ".csv")
+    throw InputError(r.in + ": CSV carries no domain; give --domain xlo,ylo,zlo,xhi,yhi,zhi (m)");
+  return bed::read_bed_any(r.in);
+}
+
+// The bed to OUT: a deck (its .data and input), a LAMMPS data file, or a bed file.
+void write_output(const bed::Bed& b, const Request& r, const po::variables_map& vm) {
+  if (r.deck) {
+    bed::write_deck(b, laws_for(b, r.in, vm), r.engine, r.out);
+  } else if (r.data_out) {
+    const app::DeckScene scene = scene_of(b, r.in);
+    bool has_density = false;
+    for (const auto& [key, source] : scene.origin) has_density |= key == "material.density";
+    std::string origin;
+    bed::LammpsDataOptions options;
+    options.type_density = densities(vm, scene, has_density, origin);
+    options.comments = {"density: " + origin};
+    bed::write_lammps_data(b, r.out, options);
+  } else {
+    bed::write_bed_any(b, r.out);
+  }
+}
+
 int convert(int argc, char** argv) {
   po::options_description desc("bedconv options");
   add_options(desc);
@@ -164,94 +247,28 @@ int convert(int argc, char** argv) {
   positional.add("in", 1).add("out", 1);
   po::variables_map vm;
   if (!app::parse_options("bedconv", kUsage, desc, positional, argc, argv, vm)) return 0;
+  const Request r = request_of(vm);
+  const bed::DeckFiles files = bed::deck_files(r.out, r.engine);
+  check_files(r, files, vm);
 
-  const std::string in = vm["in"].as<std::string>();
-  const std::string out = vm["out"].as<std::string>();
-  const std::string in_ext = bed::readable_extension_of(in);
-  const bool data_out = bed::extension_of(out) == ".data";
-  const bool all = vm["all-snapshots"].as<bool>();
-  const bool deck = vm.count("deck") > 0;
-  if (vm.count("density") && !data_out)
-    throw InputError("--density: only used for .data output (OUT is '" + out + "')");
-  if (deck && !data_out)
-    throw InputError("--deck: OUT must be the deck's .data file (OUT is '" + out + "')");
-  if (!deck && (vm.count("deck-scene") || !vm["deck-steps"].defaulted()))
-    throw InputError("--deck-scene / --deck-steps: only with --deck");
-  if (all && in_ext != ".dump" && in_ext != ".lammpstrj")
-    throw InputError("--all-snapshots: IN must be a .dump or .lammpstrj (IN is '" + in + "')");
-  if (vm.count("dt") && !deck && !all) throw InputError("--dt: only with --deck or --all-snapshots");
-  if (vm.count("dt") && !(vm["dt"].as<double>() > 0))
-    throw InputError("--dt: " + std::to_string(vm["dt"].as<double>()) + " (accepted: dt > 0 s)");
-  const double tol = vm["tol"].as<double>();
-  if (!(tol >= 0)) throw InputError("--tol: " + std::to_string(tol) + " (accepted: T >= 0)");
-  const bed::DeckEngine engine =
-      deck ? bed::parse_deck_engine(vm["deck"].as<std::string>(), "--deck") : bed::DeckEngine::lammps;
-  // Before any reading or writing (docs/hardening.md): the extensions, the input a file, the
-  // outputs' folders writable and no output the input.
-  app::check_extension({"IN", in}, {".h5", ".csv", ".dump", ".lammpstrj", ".data", ".txt", ".geo",
-                                    ".gz"});
-  if (all) app::check_extension({"OUT", out}, {".h5"});
-  else app::check_extension({"OUT", out}, {".h5", ".csv", ".data"});
-  std::vector<app::PathArg> outputs{{"OUT", out}};
-  const bed::DeckFiles files = bed::deck_files(out, engine);
-  if (deck) outputs.push_back({"deck", files.input});
-  std::vector<app::PathArg> inputs{{"IN", in}};
-  if (vm.count("deck-scene")) inputs.push_back({"--deck-scene", vm["deck-scene"].as<std::string>()});
-  app::check_paths(inputs, outputs);
-
-  if (all) {
-    const std::size_t count = write_trajectory(in, out, vm);
-    if (vm.count("json")) {
-      bed::JsonWriter json;
-      json.begin_object().value("in", in).value("out", out)
-          .value("snapshots", static_cast<std::uint64_t>(count)).end_object();
-      std::cout << json.str() << '\n';
-    }
-    return 0;
-  }
-  bed::Bed b;
-  const bool needs_domain = in_ext == ".csv";
-  if (vm.count("domain")) {
-    if (in_ext != ".csv" && in_ext != ".txt")
-      throw InputError("--domain: only for CSV or YADE input ('" + in + "' carries its own domain)");
-    const bed::Domain domain = app::parse_domain_bounds(vm["domain"].as<std::string>(), "--domain");
-    b = bed::read_bed_any(in, &domain);
+  bed::JsonWriter json;
+  json.begin_object().value("in", r.in).value("out", r.out);
+  if (r.all) {
+    const std::size_t count = write_trajectory(r.in, r.out, vm);
+    json.value("snapshots", static_cast<std::uint64_t>(count));
   } else {
-    if (needs_domain)
-      throw InputError(in + ": CSV carries no domain; give --domain xlo,ylo,zlo,xhi,yhi,zhi (m)");
-    b = bed::read_bed_any(in);
+    bed::Bed b = read_input(r, vm);
+    const std::string warning = bed::printed_precision_warning(b, r.tol);
+    if (!warning.empty()) std::cerr << "bedconv: warning: " << r.in << ": " << warning << '\n';
+    b.provenance.created_by = app::version_string("bedconv");
+    b.provenance.command_line = app::command_line(argc, argv);
+    write_output(b, r, vm);
+    json.value("particles", static_cast<std::uint64_t>(b.n()));
+    json.value("dimension", b.domain.dimension);
+    if (r.deck) json.value("deck", files.input);
   }
-  const std::string warning = bed::printed_precision_warning(b, tol);
-  if (!warning.empty()) std::cerr << "bedconv: warning: " << in << ": " << warning << '\n';
-
-  b.provenance.created_by = app::version_string("bedconv");
-  b.provenance.command_line = app::command_line(argc, argv);
-  if (deck) {
-    bed::write_deck(b, laws_for(b, in, vm), engine, out);
-  } else if (data_out) {
-    const app::DeckScene scene = scene_of(b, in);
-    bool has_density = false;
-    for (const auto& [key, source] : scene.origin) has_density |= key == "material.density";
-    std::string origin;
-    bed::LammpsDataOptions options;
-    options.type_density = densities(vm, scene, has_density, origin);
-    options.comments = {"density: " + origin};
-    bed::write_lammps_data(b, out, options);
-  } else {
-    bed::write_bed_any(b, out);
-  }
-
-  if (vm.count("json")) {
-    bed::JsonWriter json;
-    json.begin_object()
-        .value("in", in)
-        .value("out", out)
-        .value("particles", static_cast<std::uint64_t>(b.n()))
-        .value("dimension", b.domain.dimension);
-    if (deck) json.value("deck", files.input);
-    json.end_object();
-    std::cout << json.str() << '\n';
-  }
+  json.end_object();
+  if (vm.count("json")) std::cout << json.str() << '\n';
   return 0;
 }
 

@@ -239,8 +239,8 @@ app::SpreadRequest parse_spread_request(const po::variables_map& vm,
   return sp;
 }
 
-int run(int argc, char** argv) {
-  po::options_description desc("bedstat options");
+// bedstat's options with their help: one entry per option, so the list is as long as it is.
+void add_options(po::options_description& desc) {
   app::add_common_options(desc);
   desc.add_options()("bed", po::value<std::vector<std::string>>()->multitoken(),
                      "bed file(s): .h5, .dump, or .csv with --domain; several print side by side")(
@@ -274,6 +274,25 @@ int run(int argc, char** argv) {
       "--spread: write the height map as CSV x,y,height,covered (m; one bed only)")(
       "feed", po::value<std::string>(),
       "--spread: bed of the feed powder for the two-sample KS test (default: the bed's recorded PSD)");
+}
+
+// Each bed read and analysed as `req` asks; a text bed printed too coarsely for --tol (a dump at
+// LAMMPS's default 6 digits) gets a warning.
+std::vector<Report> analyse_beds(const std::vector<std::string>& files, const Request& req,
+                                 const std::optional<bed::Domain>& csv_domain) {
+  std::vector<Report> reports;
+  for (const auto& file : files) {
+    bed::Bed b = bed::read_bed_any(file, csv_domain ? &*csv_domain : nullptr);
+    const std::string warning = bed::printed_precision_warning(b, req.tolerance);
+    if (!warning.empty()) std::cerr << "bedstat: warning: " << file << ": " << warning << '\n';
+    reports.push_back(app::analyse_bed(std::move(b), file, req));
+  }
+  return reports;
+}
+
+int run(int argc, char** argv) {
+  po::options_description desc("bedstat options");
+  add_options(desc);
   po::positional_options_description positional;
   positional.add("bed", -1);
   po::variables_map vm;
@@ -293,15 +312,7 @@ int run(int argc, char** argv) {
   std::optional<bed::Domain> csv_domain;
   if (vm.count("domain")) csv_domain = app::parse_domain_bounds(vm["domain"].as<std::string>(), "--domain");
   if (vm.count("spread")) req.spread = parse_spread_request(vm, csv_domain);
-
-  std::vector<Report> reports;
-  for (const auto& file : vm["bed"].as<std::vector<std::string>>()) {
-    bed::Bed b = bed::read_bed_any(file, csv_domain ? &*csv_domain : nullptr);
-    // A text bed printed too coarsely for --tol (a dump at LAMMPS's default 6 digits).
-    const std::string warning = bed::printed_precision_warning(b, req.tolerance);
-    if (!warning.empty()) std::cerr << "bedstat: warning: " << file << ": " << warning << '\n';
-    reports.push_back(app::analyse_bed(std::move(b), file, req));
-  }
+  const std::vector<Report> reports = analyse_beds(files, req, csv_domain);
 
   if (req.spread && !req.spread->height_map.empty()) {
     bed::write_height_map_csv(reports.front().spread->layer.map, req.spread->height_map);

@@ -1,9 +1,10 @@
 // packgen: geometric packing (Luberto & de Payrebrune, extended to 3D) -> one bed file, with a short summary or --json.
-#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
-#include <sstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include "common/app_main.hpp"
 #include "common/contact_report.hpp"
@@ -21,13 +22,19 @@ namespace {
 using namespace powderbed;
 namespace po = app::po;
 
+const char* const kUsage =
+    "packgen --dim 2|3 --domain LX,LY[,LZ] --psd SPEC --approach 0|1|2|3 --seed S --out BED.h5 "
+    "[options]";
 
-
-
-int run(int argc, char** argv) {
-  po::options_description desc("packgen options (SI units: m)");
+// packgen's options with their help: one entry per option, so the list is as long as it is.
+void add_options(po::options_description& desc) {
   app::add_common_options(desc);
   app::add_progress_option(desc);
+  const std::string directions_help =
+      "K: directions per 1-contact try, circle angles per 3D 2-contact try (default " +
+      std::to_string(packgen::kDirections2D) +
+      " in 2D: the [LP] 1-contact density, docs/results/packgen-2d-study.md; " +
+      std::to_string(packgen::kDirections3D) + " in 3D)";
   desc.add_options()
       ("dim", po::value<std::string>()->required(), "2 (disks) or 3 (spheres); must match --domain")
       ("domain", po::value<std::string>()->required(), "LX,LY[,LZ] (m): the box [0, L]")
@@ -53,9 +60,7 @@ int run(int argc, char** argv) {
       ("raster-spacing", po::value<double>(), "raster grid spacing h (m), needed by raster")
       ("tries", po::value<int>()->default_value(1000),
        "n_T: tries per size before a new size is drawn")
-      ("directions", po::value<int>(),
-       "K: directions per 1-contact try, circle angles per 3D 2-contact try (default 10 in "
-       "2D: the [LP] 1-contact density, docs/results/packgen-2d-study.md; 16 in 3D)")
+      ("directions", po::value<int>(), directions_help.c_str())
       ("count", po::value<std::size_t>(), "stop at N particles")
       ("target-density", po::value<double>(),
        "stop at this density (0 < F < 1); if it cannot be reached the run stops at "
@@ -73,17 +78,10 @@ int run(int argc, char** argv) {
       ("seed", po::value<std::uint64_t>()->required(), "random seed")
       ("out", po::value<std::string>()->required(),
        "output bed (.h5; other extensions are refused: bedconv converts to .csv or .data)");
-  po::variables_map vm;
-  if (!app::parse_options("packgen",
-                          "packgen --dim 2|3 --domain LX,LY[,LZ] --psd SPEC --approach 0|1|2|3 "
-                          "--seed S --out BED.h5 [options]",
-                          desc, {}, argc, argv, vm)) {
-    return 0;
-  }
-  // The output is checked before any work (docs/hardening.md): extension, folder, not a folder.
-  const app::PathArg out{"--out", vm["out"].as<std::string>()};
-  app::check_extension(out, {".h5"}, "bedconv converts an .h5 bed to .csv or .data");
-  app::check_paths({}, {out});
+}
+
+// --dim and --domain, which must agree.
+bed::Domain domain_of(const po::variables_map& vm) {
   const std::string dim_text = vm["dim"].as<std::string>();
   if (dim_text != "2" && dim_text != "3")
     throw InputError("--dim: '" + dim_text + "' (accepted: 2 or 3)");
@@ -94,42 +92,31 @@ int run(int argc, char** argv) {
                      vm["domain"].as<std::string>() + "' has " +
                      std::to_string(domain.dimension) + " lengths (accepted: equal)");
   }
-  const bed::Psd psd = bed::Psd::parse(vm["psd"].as<std::string>(), "--psd");
+  return domain;
+}
+
+// The packing options as given; pack() checks them (packgen::validate) except what only the
+// command line can get wrong: --count 0 and --target-density 0 (to the library, "no such stop
+// rule") and a --count that cannot fit, which packgen refuses at any size
+// (packgen::check_count_fits).
+packgen::PackOptions pack_options(const po::variables_map& vm, const bed::Domain& domain,
+                                  const bed::Psd& psd) {
   packgen::PackOptions o;
   o.phases = vm.count("phases") ? packgen::parse_phases(vm["phases"].as<std::string>())
                                 : std::vector<packgen::Phase>{{vm["approach"].as<int>(), 1.0}};
   o.collision = packgen::parse_collision(vm["collision"].as<std::string>());
   if (vm.count("raster-spacing")) o.raster_spacing = vm["raster-spacing"].as<double>();
   o.tries = vm["tries"].as<int>();
-  o.directions = vm.count("directions") ? vm["directions"].as<int>() : dim == 2 ? 10 : 16;
+  if (vm.count("directions")) o.directions = vm["directions"].as<int>();
   if (vm.count("count")) {
     o.count = vm["count"].as<std::size_t>();
     if (o.count == 0) throw InputError("--count: 0 (accepted: a number of particles >= 1)");
+    packgen::check_count_fits(domain, psd, o.count);
   }
   o.allow_huge = vm.count("allow-huge") > 0;
-  if (o.count > 0) {
-    // Even at density 1 the domain holds no more than its measure over the smallest particle's.
-    const double r = psd.min_radius();
-    const double each = dim == 3 ? 4.0 / 3.0 * 3.14159265358979323846 * r * r * r
-                                 : 3.14159265358979323846 * r * r;
-    const double fit = std::floor(domain.measure() / each);
-    if (static_cast<double>(o.count) > fit) {
-      std::ostringstream msg;
-      msg << "--count: " << o.count << " particles cannot fit in the domain (accepted: at most "
-          << fit << ", the domain's " << (dim == 3 ? "volume" : "area")
-          << " over the smallest particle's)";
-      throw InputError(msg.str());
-    }
-  }
   if (vm.count("target-density")) {
     o.target_density = vm["target-density"].as<double>();
-    if (!(o.target_density > 0 && o.target_density < 1)) {
-      throw InputError("--target-density: " + std::to_string(o.target_density) +
-                       " (accepted: 0 < F < 1)");
-    }
-  }
-  if (o.count > 0 && o.target_density > 0) {
-    throw InputError("--count and --target-density: give one stop rule, not both");
+    if (o.target_density == 0) throw InputError("--target-density: 0 (accepted: 0 < F < 1)");
   }
   o.max_failures = vm["max-failures"].as<std::size_t>();
   o.retire_after = vm["retire-after"].as<int>();
@@ -137,6 +124,93 @@ int run(int argc, char** argv) {
   o.site_order = packgen::parse_site_order(vm["site-order"].as<std::string>());
   o.floor_seed = vm["floor-seed"].as<double>();
   o.size_sampling = packgen::parse_size_sampling(vm["size-sampling"].as<std::string>());
+  return o;
+}
+
+// A stop rule that was not reached: the bed is written all the same, with a warning.
+void warn_unreached(const packgen::PackOptions& o, const bed::Bed& b, double density) {
+  std::cerr << "packgen: warning: " << (o.count > 0 ? "--count " : "--target-density ")
+            << (o.count > 0 ? std::to_string(o.count) : app::tolerance_key(o.target_density))
+            << " not reached: stopped after " << o.max_failures
+            << " consecutive failed placements with " << b.n() << " particles at density "
+            << density << "; the bed was written\n";
+}
+
+// What --json prints: the bed's density and contacts, the run's counters and settings.
+void print_json(const packgen::PackResult& result, const packgen::PackOptions& o,
+                double density, const std::vector<bed::ContactStats>& by_tol, std::uint64_t seed) {
+  const bed::Bed& b = result.bed;
+  bed::JsonWriter j;
+  j.begin_object();
+  j.value("n", std::uint64_t{b.n()});
+  j.value("density", density);
+  j.value("coordination", by_tol[0].coordination);
+  j.begin_object("coordination_by_tol");
+  for (std::size_t t = 0; t < by_tol.size(); ++t) {
+    j.value(app::tolerance_key(app::kReportedTolerances[t]), by_tol[t].coordination);
+  }
+  j.end_object();
+  j.value("rattlers", std::uint64_t{by_tol[0].rattlers});
+  j.value("wall_contacts", std::uint64_t{by_tol[0].wall_contacts});
+  j.value("max_relative_overlap", bed::max_relative_overlap(b));
+  j.value("wall_time", result.wall_time);
+  j.value("attempts", std::uint64_t{result.attempts});
+  j.value("tries", std::uint64_t{result.tries});
+  j.value("failed_placements", std::uint64_t{result.failed_placements});
+  j.value("retired", std::uint64_t{result.retired});
+  j.value("refused_valid", std::uint64_t{result.refused_valid});
+  j.value("accepted_overlapping", std::uint64_t{result.accepted_overlapping});
+  j.value("target_reached", result.target_reached);
+  j.value("stop_reason", result.stop_reason);
+  j.value("collision", packgen::collision_name(o.collision));
+  j.value("approach", o.phases.back().approach);
+  j.value("site_order", packgen::site_order_name(o.site_order));
+  j.value("size_sampling", packgen::size_sampling_name(o.size_sampling));
+  j.value("sites", std::uint64_t{result.sites});
+  j.value("seed", seed);
+  j.end_object();
+  std::cout << j.str() << '\n';
+}
+
+// The result: the bed (with its provenance) to --out, a warning for a stop rule not reached,
+// and the summary (--json: JSON).
+void report(packgen::PackResult& result, const packgen::PackOptions& o, std::uint64_t seed,
+            const po::variables_map& vm, int argc, char** argv) {
+  bed::Bed& b = result.bed;
+  b.provenance.created_by = app::version_string("packgen");
+  b.provenance.command_line = app::command_line(argc, argv);
+  b.provenance.rng_seed = seed;
+  b.provenance.stage = "packgen";
+  b.provenance.scene = app::scene_text(vm);
+  bed::write_bed_h5(b, vm["out"].as<std::string>());
+
+  const double density = bed::packing_density(b);
+  if (!result.target_reached) warn_unreached(o, b, density);
+  const std::vector<bed::ContactStats> by_tol = bed::contact_stats(
+      b, std::vector<double>(std::begin(app::kReportedTolerances), std::end(app::kReportedTolerances)));
+  if (vm.count("json")) {
+    print_json(result, o, density, by_tol, seed);
+    return;
+  }
+  std::cout << "packgen: " << b.n() << " particles, density " << density << ", coordination "
+            << by_tol[0].coordination << " (tol 1e-6), " << result.wall_time << " s, "
+            << result.attempts << " attempts, stopped by " << result.stop_reason << " ("
+            << packgen::collision_name(o.collision) << ", approach " << o.phases.back().approach
+            << ") -> " << vm["out"].as<std::string>() << '\n';
+}
+
+int run(int argc, char** argv) {
+  po::options_description desc("packgen options (SI units: m)");
+  add_options(desc);
+  po::variables_map vm;
+  if (!app::parse_options("packgen", kUsage, desc, {}, argc, argv, vm)) return 0;
+  // The output is checked before any work (docs/hardening.md): extension, folder, not a folder.
+  const app::PathArg out{"--out", vm["out"].as<std::string>()};
+  app::check_extension(out, {".h5"}, "bedconv converts an .h5 bed to .csv or .data");
+  app::check_paths({}, {out});
+  const bed::Domain domain = domain_of(vm);
+  const bed::Psd psd = bed::Psd::parse(vm["psd"].as<std::string>(), "--psd");
+  packgen::PackOptions o = pack_options(vm, domain, psd);
   app::ProgressBar bar("packgen", app::progress_interval(vm));
   o.progress = [&bar](const packgen::PackProgress& p) {
     char detail[64];
@@ -144,66 +218,9 @@ int run(int argc, char** argv) {
     bar.draw(p.fraction_done, detail);
   };
   const std::uint64_t seed = vm["seed"].as<std::uint64_t>();
-
   packgen::PackResult result = packgen::pack(domain, psd, o, seed);
   bar.finish();
-  bed::Bed& b = result.bed;
-  b.provenance.created_by = app::version_string("packgen");
-  b.provenance.command_line = app::command_line(argc, argv);
-  b.provenance.rng_seed = seed;
-  b.provenance.stage = "packgen";
-  b.provenance.scene = app::scene_text(vm);
-  bed::write_bed_h5(b, out.path);
-
-  const double density = bed::packing_density(b);
-  if (!result.target_reached) {
-    std::cerr << "packgen: warning: " << (o.count > 0 ? "--count " : "--target-density ")
-              << (o.count > 0 ? std::to_string(o.count) : app::tolerance_key(o.target_density))
-              << " not reached: stopped after " << o.max_failures
-              << " consecutive failed placements with " << b.n() << " particles at density "
-              << density << "; the bed was written\n";
-  }
-  const std::vector<bed::ContactStats> by_tol = bed::contact_stats(
-      b, std::vector<double>(std::begin(app::kReportedTolerances), std::end(app::kReportedTolerances)));
-  const int approach = o.phases.back().approach;
-  if (vm.count("json")) {
-    bed::JsonWriter j;
-    j.begin_object();
-    j.value("n", std::uint64_t{b.n()});
-    j.value("density", density);
-    j.value("coordination", by_tol[0].coordination);
-    j.begin_object("coordination_by_tol");
-    for (std::size_t t = 0; t < by_tol.size(); ++t) {
-      j.value(app::tolerance_key(app::kReportedTolerances[t]), by_tol[t].coordination);
-    }
-    j.end_object();
-    j.value("rattlers", std::uint64_t{by_tol[0].rattlers});
-    j.value("wall_contacts", std::uint64_t{by_tol[0].wall_contacts});
-    j.value("max_relative_overlap", bed::max_relative_overlap(b));
-    j.value("wall_time", result.wall_time);
-    j.value("attempts", std::uint64_t{result.attempts});
-    j.value("tries", std::uint64_t{result.tries});
-    j.value("failed_placements", std::uint64_t{result.failed_placements});
-    j.value("retired", std::uint64_t{result.retired});
-    j.value("refused_valid", std::uint64_t{result.refused_valid});
-    j.value("accepted_overlapping", std::uint64_t{result.accepted_overlapping});
-    j.value("target_reached", result.target_reached);
-    j.value("stop_reason", result.stop_reason);
-    j.value("collision", packgen::collision_name(o.collision));
-    j.value("approach", approach);
-    j.value("site_order", packgen::site_order_name(o.site_order));
-    j.value("size_sampling", packgen::size_sampling_name(o.size_sampling));
-    j.value("sites", std::uint64_t{result.sites});
-    j.value("seed", seed);
-    j.end_object();
-    std::cout << j.str() << '\n';
-  } else {
-    std::cout << "packgen: " << b.n() << " particles, density " << density
-              << ", coordination " << by_tol[0].coordination << " (tol 1e-6), "
-              << result.wall_time << " s, " << result.attempts << " attempts, stopped by "
-              << result.stop_reason << " (" << packgen::collision_name(o.collision)
-              << ", approach " << approach << ") -> " << vm["out"].as<std::string>() << '\n';
-  }
+  report(result, o, seed, vm, argc, argv);
   return 0;
 }
 

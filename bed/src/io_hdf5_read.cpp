@@ -1,22 +1,16 @@
 // Reader of the HDF5 bed file, format version 1 (docs/bed-format.md): checks everything and
 // refuses a bad file with one line "<file>: <dataset>: <what is wrong>".
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <array>
-#include <cstring>
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <map>
 #include <type_traits>
 #include <sstream>
 #include <utility>
 #include <vector>
 
 #include "io_detail.hpp"
+#include "io_hdf5_checks.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/h5_handle.hpp"
 #include "powderbed/bed/io.hpp"
@@ -52,31 +46,6 @@ std::string accepted_range() {
     return "float64 numbers";
 }
 
-// A file mapped read-only for the checks made before libhdf5 opens it; bytes is null when it
-// cannot be mapped or is under 16 bytes (H5Fopen then reports what is wrong).
-struct MappedFile {
-  const unsigned char* bytes = nullptr;
-  std::size_t size = 0;
-  explicit MappedFile(const std::string& path) {
-    const int fd = ::open(path.c_str(), O_RDONLY);
-    if (fd < 0) return;
-    struct stat st {};
-    if (::fstat(fd, &st) == 0 && st.st_size >= 16) {
-      void* map = ::mmap(nullptr, static_cast<std::size_t>(st.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
-      if (map != MAP_FAILED) {
-        bytes = static_cast<const unsigned char*>(map);
-        size = static_cast<std::size_t>(st.st_size);
-      }
-    }
-    ::close(fd);
-  }
-  ~MappedFile() {
-    if (bytes) ::munmap(const_cast<unsigned char*>(bytes), size);
-  }
-  MappedFile(const MappedFile&) = delete;
-  MappedFile& operator=(const MappedFile&) = delete;
-};
-
 class H5Reader {
  public:
   explicit H5Reader(std::string path) : path_(std::move(path)) {}
@@ -111,240 +80,15 @@ class H5Reader {
     if (!std::ifstream(path_)) throw InputError(path_ + ": cannot open (missing or unreadable)");
     if (H5Fis_hdf5(path_.c_str()) <= 0)
       throw InputError(path_ + ": not an HDF5 file (accepted: a powderbed bed, format version 1)");
-    check_global_heaps();
+    // What libhdf5 1.10 would decode unchecked (io_hdf5_checks.hpp): the global heaps before
+    // it opens the file, the attribute messages before any attribute is looked up.
+    const std::string heaps = detail::damaged_global_heaps(path_);
+    if (!heaps.empty())
+      throw InputError(path_ + ": " + heaps + " (damaged file; accepted: a powderbed bed)");
     file_ = H5File(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
     if (!file_.valid()) throw InputError(path_ + ": cannot open as HDF5 (damaged file?)");
-    check_attribute_messages();
-  }
-
-  // libhdf5 1.10 decodes an attribute message (while looking an attribute up by name) without
-  // checking that its name is terminated or that its parts fit the message (found by
-  // tests/fuzz: a read past the header in H5MM_strdup). The attribute messages of the groups
-  // whose attributes are read ("/", /domain, /provenance; version 1 object headers, as
-  // libhdf5 1.10 writes them, and their continuation blocks) are checked first.
-  void check_attribute_messages() const {
-    const MappedFile file(path_);
-    if (!file.bytes) return;  // H5Fopen reports it
-    const unsigned char* bytes = file.bytes;
-    const std::size_t size = file.size;
-    auto u16 = [&](std::size_t k) { return std::size_t{bytes[k]} | (std::size_t{bytes[k + 1]} << 8); };
-    auto u64 = [&](std::size_t k) {
-      std::uint64_t v = 0;
-      for (int b = 7; b >= 0; --b) v = (v << 8) | bytes[k + static_cast<std::size_t>(b)];
-      return v;
-    };
-    auto align8 = [](std::size_t n) { return (n + 7) / 8 * 8; };
-    std::string problem;
-    // The messages of one block [begin, end): type u16, size u16, flags, 3 reserved, data.
-    auto check_block = [&](const std::string& object, std::size_t begin, std::size_t end,
-                           std::vector<std::pair<std::size_t, std::size_t>>& more) {
-      for (std::size_t m = begin; problem.empty() && m + 8 <= end;) {
-        const std::size_t type = u16(m), length = u16(m + 2);
-        const std::size_t data = m + 8;
-        if (data + length > end) {
-          problem = object + ": a header message runs past its block";
-          break;
-        }
-        if (type == 0x10 && length >= 16) {  // continuation: offset, length
-          const std::uint64_t at = u64(data), n = u64(data + 8);
-          if (at >= size || n > size - at) {
-            problem = object + ": a header continuation points past the end of the file";
-            break;
-          }
-          more.emplace_back(static_cast<std::size_t>(at), static_cast<std::size_t>(at + n));
-        }
-        if (type == 0x0C && length >= 8) {  // attribute
-          const unsigned version = bytes[data];
-          const std::size_t name = u16(data + 2), dt = u16(data + 4), ds = u16(data + 6);
-          const std::size_t head = version == 3 ? 9 : 8;
-          const std::size_t need = version == 1 ? head + align8(name) + align8(dt) + align8(ds)
-                                                : head + name + dt + ds;
-          if (version < 1 || version > 3 || name == 0 || need > length ||
-              bytes[data + head + name - 1] != 0) {
-            problem = object + ": a damaged attribute message (name or parts do not fit)";
-            break;
-          }
-          // Its value: dataspace points x datatype size must fit the message too.
-          const std::size_t dt_at = data + head + (version == 1 ? align8(name) : name);
-          const std::size_t ds_at = dt_at + (version == 1 ? align8(dt) : dt);
-          // Only the classes a bed's attributes have: integer 0, float 1, string 3, variable-
-          // length 9 over integer characters (libhdf5 decodes compound and enum member names
-          // unchecked).
-          const unsigned cls = bytes[dt_at] & 0x0f;
-          if (dt < 8 || (cls != 0 && cls != 1 && cls != 3 && cls != 9) ||
-              (cls == 9 && (dt < 16 || (bytes[dt_at + 8] & 0x0f) != 0))) {
-            problem = object + ": an attribute of a datatype a bed does not use (class " +
-                      std::to_string(cls) + ")";
-            break;
-          }
-          if (dt >= 8 && ds >= 4) {
-            const std::uint64_t type_size = u64(dt_at + 4) & 0xffffffffu;
-            const unsigned ds_version = bytes[ds_at], rank = bytes[ds_at + 1];
-            const std::size_t dims_at = ds_at + (ds_version == 1 ? 8 : 4);
-            double points = (ds_version == 2 && bytes[ds_at + 3] == 2) ? 0.0 : 1.0;  // null space
-            if (dims_at + 8 * std::size_t{rank} > ds_at + ds) {
-              problem = object + ": a damaged attribute dataspace";
-              break;
-            }
-            for (unsigned r = 0; r < rank; ++r) points *= static_cast<double>(u64(dims_at + 8 * r));
-            if (static_cast<double>(need) + points * static_cast<double>(type_size) >
-                static_cast<double>(length)) {
-              problem = object + ": an attribute value larger than its message";
-              break;
-            }
-          }
-        }
-        m = data + length;
-      }
-    };
-    for (const char* name : {".", "domain", "provenance"}) {
-      if (!problem.empty()) break;
-      if (std::string(name) != "." && H5Lexists(file_, name, H5P_DEFAULT) <= 0) continue;
-      H5O_info_t info{};
-      if (H5Oget_info_by_name2(file_, name, &info, H5O_INFO_BASIC, H5P_DEFAULT) < 0) continue;
-      const std::string object = std::string("/") + (std::string(name) == "." ? "" : name);
-      const auto addr = static_cast<std::size_t>(info.addr);
-      if (addr + 16 > size || bytes[addr] != 1) continue;  // version 2 headers: not checked
-      const std::size_t header = static_cast<std::size_t>(u64(addr + 8) & 0xffffffffu);
-      std::vector<std::pair<std::size_t, std::size_t>> blocks{{addr + 16, addr + 16 + header}};
-      if (blocks[0].second > size) {
-        problem = object + ": its header runs past the end of the file";
-        break;
-      }
-      for (std::size_t b = 0; problem.empty() && b < blocks.size() && b < 64; ++b) {
-        const auto [begin, end] = blocks[b];
-        check_block(object, begin, end, blocks);
-      }
-    }
-    if (!problem.empty()) throw InputError(path_ + ": " + problem + " (damaged file?)");
-  }
-
-  // libhdf5 1.10 trusts the sizes in a global heap collection (where variable-length strings
-  // such as /format live): a damaged collection size makes it allocate gigabytes, a damaged
-  // object size makes it read past the collection (found by tests/fuzz). So each collection
-  // ("GCOL", version 1) is checked first: inside the file, and every object inside it.
-  void check_global_heaps() const {
-    const MappedFile file(path_);
-    if (!file.bytes) return;  // H5Fopen reports it
-    const unsigned char* bytes = file.bytes;
-    const std::size_t size = file.size;
-    auto u64 = [&](std::size_t at) {
-      std::uint64_t v = 0;
-      for (int k = 7; k >= 0; --k) v = (v << 8) | bytes[at + static_cast<std::size_t>(k)];
-      return v;
-    };
-    std::string problem;
-    std::size_t previous_end = 0;
-    std::vector<std::size_t> collections;
-    std::map<std::pair<std::size_t, unsigned>, std::uint64_t> objects;  // (heap, index) -> size
-    const unsigned char* at = bytes;
-    const unsigned char* end = bytes + size;
-    while (problem.empty() && (at = static_cast<const unsigned char*>(
-                                   std::memchr(at, 'G', static_cast<std::size_t>(end - at))))) {
-      const std::size_t o = static_cast<std::size_t>(at - bytes);
-      ++at;
-      if (o + 16 > size || std::memcmp(bytes + o, "GCOL", 4) != 0 || bytes[o + 4] != 1 ||
-          bytes[o + 5] != 0 || bytes[o + 6] != 0 || bytes[o + 7] != 0)
-        continue;
-      const std::uint64_t length = u64(o + 8);
-      if (o < previous_end) {  // libhdf5's cache loops forever on overlapping collections
-        problem = "global heap at byte " + std::to_string(o) + " overlaps the one before it";
-        break;
-      }
-      if (length < 16 || length > size - o) {
-        problem = "global heap at byte " + std::to_string(o) + " declares " +
-                  std::to_string(length) + " bytes, past the end of the file";
-        break;
-      }
-      std::size_t p = o + 16;
-      const std::size_t stop = o + static_cast<std::size_t>(length);
-      previous_end = stop;
-      while (p + 16 <= stop) {
-        const unsigned index = bytes[p] | (unsigned{bytes[p + 1]} << 8);
-        const std::uint64_t object = u64(p + 8);
-        if (index == 0) {  // free space, its size counting its header: 0 loops libhdf5 forever
-          if (object < 16 || object > stop - p) {
-            problem = "global heap free space at byte " + std::to_string(p) + " declares " +
-                      std::to_string(object) + " bytes (damaged)";
-            break;
-          }
-          p += static_cast<std::size_t>(object);
-          continue;
-        }
-        if (object > stop - p - 16) {
-          problem = "global heap object " + std::to_string(index) + " at byte " +
-                    std::to_string(p) + " declares " + std::to_string(object) +
-                    " bytes, past its collection";
-          break;
-        }
-        objects[{o, index}] = object;
-        p += 16 + static_cast<std::size_t>((object + 7) / 8 * 8);
-      }
-      collections.push_back(o);
-    }
-    // The references of the string attributes this reader reads: libhdf5 copies `length`
-    // bytes of object `index` of the collection at `address` without checking any of the
-    // three. Each attribute message (versions 1 to 3) holding one of these names is found by
-    // its name and its reference checked against the collections above.
-    static const char* const names[] = {"format", "length_unit", "created_by", "command_line",
-                                        "stage", "scene", "contact_law"};
-    auto u16 = [&](std::size_t k) { return unsigned{bytes[k]} | (unsigned{bytes[k + 1]} << 8); };
-    auto u32 = [&](std::size_t k) {
-      return std::uint32_t{bytes[k]} | (std::uint32_t{bytes[k + 1]} << 8) |
-             (std::uint32_t{bytes[k + 2]} << 16) | (std::uint32_t{bytes[k + 3]} << 24);
-    };
-    auto align8 = [](std::size_t n) { return (n + 7) / 8 * 8; };
-    for (const char* name : names) {
-      if (!problem.empty()) break;
-      const std::size_t len = std::strlen(name) + 1;  // with its terminating null
-      for (std::size_t from = 8; problem.empty() && from + len <= size;) {
-        const auto* hit = static_cast<const unsigned char*>(
-            ::memmem(bytes + from, size - from, name, len));
-        if (!hit) break;
-        const std::size_t pos = static_cast<std::size_t>(hit - bytes);
-        from = pos + 1;
-        // Message header before the name: v1 [1, 0, name, dt, ds] (8 bytes, fields padded to
-        // 8); v2 [2, flags, name, dt, ds] (8 bytes); v3 the same plus a charset byte (9).
-        std::size_t head = 0;
-        int version = 0;
-        if (pos >= 9 && bytes[pos - 9] == 3 && u16(pos - 7) == len) {
-          head = pos - 9;
-          version = 3;
-        } else if (pos >= 8 && (bytes[pos - 8] == 1 || bytes[pos - 8] == 2) && u16(pos - 6) == len) {
-          head = pos - 8;
-          version = bytes[pos - 8];
-        } else {
-          continue;
-        }
-        const std::size_t dt = u16(head + 4), ds = u16(head + 6);
-        const bool pad = version == 1;
-        const std::size_t type_at = pos + (pad ? align8(len) : len);
-        const std::size_t data_at = type_at + (pad ? align8(dt) : dt) + (pad ? align8(ds) : ds);
-        // A variable-length string type: class 9 (low nibble of the first byte), type 1 string.
-        if (dt < 8 || type_at + 8 > size || (bytes[type_at] & 0x0f) != 9 ||
-            (bytes[type_at + 1] & 0x0f) != 1 || data_at + 16 > size)
-          continue;
-        // Its characters: a 1-byte base type (libhdf5 allocates length x base size before
-        // reading: a damaged base size of 13 369 345 asked for 3.2 GB).
-        if (dt >= 20 && u32(type_at + 12) != 1) {
-          problem = std::string("attribute ") + name + " has a damaged string type (characters of " +
-                    std::to_string(u32(type_at + 12)) + " bytes)";
-          break;
-        }
-        const std::uint32_t length = u32(data_at);
-        const std::uint64_t address = u64(data_at + 4);
-        const std::uint32_t index = u32(data_at + 12);
-        if (length == 0 && address == 0) continue;  // an empty string stores no heap object
-        const auto it = objects.find({static_cast<std::size_t>(address), index});
-        if (it == objects.end() || length > it->second) {
-          problem = std::string("attribute ") + name + " refers to " + std::to_string(length) +
-                    " bytes of object " + std::to_string(index) + " of a global heap at byte " +
-                    std::to_string(address) + " that does not hold them";
-        }
-      }
-    }
-    if (!problem.empty())
-      throw InputError(path_ + ": " + problem + " (damaged file; accepted: a powderbed bed)");
+    const std::string messages = detail::damaged_attribute_messages(path_, file_);
+    if (!messages.empty()) throw InputError(path_ + ": " + messages + " (damaged file?)");
   }
 
   H5Group group(const char* name) const {

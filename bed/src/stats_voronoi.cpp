@@ -61,6 +61,100 @@ void check_positions(const Bed& bed) {
   }
 }
 
+// The triangulation's corners: the weighted circumcentre of every finite cell (its index in
+// `corner` stored as the cell's info), and which vertices are cut: a vertex is cut when any
+// incident cell is infinite or has its circumcentre outside the box.
+struct Corners {
+  std::vector<Point> corner;
+  std::vector<char> cut;
+};
+
+Corners cell_corners(Regular& rt, const Domain& d, std::size_t n) {
+  Corners out;
+  out.cut.assign(n, 0);
+  out.corner.reserve(rt.number_of_finite_cells());
+  auto inside = [&](const Point& p) {
+    for (int a = 0; a < 3; ++a) {
+      if (!(p[a] >= d.lower[a] && p[a] <= d.upper[a])) return false;
+    }
+    return true;
+  };
+  for (auto c = rt.all_cells_begin(); c != rt.all_cells_end(); ++c) {
+    bool bad = rt.is_infinite(c);
+    if (!bad) {
+      c->info() = out.corner.size();
+      out.corner.push_back(rt.dual(c));
+      bad = !inside(out.corner.back());
+    }
+    if (!bad) continue;
+    for (int k = 0; k < 4; ++k) {
+      if (!rt.is_infinite(c->vertex(k))) out.cut[c->vertex(k)->info()] = 1;
+    }
+  }
+  return out;
+}
+
+// Area of a planar polygon (its corners in order): half the norm of the summed fan cross
+// products.
+double polygon_area(const std::vector<Point>& face) {
+  Vector area(0, 0, 0);
+  for (std::size_t k = 1; k + 1 < face.size(); ++k) {
+    area = area + CGAL::cross_product(face[k] - face[0], face[k + 1] - face[0]);
+  }
+  return 0.5 * std::sqrt(area.squared_length());
+}
+
+// The Laguerre cell volumes of the uncut vertices in one pass over the edges (the file's first
+// comment): the face of edge (v, w) adds (1/3) area ((p - v) . n) to v's cell and
+// (1/3) area ((p - w) . (-n)) to w's, n the unit vector from v to w.
+std::vector<double> cell_volumes(const Regular& rt, const Corners& corners, std::size_t n) {
+  std::vector<double> volume(n, 0.0);
+  std::vector<Point> face;
+  for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e) {
+    const auto v = e->first->vertex(e->second), w = e->first->vertex(e->third);
+    const std::size_t iv = v->info(), iw = w->info();
+    if (corners.cut[iv] && corners.cut[iw]) continue;
+    // One end is uncut, so every cell around the edge is finite.
+    face.clear();
+    auto cell = rt.incident_cells(*e);
+    const auto done = cell;
+    do {
+      face.push_back(corners.corner[cell->info()]);
+    } while (++cell != done);
+    const double face_area = polygon_area(face);
+    const Point& pv = v->point().point();
+    const Point& pw = w->point().point();
+    Vector normal = pw - pv;
+    normal = normal / std::sqrt(normal.squared_length());
+    volume[iv] += face_area * ((face[0] - pv) * normal) / 3.0;
+    volume[iw] -= face_area * ((face[0] - pw) * normal) / 3.0;
+  }
+  return volume;
+}
+
+// Each uncut particle's volume over its cell's, and their mean and sample standard deviation.
+void local_fractions(const Regular& rt, const Bed& bed, const Corners& corners,
+                     const std::vector<double>& volume, VoronoiStats& out) {
+  double sum = 0;
+  for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v) {
+    const std::size_t i = v->info();
+    if (corners.cut[i]) continue;
+    const double r = bed.radius[i];
+    out.local_fraction[i] = 4.0 / 3.0 * std::numbers::pi * r * r * r / volume[i];
+    ++out.interior;
+    sum += out.local_fraction[i];
+  }
+  if (out.interior == 0) return;
+  const auto m = static_cast<double>(out.interior);
+  out.mean = sum / m;
+  double squares = 0;
+  for (const double phi : out.local_fraction) {
+    if (!std::isnan(phi)) squares += (phi - out.mean) * (phi - out.mean);
+  }
+  // Sample standard deviation (m - 1); 0 for a single interior cell.
+  out.sd = out.interior > 1 ? std::sqrt(squares / (m - 1)) : 0.0;
+}
+
 }  // namespace
 
 VoronoiStats voronoi_stats(const Bed& bed) {
@@ -85,76 +179,8 @@ VoronoiStats voronoi_stats(const Bed& bed) {
   Regular rt;
   rt.insert(points.begin(), points.end());
   if (rt.dimension() < 3) return out;
-
-  // Weighted circumcentres; a vertex is cut when any incident cell is infinite or has its
-  // circumcentre outside the box.
-  std::vector<char> cut(n, 0);
-  std::vector<Point> corner;
-  corner.reserve(rt.number_of_finite_cells());
-  auto inside = [&](const Point& p) {
-    for (int a = 0; a < 3; ++a) {
-      if (!(p[a] >= d.lower[a] && p[a] <= d.upper[a])) return false;
-    }
-    return true;
-  };
-  for (auto c = rt.all_cells_begin(); c != rt.all_cells_end(); ++c) {
-    bool bad = rt.is_infinite(c);
-    if (!bad) {
-      c->info() = corner.size();
-      corner.push_back(rt.dual(c));
-      bad = !inside(corner.back());
-    }
-    if (!bad) continue;
-    for (int k = 0; k < 4; ++k) {
-      if (!rt.is_infinite(c->vertex(k))) cut[c->vertex(k)->info()] = 1;
-    }
-  }
-
-  std::vector<double> volume(n, 0.0);
-  std::vector<Point> face;
-  for (auto e = rt.finite_edges_begin(); e != rt.finite_edges_end(); ++e) {
-    const auto v = e->first->vertex(e->second), w = e->first->vertex(e->third);
-    const std::size_t iv = v->info(), iw = w->info();
-    if (cut[iv] && cut[iw]) continue;
-    // One end is uncut, so every cell around the edge is finite.
-    face.clear();
-    auto cell = rt.incident_cells(*e);
-    const auto done = cell;
-    do {
-      face.push_back(corner[cell->info()]);
-    } while (++cell != done);
-    Vector area(0, 0, 0);
-    for (std::size_t k = 1; k + 1 < face.size(); ++k) {
-      area = area + CGAL::cross_product(face[k] - face[0], face[k + 1] - face[0]);
-    }
-    const double face_area = 0.5 * std::sqrt(area.squared_length());
-    const Point& pv = v->point().point();
-    const Point& pw = w->point().point();
-    Vector normal = pw - pv;
-    normal = normal / std::sqrt(normal.squared_length());
-    volume[iv] += face_area * ((face[0] - pv) * normal) / 3.0;
-    volume[iw] -= face_area * ((face[0] - pw) * normal) / 3.0;
-  }
-
-  double sum = 0;
-  for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v) {
-    const std::size_t i = v->info();
-    if (cut[i]) continue;
-    const double r = bed.radius[i];
-    out.local_fraction[i] = 4.0 / 3.0 * std::numbers::pi * r * r * r / volume[i];
-    ++out.interior;
-    sum += out.local_fraction[i];
-  }
-  if (out.interior > 0) {
-    const auto m = static_cast<double>(out.interior);
-    out.mean = sum / m;
-    double squares = 0;
-    for (const double phi : out.local_fraction) {
-      if (!std::isnan(phi)) squares += (phi - out.mean) * (phi - out.mean);
-    }
-    // Sample standard deviation (m - 1); 0 for a single interior cell.
-    out.sd = out.interior > 1 ? std::sqrt(squares / (m - 1)) : 0.0;
-  }
+  const Corners corners = cell_corners(rt, d, n);
+  local_fractions(rt, bed, corners, cell_volumes(rt, corners, n), out);
   return out;
 }
 

@@ -19,10 +19,14 @@ std::string str(double v) {
   return s.str();
 }
 
-}  // namespace
+// How many particles of radius r the domain holds at density 1, the bound no packing reaches.
+double domain_holds(const bed::Domain& domain, double r) {
+  const double pi = 3.14159265358979323846;
+  const double each = domain.dimension == 3 ? 4.0 / 3.0 * pi * r * r * r : pi * r * r;
+  return domain.measure() / each;
+}
 
-void validate(const bed::Domain& domain, const bed::Psd& psd, const PackOptions& o) {
-  domain.validate("--domain");
+void check_phases(const bed::Domain& domain, const PackOptions& o) {
   if (o.phases.empty()) fail("--phases: no phase given (accepted: e.g. 0:0.3,1)");
   for (const Phase& p : o.phases) {
     if (p.approach < 0 || p.approach > 3) {
@@ -32,8 +36,14 @@ void validate(const bed::Domain& domain, const bed::Psd& psd, const PackOptions&
       fail("--approach: 3 needs a 3D domain (accepted in 2D: 0, 1 or 2 contacts)");
     }
   }
+}
+
+// The numbers of the placement and its stop rules, each in its range.
+void check_numbers(const PackOptions& o) {
   if (o.tries < 1) fail("--tries: " + std::to_string(o.tries) + " (accepted: >= 1)");
-  if (o.directions < 1) fail("--directions: " + std::to_string(o.directions) + " (accepted: >= 1)");
+  if (o.directions && *o.directions < 1) {
+    fail("--directions: " + std::to_string(*o.directions) + " (accepted: >= 1)");
+  }
   if (o.retire_after < 0) {
     fail("--retire-after: " + std::to_string(o.retire_after) + " (accepted: >= 0, 0 = never)");
   }
@@ -41,12 +51,21 @@ void validate(const bed::Domain& domain, const bed::Psd& psd, const PackOptions&
   if (o.target_density != 0 && !(o.target_density > 0 && o.target_density < 1)) {
     fail("--target-density: " + str(o.target_density) + " (accepted: 0 < F < 1)");
   }
+  if (o.count > 0 && o.target_density > 0) {
+    fail("--count and --target-density: give one stop rule, not both");
+  }
   if (!(o.edge_fraction >= 0 && o.edge_fraction <= 1)) {
     fail("--edge-fraction: " + str(o.edge_fraction) + " (accepted: 0 <= F <= 1)");
   }
   if (!(o.floor_seed >= 0 && o.floor_seed < 1)) {
     fail("--floor-seed: " + str(o.floor_seed) + " (accepted: 0 <= F < 1)");
   }
+}
+
+// The domain against the PSD: no smaller than the smallest particle, and, unless allow_huge,
+// no larger than max_particles of the mean size (docs/hardening.md: a unit slip) and no --count
+// above max_particles.
+void check_domain_size(const bed::Domain& domain, const bed::Psd& psd, const PackOptions& o) {
   const double d_min = 2 * psd.min_radius();
   double shortest = domain.length(0);
   for (int a = 1; a < domain.dimension; ++a) shortest = std::min(shortest, domain.length(a));
@@ -55,13 +74,7 @@ void validate(const bed::Domain& domain, const bed::Psd& psd, const PackOptions&
     for (int a = 1; a < domain.dimension; ++a) lengths += " x " + str(domain.length(a));
     fail("--domain: " + lengths + " is smaller than the smallest particle diameter " + str(d_min));
   }
-  // How many particles the domain could hold: its measure over one particle's (a packing
-  // density of 1 is the bound no packing reaches).
-  const double pi = 3.14159265358979323846;
-  auto particle_measure = [&](double r) {
-    return domain.dimension == 3 ? 4.0 / 3.0 * pi * r * r * r : pi * r * r;
-  };
-  const double by_mean = domain.measure() / particle_measure(psd.mean_radius());
+  const double by_mean = domain_holds(domain, psd.mean_radius());
   if (!o.allow_huge && by_mean > o.max_particles) {
     std::ostringstream msg;
     msg << "--domain: " << domain.length(0);
@@ -72,30 +85,46 @@ void validate(const bed::Domain& domain, const bed::Psd& psd, const PackOptions&
         << "e-6; --allow-huge if meant)";
     fail(msg.str());
   }
-  // A count that cannot fit even at density 1 is refused here when it is large enough for its
-  // reservation to matter (2^20); below that the packing finds out and the caller says how
-  // many were placed (packgen refuses any impossible count itself, naming the bound).
-  const double by_min = domain.measure() / particle_measure(psd.min_radius());
-  if (o.count > (std::size_t{1} << 20) && static_cast<double>(o.count) > by_min) {
-    fail("--count: " + std::to_string(o.count) + " particles cannot fit in the domain (accepted: " +
-         "at most " + str(std::floor(by_min)) + ", the domain's " +
-         (domain.dimension == 3 ? "volume" : "area") + " over the smallest particle's)");
-  }
+  if (o.count > (std::size_t{1} << 20)) check_count_fits(domain, psd, o.count);
   if (o.count > 0 && !o.allow_huge && static_cast<double>(o.count) > o.max_particles) {
     fail("--count: " + std::to_string(o.count) + " (accepted: up to " + str(o.max_particles) +
          " particles; --allow-huge if meant)");
   }
-  if (o.collision == Collision::raster) {
-    if (!(o.raster_spacing > 0) || !std::isfinite(o.raster_spacing)) {
-      fail("--raster-spacing: " + str(o.raster_spacing) + " (accepted: a spacing > 0 in m)");
-    }
-    const double finest = RasterGrid::finest_spacing(domain, o.raster_max_bytes);
-    if (o.raster_spacing < finest) {
-      fail("--raster-spacing: " + str(o.raster_spacing) + " needs more than " +
-           str(static_cast<double>(o.raster_max_bytes) / (1 << 30)) +
-           " GiB for the status grid (the finest allowed for this domain is " + str(finest) + ")");
-    }
+}
+
+void check_raster(const bed::Domain& domain, const PackOptions& o) {
+  if (!(o.raster_spacing > 0) || !std::isfinite(o.raster_spacing)) {
+    fail("--raster-spacing: " + str(o.raster_spacing) + " (accepted: a spacing > 0 in m)");
   }
+  const double finest = RasterGrid::finest_spacing(domain, o.raster_max_bytes);
+  if (o.raster_spacing < finest) {
+    fail("--raster-spacing: " + str(o.raster_spacing) + " needs more than " +
+         str(static_cast<double>(o.raster_max_bytes) / (1 << 30)) +
+         " GiB for the status grid (the finest allowed for this domain is " + str(finest) + ")");
+  }
+}
+
+}  // namespace
+
+int directions_for(const PackOptions& options, int dimension) {
+  return options.directions.value_or(dimension == 2 ? kDirections2D : kDirections3D);
+}
+
+void check_count_fits(const bed::Domain& domain, const bed::Psd& psd, std::size_t count) {
+  const double by_min = domain_holds(domain, psd.min_radius());
+  if (static_cast<double>(count) > by_min) {
+    fail("--count: " + std::to_string(count) + " particles cannot fit in the domain (accepted: " +
+         "at most " + str(std::floor(by_min)) + ", the domain's " +
+         (domain.dimension == 3 ? "volume" : "area") + " over the smallest particle's)");
+  }
+}
+
+void validate(const bed::Domain& domain, const bed::Psd& psd, const PackOptions& o) {
+  domain.validate("--domain");
+  check_phases(domain, o);
+  check_numbers(o);
+  check_domain_size(domain, psd, o);
+  if (o.collision == Collision::raster) check_raster(domain, o);
 }
 
 std::vector<Phase> parse_phases(const std::string& text, const std::string& option) {

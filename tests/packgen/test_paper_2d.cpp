@@ -68,7 +68,7 @@ std::vector<Sample> run_case(int approach) {
   o.phases = {{approach, 1.0}};
   o.collision = packgen::Collision::raster;
   o.raster_spacing = kH;
-  o.directions = 10;  // packgen's 2D default (the library default, 16, is the 3D one)
+  o.directions = 10;  // packgen's 2D default (kDirections2D)
   std::vector<Sample> out;
   for (int s = 1; s <= kSamples; ++s) {
     const auto result = packgen::pack(domain, psd, o, static_cast<std::uint64_t>(s));

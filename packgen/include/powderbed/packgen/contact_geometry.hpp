@@ -41,6 +41,24 @@ struct Partner {
 
 constexpr double kClampTolerance = 1e-12;
 
+// Whether a new particle of radius r can touch both partners at once (docs/physics.md §3
+// 2-contact reach; partners relative to any common origin): particles within r_a + r_b + 2r,
+// a particle within r_a + 2r of a wall, walls on different axes (axis-aligned normals: dot 0).
+// The one reach test of both placement algorithms (the 3-contact partner pairs of the contact
+// approaches and of lowest-site growth); forced inline as it runs for every partner pair
+// (packgen/src/placement_core.hpp says why).
+[[gnu::always_inline]] inline bool in_reach(const Partner& a, const Partner& b, double r) {
+  if (a.is_plane && b.is_plane) return dot(a.normal, b.normal) == 0;
+  if (a.is_plane || b.is_plane) {
+    const Partner& w = a.is_plane ? a : b;
+    const Partner& q = a.is_plane ? b : a;
+    return dot(w.normal, q.centre) - w.offset <= q.radius + 2 * r;
+  }
+  const Vec3 d = b.centre - a.centre;
+  const double s = a.radius + b.radius + 2 * r;
+  return dot(d, d) <= s * s;
+}
+
 // Distance error of x as a contact of `partner` for a new particle of radius r, relative to
 // the contact distance (R + r for particles, r for planes).
 double contact_residual(const Partner& partner, Vec3 x, double r);

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,16 +32,25 @@ struct Phase {
 struct PackProgress {
   std::size_t n = 0;
   double density = 0;
-  double elapsed = 0;  // s
   double fraction_done = 0;  // 0..1, best guess from the stop rule in force
 };
+
+// K's defaults (--directions), by dimension. 2D: [LP] try "a set of directions" around the
+// partner without giving K; 10 evenly spaced angles give the paper's 1-contact density of
+// 0.62-0.64 on its square (docs/results/packgen-2d-study.md: K = 10 packs 0.637, K = 16 0.647).
+// 3D: random directions on the sphere (and 16 circle angles for 2-contact), a different rule,
+// keeps the library's first value, 16.
+constexpr int kDirections2D = 10;
+constexpr int kDirections3D = 16;
 
 struct PackOptions {
   std::vector<Phase> phases{Phase{}};
   Collision collision = Collision::grid;
   double raster_spacing = 0;          // m, raster only
   int tries = 1000;                   // n_T: positions per size before a new size is drawn
-  int directions = 16;                // K: directions (1-contact) / circle angles (2-contact 3D)
+  // K: directions (1-contact) / circle angles (2-contact 3D); unset: kDirections2D or
+  // kDirections3D by the domain's dimension (directions_for).
+  std::optional<int> directions;
   std::size_t count = 0;              // stop at this many particles (0: off)
   double target_density = 0;          // stop at this density (0: off)
   std::size_t max_failures = 100;     // stop after this many consecutive failed placements
@@ -80,10 +90,21 @@ struct PackResult {
   std::string stop_reason;             // "count", "target density", "max failures"
 };
 
+// K for a run in `dimension` (2 or 3): options.directions, else that dimension's default.
+int directions_for(const PackOptions& options, int dimension);
+
 // Throws InputError (one line naming the option) for options that cannot work with this
 // domain and PSD: approach outside 0..3 or 3 in 2D, tries/directions < 1, target density
-// outside (0, 1), a domain smaller than the smallest particle, raster spacing <= 0 or too fine.
+// outside (0, 1), both a count and a target density, a domain smaller than the smallest
+// particle or holding more than max_particles (a unit slip), a count above 2^20 that cannot fit
+// (check_count_fits), raster spacing <= 0 or too fine.
 void validate(const bed::Domain& domain, const bed::Psd& psd, const PackOptions& options);
+
+// Throws InputError when `count` particles cannot fit in the domain even at density 1 (its
+// measure over the PSD's smallest particle's). validate() applies it only to counts whose
+// reservation matters (above 2^20): below that the packing finds out and its caller says how
+// many were placed (deposit's insertion); packgen applies it to any --count.
+void check_count_fits(const bed::Domain& domain, const bed::Psd& psd, std::size_t count);
 
 // "0:0.3,1" -> phases (approach[:until_density], densities increasing in (0, 1)).
 std::vector<Phase> parse_phases(const std::string& text, const std::string& option = "--phases");
