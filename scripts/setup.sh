@@ -7,6 +7,7 @@ packages=(
   build-essential cmake
   libcgal-dev libnanoflann-dev libeigen3-dev libhdf5-dev libboost-program-options-dev
   libgtest-dev libbenchmark-dev
+  libfmt-dev  # error messages (fmt::format)
   python3 python3-h5py python3-matplotlib python3-numpy
   python3-dev pybind11-dev python3-pytest  # the Python module powderbed (python/) and its tests
   # scripts/render_paraview.py and its test (tests/paraview): pvpython under a virtual X server;
