@@ -35,6 +35,11 @@ With --work DIR the beds and deposit's JSON are kept there and a later call with
 measures them without running deposit again; --measure-only measures a stopped run (the layers
 whose beds exist, wall times from the beds' file times, the run's start time in DIR/started;
 particles from bedstat, no overflow or quick look: those are in deposit's JSON at the run's end).
+--resume continues a stopped run from its last bed L-K.h5 (`deposit --in L-K.h5 --layers
+LAYERS-K`, the bed's /restart group: with the same build the continued run equals the
+uninterrupted one bit for bit, docs/deposit-spread.md "Restarts"); that segment's start time and
+JSON are kept as DIR/started-K and DIR/deposit-from-K.json, and the page names each segment's
+layers and the commit it ran (DIR/commit, DIR/commit-K when present).
 """
 import argparse
 import json
@@ -45,33 +50,65 @@ import tempfile
 import time
 
 from lib.apps import ROOT, app, bedstat
-from lib.report import RESULTS, load_average, machine, write_page
+from lib.report import RESULTS, load_average, machine, source, write_page
 from lib.spread_scene import Scene, shown_path
 
 SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
 MARKER = "<!-- discussion: kept when the script rewrites this page -->"
 
 
-def run_deposit(scene, layers, seed, work, measure_only):
-    """deposit's JSON summary (kept as work/deposit.json), running it unless that file exists;
-    None when the run did not finish (or, with measure_only, was not run here)."""
-    saved = os.path.join(work, "deposit.json")
-    if os.path.exists(saved):
-        with open(saved) as f:
-            return json.load(f)
-    if measure_only:
-        return None
+def last_bed(work, layers):
+    """The number of the last layer bed L-K.h5 in work (0 when there is none)."""
+    k = 0
+    while k < layers and os.path.exists(os.path.join(work, f"L-{k + 1:03d}.h5")):
+        k += 1
+    return k
+
+
+def segments(work):
+    """The run's segments as (first layer - 1, suffix): the first run, then each --resume."""
+    found = [(0, "")]
+    for name in sorted(os.listdir(work)):
+        if name.startswith("started-"):
+            k = int(name[len("started-"):])
+            found.append((k, f"-{k:03d}"))
+    return sorted(found)
+
+
+def run_deposit(scene, layers, seed, work, measure_only, resume):
+    """deposit's JSON summaries of the run's segments (deposit.json, deposit-from-K.json), running
+    the first (or, with resume, a continuation from the last bed) unless its JSON exists; a
+    segment that did not finish (or, with measure_only, was not run here) has none."""
+    summaries = []
+    for k, suffix in segments(work):
+        saved = os.path.join(work, "deposit.json" if k == 0 else f"deposit-from{suffix}.json")
+        if os.path.exists(saved):
+            with open(saved) as f:
+                summaries.append(json.load(f))
+    done = last_bed(work, layers)
+    if measure_only or done == layers or (not resume and os.path.exists(os.path.join(work, "deposit.err"))):
+        return summaries
     cmd = [app("deposit"), "--config", scene.path, "--seed", str(seed), "--threads", "1",
-           "--layers", str(layers), "--out", os.path.join(work, "L.h5"), "--json"]
-    with open(os.path.join(work, "deposit.err"), "w") as err:
+           "--out", os.path.join(work, "L.h5"), "--json"]
+    err_name, saved = "deposit.err", os.path.join(work, "deposit.json")
+    if resume and done > 0:
+        with open(os.path.join(work, f"started-{done:03d}"), "w") as f:
+            f.write(repr(time.time()))
+        with open(os.path.join(work, f"source-{done:03d}"), "w") as f:
+            f.write(source(app("deposit")))
+        cmd += ["--in", os.path.join(work, f"L-{done:03d}.h5"), "--layers", str(layers - done)]
+        err_name, saved = f"deposit-from-{done:03d}.err", os.path.join(work, f"deposit-from-{done:03d}.json")
+    else:
+        cmd += ["--layers", str(layers)]
+    with open(os.path.join(work, err_name), "w") as err:
         proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=err, text=True)
     if proc.returncode != 0:
-        print(f"spread_layers: deposit exited {proc.returncode} (see {work}/deposit.err); "
+        print(f"spread_layers: deposit exited {proc.returncode} (see {work}/{err_name}); "
               "measuring the layers it wrote", file=sys.stderr)
-        return None
+        return summaries
     with open(saved, "w") as f:
         f.write(proc.stdout)
-    return json.loads(proc.stdout)
+    return summaries + [json.loads(proc.stdout)]
 
 
 def spread_stats(bed, plate, gap, window):
@@ -81,11 +118,34 @@ def spread_stats(bed, plate, gap, window):
     return dict(entry["spread"], n_bed=entry["n"])
 
 
-def measure(scene, work, layers, window, summary):
+def run_segments(work, rows):
+    """One sentence per segment of the run: its layers and the source it ran (DIR/source[-K])."""
+    last = rows[-1]["layer"]
+    bounds = segments(work) + [(last, None)]
+    parts = []
+    for (k, suffix), (end, _) in zip(bounds, bounds[1:]):
+        path = os.path.join(work, "source" + suffix)
+        ran = open(path).read().strip() if os.path.exists(path) else "source not recorded"
+        how = "the first run" if k == 0 else f"continued with --resume from L-{k:03d}.h5"
+        span = f"layers {k + 1}–{end}" if end > k + 1 else f"layer {k + 1}"
+        parts.append(f"{span}: {how} ({ran})")
+    return "; ".join(parts)
+
+
+def segment_starts(work):
+    """{layers done before the segment: its start time} for every segment of the run."""
+    starts = {}
+    for k, suffix in segments(work):
+        with open(os.path.join(work, "started" + suffix)) as f:
+            starts[k] = float(f.read())
+    return starts
+
+
+def measure(scene, work, layers, window, summaries):
     t = float(scene.options["recoater.layer-thickness"])
     rows, prev_solid, prev_time = [], 0.0, None
-    with open(os.path.join(work, "started")) as f:
-        started = float(f.read())
+    starts = segment_starts(work)
+    by_layer = {s["layer"]: s for summary in summaries for s in summary["layers"]}
     area = None
     for k in range(1, layers + 1):
         bed = os.path.join(work, f"L-{k:03d}.h5")
@@ -109,12 +169,12 @@ def measure(scene, work, layers, window, summary):
         row["quarters"] = [spread_stats(bed, 0.0, top, (edges[q], edges[q + 1]))["density"] * top
                            for q in range(4)]
         mtime = os.path.getmtime(bed)
-        row["wall_file"] = mtime - (started if prev_time is None else prev_time)
+        row["wall_file"] = mtime - (starts[k - 1] if k - 1 in starts else prev_time)
         prev_time = mtime
-        if summary:
-            s = summary["layers"][k - 1]
+        if k in by_layer:
+            s = by_layer[k]
             row.update(n=s["n"], supplied=s["supplied"], overflow=s["overflow"],
-                       quick=s["density_under_gap"], wall=s["wall_time"])
+                       quick=s["density_under_gap"], wall=s["wall_time"], steps=s["steps"])
         rows.append(row)
     return rows
 
@@ -150,6 +210,8 @@ def main():
     parser.add_argument("--work", default=None, help="keep the beds here (and reuse them)")
     parser.add_argument("--measure-only", action="store_true",
                         help="with --work: measure the beds there, do not run deposit (a stopped run)")
+    parser.add_argument("--resume", action="store_true",
+                        help="with --work: continue a stopped run from its last layer bed")
     args = parser.parse_args()
     scene = Scene(os.path.abspath(args.scene), {})
     window = scene.window()
@@ -159,12 +221,15 @@ def main():
         if not os.path.exists(os.path.join(work, "started")):
             with open(os.path.join(work, "started"), "w") as f:
                 f.write(repr(time.time()))
+            with open(os.path.join(work, "source"), "w") as f:
+                f.write(source(app("deposit")))
             with open(os.path.join(work, "load-before"), "w") as f:
                 f.write(load_average())
         with open(os.path.join(work, "load-before")) as f:
             load_before = f.read().strip()
-        summary = run_deposit(scene, args.layers, args.seed, work, args.measure_only)
-        rows = measure(scene, work, args.layers, window, summary)
+        summaries = run_deposit(scene, args.layers, args.seed, work, args.measure_only, args.resume)
+        rows = measure(scene, work, args.layers, window, summaries)
+        runs = run_segments(work, rows)
     if not rows:
         sys.exit("spread_layers: no layer bed was written")
     t = float(scene.options["recoater.layer-thickness"])
@@ -181,8 +246,10 @@ def main():
         f"supply {scene.options.get('supply.count', '?')} particles a layer, young-scale "
         f"{scene.young_scale:g}; {len(rows)} of {args.layers} layers, seed {args.seed}, one thread; "
         f"{total:.0f} s of wall time in all"
-        + (f", {summary['steps']} steps of {summary['dt']:.3g} s." if summary else "."),
-        machine(load_before, program=app("deposit")),
+        + (f", {sum(r['steps'] for r in rows)} steps of {summaries[0]['dt']:.3g} s."
+           if all("steps" in r for r in rows) else "."),
+        f"Segments: {runs}.",
+        machine(load_before),
         "",
         f"Window x in [{window[0] * 1e3:.3f}, {window[1] * 1e3:.3f}] mm. In layer k the tool's bottom "
         f"is at H_k = gap + (k − 1) t. *Added*: the solid the layer added under the tool over the "

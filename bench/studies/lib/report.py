@@ -97,25 +97,30 @@ def _host():
     return model + (", virtual machine" if virtual else "")
 
 
+def source(program=None):
+    """Where the numbers' code came from: the commit checked out, marked when files outside
+    docs/results differ from it; with `program` (a program of the build), also when that was
+    built and the last commit before."""
+    commit = _git("rev-parse", "--short", "HEAD")
+    if commit is None:
+        text = "commit unknown (no git checkout)"
+    else:
+        changed = _git("status", "--porcelain", "--untracked-files=no", "--", ".",
+                       ":!docs/results")
+        text = f"commit {commit}" + (" with uncommitted changes" if changed else "")
+    if program:
+        built = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime(os.path.getmtime(program)))
+        before = _git("log", "-1", "--format=%h", f"--before={built}")
+        text += f"; {os.path.basename(program)} built {built}, after commit {before or '?'}"
+    return text
+
+
 def machine(load_before, load_after=None, program=None):
     """The sentence a page gives on where its numbers were measured: the host (CPU model, and
     whether virtual), its cores, the platform, the load average (1, 5, 15 min) before the runs
     (`load_before`, from load_average()) and after them (`load_after`, default now), and the
-    source: the commit checked out, marked when files outside docs/results differ from it; with
-    `program` (a program of the build), also when that was built and the last commit before."""
+    source (source(program))."""
     load_after = load_after or load_average()
-    commit = _git("rev-parse", "--short", "HEAD")
-    if commit is None:
-        source = "commit unknown (no git checkout)"
-    else:
-        changed = _git("status", "--porcelain", "--untracked-files=no", "--", ".",
-                       ":!docs/results")
-        source = f"commit {commit}" + (" with uncommitted changes" if changed else "")
-    if program:
-        built = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime(os.path.getmtime(program)))
-        before = _git("log", "-1", "--format=%h", f"--before={built}")
-        source += (f"; {os.path.basename(program)} built {built}, after commit "
-                   f"{before or '?'}")
     return (f"Machine: {_host()}, {os.cpu_count()} cores, {platform.platform()}; load average "
             f"(1, 5, 15 min) {load_before} before the runs, {load_after} after; source at "
-            f"{source}.")
+            f"{source(program)}.")
