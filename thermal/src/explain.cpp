@@ -59,17 +59,17 @@ ExplainReport scale_numbers(const bed::Bed& bed, const SinterScene& scene, const
   const PhaseChange& pc = m.phase_change();
   const double t0 = scene.initial_temperature, t_m = pc.melting_point, t_v = pc.boiling_point;
   const double k = m.conductivity(t_m - pc.window);
-  r.laser_flux = scene.absorptivity * 2 * scene.power / (M_PI * scene.spot_radius * scene.spot_radius);
+  r.laser_flux =
+      absorbed_flux({scene.power, scene.spot_radius, scene.absorptivity, 0.0}, 0.0, 0.0);
   const std::size_t n = bed.n();
   double r_mean = 0;
   for (const double radius : bed.radius) r_mean += radius / static_cast<double>(n > 0 ? n : 1);
   conduction_ratios(bed, sinter, k, t_m - t0, r_mean, r);
-  const double te = scene.environment_temperature;
-  r.convection_ratio = scene.convection * (t_v - te) / r.laser_flux;
-  r.radiation_ratio =
-      scene.emissivity * kStefanBoltzmann * (std::pow(t_v, 4) - std::pow(te, 4)) / r.laser_flux;
-  const double h_surface =
-      scene.convection + 4 * scene.emissivity * kStefanBoltzmann * t_v * t_v * t_v;
+  // The losses per unit area of a surface at the boiling point (surface_losses.hpp).
+  const SurfaceParams surface{scene.convection, scene.emissivity, scene.environment_temperature};
+  r.convection_ratio = -convection_gain(surface, t_v, 1.0) / r.laser_flux;
+  r.radiation_ratio = -radiation_gain(surface, t_v, 1.0) / r.laser_flux;
+  const double h_surface = scene.convection + radiation_conductance(surface, t_v, 1.0);
   r.biot_surface = h_surface * r_mean / 3 / k;
   r.biot_laser = r.laser_flux * r_mean / 3 / (k * (t_m - t0));
   r.optical_thickness = sinter.extinction() * sinter.surface().layer_height;
