@@ -2,10 +2,10 @@
 // refuses a bad file with one line "<file>: <dataset>: <what is wrong>".
 #include <array>
 #include <cmath>
+#include <fmt/format.h>
 #include <fstream>
 #include <limits>
 #include <type_traits>
-#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -61,9 +61,8 @@ class H5Reader {
     if (bed.domain.dimension == 2) {
       for (std::size_t i = 0; i < bed.n(); ++i) {
         if (bed.z[i] != 0.0) {
-          std::ostringstream msg;
-          msg << "z of particle " << i << " is " << bed.z[i] << " in a 2D bed (accepted: 0)";
-          fail("/particles/position", msg.str());
+          fail("/particles/position",
+               fmt::format("z of particle {} is {:g} in a 2D bed (accepted: 0)", i, bed.z[i]));
         }
       }
     }
@@ -262,11 +261,9 @@ class H5Reader {
     if (rank == 1 || rank == 2) H5Sget_simple_extent_dims(space, dims, nullptr);
     const int want_rank = cols == 0 ? 1 : 2;
     if (rank != want_rank || (rank == 2 && dims[1] != cols)) {
-      std::ostringstream msg;
-      msg << "wrong shape (rank " << rank;
-      if (rank == 2) msg << ", " << dims[0] << " x " << dims[1];
-      msg << "; accepted: " << (cols == 0 ? "N" : "N x 3") << ")";
-      fail(object, msg.str());
+      const std::string shape = rank == 2 ? fmt::format(", {} x {}", dims[0], dims[1]) : "";
+      fail(object, fmt::format("wrong shape (rank {}{}; accepted: {})", rank, shape,
+                               cols == 0 ? "N" : "N x 3"));
     }
     check_extent(set, type, object, dims[0], cols == 0 ? 1 : cols, sizeof(T));
     if (rows < 0) {
@@ -348,19 +345,17 @@ class H5Reader {
     const int filters = plist.valid() ? H5Pget_nfilters(plist) : 0;
     const double holds = filters > 0 ? stored * kMaxCompression : stored;
     if (declared > holds) {
-      std::ostringstream msg;
-      msg << "declares " << rows << " rows (" << declared << " bytes) but the file stores "
-          << stored << " bytes" << (filters > 0 ? " compressed" : "")
-          << " (damaged or truncated file?; accepted: a dataset that holds its rows)";
-      fail(object, msg.str());
+      fail(object, fmt::format("declares {} rows ({:g} bytes) but the file stores {:g} bytes{} "
+                               "(damaged or truncated file?; accepted: a dataset that holds its "
+                               "rows)",
+                               rows, declared, stored, filters > 0 ? " compressed" : ""));
     }
     const double need = values * static_cast<double>(mem_size);
     const double memory = detail::physical_memory_bytes();
     if (memory > 0 && need > 0.5 * memory) {
-      std::ostringstream msg;
-      msg << "has " << rows << " rows, needing " << need / 1e9 << " GB (accepted: up to half "
-          << "of this machine's " << memory / 1e9 << " GB)";
-      fail(object, msg.str());
+      fail(object, fmt::format("has {} rows, needing {:g} GB (accepted: up to half of this "
+                               "machine's {:g} GB)",
+                               rows, need / 1e9, memory / 1e9));
     }
   }
 

@@ -4,8 +4,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fmt/format.h>
 #include <limits>
-#include <sstream>
 
 #include "io_detail.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -50,9 +50,7 @@ void check_options(const Bed& bed, const std::string& path, const LammpsDataOpti
   }
   for (const double rho : o.type_density) {
     if (!std::isfinite(rho) || !(rho > 0)) {
-      std::ostringstream msg;
-      msg << path << ": density is " << rho << " (accepted: > 0 kg/m^3)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format("{}: density is {:g} (accepted: > 0 kg/m^3)", path, rho));
     }
   }
   if (o.extra_types < 0) throw InputError(path + ": negative count of extra atom types");

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fmt/format.h>
 #include <fstream>
-#include <sstream>
 
 #include "powderbed/bed/errors.hpp"
 
@@ -93,10 +93,8 @@ void read_scalar(const std::vector<std::string>& all, const std::string& line,
   }
   const double value = parse_positive(fields[1], where, known->key);
   if (!(value > known->min && value <= known->max)) {
-    std::ostringstream msg;
-    msg << where << ": " << key << " " << fields[1] << " is out of range (accepted: " << known->min
-        << " < value <= " << known->max << " " << known->unit << ")";
-    throw InputError(msg.str());
+    throw InputError(fmt::format("{}: {} {} is out of range (accepted: {:g} < value <= {:g} {})",
+                                 where, key, fields[1], known->min, known->max, known->unit));
   }
   for (const auto& p : file.properties)
     if (p.key == key) throw InputError(where + ": " + key + " given twice (accepted: once)");
