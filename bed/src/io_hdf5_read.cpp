@@ -150,12 +150,12 @@ class H5Reader {
     }
     const std::size_t size = H5Tget_size(type);
     if (size == 0 || size > kMaxStringAttr) {
-      fail(object, what + " declares " + std::to_string(size) +
-                       " characters (accepted: 1 to " + std::to_string(kMaxStringAttr) + ")");
+      fail(object, fmt::format("{} declares {} characters (accepted: 1 to {})", what, size,
+                               kMaxStringAttr));
     }
     if (stored < size) {
-      fail(object, what + " declares " + std::to_string(size) + " characters but stores " +
-                       std::to_string(stored) + " bytes (damaged file?)");
+      fail(object, fmt::format("{} declares {} characters but stores {} bytes (damaged file?)",
+                               what, size, stored));
     }
     // Read through a memory type of our own (C string of the file's size and character set),
     // never through the file's type.
@@ -185,8 +185,7 @@ class H5Reader {
     }
     const hssize_t got = attr_points(a, object, name);
     if (got != count) {
-      fail(object, std::string("attribute ") + name + " has " + std::to_string(got) +
-                       " values (accepted: " + std::to_string(count) + ")");
+      fail(object, fmt::format("attribute {} has {} values (accepted: {})", name, got, count));
     }
     if (H5Aget_storage_size(a) < static_cast<hsize_t>(count) * size)
       fail(object, std::string("attribute ") + name + " is truncated (damaged file?)");
@@ -201,13 +200,12 @@ class H5Reader {
     int version = 0;
     numeric_attr(file_, "/", "version", H5T_NATIVE_INT, &version, 1);
     if (version > kBedFormatVersion) {
-      fail("/", "format version " + std::to_string(version) +
-                    " is newer than this reader (accepted: " + std::to_string(kBedFormatVersion) +
-                    "; update powderbed)");
+      fail("/", fmt::format("format version {} is newer than this reader (accepted: {}; update "
+                            "powderbed)",
+                            version, kBedFormatVersion));
     }
     if (version < 1) {
-      fail("/", "format version " + std::to_string(version) +
-                    " (accepted: " + std::to_string(kBedFormatVersion) + ")");
+      fail("/", fmt::format("format version {} (accepted: {})", version, kBedFormatVersion));
     }
     numeric_attr(file_, "/", "dimension", H5T_NATIVE_INT, &bed.domain.dimension, 1);
     if (has_attr(file_, "length_unit")) {
@@ -230,8 +228,8 @@ class H5Reader {
       numeric_attr(g, "/domain", "periodic", H5T_NATIVE_UINT8, periodic.data(), 3);
       for (int a = 0; a < 3; ++a) {
         if (periodic[a] > 1) {
-          fail("/domain", std::string("periodic[") + std::to_string(a) + "] is " +
-                              std::to_string(periodic[a]) + " (accepted: 0 or 1)");
+          fail("/domain", fmt::format("periodic[{}] is {} (accepted: 0 or 1)", a,
+                                      int{periodic[a]}));
         }
         d.periodic[a] = periodic[a] == 1;
       }
@@ -269,8 +267,9 @@ class H5Reader {
     if (rows < 0) {
       rows = static_cast<hssize_t>(dims[0]);
     } else if (dims[0] != static_cast<hsize_t>(rows)) {
-      fail(object, "has " + std::to_string(dims[0]) + " rows but /particles/position has " +
-                       std::to_string(rows) + " (accepted: one per particle)");
+      fail(object, fmt::format("has {} rows but /particles/position has {} (accepted: one per "
+                               "particle)",
+                               dims[0], rows));
     }
     out.resize(dims[0] * (cols == 0 ? 1 : cols));
     // HDF5 clamps a value that its memory type cannot hold (a material index 70000 or -1 read

@@ -199,9 +199,10 @@ MaterialFile read_material_file(const std::string& path) {
     }
   }
   if (table && (file.solid.size() < 2 || !file.liquid)) {
-    throw InputError(path + ": " + std::to_string(file.solid.size()) + " solid rows and " +
-                     (file.liquid ? "one" : "no") +
-                     " liquid row (accepted: at least 2 solid rows and one liquid row)");
+    throw InputError(fmt::format(
+        "{}: {} solid rows and {} liquid row (accepted: at least 2 solid rows and one liquid "
+        "row)",
+        path, file.solid.size(), file.liquid ? "one" : "no"));
   }
   if (file.name.empty()) file.name = std::filesystem::path(path).stem().string();
   check_consistency(file);
