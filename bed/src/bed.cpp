@@ -1,7 +1,7 @@
 #include "powderbed/bed/bed.hpp"
 
 #include <cmath>
-#include <sstream>
+#include <fmt/format.h>
 #include <unordered_set>
 
 #include "powderbed/bed/errors.hpp"
@@ -34,20 +34,17 @@ void check_size(const std::string& source, const char* name, const std::vector<T
                 std::size_t n, bool optional) {
   if (optional && v.empty()) return;
   if (v.size() != n) {
-    std::ostringstream msg;
-    msg << source << ": " << name << " has " << v.size() << " entries but the bed has " << n
-        << " particles (accepted: one per particle)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "{}: {} has {} entries but the bed has {} particles (accepted: one per particle)", source,
+        name, v.size(), n));
   }
 }
 
 void check_finite(const std::string& source, const char* name, const std::vector<double>& v) {
   for (std::size_t i = 0; i < v.size(); ++i) {
     if (!std::isfinite(v[i])) {
-      std::ostringstream msg;
-      msg << source << ": " << name << "[" << i << "] is " << v[i]
-          << " (accepted: finite numbers)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format("{}: {}[{}] is {:g} (accepted: finite numbers)", source, name,
+                                   i, v[i]));
     }
   }
 }
@@ -77,26 +74,22 @@ void Bed::validate(const std::string& source) const {
   check_finite(source, "temperature", temperature);
   for (std::size_t i = 0; i < count; ++i) {
     if (!(radius[i] > 0)) {
-      std::ostringstream msg;
-      msg << source << ": radius[" << i << "] is " << radius[i] << " (accepted: > 0)";
-      throw InputError(msg.str());
+      throw InputError(
+          fmt::format("{}: radius[{}] is {:g} (accepted: > 0)", source, i, radius[i]));
     }
   }
   for (std::size_t i = 0; i < phase.size(); ++i) {
     if (phase[i] > 2) {
-      std::ostringstream msg;
-      msg << source << ": phase[" << i << "] is " << int{phase[i]}
-          << " (accepted: 0 solid, 1 liquid, 2 gas)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format("{}: phase[{}] is {} (accepted: 0 solid, 1 liquid, 2 gas)",
+                                   source, i, int{phase[i]}));
     }
   }
   std::unordered_set<std::uint64_t> seen;
   seen.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
     if (!seen.insert(id[i]).second) {
-      std::ostringstream msg;
-      msg << source << ": id " << id[i] << " appears twice (accepted: unique ids)";
-      throw InputError(msg.str());
+      throw InputError(
+          fmt::format("{}: id {} appears twice (accepted: unique ids)", source, id[i]));
     }
   }
 }
@@ -114,13 +107,10 @@ void Bed::validate_geometry(const std::string& source) const {
   const std::size_t count = n();
   for (std::size_t i = 0; i < count; ++i) {
     if (radius[i] >= smallest) {
-      std::ostringstream msg;
-      msg.precision(6);
-      msg << source << ": radius[" << i << "] is " << radius[i]
-          << " m, not below the domain's smallest extent (" << "xyz"[smallest_axis] << ": "
-          << smallest << " m) (accepted: radius < " << smallest
-          << " m; radii in um or mm instead of m?)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format(
+          "{}: radius[{}] is {:g} m, not below the domain's smallest extent ({}: {:g} m) "
+          "(accepted: radius < {:g} m; radii in um or mm instead of m?)",
+          source, i, radius[i], "xyz"[smallest_axis], smallest, smallest));
     }
   }
   const std::vector<double>* centre[3] = {&x, &y, &z};
@@ -128,13 +118,11 @@ void Bed::validate_geometry(const std::string& source) const {
     for (int a = 0; a < dims; ++a) {
       const double c = (*centre[a])[i];
       if (c < domain.lower[a] - radius[i] || c > domain.upper[a] + radius[i]) {
-        std::ostringstream msg;
-        msg.precision(6);
-        msg << source << ": particle " << i << " (id " << id[i] << ") has " << "xyz"[a] << " = "
-            << c << " m, outside the domain [" << domain.lower[a] << ", " << domain.upper[a]
-            << "] m by more than its radius " << radius[i]
-            << " m (accepted: every centre inside the domain; positions in um or mm instead of m?)";
-        throw InputError(msg.str());
+        throw InputError(fmt::format(
+            "{}: particle {} (id {}) has {} = {:g} m, outside the domain [{:g}, {:g}] m by more "
+            "than its radius {:g} m (accepted: every centre inside the domain; positions in um or "
+            "mm instead of m?)",
+            source, i, id[i], "xyz"[a], c, domain.lower[a], domain.upper[a], radius[i]));
       }
     }
   }

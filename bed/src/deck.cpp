@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fmt/format.h>
 #include <numbers>
 #include <sstream>
 
@@ -76,8 +77,9 @@ void check(const Bed& bed, const DeckLaws& laws, const std::string& data_path) {
     throw InputError("deck: linear law needs contact.stiffness > 0 (N/m)");
   const std::size_t types = type_count(bed);
   if (laws.density.size() != 1 && laws.density.size() != types)
-    throw InputError("deck: " + std::to_string(laws.density.size()) + " densities for " +
-                     std::to_string(types) + " materials (accepted: one, or one per material)");
+    throw InputError(
+        fmt::format("deck: {} densities for {} materials (accepted: one, or one per material)",
+                    laws.density.size(), types));
   if (laws.steps == 0) throw InputError("deck: 0 steps (accepted: N >= 1)");
 }
 

@@ -2,8 +2,8 @@
 #include "powderbed/bed/deck_damping.hpp"
 
 #include <cmath>
+#include <fmt/format.h>
 #include <numbers>
-#include <sstream>
 
 #include "powderbed/bed/errors.hpp"
 
@@ -21,12 +21,11 @@ double lammps_tsuji_max_zeta(bool hertz) {
 double lammps_tsuji_input(double zeta, bool hertz, const char* option) {
   const double alpha = zeta * (hertz ? std::sqrt(6.0) : 2.0);
   if (!(alpha <= tsuji_alpha(0.0)) || !(alpha >= tsuji_alpha(1.0))) {
-    std::ostringstream msg;
-    msg << option << ": zeta " << zeta << " has no LAMMPS damping tsuji input (accepted: "
-        << tsuji_alpha(1.0) / (hertz ? std::sqrt(6.0) : 2.0) << " <= zeta <= "
-        << lammps_tsuji_max_zeta(hertz) << " for the " << (hertz ? "Hertz" : "linear")
-        << " law, or 0)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "{}: zeta {:g} has no LAMMPS damping tsuji input (accepted: {:g} <= zeta <= {:g} for the "
+        "{} law, or 0)",
+        option, zeta, tsuji_alpha(1.0) / (hertz ? std::sqrt(6.0) : 2.0),
+        lammps_tsuji_max_zeta(hertz), hertz ? "Hertz" : "linear"));
   }
   // alpha(e) decreases monotonically on [0, 1]: bisection to the last bit.
   double lo = 0, hi = 1;
@@ -40,10 +39,10 @@ double lammps_tsuji_input(double zeta, bool hertz, const char* option) {
 double liggghts_hertz_restitution(double zeta, const char* option) {
   const double b = zeta / std::sqrt(5.0 / 6.0);
   if (!(b >= 0) || !(b < 1)) {
-    std::ostringstream msg;
-    msg << option << ": zeta " << zeta << " has no LIGGGHTS coefficientRestitution (accepted: 0 "
-        << "<= zeta < sqrt(5/6) = 0.9129)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "{}: zeta {:g} has no LIGGGHTS coefficientRestitution (accepted: 0 <= zeta < sqrt(5/6) = "
+        "0.9129)",
+        option, zeta));
   }
   return std::exp(-std::numbers::pi * b / std::sqrt(1 - b * b));
 }

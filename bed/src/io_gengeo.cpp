@@ -10,6 +10,7 @@
 //   EndParticles
 //   BeginConnect ... EndConnect   (bonds: ignored)
 #include <algorithm>
+#include <fmt/format.h>
 
 #include "io_detail.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -58,8 +59,8 @@ class GeoReader {
     if (words_.size() != 1 || !detail::parse_uint(words_[0], count))
       fail(detail::quoted(line_) + " (accepted: the particle count)");
     if (count > lines_.bytes_left() / 12 + 1)
-      fail(std::to_string(count) + " particles declared but " + std::to_string(lines_.bytes_left()) +
-           " bytes follow (truncated file?)");
+      fail(fmt::format("{} particles declared but {} bytes follow (truncated file?)", count,
+                       lines_.bytes_left()));
     bed_.reserve(count);
     int digits = 0;
     for (std::uint64_t i = 0; i < count; ++i) {

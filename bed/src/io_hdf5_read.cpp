@@ -2,10 +2,10 @@
 // refuses a bad file with one line "<file>: <dataset>: <what is wrong>".
 #include <array>
 #include <cmath>
+#include <fmt/format.h>
 #include <fstream>
 #include <limits>
 #include <type_traits>
-#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -61,9 +61,8 @@ class H5Reader {
     if (bed.domain.dimension == 2) {
       for (std::size_t i = 0; i < bed.n(); ++i) {
         if (bed.z[i] != 0.0) {
-          std::ostringstream msg;
-          msg << "z of particle " << i << " is " << bed.z[i] << " in a 2D bed (accepted: 0)";
-          fail("/particles/position", msg.str());
+          fail("/particles/position",
+               fmt::format("z of particle {} is {:g} in a 2D bed (accepted: 0)", i, bed.z[i]));
         }
       }
     }
@@ -151,12 +150,12 @@ class H5Reader {
     }
     const std::size_t size = H5Tget_size(type);
     if (size == 0 || size > kMaxStringAttr) {
-      fail(object, what + " declares " + std::to_string(size) +
-                       " characters (accepted: 1 to " + std::to_string(kMaxStringAttr) + ")");
+      fail(object, fmt::format("{} declares {} characters (accepted: 1 to {})", what, size,
+                               kMaxStringAttr));
     }
     if (stored < size) {
-      fail(object, what + " declares " + std::to_string(size) + " characters but stores " +
-                       std::to_string(stored) + " bytes (damaged file?)");
+      fail(object, fmt::format("{} declares {} characters but stores {} bytes (damaged file?)",
+                               what, size, stored));
     }
     // Read through a memory type of our own (C string of the file's size and character set),
     // never through the file's type.
@@ -186,8 +185,7 @@ class H5Reader {
     }
     const hssize_t got = attr_points(a, object, name);
     if (got != count) {
-      fail(object, std::string("attribute ") + name + " has " + std::to_string(got) +
-                       " values (accepted: " + std::to_string(count) + ")");
+      fail(object, fmt::format("attribute {} has {} values (accepted: {})", name, got, count));
     }
     if (H5Aget_storage_size(a) < static_cast<hsize_t>(count) * size)
       fail(object, std::string("attribute ") + name + " is truncated (damaged file?)");
@@ -202,13 +200,12 @@ class H5Reader {
     int version = 0;
     numeric_attr(file_, "/", "version", H5T_NATIVE_INT, &version, 1);
     if (version > kBedFormatVersion) {
-      fail("/", "format version " + std::to_string(version) +
-                    " is newer than this reader (accepted: " + std::to_string(kBedFormatVersion) +
-                    "; update powderbed)");
+      fail("/", fmt::format("format version {} is newer than this reader (accepted: {}; update "
+                            "powderbed)",
+                            version, kBedFormatVersion));
     }
     if (version < 1) {
-      fail("/", "format version " + std::to_string(version) +
-                    " (accepted: " + std::to_string(kBedFormatVersion) + ")");
+      fail("/", fmt::format("format version {} (accepted: {})", version, kBedFormatVersion));
     }
     numeric_attr(file_, "/", "dimension", H5T_NATIVE_INT, &bed.domain.dimension, 1);
     if (has_attr(file_, "length_unit")) {
@@ -231,8 +228,8 @@ class H5Reader {
       numeric_attr(g, "/domain", "periodic", H5T_NATIVE_UINT8, periodic.data(), 3);
       for (int a = 0; a < 3; ++a) {
         if (periodic[a] > 1) {
-          fail("/domain", std::string("periodic[") + std::to_string(a) + "] is " +
-                              std::to_string(periodic[a]) + " (accepted: 0 or 1)");
+          fail("/domain", fmt::format("periodic[{}] is {} (accepted: 0 or 1)", a,
+                                      int{periodic[a]}));
         }
         d.periodic[a] = periodic[a] == 1;
       }
@@ -262,18 +259,17 @@ class H5Reader {
     if (rank == 1 || rank == 2) H5Sget_simple_extent_dims(space, dims, nullptr);
     const int want_rank = cols == 0 ? 1 : 2;
     if (rank != want_rank || (rank == 2 && dims[1] != cols)) {
-      std::ostringstream msg;
-      msg << "wrong shape (rank " << rank;
-      if (rank == 2) msg << ", " << dims[0] << " x " << dims[1];
-      msg << "; accepted: " << (cols == 0 ? "N" : "N x 3") << ")";
-      fail(object, msg.str());
+      const std::string shape = rank == 2 ? fmt::format(", {} x {}", dims[0], dims[1]) : "";
+      fail(object, fmt::format("wrong shape (rank {}{}; accepted: {})", rank, shape,
+                               cols == 0 ? "N" : "N x 3"));
     }
     check_extent(set, type, object, dims[0], cols == 0 ? 1 : cols, sizeof(T));
     if (rows < 0) {
       rows = static_cast<hssize_t>(dims[0]);
     } else if (dims[0] != static_cast<hsize_t>(rows)) {
-      fail(object, "has " + std::to_string(dims[0]) + " rows but /particles/position has " +
-                       std::to_string(rows) + " (accepted: one per particle)");
+      fail(object, fmt::format("has {} rows but /particles/position has {} (accepted: one per "
+                               "particle)",
+                               dims[0], rows));
     }
     out.resize(dims[0] * (cols == 0 ? 1 : cols));
     // HDF5 clamps a value that its memory type cannot hold (a material index 70000 or -1 read
@@ -348,19 +344,17 @@ class H5Reader {
     const int filters = plist.valid() ? H5Pget_nfilters(plist) : 0;
     const double holds = filters > 0 ? stored * kMaxCompression : stored;
     if (declared > holds) {
-      std::ostringstream msg;
-      msg << "declares " << rows << " rows (" << declared << " bytes) but the file stores "
-          << stored << " bytes" << (filters > 0 ? " compressed" : "")
-          << " (damaged or truncated file?; accepted: a dataset that holds its rows)";
-      fail(object, msg.str());
+      fail(object, fmt::format("declares {} rows ({:g} bytes) but the file stores {:g} bytes{} "
+                               "(damaged or truncated file?; accepted: a dataset that holds its "
+                               "rows)",
+                               rows, declared, stored, filters > 0 ? " compressed" : ""));
     }
     const double need = values * static_cast<double>(mem_size);
     const double memory = detail::physical_memory_bytes();
     if (memory > 0 && need > 0.5 * memory) {
-      std::ostringstream msg;
-      msg << "has " << rows << " rows, needing " << need / 1e9 << " GB (accepted: up to half "
-          << "of this machine's " << memory / 1e9 << " GB)";
-      fail(object, msg.str());
+      fail(object, fmt::format("has {} rows, needing {:g} GB (accepted: up to half of this "
+                               "machine's {:g} GB)",
+                               rows, need / 1e9, memory / 1e9));
     }
   }
 

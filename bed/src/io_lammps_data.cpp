@@ -4,8 +4,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fmt/format.h>
 #include <limits>
-#include <sstream>
 
 #include "io_detail.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -44,15 +44,14 @@ std::size_t material_types(const Bed& bed) {
 void check_options(const Bed& bed, const std::string& path, const LammpsDataOptions& o) {
   const std::size_t types = material_types(bed);
   if (o.type_density.size() != 1 && o.type_density.size() != types) {
-    throw InputError(path + ": " + std::to_string(o.type_density.size()) + " densities for " +
-                     std::to_string(types) + " atom types (accepted: one density, or one per "
-                     "material index 0.." + std::to_string(types - 1) + ")");
+    throw InputError(fmt::format(
+        "{}: {} densities for {} atom types (accepted: one density, or one per material index "
+        "0..{})",
+        path, o.type_density.size(), types, types - 1));
   }
   for (const double rho : o.type_density) {
     if (!std::isfinite(rho) || !(rho > 0)) {
-      std::ostringstream msg;
-      msg << path << ": density is " << rho << " (accepted: > 0 kg/m^3)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format("{}: density is {:g} (accepted: > 0 kg/m^3)", path, rho));
     }
   }
   if (o.extra_types < 0) throw InputError(path + ": negative count of extra atom types");
@@ -73,8 +72,8 @@ void write_lammps_data(const Bed& bed, const std::string& path, const LammpsData
   constexpr std::uint64_t max_id = std::numeric_limits<std::int32_t>::max() - 1;
   for (std::uint64_t id : bed.id) {
     if (id > max_id) {
-      throw InputError(path + ": id " + std::to_string(id) + " does not fit a LAMMPS atom id " +
-                       "(accepted: ids up to " + std::to_string(max_id) + ")");
+      throw InputError(fmt::format(
+          "{}: id {} does not fit a LAMMPS atom id (accepted: ids up to {})", path, id, max_id));
     }
   }
   const Domain& d = bed.domain;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fmt/format.h>
 #include <optional>
 #include <unordered_map>
 
@@ -39,11 +40,10 @@ class DataReader {
     while (section_) body();
     if (!atoms_) fail("no Atoms section (accepted: a LAMMPS data file with atoms)");
     if (bed_.n() != *count_)
-      fail("Atoms has " + std::to_string(bed_.n()) + " of the " + std::to_string(*count_) +
-           " atoms declared (truncated file?)");
+      fail(fmt::format("Atoms has {} of the {} atoms declared (truncated file?)", bed_.n(),
+                       *count_));
     if (have_velocities_ != 0 && have_velocities_ != bed_.n())
-      fail("Velocities for " + std::to_string(have_velocities_) + " of " +
-           std::to_string(bed_.n()) + " atoms");
+      fail(fmt::format("Velocities for {} of {} atoms", have_velocities_, bed_.n()));
     if (std::any_of(type_.begin(), type_.end(), [](std::uint16_t t) { return t != 0; }))
       bed_.material = std::move(type_);
     bed_.provenance.printed_digits = digits_;
@@ -151,8 +151,8 @@ class DataReader {
     if (!count_) fail("no 'N atoms' line before Atoms");
     // Each atom line holds at least 7 numbers of one digit and their separators.
     if (*count_ > lines_.bytes_left() / 14 + 1)
-      fail(std::to_string(*count_) + " atoms declared but " + std::to_string(lines_.bytes_left()) +
-           " bytes follow (truncated file?)");
+      fail(fmt::format("{} atoms declared but {} bytes follow (truncated file?)", *count_,
+                       lines_.bytes_left()));
     atoms_ = true;
     Domain& d = bed_.domain;
     d.dimension = 3;

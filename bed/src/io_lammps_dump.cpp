@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fmt/format.h>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -211,9 +212,10 @@ class DumpReader {
     const std::uint64_t min_line = 2 * names.size();
     const std::uint64_t left = lines_.bytes_left();
     if (count > left / min_line + 1) {
-      fail("NUMBER OF ATOMS is " + std::to_string(count) + " but " + std::to_string(left) +
-           " bytes follow (accepted: one line of " + std::to_string(names.size()) +
-           " columns per atom; truncated dump?)");
+      fail(fmt::format(
+          "NUMBER OF ATOMS is {} but {} bytes follow (accepted: one line of {} columns per atom; "
+          "truncated dump?)",
+          count, left, names.size()));
     }
     bed_.reserve(count);
     std::vector<std::uint16_t> types;
@@ -221,11 +223,11 @@ class DumpReader {
     for (std::uint64_t i = 0; i < count; ++i) {
       std::string_view line;
       if (!next(line) || starts_with(line, "ITEM:"))
-        fail("snapshot ends after " + std::to_string(i) + " of " + std::to_string(count) + " atoms");
+        fail(fmt::format("snapshot ends after {} of {} atoms", i, count));
       split_words(line, words_);
       if (words_.size() != names.size()) {
-        fail(std::to_string(words_.size()) + " columns, expected " +
-             std::to_string(names.size()) + " (" + column_list + ")");
+        fail(fmt::format("{} columns, expected {} ({})", words_.size(), names.size(),
+                         column_list));
       }
       auto number = [&](int k) {
         double v = 0;

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fmt/format.h>
 #include <fstream>
-#include <sstream>
 
 #include "powderbed/bed/errors.hpp"
 
@@ -93,10 +93,8 @@ void read_scalar(const std::vector<std::string>& all, const std::string& line,
   }
   const double value = parse_positive(fields[1], where, known->key);
   if (!(value > known->min && value <= known->max)) {
-    std::ostringstream msg;
-    msg << where << ": " << key << " " << fields[1] << " is out of range (accepted: " << known->min
-        << " < value <= " << known->max << " " << known->unit << ")";
-    throw InputError(msg.str());
+    throw InputError(fmt::format("{}: {} {} is out of range (accepted: {:g} < value <= {:g} {})",
+                                 where, key, fields[1], known->min, known->max, known->unit));
   }
   for (const auto& p : file.properties)
     if (p.key == key) throw InputError(where + ": " + key + " given twice (accepted: once)");
@@ -201,9 +199,10 @@ MaterialFile read_material_file(const std::string& path) {
     }
   }
   if (table && (file.solid.size() < 2 || !file.liquid)) {
-    throw InputError(path + ": " + std::to_string(file.solid.size()) + " solid rows and " +
-                     (file.liquid ? "one" : "no") +
-                     " liquid row (accepted: at least 2 solid rows and one liquid row)");
+    throw InputError(fmt::format(
+        "{}: {} solid rows and {} liquid row (accepted: at least 2 solid rows and one liquid "
+        "row)",
+        path, file.solid.size(), file.liquid ? "one" : "no"));
   }
   if (file.name.empty()) file.name = std::filesystem::path(path).stem().string();
   check_consistency(file);

@@ -1,8 +1,8 @@
 // Shared pair geometry of the neighbour searches (wrapped centres, minimum image).
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
-#include <sstream>
 
 #include "neighbours_detail.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -23,10 +23,8 @@ double wrap(double v, double lo, double length) {
 void check_finite(const std::vector<double>& v, const char* name) {
   for (std::size_t i = 0; i < v.size(); ++i) {
     if (!std::isfinite(v[i])) {
-      std::ostringstream msg;
-      msg << "neighbour search: " << name << "[" << i << "] is " << v[i]
-          << " (accepted: finite numbers)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format("neighbour search: {}[{}] is {:g} (accepted: finite numbers)",
+                                   name, i, v[i]));
     }
   }
 }
@@ -37,10 +35,10 @@ PairGeometry::PairGeometry(const Bed& bed) : dim(bed.domain.dimension) {
   bed.domain.validate("neighbour search");
   const std::size_t n = bed.n();
   if (bed.x.size() != n || bed.y.size() != n || bed.z.size() != n) {
-    std::ostringstream msg;
-    msg << "neighbour search: position arrays have " << bed.x.size() << ", " << bed.y.size()
-        << ", " << bed.z.size() << " entries for " << n << " radii (accepted: one per particle)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "neighbour search: position arrays have {}, {}, {} entries for {} radii (accepted: one "
+        "per particle)",
+        bed.x.size(), bed.y.size(), bed.z.size(), n));
   }
   check_finite(bed.x, "position x");
   check_finite(bed.y, "position y");
@@ -63,17 +61,15 @@ PairGeometry::PairGeometry(const Bed& bed) : dim(bed.domain.dimension) {
 
 void check_pair_index_range(const Bed& bed, const char* what) {
   if (bed.n() >= std::numeric_limits<std::uint32_t>::max()) {
-    std::ostringstream msg;
-    msg << what << ": bed has " << bed.n() << " particles (accepted: fewer than 2^32)";
-    throw InputError(msg.str());
+    throw InputError(
+        fmt::format("{}: bed has {} particles (accepted: fewer than 2^32)", what, bed.n()));
   }
 }
 
 void check_number(double value, const char* what, bool positive) {
   if (!std::isfinite(value) || (positive && !(value > 0))) {
-    std::ostringstream msg;
-    msg << what << " is " << value << (positive ? " (accepted: > 0, finite)" : " (accepted: finite)");
-    throw InputError(msg.str());
+    throw InputError(fmt::format("{} is {:g}{}", what, value,
+                                 positive ? " (accepted: > 0, finite)" : " (accepted: finite)"));
   }
 }
 

@@ -6,8 +6,8 @@
 #include <array>
 #include <boost/math/special_functions/erf.hpp>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
-#include <sstream>
 
 #include "powderbed/bed/errors.hpp"
 
@@ -247,9 +247,7 @@ double window_mass(const PsdComponent& component) {
 
 Psd Psd::mono_radius(double radius) {
   if (!(radius > 0) || !std::isfinite(radius)) {
-    std::ostringstream msg;
-    msg << "mono PSD: radius " << radius << " (accepted: finite, > 0)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format("mono PSD: radius {:g} (accepted: finite, > 0)", radius));
   }
   Psd psd;
   PsdComponent c;
@@ -257,10 +255,7 @@ Psd Psd::mono_radius(double radius) {
   c.on = SizeVariable::radius;
   c.mean = c.min = c.max = radius;
   psd.components_.push_back(c);
-  std::ostringstream text;
-  text.precision(17);
-  text << "mono:r=" << radius;
-  psd.text_ = text.str();
+  psd.text_ = fmt::format("mono:r={:.17g}", radius);
   return psd;
 }
 

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <fmt/format.h>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -104,9 +105,7 @@ class ComponentParser {
   const std::string& kind() const { return kind_; }
 
   [[noreturn]] void fail(const std::string& what) const {
-    std::ostringstream msg;
-    msg << option_ << ": component " << index_ << " (" << kind_ << "): " << what;
-    throw InputError(msg.str());
+    throw InputError(fmt::format("{}: component {} ({}): {}", option_, index_, kind_, what));
   }
 
   // Refuses keys outside `accepted` (weights are accepted for every kind).
@@ -181,19 +180,13 @@ class ComponentParser {
 
   void check_window(const PsdComponent& c) const {
     if (c.min > c.max) {
-      fail("min " + format(c.min) + " > max " + format(c.max) + " (accepted: min <= max)");
+      fail(fmt::format("min {:g} > max {:g} (accepted: min <= max)", c.min, c.max));
     }
     const double mass = window_mass(c);
     if (!(mass >= min_window_mass)) {
-      fail("window [" + format(c.min) + ", " + format(c.max) + "] has no probability mass (mass " +
-           format(mass) + " < 1e-300)");
+      fail(fmt::format("window [{:g}, {:g}] has no probability mass (mass {:g} < 1e-300)", c.min,
+                       c.max, mass));
     }
-  }
-
-  static std::string format(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
   }
 
  private:
@@ -334,7 +327,7 @@ PsdComponent parse_table(const ComponentParser& p) {
   std::ifstream in(path);
   if (!in) p.fail("file '" + path + "' cannot be read");
   auto bad = [&](std::size_t line, const std::string& what) {
-    p.fail("file '" + path + "' line " + std::to_string(line) + ": " + what);
+    p.fail(fmt::format("file '{}' line {}: {}", path, line, what));
   };
   std::string line;
   std::size_t line_no = 0;
@@ -359,18 +352,21 @@ PsdComponent parse_table(const ComponentParser& p) {
     std::vector<double> v;
     while (std::getline(row, cell, ',')) {
       double value = 0;
-      if (!to_number(trim(cell), value)) bad(line_no, "'" + trim(cell) + "' is not a number");
+      const std::string number = trim(cell);
+      if (!to_number(number, value)) bad(line_no, fmt::format("'{}' is not a number", number));
       v.push_back(value);
     }
-    if (v.size() != 3) bad(line_no, "'" + line + "' (expected edge_low,edge_high,fraction)");
+    if (v.size() != 3) {
+      bad(line_no, fmt::format("'{}' (expected edge_low,edge_high,fraction)", line));
+    }
     if (!(v[0] > 0 && v[0] < v[1]))
-      bad(line_no, "bin [" + ComponentParser::format(v[0]) + ", " + ComponentParser::format(v[1]) +
-                       "] (accepted: 0 < edge_low < edge_high)");
-    if (v[2] < 0) bad(line_no, "fraction " + ComponentParser::format(v[2]) + " (accepted: >= 0)");
+      bad(line_no,
+          fmt::format("bin [{:g}, {:g}] (accepted: 0 < edge_low < edge_high)", v[0], v[1]));
+    if (v[2] < 0) bad(line_no, fmt::format("fraction {:g} (accepted: >= 0)", v[2]));
     if (!c.edges.empty() && v[0] < c.edges.back()) {
-      bad(line_no, "bin starts at " + ComponentParser::format(v[0]) +
-                       " below the previous bin's end " + ComponentParser::format(c.edges.back()) +
-                       " (accepted: increasing, non-overlapping bins)");
+      bad(line_no, fmt::format("bin starts at {:g} below the previous bin's end {:g} (accepted: "
+                               "increasing, non-overlapping bins)",
+                               v[0], c.edges.back()));
     }
     if (c.edges.empty()) {
       c.edges.push_back(v[0]);

@@ -2,7 +2,7 @@
 // contacts, and the largest relative overlap.
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <fmt/format.h>
 
 #include "neighbours_detail.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -16,9 +16,8 @@ namespace powderbed::bed {
 std::vector<ContactStats> contact_stats(const Bed& bed, const std::vector<double>& tolerances) {
   for (const double tolerance : tolerances) {
     if (!std::isfinite(tolerance) || !(tolerance > -1)) {
-      std::ostringstream msg;
-      msg << "contact_stats: tolerance " << tolerance << " (accepted: finite, > -1)";
-      throw InputError(msg.str());
+      throw InputError(
+          fmt::format("contact_stats: tolerance {:g} (accepted: finite, > -1)", tolerance));
     }
   }
   detail::check_pair_index_range(bed, "contact_stats");

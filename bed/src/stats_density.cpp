@@ -13,9 +13,9 @@
 #include <array>
 #include <boost/math/quadrature/tanh_sinh.hpp>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
 #include <numbers>
-#include <sstream>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/stats.hpp"
@@ -37,17 +37,14 @@ double segment_primitive(double r, double x) {
 
 void check_radius(double r, const char* what) {
   if (!(r > 0) || !std::isfinite(r)) {
-    std::ostringstream msg;
-    msg << what << ": radius " << r << " (accepted: > 0, finite)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format("{}: radius {:g} (accepted: > 0, finite)", what, r));
   }
 }
 
 void check_interval(double lo, double hi, const char* what) {
   if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi >= lo)) {
-    std::ostringstream msg;
-    msg << what << ": interval [" << lo << ", " << hi << "] (accepted: finite, lower <= upper)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format("{}: interval [{:g}, {:g}] (accepted: finite, lower <= upper)",
+                                 what, lo, hi));
   }
 }
 
@@ -183,10 +180,9 @@ void check_bed(const Bed& bed, const char* what) {
   bed.domain.validate(what);
   const std::size_t n = bed.n();
   if (bed.x.size() != n || bed.y.size() != n || bed.z.size() != n) {
-    std::ostringstream msg;
-    msg << what << ": position arrays have " << bed.x.size() << ", " << bed.y.size() << ", "
-        << bed.z.size() << " entries for " << n << " radii (accepted: one per particle)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "{}: position arrays have {}, {}, {} entries for {} radii (accepted: one per particle)",
+        what, bed.x.size(), bed.y.size(), bed.z.size(), n));
   }
 }
 
@@ -224,9 +220,8 @@ double packing_density(const Bed& bed) {
 double layer_density(const Bed& bed, double z0, double z1) {
   check_bed(bed, "layer_density");
   if (!std::isfinite(z0) || !std::isfinite(z1) || !(z1 > z0)) {
-    std::ostringstream msg;
-    msg << "layer_density: layer [" << z0 << ", " << z1 << "] (accepted: finite, z0 < z1)";
-    throw InputError(msg.str());
+    throw InputError(
+        fmt::format("layer_density: layer [{:g}, {:g}] (accepted: finite, z0 < z1)", z0, z1));
   }
   const Domain& d = bed.domain;
   const int dim = d.dimension, axis = dim - 1;

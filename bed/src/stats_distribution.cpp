@@ -2,8 +2,8 @@
 // radial distribution function g(r).
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <numbers>
-#include <sstream>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/neighbours.hpp"
@@ -61,17 +61,15 @@ Series radial_distribution(const Bed& bed, double r_max, std::size_t bins) {
   d.validate("radial_distribution");
   if (bins == 0) throw InputError("radial_distribution: bins is 0 (accepted: >= 1)");
   if (!std::isfinite(r_max) || !(r_max > 0)) {
-    std::ostringstream msg;
-    msg << "radial_distribution: r_max " << r_max << " (accepted: > 0, finite)";
-    throw InputError(msg.str());
+    throw InputError(
+        fmt::format("radial_distribution: r_max {:g} (accepted: > 0, finite)", r_max));
   }
   for (int a = 0; a < d.dimension; ++a) {
     if (d.periodic[a] && r_max > 0.5 * d.length(a)) {
-      std::ostringstream msg;
-      msg << "radial_distribution: r_max " << r_max << " exceeds half the periodic length "
-          << d.length(a) << " on axis " << "xyz"[a] << " (accepted: <= " << 0.5 * d.length(a)
-          << ")";
-      throw InputError(msg.str());
+      throw InputError(fmt::format(
+          "radial_distribution: r_max {:g} exceeds half the periodic length {:g} on axis {} "
+          "(accepted: <= {:g})",
+          r_max, d.length(a), "xyz"[a], 0.5 * d.length(a)));
     }
   }
   const std::size_t n = bed.n();
@@ -87,10 +85,10 @@ Series radial_distribution(const Bed& bed, double r_max, std::size_t bins) {
     centres += is_centre[i] ? 1 : 0;
   }
   if (centres == 0) {
-    std::ostringstream msg;
-    msg << "radial_distribution: no particle is at least r_max " << r_max
-        << " from the walls (accepted: r_max leaving some particles as centres)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "radial_distribution: no particle is at least r_max {:g} from the walls (accepted: r_max "
+        "leaving some particles as centres)",
+        r_max));
   }
   const double step = r_max / static_cast<double>(bins);
   const double last = static_cast<double>(bins - 1);

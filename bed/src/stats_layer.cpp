@@ -1,8 +1,9 @@
 // The spread layer's statistics (docs/spread-layer.md): which particles make the layer, its
 // density between the plate and the layer top, and the pieces of stats_layer_*.cpp together.
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
-#include <sstream>
+#include <type_traits>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/stats_layer.hpp"
@@ -13,26 +14,25 @@ namespace {
 
 template <class T>
 [[noreturn]] void refuse(const char* field, T value, const std::string& accepted) {
-  std::ostringstream msg;
-  msg.precision(6);
-  msg << "layer_stats: " << field << ' ' << value << " (accepted: " << accepted << ')';
-  throw InputError(msg.str());
+  // A double prints with 6 significant digits ({:g}, as the stream did), a count whole.
+  if constexpr (std::is_floating_point_v<T>)
+    throw InputError(fmt::format("layer_stats: {} {:g} (accepted: {})", field, value, accepted));
+  else
+    throw InputError(fmt::format("layer_stats: {} {} (accepted: {})", field, value, accepted));
 }
 
 void check_request(const Bed& bed, const LayerRequest& q) {
   const Domain& d = bed.domain;
   d.validate("layer_stats");
   if (d.dimension != 3) refuse("dimension", d.dimension, "3D beds: a spread layer has a top view");
-  std::ostringstream range;
-  range.precision(6);
-  range << d.lower[2] << " <= plate < " << d.upper[2] << " m, the domain's z range";
-  if (!(q.plate >= d.lower[2] && q.plate < d.upper[2])) refuse("plate", q.plate, range.str());
+  const std::string range =
+      fmt::format("{:g} <= plate < {:g} m, the domain's z range", d.lower[2], d.upper[2]);
+  if (!(q.plate >= d.lower[2] && q.plate < d.upper[2])) refuse("plate", q.plate, range);
   if (!(q.gap > 0) || !std::isfinite(q.gap)) refuse("gap", q.gap, "> 0 m, finite");
-  std::ostringstream window;
-  window.precision(6);
-  window << d.lower[0] << " <= x0 < x1 <= " << d.upper[0] << " m, inside the domain";
-  if (!(q.x0 >= d.lower[0] && q.x0 < q.x1)) refuse("window x0", q.x0, window.str());
-  if (!(q.x1 <= d.upper[0])) refuse("window x1", q.x1, window.str());
+  const std::string window =
+      fmt::format("{:g} <= x0 < x1 <= {:g} m, inside the domain", d.lower[0], d.upper[0]);
+  if (!(q.x0 >= d.lower[0] && q.x0 < q.x1)) refuse("window x0", q.x0, window);
+  if (!(q.x1 <= d.upper[0])) refuse("window x1", q.x1, window);
   if (!(q.raster > 0) || !std::isfinite(q.raster)) refuse("raster", q.raster, "> 0 m, finite");
   // The map is stored per cell: more than 1e8 cells (0.9 GB) is a unit slip, not a finer map.
   const double cells = std::ceil((q.x1 - q.x0) / q.raster) * std::ceil(d.length(1) / q.raster);

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <fmt/format.h>
 #include <numbers>
-#include <sstream>
 
 #include "neighbours_detail.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -34,10 +34,10 @@ double q6(const std::complex<double>* sum, double bonds) {
 
 OrderStats bond_order(const Bed& bed, double tolerance, double margin) {
   if (!std::isfinite(tolerance) || !(tolerance > -1) || !std::isfinite(margin) || margin < 0) {
-    std::ostringstream msg;
-    msg << "bond_order: tolerance " << tolerance << ", margin " << margin
-        << " (accepted: tolerance finite > -1, margin finite >= 0)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "bond_order: tolerance {:g}, margin {:g} (accepted: tolerance finite > -1, margin finite "
+        ">= 0)",
+        tolerance, margin));
   }
   if (bed.domain.dimension != 3) {
     throw InputError("bond_order: a 2D bed (accepted: 3D beds; q6 is defined on the sphere)");

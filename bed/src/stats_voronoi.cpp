@@ -15,9 +15,9 @@
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
 #include <numbers>
-#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -45,17 +45,14 @@ void check_positions(const Bed& bed) {
   const char* names[4] = {"position x", "position y", "position z", "radius"};
   for (int a = 0; a < 4; ++a) {
     if (arrays[a]->size() != bed.n()) {
-      std::ostringstream msg;
-      msg << "voronoi_stats: " << names[a] << " has " << arrays[a]->size() << " entries for "
-          << bed.n() << " particles (accepted: one per particle)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format(
+          "voronoi_stats: {} has {} entries for {} particles (accepted: one per particle)",
+          names[a], arrays[a]->size(), bed.n()));
     }
     for (std::size_t i = 0; i < bed.n(); ++i) {
       if (!std::isfinite((*arrays[a])[i])) {
-        std::ostringstream msg;
-        msg << "voronoi_stats: " << names[a] << "[" << i << "] is " << (*arrays[a])[i]
-            << " (accepted: finite numbers)";
-        throw InputError(msg.str());
+        throw InputError(fmt::format("voronoi_stats: {}[{}] is {:g} (accepted: finite numbers)",
+                                     names[a], i, (*arrays[a])[i]));
       }
     }
   }
@@ -161,9 +158,8 @@ VoronoiStats voronoi_stats(const Bed& bed) {
   const Domain& d = bed.domain;
   d.validate("voronoi_stats");
   if (d.dimension != 3) {
-    std::ostringstream msg;
-    msg << "voronoi_stats: bed dimension is " << d.dimension << " (accepted: 3)";
-    throw InputError(msg.str());
+    throw InputError(
+        fmt::format("voronoi_stats: bed dimension is {} (accepted: 3)", d.dimension));
   }
   check_positions(bed);
   const std::size_t n = bed.n();

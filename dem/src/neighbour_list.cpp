@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
-#include <sstream>
 
 #include <omp.h>
 
@@ -27,11 +27,10 @@ void NeighbourList::configure(const Box& box, double r_max, double skin, std::si
     cells_[a] = static_cast<int>(std::clamp(cells, 1.0, 4096.0));
     cell_size_[a] = box.length[a] / cells_[a];
     if (box.periodic[a] && cells_[a] < 3) {
-      std::ostringstream msg;
-      msg << "--periodic: axis " << "xyz"[a] << " is " << box.length[a]
-          << " m long, shorter than 3 neighbour cells of " << width
-          << " m (accepted: length >= 3 (largest diameter + skin))";
-      throw InputError(msg.str());
+      throw InputError(fmt::format(
+          "--periodic: axis {} is {:g} m long, shorter than 3 neighbour cells of {:g} m "
+          "(accepted: length >= 3 (largest diameter + skin))",
+          "xyz"[a], box.length[a], width));
     }
   }
 }

@@ -9,10 +9,10 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
 #include <numbers>
 #include <optional>
-#include <sstream>
 #include <utility>
 
 #include "forces.hpp"
@@ -148,11 +148,10 @@ void check_finite(const Context& c, std::uint64_t step) {
   if (all_finite(b.vx) && all_finite(b.vy) && all_finite(b.vz)) return;
   for (std::size_t i = 0; i < c.n; ++i) {
     if (std::isfinite(b.x[i] + b.y[i] + b.z[i] + b.vx[i] + b.vy[i] + b.vz[i])) continue;
-    std::ostringstream msg;
-    msg << "particle id " << b.id[i] << " (index " << i << ") has a non-finite position or "
-        << "velocity at step " << step << " (t = " << static_cast<double>(step) * c.dt
-        << " s); try a smaller --dt";
-    throw NumericalError(msg.str());
+    throw NumericalError(fmt::format(
+        "particle id {} (index {}) has a non-finite position or velocity at step {} (t = {:g} "
+        "s); try a smaller --dt",
+        b.id[i], i, step, static_cast<double>(step) * c.dt));
   }
 }
 
@@ -307,11 +306,10 @@ void check_bed(const bed::Bed& bed) {
     const double p[3] = {bed.x[i], bed.y[i], bed.z[i]};
     for (int a = 0; a < 3; ++a) {
       if (p[a] < lo[a] || p[a] > hi[a]) {
-        std::ostringstream msg;
-        msg << "--in: particle id " << bed.id[i] << " has " << "xyz"[a] << " = " << p[a]
-            << " outside the domain [" << lo[a] << ", " << hi[a]
-            << "] (accepted: every centre inside the domain)";
-        throw InputError(msg.str());
+        throw InputError(fmt::format(
+            "--in: particle id {} has {} = {:g} outside the domain [{:g}, {:g}] (accepted: every "
+            "centre inside the domain)",
+            bed.id[i], "xyz"[a], p[a], lo[a], hi[a]));
       }
     }
   }
@@ -374,10 +372,10 @@ void check_run(const bed::Bed& bed, const Scene& scene, const RunSettings& setti
                      "recoater scene, recoater.tool)");
   }
   if (scene.law == ContactLaw::linear && settings.young_scale != 1) {
-    std::ostringstream msg;
-    msg << "--young-scale: " << settings.young_scale << " with contact.law = linear (accepted: "
-        << "1; the linear law's stiffness is contact.stiffness)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "--young-scale: {:g} with contact.law = linear (accepted: 1; the linear law's stiffness "
+        "is contact.stiffness)",
+        settings.young_scale));
   }
 }
 
@@ -386,11 +384,10 @@ void check_run(const bed::Bed& bed, const Scene& scene, const RunSettings& setti
 double chosen_dt(const TimeStepBound& bound, const RunSettings& settings) {
   if (settings.dt > 0) {
     if (settings.dt > bound.stable && !settings.unsafe_dt) {
-      std::ostringstream msg;
-      msg << "--dt: " << settings.dt << " s is above the stable bound " << bound.stable
-          << " s (" << bound.limited_by << " step of the smallest particle; accepted: dt <= "
-          << bound.stable << " s, or add --unsafe-dt)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format(
+          "--dt: {:g} s is above the stable bound {:g} s ({} step of the smallest particle; "
+          "accepted: dt <= {:g} s, or add --unsafe-dt)",
+          settings.dt, bound.stable, bound.limited_by, bound.stable));
     }
     return settings.dt;
   }
@@ -871,9 +868,7 @@ void summarise(Run& run, const TimeStepBound& bound) {
 
 void check_run_settings(const RunSettings& s) {
   const auto bad = [](const char* what, double v, const char* accepted) {
-    std::ostringstream msg;
-    msg << what << ": " << v << " is out of range (accepted: " << accepted << ")";
-    throw InputError(msg.str());
+    throw InputError(fmt::format("{}: {:g} is out of range (accepted: {})", what, v, accepted));
   };
   if (!(s.t_end >= 0) || !std::isfinite(s.t_end)) bad("--t-end", s.t_end, "T >= 0 s");
   if (!s.until_rest && !(s.t_end > 0)) bad("--t-end", s.t_end, "T > 0 s, or --until-rest");

@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
 #include <numbers>
-#include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -692,11 +692,10 @@ struct Run {
   [[noreturn]] void throw_non_finite(std::uint64_t step_number) const {
     std::size_t i = 0;
     while (i + 1 < n() && std::isfinite(bed.vx[i] + bed.vy[i] + bed.vz[i] + wx[i] + wy[i] + wz[i])) ++i;
-    std::ostringstream msg;
-    msg << "particle id " << bed.id[i] << " (index " << i << ") has a non-finite velocity at "
-        << "step " << step_number << " (t = " << static_cast<double>(step_number) * dt
-        << " s); try a smaller --dt";
-    throw NumericalError(msg.str());
+    throw NumericalError(fmt::format(
+        "particle id {} (index {}) has a non-finite velocity at step {} (t = {:g} s); try a "
+        "smaller --dt",
+        bed.id[i], i, step_number, static_cast<double>(step_number) * dt));
   }
 
 };
@@ -720,16 +719,15 @@ void check_tool(const Recoater& t, const Box& box) {
   require(finite(t.start) && t.start >= box.lower[0] && t.start <= box.upper[0], "recoater.start",
           t.start, "a start inside the box along x");
   if (!(finite(t.end) && t.end > t.start && t.end <= box.upper[0])) {
-    std::ostringstream msg;
-    msg << "recoater.end: " << t.end << " (accepted: recoater.start " << t.start
-        << " < end <= the box's end " << box.upper[0] << " m; the tool moves along +x)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "recoater.end: {:g} (accepted: recoater.start {:g} < end <= the box's end {:g} m; the "
+        "tool moves along +x)",
+        t.end, t.start, box.upper[0]));
   }
   if (!(t.gap < box.length[2])) {
-    std::ostringstream msg;
-    msg << "recoater.gap: " << t.gap << " m is not below the box's top (accepted: gap < "
-        << box.length[2] << " m)";
-    throw InputError(msg.str());
+    throw InputError(
+        fmt::format("recoater.gap: {:g} m is not below the box's top (accepted: gap < {:g} m)",
+                    t.gap, box.length[2]));
   }
 }
 
@@ -741,11 +739,10 @@ std::size_t add_supply(Run& run, std::uint64_t layer) {
   const Box& box = run.box;
   const double front = s.tool.start + tool_half_extent(run.profile);
   if (!(s.supply_x0 >= front && s.supply_x1 > s.supply_x0 && s.supply_x1 <= box.upper[0])) {
-    std::ostringstream msg;
-    msg << "supply.x0, supply.x1: " << s.supply_x0 << ", " << s.supply_x1
-        << " (accepted: the tool's front " << front << " <= x0 < x1 <= the box's end "
-        << box.upper[0] << " m: the supply lies in front of the tool)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "supply.x0, supply.x1: {:g}, {:g} (accepted: the tool's front {:g} <= x0 < x1 <= the "
+        "box's end {:g} m: the supply lies in front of the tool)",
+        s.supply_x0, s.supply_x1, front, box.upper[0]));
   }
   bed::Bed& bed = run.bed;
   double base = run.floor.empty() ? box.lower[2] : std::max(box.lower[2], run.floor.highest());
@@ -759,10 +756,10 @@ std::size_t add_supply(Run& run, std::uint64_t layer) {
   region.lower[2] = base;
   region.upper[2] = base + s.supply_height;
   if (!(s.supply_height > 0) || region.upper[2] > box.upper[2]) {
-    std::ostringstream msg;
-    msg << "supply.height: " << s.supply_height << " m on the powder at z = " << base
-        << " m does not fit the box (accepted: 0 < height <= " << box.upper[2] - base << " m)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "supply.height: {:g} m on the powder at z = {:g} m does not fit the box (accepted: 0 < "
+        "height <= {:g} m)",
+        s.supply_height, base, box.upper[2] - base));
   }
   region.periodic = {false, false, false};
   const bed::Bed more = s.supply(region, layer);
@@ -789,11 +786,10 @@ void check_tool_clear(const Run& run) {
     ToolContact t;
     if (!tool_contact(run.profile, run.bed.x[i] - run.tool_x, run.bed.z[i], run.bed.radius[i], t))
       continue;
-    std::ostringstream msg;
-    msg << "recoater.start: the tool at x = " << run.tool_x << " m overlaps particle id "
-        << run.bed.id[i] << " at (" << run.bed.x[i] << ", " << run.bed.z[i]
-        << ") (accepted: a tool that starts clear of the powder, behind it)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "recoater.start: the tool at x = {:g} m overlaps particle id {} at ({:g}, {:g}) "
+        "(accepted: a tool that starts clear of the powder, behind it)",
+        run.tool_x, run.bed.id[i], run.bed.x[i], run.bed.z[i]));
   }
 }
 
@@ -922,16 +918,17 @@ void check_floor(const bed::HeightMap& floor, const Box& box) {
   if (floor.empty()) return;
   if (floor.nx < 2 || floor.ny < 2 || floor.z.size() != floor.nx * floor.ny || !(floor.dx > 0) ||
       !(floor.dy > 0)) {
-    throw InputError("floor: a height map of " + std::to_string(floor.z.size()) + " heights on " +
-                     std::to_string(floor.nx) + " x " + std::to_string(floor.ny) +
-                     " nodes (accepted: nx, ny >= 2, one height per node, spacings > 0)");
+    throw InputError(fmt::format(
+        "floor: a height map of {} heights on {} x {} nodes (accepted: nx, ny >= 2, one height "
+        "per node, spacings > 0)",
+        floor.z.size(), floor.nx, floor.ny));
   }
   for (const double h : floor.z) {
     if (!(h >= box.lower[2] && h < box.upper[2])) {
-      std::ostringstream msg;
-      msg << "floor: a height " << h << " m outside the box (accepted: the plate " << box.lower[2]
-          << " <= h < the box's top " << box.upper[2] << " m)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format(
+          "floor: a height {:g} m outside the box (accepted: the plate {:g} <= h < the box's top "
+          "{:g} m)",
+          h, box.lower[2], box.upper[2]));
     }
   }
 }
@@ -1018,10 +1015,10 @@ struct Spreader {
       run.dt = restart->dt;
     } else if (settings.dt > 0) {
       if (settings.dt > bound.stable && !settings.unsafe_dt) {
-        std::ostringstream msg;
-        msg << "--dt: " << settings.dt << " s is above the stable bound " << bound.stable
-            << " s (accepted: dt <= " << bound.stable << " s, or add --unsafe-dt)";
-        throw InputError(msg.str());
+        throw InputError(fmt::format(
+            "--dt: {:g} s is above the stable bound {:g} s (accepted: dt <= {:g} s, or add "
+            "--unsafe-dt)",
+            settings.dt, bound.stable, bound.stable));
       }
       run.dt = settings.dt;
     } else {

@@ -1,6 +1,7 @@
 // The /restart group of a bed written at a layer's end (spread.hpp SpreadState;
 // docs/deposit-spread.md "Restarts"): attributes for the scalars, datasets for the per-particle
 // and per-contact state, all float64 or uint64 so that a continued run reads back every bit.
+#include <fmt/format.h>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -106,9 +107,9 @@ SpreadState read_spread_state(const std::string& path, const bed::Bed& bed) {
     f.dx = real("floor_dx");
     f.dy = real("floor_dy");
     f.z = in.read_doubles(in_group("floor"), 1);
-    if (f.z.size() != f.nx * f.ny) fail(path, "floor has " + std::to_string(f.z.size()) +
-                                              " heights for " + std::to_string(f.nx) + " x " +
-                                              std::to_string(f.ny) + " nodes");
+    if (f.z.size() != f.nx * f.ny) {
+      fail(path, fmt::format("floor has {} heights for {} x {} nodes", f.z.size(), f.nx, f.ny));
+    }
   }
   const std::unordered_set<std::uint64_t> ids(bed.id.begin(), bed.id.end());
   for (const std::uint64_t id : s.pair_ids) {

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <numbers>
-#include <sstream>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
@@ -23,9 +23,8 @@ double linear_stable_time_step(const LinearNormalParams& p, double reduced_mass)
 
 TimeStepBound time_step_bound(const bed::Bed& bed, const Scene& scene, double young_scale) {
   if (!(young_scale > 0) || !std::isfinite(young_scale)) {
-    std::ostringstream msg;
-    msg << "--young-scale: " << young_scale << " is out of range (accepted: S > 0)";
-    throw InputError(msg.str());
+    throw InputError(
+        fmt::format("--young-scale: {:g} is out of range (accepted: S > 0)", young_scale));
   }
   if (bed.n() == 0) throw InputError("deposit: the bed has no particles (accepted: N >= 1)");
   const double r_min = *std::min_element(bed.radius.begin(), bed.radius.end());

@@ -1,6 +1,7 @@
 #include "powderbed/keff/network.hpp"
 
 #include <algorithm>
+#include <fmt/format.h>
 #include <string>
 
 #include "powderbed/bed/errors.hpp"
@@ -24,11 +25,11 @@ void check(const bed::Bed& bed, int axis) {
   const std::vector<double>& centre = axis == 0 ? bed.x : axis == 1 ? bed.y : bed.z;
   for (std::size_t p = 0; p < bed.n(); ++p)
     if (!(centre[p] > bed.domain.lower[a] && centre[p] < bed.domain.upper[a]))
-      throw InputError("bed: particle " + std::to_string(bed.id[p]) + " has its centre at " +
-                       kAxisName[axis] + " = " + std::to_string(centre[p]) +
-                       " m, outside the walls (accepted: between " +
-                       std::to_string(bed.domain.lower[a]) + " and " +
-                       std::to_string(bed.domain.upper[a]) + " m)");
+      // {:f}: the six decimals std::to_string gave these doubles.
+      throw InputError(fmt::format(
+          "bed: particle {} has its centre at {} = {:f} m, outside the walls (accepted: between "
+          "{:f} and {:f} m)",
+          bed.id[p], kAxisName[axis], centre[p], bed.domain.lower[a], bed.domain.upper[a]));
 }
 
 }  // namespace

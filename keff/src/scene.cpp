@@ -1,7 +1,7 @@
 #include "powderbed/keff/scene.hpp"
 
 #include <cmath>
-#include <sstream>
+#include <fmt/format.h>
 
 #include "powderbed/bed/errors.hpp"
 
@@ -38,11 +38,7 @@ ContactRadiusParams contact_radius_params(const bed::ContactProvenance& made,
                      bed_value + " (accepted: " + bed_value + ", or leave it out: it is read "
                      "from the bed)");
   };
-  const auto number = [](double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-  };
+  const auto number = [](double v) { return fmt::format("{:g}", v); };
   const auto differs = [](double a, double b) { return std::abs(a - b) > 1e-12 * std::abs(b); };
   if (given.law && *given.law != made.law) contradicts("contact.law", *given.law, made.law);
   p.law = made.law == "linear" ? BedContactLaw::linear : BedContactLaw::hertz;

@@ -19,6 +19,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <numeric>
 #include <string>
 
@@ -155,10 +156,12 @@ Eigen::VectorXd conjugate_gradients(const Matrix& matrix, const Eigen::VectorXd&
   cg.setTolerance(kTolerance);
   cg.compute(matrix);
   Eigen::VectorXd x = cg.solve(rhs);
+  // {:f} here and below: the six decimals std::to_string gave the residuals.
   if (cg.info() != Eigen::Success || !x.allFinite())
-    throw NumericalError("keff: conjugate gradients did not converge on the network (" +
-                         std::to_string(cg.iterations()) + " iterations, residual " +
-                         std::to_string(cg.error()) + ")");
+    throw NumericalError(fmt::format(
+        "keff: conjugate gradients did not converge on the network ({} iterations, residual "
+        "{:f})",
+        cg.iterations(), cg.error()));
   iterations += static_cast<std::size_t>(cg.iterations());
   return x;
 }
@@ -208,8 +211,8 @@ void newton(const State& s, std::ptrdiff_t count, double tolerance, std::vector<
   std::vector<double> trial;
   while (rel > tolerance) {
     if (r.newton_iterations == kMaxNewton)
-      throw NumericalError("keff: Newton did not converge in " + std::to_string(kMaxNewton) +
-                           " steps (relative residual " + std::to_string(rel) + ")");
+      throw NumericalError(fmt::format(
+          "keff: Newton did not converge in {} steps (relative residual {:f})", kMaxNewton, rel));
     ++r.newton_iterations;
     // The solver keeps a reference to the matrix.
     const Matrix jacobian = s.jacobian<GasFollows>(t, count);

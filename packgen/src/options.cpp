@@ -1,7 +1,9 @@
 // Validation and parsing of the packing options (docs/physics.md §3).
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <sstream>
+#include <vector>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/packgen/pack.hpp"
@@ -13,10 +15,12 @@ namespace {
 
 [[noreturn]] void fail(const std::string& text) { throw InputError(text); }
 
-std::string str(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
+// The domain's lengths joined by `separator`, each with 6 significant digits as the messages
+// print every double ({:g}).
+std::string lengths(const bed::Domain& domain, const char* separator) {
+  std::vector<double> length;
+  for (int a = 0; a < domain.dimension; ++a) length.push_back(domain.length(a));
+  return fmt::format("{:g}", fmt::join(length, separator));
 }
 
 // How many particles of radius r the domain holds at density 1, the bound no packing reaches.
@@ -49,16 +53,16 @@ void check_numbers(const PackOptions& o) {
   }
   if (o.max_failures < 1) fail("--max-failures: 0 (accepted: >= 1)");
   if (o.target_density != 0 && !(o.target_density > 0 && o.target_density < 1)) {
-    fail("--target-density: " + str(o.target_density) + " (accepted: 0 < F < 1)");
+    fail(fmt::format("--target-density: {:g} (accepted: 0 < F < 1)", o.target_density));
   }
   if (o.count > 0 && o.target_density > 0) {
     fail("--count and --target-density: give one stop rule, not both");
   }
   if (!(o.edge_fraction >= 0 && o.edge_fraction <= 1)) {
-    fail("--edge-fraction: " + str(o.edge_fraction) + " (accepted: 0 <= F <= 1)");
+    fail(fmt::format("--edge-fraction: {:g} (accepted: 0 <= F <= 1)", o.edge_fraction));
   }
   if (!(o.floor_seed >= 0 && o.floor_seed < 1)) {
-    fail("--floor-seed: " + str(o.floor_seed) + " (accepted: 0 <= F < 1)");
+    fail(fmt::format("--floor-seed: {:g} (accepted: 0 <= F < 1)", o.floor_seed));
   }
 }
 
@@ -70,37 +74,34 @@ void check_domain_size(const bed::Domain& domain, const bed::Psd& psd, const Pac
   double shortest = domain.length(0);
   for (int a = 1; a < domain.dimension; ++a) shortest = std::min(shortest, domain.length(a));
   if (shortest < d_min) {
-    std::string lengths = str(domain.length(0));
-    for (int a = 1; a < domain.dimension; ++a) lengths += " x " + str(domain.length(a));
-    fail("--domain: " + lengths + " is smaller than the smallest particle diameter " + str(d_min));
+    fail(fmt::format("--domain: {} is smaller than the smallest particle diameter {:g}",
+                     lengths(domain, " x "), d_min));
   }
   const double by_mean = domain_holds(domain, psd.mean_radius());
   if (!o.allow_huge && by_mean > o.max_particles) {
-    std::ostringstream msg;
-    msg << "--domain: " << domain.length(0);
-    for (int a = 1; a < domain.dimension; ++a) msg << ',' << domain.length(a);
-    msg << " m would hold about " << by_mean << " particles of the PSD's mean diameter "
-        << 2 * psd.mean_radius() << " m (accepted: up to " << o.max_particles
-        << "; lengths in um instead of m? e.g. " << domain.length(0)
-        << "e-6; --allow-huge if meant)";
-    fail(msg.str());
+    fail(fmt::format(
+        "--domain: {} m would hold about {:g} particles of the PSD's mean diameter {:g} m "
+        "(accepted: up to {:g}; lengths in um instead of m? e.g. {:g}e-6; --allow-huge if meant)",
+        lengths(domain, ","), by_mean, 2 * psd.mean_radius(), o.max_particles,
+        domain.length(0)));
   }
   if (o.count > (std::size_t{1} << 20)) check_count_fits(domain, psd, o.count);
   if (o.count > 0 && !o.allow_huge && static_cast<double>(o.count) > o.max_particles) {
-    fail("--count: " + std::to_string(o.count) + " (accepted: up to " + str(o.max_particles) +
-         " particles; --allow-huge if meant)");
+    fail(fmt::format("--count: {} (accepted: up to {:g} particles; --allow-huge if meant)",
+                     o.count, o.max_particles));
   }
 }
 
 void check_raster(const bed::Domain& domain, const PackOptions& o) {
   if (!(o.raster_spacing > 0) || !std::isfinite(o.raster_spacing)) {
-    fail("--raster-spacing: " + str(o.raster_spacing) + " (accepted: a spacing > 0 in m)");
+    fail(fmt::format("--raster-spacing: {:g} (accepted: a spacing > 0 in m)", o.raster_spacing));
   }
   const double finest = RasterGrid::finest_spacing(domain, o.raster_max_bytes);
   if (o.raster_spacing < finest) {
-    fail("--raster-spacing: " + str(o.raster_spacing) + " needs more than " +
-         str(static_cast<double>(o.raster_max_bytes) / (1 << 30)) +
-         " GiB for the status grid (the finest allowed for this domain is " + str(finest) + ")");
+    fail(fmt::format(
+        "--raster-spacing: {:g} needs more than {:g} GiB for the status grid (the finest allowed "
+        "for this domain is {:g})",
+        o.raster_spacing, static_cast<double>(o.raster_max_bytes) / (1 << 30), finest));
   }
 }
 
@@ -113,9 +114,10 @@ int directions_for(const PackOptions& options, int dimension) {
 void check_count_fits(const bed::Domain& domain, const bed::Psd& psd, std::size_t count) {
   const double by_min = domain_holds(domain, psd.min_radius());
   if (static_cast<double>(count) > by_min) {
-    fail("--count: " + std::to_string(count) + " particles cannot fit in the domain (accepted: " +
-         "at most " + str(std::floor(by_min)) + ", the domain's " +
-         (domain.dimension == 3 ? "volume" : "area") + " over the smallest particle's)");
+    fail(fmt::format(
+        "--count: {} particles cannot fit in the domain (accepted: at most {:g}, the domain's {} "
+        "over the smallest particle's)",
+        count, std::floor(by_min), domain.dimension == 3 ? "volume" : "area"));
   }
 }
 
@@ -150,8 +152,8 @@ std::vector<Phase> parse_phases(const std::string& text, const std::string& opti
       fail(option + ": '" + text + "' cannot be read" + accepted);
     }
     if (colon != std::string::npos && !(p.until_density > last && p.until_density < 1)) {
-      fail(option + ": '" + text + "' has density " + str(p.until_density) +
-           " (accepted: increasing densities in (0, 1))");
+      fail(fmt::format("{}: '{}' has density {:g} (accepted: increasing densities in (0, 1))",
+                       option, text, p.until_density));
     }
     if (colon != std::string::npos) last = p.until_density;
     phases.push_back(p);

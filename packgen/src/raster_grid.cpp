@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <fmt/format.h>
 
 #include "powderbed/bed/errors.hpp"
 
@@ -36,17 +36,14 @@ RasterGrid::RasterGrid(const bed::Domain& domain, double h, const Particles& par
                        std::size_t max_bytes)
     : p_(particles), dimension_(domain.dimension), lower_(domain.lower), h_(h) {
   if (!(h > 0) || !std::isfinite(h)) {
-    std::ostringstream msg;
-    msg << "--raster-spacing: " << h << " (accepted: a spacing > 0 in m)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format("--raster-spacing: {:g} (accepted: a spacing > 0 in m)", h));
   }
   if (total_points(domain, h) > static_cast<double>(max_bytes)) {
-    std::ostringstream msg;
-    msg << "--raster-spacing: " << h << " needs " << total_points(domain, h) / (1 << 30)
-        << " GiB for the status grid (limit " << static_cast<double>(max_bytes) / (1 << 30)
-        << " GiB; the finest allowed for this domain is " << finest_spacing(domain, max_bytes)
-        << ")";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "--raster-spacing: {:g} needs {:g} GiB for the status grid (limit {:g} GiB; the finest "
+        "allowed for this domain is {:g})",
+        h, total_points(domain, h) / (1 << 30), static_cast<double>(max_bytes) / (1 << 30),
+        finest_spacing(domain, max_bytes)));
   }
   n_ = points(domain, h);
   status_.assign(n_[0] * n_[1] * n_[2], 0);

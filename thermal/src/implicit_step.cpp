@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fmt/format.h>
 #include <utility>
 #include <vector>
 
@@ -287,9 +288,9 @@ void solve(Sinter::State& s, ImplicitSystem& sys) {
   cg.factorize(sys.matrix);
   sys.solution = cg.solveWithGuess(sys.rhs, sys.guess);
   if (cg.info() != Eigen::Success) {
-    throw NumericalError("implicit step " + std::to_string(s.step) +
-                         ": conjugate gradients did not converge (" +
-                         std::to_string(cg.iterations()) + " iterations)");
+    throw NumericalError(
+        fmt::format("implicit step {}: conjugate gradients did not converge ({} iterations)",
+                    s.step, cg.iterations()));
   }
   s.implicit_iterations += static_cast<std::size_t>(cg.iterations());
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -40,10 +41,10 @@ std::vector<ScanSegment> hatch_segments(const Hatch& h) {
                    "a spacing h > 0 m");
   const auto& box = h.region;
   if (!(box[1] > box[0] && box[3] > box[2])) {
-    std::ostringstream msg;
-    msg << "scan.region: " << box[0] << "," << box[1] << "," << box[2] << "," << box[3]
-        << " is empty (accepted: x0,x1,y0,y1 with x0 < x1 and y0 < y1, m)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "scan.region: {:g},{:g},{:g},{:g} is empty (accepted: x0,x1,y0,y1 with x0 < x1 and y0 < "
+        "y1, m)",
+        box[0], box[1], box[2], box[3]));
   }
   const double angle = static_cast<double>(h.layer) * h.rotation * M_PI / 180;
   const std::array<double, 2> d{std::cos(angle), std::sin(angle)}, n{-d[1], d[0]};
@@ -65,12 +66,11 @@ std::vector<ScanSegment> hatch_segments(const Hatch& h) {
     out.push_back({x(lo), y(lo), x(hi), y(hi), h.power, h.speed});
   }
   if (out.size() < count) {
-    std::ostringstream msg;
-    msg << "scan.tracks: " << count << " tracks at spacing " << h.spacing
-        << " m span " << static_cast<double>(count - 1) * h.spacing << " m, wider than the region ("
-        << across << " m across the tracks) (accepted: tracks <= " << out.size()
-        << ", a smaller scan.hatch, or scan.tracks = 0 to fill the region)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "scan.tracks: {} tracks at spacing {:g} m span {:g} m, wider than the region ({:g} m "
+        "across the tracks) (accepted: tracks <= {}, a smaller scan.hatch, or scan.tracks = 0 to "
+        "fill the region)",
+        count, h.spacing, static_cast<double>(count - 1) * h.spacing, across, out.size()));
   }
   return out;
 }
@@ -135,22 +135,28 @@ void check_scan_path(const std::vector<ScanSegment>& segments, double jump_speed
                    "a jump speed > 0 m/s");
   for (std::size_t m = 0; m < segments.size(); ++m) {
     const ScanSegment& s = segments[m];
-    const std::string which = "scan path segment " + std::to_string(m + 1);
-    std::ostringstream msg;
+    const std::size_t which = m + 1;
     if (!(s.power >= 0)) {
-      msg << which << ": power " << s.power << " W (accepted: power >= 0 W)";
-    } else if (!(s.speed > 0)) {
-      msg << which << ": speed " << s.speed << " m/s (accepted: speed > 0 m/s)";
-    } else if (!(s.length() > 0)) {
-      msg << which << ": starts where it ends (accepted: a segment of length > 0)";
-    } else {
-      const auto inside = [&](double x, double y) { return x >= x0 && x <= x1 && y >= y0 && y <= y1; };
-      if (inside(s.x0, s.y0) && inside(s.x1, s.y1)) continue;
-      msg << which << ": (" << s.x0 << ", " << s.y0 << ") to (" << s.x1 << ", " << s.y1
-          << ") m leaves the plate (accepted: ends within x " << x0 << " to " << x1 << " m, y "
-          << y0 << " to " << y1 << " m)";
+      throw InputError(fmt::format(
+          "scan path segment {}: power {:g} W (accepted: power >= 0 W)", which, s.power));
     }
-    throw InputError(msg.str());
+    if (!(s.speed > 0)) {
+      throw InputError(fmt::format(
+          "scan path segment {}: speed {:g} m/s (accepted: speed > 0 m/s)", which, s.speed));
+    }
+    if (!(s.length() > 0)) {
+      throw InputError(fmt::format(
+          "scan path segment {}: starts where it ends (accepted: a segment of length > 0)",
+          which));
+    }
+    const auto inside = [&](double x, double y) {
+      return x >= x0 && x <= x1 && y >= y0 && y <= y1;
+    };
+    if (inside(s.x0, s.y0) && inside(s.x1, s.y1)) continue;
+    throw InputError(fmt::format(
+        "scan path segment {}: ({:g}, {:g}) to ({:g}, {:g}) m leaves the plate (accepted: ends "
+        "within x {:g} to {:g} m, y {:g} to {:g} m)",
+        which, s.x0, s.y0, s.x1, s.y1, x0, x1, y0, y1));
   }
 }
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
-#include <sstream>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/thermal/beer_lambert_laser.hpp"
@@ -57,11 +57,10 @@ void check_bed(const bed::Bed& bed, const SubstrateGeometry& g, const TopHeight&
   double smallest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < bed.n(); ++i) {
     if (bed.z[i] <= floor) {
-      std::ostringstream msg;
-      msg << "particle " << bed.id[i] << " has its centre at z = " << bed.z[i]
-          << " m, at or below the substrate plane z = " << floor
-          << " m (accepted: every centre above the bed domain's floor)";
-      refuse_bed(msg.str());
+      refuse_bed(fmt::format(
+          "particle {} has its centre at z = {:g} m, at or below the substrate plane z = {:g} m "
+          "(accepted: every centre above the bed domain's floor)",
+          bed.id[i], bed.z[i], floor));
     }
     lowest_bottom = std::min(lowest_bottom, bed.z[i] - bed.radius[i] -
                                                 (top_height_at(g, top, bed.x[i], bed.y[i]) - floor));
@@ -70,12 +69,11 @@ void check_bed(const bed::Bed& bed, const SubstrateGeometry& g, const TopHeight&
   // A bed that floats (e.g. packed in a box whose floor is not the substrate) has no substrate
   // plane under it; a settled bed touches its floor within round-off of its smallest particle.
   if (bed.n() > 0 && lowest_bottom - floor > 0.01 * smallest) {
-    std::ostringstream msg;
-    msg << "the lowest particle's bottom is at z = " << lowest_bottom
-        << " m, above the substrate plane z = " << floor
-        << " m (the domain floor): no particle rests on the substrate (accepted: a bed settled "
-           "on its floor, e.g. from deposit)";
-    refuse_bed(msg.str());
+    refuse_bed(fmt::format(
+        "the lowest particle's bottom is at z = {:g} m, above the substrate plane z = {:g} m (the "
+        "domain floor): no particle rests on the substrate (accepted: a bed settled on its "
+        "floor, e.g. from deposit)",
+        lowest_bottom, floor));
   }
 }
 
@@ -217,17 +215,15 @@ void setup_track(Sinter::State& s, const bed::Bed& bed) {
   const double start_x = std::isnan(scene.start_x) ? g.x0 - scene.spot_radius : scene.start_x;
   const double end_x = std::isnan(scene.end_x) ? g.x0 + lx + scene.spot_radius : scene.end_x;
   if (!(laser_y >= g.y0 && laser_y <= g.y0 + ly)) {
-    std::ostringstream msg;
-    msg << "laser.y: " << laser_y << " m is outside the bed (accepted: " << g.y0 << " to "
-        << g.y0 + ly << " m)";
-    throw InputError(msg.str());
+    throw InputError(
+        fmt::format("laser.y: {:g} m is outside the bed (accepted: {:g} to {:g} m)", laser_y,
+                    g.y0, g.y0 + ly));
   }
   if (!(end_x > start_x && end_x > g.x0 && start_x < g.x0 + lx)) {
-    std::ostringstream msg;
-    msg << "laser.start-x, laser.end-x: " << start_x << " to " << end_x
-        << " m never crosses the bed (accepted: start < end, overlapping " << g.x0 << " to "
-        << g.x0 + lx << " m)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "laser.start-x, laser.end-x: {:g} to {:g} m never crosses the bed (accepted: start < "
+        "end, overlapping {:g} to {:g} m)",
+        start_x, end_x, g.x0, g.x0 + lx));
   }
   s.t_end = std::isnan(scene.t_end) ? (end_x - start_x) / scene.speed : scene.t_end;
   // A t_end past the track's end keeps the beam moving along its line (as the single track
@@ -295,11 +291,10 @@ void choose_steps(Sinter::State& s) {
   const double bound = s.stable.grid;
   if (scene.dt > 0) {
     if (scene.integrator == Integrator::explicit_euler && scene.dt > bound && !scene.unsafe_dt) {
-      std::ostringstream msg;
-      msg << "--dt: " << scene.dt << " s is above the forward-Euler stable bound " << bound
-          << " s of the substrate grid (accepted: dt <= " << bound
-          << " s, --unsafe-dt, or --integrator implicit)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format(
+          "--dt: {:g} s is above the forward-Euler stable bound {:g} s of the substrate grid "
+          "(accepted: dt <= {:g} s, --unsafe-dt, or --integrator implicit)",
+          scene.dt, bound, bound));
     }
     s.dt = scene.dt;
   } else {
@@ -341,17 +336,17 @@ void setup_top(Sinter::State& s, TopHeight top) {
   const SubstrateGeometry& g = s.g;
   if (top.empty()) return;
   if (top.size() != g.nx * g.ny) {
-    std::ostringstream msg;
-    msg << "solid top: " << top.size() << " column heights for a grid of " << g.nx << " x "
-        << g.ny << " top nodes (accepted: one height per top node)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format(
+        "solid top: {} column heights for a grid of {} x {} top nodes (accepted: one height per "
+        "top node)",
+        top.size(), g.nx, g.ny));
   }
   for (std::size_t c = 0; c < top.size(); ++c) {
     if (!(top[c] >= g.z_top) || !std::isfinite(top[c])) {
-      std::ostringstream msg;
-      msg << "solid top: column " << c << " at z = " << top[c] << " m, below the plate's top "
-          << g.z_top << " m (accepted: heights >= the bed domain's floor)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format(
+          "solid top: column {} at z = {:g} m, below the plate's top {:g} m (accepted: heights "
+          ">= the bed domain's floor)",
+          c, top[c], g.z_top));
     }
   }
   if (s.scene.integrator != Integrator::explicit_euler)
@@ -403,10 +398,10 @@ Sinter::~Sinter() = default;
 void check_finite(const Sinter::State& s, bool grid) {
   for (std::size_t i = 0; i < s.temperature.size(); ++i) {
     if (!std::isfinite(s.temperature[i])) {
-      std::ostringstream msg;
-      msg << "particle " << i << " reached a non-finite temperature at step " << s.step
-          << " (t = " << s.time << " s); the time step is beyond the stable bound";
-      throw NumericalError(msg.str());
+      throw NumericalError(fmt::format(
+          "particle {} reached a non-finite temperature at step {} (t = {:g} s); the time step "
+          "is beyond the stable bound",
+          i, s.step, s.time));
     }
   }
   if (!grid) return;
@@ -416,11 +411,10 @@ void check_finite(const Sinter::State& s, bool grid) {
   for (std::size_t c = 0; c < s.node_temperature.size(); ++c) {
     if (std::isfinite(s.node_temperature[c])) continue;
     const SubstrateGeometry& g = s.g;
-    std::ostringstream msg;
-    msg << "substrate node (" << c % g.nx << ", " << (c / g.nx) % g.ny << ", " << c / (g.nx * g.ny)
-        << ") reached a non-finite temperature at step " << s.step << " (t = " << s.time
-        << " s); the time step is beyond the stable bound";
-    throw NumericalError(msg.str());
+    throw NumericalError(fmt::format(
+        "substrate node ({}, {}, {}) reached a non-finite temperature at step {} (t = {:g} s); "
+        "the time step is beyond the stable bound",
+        c % g.nx, (c / g.nx) % g.ny, c / (g.nx * g.ny), s.step, s.time));
   }
 }
 
@@ -448,12 +442,11 @@ SinterResult summarise(Sinter::State& s, double particles_start, double substrat
   // finite): its numbers are not a result.
   // (A run with no laser has no scale to measure the balance against.)
   if (const double error = r.energy.relative_error(); s.ledger.absorbed() > 0 && !(error <= 1e-6)) {
-    std::ostringstream msg;
-    msg << "energy balance broken at the end of the run (step " << s.step << "): "
-        << "absorbed + surface gains - internal change - boundary outflow = " << error
-        << " of the energy absorbed (accepted: below 1e-6); the time step is beyond the stable "
-           "bound (--unsafe-dt?)";
-    throw NumericalError(msg.str());
+    throw NumericalError(fmt::format(
+        "energy balance broken at the end of the run (step {}): absorbed + surface gains - "
+        "internal change - boundary outflow = {:g} of the energy absorbed (accepted: below "
+        "1e-6); the time step is beyond the stable bound (--unsafe-dt?)",
+        s.step, error));
   }
   const double t_m = s.scene.phase_change.melting_point;
   for (std::size_t i = 0; i < s.x.size(); ++i) {

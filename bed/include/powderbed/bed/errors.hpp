@@ -1,6 +1,6 @@
 #pragma once
 // The two error kinds of docs/architecture.md "House style": every app's main maps them to exit 2 / 3.
-#include <sstream>
+#include <fmt/format.h>
 #include <stdexcept>
 #include <string>
 
@@ -23,9 +23,8 @@ class NumericalError : public std::runtime_error {
 // <accepted>)" unless `ok`.
 inline void require_in_range(bool ok, const char* field, double value, const char* accepted) {
   if (ok) return;
-  std::ostringstream msg;
-  msg << field << ": " << value << " is out of range (accepted: " << accepted << ")";
-  throw InputError(msg.str());
+  throw InputError(
+      fmt::format("{}: {:g} is out of range (accepted: {})", field, value, accepted));
 }
 
 }  // namespace powderbed
