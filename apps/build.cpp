@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <numbers>
 #include <optional>
@@ -86,8 +87,8 @@ std::string beside_config(const po::variables_map& vm, const char* option) {
 // The options of a stage (deposit or sinter) from its scene file and the extra arguments, parsed
 // as that program parses them; errors name the stage's option and file.
 po::variables_map parse_stage(const char* option, const char* program,
-                              void (*add)(po::options_description&), const std::string& scene,
-                              const std::string& extra) {
+                              const std::function<void(po::options_description&)>& add,
+                              const std::string& scene, const std::string& extra) {
   std::vector<std::string> args{program, "--config", scene};
   std::istringstream words(extra);
   for (std::string w; words >> w;) args.push_back(w);
@@ -207,6 +208,8 @@ void layer_json(bed::JsonWriter& j, const LayerReport& l) {
 // Everything a layer needs that stays from one layer to the next.
 struct Build {
   po::variables_map dvm, svm;
+  app::DepositOptions spread_options;  // what the spread stage's options of a plain type filled
+  th::SinterScene scan_options;        // ... and the scan stage's (app::sinter_scene starts there)
   dem::Scene scene;
   dem::SpreadSettings spread;
   th::MaterialTable table;
@@ -230,7 +233,8 @@ double tool_bottom(const Build& b, const bed::Bed& bed, std::uint64_t layer) {
 std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::HeightMap& floor,
                                 std::uint64_t layer, app::ProgressBar& bar, double done,
                                 double share, LayerReport& rep) {
-  const th::SinterScene scene = app::sinter_scene(b.svm, bed, b.scan_layer0 + layer - 1);
+  const th::SinterScene scene =
+      app::sinter_scene(b.svm, b.scan_options, bed, b.scan_layer0 + layer - 1);
   th::Sinter sinter(bed, scene, b.table, floor.z);
   bed::Bed labelled = bed;
   labelled.provenance.created_by = app::version_string("build");
@@ -320,16 +324,22 @@ Build read_build(const po::variables_map& vm, int argc, char** argv) {
   prepare_out(b.out);
   app::apply_thread_team(vm);
 
-  b.dvm = parse_stage("spread", "deposit", app::add_deposit_options, spread_scene,
+  const auto spread_options = [&b](po::options_description& d) {
+    app::add_deposit_options(d, b.spread_options);
+  };
+  b.dvm = parse_stage("spread", "deposit", spread_options, spread_scene,
                       vm["spread-args"].as<std::string>() + " --seed " + std::to_string(seed));
   if (!app::spread_requested(b.dvm))
     throw InputError("--spread: " + spread_scene + " names no recoater (accepted: a deposit scene "
                      "with recoater.tool = blade or roller, docs/deposit-spread.md)");
-  b.svm = parse_stage("sinter", "sinter", app::add_sinter_options, sinter_scene,
+  const auto scan_options = [&b](po::options_description& d) {
+    app::add_sinter_options(d, b.scan_options);
+  };
+  b.svm = parse_stage("sinter", "sinter", scan_options, sinter_scene,
                       vm["sinter-args"].as<std::string>());
   b.scan_layer0 = b.svm["scan.layer"].as<std::size_t>();
-  b.scene = app::deposit_scene(b.dvm);
-  b.spread = app::spread_settings(b.dvm, seed);
+  b.scene = app::deposit_scene(b.dvm, b.spread_options.scene);
+  b.spread = app::spread_settings(b.dvm, b.spread_options.spread, seed);
   b.spread.layers = 1;
   return b;
 }
@@ -354,10 +364,10 @@ bed::Bed build_input(const po::variables_map& vm, const Build& b, std::optional<
 // The scan stage checked before any layer is spread: its options, its path on the plate and its
 // grid under the solid (a bed without particles: the scene and the grid alone).
 void check_scan(Build& b, const bed::Bed& bed, const std::optional<dem::SpreadState>& state) {
-  b.table = th::read_material_table(app::sinter_scene(b.svm, bed).material_table);
+  b.table = th::read_material_table(app::sinter_scene(b.svm, b.scan_options, bed).material_table);
   bed::Bed empty;
   empty.domain = bed.domain;
-  th::Sinter probe(empty, app::sinter_scene(b.svm, empty, b.scan_layer0), b.table,
+  th::Sinter probe(empty, app::sinter_scene(b.svm, b.scan_options, empty, b.scan_layer0), b.table,
                    state ? state->floor.z : th::TopHeight{});
 }
 

@@ -166,18 +166,17 @@ void set_periodic(const po::variables_map& vm, bed::Domain& domain) {
   }
 }
 
-// The run's settings from the options; their ranges are dem::check_run_settings's to check.
-dem::RunSettings run_settings(const po::variables_map& vm, bool inserting, std::uint64_t seed) {
-  dem::RunSettings s;
+// The run's settings: `bound` (the settings add_deposit_options bound: --t-end, --until-rest,
+// rest.*, lid.*, insert.*) with the integrator, the time step, the threads, the trajectory and
+// the switches; their ranges are dem::check_run_settings's to check.
+dem::RunSettings run_settings(const po::variables_map& vm, const dem::RunSettings& bound,
+                              bool inserting, std::uint64_t seed) {
+  dem::RunSettings s = bound;
   s.integrator = dem::parse_integrator(vm["integrator"].as<std::string>());
   s.young_scale = vm["young-scale"].as<double>();
-  s.until_rest = vm["until-rest"].as<bool>();
-  if (vm.count("t-end")) s.t_end = vm["t-end"].as<double>();
   if (!s.until_rest && !vm.count("t-end")) {
     throw InputError("--t-end: missing (accepted: --t-end T or --until-rest)");
   }
-  s.rest.max_speed = vm["rest.speed"].as<double>();
-  s.rest.window = vm["rest.window"].as<double>();
   if (vm.count("dt")) s.dt = vm["dt"].as<double>();
   s.unsafe_dt = vm["unsafe-dt"].as<bool>();
   s.threads = app::apply_thread_team(vm).size;
@@ -186,18 +185,7 @@ dem::RunSettings run_settings(const po::variables_map& vm, bool inserting, std::
     s.trajectory_every = vm["every"].as<std::uint64_t>();
   }
   s.lid.enabled = vm["lid"].as<bool>() || vm["lid.enabled"].as<bool>();
-  s.lid.speed = vm["lid.speed"].as<double>();
-  s.lid.pressure = vm["lid.pressure"].as<double>();
-  s.lid.travel = vm["lid.travel"].as<double>();
-  s.lid.depth = vm["lid.depth"].as<double>();
-  s.lid.hold = vm["lid.hold"].as<double>();
-  s.lid.relax = vm["lid.relax"].as<double>();
-  s.lid.release = vm["lid.release"].as<bool>();
   s.insertion.enabled = inserting;
-  s.insertion.rate = vm["insert.rate"].as<double>();
-  s.insertion.speed = vm["insert.speed"].as<double>();
-  s.insertion.tries = vm["insert.tries"].as<std::size_t>();
-  s.insertion.patience = vm["insert.patience"].as<double>();
   s.insertion.seed = seed;
   return s;
 }
@@ -367,19 +355,21 @@ void print_text(const Report& p) {
 
 int run(int argc, char** argv) {
   po::options_description desc("deposit options (SI units)");
-  app::add_deposit_options(desc);
+  app::DepositOptions bound;  // what the options of a plain type fill (app::add_deposit_options)
+  app::add_deposit_options(desc, bound);
   po::variables_map vm;
   if (!app::parse_options("deposit", kUsage, desc, {}, argc, argv, vm)) return 0;
-  if (app::spread_requested(vm)) return app::run_spread(vm, argc, argv);  // deposit_spread.cpp
+  if (app::spread_requested(vm))
+    return app::run_spread(vm, bound, argc, argv);  // deposit_spread.cpp
 
   const std::string out = app::required<std::string>(vm, "out");
   const auto seed = app::required<std::uint64_t>(vm, "seed");
   check_files(vm, out);
   auto [bed, inserting] = particles(vm, desc, argc, argv, seed);
   set_periodic(vm, bed.domain);
-  const dem::Scene scene = app::deposit_scene(vm);
+  const dem::Scene scene = app::deposit_scene(vm, bound.scene);
   if (vm.count("export-deck")) app::check_run_deck(scene, vm["export-deck"].as<std::string>());
-  dem::RunSettings s = run_settings(vm, inserting, seed);
+  dem::RunSettings s = run_settings(vm, bound.run, inserting, seed);
   warn_unsafe_dt(bed, scene, s);
   const double margin = core_margin(vm, bed);
   app::ProgressBar bar("deposit", app::progress_interval(vm));

@@ -33,22 +33,6 @@ namespace {
 // Options of the drop that a spread does not have: refused rather than ignored.
 constexpr const char* kDropOnly[] = {"t-end", "count", "insert-z", "trajectory"};
 
-dem::Recoater tool_from(const po::variables_map& vm) {
-  dem::Recoater t;
-  t.shape = dem::parse_tool_shape(vm["recoater.tool"].as<std::string>());
-  t.thickness = vm["recoater.thickness"].as<double>();
-  t.edge_radius = vm["recoater.edge-radius"].as<double>();
-  t.radius = vm["recoater.radius"].as<double>();
-  t.omega = vm["recoater.omega"].as<double>();
-  t.gap = vm["recoater.gap"].as<double>();
-  t.speed = vm["recoater.speed"].as<double>();
-  t.start = vm["recoater.start"].as<double>();
-  t.end = vm["recoater.end"].as<double>();
-  t.delay = vm["recoater.delay"].as<double>();
-  t.settle = vm["recoater.settle"].as<double>();
-  return t;
-}
-
 // The supply of a layer: supply.count particles of --psd, or as many as make supply.volume of
 // solid, placed without overlap at random in the region (packgen's 0-contact packing; a seed of
 // its own per layer, so that a continued run draws the same supply).
@@ -144,16 +128,11 @@ bed::Domain spread_box(const po::variables_map& vm, std::optional<bed::Domain> g
   return d;
 }
 
-dem::SpreadSettings spread_settings(const po::variables_map& vm, std::uint64_t seed) {
-  dem::SpreadSettings s;
-  s.tool = tool_from(vm);
-  s.supply_x0 = vm["supply.x0"].as<double>();
-  s.supply_x1 = vm["supply.x1"].as<double>();
-  s.supply_height = vm["supply.height"].as<double>();
+dem::SpreadSettings spread_settings(const po::variables_map& vm, const dem::SpreadSettings& bound,
+                                    std::uint64_t seed) {
+  dem::SpreadSettings s = bound;
+  s.tool.shape = dem::parse_tool_shape(vm["recoater.tool"].as<std::string>());
   s.supply = supply_maker(vm, seed);
-  s.layers = vm["layers"].as<std::uint64_t>();
-  s.remove_overflow = vm["recoater.overflow"].as<bool>();
-  s.layer_thickness = vm["recoater.layer-thickness"].as<double>();
   s.young_scale = vm["young-scale"].as<double>();
   if (vm.count("dt")) s.dt = vm["dt"].as<double>();
   s.unsafe_dt = vm["unsafe-dt"].as<bool>();
@@ -177,47 +156,57 @@ void set_spread_provenance(bed::Bed& b, const po::variables_map& vm, const dem::
   made.stiffness = scene.stiffness;
 }
 
-void add_spread_options(po::options_description& desc) {
-  const dem::Recoater t;
+void add_spread_options(po::options_description& desc, dem::SpreadSettings& spread,
+                        dem::Scene& scene) {
+  dem::Recoater& t = spread.tool;
   desc.add_options()
       ("friction.model", po::value<std::string>()->default_value("sliding"),
        "friction law of every contact: sliding (regularised Coulomb, no static friction) or "
        "history (tangential spring capped at mu F_n: static friction; spreading runs only)")
-      ("material.rolling", po::value<double>()->default_value(0),
+      ("material.rolling",
+       po::value<double>(&scene.material.rolling)->default_value(scene.material.rolling),
        "rolling resistance mu_r (EPSD model, docs/deposit-spread.md; 0: off; spreading runs only)")
       ("recoater.tool", po::value<std::string>()->default_value(""),
        "spread with a recoater instead of a drop: blade or roller (docs/deposit-spread.md)")
-      ("recoater.thickness", po::value<double>()->default_value(t.thickness),
+      ("recoater.thickness", po::value<double>(&t.thickness)->default_value(t.thickness),
        "blade: thickness along x (m)")
-      ("recoater.edge-radius", po::value<double>()->default_value(t.edge_radius),
+      ("recoater.edge-radius", po::value<double>(&t.edge_radius)->default_value(t.edge_radius),
        "blade: radius of its bottom edges (m; 0: sharp)")
-      ("recoater.radius", po::value<double>()->default_value(t.radius), "roller: radius (m)")
-      ("recoater.omega", po::value<double>()->default_value(t.omega),
+      ("recoater.radius", po::value<double>(&t.radius)->default_value(t.radius),
+       "roller: radius (m)")
+      ("recoater.omega", po::value<double>(&t.omega)->default_value(t.omega),
        "roller: spin about +y (rad/s; < 0 counter-rotating: the bottom moves along the travel)")
-      ("recoater.gap", po::value<double>()->default_value(t.gap),
+      ("recoater.gap", po::value<double>(&t.gap)->default_value(t.gap),
        "height of the tool's lowest point above the plate (m) in the first layer")
-      ("recoater.speed", po::value<double>()->default_value(t.speed), "tool speed along +x (m/s)")
-      ("recoater.start", po::value<double>()->default_value(t.start),
+      ("recoater.speed", po::value<double>(&t.speed)->default_value(t.speed),
+       "tool speed along +x (m/s)")
+      ("recoater.start", po::value<double>(&t.start)->default_value(t.start),
        "x of the tool's centre (blade mid-plane, roller axis) at the start (m)")
-      ("recoater.end", po::value<double>()->default_value(t.end), "x where the tool stops (m)")
-      ("recoater.delay", po::value<double>()->default_value(t.delay),
+      ("recoater.end", po::value<double>(&t.end)->default_value(t.end),
+       "x where the tool stops (m)")
+      ("recoater.delay", po::value<double>(&t.delay)->default_value(t.delay),
        "time before the tool moves, the supply settling (s)")
-      ("recoater.settle", po::value<double>()->default_value(t.settle),
+      ("recoater.settle", po::value<double>(&t.settle)->default_value(t.settle),
        "time after the tool stopped, the layer settling (s)")
-      ("recoater.overflow", po::value<bool>()->default_value(true),
+      ("recoater.overflow",
+       po::value<bool>(&spread.remove_overflow)->default_value(spread.remove_overflow),
        "after each layer remove the powder pushed past the tool's end (the machine's overflow "
        "slot; false keeps every particle)")
-      ("recoater.layer-thickness", po::value<double>()->default_value(0),
+      ("recoater.layer-thickness",
+       po::value<double>(&spread.layer_thickness)->default_value(spread.layer_thickness),
        "how far the plate goes down before each layer after the first (m)")
-      ("supply.x0", po::value<double>()->default_value(0), "supply region: start along x (m)")
-      ("supply.x1", po::value<double>()->default_value(0), "supply region: end along x (m)")
-      ("supply.height", po::value<double>()->default_value(0),
+      ("supply.x0", po::value<double>(&spread.supply_x0)->default_value(spread.supply_x0),
+       "supply region: start along x (m)")
+      ("supply.x1", po::value<double>(&spread.supply_x1)->default_value(spread.supply_x1),
+       "supply region: end along x (m)")
+      ("supply.height",
+       po::value<double>(&spread.supply_height)->default_value(spread.supply_height),
        "supply region: height above the plate or the powder under it (m)")
       ("supply.count", po::value<std::size_t>()->default_value(0),
        "supply per layer: particles of --psd (or supply.volume)")
       ("supply.volume", po::value<double>()->default_value(0),
        "supply per layer: solid volume of --psd particles (m^3; or supply.count)")
-      ("layers", po::value<std::uint64_t>()->default_value(1),
+      ("layers", po::value<std::uint64_t>(&spread.layers)->default_value(spread.layers),
        "layers to spread (with --in a spread bed: after its own); each is also written to "
        "OUT-NNN.h5 when N > 1")
       ("tool-forces", po::value<std::string>(),
@@ -406,7 +395,7 @@ void print_spread_summary(const po::variables_map& vm, const dem::SpreadSummary&
 
 }  // namespace
 
-int run_spread(const po::variables_map& vm, int argc, char** argv) {
+int run_spread(const po::variables_map& vm, const DepositOptions& bound, int argc, char** argv) {
   const std::string out = required<std::string>(vm, "out");
   const auto seed = required<std::uint64_t>(vm, "seed");
   refuse_drop_options(vm);
@@ -417,8 +406,8 @@ int run_spread(const po::variables_map& vm, int argc, char** argv) {
 
   std::optional<dem::SpreadState> restart;
   bed::Bed bed = spread_input(vm, restart);
-  const dem::Scene scene = deposit_scene(vm);
-  dem::SpreadSettings s = spread_settings(vm, seed);
+  const dem::Scene scene = deposit_scene(vm, bound.scene);
+  dem::SpreadSettings s = spread_settings(vm, bound.spread, seed);
   std::ostringstream forces;
   forces << std::setprecision(17) << "layer,time,x,fx,fy,fz\n";
   if (forces_path) {

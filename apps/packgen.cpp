@@ -27,7 +27,8 @@ const char* const kUsage =
     "[options]";
 
 // packgen's options with their help: one entry per option, so the list is as long as it is.
-void add_options(po::options_description& desc) {
+// Those of a plain type are bound to `o`'s fields (defaults: its values).
+void add_options(po::options_description& desc, packgen::PackOptions& o) {
   app::add_common_options(desc);
   app::add_progress_option(desc);
   const std::string directions_help =
@@ -49,7 +50,7 @@ void add_options(po::options_description& desc) {
       ("site-order", po::value<std::string>()->default_value("lowest"),
        "3D approach 3: lowest (fill the lowest free 3-contact site first, growing from the "
        "floor: densest, O(N)) or random (a random particle and two random partners, [LP] tries)")
-      ("floor-seed", po::value<double>()->default_value(0.0),
+      ("floor-seed", po::value<double>(&o.floor_seed)->default_value(o.floor_seed),
        "site order lowest: fraction of the floor first covered by particles dropped at random "
        "onto it (0 <= F < 1)")
       ("phases", po::value<std::string>(),
@@ -57,20 +58,21 @@ void add_options(po::options_description& desc) {
        "replaces --approach")
       ("collision", po::value<std::string>()->default_value("grid"),
        "raster (status grid of [LP], approximate), grid (exact cell list) or kdtree (exact)")
-      ("raster-spacing", po::value<double>(), "raster grid spacing h (m), needed by raster")
-      ("tries", po::value<int>()->default_value(1000),
+      ("raster-spacing", po::value<double>(&o.raster_spacing),
+       "raster grid spacing h (m), needed by raster")
+      ("tries", po::value<int>(&o.tries)->default_value(o.tries),
        "n_T: tries per size before a new size is drawn")
       ("directions", po::value<int>(), directions_help.c_str())
-      ("count", po::value<std::size_t>(), "stop at N particles")
-      ("target-density", po::value<double>(),
+      ("count", po::value<std::size_t>(&o.count), "stop at N particles")
+      ("target-density", po::value<double>(&o.target_density),
        "stop at this density (0 < F < 1); if it cannot be reached the run stops at "
        "--max-failures, still writes the bed, warns on stderr and exits 0")
-      ("max-failures", po::value<std::size_t>()->default_value(100),
+      ("max-failures", po::value<std::size_t>(&o.max_failures)->default_value(o.max_failures),
        "stop after M consecutive failed placements (the default stop rule)")
-      ("retire-after", po::value<int>()->default_value(32),
+      ("retire-after", po::value<int>(&o.retire_after)->default_value(o.retire_after),
        "drop a particle from the partner list after this many consecutive failed tries "
        "around it (0 = never; O(N) front advancing)")
-      ("edge-fraction", po::value<double>()->default_value(0.0),
+      ("edge-fraction", po::value<double>(&o.edge_fraction)->default_value(o.edge_fraction),
        "fraction of 0-contact tries drawn within one largest diameter of a wall")
       ("allow-huge",
        "accept a domain holding more than 1e9 particles of the PSD's mean size, or a --count "
@@ -95,34 +97,26 @@ bed::Domain domain_of(const po::variables_map& vm) {
   return domain;
 }
 
-// The packing options as given; pack() checks them (packgen::validate) except what only the
-// command line can get wrong: --count 0 and --target-density 0 (to the library, "no such stop
-// rule") and a --count that cannot fit, which packgen refuses at any size
+// The packing options: `bound` (what add_options bound) with the phases, the collision test,
+// the directions, the site order and the size sampling. pack() checks them (packgen::validate)
+// except what only the command line can get wrong: --count 0 and --target-density 0 (to the
+// library, "no such stop rule") and a --count that cannot fit, which packgen refuses at any size
 // (packgen::check_count_fits).
-packgen::PackOptions pack_options(const po::variables_map& vm, const bed::Domain& domain,
-                                  const bed::Psd& psd) {
-  packgen::PackOptions o;
+packgen::PackOptions pack_options(const po::variables_map& vm, const packgen::PackOptions& bound,
+                                  const bed::Domain& domain, const bed::Psd& psd) {
+  packgen::PackOptions o = bound;
   o.phases = vm.count("phases") ? packgen::parse_phases(vm["phases"].as<std::string>())
                                 : std::vector<packgen::Phase>{{vm["approach"].as<int>(), 1.0}};
   o.collision = packgen::parse_collision(vm["collision"].as<std::string>());
-  if (vm.count("raster-spacing")) o.raster_spacing = vm["raster-spacing"].as<double>();
-  o.tries = vm["tries"].as<int>();
   if (vm.count("directions")) o.directions = vm["directions"].as<int>();
   if (vm.count("count")) {
-    o.count = vm["count"].as<std::size_t>();
     if (o.count == 0) throw InputError("--count: 0 (accepted: a number of particles >= 1)");
     packgen::check_count_fits(domain, psd, o.count);
   }
   o.allow_huge = vm.count("allow-huge") > 0;
-  if (vm.count("target-density")) {
-    o.target_density = vm["target-density"].as<double>();
-    if (o.target_density == 0) throw InputError("--target-density: 0 (accepted: 0 < F < 1)");
-  }
-  o.max_failures = vm["max-failures"].as<std::size_t>();
-  o.retire_after = vm["retire-after"].as<int>();
-  o.edge_fraction = vm["edge-fraction"].as<double>();
+  if (vm.count("target-density") && o.target_density == 0)
+    throw InputError("--target-density: 0 (accepted: 0 < F < 1)");
   o.site_order = packgen::parse_site_order(vm["site-order"].as<std::string>());
-  o.floor_seed = vm["floor-seed"].as<double>();
   o.size_sampling = packgen::parse_size_sampling(vm["size-sampling"].as<std::string>());
   return o;
 }
@@ -201,7 +195,8 @@ void report(packgen::PackResult& result, const packgen::PackOptions& o, std::uin
 
 int run(int argc, char** argv) {
   po::options_description desc("packgen options (SI units: m)");
-  add_options(desc);
+  packgen::PackOptions bound;  // what the options of a plain type fill (add_options)
+  add_options(desc, bound);
   po::variables_map vm;
   if (!app::parse_options("packgen", kUsage, desc, {}, argc, argv, vm)) return 0;
   // The output is checked before any work (docs/hardening.md): extension, folder, not a folder.
@@ -210,7 +205,7 @@ int run(int argc, char** argv) {
   app::check_paths({}, {out});
   const bed::Domain domain = domain_of(vm);
   const bed::Psd psd = bed::Psd::parse(vm["psd"].as<std::string>(), "--psd");
-  packgen::PackOptions o = pack_options(vm, domain, psd);
+  packgen::PackOptions o = pack_options(vm, bound, domain, psd);
   app::ProgressBar bar("packgen", app::progress_interval(vm));
   o.progress = [&bar](const packgen::PackProgress& p) {
     char detail[64];

@@ -292,7 +292,8 @@ std::optional<th::Fusion> fuse_if_asked(const po::variables_map& vm, const bed::
 
 int run(int argc, char** argv) {
   po::options_description desc("sinter options (SI units)");
-  app::add_sinter_options(desc);
+  th::SinterScene bound;  // what the options of a plain type fill (app::add_sinter_options)
+  app::add_sinter_options(desc, bound);
   po::variables_map vm;
   if (!app::parse_options("sinter", kUsage, desc, {}, argc, argv, vm)) return 0;
   const std::string bed_path = app::required<std::string>(vm, "bed");
@@ -302,7 +303,7 @@ int run(int argc, char** argv) {
   check_files(vm, bed_path, out);
 
   bed::Bed bed = bed::read_bed_any(bed_path);
-  const th::SinterScene scene = app::sinter_scene(vm, bed);
+  const th::SinterScene scene = app::sinter_scene(vm, bound, bed);
   const th::MaterialTable table = th::read_material_table(scene.material_table);
   th::Sinter sinter(bed, scene, table);
   if (scene.unsafe_dt && scene.dt > sinter.stable_steps().grid &&

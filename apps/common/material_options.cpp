@@ -102,8 +102,10 @@ std::string material_file(const std::string& name_or_path, const po::variables_m
   return fs::exists(beside) ? beside.string() : path;
 }
 
-void apply_material(const char* app, po::variables_map& vm, const std::set<std::string>& typed) {
-  if (!vm.count("material")) return;
+std::vector<std::string> apply_material(const char* app, po::variables_map& vm,
+                                        const std::set<std::string>& typed) {
+  std::vector<std::string> stored;
+  if (!vm.count("material")) return stored;
   const std::string path = material_file(vm["material"].as<std::string>(), vm, "--material");
   bed::MaterialFile file;
   try {
@@ -125,8 +127,12 @@ void apply_material(const char* app, po::variables_map& vm, const std::set<std::
       store(vm, m.option, file.solid_conductivity(keff_temperature(vm)));
     } else if (const auto v = file.get(key)) {
       store(vm, m.option, *v);
+    } else {
+      continue;
     }
+    stored.push_back(m.option);
   }
+  return stored;
 }
 
 }  // namespace powderbed::app

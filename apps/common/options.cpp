@@ -228,9 +228,12 @@ bool parse_options(const char* app, const std::string& usage, po::options_descri
     // Stored after the command line, so command-line values win (first store wins).
     store_config_file(vm["config"].as<std::string>(), desc, vm);
   }
-  po::notify(vm);
+  po::notify(vm);  // the options bound to fields (po::value<T>(&field)) fill them
   check_common(vm);
-  apply_material(app, vm, typed);
+  // A --material file's values are stored after po::notify (they need the resolved options): the
+  // fields those options are bound to get them here.
+  for (const std::string& name : apply_material(app, vm, typed))
+    desc.find(name, false).semantic()->notify(vm[name].value());
   if (vm.count("print-config")) {
     std::cout << "# " << version_string(app)
               << ": the resolved options (--config reads this back)\n"
