@@ -22,9 +22,9 @@ void SinterScene::validate() const {
           "T_env > 0 K");
   require(positive(initial_temperature), "environment.initial-temperature", initial_temperature,
           "T0 > 0 K");
-  require(power >= 0 && std::isfinite(power), "laser.power", power, "P >= 0 W");
-  require(positive(speed), "laser.speed", speed, "v > 0 m/s");
-  require(positive(spot_radius), "laser.spot", spot_radius, "w > 0 m");
+  require(power >= 0 && std::isfinite(power), "power", power, "P >= 0 W");
+  require(positive(speed), "speed", speed, "v > 0 m/s");
+  require(positive(spot_radius), "spot", spot_radius, "w > 0 m");
   // Every option is checked whichever model reads it: a value that cannot be right is refused
   // even where the scene ignores it. alpha = 0 would reflect a ray forever between two spheres.
   require(absorptivity > 0 && absorptivity <= 1, "laser.absorptivity", absorptivity,
