@@ -1,6 +1,6 @@
 #include "powderbed/thermal/scene.hpp"
 
-#include <sstream>
+#include <fmt/format.h>
 
 #include "powderbed/bed/errors.hpp"
 
@@ -46,10 +46,9 @@ void SinterScene::validate() const {
   static const char* axis[] = {"x", "y", "z"};
   for (std::size_t a = 0; a < 3; ++a) {
     if (nodes[a] < 3) {
-      std::ostringstream msg;
-      msg << "substrate.nodes: " << nodes[a] << " nodes along " << axis[a]
-          << " (accepted: at least 3 per direction, so that one node is free)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format("substrate.nodes: {} nodes along {} (accepted: at least 3 per "
+                                   "direction, so that one node is free)",
+                                   nodes[a], axis[a]));
     }
   }
   require(dt >= 0 && std::isfinite(dt), "dt", dt, "dt > 0 s, or 0 for the stable bound");
