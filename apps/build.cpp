@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "common/app_main.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
@@ -101,7 +103,7 @@ po::variables_map parse_stage(const char* option, const char* program,
     if (!app::parse_options(program, "", desc, {}, static_cast<int>(argv.size()), argv.data(), vm))
       throw InputError("asks for help, a version or the config (accepted: scene options only)");
   } catch (const std::exception& e) {
-    throw InputError(std::string("--") + option + ": " + scene + ": " + e.what());
+    throw InputError(fmt::format("--{}: {}: {}", option, scene, e.what()));
   }
   return vm;
 }
@@ -118,16 +120,18 @@ void prepare_out(const std::string& out) {
   const fs::path dir(out);
   if (fs::exists(dir)) {
     if (!fs::is_directory(dir))
-      throw InputError("--out: '" + out + "' is a file (accepted: a new or empty folder)");
+      throw InputError(fmt::format("--out: '{}' is a file (accepted: a new or empty folder)", out));
     if (!fs::is_empty(dir))
-      throw InputError("--out: '" + out + "' is not empty (accepted: a new or empty folder, so "
-                       "that no earlier build's files are replaced)");
+      throw InputError(fmt::format("--out: '{}' is not empty (accepted: a new or empty folder, so "
+                                   "that no earlier build's files are replaced)",
+                                   out));
     return;
   }
   const fs::path parent = dir.has_parent_path() && dir.parent_path() != "" ? dir.parent_path() : ".";
   if (!fs::is_directory(parent))
-    throw InputError("--out: the folder '" + parent.string() + "' for '" + out +
-                     "' does not exist (accepted: a folder whose parent exists)");
+    throw InputError(fmt::format("--out: the folder '{}' for '{}' does not exist (accepted: a "
+                                 "folder whose parent exists)",
+                                 parent.string(), out));
 }
 
 // The solid fraction of the layer the scan met: the particles whose centres lie over the
@@ -248,7 +252,7 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   rep.scan = sinter.run([&](const th::Sinter& s) { writer.snapshot(s); }, every,
                         [&](const th::SinterProgress& p) {
                           bar.draw(done + share * p.time / p.t_end,
-                                   "layer " + std::to_string(layer) + " scan");
+                                   fmt::format("layer {} scan", layer));
                         });
   rep.scan_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // The deposit levelled (by default over half the beam radius: the melt pool spans ~2 w across)
@@ -309,12 +313,14 @@ Build read_build(const po::variables_map& vm, int argc, char** argv) {
   if (vm["layers"].as<std::uint64_t>() < 1) throw InputError("--layers: 0 (accepted: N >= 1)");
   b.melt_fraction = vm["fuse.melt-fraction"].as<double>();
   if (!(b.melt_fraction > 0 && b.melt_fraction <= 1))
-    throw InputError("--fuse.melt-fraction: " + std::to_string(b.melt_fraction) +
-                     " (accepted: 0 < f <= 1; 0.5 fuses what reached T_m, 1 what was wholly liquid)");
+    throw InputError(fmt::format("--fuse.melt-fraction: {:f} (accepted: 0 < f <= 1; 0.5 fuses what "
+                                 "reached T_m, 1 what was wholly liquid)",
+                                 b.melt_fraction));
   b.snapshots = vm["snapshots"].as<std::size_t>();
   if (vm.count("fuse.level")) {
     b.level = vm["fuse.level"].as<double>();
-    if (!(b.level >= 0)) throw InputError("--fuse.level: " + std::to_string(b.level) + " (accepted: a length >= 0 m)");
+    if (!(b.level >= 0))
+      throw InputError(fmt::format("--fuse.level: {:f} (accepted: a length >= 0 m)", b.level));
   }
   b.command_line = app::command_line(argc, argv);
   const std::string spread_scene = beside_config(vm, "spread");
@@ -330,8 +336,9 @@ Build read_build(const po::variables_map& vm, int argc, char** argv) {
   b.dvm = parse_stage("spread", "deposit", spread_options, spread_scene,
                       vm["spread-args"].as<std::string>() + " --seed " + std::to_string(seed));
   if (!app::spread_requested(b.dvm))
-    throw InputError("--spread: " + spread_scene + " names no recoater (accepted: a deposit scene "
-                     "with recoater.tool = blade or roller, docs/deposit-spread.md)");
+    throw InputError(fmt::format("--spread: {} names no recoater (accepted: a deposit scene with "
+                                 "recoater.tool = blade or roller, docs/deposit-spread.md)",
+                                 spread_scene));
   const auto scan_options = [&b](po::options_description& d) {
     app::add_sinter_options(d, b.scan_options);
   };
@@ -354,8 +361,9 @@ bed::Bed build_input(const po::variables_map& vm, const Build& b, std::optional<
   const std::string in = vm["in"].as<std::string>();
   bed::Bed bed = bed::read_bed_h5(in);
   if (!dem::has_spread_state(in))
-    throw InputError("--in: '" + in + "' has no /restart group (accepted: a layer file "
-                     "DIR/layer-NNN.h5 of a build)");
+    throw InputError(fmt::format("--in: '{}' has no /restart group (accepted: a layer file "
+                                 "DIR/layer-NNN.h5 of a build)",
+                                 in));
   state = dem::read_spread_state(in, bed);
   bed.domain = app::spread_box(b.dvm, bed.domain);
   return bed;
@@ -399,10 +407,13 @@ LayerReport build_layer(const Build& b, bed::Bed& bed, std::optional<dem::Spread
   const double solid_top = state && !state->floor.empty() ? state->floor.highest() : bed.domain.lower[2];
   rep.clearance = rep.tool_bottom - solid_top;
   if (state && !state->floor.empty() && rep.clearance <= 0)
-    std::cerr << "build: warning: layer " << layer << ": the solid's top stands "
-              << -rep.clearance * 1e6 << " um above the recoater's bottom (the tool strikes the part)\n";
+    std::cerr << fmt::format("build: warning: layer {}: the solid's top stands {:g} um above the "
+                             "recoater's bottom (the tool strikes the part)\n",
+                             layer, -rep.clearance * 1e6);
   dem::SpreadSettings s = b.spread;
-  s.progress = [&](double f, double) { bar.draw(done + share * f, "layer " + std::to_string(layer) + " spread"); };
+  s.progress = [&](double f, double) {
+    bar.draw(done + share * f, fmt::format("layer {} spread", layer));
+  };
   const dem::SpreadSummary spread = dem::run_spread(bed, b.scene, s, state ? &*state : nullptr);
   rep.spread = spread.layers.back();
   rep.rebuilds = spread.neighbour_rebuilds;

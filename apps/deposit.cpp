@@ -8,8 +8,9 @@
 #include <cstdio>
 #include <iostream>
 #include <optional>
-#include <sstream>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "common/app_main.hpp"
 #include "common/deck_export.hpp"
@@ -71,10 +72,8 @@ bed::Bed insert_from_psd(const po::variables_map& vm, const bed::Domain& domain,
   if (vm.count("insert-z")) {
     const auto z = app::parse_number_list(vm["insert-z"].as<std::string>(), 2, 2, "--insert-z");
     if (!(z[0] >= domain.lower[2] && z[1] <= domain.upper[2] && z[0] < z[1])) {
-      std::ostringstream msg;
-      msg << "--insert-z: " << z[0] << "," << z[1] << " (accepted: " << domain.lower[2]
-          << " <= Z0 < Z1 <= " << domain.upper[2] << ")";
-      throw InputError(msg.str());
+      throw InputError(fmt::format("--insert-z: {:g},{:g} (accepted: {:g} <= Z0 < Z1 <= {:g})",
+                                   z[0], z[1], domain.lower[2], domain.upper[2]));
     }
     region.lower[2] = z[0];
     region.upper[2] = z[1];
@@ -87,11 +86,10 @@ bed::Bed insert_from_psd(const po::variables_map& vm, const bed::Domain& domain,
   packgen::validate(region, psd, options);
   packgen::PackResult placed = packgen::pack(region, psd, options, seed);
   if (placed.bed.n() < count) {
-    std::ostringstream msg;
-    msg << "--count: " << count << " particles do not fit the insertion region without overlap ("
-        << placed.bed.n() << " placed by 0-contact packing; accepted: N <= " << placed.bed.n()
-        << ", or a taller --insert-z)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format("--count: {} particles do not fit the insertion region without "
+                                 "overlap ({} placed by 0-contact packing; accepted: N <= {}, or "
+                                 "a taller --insert-z)",
+                                 count, placed.bed.n(), placed.bed.n()));
   }
   placed.bed.domain = domain;
   return placed.bed;
@@ -162,7 +160,7 @@ void set_periodic(const po::variables_map& vm, bed::Domain& domain) {
   if (periodic == "y" || periodic == "x,y" || periodic == "xy") domain.periodic[1] = true;
   if (periodic != "none" && periodic != "x" && periodic != "y" && periodic != "x,y" &&
       periodic != "xy") {
-    throw InputError("--periodic: '" + periodic + "' (accepted: none, x, y, x,y)");
+    throw InputError(fmt::format("--periodic: '{}' (accepted: none, x, y, x,y)", periodic));
   }
 }
 
@@ -196,8 +194,9 @@ void warn_unsafe_dt(const bed::Bed& bed, const dem::Scene& scene, const dem::Run
   scene.validate();
   const auto bound = dem::time_step_bound(bed, scene, s.young_scale);
   if (s.dt > bound.stable) {
-    std::cerr << "deposit: warning: --dt " << s.dt << " s is above the stable bound "
-              << bound.stable << " s (--unsafe-dt)\n";
+    std::cerr << fmt::format("deposit: warning: --dt {:g} s is above the stable bound {:g} s "
+                             "(--unsafe-dt)\n",
+                             s.dt, bound.stable);
   }
 }
 
@@ -208,7 +207,7 @@ double core_margin(const po::variables_map& vm, const bed::Bed& bed) {
   mean_diameter /= static_cast<double>(std::max<std::size_t>(1, bed.n()));
   const double margin = vm.count("core-margin") ? vm["core-margin"].as<double>() : 2 * mean_diameter;
   if (!(margin >= 0) || !std::isfinite(margin)) {
-    throw InputError("--core-margin: " + std::to_string(margin) + " (accepted: M >= 0 m)");
+    throw InputError(fmt::format("--core-margin: {:f} (accepted: M >= 0 m)", margin));
   }
   return margin;
 }
@@ -219,12 +218,10 @@ double core_margin(const po::variables_map& vm, const bed::Bed& bed) {
 std::size_t remove_lost(const po::variables_map& vm, bed::Bed& bed) {
   const std::size_t removed = dem::remove_lost_particles(bed);
   if (removed > vm["allow-lost"].as<std::size_t>()) {
-    std::ostringstream msg;
-    msg << removed << " of " << bed.n() + removed << " particles left the box during the run "
-        << "(accepted: at most --allow-lost " << vm["allow-lost"].as<std::size_t>()
-        << "); the time step may be beyond the stable bound (--unsafe-dt?) or the bed may not fit "
-           "its box";
-    throw NumericalError(msg.str());
+    throw NumericalError(fmt::format(
+        "{} of {} particles left the box during the run (accepted: at most --allow-lost {}); the "
+        "time step may be beyond the stable bound (--unsafe-dt?) or the bed may not fit its box",
+        removed, bed.n() + removed, vm["allow-lost"].as<std::size_t>()));
   }
   return removed;
 }
@@ -259,14 +256,12 @@ void record_provenance(bed::Bed& bed, const po::variables_map& vm, int argc, cha
 // The core density, or why there is none: a bed less than two margins thick (a monolayer) has
 // no core away from the floor and the surface, and its density is a layer's (bedstat --layer).
 std::string core_text(const dem::CoreDensity& core, double margin) {
-  std::ostringstream out;
   if (std::isnan(core.density)) {
-    out << "no core (the bed is thinner than 2 x --core-margin " << margin
-        << " m from floor and surface; see bedstat --layer for a layer's density)";
-  } else {
-    out << "core density " << core.density;
+    return fmt::format("no core (the bed is thinner than 2 x --core-margin {:g} m from floor and "
+                       "surface; see bedstat --layer for a layer's density)",
+                       margin);
   }
-  return out.str();
+  return fmt::format("core density {:g}", core.density);
 }
 
 // What a run reports, on stdout as JSON (--json) or one line.

@@ -2,8 +2,9 @@
 // deposit recoater scene for each layer's spread.
 #include "deposit_options.hpp"
 
-#include <sstream>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "common/deck_export.hpp"
 #include "common/material_options.hpp"
@@ -146,7 +147,7 @@ void add_deposit_options(po::options_description& desc, DepositOptions& bound) {
   add_result_options(desc);
   add_spread_options(desc, bound.spread, bound.scene);
   for (const dem::EffectRow& effect : dem::kEffects) {
-    const std::string name = std::string("effects.") + effect.name;
+    const std::string name = fmt::format("effects.{}", effect.name);
     desc.add_options()(name.c_str(), po::value<bool>()->default_value(true),
                        "effect on/off (true/false)");
   }
@@ -155,11 +156,10 @@ void add_deposit_options(po::options_description& desc, DepositOptions& bound) {
 dem::Scene deposit_scene(const po::variables_map& vm, const dem::Scene& bound) {
   dem::Scene scene = bound;
   if (!vm["trust-units"].as<bool>() && scene.material.young < 1e6) {
-    std::ostringstream msg;
-    msg << "material.young: " << scene.material.young << " Pa is below the 1 MPa of the softest "
-        << "powders: a unit slip? (accepted: E in Pa, e.g. 193e9 for 193 GPa; --trust-units if "
-           "it is meant)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format("material.young: {:g} Pa is below the 1 MPa of the softest "
+                                 "powders: a unit slip? (accepted: E in Pa, e.g. 193e9 for 193 "
+                                 "GPa; --trust-units if it is meant)",
+                                 scene.material.young));
   }
   scene.friction_model = dem::parse_friction_model(vm["friction.model"].as<std::string>());
   scene.law = dem::parse_contact_law(vm["contact.law"].as<std::string>());
@@ -172,7 +172,7 @@ dem::Scene deposit_scene(const po::variables_map& vm, const dem::Scene& bound) {
   }
   scene.effects = 0;
   for (const dem::EffectRow& effect : dem::kEffects) {
-    if (vm[std::string("effects.") + effect.name].as<bool>()) scene.effects |= effect.bit;
+    if (vm[fmt::format("effects.{}", effect.name)].as<bool>()) scene.effects |= effect.bit;
   }
   return scene;
 }

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "common/app_main.hpp"
 #include "common/progress.hpp"
 #include "deposit_options.hpp"
@@ -41,9 +43,9 @@ dem::SupplyMaker supply_maker(const po::variables_map& vm, std::uint64_t seed) {
   const std::size_t count = vm["supply.count"].as<std::size_t>();
   const double volume = vm["supply.volume"].as<double>();
   if ((count > 0) == (volume > 0)) {
-    throw InputError("supply.count / supply.volume: " +
-                     std::string(count > 0 ? "both" : "neither") +
-                     " given (accepted: one of them, a count >= 1 or a volume > 0 m^3)");
+    throw InputError(fmt::format("supply.count / supply.volume: {} given (accepted: one of them, "
+                                 "a count >= 1 or a volume > 0 m^3)",
+                                 count > 0 ? "both" : "neither"));
   }
   return [psd, count, volume, seed](const bed::Domain& region, std::uint64_t layer) {
     packgen::PackOptions options;
@@ -61,18 +63,13 @@ dem::SupplyMaker supply_maker(const po::variables_map& vm, std::uint64_t seed) {
     if (!placed.target_reached) {
       double solid = 0;
       for (const double r : placed.bed.radius) solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
-      std::ostringstream msg;
-      msg << (count > 0 ? "supply.count: " : "supply.volume: ");
-      if (count > 0) {
-        msg << count << " particles";
-      } else {
-        msg << volume << " m^3";
-      }
-      msg << " do not fit the supply region " << region.upper[0] - region.lower[0] << " x "
-          << region.upper[1] - region.lower[1] << " x " << region.upper[2] - region.lower[2]
-          << " m of layer " << layer << " without overlap (" << placed.bed.n() << " particles, "
-          << solid << " m^3 placed; accepted: at most that, or a longer or taller region)";
-      throw InputError(msg.str());
+      const std::string supply = count > 0 ? fmt::format("supply.count: {} particles", count)
+                                           : fmt::format("supply.volume: {:g} m^3", volume);
+      throw InputError(fmt::format(
+          "{} do not fit the supply region {:g} x {:g} x {:g} m of layer {} without overlap ({} "
+          "particles, {:g} m^3 placed; accepted: at most that, or a longer or taller region)",
+          supply, region.upper[0] - region.lower[0], region.upper[1] - region.lower[1],
+          region.upper[2] - region.lower[2], layer, placed.bed.n(), solid));
     }
     return std::move(placed.bed);
   };
@@ -110,7 +107,7 @@ bed::Domain spread_box(const po::variables_map& vm, std::optional<bed::Domain> g
   // Periodic across (y) unless the scene says otherwise: a strip of a wider bed.
   const std::string periodic = vm["periodic"].defaulted() ? "y" : vm["periodic"].as<std::string>();
   if (periodic != "none" && periodic != "x" && periodic != "y" && periodic != "x,y" && periodic != "xy") {
-    throw InputError("--periodic: '" + periodic + "' (accepted: none, x, y, x,y)");
+    throw InputError(fmt::format("--periodic: '{}' (accepted: none, x, y, x,y)", periodic));
   }
   bed::Domain d;
   if (given) {
@@ -281,9 +278,10 @@ namespace {
 void refuse_drop_options(const po::variables_map& vm) {
   for (const char* name : kDropOnly) {
     if (vm.count(name) && !vm[name].defaulted()) {
-      throw InputError(std::string("--") + name + ": given with recoater.tool (accepted: a drop "
-                       "option; a spread lasts the tool's travel and takes its particles from "
-                       "the supply)");
+      throw InputError(fmt::format("--{}: given with recoater.tool (accepted: a drop option; a "
+                                   "spread lasts the tool's travel and takes its particles from "
+                                   "the supply)",
+                                   name));
     }
   }
   if (vm.count("export-deck")) {  // a deck has the bed's laws but no moving tool
@@ -323,7 +321,7 @@ bed::Bed spread_input(const po::variables_map& vm, std::optional<dem::SpreadStat
   }
   const std::string in = vm["in"].as<std::string>();
   if (bed::extension_of(in) != ".h5") {
-    throw InputError("--in: '" + in + "' with recoater.tool (accepted: an .h5 bed)");
+    throw InputError(fmt::format("--in: '{}' with recoater.tool (accepted: an .h5 bed)", in));
   }
   bed::Bed bed = bed::read_bed_h5(in);
   if (dem::has_spread_state(in)) restart = dem::read_spread_state(in, bed);
@@ -337,18 +335,18 @@ std::size_t check_spread_result(const po::variables_map& vm, const dem::SpreadSu
   std::size_t lost = 0;
   for (const auto& l : r.layers) lost = l.lost;
   if (lost > vm["allow-lost"].as<std::size_t>()) {
-    std::ostringstream msg;
-    msg << lost << " of " << bed.n() << " particles left the box through the plate or a wall "
-        << "(accepted: at most --allow-lost " << vm["allow-lost"].as<std::size_t>()
-        << "); the time step may be beyond the stable bound or the tool too fast for the softening";
-    throw NumericalError(msg.str());
+    throw NumericalError(fmt::format(
+        "{} of {} particles left the box through the plate or a wall (accepted: at most "
+        "--allow-lost {}); the time step may be beyond the stable bound or the tool too fast for "
+        "the softening",
+        lost, bed.n(), vm["allow-lost"].as<std::size_t>()));
   }
   if (bed.n() == 0) {  // a layer of nothing is not a result
-    throw InputError("recoater.end: the tool pushed the whole supply past its end (" +
-                     std::to_string(r.layers.empty() ? 0 : r.layers.back().overflow) +
-                     " particles into the overflow), " +
-                     "so no powder is left on the plate (accepted: a travel that leaves powder " +
-                     "behind the tool, or recoater.overflow = false)");
+    throw InputError(fmt::format(
+        "recoater.end: the tool pushed the whole supply past its end ({} particles into the "
+        "overflow), so no powder is left on the plate (accepted: a travel that leaves powder "
+        "behind the tool, or recoater.overflow = false)",
+        r.layers.empty() ? 0 : r.layers.back().overflow));
   }
   return lost;
 }

@@ -3,7 +3,6 @@
 // radiation with Monte-Carlo view factors).
 #include <chrono>
 #include <cmath>
-#include <sstream>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +10,7 @@
 #include <iostream>
 #include <string>
 
+#include <fmt/format.h>
 
 #include "common/app_main.hpp"
 #include "common/material_options.hpp"
@@ -115,7 +115,7 @@ int axis_index(const std::string& name) {
   if (name == "x") return 0;
   if (name == "y") return 1;
   if (name == "z") return 2;
-  throw InputError("--axis: '" + name + "' (accepted: x, y, z)");
+  throw InputError(fmt::format("--axis: '{}' (accepted: x, y, z)", name));
 }
 
 // The wall temperatures: --temperature or --t-hot/--t-cold, whichever the command line gives
@@ -140,7 +140,7 @@ void set_walls(const po::variables_map& vm, const po::variables_map& command_lin
   if (use_temperature) {
     const double t = vm["temperature"].as<double>();
     if (!(std::isfinite(t) && t > kSpan))
-      throw InputError("--temperature: " + std::to_string(t) + " K (accepted: T > 1 K)");
+      throw InputError(fmt::format("--temperature: {:f} K (accepted: T > 1 K)", t));
     s.hot_temperature = t + kSpan / 2;
     s.cold_temperature = t - kSpan / 2;
     return;
@@ -158,16 +158,17 @@ kf::KeffScene make_scene(const po::variables_map& vm, const po::variables_map& c
   set_walls(vm, command_line, s);
   const std::string model = vm["gas.model"].as<std::string>();
   if (model != "constant" && model != "air")
-    throw InputError("gas.model: '" + model + "' (accepted: constant, air)");
+    throw InputError(fmt::format("gas.model: '{}' (accepted: constant, air)", model));
   s.gas_model = model == "air" ? kf::GasModel::air : kf::GasModel::constant;
   const std::string region = vm["gas.lens-region"].as<std::string>();
   if (region != "both-lenses" && region != "larger-lens")
-    throw InputError("gas.lens-region: '" + region + "' (accepted: both-lenses, larger-lens)");
+    throw InputError(
+        fmt::format("gas.lens-region: '{}' (accepted: both-lenses, larger-lens)", region));
   s.lens.region =
       region == "larger-lens" ? kf::LensRegion::larger_lens : kf::LensRegion::both_lenses;
   const std::string radiation = vm["radiation.model"].as<std::string>();
   if (radiation != "pair" && radiation != "radiosity")
-    throw InputError("radiation.model: '" + radiation + "' (accepted: pair, radiosity)");
+    throw InputError(fmt::format("radiation.model: '{}' (accepted: pair, radiosity)", radiation));
   s.radiation_model =
       radiation == "radiosity" ? kf::RadiationModel::radiosity : kf::RadiationModel::pair;
   s.validate();
@@ -203,10 +204,9 @@ std::string profile_csv(const kf::TemperatureProfile& p, const kf::KeffScene& sc
 // of a tenth of a millimetre is a slip of units, not a model.
 void check_units(const po::variables_map& vm, const kf::KeffScene& scene) {
   if (vm["trust-units"].as<bool>() || scene.lens.min_gap <= 1e-4) return;
-  std::ostringstream msg;
-  msg << "gas.min-gap: " << scene.lens.min_gap << " m: a unit slip? (accepted: l_min in metres "
-      << "up to 1e-4, e.g. 1e-6; --trust-units if it is meant)";
-  throw InputError(msg.str());
+  throw InputError(fmt::format("gas.min-gap: {:g} m: a unit slip? (accepted: l_min in metres up "
+                               "to 1e-4, e.g. 1e-6; --trust-units if it is meant)",
+                               scene.lens.min_gap));
 }
 
 // Inputs and outputs checked before the work: a folder where the profile goes, or --out = the
@@ -245,12 +245,10 @@ kf::KeffResult solve(const po::variables_map& vm, const bed::Bed& bed, const kf:
   kf::KeffResult r = kf::solve_keff(bed, scene, network);
   // No conducting path from wall to wall gives k_eff = 0 up to round-off: not a result.
   if (!(r.k_eff > 0) || !std::isfinite(r.k_eff)) {
-    std::ostringstream msg;
-    msg << "k_eff = " << r.k_eff << " W/mK: no heat path joins the two walls ("
-        << r.rattlers.size() << " of " << bed.n()
-        << " particles isolated; accepted: a bed whose particles connect the walls, e.g. a "
-           "settled bed from deposit)";
-    throw NumericalError(msg.str());
+    throw NumericalError(fmt::format("k_eff = {:g} W/mK: no heat path joins the two walls ({} of "
+                                     "{} particles isolated; accepted: a bed whose particles "
+                                     "connect the walls, e.g. a settled bed from deposit)",
+                                     r.k_eff, r.rattlers.size(), bed.n()));
   }
   wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "common/app_main.hpp"
 #include "common/contact_report.hpp"
 #include "common/options.hpp"
@@ -31,11 +33,10 @@ const char* const kUsage =
 void add_options(po::options_description& desc, packgen::PackOptions& o) {
   app::add_common_options(desc);
   app::add_progress_option(desc);
-  const std::string directions_help =
-      "K: directions per 1-contact try, circle angles per 3D 2-contact try (default " +
-      std::to_string(packgen::kDirections2D) +
-      " in 2D: the [LP] 1-contact density, docs/results/packgen-2d-study.md; " +
-      std::to_string(packgen::kDirections3D) + " in 3D)";
+  const std::string directions_help = fmt::format(
+      "K: directions per 1-contact try, circle angles per 3D 2-contact try (default {} in 2D: the "
+      "[LP] 1-contact density, docs/results/packgen-2d-study.md; {} in 3D)",
+      packgen::kDirections2D, packgen::kDirections3D);
   desc.add_options()
       ("dim", po::value<std::string>()->required(), "2 (disks) or 3 (spheres); must match --domain")
       ("domain", po::value<std::string>()->required(), "LX,LY[,LZ] (m): the box [0, L]")
@@ -86,13 +87,12 @@ void add_options(po::options_description& desc, packgen::PackOptions& o) {
 bed::Domain domain_of(const po::variables_map& vm) {
   const std::string dim_text = vm["dim"].as<std::string>();
   if (dim_text != "2" && dim_text != "3")
-    throw InputError("--dim: '" + dim_text + "' (accepted: 2 or 3)");
+    throw InputError(fmt::format("--dim: '{}' (accepted: 2 or 3)", dim_text));
   const int dim = dim_text == "2" ? 2 : 3;
   const bed::Domain domain = app::parse_domain_lengths(vm["domain"].as<std::string>(), "--domain");
   if (dim != domain.dimension) {
-    throw InputError("--dim: " + std::to_string(dim) + " but --domain '" +
-                     vm["domain"].as<std::string>() + "' has " +
-                     std::to_string(domain.dimension) + " lengths (accepted: equal)");
+    throw InputError(fmt::format("--dim: {} but --domain '{}' has {} lengths (accepted: equal)",
+                                 dim, vm["domain"].as<std::string>(), domain.dimension));
   }
   return domain;
 }
@@ -123,11 +123,12 @@ packgen::PackOptions pack_options(const po::variables_map& vm, const packgen::Pa
 
 // A stop rule that was not reached: the bed is written all the same, with a warning.
 void warn_unreached(const packgen::PackOptions& o, const bed::Bed& b, double density) {
-  std::cerr << "packgen: warning: " << (o.count > 0 ? "--count " : "--target-density ")
-            << (o.count > 0 ? std::to_string(o.count) : app::tolerance_key(o.target_density))
-            << " not reached: stopped after " << o.max_failures
-            << " consecutive failed placements with " << b.n() << " particles at density "
-            << density << "; the bed was written\n";
+  const std::string target =
+      o.count > 0 ? fmt::format("--count {}", o.count)
+                  : fmt::format("--target-density {}", app::tolerance_key(o.target_density));
+  std::cerr << fmt::format("packgen: warning: {} not reached: stopped after {} consecutive failed "
+                           "placements with {} particles at density {:g}; the bed was written\n",
+                           target, o.max_failures, b.n(), density);
 }
 
 // What --json prints: the bed's density and contacts, the run's counters and settings.

@@ -11,8 +11,9 @@
 #include <optional>
 #include <cstdio>
 #include <iostream>
-#include <sstream>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "common/app_main.hpp"
 #include "common/material_options.hpp"
@@ -229,8 +230,9 @@ void check_files(const po::variables_map& vm, const std::string& bed_path,
   const bool fuse = vm["fuse"].as<bool>();
   const double melt_fraction = vm["fuse.melt-fraction"].as<double>();
   if (fuse && !(melt_fraction > 0 && melt_fraction <= 1))
-    throw InputError("--fuse.melt-fraction: " + std::to_string(melt_fraction) +
-                     " (accepted: 0 < f <= 1; 0.5 fuses what reached T_m, 1 what was wholly liquid)");
+    throw InputError(fmt::format("--fuse.melt-fraction: {:f} (accepted: 0 < f <= 1; 0.5 fuses what "
+                                 "reached T_m, 1 what was wholly liquid)",
+                                 melt_fraction));
   if (vm.count("fused-bed")) {
     if (!fuse) throw InputError("--fused-bed: given without --fuse (accepted: --fuse --fused-bed BED.h5)");
     const std::string fused_bed = vm["fused-bed"].as<std::string>();
@@ -308,8 +310,9 @@ int run(int argc, char** argv) {
   th::Sinter sinter(bed, scene, table);
   if (scene.unsafe_dt && scene.dt > sinter.stable_steps().grid &&
       scene.integrator == th::Integrator::explicit_euler) {
-    std::cerr << "sinter: warning: --dt " << scene.dt << " s is above the stable bound "
-              << sinter.stable_steps().grid << " s (--unsafe-dt)\n";
+    std::cerr << fmt::format("sinter: warning: --dt {:g} s is above the stable bound {:g} s "
+                             "(--unsafe-dt)\n",
+                             scene.dt, sinter.stable_steps().grid);
   }
   if (explain_only) {
     const th::ExplainReport report = th::explain(bed, scene, sinter);

@@ -6,8 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "common/material_options.hpp"
 #include "common/progress.hpp"
@@ -52,8 +53,8 @@ std::vector<th::ScanSegment> scan_path_of(const po::variables_map& vm, const th:
   if (!hatch) {  // a hatch option without the hatch is a mistake, not a default
     for (const char* name : {"scan.tracks", "scan.direction", "scan.rotation", "scan.layer", "scan.region"})
       if (vm.count(name) && !vm[name].defaulted())
-        throw InputError(std::string("--") + name + ": given without --scan.hatch (accepted: "
-                         "--scan.hatch H with it)");
+        throw InputError(fmt::format(
+            "--{}: given without --scan.hatch (accepted: --scan.hatch H with it)", name));
   }
   if (csv) return th::read_scan_csv(vm["scan-path"].as<std::string>());
   if (!hatch) return {};
@@ -62,7 +63,8 @@ std::vector<th::ScanSegment> scan_path_of(const po::variables_map& vm, const th:
   h.tracks = vm["scan.tracks"].as<std::size_t>();
   const std::string direction = vm["scan.direction"].as<std::string>();
   if (direction != "one-way" && direction != "alternating")
-    throw InputError("--scan.direction: '" + direction + "' (accepted: one-way, alternating)");
+    throw InputError(
+        fmt::format("--scan.direction: '{}' (accepted: one-way, alternating)", direction));
   h.direction = direction == "one-way" ? th::HatchDirection::one_way : th::HatchDirection::alternating;
   h.rotation = vm["scan.rotation"].as<double>();
   if (!std::isfinite(h.rotation))
@@ -224,7 +226,8 @@ void set_material(const po::variables_map& vm, th::SinterScene& s) {
       material_file(vm["material.table"].as<std::string>(), vm, "material.table");
   const std::string liquid = vm["material.liquid-conductivity"].as<std::string>();
   if (liquid != "solid" && liquid != "table")
-    throw InputError("material.liquid-conductivity: '" + liquid + "' (accepted: solid, table)");
+    throw InputError(
+        fmt::format("material.liquid-conductivity: '{}' (accepted: solid, table)", liquid));
   s.liquid_conductivity =
       liquid == "solid" ? th::LiquidConductivity::solid : th::LiquidConductivity::table;
 }
@@ -234,17 +237,20 @@ void set_material(const po::variables_map& vm, th::SinterScene& s) {
 void set_laser(const po::variables_map& vm, th::SinterScene& s) {
   const std::string shading = vm["laser.substrate-shading"].as<std::string>();
   if (shading != "layer" && shading != "column")
-    throw InputError("laser.substrate-shading: '" + shading + "' (accepted: layer, column)");
+    throw InputError(
+        fmt::format("laser.substrate-shading: '{}' (accepted: layer, column)", shading));
   s.substrate_shading =
       shading == "layer" ? th::SubstrateShading::layer : th::SubstrateShading::column;
   const std::string absorption = vm["laser.absorption"].as<std::string>();
   if (absorption != "beer-lambert" && absorption != "ray-trace")
-    throw InputError("laser.absorption: '" + absorption + "' (accepted: beer-lambert, ray-trace)");
+    throw InputError(
+        fmt::format("laser.absorption: '{}' (accepted: beer-lambert, ray-trace)", absorption));
   s.absorption = absorption == "ray-trace" ? th::LaserAbsorption::ray_trace
                                            : th::LaserAbsorption::beer_lambert;
   const std::string reflection = vm["laser.reflection"].as<std::string>();
   if (reflection != "specular" && reflection != "diffuse")
-    throw InputError("laser.reflection: '" + reflection + "' (accepted: specular, diffuse)");
+    throw InputError(
+        fmt::format("laser.reflection: '{}' (accepted: specular, diffuse)", reflection));
   s.rays.reflection =
       reflection == "specular" ? th::Reflection::specular : th::Reflection::diffuse;
 }
@@ -255,14 +261,14 @@ void set_grid(const po::variables_map& vm, double lx, double ly, th::SinterScene
                                             "substrate.nodes");
   for (std::size_t a = 0; a < 3; ++a) {
     if (!(nodes[a] >= 0 && nodes[a] == std::floor(nodes[a])))
-      throw InputError("substrate.nodes: '" + vm["substrate.nodes"].as<std::string>() +
-                       "' (accepted: three whole numbers >= 3)");
+      throw InputError(fmt::format("substrate.nodes: '{}' (accepted: three whole numbers >= 3)",
+                                   vm["substrate.nodes"].as<std::string>()));
     s.nodes[a] = static_cast<std::size_t>(nodes[a]);
   }
   if (vm.count("grid-spacing")) {
     const double h = vm["grid-spacing"].as<double>();
     if (!(h > 0 && std::isfinite(h)))
-      throw InputError("--grid-spacing: " + std::to_string(h) + " (accepted: DX > 0 m)");
+      throw InputError(fmt::format("--grid-spacing: {:f} (accepted: DX > 0 m)", h));
     const double lengths[3] = {lx, ly, s.substrate_depth};
     for (std::size_t a = 0; a < 3; ++a)
       s.nodes[a] = static_cast<std::size_t>(std::llround(lengths[a] / h)) + 1;
@@ -273,11 +279,12 @@ void set_grid(const po::variables_map& vm, double lx, double ly, th::SinterScene
 void set_time(const po::variables_map& vm, th::SinterScene& s) {
   const std::string integrator = vm["integrator"].as<std::string>();
   if (integrator != "explicit" && integrator != "implicit")
-    throw InputError("--integrator: '" + integrator + "' (accepted: explicit, implicit)");
+    throw InputError(
+        fmt::format("--integrator: '{}' (accepted: explicit, implicit)", integrator));
   s.integrator = integrator == "explicit" ? th::Integrator::explicit_euler
                                           : th::Integrator::implicit_euler;
   if (vm.count("dt") && !(s.dt > 0))
-    throw InputError("--dt: " + std::to_string(s.dt) + " (accepted: dt > 0 s)");
+    throw InputError(fmt::format("--dt: {:f} (accepted: dt > 0 s)", s.dt));
 }
 
 th::SinterScene make_scene(const po::variables_map& vm, const th::SinterScene& bound, double lx,
@@ -297,24 +304,23 @@ th::SinterScene make_scene(const po::variables_map& vm, const th::SinterScene& b
 // likely mistake; --trust-units skips them where a huge value is meant.
 void check_units(const th::SinterScene& s, const bed::Bed& bed) {
   const double size = std::max(bed.domain.length(0), bed.domain.length(1));
-  const auto refuse = [](const std::string& what) { throw InputError(what + " (--trust-units if it is meant)"); };
+  const auto refuse = [](const std::string& what) {
+    throw InputError(fmt::format("{} (--trust-units if it is meant)", what));
+  };
   if (s.spot_radius > size) {
-    std::ostringstream msg;
-    msg << "--spot: w = " << s.spot_radius << " m is wider than the bed (" << size
-        << " m): a unit slip? (accepted: a beam radius in metres, e.g. 54e-6)";
-    refuse(msg.str());
+    refuse(fmt::format("--spot: w = {:g} m is wider than the bed ({:g} m): a unit slip? "
+                       "(accepted: a beam radius in metres, e.g. 54e-6)",
+                       s.spot_radius, size));
   }
   if (s.power > 1e4) {
-    std::ostringstream msg;
-    msg << "--power: " << s.power << " W is beyond the lasers of powder-bed machines (accepted: up "
-           "to 1e4 W)";
-    refuse(msg.str());
+    refuse(fmt::format("--power: {:g} W is beyond the lasers of powder-bed machines (accepted: "
+                       "up to 1e4 W)",
+                       s.power));
   }
   if (s.substrate_depth > 1e-2) {
-    std::ostringstream msg;
-    msg << "substrate.depth: " << s.substrate_depth << " m: a unit slip? (accepted: a depth in "
-           "metres up to 1e-2, e.g. 0.3e-3)";
-    refuse(msg.str());
+    refuse(fmt::format("substrate.depth: {:g} m: a unit slip? (accepted: a depth in metres up "
+                       "to 1e-2, e.g. 0.3e-3)",
+                       s.substrate_depth));
   }
 }
 
@@ -327,11 +333,11 @@ void check_grid_memory(const th::SinterScene& s) {
   const double memory = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
                         static_cast<double>(::sysconf(_SC_PAGE_SIZE));
   if (bytes > memory) {
-    std::ostringstream msg;
-    msg << "substrate.nodes: " << s.nodes[0] << "," << s.nodes[1] << "," << s.nodes[2] << " ("
-        << nodes << " nodes) needs about " << bytes / (1u << 30) << " GiB; this machine has "
-        << memory / (1u << 30) << " GiB (accepted: fewer nodes, or a coarser --grid-spacing)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format("substrate.nodes: {},{},{} ({:g} nodes) needs about {:g} GiB; "
+                                 "this machine has {:g} GiB (accepted: fewer nodes, or a "
+                                 "coarser --grid-spacing)",
+                                 s.nodes[0], s.nodes[1], s.nodes[2], nodes, bytes / (1u << 30),
+                                 memory / (1u << 30)));
   }
 }
 

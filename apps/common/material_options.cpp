@@ -3,8 +3,9 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
-#include <sstream>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/json.hpp"
@@ -57,14 +58,13 @@ void add_material_options(po::options_description& desc, const char* app) {
   std::string filled;
   for (const auto& m : kMaterialOptions) {
     if (std::string(m.app) != app) continue;
-    filled += (filled.empty() ? "" : ", ") + std::string(m.option);
+    filled += fmt::format("{}{}", filled.empty() ? "" : ", ", m.option);
   }
-  const std::string help =
+  const std::string help = fmt::format(
       "material: a name of --list-materials (data/materials/NAME.csv) or a path to a material "
-      "CSV; fills " +
-      filled +
-      " (an option given beside it wins: on the command line always, in the scene file when "
-      "--material is in the scene file too)";
+      "CSV; fills {} (an option given beside it wins: on the command line always, in the scene "
+      "file when --material is in the scene file too)",
+      filled);
   desc.add_options()("material", po::value<std::string>(), help.c_str())(
       "list-materials", "print the shipped materials (name and description) and exit");
 }
@@ -111,7 +111,7 @@ std::vector<std::string> apply_material(const char* app, po::variables_map& vm,
   try {
     file = bed::read_material_file(path);
   } catch (const InputError& e) {
-    throw InputError(std::string("--material: ") + e.what());
+    throw InputError(fmt::format("--material: {}", e.what()));
   }
   // Given beside it, an option wins: at the command line always, in the scene file unless
   // --material itself was typed at the command line (then the scene's values give way).
