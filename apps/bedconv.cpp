@@ -7,6 +7,8 @@
 #include <sstream>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "common/app_main.hpp"
 #include "common/deck_export.hpp"
 #include "common/options.hpp"
@@ -69,7 +71,8 @@ std::vector<double> densities(const po::variables_map& vm, const app::DeckScene&
   if (vm.count("density")) {
     const auto list = app::parse_number_list(vm["density"].as<std::string>(), 1, 65536, "--density");
     for (double rho : list) {
-      if (!(rho > 0)) throw InputError("--density: " + std::to_string(rho) + " (accepted: > 0 kg/m^3)");
+      if (!(rho > 0))
+        throw InputError(fmt::format("--density: {:f} (accepted: > 0 kg/m^3)", rho));
     }
     origin = "--density";
     return list;
@@ -90,12 +93,14 @@ std::size_t write_trajectory(const std::string& in, const std::string& out,
   for (std::size_t k = 0; k < snapshots.size(); ++k) {
     const bed::Bed& b = snapshots[k].bed;
     if (b.id != first.id || b.radius != first.radius)
-      throw InputError(in + ": snapshot " + std::to_string(k) + " (step " +
-                       std::to_string(snapshots[k].step) + ") holds other atoms than the first "
-                       "(accepted: the same atoms, sorted alike, in every snapshot: dump_modify sort id)");
+      throw InputError(fmt::format("{}: snapshot {} (step {}) holds other atoms than the first "
+                                   "(accepted: the same atoms, sorted alike, in every snapshot: "
+                                   "dump_modify sort id)",
+                                   in, k, snapshots[k].step));
     if (snapshots[k].time < 0 && !vm.count("dt"))
-      throw InputError(in + ": no ITEM: TIME in step " + std::to_string(snapshots[k].step) +
-                       " (accepted: a dump with times, or --dt DT for time = step x DT)");
+      throw InputError(fmt::format("{}: no ITEM: TIME in step {} (accepted: a dump with times, or "
+                                   "--dt DT for time = step x DT)",
+                                   in, snapshots[k].step));
   }
   dem::TrajectoryWriter writer(out, first);
   for (const auto& s : snapshots) {
@@ -119,10 +124,10 @@ app::DeckScene scene_of(const bed::Bed& b, const std::string& in) {
         << c.poisson << "\nwall.young = " << c.wall_young << "\nwall.poisson = " << c.wall_poisson
         << "\nyoung-scale = " << c.young_scale << "\n";
     if (c.law == "linear") ini << "contact.stiffness = " << c.stiffness << "\n";
-    app::apply_scene_text(ini.str(), in + " /provenance contact_* attributes", scene);
+    app::apply_scene_text(ini.str(), fmt::format("{} /provenance contact_* attributes", in), scene);
   }
   if (b.provenance.stage == "deposit")
-    app::apply_scene_text(b.provenance.scene, in + " /provenance scene", scene);
+    app::apply_scene_text(b.provenance.scene, fmt::format("{} /provenance scene", in), scene);
   return scene;
 }
 
@@ -135,7 +140,7 @@ bed::DeckLaws laws_for(const bed::Bed& b, const std::string& in, const po::varia
     std::ifstream file(path);
     std::ostringstream text;
     text << file.rdbuf();
-    if (!file) throw InputError("--deck-scene: cannot read '" + path + "'");
+    if (!file) throw InputError(fmt::format("--deck-scene: cannot read '{}'", path));
     app::apply_scene_text(text.str(), path, scene);
   }
   bool has_density = false;
@@ -175,19 +180,20 @@ Request request_of(const po::variables_map& vm) {
   r.all = vm["all-snapshots"].as<bool>();
   r.deck = vm.count("deck") > 0;
   if (vm.count("density") && !r.data_out)
-    throw InputError("--density: only used for .data output (OUT is '" + r.out + "')");
+    throw InputError(fmt::format("--density: only used for .data output (OUT is '{}')", r.out));
   if (r.deck && !r.data_out)
-    throw InputError("--deck: OUT must be the deck's .data file (OUT is '" + r.out + "')");
+    throw InputError(fmt::format("--deck: OUT must be the deck's .data file (OUT is '{}')", r.out));
   if (!r.deck && (vm.count("deck-scene") || !vm["deck-steps"].defaulted()))
     throw InputError("--deck-scene / --deck-steps: only with --deck");
   if (r.all && r.in_ext != ".dump" && r.in_ext != ".lammpstrj")
-    throw InputError("--all-snapshots: IN must be a .dump or .lammpstrj (IN is '" + r.in + "')");
+    throw InputError(
+        fmt::format("--all-snapshots: IN must be a .dump or .lammpstrj (IN is '{}')", r.in));
   if (vm.count("dt") && !r.deck && !r.all)
     throw InputError("--dt: only with --deck or --all-snapshots");
   if (vm.count("dt") && !(vm["dt"].as<double>() > 0))
-    throw InputError("--dt: " + std::to_string(vm["dt"].as<double>()) + " (accepted: dt > 0 s)");
+    throw InputError(fmt::format("--dt: {:f} (accepted: dt > 0 s)", vm["dt"].as<double>()));
   r.tol = vm["tol"].as<double>();
-  if (!(r.tol >= 0)) throw InputError("--tol: " + std::to_string(r.tol) + " (accepted: T >= 0)");
+  if (!(r.tol >= 0)) throw InputError(fmt::format("--tol: {:f} (accepted: T >= 0)", r.tol));
   if (r.deck) r.engine = bed::parse_deck_engine(vm["deck"].as<std::string>(), "--deck");
   return r;
 }
@@ -212,13 +218,14 @@ void check_files(const Request& r, const bed::DeckFiles& files, const po::variab
 bed::Bed read_input(const Request& r, const po::variables_map& vm) {
   if (vm.count("domain")) {
     if (r.in_ext != ".csv" && r.in_ext != ".txt")
-      throw InputError("--domain: only for CSV or YADE input ('" + r.in +
-                       "' carries its own domain)");
+      throw InputError(
+          fmt::format("--domain: only for CSV or YADE input ('{}' carries its own domain)", r.in));
     const bed::Domain domain = app::parse_domain_bounds(vm["domain"].as<std::string>(), "--domain");
     return bed::read_bed_any(r.in, &domain);
   }
   if (r.in_ext == ".csv")
-    throw InputError(r.in + ": CSV carries no domain; give --domain xlo,ylo,zlo,xhi,yhi,zhi (m)");
+    throw InputError(
+        fmt::format("{}: CSV carries no domain; give --domain xlo,ylo,zlo,xhi,yhi,zhi (m)", r.in));
   return bed::read_bed_any(r.in);
 }
 

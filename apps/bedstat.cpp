@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "common/app_main.hpp"
 #include "common/bed_report.hpp"
 #include "common/contact_report.hpp"
@@ -89,9 +91,9 @@ void print_table(std::ostream& out, const std::vector<Report>& reports, const Re
             cells(reports, [](auto& s, const Report& r) { s << r.bed.domain.dimension; }));
   table_row(out, "density (box)", cells(reports, [](auto& s, const Report& r) { s << r.box_density; }));
   if (req.layer) {
-    std::ostringstream label;
-    label << "density (layer " << req.layer->first << ".." << req.layer->second << ")";
-    table_row(out, label.str(), cells(reports, [](auto& s, const Report& r) { s << *r.layer_density; }));
+    const std::string label =
+        fmt::format("density (layer {:g}..{:g})", req.layer->first, req.layer->second);
+    table_row(out, label, cells(reports, [](auto& s, const Report& r) { s << *r.layer_density; }));
   }
   for (std::size_t t = 0; t < std::size(app::kReportedTolerances); ++t) {
     table_row(out, "coordination (tol " + app::tolerance_key(app::kReportedTolerances[t]) + ")",
@@ -158,12 +160,13 @@ Request parse_request(const po::variables_map& vm) {
   Request req;
   req.tolerance = vm["tol"].as<double>();
   if (!(req.tolerance >= 0) || !std::isfinite(req.tolerance)) {
-    throw InputError("--tol: " + std::to_string(req.tolerance) + " (accepted: >= 0)");
+    throw InputError(fmt::format("--tol: {:f} (accepted: >= 0)", req.tolerance));
   }
   if (vm.count("layer")) {
     const auto z = app::parse_number_list(vm["layer"].as<std::string>(), 2, 2, "--layer");
     if (!(z[1] > z[0])) {
-      throw InputError("--layer: '" + vm["layer"].as<std::string>() + "' (accepted: Z0,Z1 with Z0 < Z1)");
+      throw InputError(fmt::format("--layer: '{}' (accepted: Z0,Z1 with Z0 < Z1)",
+                                   vm["layer"].as<std::string>()));
     }
     req.layer = std::make_pair(z[0], z[1]);
   }
@@ -177,9 +180,7 @@ Request parse_request(const po::variables_map& vm) {
   if (vm.count("order")) {
     req.order_margin = vm["order-margin"].as<double>();
     if (!(*req.order_margin >= 0)) {
-      std::ostringstream msg;
-      msg << "--order-margin: " << *req.order_margin << " (accepted: >= 0 m)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format("--order-margin: {:g} (accepted: >= 0 m)", *req.order_margin));
     }
   }
   return req;
@@ -190,12 +191,13 @@ void check_spread_options(const po::variables_map& vm, std::size_t beds,
                           std::vector<app::PathArg>& inputs, std::vector<app::PathArg>& outputs) {
   for (const char* name : {"plate", "gap", "window", "raster", "height-map", "feed"}) {
     if (vm.count(name) && !vm.count("spread")) {
-      throw InputError(std::string("--") + name + ": given without --spread (accepted: with --spread)");
+      throw InputError(
+          fmt::format("--{}: given without --spread (accepted: with --spread)", name));
     }
   }
   if (vm.count("height-map")) {
     if (beds != 1) {
-      throw InputError("--height-map: " + std::to_string(beds) + " beds given (accepted: one bed)");
+      throw InputError(fmt::format("--height-map: {} beds given (accepted: one bed)", beds));
     }
     outputs.push_back({"--height-map", vm["height-map"].as<std::string>()});
     app::check_extension(outputs.back(), {".csv"});
@@ -210,9 +212,7 @@ app::SpreadRequest parse_spread_request(const po::variables_map& vm,
   auto positive = [&](const char* name) {
     const double v = vm[name].as<double>();
     if (!(v > 0)) {
-      std::ostringstream msg;
-      msg << "--" << name << ": " << v << " (accepted: > 0 m)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format("--{}: {:g} (accepted: > 0 m)", name, v));
     }
     return v;
   };
@@ -222,7 +222,8 @@ app::SpreadRequest parse_spread_request(const po::variables_map& vm,
   if (vm.count("window")) {
     const auto x = app::parse_number_list(vm["window"].as<std::string>(), 2, 2, "--window");
     if (!(x[1] > x[0])) {
-      throw InputError("--window: '" + vm["window"].as<std::string>() + "' (accepted: X0,X1 with X0 < X1)");
+      throw InputError(fmt::format("--window: '{}' (accepted: X0,X1 with X0 < X1)",
+                                   vm["window"].as<std::string>()));
     }
     sp.window = std::make_pair(x[0], x[1]);
   }

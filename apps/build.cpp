@@ -9,12 +9,15 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "common/app_main.hpp"
 #include "common/options.hpp"
@@ -86,8 +89,8 @@ std::string beside_config(const po::variables_map& vm, const char* option) {
 // The options of a stage (deposit or sinter) from its scene file and the extra arguments, parsed
 // as that program parses them; errors name the stage's option and file.
 po::variables_map parse_stage(const char* option, const char* program,
-                              void (*add)(po::options_description&), const std::string& scene,
-                              const std::string& extra) {
+                              const std::function<void(po::options_description&)>& add,
+                              const std::string& scene, const std::string& extra) {
   std::vector<std::string> args{program, "--config", scene};
   std::istringstream words(extra);
   for (std::string w; words >> w;) args.push_back(w);
@@ -100,7 +103,7 @@ po::variables_map parse_stage(const char* option, const char* program,
     if (!app::parse_options(program, "", desc, {}, static_cast<int>(argv.size()), argv.data(), vm))
       throw InputError("asks for help, a version or the config (accepted: scene options only)");
   } catch (const std::exception& e) {
-    throw InputError(std::string("--") + option + ": " + scene + ": " + e.what());
+    throw InputError(fmt::format("--{}: {}: {}", option, scene, e.what()));
   }
   return vm;
 }
@@ -117,16 +120,18 @@ void prepare_out(const std::string& out) {
   const fs::path dir(out);
   if (fs::exists(dir)) {
     if (!fs::is_directory(dir))
-      throw InputError("--out: '" + out + "' is a file (accepted: a new or empty folder)");
+      throw InputError(fmt::format("--out: '{}' is a file (accepted: a new or empty folder)", out));
     if (!fs::is_empty(dir))
-      throw InputError("--out: '" + out + "' is not empty (accepted: a new or empty folder, so "
-                       "that no earlier build's files are replaced)");
+      throw InputError(fmt::format("--out: '{}' is not empty (accepted: a new or empty folder, so "
+                                   "that no earlier build's files are replaced)",
+                                   out));
     return;
   }
   const fs::path parent = dir.has_parent_path() && dir.parent_path() != "" ? dir.parent_path() : ".";
   if (!fs::is_directory(parent))
-    throw InputError("--out: the folder '" + parent.string() + "' for '" + out +
-                     "' does not exist (accepted: a folder whose parent exists)");
+    throw InputError(fmt::format("--out: the folder '{}' for '{}' does not exist (accepted: a "
+                                 "folder whose parent exists)",
+                                 parent.string(), out));
 }
 
 // The solid fraction of the layer the scan met: the particles whose centres lie over the
@@ -207,6 +212,8 @@ void layer_json(bed::JsonWriter& j, const LayerReport& l) {
 // Everything a layer needs that stays from one layer to the next.
 struct Build {
   po::variables_map dvm, svm;
+  app::DepositOptions spread_options;  // what the spread stage's options of a plain type filled
+  th::SinterScene scan_options;        // ... and the scan stage's (app::sinter_scene starts there)
   dem::Scene scene;
   dem::SpreadSettings spread;
   th::MaterialTable table;
@@ -230,7 +237,8 @@ double tool_bottom(const Build& b, const bed::Bed& bed, std::uint64_t layer) {
 std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::HeightMap& floor,
                                 std::uint64_t layer, app::ProgressBar& bar, double done,
                                 double share, LayerReport& rep) {
-  const th::SinterScene scene = app::sinter_scene(b.svm, bed, b.scan_layer0 + layer - 1);
+  const th::SinterScene scene =
+      app::sinter_scene(b.svm, b.scan_options, bed, b.scan_layer0 + layer - 1);
   th::Sinter sinter(bed, scene, b.table, floor.z);
   bed::Bed labelled = bed;
   labelled.provenance.created_by = app::version_string("build");
@@ -244,7 +252,7 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   rep.scan = sinter.run([&](const th::Sinter& s) { writer.snapshot(s); }, every,
                         [&](const th::SinterProgress& p) {
                           bar.draw(done + share * p.time / p.t_end,
-                                   "layer " + std::to_string(layer) + " scan");
+                                   fmt::format("layer {} scan", layer));
                         });
   rep.scan_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // The deposit levelled (by default over half the beam radius: the melt pool spans ~2 w across)
@@ -305,12 +313,14 @@ Build read_build(const po::variables_map& vm, int argc, char** argv) {
   if (vm["layers"].as<std::uint64_t>() < 1) throw InputError("--layers: 0 (accepted: N >= 1)");
   b.melt_fraction = vm["fuse.melt-fraction"].as<double>();
   if (!(b.melt_fraction > 0 && b.melt_fraction <= 1))
-    throw InputError("--fuse.melt-fraction: " + std::to_string(b.melt_fraction) +
-                     " (accepted: 0 < f <= 1; 0.5 fuses what reached T_m, 1 what was wholly liquid)");
+    throw InputError(fmt::format("--fuse.melt-fraction: {:f} (accepted: 0 < f <= 1; 0.5 fuses what "
+                                 "reached T_m, 1 what was wholly liquid)",
+                                 b.melt_fraction));
   b.snapshots = vm["snapshots"].as<std::size_t>();
   if (vm.count("fuse.level")) {
     b.level = vm["fuse.level"].as<double>();
-    if (!(b.level >= 0)) throw InputError("--fuse.level: " + std::to_string(b.level) + " (accepted: a length >= 0 m)");
+    if (!(b.level >= 0))
+      throw InputError(fmt::format("--fuse.level: {:f} (accepted: a length >= 0 m)", b.level));
   }
   b.command_line = app::command_line(argc, argv);
   const std::string spread_scene = beside_config(vm, "spread");
@@ -320,16 +330,23 @@ Build read_build(const po::variables_map& vm, int argc, char** argv) {
   prepare_out(b.out);
   app::apply_thread_team(vm);
 
-  b.dvm = parse_stage("spread", "deposit", app::add_deposit_options, spread_scene,
+  const auto spread_options = [&b](po::options_description& d) {
+    app::add_deposit_options(d, b.spread_options);
+  };
+  b.dvm = parse_stage("spread", "deposit", spread_options, spread_scene,
                       vm["spread-args"].as<std::string>() + " --seed " + std::to_string(seed));
   if (!app::spread_requested(b.dvm))
-    throw InputError("--spread: " + spread_scene + " names no recoater (accepted: a deposit scene "
-                     "with recoater.tool = blade or roller, docs/deposit-spread.md)");
-  b.svm = parse_stage("sinter", "sinter", app::add_sinter_options, sinter_scene,
+    throw InputError(fmt::format("--spread: {} names no recoater (accepted: a deposit scene with "
+                                 "recoater.tool = blade or roller, docs/deposit-spread.md)",
+                                 spread_scene));
+  const auto scan_options = [&b](po::options_description& d) {
+    app::add_sinter_options(d, b.scan_options);
+  };
+  b.svm = parse_stage("sinter", "sinter", scan_options, sinter_scene,
                       vm["sinter-args"].as<std::string>());
   b.scan_layer0 = b.svm["scan.layer"].as<std::size_t>();
-  b.scene = app::deposit_scene(b.dvm);
-  b.spread = app::spread_settings(b.dvm, seed);
+  b.scene = app::deposit_scene(b.dvm, b.spread_options.scene);
+  b.spread = app::spread_settings(b.dvm, b.spread_options.spread, seed);
   b.spread.layers = 1;
   return b;
 }
@@ -344,8 +361,9 @@ bed::Bed build_input(const po::variables_map& vm, const Build& b, std::optional<
   const std::string in = vm["in"].as<std::string>();
   bed::Bed bed = bed::read_bed_h5(in);
   if (!dem::has_spread_state(in))
-    throw InputError("--in: '" + in + "' has no /restart group (accepted: a layer file "
-                     "DIR/layer-NNN.h5 of a build)");
+    throw InputError(fmt::format("--in: '{}' has no /restart group (accepted: a layer file "
+                                 "DIR/layer-NNN.h5 of a build)",
+                                 in));
   state = dem::read_spread_state(in, bed);
   bed.domain = app::spread_box(b.dvm, bed.domain);
   return bed;
@@ -354,10 +372,10 @@ bed::Bed build_input(const po::variables_map& vm, const Build& b, std::optional<
 // The scan stage checked before any layer is spread: its options, its path on the plate and its
 // grid under the solid (a bed without particles: the scene and the grid alone).
 void check_scan(Build& b, const bed::Bed& bed, const std::optional<dem::SpreadState>& state) {
-  b.table = th::read_material_table(app::sinter_scene(b.svm, bed).material_table);
+  b.table = th::read_material_table(app::sinter_scene(b.svm, b.scan_options, bed).material_table);
   bed::Bed empty;
   empty.domain = bed.domain;
-  th::Sinter probe(empty, app::sinter_scene(b.svm, empty, b.scan_layer0), b.table,
+  th::Sinter probe(empty, app::sinter_scene(b.svm, b.scan_options, empty, b.scan_layer0), b.table,
                    state ? state->floor.z : th::TopHeight{});
 }
 
@@ -389,10 +407,13 @@ LayerReport build_layer(const Build& b, bed::Bed& bed, std::optional<dem::Spread
   const double solid_top = state && !state->floor.empty() ? state->floor.highest() : bed.domain.lower[2];
   rep.clearance = rep.tool_bottom - solid_top;
   if (state && !state->floor.empty() && rep.clearance <= 0)
-    std::cerr << "build: warning: layer " << layer << ": the solid's top stands "
-              << -rep.clearance * 1e6 << " um above the recoater's bottom (the tool strikes the part)\n";
+    std::cerr << fmt::format("build: warning: layer {}: the solid's top stands {:g} um above the "
+                             "recoater's bottom (the tool strikes the part)\n",
+                             layer, -rep.clearance * 1e6);
   dem::SpreadSettings s = b.spread;
-  s.progress = [&](double f, double) { bar.draw(done + share * f, "layer " + std::to_string(layer) + " spread"); };
+  s.progress = [&](double f, double) {
+    bar.draw(done + share * f, fmt::format("layer {} spread", layer));
+  };
   const dem::SpreadSummary spread = dem::run_spread(bed, b.scene, s, state ? &*state : nullptr);
   rep.spread = spread.layers.back();
   rep.rebuilds = spread.neighbour_rebuilds;

@@ -8,8 +8,9 @@
 #include <cstdio>
 #include <iostream>
 #include <optional>
-#include <sstream>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "common/app_main.hpp"
 #include "common/deck_export.hpp"
@@ -71,10 +72,8 @@ bed::Bed insert_from_psd(const po::variables_map& vm, const bed::Domain& domain,
   if (vm.count("insert-z")) {
     const auto z = app::parse_number_list(vm["insert-z"].as<std::string>(), 2, 2, "--insert-z");
     if (!(z[0] >= domain.lower[2] && z[1] <= domain.upper[2] && z[0] < z[1])) {
-      std::ostringstream msg;
-      msg << "--insert-z: " << z[0] << "," << z[1] << " (accepted: " << domain.lower[2]
-          << " <= Z0 < Z1 <= " << domain.upper[2] << ")";
-      throw InputError(msg.str());
+      throw InputError(fmt::format("--insert-z: {:g},{:g} (accepted: {:g} <= Z0 < Z1 <= {:g})",
+                                   z[0], z[1], domain.lower[2], domain.upper[2]));
     }
     region.lower[2] = z[0];
     region.upper[2] = z[1];
@@ -87,11 +86,10 @@ bed::Bed insert_from_psd(const po::variables_map& vm, const bed::Domain& domain,
   packgen::validate(region, psd, options);
   packgen::PackResult placed = packgen::pack(region, psd, options, seed);
   if (placed.bed.n() < count) {
-    std::ostringstream msg;
-    msg << "--count: " << count << " particles do not fit the insertion region without overlap ("
-        << placed.bed.n() << " placed by 0-contact packing; accepted: N <= " << placed.bed.n()
-        << ", or a taller --insert-z)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format("--count: {} particles do not fit the insertion region without "
+                                 "overlap ({} placed by 0-contact packing; accepted: N <= {}, or "
+                                 "a taller --insert-z)",
+                                 count, placed.bed.n(), placed.bed.n()));
   }
   placed.bed.domain = domain;
   return placed.bed;
@@ -162,22 +160,21 @@ void set_periodic(const po::variables_map& vm, bed::Domain& domain) {
   if (periodic == "y" || periodic == "x,y" || periodic == "xy") domain.periodic[1] = true;
   if (periodic != "none" && periodic != "x" && periodic != "y" && periodic != "x,y" &&
       periodic != "xy") {
-    throw InputError("--periodic: '" + periodic + "' (accepted: none, x, y, x,y)");
+    throw InputError(fmt::format("--periodic: '{}' (accepted: none, x, y, x,y)", periodic));
   }
 }
 
-// The run's settings from the options; their ranges are dem::check_run_settings's to check.
-dem::RunSettings run_settings(const po::variables_map& vm, bool inserting, std::uint64_t seed) {
-  dem::RunSettings s;
+// The run's settings: `bound` (the settings add_deposit_options bound: --t-end, --until-rest,
+// rest.*, lid.*, insert.*) with the integrator, the time step, the threads, the trajectory and
+// the switches; their ranges are dem::check_run_settings's to check.
+dem::RunSettings run_settings(const po::variables_map& vm, const dem::RunSettings& bound,
+                              bool inserting, std::uint64_t seed) {
+  dem::RunSettings s = bound;
   s.integrator = dem::parse_integrator(vm["integrator"].as<std::string>());
   s.young_scale = vm["young-scale"].as<double>();
-  s.until_rest = vm["until-rest"].as<bool>();
-  if (vm.count("t-end")) s.t_end = vm["t-end"].as<double>();
   if (!s.until_rest && !vm.count("t-end")) {
     throw InputError("--t-end: missing (accepted: --t-end T or --until-rest)");
   }
-  s.rest.max_speed = vm["rest.speed"].as<double>();
-  s.rest.window = vm["rest.window"].as<double>();
   if (vm.count("dt")) s.dt = vm["dt"].as<double>();
   s.unsafe_dt = vm["unsafe-dt"].as<bool>();
   s.threads = app::apply_thread_team(vm).size;
@@ -186,18 +183,7 @@ dem::RunSettings run_settings(const po::variables_map& vm, bool inserting, std::
     s.trajectory_every = vm["every"].as<std::uint64_t>();
   }
   s.lid.enabled = vm["lid"].as<bool>() || vm["lid.enabled"].as<bool>();
-  s.lid.speed = vm["lid.speed"].as<double>();
-  s.lid.pressure = vm["lid.pressure"].as<double>();
-  s.lid.travel = vm["lid.travel"].as<double>();
-  s.lid.depth = vm["lid.depth"].as<double>();
-  s.lid.hold = vm["lid.hold"].as<double>();
-  s.lid.relax = vm["lid.relax"].as<double>();
-  s.lid.release = vm["lid.release"].as<bool>();
   s.insertion.enabled = inserting;
-  s.insertion.rate = vm["insert.rate"].as<double>();
-  s.insertion.speed = vm["insert.speed"].as<double>();
-  s.insertion.tries = vm["insert.tries"].as<std::size_t>();
-  s.insertion.patience = vm["insert.patience"].as<double>();
   s.insertion.seed = seed;
   return s;
 }
@@ -208,8 +194,9 @@ void warn_unsafe_dt(const bed::Bed& bed, const dem::Scene& scene, const dem::Run
   scene.validate();
   const auto bound = dem::time_step_bound(bed, scene, s.young_scale);
   if (s.dt > bound.stable) {
-    std::cerr << "deposit: warning: --dt " << s.dt << " s is above the stable bound "
-              << bound.stable << " s (--unsafe-dt)\n";
+    std::cerr << fmt::format("deposit: warning: --dt {:g} s is above the stable bound {:g} s "
+                             "(--unsafe-dt)\n",
+                             s.dt, bound.stable);
   }
 }
 
@@ -220,7 +207,7 @@ double core_margin(const po::variables_map& vm, const bed::Bed& bed) {
   mean_diameter /= static_cast<double>(std::max<std::size_t>(1, bed.n()));
   const double margin = vm.count("core-margin") ? vm["core-margin"].as<double>() : 2 * mean_diameter;
   if (!(margin >= 0) || !std::isfinite(margin)) {
-    throw InputError("--core-margin: " + std::to_string(margin) + " (accepted: M >= 0 m)");
+    throw InputError(fmt::format("--core-margin: {:f} (accepted: M >= 0 m)", margin));
   }
   return margin;
 }
@@ -231,12 +218,10 @@ double core_margin(const po::variables_map& vm, const bed::Bed& bed) {
 std::size_t remove_lost(const po::variables_map& vm, bed::Bed& bed) {
   const std::size_t removed = dem::remove_lost_particles(bed);
   if (removed > vm["allow-lost"].as<std::size_t>()) {
-    std::ostringstream msg;
-    msg << removed << " of " << bed.n() + removed << " particles left the box during the run "
-        << "(accepted: at most --allow-lost " << vm["allow-lost"].as<std::size_t>()
-        << "); the time step may be beyond the stable bound (--unsafe-dt?) or the bed may not fit "
-           "its box";
-    throw NumericalError(msg.str());
+    throw NumericalError(fmt::format(
+        "{} of {} particles left the box during the run (accepted: at most --allow-lost {}); the "
+        "time step may be beyond the stable bound (--unsafe-dt?) or the bed may not fit its box",
+        removed, bed.n() + removed, vm["allow-lost"].as<std::size_t>()));
   }
   return removed;
 }
@@ -271,14 +256,12 @@ void record_provenance(bed::Bed& bed, const po::variables_map& vm, int argc, cha
 // The core density, or why there is none: a bed less than two margins thick (a monolayer) has
 // no core away from the floor and the surface, and its density is a layer's (bedstat --layer).
 std::string core_text(const dem::CoreDensity& core, double margin) {
-  std::ostringstream out;
   if (std::isnan(core.density)) {
-    out << "no core (the bed is thinner than 2 x --core-margin " << margin
-        << " m from floor and surface; see bedstat --layer for a layer's density)";
-  } else {
-    out << "core density " << core.density;
+    return fmt::format("no core (the bed is thinner than 2 x --core-margin {:g} m from floor and "
+                       "surface; see bedstat --layer for a layer's density)",
+                       margin);
   }
-  return out.str();
+  return fmt::format("core density {:g}", core.density);
 }
 
 // What a run reports, on stdout as JSON (--json) or one line.
@@ -367,19 +350,21 @@ void print_text(const Report& p) {
 
 int run(int argc, char** argv) {
   po::options_description desc("deposit options (SI units)");
-  app::add_deposit_options(desc);
+  app::DepositOptions bound;  // what the options of a plain type fill (app::add_deposit_options)
+  app::add_deposit_options(desc, bound);
   po::variables_map vm;
   if (!app::parse_options("deposit", kUsage, desc, {}, argc, argv, vm)) return 0;
-  if (app::spread_requested(vm)) return app::run_spread(vm, argc, argv);  // deposit_spread.cpp
+  if (app::spread_requested(vm))
+    return app::run_spread(vm, bound, argc, argv);  // deposit_spread.cpp
 
   const std::string out = app::required<std::string>(vm, "out");
   const auto seed = app::required<std::uint64_t>(vm, "seed");
   check_files(vm, out);
   auto [bed, inserting] = particles(vm, desc, argc, argv, seed);
   set_periodic(vm, bed.domain);
-  const dem::Scene scene = app::deposit_scene(vm);
+  const dem::Scene scene = app::deposit_scene(vm, bound.scene);
   if (vm.count("export-deck")) app::check_run_deck(scene, vm["export-deck"].as<std::string>());
-  dem::RunSettings s = run_settings(vm, inserting, seed);
+  dem::RunSettings s = run_settings(vm, bound.run, inserting, seed);
   warn_unsafe_dt(bed, scene, s);
   const double margin = core_margin(vm, bed);
   app::ProgressBar bar("deposit", app::progress_interval(vm));

@@ -2,8 +2,9 @@
 // deposit recoater scene for each layer's spread.
 #include "deposit_options.hpp"
 
-#include <sstream>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "common/deck_export.hpp"
 #include "common/material_options.hpp"
@@ -18,7 +19,7 @@ namespace powderbed::app {
 namespace {
 
 // Where the particles come from: a bed, a PSD placed in the box, or the insertion's pool.
-void add_source_options(po::options_description& desc) {
+void add_source_options(po::options_description& desc, dem::InsertionSettings& insertion) {
   desc.add_options()
       ("in", po::value<std::string>(), "start from this bed (HDF5, CSV needs --domain)")
       ("psd", po::value<std::string>(), "particle size distribution (see bed/psd.hpp syntax), m")
@@ -31,24 +32,27 @@ void add_source_options(po::options_description& desc) {
        "insertion from the top (Kumar Yadav & Eshraghi 2016): the --count particles of --psd "
        "enter one by one at random positions in the top layer of the box (one diameter), "
        "moving down, until the box is full; the rest of them are dropped")
-      ("insert.rate", po::value<double>()->default_value(0), "insertion: particles per second")
-      ("insert.speed", po::value<double>()->default_value(0),
+      ("insert.rate", po::value<double>(&insertion.rate)->default_value(insertion.rate),
+       "insertion: particles per second")
+      ("insert.speed", po::value<double>(&insertion.speed)->default_value(insertion.speed),
        "insertion: initial downward speed (m/s)")
-      ("insert.tries", po::value<std::size_t>()->default_value(100),
+      ("insert.tries", po::value<std::size_t>(&insertion.tries)->default_value(insertion.tries),
        "insertion: random draws for a free spot per particle and insertion time")
-      ("insert.patience", po::value<double>()->default_value(0),
+      ("insert.patience", po::value<double>(&insertion.patience)->default_value(insertion.patience),
        "insertion: the box is full once no particle has found a free spot for this long (s; 0: "
        "twice the time to fall one diameter)");
 }
 
 // How long and how the drop runs, and what it writes.
-void add_run_options(po::options_description& desc) {
+void add_run_options(po::options_description& desc, dem::RunSettings& run, dem::Scene& scene) {
   desc.add_options()
-      ("t-end", po::value<double>(), "simulated time (s); with --until-rest the cap (default 1 s)")
-      ("until-rest", po::bool_switch(), "stop when the bed is at rest (rest.speed, rest.window)")
-      ("rest.speed", po::value<double>()->default_value(1e-4),
+      ("t-end", po::value<double>(&run.t_end),
+       "simulated time (s); with --until-rest the cap (default 1 s)")
+      ("until-rest", po::bool_switch(&run.until_rest),
+       "stop when the bed is at rest (rest.speed, rest.window)")
+      ("rest.speed", po::value<double>(&run.rest.max_speed)->default_value(run.rest.max_speed),
        "rest: largest speed below this (m/s)")
-      ("rest.window", po::value<double>()->default_value(1e-3),
+      ("rest.window", po::value<double>(&run.rest.window)->default_value(run.rest.window),
        "rest: for this long (s of simulated time)")
       ("dt", po::value<double>(), "time step (s); default (and 0): 0.2 x the Rayleigh step of the "
                                   "smallest particle (linear law: 0.2 x 1/omega_0 = sqrt(m*/k_n) of "
@@ -61,7 +65,7 @@ void add_run_options(po::options_description& desc) {
        "normal contact law of pairs and walls: hertz (from E, nu; softened by young-scale) or "
        "linear (spring-dashpot F = k_n delta + c delta', contact.stiffness; the law of "
        "Kumar Yadav & Eshraghi 2016's MFiX beds)")
-      ("contact.stiffness", po::value<double>(), "k_n of the linear law (N/m)")
+      ("contact.stiffness", po::value<double>(&scene.stiffness), "k_n of the linear law (N/m)")
       ("seed", po::value<std::uint64_t>(), "random seed (insertion positions and sizes)")
       ("out", po::value<std::string>(), "output bed (HDF5 + XDMF sidecar)")
       ("allow-lost", po::value<std::size_t>()->default_value(0),
@@ -76,42 +80,45 @@ void add_run_options(po::options_description& desc) {
 }
 
 // The scene's material, walls, fluid and gravity (the effects: add_deposit_options).
-void add_scene_options(po::options_description& desc) {
-  const dem::Scene d;
+void add_scene_options(po::options_description& desc, dem::Scene& s) {
+  dem::Material& m = s.material;
   desc.add_options()
-      ("material.young", po::value<double>()->default_value(d.material.young), "E (Pa)")
-      ("material.poisson", po::value<double>()->default_value(d.material.poisson), "nu")
-      ("material.density", po::value<double>()->default_value(d.material.density), "rho (kg/m^3)")
-      ("material.damping", po::value<double>()->default_value(d.material.damping),
+      ("material.young", po::value<double>(&m.young)->default_value(m.young), "E (Pa)")
+      ("material.poisson", po::value<double>(&m.poisson)->default_value(m.poisson), "nu")
+      ("material.density", po::value<double>(&m.density)->default_value(m.density),
+       "rho (kg/m^3)")
+      ("material.damping", po::value<double>(&m.damping)->default_value(m.damping),
        "damping ratio zeta in [0, 1]")
-      ("material.friction", po::value<double>()->default_value(d.material.friction),
+      ("material.friction", po::value<double>(&m.friction)->default_value(m.friction),
        "sliding friction mu_d")
-      ("fluid.viscosity", po::value<double>()->default_value(d.fluid_viscosity), "mu_f (Pa s)")
-      ("wall.young", po::value<double>()->default_value(d.wall.young), "wall E (Pa)")
-      ("wall.poisson", po::value<double>()->default_value(d.wall.poisson), "wall nu")
-      ("gravity", po::value<double>()->default_value(d.gravity), "g (m/s^2)");
+      ("fluid.viscosity", po::value<double>(&s.fluid_viscosity)->default_value(s.fluid_viscosity),
+       "mu_f (Pa s)")
+      ("wall.young", po::value<double>(&s.wall.young)->default_value(s.wall.young), "wall E (Pa)")
+      ("wall.poisson", po::value<double>(&s.wall.poisson)->default_value(s.wall.poisson),
+       "wall nu")
+      ("gravity", po::value<double>(&s.gravity)->default_value(s.gravity), "g (m/s^2)");
 }
 
 // The lid's consolidation after the settle (dem::LidSettings).
-void add_lid_options(po::options_description& desc) {
-  const dem::LidSettings l;
+void add_lid_options(po::options_description& desc, dem::LidSettings& l) {
   desc.add_options()
       ("lid", po::bool_switch(), "consolidate the settled bed with the lid (as lid.enabled)")
       ("lid.enabled", po::value<bool>()->default_value(false),
        "lid: after the settle, lower the box's top wall onto the bed, hold it, release it")
-      ("lid.speed", po::value<double>()->default_value(l.speed), "lid: lowering speed (m/s)")
-      ("lid.pressure", po::value<double>()->default_value(l.pressure),
+      ("lid.speed", po::value<double>(&l.speed)->default_value(l.speed),
+       "lid: lowering speed (m/s)")
+      ("lid.pressure", po::value<double>(&l.pressure)->default_value(l.pressure),
        "lid: stop lowering when the bed pushes on it with this pressure (Pa; 0: no target)")
-      ("lid.travel", po::value<double>()->default_value(l.travel),
+      ("lid.travel", po::value<double>(&l.travel)->default_value(l.travel),
        "lid: stop lowering after this travel from the highest particle top (m; 0: no limit)")
-      ("lid.depth", po::value<double>()->default_value(l.depth),
+      ("lid.depth", po::value<double>(&l.depth)->default_value(l.depth),
        "lid: instead of a travel, lower it to this depth below the bed's surface (the 90th "
        "percentile of the particle tops), overlapping the top layer by it (m; 0: none)")
-      ("lid.hold", po::value<double>()->default_value(l.hold), "lid: time held in place (s)")
-      ("lid.release", po::value<bool>()->default_value(l.release),
+      ("lid.hold", po::value<double>(&l.hold)->default_value(l.hold), "lid: time held in place (s)")
+      ("lid.release", po::value<bool>(&l.release)->default_value(l.release),
        "lid: true releases it after the hold; false keeps it as the bed's top face (the bed's "
        "domain ends at the lid, for keff's hot wall)")
-      ("lid.relax", po::value<double>()->default_value(l.relax),
+      ("lid.relax", po::value<double>(&l.relax)->default_value(l.relax),
        "lid: cap on the relaxation after the release (s; it ends earlier at rest)");
 }
 
@@ -128,58 +135,44 @@ void add_result_options(po::options_description& desc) {
 
 }  // namespace
 
-void add_deposit_options(po::options_description& desc) {
+void add_deposit_options(po::options_description& desc, DepositOptions& bound) {
   add_common_options(desc);
   add_threads_option(desc);
   add_progress_option(desc);
   add_material_options(desc, "deposit");
-  add_source_options(desc);
-  add_run_options(desc);
-  add_scene_options(desc);
-  add_lid_options(desc);
+  add_source_options(desc, bound.run.insertion);
+  add_run_options(desc, bound.run, bound.scene);
+  add_scene_options(desc, bound.scene);
+  add_lid_options(desc, bound.run.lid);
   add_result_options(desc);
-  add_spread_options(desc);
+  add_spread_options(desc, bound.spread, bound.scene);
   for (const dem::EffectRow& effect : dem::kEffects) {
-    const std::string name = std::string("effects.") + effect.name;
+    const std::string name = fmt::format("effects.{}", effect.name);
     desc.add_options()(name.c_str(), po::value<bool>()->default_value(true),
                        "effect on/off (true/false)");
   }
 }
 
-// The scene of a drop or a spread from the options (material, wall, fluid, contact law, friction
-// model, effects).
-dem::Scene deposit_scene(const po::variables_map& vm) {
-  dem::Scene scene;
-  scene.material.young = vm["material.young"].as<double>();
+dem::Scene deposit_scene(const po::variables_map& vm, const dem::Scene& bound) {
+  dem::Scene scene = bound;
   if (!vm["trust-units"].as<bool>() && scene.material.young < 1e6) {
-    std::ostringstream msg;
-    msg << "material.young: " << scene.material.young << " Pa is below the 1 MPa of the softest "
-        << "powders: a unit slip? (accepted: E in Pa, e.g. 193e9 for 193 GPa; --trust-units if "
-           "it is meant)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format("material.young: {:g} Pa is below the 1 MPa of the softest "
+                                 "powders: a unit slip? (accepted: E in Pa, e.g. 193e9 for 193 "
+                                 "GPa; --trust-units if it is meant)",
+                                 scene.material.young));
   }
-  scene.material.poisson = vm["material.poisson"].as<double>();
-  scene.material.density = vm["material.density"].as<double>();
-  scene.material.damping = vm["material.damping"].as<double>();
-  scene.material.friction = vm["material.friction"].as<double>();
-  scene.material.rolling = vm["material.rolling"].as<double>();
   scene.friction_model = dem::parse_friction_model(vm["friction.model"].as<std::string>());
-  scene.fluid_viscosity = vm["fluid.viscosity"].as<double>();
-  scene.wall.young = vm["wall.young"].as<double>();
-  scene.wall.poisson = vm["wall.poisson"].as<double>();
-  scene.gravity = vm["gravity"].as<double>();
   scene.law = dem::parse_contact_law(vm["contact.law"].as<std::string>());
   if (vm.count("contact.stiffness")) {
     if (scene.law != dem::ContactLaw::linear)
       throw InputError("contact.stiffness: given with contact.law = hertz (accepted: with "
                        "contact.law = linear)");
-    scene.stiffness = vm["contact.stiffness"].as<double>();
   } else if (scene.law == dem::ContactLaw::linear) {
     throw InputError("contact.stiffness: missing with contact.law = linear (accepted: k_n > 0 N/m)");
   }
   scene.effects = 0;
   for (const dem::EffectRow& effect : dem::kEffects) {
-    if (vm[std::string("effects.") + effect.name].as<bool>()) scene.effects |= effect.bit;
+    if (vm[fmt::format("effects.{}", effect.name)].as<bool>()) scene.effects |= effect.bit;
   }
   return scene;
 }

@@ -3,14 +3,26 @@
 // definition for deposit and for build's per-layer spreads.
 #include "common/options.hpp"
 #include "powderbed/dem/scene.hpp"
+#include "powderbed/dem/solver.hpp"
+#include "powderbed/dem/spread.hpp"
 
 namespace powderbed::app {
 
-// Every option of deposit (the common ones, threads, progress, --material, the spread's).
-void add_deposit_options(po::options_description& desc);
+// What deposit's options of a plain type are bound to (po::value<T>(&field), defaults: these
+// structs' values): the scene, a drop's run settings and a spread's settings. parse_options's
+// po::notify fills them, so they outlive the parse.
+struct DepositOptions {
+  dem::Scene scene;
+  dem::RunSettings run;
+  dem::SpreadSettings spread;
+};
 
-// The scene of a drop or a spread from the options (material, wall, fluid, contact law,
-// friction model, effects).
-dem::Scene deposit_scene(const po::variables_map& vm);
+// Every option of deposit (the common ones, threads, progress, --material, the spread's), those
+// of a plain type bound to `bound`.
+void add_deposit_options(po::options_description& desc, DepositOptions& bound);
+
+// The scene of a drop or a spread: `bound` (DepositOptions::scene) with what the options give
+// as words (contact law, friction model), the linear law's stiffness checked and the effects.
+dem::Scene deposit_scene(const po::variables_map& vm, const dem::Scene& bound);
 
 }  // namespace powderbed::app

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "common/app_main.hpp"
 #include "common/progress.hpp"
 #include "deposit_options.hpp"
@@ -33,22 +35,6 @@ namespace {
 // Options of the drop that a spread does not have: refused rather than ignored.
 constexpr const char* kDropOnly[] = {"t-end", "count", "insert-z", "trajectory"};
 
-dem::Recoater tool_from(const po::variables_map& vm) {
-  dem::Recoater t;
-  t.shape = dem::parse_tool_shape(vm["recoater.tool"].as<std::string>());
-  t.thickness = vm["recoater.thickness"].as<double>();
-  t.edge_radius = vm["recoater.edge-radius"].as<double>();
-  t.radius = vm["recoater.radius"].as<double>();
-  t.omega = vm["recoater.omega"].as<double>();
-  t.gap = vm["recoater.gap"].as<double>();
-  t.speed = vm["recoater.speed"].as<double>();
-  t.start = vm["recoater.start"].as<double>();
-  t.end = vm["recoater.end"].as<double>();
-  t.delay = vm["recoater.delay"].as<double>();
-  t.settle = vm["recoater.settle"].as<double>();
-  return t;
-}
-
 // The supply of a layer: supply.count particles of --psd, or as many as make supply.volume of
 // solid, placed without overlap at random in the region (packgen's 0-contact packing; a seed of
 // its own per layer, so that a continued run draws the same supply).
@@ -57,9 +43,9 @@ dem::SupplyMaker supply_maker(const po::variables_map& vm, std::uint64_t seed) {
   const std::size_t count = vm["supply.count"].as<std::size_t>();
   const double volume = vm["supply.volume"].as<double>();
   if ((count > 0) == (volume > 0)) {
-    throw InputError("supply.count / supply.volume: " +
-                     std::string(count > 0 ? "both" : "neither") +
-                     " given (accepted: one of them, a count >= 1 or a volume > 0 m^3)");
+    throw InputError(fmt::format("supply.count / supply.volume: {} given (accepted: one of them, "
+                                 "a count >= 1 or a volume > 0 m^3)",
+                                 count > 0 ? "both" : "neither"));
   }
   return [psd, count, volume, seed](const bed::Domain& region, std::uint64_t layer) {
     packgen::PackOptions options;
@@ -77,18 +63,13 @@ dem::SupplyMaker supply_maker(const po::variables_map& vm, std::uint64_t seed) {
     if (!placed.target_reached) {
       double solid = 0;
       for (const double r : placed.bed.radius) solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
-      std::ostringstream msg;
-      msg << (count > 0 ? "supply.count: " : "supply.volume: ");
-      if (count > 0) {
-        msg << count << " particles";
-      } else {
-        msg << volume << " m^3";
-      }
-      msg << " do not fit the supply region " << region.upper[0] - region.lower[0] << " x "
-          << region.upper[1] - region.lower[1] << " x " << region.upper[2] - region.lower[2]
-          << " m of layer " << layer << " without overlap (" << placed.bed.n() << " particles, "
-          << solid << " m^3 placed; accepted: at most that, or a longer or taller region)";
-      throw InputError(msg.str());
+      const std::string supply = count > 0 ? fmt::format("supply.count: {} particles", count)
+                                           : fmt::format("supply.volume: {:g} m^3", volume);
+      throw InputError(fmt::format(
+          "{} do not fit the supply region {:g} x {:g} x {:g} m of layer {} without overlap ({} "
+          "particles, {:g} m^3 placed; accepted: at most that, or a longer or taller region)",
+          supply, region.upper[0] - region.lower[0], region.upper[1] - region.lower[1],
+          region.upper[2] - region.lower[2], layer, placed.bed.n(), solid));
     }
     return std::move(placed.bed);
   };
@@ -126,7 +107,7 @@ bed::Domain spread_box(const po::variables_map& vm, std::optional<bed::Domain> g
   // Periodic across (y) unless the scene says otherwise: a strip of a wider bed.
   const std::string periodic = vm["periodic"].defaulted() ? "y" : vm["periodic"].as<std::string>();
   if (periodic != "none" && periodic != "x" && periodic != "y" && periodic != "x,y" && periodic != "xy") {
-    throw InputError("--periodic: '" + periodic + "' (accepted: none, x, y, x,y)");
+    throw InputError(fmt::format("--periodic: '{}' (accepted: none, x, y, x,y)", periodic));
   }
   bed::Domain d;
   if (given) {
@@ -144,16 +125,11 @@ bed::Domain spread_box(const po::variables_map& vm, std::optional<bed::Domain> g
   return d;
 }
 
-dem::SpreadSettings spread_settings(const po::variables_map& vm, std::uint64_t seed) {
-  dem::SpreadSettings s;
-  s.tool = tool_from(vm);
-  s.supply_x0 = vm["supply.x0"].as<double>();
-  s.supply_x1 = vm["supply.x1"].as<double>();
-  s.supply_height = vm["supply.height"].as<double>();
+dem::SpreadSettings spread_settings(const po::variables_map& vm, const dem::SpreadSettings& bound,
+                                    std::uint64_t seed) {
+  dem::SpreadSettings s = bound;
+  s.tool.shape = dem::parse_tool_shape(vm["recoater.tool"].as<std::string>());
   s.supply = supply_maker(vm, seed);
-  s.layers = vm["layers"].as<std::uint64_t>();
-  s.remove_overflow = vm["recoater.overflow"].as<bool>();
-  s.layer_thickness = vm["recoater.layer-thickness"].as<double>();
   s.young_scale = vm["young-scale"].as<double>();
   if (vm.count("dt")) s.dt = vm["dt"].as<double>();
   s.unsafe_dt = vm["unsafe-dt"].as<bool>();
@@ -177,47 +153,57 @@ void set_spread_provenance(bed::Bed& b, const po::variables_map& vm, const dem::
   made.stiffness = scene.stiffness;
 }
 
-void add_spread_options(po::options_description& desc) {
-  const dem::Recoater t;
+void add_spread_options(po::options_description& desc, dem::SpreadSettings& spread,
+                        dem::Scene& scene) {
+  dem::Recoater& t = spread.tool;
   desc.add_options()
       ("friction.model", po::value<std::string>()->default_value("sliding"),
        "friction law of every contact: sliding (regularised Coulomb, no static friction) or "
        "history (tangential spring capped at mu F_n: static friction; spreading runs only)")
-      ("material.rolling", po::value<double>()->default_value(0),
+      ("material.rolling",
+       po::value<double>(&scene.material.rolling)->default_value(scene.material.rolling),
        "rolling resistance mu_r (EPSD model, docs/deposit-spread.md; 0: off; spreading runs only)")
       ("recoater.tool", po::value<std::string>()->default_value(""),
        "spread with a recoater instead of a drop: blade or roller (docs/deposit-spread.md)")
-      ("recoater.thickness", po::value<double>()->default_value(t.thickness),
+      ("recoater.thickness", po::value<double>(&t.thickness)->default_value(t.thickness),
        "blade: thickness along x (m)")
-      ("recoater.edge-radius", po::value<double>()->default_value(t.edge_radius),
+      ("recoater.edge-radius", po::value<double>(&t.edge_radius)->default_value(t.edge_radius),
        "blade: radius of its bottom edges (m; 0: sharp)")
-      ("recoater.radius", po::value<double>()->default_value(t.radius), "roller: radius (m)")
-      ("recoater.omega", po::value<double>()->default_value(t.omega),
+      ("recoater.radius", po::value<double>(&t.radius)->default_value(t.radius),
+       "roller: radius (m)")
+      ("recoater.omega", po::value<double>(&t.omega)->default_value(t.omega),
        "roller: spin about +y (rad/s; < 0 counter-rotating: the bottom moves along the travel)")
-      ("recoater.gap", po::value<double>()->default_value(t.gap),
+      ("recoater.gap", po::value<double>(&t.gap)->default_value(t.gap),
        "height of the tool's lowest point above the plate (m) in the first layer")
-      ("recoater.speed", po::value<double>()->default_value(t.speed), "tool speed along +x (m/s)")
-      ("recoater.start", po::value<double>()->default_value(t.start),
+      ("recoater.speed", po::value<double>(&t.speed)->default_value(t.speed),
+       "tool speed along +x (m/s)")
+      ("recoater.start", po::value<double>(&t.start)->default_value(t.start),
        "x of the tool's centre (blade mid-plane, roller axis) at the start (m)")
-      ("recoater.end", po::value<double>()->default_value(t.end), "x where the tool stops (m)")
-      ("recoater.delay", po::value<double>()->default_value(t.delay),
+      ("recoater.end", po::value<double>(&t.end)->default_value(t.end),
+       "x where the tool stops (m)")
+      ("recoater.delay", po::value<double>(&t.delay)->default_value(t.delay),
        "time before the tool moves, the supply settling (s)")
-      ("recoater.settle", po::value<double>()->default_value(t.settle),
+      ("recoater.settle", po::value<double>(&t.settle)->default_value(t.settle),
        "time after the tool stopped, the layer settling (s)")
-      ("recoater.overflow", po::value<bool>()->default_value(true),
+      ("recoater.overflow",
+       po::value<bool>(&spread.remove_overflow)->default_value(spread.remove_overflow),
        "after each layer remove the powder pushed past the tool's end (the machine's overflow "
        "slot; false keeps every particle)")
-      ("recoater.layer-thickness", po::value<double>()->default_value(0),
+      ("recoater.layer-thickness",
+       po::value<double>(&spread.layer_thickness)->default_value(spread.layer_thickness),
        "how far the plate goes down before each layer after the first (m)")
-      ("supply.x0", po::value<double>()->default_value(0), "supply region: start along x (m)")
-      ("supply.x1", po::value<double>()->default_value(0), "supply region: end along x (m)")
-      ("supply.height", po::value<double>()->default_value(0),
+      ("supply.x0", po::value<double>(&spread.supply_x0)->default_value(spread.supply_x0),
+       "supply region: start along x (m)")
+      ("supply.x1", po::value<double>(&spread.supply_x1)->default_value(spread.supply_x1),
+       "supply region: end along x (m)")
+      ("supply.height",
+       po::value<double>(&spread.supply_height)->default_value(spread.supply_height),
        "supply region: height above the plate or the powder under it (m)")
       ("supply.count", po::value<std::size_t>()->default_value(0),
        "supply per layer: particles of --psd (or supply.volume)")
       ("supply.volume", po::value<double>()->default_value(0),
        "supply per layer: solid volume of --psd particles (m^3; or supply.count)")
-      ("layers", po::value<std::uint64_t>()->default_value(1),
+      ("layers", po::value<std::uint64_t>(&spread.layers)->default_value(spread.layers),
        "layers to spread (with --in a spread bed: after its own); each is also written to "
        "OUT-NNN.h5 when N > 1")
       ("tool-forces", po::value<std::string>(),
@@ -292,9 +278,10 @@ namespace {
 void refuse_drop_options(const po::variables_map& vm) {
   for (const char* name : kDropOnly) {
     if (vm.count(name) && !vm[name].defaulted()) {
-      throw InputError(std::string("--") + name + ": given with recoater.tool (accepted: a drop "
-                       "option; a spread lasts the tool's travel and takes its particles from "
-                       "the supply)");
+      throw InputError(fmt::format("--{}: given with recoater.tool (accepted: a drop option; a "
+                                   "spread lasts the tool's travel and takes its particles from "
+                                   "the supply)",
+                                   name));
     }
   }
   if (vm.count("export-deck")) {  // a deck has the bed's laws but no moving tool
@@ -334,7 +321,7 @@ bed::Bed spread_input(const po::variables_map& vm, std::optional<dem::SpreadStat
   }
   const std::string in = vm["in"].as<std::string>();
   if (bed::extension_of(in) != ".h5") {
-    throw InputError("--in: '" + in + "' with recoater.tool (accepted: an .h5 bed)");
+    throw InputError(fmt::format("--in: '{}' with recoater.tool (accepted: an .h5 bed)", in));
   }
   bed::Bed bed = bed::read_bed_h5(in);
   if (dem::has_spread_state(in)) restart = dem::read_spread_state(in, bed);
@@ -348,18 +335,18 @@ std::size_t check_spread_result(const po::variables_map& vm, const dem::SpreadSu
   std::size_t lost = 0;
   for (const auto& l : r.layers) lost = l.lost;
   if (lost > vm["allow-lost"].as<std::size_t>()) {
-    std::ostringstream msg;
-    msg << lost << " of " << bed.n() << " particles left the box through the plate or a wall "
-        << "(accepted: at most --allow-lost " << vm["allow-lost"].as<std::size_t>()
-        << "); the time step may be beyond the stable bound or the tool too fast for the softening";
-    throw NumericalError(msg.str());
+    throw NumericalError(fmt::format(
+        "{} of {} particles left the box through the plate or a wall (accepted: at most "
+        "--allow-lost {}); the time step may be beyond the stable bound or the tool too fast for "
+        "the softening",
+        lost, bed.n(), vm["allow-lost"].as<std::size_t>()));
   }
   if (bed.n() == 0) {  // a layer of nothing is not a result
-    throw InputError("recoater.end: the tool pushed the whole supply past its end (" +
-                     std::to_string(r.layers.empty() ? 0 : r.layers.back().overflow) +
-                     " particles into the overflow), " +
-                     "so no powder is left on the plate (accepted: a travel that leaves powder " +
-                     "behind the tool, or recoater.overflow = false)");
+    throw InputError(fmt::format(
+        "recoater.end: the tool pushed the whole supply past its end ({} particles into the "
+        "overflow), so no powder is left on the plate (accepted: a travel that leaves powder "
+        "behind the tool, or recoater.overflow = false)",
+        r.layers.empty() ? 0 : r.layers.back().overflow));
   }
   return lost;
 }
@@ -406,7 +393,7 @@ void print_spread_summary(const po::variables_map& vm, const dem::SpreadSummary&
 
 }  // namespace
 
-int run_spread(const po::variables_map& vm, int argc, char** argv) {
+int run_spread(const po::variables_map& vm, const DepositOptions& bound, int argc, char** argv) {
   const std::string out = required<std::string>(vm, "out");
   const auto seed = required<std::uint64_t>(vm, "seed");
   refuse_drop_options(vm);
@@ -417,8 +404,8 @@ int run_spread(const po::variables_map& vm, int argc, char** argv) {
 
   std::optional<dem::SpreadState> restart;
   bed::Bed bed = spread_input(vm, restart);
-  const dem::Scene scene = deposit_scene(vm);
-  dem::SpreadSettings s = spread_settings(vm, seed);
+  const dem::Scene scene = deposit_scene(vm, bound.scene);
+  dem::SpreadSettings s = spread_settings(vm, bound.spread, seed);
   std::ostringstream forces;
   forces << std::setprecision(17) << "layer,time,x,fx,fy,fz\n";
   if (forces_path) {

@@ -12,25 +12,32 @@
 
 namespace powderbed::app {
 
+struct DepositOptions;  // deposit_options.hpp
+
 // recoater.*, supply.*, --layers, --tool-forces, and the scene options the drop does not use
 // (friction.model, material.rolling: both solvers read them, only the spread accepts history
-// friction and rolling resistance).
-void add_spread_options(po::options_description& desc);
+// friction and rolling resistance). The options of a plain type are bound to `spread`'s and
+// `scene`'s fields (defaults: their values).
+void add_spread_options(po::options_description& desc, dem::SpreadSettings& spread,
+                        dem::Scene& scene);
 // Whether the options name a recoater tool.
 bool spread_requested(const po::variables_map& vm);
 // The spread's box: --domain with --periodic (y unless given) for a new bed, or `given` (an --in
 // bed's); throws InputError for a bad --periodic or a box periodic along x (the tool's travel).
 bed::Domain spread_box(const po::variables_map& vm,
                        std::optional<bed::Domain> given = std::nullopt);
-// The spread's settings from the options: the tool, the supply (seeded per layer from `seed`),
-// --layers, the overflow, the layer thickness, the softening and the time step.
-dem::SpreadSettings spread_settings(const po::variables_map& vm, std::uint64_t seed);
+// The spread's settings: `bound` (the settings add_spread_options bound: the tool's numbers, the
+// supply region, --layers, the overflow, the layer thickness) with the tool's shape, the supply
+// (seeded per layer from `seed`), the softening and the time step.
+dem::SpreadSettings spread_settings(const po::variables_map& vm, const dem::SpreadSettings& bound,
+                                    std::uint64_t seed);
 // The provenance a spread bed carries: `program` and its command line, --seed, the resolved
 // scene and the contact law as made (softening included).
 void set_spread_provenance(bed::Bed& b, const po::variables_map& vm, const dem::Scene& scene,
                            const char* program, int argc, char** argv);
-// Runs the spread and writes its beds; returns the exit status.
-int run_spread(const po::variables_map& vm, int argc, char** argv);
+// Runs the spread of the options (`bound`: what add_deposit_options bound) and writes its beds;
+// returns the exit status.
+int run_spread(const po::variables_map& vm, const DepositOptions& bound, int argc, char** argv);
 
 // Whether a drop needs particle rotation (friction.model = history or material.rolling > 0),
 // which only the spreading run's loop has.

@@ -3,7 +3,6 @@
 // radiation with Monte-Carlo view factors).
 #include <chrono>
 #include <cmath>
-#include <sstream>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +10,7 @@
 #include <iostream>
 #include <string>
 
+#include <fmt/format.h>
 
 #include "common/app_main.hpp"
 #include "common/material_options.hpp"
@@ -39,11 +39,13 @@ const char* const kUsage =
 // O((1 K / T)²), below 1e-5 from 300 K up.
 constexpr double kSpan = 1;
 
-void add_options(po::options_description& desc) {
+// The options; those of a plain type are bound to `s`'s fields (defaults: its values).
+void add_options(po::options_description& desc, kf::KeffScene& s) {
   app::add_common_options(desc);
   app::add_threads_option(desc);
   app::add_progress_option(desc);
   app::add_material_options(desc, "keff");
+  // t-hot and t-cold are not bound: set_walls chooses between them and --temperature.
   const kf::KeffScene d;
   desc.add_options()
       ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump)")
@@ -54,25 +56,30 @@ void add_options(po::options_description& desc) {
       ("t-cold", po::value<double>()->default_value(d.cold_temperature), "T_cold (K)")
       ("temperature", po::value<double>(),
        "bed temperature T (K): the walls at T +- 0.5 K, k_eff at T (instead of --t-hot/--t-cold)")
-      ("newton-tolerance", po::value<double>()->default_value(d.newton_tolerance),
+      ("newton-tolerance",
+       po::value<double>(&s.newton_tolerance)->default_value(s.newton_tolerance),
        "Newton stops at |net flows| / |flows| below this (radiation, gas.model = air)")
       ("profile-bins", po::value<std::size_t>()->default_value(0),
        "bins of the temperature profile written beside --out (0: one per mean diameter)")
-      ("solid.conductivity", po::value<double>()->default_value(d.solid_conductivity), "k_s (W/mK)")
+      ("solid.conductivity",
+       po::value<double>(&s.solid_conductivity)->default_value(s.solid_conductivity), "k_s (W/mK)")
       ("gas.model", po::value<std::string>()->default_value("constant"),
        "constant (gas.conductivity) or air (the [KE] polynomial at each gas link's temperature)")
-      ("gas.conductivity", po::value<double>()->default_value(d.gas_conductivity), "k_g (W/mK)")
-      ("gas.lens", po::value<double>()->default_value(d.lens.lens),
+      ("gas.conductivity",
+       po::value<double>(&s.gas_conductivity)->default_value(s.gas_conductivity), "k_g (W/mK)")
+      ("gas.lens", po::value<double>(&s.lens.lens)->default_value(s.lens.lens),
        "gas lens thickness over the particle radius (Rong-Horio)")
-      ("gas.min-gap", po::value<double>()->default_value(d.lens.min_gap), "l_min (m)")
+      ("gas.min-gap", po::value<double>(&s.lens.min_gap)->default_value(s.lens.min_gap),
+       "l_min (m)")
       ("trust-units", po::bool_switch(),
        "skip the guard against unit slips (gas.min-gap over 1e-4 m: um typed as m?)")
       ("gas.lens-region", po::value<std::string>()->default_value("both-lenses"),
        "outer edge of the gas path: both-lenses (where the two lenses intersect) or larger-lens "
        "(where the larger particle's lens meets the smaller particle, as MFiX computes it)")
-      ("contact.calibration", po::value<double>()->default_value(d.calibration),
+      ("contact.calibration", po::value<double>(&s.calibration)->default_value(s.calibration),
        "A_c: scales the contact radius")
-      ("contact.hertz-correction", po::value<bool>()->default_value(d.contact.hertz_correction),
+      ("contact.hertz-correction",
+       po::value<bool>(&s.contact.hertz_correction)->default_value(s.contact.hertz_correction),
        "contact radius from the equivalent Hertz overlap of a softened bed (else geometric); "
        "the DEM's law, E, nu and softening S or stiffness k_n are read from the bed")
       ("contact.young", po::value<double>(),
@@ -84,20 +91,23 @@ void add_options(po::options_description& desc) {
        "S of the bed's Hertz DEM run: checked against the bed's record (it is read from the bed)")
       ("contact.stiffness", po::value<double>(),
        "k_n of the bed's linear DEM run (N/m): checked against the bed's record")
-      ("effects.contact", po::value<bool>()->default_value(true), "contact conduction on/off")
-      ("rays", po::value<std::size_t>()->default_value(d.rays),
+      ("effects.contact", po::value<bool>(&s.contact_path)->default_value(s.contact_path),
+       "contact conduction on/off")
+      ("rays", po::value<std::size_t>(&s.rays)->default_value(s.rays),
        "Monte-Carlo view-factor rays per particle (radiation)")
-      ("radiation.seed", po::value<std::uint64_t>()->default_value(d.seed),
+      ("radiation.seed", po::value<std::uint64_t>(&s.seed)->default_value(s.seed),
        "seed of the view-factor rays (each particle its own stream: any thread count agrees)")
       ("radiation.model", po::value<std::string>()->default_value("pair"),
        "pair (the per-pair grey formula of docs/physics.md §6) or radiosity (the grey enclosure: one radiosity node "
        "per surface, docs/keff.md)")
-      ("radiation.emissivity", po::value<double>()->default_value(d.emissivity),
+      ("radiation.emissivity", po::value<double>(&s.emissivity)->default_value(s.emissivity),
        "grey emissivity of the particles")
-      ("radiation.wall-emissivity", po::value<double>()->default_value(d.wall_emissivity),
+      ("radiation.wall-emissivity",
+       po::value<double>(&s.wall_emissivity)->default_value(s.wall_emissivity),
        "grey emissivity of the hot and cold walls")
-      ("effects.gas", po::value<bool>()->default_value(true), "gas-lens conduction on/off")
-      ("effects.radiation", po::value<bool>()->default_value(d.radiation_path),
+      ("effects.gas", po::value<bool>(&s.gas_path)->default_value(s.gas_path),
+       "gas-lens conduction on/off")
+      ("effects.radiation", po::value<bool>(&s.radiation_path)->default_value(s.radiation_path),
        "grey-body radiation on/off (needs absolute wall temperatures)");
 }
 
@@ -105,7 +115,7 @@ int axis_index(const std::string& name) {
   if (name == "x") return 0;
   if (name == "y") return 1;
   if (name == "z") return 2;
-  throw InputError("--axis: '" + name + "' (accepted: x, y, z)");
+  throw InputError(fmt::format("--axis: '{}' (accepted: x, y, z)", name));
 }
 
 // The wall temperatures: --temperature or --t-hot/--t-cold, whichever the command line gives
@@ -130,7 +140,7 @@ void set_walls(const po::variables_map& vm, const po::variables_map& command_lin
   if (use_temperature) {
     const double t = vm["temperature"].as<double>();
     if (!(std::isfinite(t) && t > kSpan))
-      throw InputError("--temperature: " + std::to_string(t) + " K (accepted: T > 1 K)");
+      throw InputError(fmt::format("--temperature: {:f} K (accepted: T > 1 K)", t));
     s.hot_temperature = t + kSpan / 2;
     s.cold_temperature = t - kSpan / 2;
     return;
@@ -139,38 +149,28 @@ void set_walls(const po::variables_map& vm, const po::variables_map& command_lin
   s.cold_temperature = vm["t-cold"].as<double>();
 }
 
-kf::KeffScene make_scene(const po::variables_map& vm, const po::variables_map& command_line) {
-  kf::KeffScene s;
+// The scene: `bound` (what add_options bound) with the axis, the walls and the models named by
+// words, validated.
+kf::KeffScene make_scene(const po::variables_map& vm, const po::variables_map& command_line,
+                         const kf::KeffScene& bound) {
+  kf::KeffScene s = bound;
   s.axis = axis_index(vm["axis"].as<std::string>());
   set_walls(vm, command_line, s);
-  s.solid_conductivity = vm["solid.conductivity"].as<double>();
   const std::string model = vm["gas.model"].as<std::string>();
   if (model != "constant" && model != "air")
-    throw InputError("gas.model: '" + model + "' (accepted: constant, air)");
+    throw InputError(fmt::format("gas.model: '{}' (accepted: constant, air)", model));
   s.gas_model = model == "air" ? kf::GasModel::air : kf::GasModel::constant;
-  s.gas_conductivity = vm["gas.conductivity"].as<double>();
-  s.lens.lens = vm["gas.lens"].as<double>();
-  s.lens.min_gap = vm["gas.min-gap"].as<double>();
   const std::string region = vm["gas.lens-region"].as<std::string>();
   if (region != "both-lenses" && region != "larger-lens")
-    throw InputError("gas.lens-region: '" + region + "' (accepted: both-lenses, larger-lens)");
+    throw InputError(
+        fmt::format("gas.lens-region: '{}' (accepted: both-lenses, larger-lens)", region));
   s.lens.region =
       region == "larger-lens" ? kf::LensRegion::larger_lens : kf::LensRegion::both_lenses;
-  s.calibration = vm["contact.calibration"].as<double>();
-  s.contact.hertz_correction = vm["contact.hertz-correction"].as<bool>();
-  s.contact_path = vm["effects.contact"].as<bool>();
-  s.gas_path = vm["effects.gas"].as<bool>();
-  s.radiation_path = vm["effects.radiation"].as<bool>();
-  s.rays = vm["rays"].as<std::size_t>();
   const std::string radiation = vm["radiation.model"].as<std::string>();
   if (radiation != "pair" && radiation != "radiosity")
-    throw InputError("radiation.model: '" + radiation + "' (accepted: pair, radiosity)");
+    throw InputError(fmt::format("radiation.model: '{}' (accepted: pair, radiosity)", radiation));
   s.radiation_model =
       radiation == "radiosity" ? kf::RadiationModel::radiosity : kf::RadiationModel::pair;
-  s.seed = vm["radiation.seed"].as<std::uint64_t>();
-  s.emissivity = vm["radiation.emissivity"].as<double>();
-  s.wall_emissivity = vm["radiation.wall-emissivity"].as<double>();
-  s.newton_tolerance = vm["newton-tolerance"].as<double>();
   s.validate();
   return s;
 }
@@ -204,10 +204,9 @@ std::string profile_csv(const kf::TemperatureProfile& p, const kf::KeffScene& sc
 // of a tenth of a millimetre is a slip of units, not a model.
 void check_units(const po::variables_map& vm, const kf::KeffScene& scene) {
   if (vm["trust-units"].as<bool>() || scene.lens.min_gap <= 1e-4) return;
-  std::ostringstream msg;
-  msg << "gas.min-gap: " << scene.lens.min_gap << " m: a unit slip? (accepted: l_min in metres "
-      << "up to 1e-4, e.g. 1e-6; --trust-units if it is meant)";
-  throw InputError(msg.str());
+  throw InputError(fmt::format("gas.min-gap: {:g} m: a unit slip? (accepted: l_min in metres up "
+                               "to 1e-4, e.g. 1e-6; --trust-units if it is meant)",
+                               scene.lens.min_gap));
 }
 
 // Inputs and outputs checked before the work: a folder where the profile goes, or --out = the
@@ -246,12 +245,10 @@ kf::KeffResult solve(const po::variables_map& vm, const bed::Bed& bed, const kf:
   kf::KeffResult r = kf::solve_keff(bed, scene, network);
   // No conducting path from wall to wall gives k_eff = 0 up to round-off: not a result.
   if (!(r.k_eff > 0) || !std::isfinite(r.k_eff)) {
-    std::ostringstream msg;
-    msg << "k_eff = " << r.k_eff << " W/mK: no heat path joins the two walls ("
-        << r.rattlers.size() << " of " << bed.n()
-        << " particles isolated; accepted: a bed whose particles connect the walls, e.g. a "
-           "settled bed from deposit)";
-    throw NumericalError(msg.str());
+    throw NumericalError(fmt::format("k_eff = {:g} W/mK: no heat path joins the two walls ({} of "
+                                     "{} particles isolated; accepted: a bed whose particles "
+                                     "connect the walls, e.g. a settled bed from deposit)",
+                                     r.k_eff, r.rattlers.size(), bed.n()));
   }
   wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
@@ -345,14 +342,15 @@ void print_result(const RunReport& run) {
 
 int run(int argc, char** argv) {
   po::options_description desc("keff options (SI units)");
-  add_options(desc);
+  kf::KeffScene bound;  // what the options of a plain type fill (add_options)
+  add_options(desc, bound);
   po::variables_map vm;
   if (!app::parse_options("keff", kUsage, desc, {}, argc, argv, vm)) return 0;
   app::apply_thread_team(vm);
   if (!vm.count("bed")) throw InputError("--bed: missing (required)");
   po::variables_map command_line;  // what the command line alone says (walls)
   po::store(po::command_line_parser(argc, argv).options(desc).run(), command_line);
-  kf::KeffScene scene = make_scene(vm, command_line);
+  kf::KeffScene scene = make_scene(vm, command_line, bound);
   check_units(vm, scene);
   const auto bins = app::option_in_range<std::size_t>(vm, "profile-bins", 0, 1000000);
   check_files(vm);

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "common/app_main.hpp"
 #include "common/contact_report.hpp"
 #include "common/options.hpp"
@@ -27,14 +29,14 @@ const char* const kUsage =
     "[options]";
 
 // packgen's options with their help: one entry per option, so the list is as long as it is.
-void add_options(po::options_description& desc) {
+// Those of a plain type are bound to `o`'s fields (defaults: its values).
+void add_options(po::options_description& desc, packgen::PackOptions& o) {
   app::add_common_options(desc);
   app::add_progress_option(desc);
-  const std::string directions_help =
-      "K: directions per 1-contact try, circle angles per 3D 2-contact try (default " +
-      std::to_string(packgen::kDirections2D) +
-      " in 2D: the [LP] 1-contact density, docs/results/packgen-2d-study.md; " +
-      std::to_string(packgen::kDirections3D) + " in 3D)";
+  const std::string directions_help = fmt::format(
+      "K: directions per 1-contact try, circle angles per 3D 2-contact try (default {} in 2D: the "
+      "[LP] 1-contact density, docs/results/packgen-2d-study.md; {} in 3D)",
+      packgen::kDirections2D, packgen::kDirections3D);
   desc.add_options()
       ("dim", po::value<std::string>()->required(), "2 (disks) or 3 (spheres); must match --domain")
       ("domain", po::value<std::string>()->required(), "LX,LY[,LZ] (m): the box [0, L]")
@@ -49,7 +51,7 @@ void add_options(po::options_description& desc) {
       ("site-order", po::value<std::string>()->default_value("lowest"),
        "3D approach 3: lowest (fill the lowest free 3-contact site first, growing from the "
        "floor: densest, O(N)) or random (a random particle and two random partners, [LP] tries)")
-      ("floor-seed", po::value<double>()->default_value(0.0),
+      ("floor-seed", po::value<double>(&o.floor_seed)->default_value(o.floor_seed),
        "site order lowest: fraction of the floor first covered by particles dropped at random "
        "onto it (0 <= F < 1)")
       ("phases", po::value<std::string>(),
@@ -57,20 +59,21 @@ void add_options(po::options_description& desc) {
        "replaces --approach")
       ("collision", po::value<std::string>()->default_value("grid"),
        "raster (status grid of [LP], approximate), grid (exact cell list) or kdtree (exact)")
-      ("raster-spacing", po::value<double>(), "raster grid spacing h (m), needed by raster")
-      ("tries", po::value<int>()->default_value(1000),
+      ("raster-spacing", po::value<double>(&o.raster_spacing),
+       "raster grid spacing h (m), needed by raster")
+      ("tries", po::value<int>(&o.tries)->default_value(o.tries),
        "n_T: tries per size before a new size is drawn")
       ("directions", po::value<int>(), directions_help.c_str())
-      ("count", po::value<std::size_t>(), "stop at N particles")
-      ("target-density", po::value<double>(),
+      ("count", po::value<std::size_t>(&o.count), "stop at N particles")
+      ("target-density", po::value<double>(&o.target_density),
        "stop at this density (0 < F < 1); if it cannot be reached the run stops at "
        "--max-failures, still writes the bed, warns on stderr and exits 0")
-      ("max-failures", po::value<std::size_t>()->default_value(100),
+      ("max-failures", po::value<std::size_t>(&o.max_failures)->default_value(o.max_failures),
        "stop after M consecutive failed placements (the default stop rule)")
-      ("retire-after", po::value<int>()->default_value(32),
+      ("retire-after", po::value<int>(&o.retire_after)->default_value(o.retire_after),
        "drop a particle from the partner list after this many consecutive failed tries "
        "around it (0 = never; O(N) front advancing)")
-      ("edge-fraction", po::value<double>()->default_value(0.0),
+      ("edge-fraction", po::value<double>(&o.edge_fraction)->default_value(o.edge_fraction),
        "fraction of 0-contact tries drawn within one largest diameter of a wall")
       ("allow-huge",
        "accept a domain holding more than 1e9 particles of the PSD's mean size, or a --count "
@@ -84,56 +87,48 @@ void add_options(po::options_description& desc) {
 bed::Domain domain_of(const po::variables_map& vm) {
   const std::string dim_text = vm["dim"].as<std::string>();
   if (dim_text != "2" && dim_text != "3")
-    throw InputError("--dim: '" + dim_text + "' (accepted: 2 or 3)");
+    throw InputError(fmt::format("--dim: '{}' (accepted: 2 or 3)", dim_text));
   const int dim = dim_text == "2" ? 2 : 3;
   const bed::Domain domain = app::parse_domain_lengths(vm["domain"].as<std::string>(), "--domain");
   if (dim != domain.dimension) {
-    throw InputError("--dim: " + std::to_string(dim) + " but --domain '" +
-                     vm["domain"].as<std::string>() + "' has " +
-                     std::to_string(domain.dimension) + " lengths (accepted: equal)");
+    throw InputError(fmt::format("--dim: {} but --domain '{}' has {} lengths (accepted: equal)",
+                                 dim, vm["domain"].as<std::string>(), domain.dimension));
   }
   return domain;
 }
 
-// The packing options as given; pack() checks them (packgen::validate) except what only the
-// command line can get wrong: --count 0 and --target-density 0 (to the library, "no such stop
-// rule") and a --count that cannot fit, which packgen refuses at any size
+// The packing options: `bound` (what add_options bound) with the phases, the collision test,
+// the directions, the site order and the size sampling. pack() checks them (packgen::validate)
+// except what only the command line can get wrong: --count 0 and --target-density 0 (to the
+// library, "no such stop rule") and a --count that cannot fit, which packgen refuses at any size
 // (packgen::check_count_fits).
-packgen::PackOptions pack_options(const po::variables_map& vm, const bed::Domain& domain,
-                                  const bed::Psd& psd) {
-  packgen::PackOptions o;
+packgen::PackOptions pack_options(const po::variables_map& vm, const packgen::PackOptions& bound,
+                                  const bed::Domain& domain, const bed::Psd& psd) {
+  packgen::PackOptions o = bound;
   o.phases = vm.count("phases") ? packgen::parse_phases(vm["phases"].as<std::string>())
                                 : std::vector<packgen::Phase>{{vm["approach"].as<int>(), 1.0}};
   o.collision = packgen::parse_collision(vm["collision"].as<std::string>());
-  if (vm.count("raster-spacing")) o.raster_spacing = vm["raster-spacing"].as<double>();
-  o.tries = vm["tries"].as<int>();
   if (vm.count("directions")) o.directions = vm["directions"].as<int>();
   if (vm.count("count")) {
-    o.count = vm["count"].as<std::size_t>();
     if (o.count == 0) throw InputError("--count: 0 (accepted: a number of particles >= 1)");
     packgen::check_count_fits(domain, psd, o.count);
   }
   o.allow_huge = vm.count("allow-huge") > 0;
-  if (vm.count("target-density")) {
-    o.target_density = vm["target-density"].as<double>();
-    if (o.target_density == 0) throw InputError("--target-density: 0 (accepted: 0 < F < 1)");
-  }
-  o.max_failures = vm["max-failures"].as<std::size_t>();
-  o.retire_after = vm["retire-after"].as<int>();
-  o.edge_fraction = vm["edge-fraction"].as<double>();
+  if (vm.count("target-density") && o.target_density == 0)
+    throw InputError("--target-density: 0 (accepted: 0 < F < 1)");
   o.site_order = packgen::parse_site_order(vm["site-order"].as<std::string>());
-  o.floor_seed = vm["floor-seed"].as<double>();
   o.size_sampling = packgen::parse_size_sampling(vm["size-sampling"].as<std::string>());
   return o;
 }
 
 // A stop rule that was not reached: the bed is written all the same, with a warning.
 void warn_unreached(const packgen::PackOptions& o, const bed::Bed& b, double density) {
-  std::cerr << "packgen: warning: " << (o.count > 0 ? "--count " : "--target-density ")
-            << (o.count > 0 ? std::to_string(o.count) : app::tolerance_key(o.target_density))
-            << " not reached: stopped after " << o.max_failures
-            << " consecutive failed placements with " << b.n() << " particles at density "
-            << density << "; the bed was written\n";
+  const std::string target =
+      o.count > 0 ? fmt::format("--count {}", o.count)
+                  : fmt::format("--target-density {}", app::tolerance_key(o.target_density));
+  std::cerr << fmt::format("packgen: warning: {} not reached: stopped after {} consecutive failed "
+                           "placements with {} particles at density {:g}; the bed was written\n",
+                           target, o.max_failures, b.n(), density);
 }
 
 // What --json prints: the bed's density and contacts, the run's counters and settings.
@@ -201,7 +196,8 @@ void report(packgen::PackResult& result, const packgen::PackOptions& o, std::uin
 
 int run(int argc, char** argv) {
   po::options_description desc("packgen options (SI units: m)");
-  add_options(desc);
+  packgen::PackOptions bound;  // what the options of a plain type fill (add_options)
+  add_options(desc, bound);
   po::variables_map vm;
   if (!app::parse_options("packgen", kUsage, desc, {}, argc, argv, vm)) return 0;
   // The output is checked before any work (docs/hardening.md): extension, folder, not a folder.
@@ -210,7 +206,7 @@ int run(int argc, char** argv) {
   app::check_paths({}, {out});
   const bed::Domain domain = domain_of(vm);
   const bed::Psd psd = bed::Psd::parse(vm["psd"].as<std::string>(), "--psd");
-  packgen::PackOptions o = pack_options(vm, domain, psd);
+  packgen::PackOptions o = pack_options(vm, bound, domain, psd);
   app::ProgressBar bar("packgen", app::progress_interval(vm));
   o.progress = [&bar](const packgen::PackProgress& p) {
     char detail[64];

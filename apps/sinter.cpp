@@ -11,8 +11,9 @@
 #include <optional>
 #include <cstdio>
 #include <iostream>
-#include <sstream>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "common/app_main.hpp"
 #include "common/material_options.hpp"
@@ -229,8 +230,9 @@ void check_files(const po::variables_map& vm, const std::string& bed_path,
   const bool fuse = vm["fuse"].as<bool>();
   const double melt_fraction = vm["fuse.melt-fraction"].as<double>();
   if (fuse && !(melt_fraction > 0 && melt_fraction <= 1))
-    throw InputError("--fuse.melt-fraction: " + std::to_string(melt_fraction) +
-                     " (accepted: 0 < f <= 1; 0.5 fuses what reached T_m, 1 what was wholly liquid)");
+    throw InputError(fmt::format("--fuse.melt-fraction: {:f} (accepted: 0 < f <= 1; 0.5 fuses what "
+                                 "reached T_m, 1 what was wholly liquid)",
+                                 melt_fraction));
   if (vm.count("fused-bed")) {
     if (!fuse) throw InputError("--fused-bed: given without --fuse (accepted: --fuse --fused-bed BED.h5)");
     const std::string fused_bed = vm["fused-bed"].as<std::string>();
@@ -292,7 +294,8 @@ std::optional<th::Fusion> fuse_if_asked(const po::variables_map& vm, const bed::
 
 int run(int argc, char** argv) {
   po::options_description desc("sinter options (SI units)");
-  app::add_sinter_options(desc);
+  th::SinterScene bound;  // what the options of a plain type fill (app::add_sinter_options)
+  app::add_sinter_options(desc, bound);
   po::variables_map vm;
   if (!app::parse_options("sinter", kUsage, desc, {}, argc, argv, vm)) return 0;
   const std::string bed_path = app::required<std::string>(vm, "bed");
@@ -302,13 +305,14 @@ int run(int argc, char** argv) {
   check_files(vm, bed_path, out);
 
   bed::Bed bed = bed::read_bed_any(bed_path);
-  const th::SinterScene scene = app::sinter_scene(vm, bed);
+  const th::SinterScene scene = app::sinter_scene(vm, bound, bed);
   const th::MaterialTable table = th::read_material_table(scene.material_table);
   th::Sinter sinter(bed, scene, table);
   if (scene.unsafe_dt && scene.dt > sinter.stable_steps().grid &&
       scene.integrator == th::Integrator::explicit_euler) {
-    std::cerr << "sinter: warning: --dt " << scene.dt << " s is above the stable bound "
-              << sinter.stable_steps().grid << " s (--unsafe-dt)\n";
+    std::cerr << fmt::format("sinter: warning: --dt {:g} s is above the stable bound {:g} s "
+                             "(--unsafe-dt)\n",
+                             scene.dt, sinter.stable_steps().grid);
   }
   if (explain_only) {
     const th::ExplainReport report = th::explain(bed, scene, sinter);

@@ -6,8 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "common/material_options.hpp"
 #include "common/progress.hpp"
@@ -22,9 +23,8 @@ namespace th = thermal;
 
 // The scan path options (docs/sinter.md "Scan paths"): a CSV of segments or a hatch; neither
 // keeps the single track of laser.*.
-void add_scan_options(po::options_description& desc) {
+void add_scan_options(po::options_description& desc, th::SinterScene& s) {
   const th::Hatch h;
-  const th::SinterScene d;
   desc.add_options()
       ("scan-path", po::value<std::string>(),
        "CSV of segments, header x0,y0,x1,y1,power,speed (SI); replaces the single track")
@@ -39,7 +39,7 @@ void add_scan_options(po::options_description& desc) {
        "layer k: the tracks run at k x rotation from +x")
       ("scan.region", po::value<std::string>(),
        "X0,X1,Y0,Y1: the rectangle the hatch covers (m); default the bed's x-y extent")
-      ("scan.jump-speed", po::value<double>()->default_value(d.jump_speed),
+      ("scan.jump-speed", po::value<double>(&s.jump_speed)->default_value(s.jump_speed),
        "speed of the jumps between segments, laser off (m/s)");
 }
 
@@ -53,8 +53,8 @@ std::vector<th::ScanSegment> scan_path_of(const po::variables_map& vm, const th:
   if (!hatch) {  // a hatch option without the hatch is a mistake, not a default
     for (const char* name : {"scan.tracks", "scan.direction", "scan.rotation", "scan.layer", "scan.region"})
       if (vm.count(name) && !vm[name].defaulted())
-        throw InputError(std::string("--") + name + ": given without --scan.hatch (accepted: "
-                         "--scan.hatch H with it)");
+        throw InputError(fmt::format(
+            "--{}: given without --scan.hatch (accepted: --scan.hatch H with it)", name));
   }
   if (csv) return th::read_scan_csv(vm["scan-path"].as<std::string>());
   if (!hatch) return {};
@@ -63,7 +63,8 @@ std::vector<th::ScanSegment> scan_path_of(const po::variables_map& vm, const th:
   h.tracks = vm["scan.tracks"].as<std::size_t>();
   const std::string direction = vm["scan.direction"].as<std::string>();
   if (direction != "one-way" && direction != "alternating")
-    throw InputError("--scan.direction: '" + direction + "' (accepted: one-way, alternating)");
+    throw InputError(
+        fmt::format("--scan.direction: '{}' (accepted: one-way, alternating)", direction));
   h.direction = direction == "one-way" ? th::HatchDirection::one_way : th::HatchDirection::alternating;
   h.rotation = vm["scan.rotation"].as<double>();
   if (!std::isfinite(h.rotation))
@@ -81,8 +82,7 @@ std::vector<th::ScanSegment> scan_path_of(const po::variables_map& vm, const th:
 
 // The run: its files, --explain and --fuse, the laser's headline numbers, the grid spacing and
 // the steps.
-void add_run_options(po::options_description& desc) {
-  const th::SinterScene d;
+void add_run_options(po::options_description& desc, th::SinterScene& s) {
   desc.add_options()
       ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump) resting on z = floor")
       ("out", po::value<std::string>(), "run file: HDF5 time series + XDMF sidecar")
@@ -92,16 +92,19 @@ void add_run_options(po::options_description& desc) {
       ("fuse.melt-fraction", po::value<double>()->default_value(0.5),
        "--fuse: the melt fraction a particle must have reached (0.5: T_m; 1: wholly liquid)")
       ("fused-bed", po::value<std::string>(), "--fuse: write the powder left as this bed (.h5)")
-      ("power", po::value<double>()->default_value(d.power), "laser power P (W)")
-      ("speed", po::value<double>()->default_value(d.speed), "scan speed v (m/s)")
-      ("spot", po::value<double>()->default_value(d.spot_radius), "beam radius w at 1/e^2 (m)")
+      ("power", po::value<double>(&s.power)->default_value(s.power), "laser power P (W)")
+      ("speed", po::value<double>(&s.speed)->default_value(s.speed), "scan speed v (m/s)")
+      ("spot", po::value<double>(&s.spot_radius)->default_value(s.spot_radius),
+       "beam radius w at 1/e^2 (m)")
       ("grid-spacing", po::value<double>(),
        "substrate node spacing (m); overrides substrate.nodes (nodes = L / DX + 1, rounded)")
-      ("dt", po::value<double>(), "grid time step (s); default: safety x the stable bound")
-      ("unsafe-dt", po::bool_switch(), "accept a --dt above the stable bound (with a warning)")
+      ("dt", po::value<double>(&s.dt), "grid time step (s); default: safety x the stable bound")
+      ("unsafe-dt", po::bool_switch(&s.unsafe_dt),
+       "accept a --dt above the stable bound (with a warning)")
       ("integrator", po::value<std::string>()->default_value("explicit"),
        "explicit (forward Euler, multirate) or implicit (backward Euler, Eigen CG)")
-      ("t-end", po::value<double>(), "simulated time (s); default: until the laser reaches its end")
+      ("t-end", po::value<double>(&s.t_end),
+       "simulated time (s); default: until the laser reaches its end")
       ("snapshots", po::value<std::size_t>()->default_value(20),
        "number of snapshots in the time series (besides t = 0)")
       ("full-fields", po::bool_switch(), "also store the whole substrate field in each snapshot")
@@ -111,187 +114,182 @@ void add_run_options(po::options_description& desc) {
 }
 
 // The laser's absorption (Beer–Lambert or ray tracing) and track line; wetting's contact angle.
-void add_laser_options(po::options_description& desc) {
-  const th::SinterScene d;
+void add_laser_options(po::options_description& desc, th::SinterScene& s) {
   desc.add_options()
-      ("laser.absorptivity", po::value<double>()->default_value(d.absorptivity), "alpha")
-      ("laser.y", po::value<double>(), "track line y (m); default Ly/2")
-      ("laser.start-x", po::value<double>(), "track start x (m); default one spot radius before")
-      ("laser.end-x", po::value<double>(), "track end x (m); default one spot radius past")
+      ("laser.absorptivity", po::value<double>(&s.absorptivity)->default_value(s.absorptivity),
+       "alpha")
+      ("laser.y", po::value<double>(&s.laser_y), "track line y (m); default Ly/2")
+      ("laser.start-x", po::value<double>(&s.start_x),
+       "track start x (m); default one spot radius before")
+      ("laser.end-x", po::value<double>(&s.end_x), "track end x (m); default one spot radius past")
       ("laser.absorption",
        po::value<std::string>()->default_value(
-           d.absorption == th::LaserAbsorption::ray_trace ? "ray-trace" : "beer-lambert"),
+           s.absorption == th::LaserAbsorption::ray_trace ? "ray-trace" : "beer-lambert"),
        "beer-lambert (exp(-beta z) on projected areas, Gusarov's beta) or ray-trace (rays on "
        "the bed's own spheres and the substrate, absorbed alpha per hit, reflected)")
       ("laser.substrate-shading", po::value<std::string>()->default_value("layer"),
        "beer-lambert: beam reaching the substrate: layer (exp(-beta H_layer) everywhere) or "
        "column (exp(-beta H) with H the bed height above each node; bare spots get the full beam)")
-      ("laser.absorptivity-liquid", po::value<double>(),
+      ("laser.absorptivity-liquid", po::value<double>(&s.absorptivity_liquid),
        "ray-trace: alpha of molten surfaces (default: laser.absorptivity in every phase)")
-      ("laser.rays", po::value<std::size_t>()->default_value(d.rays.rays),
+      ("laser.rays", po::value<std::size_t>(&s.rays.rays)->default_value(s.rays.rays),
        "ray-trace: rays per traced beam position")
-      ("laser.retrace-interval", po::value<double>()->default_value(d.retrace_interval),
+      ("laser.retrace-interval",
+       po::value<double>(&s.retrace_interval)->default_value(s.retrace_interval),
        "ray-trace: the beam is traced anew each time it moves this fraction of w")
       ("laser.reflection", po::value<std::string>()->default_value("specular"),
        "ray-trace: specular or diffuse (Lambert) reflection")
-      ("laser.ray-cutoff", po::value<double>()->default_value(d.rays.cutoff),
+      ("laser.ray-cutoff", po::value<double>(&s.rays.cutoff)->default_value(s.rays.cutoff),
        "ray-trace: a ray carrying less than this fraction of its power is dropped")
-      ("laser.ray-seed", po::value<std::uint64_t>()->default_value(d.rays.seed),
+      ("laser.ray-seed", po::value<std::uint64_t>(&s.rays.seed)->default_value(s.rays.seed),
        "ray-trace: seed of the rays' jitter")
-      ("wetting.contact-angle", po::value<double>()->default_value(d.contact_angle),
+      ("wetting.contact-angle",
+       po::value<double>(&s.contact_angle)->default_value(s.contact_angle),
        "effects.wetting: contact angle of the melt on the solid substrate (degrees)");
 }
 
 // The material's phase change and properties, the environment, the substrate and the steps'
 // safety margins.
-void add_material_and_grid_options(po::options_description& desc) {
-  const th::SinterScene d;
+void add_material_and_grid_options(po::options_description& desc, th::SinterScene& s) {
+  th::PhaseChange& p = s.phase_change;
   desc.add_options()
-      ("material.table", po::value<std::string>()->default_value(d.material_table),
+      ("material.table", po::value<std::string>()->default_value(s.material_table),
        "material file with the property table (solid rows + one liquid row): a name of "
        "--list-materials or a path (relative paths: to the scene file's folder too)")
-      ("material.melting-point", po::value<double>()->default_value(d.phase_change.melting_point), "T_m (K)")
-      ("material.boiling-point", po::value<double>()->default_value(d.phase_change.boiling_point), "T_v (K)")
-      ("material.latent-melt", po::value<double>()->default_value(d.phase_change.latent_melt), "L_m (J/kg)")
-      ("material.latent-vapour", po::value<double>()->default_value(d.phase_change.latent_vapour), "L_v (J/kg)")
-      ("material.window", po::value<double>()->default_value(d.phase_change.window),
+      ("material.melting-point",
+       po::value<double>(&p.melting_point)->default_value(p.melting_point),
+       "T_m (K)")
+      ("material.boiling-point",
+       po::value<double>(&p.boiling_point)->default_value(p.boiling_point),
+       "T_v (K)")
+      ("material.latent-melt", po::value<double>(&p.latent_melt)->default_value(p.latent_melt),
+       "L_m (J/kg)")
+      ("material.latent-vapour",
+       po::value<double>(&p.latent_vapour)->default_value(p.latent_vapour),
+       "L_v (J/kg)")
+      ("material.window", po::value<double>(&p.window)->default_value(p.window),
        "phase-change window dT of the apparent heat capacity (K)")
-      ("material.hold-from", po::value<double>()->default_value(d.hold_from),
+      ("material.hold-from", po::value<double>(&s.hold_from)->default_value(s.hold_from),
        "solid properties extrapolated to this T, then held (K)")
       ("material.liquid-conductivity", po::value<std::string>()->default_value("solid"),
        "solid ([GZ]: the solid value held in the liquid) or table (the liquid row)")
-      ("environment.convection", po::value<double>()->default_value(d.convection), "h (W/m^2K)")
-      ("environment.emissivity", po::value<double>()->default_value(d.emissivity), "eps")
-      ("environment.temperature", po::value<double>()->default_value(d.environment_temperature), "T_env (K)")
-      ("environment.initial-temperature", po::value<double>()->default_value(d.initial_temperature),
+      ("environment.convection", po::value<double>(&s.convection)->default_value(s.convection),
+       "h (W/m^2K)")
+      ("environment.emissivity", po::value<double>(&s.emissivity)->default_value(s.emissivity),
+       "eps")
+      ("environment.temperature",
+       po::value<double>(&s.environment_temperature)->default_value(s.environment_temperature),
+       "T_env (K)")
+      ("environment.initial-temperature",
+       po::value<double>(&s.initial_temperature)->default_value(s.initial_temperature),
        "T0 of bed and substrate, and the substrate's Dirichlet value (K)")
-      ("substrate.depth", po::value<double>()->default_value(d.substrate_depth), "depth (m)")
+      ("substrate.depth", po::value<double>(&s.substrate_depth)->default_value(s.substrate_depth),
+       "depth (m)")
       ("substrate.nodes", po::value<std::string>()->default_value("201,101,61"), "NX,NY,NZ")
-      ("time.safety", po::value<double>()->default_value(d.safety), "fraction of the stable step")
-      ("time.max-particle-rise", po::value<double>()->default_value(d.max_particle_rise),
+      ("time.safety", po::value<double>(&s.safety)->default_value(s.safety),
+       "fraction of the stable step")
+      ("time.max-particle-rise",
+       po::value<double>(&s.max_particle_rise)->default_value(s.max_particle_rise),
        "particle steps subcycle so the laser raises no particle more than this per step (K)");
 }
 
 // effects.NAME: one switch per row of the scene's list of effects.
-void add_effect_options(po::options_description& desc) {
-  const th::SinterScene d;
+void add_effect_options(po::options_description& desc, const th::SinterScene& s) {
   for (const th::SinterEffectRow& row : th::kSinterEffects) {
     const std::string name = std::string("effects.") + row.name;
-    desc.add_options()(name.c_str(), po::value<bool>()->default_value(d.has(row.effect)),
+    desc.add_options()(name.c_str(), po::value<bool>()->default_value(s.has(row.effect)),
                        "effect on/off");
   }
 }
 
 }  // namespace
 
-void add_sinter_options(po::options_description& desc) {
+void add_sinter_options(po::options_description& desc, th::SinterScene& scene) {
   add_common_options(desc);
   add_threads_option(desc);
   add_progress_option(desc);
   add_material_options(desc, "sinter");
-  add_scan_options(desc);
-  add_run_options(desc);
-  add_laser_options(desc);
-  add_material_and_grid_options(desc);
-  add_effect_options(desc);
+  add_scan_options(desc, scene);
+  add_run_options(desc, scene);
+  add_laser_options(desc, scene);
+  add_material_and_grid_options(desc, scene);
+  add_effect_options(desc, scene);
 }
 
 namespace {
 
-// material.*, environment.*: the material and what surrounds the bed.
+// material.table, material.liquid-conductivity (the other material.* and environment.* options
+// are bound to the scene).
 void set_material(const po::variables_map& vm, th::SinterScene& s) {
   // A name of the shipped materials, or a path (relative: to the scene file's folder too).
   s.material_table =
       material_file(vm["material.table"].as<std::string>(), vm, "material.table");
-  s.phase_change.melting_point = vm["material.melting-point"].as<double>();
-  s.phase_change.boiling_point = vm["material.boiling-point"].as<double>();
-  s.phase_change.latent_melt = vm["material.latent-melt"].as<double>();
-  s.phase_change.latent_vapour = vm["material.latent-vapour"].as<double>();
-  s.phase_change.window = vm["material.window"].as<double>();
-  s.hold_from = vm["material.hold-from"].as<double>();
   const std::string liquid = vm["material.liquid-conductivity"].as<std::string>();
   if (liquid != "solid" && liquid != "table")
-    throw InputError("material.liquid-conductivity: '" + liquid + "' (accepted: solid, table)");
+    throw InputError(
+        fmt::format("material.liquid-conductivity: '{}' (accepted: solid, table)", liquid));
   s.liquid_conductivity =
       liquid == "solid" ? th::LiquidConductivity::solid : th::LiquidConductivity::table;
-  s.convection = vm["environment.convection"].as<double>();
-  s.emissivity = vm["environment.emissivity"].as<double>();
-  s.environment_temperature = vm["environment.temperature"].as<double>();
-  s.initial_temperature = vm["environment.initial-temperature"].as<double>();
 }
 
-// The laser: power, speed, spot, the track line, the absorption model and its rays; wetting.
+// The laser's models: the substrate's shading, the absorption, the rays' reflection (its numbers
+// are bound to the scene).
 void set_laser(const po::variables_map& vm, th::SinterScene& s) {
-  s.power = vm["power"].as<double>();
-  s.speed = vm["speed"].as<double>();
-  s.spot_radius = vm["spot"].as<double>();
-  s.absorptivity = vm["laser.absorptivity"].as<double>();
-  if (vm.count("laser.y")) s.laser_y = vm["laser.y"].as<double>();
-  if (vm.count("laser.start-x")) s.start_x = vm["laser.start-x"].as<double>();
-  if (vm.count("laser.end-x")) s.end_x = vm["laser.end-x"].as<double>();
   const std::string shading = vm["laser.substrate-shading"].as<std::string>();
   if (shading != "layer" && shading != "column")
-    throw InputError("laser.substrate-shading: '" + shading + "' (accepted: layer, column)");
+    throw InputError(
+        fmt::format("laser.substrate-shading: '{}' (accepted: layer, column)", shading));
   s.substrate_shading =
       shading == "layer" ? th::SubstrateShading::layer : th::SubstrateShading::column;
   const std::string absorption = vm["laser.absorption"].as<std::string>();
   if (absorption != "beer-lambert" && absorption != "ray-trace")
-    throw InputError("laser.absorption: '" + absorption + "' (accepted: beer-lambert, ray-trace)");
+    throw InputError(
+        fmt::format("laser.absorption: '{}' (accepted: beer-lambert, ray-trace)", absorption));
   s.absorption = absorption == "ray-trace" ? th::LaserAbsorption::ray_trace
                                            : th::LaserAbsorption::beer_lambert;
-  if (vm.count("laser.absorptivity-liquid"))
-    s.absorptivity_liquid = vm["laser.absorptivity-liquid"].as<double>();
-  s.rays.rays = vm["laser.rays"].as<std::size_t>();
-  s.rays.cutoff = vm["laser.ray-cutoff"].as<double>();
-  s.rays.seed = vm["laser.ray-seed"].as<std::uint64_t>();
-  s.retrace_interval = vm["laser.retrace-interval"].as<double>();
   const std::string reflection = vm["laser.reflection"].as<std::string>();
   if (reflection != "specular" && reflection != "diffuse")
-    throw InputError("laser.reflection: '" + reflection + "' (accepted: specular, diffuse)");
+    throw InputError(
+        fmt::format("laser.reflection: '{}' (accepted: specular, diffuse)", reflection));
   s.rays.reflection =
       reflection == "specular" ? th::Reflection::specular : th::Reflection::diffuse;
-  s.contact_angle = vm["wetting.contact-angle"].as<double>();
 }
 
-// The substrate: its depth and nodes (--grid-spacing: from the bed's x-y extent lx, ly).
+// The substrate's nodes (--grid-spacing: from the bed's x-y extent lx, ly and its depth).
 void set_grid(const po::variables_map& vm, double lx, double ly, th::SinterScene& s) {
-  s.substrate_depth = vm["substrate.depth"].as<double>();
   const auto nodes = parse_number_list(vm["substrate.nodes"].as<std::string>(), 3, 3,
                                             "substrate.nodes");
   for (std::size_t a = 0; a < 3; ++a) {
     if (!(nodes[a] >= 0 && nodes[a] == std::floor(nodes[a])))
-      throw InputError("substrate.nodes: '" + vm["substrate.nodes"].as<std::string>() +
-                       "' (accepted: three whole numbers >= 3)");
+      throw InputError(fmt::format("substrate.nodes: '{}' (accepted: three whole numbers >= 3)",
+                                   vm["substrate.nodes"].as<std::string>()));
     s.nodes[a] = static_cast<std::size_t>(nodes[a]);
   }
   if (vm.count("grid-spacing")) {
     const double h = vm["grid-spacing"].as<double>();
     if (!(h > 0 && std::isfinite(h)))
-      throw InputError("--grid-spacing: " + std::to_string(h) + " (accepted: DX > 0 m)");
+      throw InputError(fmt::format("--grid-spacing: {:f} (accepted: DX > 0 m)", h));
     const double lengths[3] = {lx, ly, s.substrate_depth};
     for (std::size_t a = 0; a < 3; ++a)
       s.nodes[a] = static_cast<std::size_t>(std::llround(lengths[a] / h)) + 1;
   }
 }
 
-// The integrator, the steps and the end of the run.
+// The integrator, and --dt checked when given (the steps and the end of the run are bound).
 void set_time(const po::variables_map& vm, th::SinterScene& s) {
   const std::string integrator = vm["integrator"].as<std::string>();
   if (integrator != "explicit" && integrator != "implicit")
-    throw InputError("--integrator: '" + integrator + "' (accepted: explicit, implicit)");
+    throw InputError(
+        fmt::format("--integrator: '{}' (accepted: explicit, implicit)", integrator));
   s.integrator = integrator == "explicit" ? th::Integrator::explicit_euler
                                           : th::Integrator::implicit_euler;
-  if (vm.count("dt")) {
-    s.dt = vm["dt"].as<double>();
-    if (!(s.dt > 0)) throw InputError("--dt: " + std::to_string(s.dt) + " (accepted: dt > 0 s)");
-  }
-  s.safety = vm["time.safety"].as<double>();
-  s.max_particle_rise = vm["time.max-particle-rise"].as<double>();
-  if (vm.count("t-end")) s.t_end = vm["t-end"].as<double>();
+  if (vm.count("dt") && !(s.dt > 0))
+    throw InputError(fmt::format("--dt: {:f} (accepted: dt > 0 s)", s.dt));
 }
 
-th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
-  th::SinterScene s;
+th::SinterScene make_scene(const po::variables_map& vm, const th::SinterScene& bound, double lx,
+                           double ly) {
+  th::SinterScene s = bound;
   set_material(vm, s);
   set_laser(vm, s);
   set_grid(vm, lx, ly, s);
@@ -306,24 +304,23 @@ th::SinterScene make_scene(const po::variables_map& vm, double lx, double ly) {
 // likely mistake; --trust-units skips them where a huge value is meant.
 void check_units(const th::SinterScene& s, const bed::Bed& bed) {
   const double size = std::max(bed.domain.length(0), bed.domain.length(1));
-  const auto refuse = [](const std::string& what) { throw InputError(what + " (--trust-units if it is meant)"); };
+  const auto refuse = [](const std::string& what) {
+    throw InputError(fmt::format("{} (--trust-units if it is meant)", what));
+  };
   if (s.spot_radius > size) {
-    std::ostringstream msg;
-    msg << "--spot: w = " << s.spot_radius << " m is wider than the bed (" << size
-        << " m): a unit slip? (accepted: a beam radius in metres, e.g. 54e-6)";
-    refuse(msg.str());
+    refuse(fmt::format("--spot: w = {:g} m is wider than the bed ({:g} m): a unit slip? "
+                       "(accepted: a beam radius in metres, e.g. 54e-6)",
+                       s.spot_radius, size));
   }
   if (s.power > 1e4) {
-    std::ostringstream msg;
-    msg << "--power: " << s.power << " W is beyond the lasers of powder-bed machines (accepted: up "
-           "to 1e4 W)";
-    refuse(msg.str());
+    refuse(fmt::format("--power: {:g} W is beyond the lasers of powder-bed machines (accepted: "
+                       "up to 1e4 W)",
+                       s.power));
   }
   if (s.substrate_depth > 1e-2) {
-    std::ostringstream msg;
-    msg << "substrate.depth: " << s.substrate_depth << " m: a unit slip? (accepted: a depth in "
-           "metres up to 1e-2, e.g. 0.3e-3)";
-    refuse(msg.str());
+    refuse(fmt::format("substrate.depth: {:g} m: a unit slip? (accepted: a depth in metres up "
+                       "to 1e-2, e.g. 0.3e-3)",
+                       s.substrate_depth));
   }
 }
 
@@ -336,22 +333,20 @@ void check_grid_memory(const th::SinterScene& s) {
   const double memory = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
                         static_cast<double>(::sysconf(_SC_PAGE_SIZE));
   if (bytes > memory) {
-    std::ostringstream msg;
-    msg << "substrate.nodes: " << s.nodes[0] << "," << s.nodes[1] << "," << s.nodes[2] << " ("
-        << nodes << " nodes) needs about " << bytes / (1u << 30) << " GiB; this machine has "
-        << memory / (1u << 30) << " GiB (accepted: fewer nodes, or a coarser --grid-spacing)";
-    throw InputError(msg.str());
+    throw InputError(fmt::format("substrate.nodes: {},{},{} ({:g} nodes) needs about {:g} GiB; "
+                                 "this machine has {:g} GiB (accepted: fewer nodes, or a "
+                                 "coarser --grid-spacing)",
+                                 s.nodes[0], s.nodes[1], s.nodes[2], nodes, bytes / (1u << 30),
+                                 memory / (1u << 30)));
   }
 }
 
 }  // namespace
 
-thermal::SinterScene sinter_scene(const po::variables_map& vm, const bed::Bed& bed,
-                                  std::optional<std::size_t> layer) {
-  th::SinterScene scene = make_scene(vm, bed.domain.length(0), bed.domain.length(1));
+thermal::SinterScene sinter_scene(const po::variables_map& vm, const thermal::SinterScene& bound,
+                                  const bed::Bed& bed, std::optional<std::size_t> layer) {
+  th::SinterScene scene = make_scene(vm, bound, bed.domain.length(0), bed.domain.length(1));
   scene.scan_path = scan_path_of(vm, scene, bed, layer);
-  scene.jump_speed = vm["scan.jump-speed"].as<double>();
-  scene.unsafe_dt = vm["unsafe-dt"].as<bool>();
   if (!vm["trust-units"].as<bool>()) check_units(scene, bed);
   check_grid_memory(scene);
   return scene;

@@ -3,6 +3,8 @@
 #include <boost/program_options/errors.hpp>
 #include <iostream>
 
+#include <fmt/format.h>
+
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/json.hpp"
 
@@ -12,21 +14,21 @@ int run_app(const char* app, int /*argc*/, char** /*argv*/, const std::function<
   try {
     return body();
   } catch (const InputError& e) {
-    std::cerr << app << ": " << e.what() << '\n';
+    std::cerr << fmt::format("{}: {}\n", app, e.what());
     return 2;
   } catch (const boost::program_options::error& e) {
-    std::cerr << app << ": " << e.what() << " (see " << app << " --help)\n";
+    std::cerr << fmt::format("{0}: {1} (see {0} --help)\n", app, e.what());
     return 2;
   } catch (const NumericalError& e) {
-    std::cerr << app << ": numerical failure: " << e.what() << '\n';
+    std::cerr << fmt::format("{}: numerical failure: {}\n", app, e.what());
     return 3;
   } catch (const std::exception& e) {
-    std::cerr << app << ": internal error: " << e.what() << '\n';
+    std::cerr << fmt::format("{}: internal error: {}\n", app, e.what());
     return 1;
   }
 }
 
-std::string version_string(const char* app) { return std::string(app) + " " + POWDERBED_VERSION; }
+std::string version_string(const char* app) { return fmt::format("{} {}", app, POWDERBED_VERSION); }
 
 std::string version_json(const char* app) {
   bed::JsonWriter json;

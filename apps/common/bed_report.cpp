@@ -4,6 +4,8 @@
 #include <cmath>
 #include <iterator>
 
+#include <fmt/format.h>
+
 #include "common/contact_report.hpp"
 #include "powderbed/bed/errors.hpp"
 
@@ -45,11 +47,13 @@ void write_quantiles(bed::JsonWriter& json, const DiameterQuantiles& q) {
 // 3D-only statistics are refused for a 2D bed rather than silently left out.
 void check_dimension(const bed::Bed& b, const std::string& file, const BedRequest& req) {
   if (req.voronoi && b.domain.dimension != 3) {
-    throw InputError("--voronoi: " + file +
-                     " is a 2D bed (accepted: 3D beds; the radical Voronoi tessellation is 3D only)");
+    throw InputError(fmt::format("--voronoi: {} is a 2D bed (accepted: 3D beds; the radical "
+                                 "Voronoi tessellation is 3D only)",
+                                 file));
   }
   if (req.order_margin && b.domain.dimension != 3) {
-    throw InputError("--order: " + file + " is a 2D bed (accepted: 3D beds; q6 is 3D only)");
+    throw InputError(
+        fmt::format("--order: {} is a 2D bed (accepted: 3D beds; q6 is 3D only)", file));
   }
 }
 

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <string_view>
 
+#include <fmt/format.h>
+
 #include "powderbed/bed/deck_damping.hpp"
 #include "powderbed/bed/errors.hpp"
 
@@ -28,14 +30,14 @@ double to_number(const std::string& key, const std::string& value, const std::st
     used = 0;
   }
   if (used != value.size() || value.empty())
-    throw InputError(source + ": " + key + " = '" + value + "' (accepted: a number)");
+    throw InputError(fmt::format("{}: {} = '{}' (accepted: a number)", source, key, value));
   return v;
 }
 
 bool to_bool(const std::string& key, const std::string& value, const std::string& source) {
   if (value == "true" || value == "1" || value == "on" || value == "yes") return true;
   if (value == "false" || value == "0" || value == "off" || value == "no") return false;
-  throw InputError(source + ": " + key + " = '" + value + "' (accepted: true, false)");
+  throw InputError(fmt::format("{}: {} = '{}' (accepted: true, false)", source, key, value));
 }
 
 void note(DeckScene& s, const std::string& key, const std::string& source) {
@@ -86,13 +88,14 @@ void apply_scene_text(const std::string& ini, const std::string& source, DeckSce
     else if (key == "wall.poisson") sc.wall.poisson = num();
     else if (key == "fluid.viscosity") sc.fluid_viscosity = num();
     else if (key == "gravity") sc.gravity = num();
-    else if (key == "contact.law") sc.law = dem::parse_contact_law(value, source + ": contact.law");
+    else if (key == "contact.law")
+      sc.law = dem::parse_contact_law(value, fmt::format("{}: contact.law", source));
     else if (key == "contact.stiffness") sc.stiffness = num();
     else if (key == "young-scale") s.young_scale = num();
     else if (key == "dt") s.dt = num();
     else if (key.rfind("effects.", 0) == 0) {
       const unsigned bit = dem::effect_bit(std::string_view(key).substr(key.find('.') + 1));
-      if (bit == 0) throw InputError(source + ": unknown effect '" + key + "'");
+      if (bit == 0) throw InputError(fmt::format("{}: unknown effect '{}'", source, key));
       if (to_bool(key, value, source)) sc.effects |= bit;
       else sc.effects &= ~bit;
     } else {

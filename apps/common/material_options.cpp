@@ -3,8 +3,9 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
-#include <sstream>
 #include <string>
+
+#include <fmt/format.h>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/json.hpp"
@@ -57,14 +58,13 @@ void add_material_options(po::options_description& desc, const char* app) {
   std::string filled;
   for (const auto& m : kMaterialOptions) {
     if (std::string(m.app) != app) continue;
-    filled += (filled.empty() ? "" : ", ") + std::string(m.option);
+    filled += fmt::format("{}{}", filled.empty() ? "" : ", ", m.option);
   }
-  const std::string help =
+  const std::string help = fmt::format(
       "material: a name of --list-materials (data/materials/NAME.csv) or a path to a material "
-      "CSV; fills " +
-      filled +
-      " (an option given beside it wins: on the command line always, in the scene file when "
-      "--material is in the scene file too)";
+      "CSV; fills {} (an option given beside it wins: on the command line always, in the scene "
+      "file when --material is in the scene file too)",
+      filled);
   desc.add_options()("material", po::value<std::string>(), help.c_str())(
       "list-materials", "print the shipped materials (name and description) and exit");
 }
@@ -102,14 +102,16 @@ std::string material_file(const std::string& name_or_path, const po::variables_m
   return fs::exists(beside) ? beside.string() : path;
 }
 
-void apply_material(const char* app, po::variables_map& vm, const std::set<std::string>& typed) {
-  if (!vm.count("material")) return;
+std::vector<std::string> apply_material(const char* app, po::variables_map& vm,
+                                        const std::set<std::string>& typed) {
+  std::vector<std::string> stored;
+  if (!vm.count("material")) return stored;
   const std::string path = material_file(vm["material"].as<std::string>(), vm, "--material");
   bed::MaterialFile file;
   try {
     file = bed::read_material_file(path);
   } catch (const InputError& e) {
-    throw InputError(std::string("--material: ") + e.what());
+    throw InputError(fmt::format("--material: {}", e.what()));
   }
   // Given beside it, an option wins: at the command line always, in the scene file unless
   // --material itself was typed at the command line (then the scene's values give way).
@@ -125,8 +127,12 @@ void apply_material(const char* app, po::variables_map& vm, const std::set<std::
       store(vm, m.option, file.solid_conductivity(keff_temperature(vm)));
     } else if (const auto v = file.get(key)) {
       store(vm, m.option, *v);
+    } else {
+      continue;
     }
+    stored.push_back(m.option);
   }
+  return stored;
 }
 
 }  // namespace powderbed::app

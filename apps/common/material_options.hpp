@@ -7,6 +7,7 @@
 #include <boost/program_options.hpp>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace powderbed::app {
 
@@ -25,9 +26,10 @@ std::string material_file(const std::string& name_or_path,
                           const std::string& option);
 
 // With --material: reads the file and stores its values into the options of `app` that were not
-// given beside it (`typed`: the options the command line gave). Throws InputError for an unknown
-// name or a bad file.
-void apply_material(const char* app, boost::program_options::variables_map& vm,
-                    const std::set<std::string>& typed);
+// given beside it (`typed`: the options the command line gave); returns the options it stored,
+// whose values the caller passes on to the fields those options are bound to (parse_options
+// does). Throws InputError for an unknown name or a bad file.
+std::vector<std::string> apply_material(const char* app, boost::program_options::variables_map& vm,
+                                        const std::set<std::string>& typed);
 
 }  // namespace powderbed::app

@@ -13,6 +13,8 @@
 #include <set>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "common/app_main.hpp"
 #include "common/material_options.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -26,7 +28,7 @@ namespace po = boost::program_options;
 // the command line, "count" in a scene file), the value and what is accepted.
 [[noreturn]] void refuse_value(const std::string& value, const std::string& what) {
   po::validation_error e(po::validation_error::invalid_option_value);
-  e.m_error_template = "%canonical_option%: '%value%' " + what;
+  e.m_error_template = fmt::format("%canonical_option%: '%value%' {}", what);
   e.set_substitute("value", value);
   throw e;
 }
@@ -42,9 +44,9 @@ std::string trimmed(const std::string& s) {
 template <class T>
 T parse_whole(const std::string& text, long double lo, long double hi, const char* accepted) {
   const std::string s = trimmed(text);
-  if (s.empty()) refuse_value(text, std::string("is empty (accepted: ") + accepted + ")");
+  if (s.empty()) refuse_value(text, fmt::format("is empty (accepted: {})", accepted));
   if constexpr (std::is_unsigned_v<T>) {
-    if (s[0] == '-') refuse_value(text, std::string("is negative (accepted: ") + accepted + ")");
+    if (s[0] == '-') refuse_value(text, fmt::format("is negative (accepted: {})", accepted));
   }
   {
     T v{};
@@ -52,16 +54,16 @@ T parse_whole(const std::string& text, long double lo, long double hi, const cha
     const auto res = std::from_chars(begin, s.data() + s.size(), v);
     if (res.ec == std::errc() && res.ptr == s.data() + s.size()) return v;
     if (res.ec == std::errc::result_out_of_range)
-      refuse_value(text, std::string("is out of range (accepted: ") + accepted + ")");
+      refuse_value(text, fmt::format("is out of range (accepted: {})", accepted));
   }
   double d = 0;
   const auto res = std::from_chars(s.data() + (s[0] == '+' ? 1 : 0), s.data() + s.size(), d);
   if (res.ec != std::errc() || res.ptr != s.data() + s.size() || !std::isfinite(d))
-    refuse_value(text, std::string("is not a whole number (accepted: ") + accepted + ")");
+    refuse_value(text, fmt::format("is not a whole number (accepted: {})", accepted));
   if (d != std::floor(d))
-    refuse_value(text, std::string("is not a whole number (accepted: ") + accepted + ")");
+    refuse_value(text, fmt::format("is not a whole number (accepted: {})", accepted));
   if (static_cast<long double>(d) < lo || static_cast<long double>(d) > hi)
-    refuse_value(text, std::string("is out of range (accepted: ") + accepted + ")");
+    refuse_value(text, fmt::format("is out of range (accepted: {})", accepted));
   return static_cast<T>(d);
 }
 
@@ -118,35 +120,38 @@ void store_config_file(const std::string& path, const po::options_description& d
                        po::variables_map& vm) {
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
-    throw InputError("--config: '" + path + "' is a folder (accepted: a scene file)");
+    throw InputError(fmt::format("--config: '{}' is a folder (accepted: a scene file)", path));
   std::ifstream in(path);
-  if (!in) throw InputError("--config: cannot open scene file '" + path + "'");
+  if (!in) throw InputError(fmt::format("--config: cannot open scene file '{}'", path));
   std::string line, prefix;
   std::size_t number = 0;
   po::parsed_options all(&desc);
   while (std::getline(in, line)) {
     ++number;
-    const std::string where = path + ":" + std::to_string(number) + ": ";
+    const std::string where = fmt::format("{}:{}: ", path, number);
     if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
     line = trimmed(line);
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
     if (line.front() == '[') {
-      if (line.back() != ']') throw InputError(where + "'" + line + "' (accepted: [section])");
+      if (line.back() != ']')
+        throw InputError(fmt::format("{}'{}' (accepted: [section])", where, line));
       prefix = trimmed(line.substr(1, line.size() - 2));
       if (!prefix.empty()) prefix += '.';
       continue;
     }
     const auto eq = line.find('=');
     if (eq == std::string::npos)
-      throw InputError(where + "'" + line + "' (accepted: key = value, [section] or # comment)");
+      throw InputError(
+          fmt::format("{}'{}' (accepted: key = value, [section] or # comment)", where, line));
     const std::string key = prefix + trimmed(line.substr(0, eq));
     const std::string value = trimmed(line.substr(eq + 1));
     if (key == "config")
-      throw InputError(where + "config inside a scene file (accepted: one --config)");
+      throw InputError(fmt::format("{}config inside a scene file (accepted: one --config)", where));
     const po::option_description* known = desc.find_nothrow(key, false);
     if (!known)
-      throw InputError(where + "unknown option '" + key + "' (see --help for the options)");
+      throw InputError(
+          fmt::format("{}unknown option '{}' (see --help for the options)", where, key));
     po::option opt;
     opt.string_key = key;
     // A switch without a value (bedstat's voronoi) is on with an empty value, as --print-config
@@ -154,7 +159,7 @@ void store_config_file(const std::string& path, const po::options_description& d
     const bool switch_only = known->semantic()->max_tokens() == 0;
     if (switch_only && value == "false") continue;
     if (switch_only && !value.empty() && value != "true")
-      throw InputError(where + key + " = '" + value + "' (accepted: true or false)");
+      throw InputError(fmt::format("{}{} = '{}' (accepted: true or false)", where, key, value));
     if (!switch_only) opt.value.push_back(value);
     opt.original_tokens = {key, value};
     all.options.push_back(opt);
@@ -167,7 +172,7 @@ void store_config_file(const std::string& path, const po::options_description& d
       po::variables_map scratch;
       po::store(same_key, scratch);
     } catch (const po::error& e) {
-      throw InputError(where + e.what());
+      throw InputError(fmt::format("{}{}", where, e.what()));
     }
   }
   // Stored in one go, after the command line (command-line values win), as Boost's own
@@ -180,8 +185,8 @@ void check_common(const po::variables_map& vm) {
   if (vm.count("threads") && !vm["threads"].defaulted()) {
     const auto& v = vm["threads"].value();
     if (const int* t = boost::any_cast<int>(&v); t && (*t < 0 || *t > 4096)) {
-      throw InputError("--threads: " + std::to_string(*t) +
-                       " is out of range (accepted: 0 to 4096; 0 = the idle cores)");
+      throw InputError(fmt::format(
+          "--threads: {} is out of range (accepted: 0 to 4096; 0 = the idle cores)", *t));
     }
   }
 }
@@ -228,9 +233,12 @@ bool parse_options(const char* app, const std::string& usage, po::options_descri
     // Stored after the command line, so command-line values win (first store wins).
     store_config_file(vm["config"].as<std::string>(), desc, vm);
   }
-  po::notify(vm);
+  po::notify(vm);  // the options bound to fields (po::value<T>(&field)) fill them
   check_common(vm);
-  apply_material(app, vm, typed);
+  // A --material file's values are stored after po::notify (they need the resolved options): the
+  // fields those options are bound to get them here.
+  for (const std::string& name : apply_material(app, vm, typed))
+    desc.find(name, false).semantic()->notify(vm[name].value());
   if (vm.count("print-config")) {
     std::cout << "# " << version_string(app)
               << ": the resolved options (--config reads this back)\n"
@@ -246,8 +254,8 @@ std::vector<double> parse_number_list(const std::string& text, std::size_t min_c
   std::stringstream in(text);
   std::string item;
   auto range = [&] {
-    return min_count == max_count ? std::to_string(min_count)
-                                  : std::to_string(min_count) + " to " + std::to_string(max_count);
+    return min_count == max_count ? fmt::format("{}", min_count)
+                                  : fmt::format("{} to {}", min_count, max_count);
   };
   while (std::getline(in, item, ',')) {
     try {
@@ -256,13 +264,14 @@ std::vector<double> parse_number_list(const std::string& text, std::size_t min_c
       if (used != item.size() || !std::isfinite(v)) throw std::invalid_argument(item);
       values.push_back(v);
     } catch (const std::exception&) {
-      throw InputError(option + ": '" + text + "' is not a comma-separated list of numbers (" +
-                       range() + " expected)");
+      throw InputError(fmt::format(
+          "{}: '{}' is not a comma-separated list of numbers ({} expected)", option, text,
+          range()));
     }
   }
   if (values.size() < min_count || values.size() > max_count) {
-    throw InputError(option + ": '" + text + "' has " + std::to_string(values.size()) +
-                     " numbers (accepted: " + range() + ")");
+    throw InputError(fmt::format("{}: '{}' has {} numbers (accepted: {})", option, text,
+                                 values.size(), range()));
   }
   return values;
 }
@@ -347,34 +356,42 @@ void check_paths(const std::vector<PathArg>& inputs, const std::vector<PathArg>&
   for (const auto& in : inputs) {
     struct stat st {};
     if (::stat(in.path.c_str(), &st) != 0)
-      throw InputError(in.option + ": '" + in.path + "' does not exist (accepted: a readable file)");
+      throw InputError(fmt::format("{}: '{}' does not exist (accepted: a readable file)",
+                                   in.option, in.path));
     if (S_ISDIR(st.st_mode))
-      throw InputError(in.option + ": '" + in.path + "' is a folder (accepted: a readable file)");
+      throw InputError(fmt::format("{}: '{}' is a folder (accepted: a readable file)", in.option,
+                                   in.path));
     if (::access(in.path.c_str(), R_OK) != 0)
-      throw InputError(in.option + ": '" + in.path + "' is not readable (accepted: a readable file)");
+      throw InputError(fmt::format("{}: '{}' is not readable (accepted: a readable file)",
+                                   in.option, in.path));
   }
   for (std::size_t k = 0; k < outputs.size(); ++k) {
     const auto& out = outputs[k];
-    if (out.path.empty()) throw InputError(out.option + ": empty path (accepted: a file name)");
+    if (out.path.empty())
+      throw InputError(fmt::format("{}: empty path (accepted: a file name)", out.option));
     if (out.path.back() == '/')
-      throw InputError(out.option + ": '" + out.path + "' names a folder (accepted: a file name)");
+      throw InputError(fmt::format("{}: '{}' names a folder (accepted: a file name)", out.option,
+                                   out.path));
     for (const auto& file : with_sidecar(out.path)) {
       struct stat st {};
       if (::stat(file.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
-        throw InputError(out.option + ": '" + file + "' is a folder" +
-                         (file == out.path ? "" : " (the sidecar of '" + out.path + "')") +
-                         " (accepted: a file name; nothing was written)");
+        const std::string sidecar =
+            file == out.path ? "" : fmt::format(" (the sidecar of '{}')", out.path);
+        throw InputError(fmt::format("{}: '{}' is a folder{} (accepted: a file name; nothing "
+                                     "was written)", out.option, file, sidecar));
       }
     }
     const std::string folder = folder_of(out.path);
     struct stat st {};
     if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
-      throw InputError(out.option + ": folder '" + folder + "' of '" + out.path +
-                       "' does not exist (accepted: a file in an existing folder)");
+      throw InputError(fmt::format(
+          "{}: folder '{}' of '{}' does not exist (accepted: a file in an existing folder)",
+          out.option, folder, out.path));
     }
     if (::access(folder.c_str(), W_OK | X_OK) != 0) {
-      throw InputError(out.option + ": folder '" + folder + "' of '" + out.path +
-                       "' is not writable (accepted: a file in a writable folder)");
+      throw InputError(fmt::format(
+          "{}: folder '{}' of '{}' is not writable (accepted: a file in a writable folder)",
+          out.option, folder, out.path));
     }
     if (::access(out.path.c_str(), F_OK) == 0 && ::access(out.path.c_str(), W_OK) != 0) {
       // Replaced by rename, which needs only the folder; say so anyway: the user may mean it.
@@ -383,17 +400,17 @@ void check_paths(const std::vector<PathArg>& inputs, const std::vector<PathArg>&
       for (const auto& o : with_sidecar(out.path)) {
         for (const auto& i : with_sidecar(in.path)) {
           if (same_file(o, i)) {
-            throw InputError(out.option + ": '" + out.path + "' would overwrite the input " +
-                             in.option + " '" + in.path +
-                             "' (accepted: an output that is not an input)");
+            throw InputError(fmt::format("{}: '{}' would overwrite the input {} '{}' (accepted: "
+                                         "an output that is not an input)",
+                                         out.option, out.path, in.option, in.path));
           }
         }
       }
     }
     for (std::size_t j = 0; j < k; ++j) {
       if (same_file(outputs[j].path, out.path)) {
-        throw InputError(out.option + ": '" + out.path + "' is also " + outputs[j].option +
-                         " (accepted: distinct outputs)");
+        throw InputError(fmt::format("{}: '{}' is also {} (accepted: distinct outputs)",
+                                     out.option, out.path, outputs[j].option));
       }
     }
   }
@@ -408,8 +425,8 @@ void check_extension(const PathArg& path, std::initializer_list<const char*> acc
     if (!list.empty()) list += ", ";
     list += a;
   }
-  throw InputError(path.option + ": '" + path.path + "' has extension '" + ext +
-                   "' (accepted: " + list + (hint.empty() ? "" : "; " + hint) + ")");
+  throw InputError(fmt::format("{}: '{}' has extension '{}' (accepted: {}{}{})", path.option,
+                               path.path, ext, list, hint.empty() ? "" : "; ", hint));
 }
 
 }  // namespace powderbed::app

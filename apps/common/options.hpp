@@ -5,9 +5,11 @@
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
-#include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "powderbed/bed/domain.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -51,7 +53,7 @@ bool parse_options(const char* app, const std::string& usage, po::options_descri
 // The value of a required option; throws InputError "--<name>: missing (required)".
 template <class T>
 T required(const po::variables_map& vm, const char* name) {
-  if (!vm.count(name)) throw InputError(std::string("--") + name + ": missing (required)");
+  if (!vm.count(name)) throw InputError(fmt::format("--{}: missing (required)", name));
   return vm[name].as<T>();
 }
 
@@ -62,12 +64,12 @@ T option_in_range(const po::variables_map& vm, const char* name, T lo, T hi,
                   const std::string& why = "") {
   const T v = vm[name].as<T>();
   if (!(v >= lo && v <= hi)) {
-    std::ostringstream msg;
-    msg.precision(6);
-    msg << "--" << name << ": " << v << " is out of range (accepted: " << lo << " to " << hi;
-    if (!why.empty()) msg << "; " << why;
-    msg << ')';
-    throw InputError(msg.str());
+    const auto text = [](T x) {  // as a stream of precision 6 writes it: %g for a double
+      if constexpr (std::is_floating_point_v<T>) return fmt::format("{:g}", x);
+      else return fmt::format("{}", x);
+    };
+    throw InputError(fmt::format("--{}: {} is out of range (accepted: {} to {}{}{})", name,
+                                 text(v), text(lo), text(hi), why.empty() ? "" : "; ", why));
   }
   return v;
 }

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "powderbed/bed/errors.hpp"
 
 namespace powderbed::app {
@@ -17,14 +19,16 @@ constexpr const char* kPsdKeys[] = {"supply.psd", "psd"};
 double recorded_gap(const bed::Bed& b, const std::string& file) {
   const auto text = scene_value(b.provenance.scene, kGapKey);
   if (!text) {
-    throw InputError("--gap: missing for " + file +
-                     " (required: the bed records no recoater.gap; accepted: a height > 0 m)");
+    throw InputError(fmt::format("--gap: missing for {} (required: the bed records no "
+                                 "recoater.gap; accepted: a height > 0 m)",
+                                 file));
   }
   char* end = nullptr;
   const double gap = std::strtod(text->c_str(), &end);
   if (end == text->c_str() || *end != '\0' || !std::isfinite(gap)) {
-    throw InputError(file + ": recorded recoater.gap '" + *text +
-                     "' is not a number (accepted: give --gap H in m)");
+    throw InputError(fmt::format(
+        "{}: recorded recoater.gap '{}' is not a number (accepted: give --gap H in m)", file,
+        *text));
   }
   return gap;
 }
@@ -56,8 +60,9 @@ bed::LayerRequest layer_request(const bed::Bed& b, const std::string& file,
   } else if (b.n() > 0) {
     q.raster = 0.1 * mean_radius(b);
   } else {
-    throw InputError("--raster: missing for " + file +
-                     " (required for a bed with no particles; accepted: a cell size > 0 m)");
+    throw InputError(fmt::format("--raster: missing for {} (required for a bed with no "
+                                 "particles; accepted: a cell size > 0 m)",
+                                 file));
   }
   q.segregation_bins = req.segregation_bins;
   return q;
@@ -99,7 +104,8 @@ std::optional<std::string> scene_value(const std::string& scene, const std::stri
 
 SpreadReport analyse_spread(const bed::Bed& b, const std::string& file, const SpreadRequest& req) {
   if (b.domain.dimension != 3) {
-    throw InputError("--spread: " + file + " is a 2D bed (accepted: 3D beds; a layer has a top view)");
+    throw InputError(fmt::format(
+        "--spread: {} is a 2D bed (accepted: 3D beds; a layer has a top view)", file));
   }
   SpreadReport s;
   s.layer = bed::layer_stats(b, layer_request(b, file, req, s.gap_source));

@@ -1,6 +1,6 @@
 #include "powderbed/thermal/scene.hpp"
 
-#include <sstream>
+#include <fmt/format.h>
 
 #include "powderbed/bed/errors.hpp"
 
@@ -22,9 +22,9 @@ void SinterScene::validate() const {
           "T_env > 0 K");
   require(positive(initial_temperature), "environment.initial-temperature", initial_temperature,
           "T0 > 0 K");
-  require(power >= 0 && std::isfinite(power), "laser.power", power, "P >= 0 W");
-  require(positive(speed), "laser.speed", speed, "v > 0 m/s");
-  require(positive(spot_radius), "laser.spot", spot_radius, "w > 0 m");
+  require(power >= 0 && std::isfinite(power), "power", power, "P >= 0 W");
+  require(positive(speed), "speed", speed, "v > 0 m/s");
+  require(positive(spot_radius), "spot", spot_radius, "w > 0 m");
   // Every option is checked whichever model reads it: a value that cannot be right is refused
   // even where the scene ignores it. alpha = 0 would reflect a ray forever between two spheres.
   require(absorptivity > 0 && absorptivity <= 1, "laser.absorptivity", absorptivity,
@@ -46,10 +46,9 @@ void SinterScene::validate() const {
   static const char* axis[] = {"x", "y", "z"};
   for (std::size_t a = 0; a < 3; ++a) {
     if (nodes[a] < 3) {
-      std::ostringstream msg;
-      msg << "substrate.nodes: " << nodes[a] << " nodes along " << axis[a]
-          << " (accepted: at least 3 per direction, so that one node is free)";
-      throw InputError(msg.str());
+      throw InputError(fmt::format("substrate.nodes: {} nodes along {} (accepted: at least 3 per "
+                                   "direction, so that one node is free)",
+                                   nodes[a], axis[a]));
     }
   }
   require(dt >= 0 && std::isfinite(dt), "dt", dt, "dt > 0 s, or 0 for the stable bound");
