@@ -877,9 +877,12 @@ void check_run_settings(const RunSettings& s) {
   if (!s.trajectory.empty() && s.trajectory_every == 0) {
     throw InputError("--every: 0 with --trajectory (accepted: K >= 1 steps)");
   }
-  if (!(s.rest.max_speed > 0) || !(s.rest.window >= 0) || !(s.rest.kinetic_energy >= 0)) {
-    bad("rest criteria", s.rest.max_speed, "speed > 0, window >= 0, energy >= 0");
-  }
+  // Keys as deposit's options name them (rest.kinetic_energy has no option: library callers).
+  if (!(s.rest.max_speed > 0) || !std::isfinite(s.rest.max_speed))
+    bad("--rest.speed", s.rest.max_speed, "v > 0 m/s");
+  if (!(s.rest.window >= 0) || !std::isfinite(s.rest.window))
+    bad("--rest.window", s.rest.window, "window >= 0 s");
+  if (!(s.rest.kinetic_energy >= 0)) bad("rest kinetic energy", s.rest.kinetic_energy, ">= 0 J");
 }
 
 RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {

@@ -108,7 +108,7 @@ void KeffScene::validate() const {
           wall_emissivity, "0 < e <= 1");
   // The upper bound keeps the per-particle hit counts (32-bit) exact and catches a negative
   // number wrapped by the option parser.
-  require(rays >= 1 && rays <= 1000000000, "radiation.rays", static_cast<double>(rays),
+  require(rays >= 1 && rays <= 1000000000, "rays", static_cast<double>(rays),
           "1 to 1e9 rays per particle");
   require(newton_tolerance > 0 && newton_tolerance < 1e-2, "newton-tolerance", newton_tolerance,
           "0 < tolerance < 1e-2");

@@ -89,7 +89,7 @@ ViewFactors view_factors(const bed::Bed& bed, const ViewFactorParams& params) {
   if (bed.domain.dimension != 3)
     throw InputError("bed: a 2D bed (accepted: a 3D bed of spheres)");
   if (params.rays == 0)
-    throw InputError("radiation.rays: 0 is out of range (accepted: at least 1 ray per particle)");
+    throw InputError("rays: 0 is out of range (accepted: at least 1 ray per particle)");
   ViewFactors vf;
   vf.rays = params.rays;
   const std::size_t n = bed.n();

@@ -163,7 +163,7 @@ TEST(KeffCli, BadInputExitsTwoWithOneLine) {
   expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --radiation.model grey"),
                  dir, {"radiation.model", "grey", "radiosity"});
   expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --rays 0"), dir,
-                 {"radiation.rays"});
+                 {"rays: 0"});
   expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --rays -5"), dir,
                  {"rays"});
   bed::Bed flat = column();  // the column as disks along y in a 2D bed: keff needs spheres
