@@ -298,18 +298,9 @@ void print_lid_json(bed::JsonWriter& j, const dem::RunSummary& r, bool released)
 void print_json(const Report& p) {
   const dem::RunSummary& r = p.run;
   bed::JsonWriter j;
-  j.begin_object()
-      .value("n", static_cast<std::uint64_t>(p.bed.n()))
-      .value("steps", r.steps)
-      .value("sim_time", r.sim_time)
-      .value("wall_time", r.wall_time)
-      .value("particle_steps_per_s", r.particle_steps_per_s)
-      .value("dt", r.dt)
-      .value("dt_stable", r.dt_stable)
-      .value("integrator", p.integrator)
-      .value("young_scale", p.settings.young_scale)
-      .value("contact_law", dem::contact_law_name(p.scene.law))
-      .value("friction_model", dem::friction_model_name(p.scene.friction_model))
+  j.begin_object();
+  app::write_run_head(j, p.bed.n(), r, p.settings.young_scale, p.scene);
+  j.value("integrator", p.integrator)
       .value("stiffness", p.scene.stiffness)
       .value("kinetic_energy", r.kinetic_energy)
       .value("max_speed", r.max_speed)

@@ -2,6 +2,7 @@
 // deposit's options (drop, spread, material, walls, effects) and the DEM scene they make: one
 // definition for deposit and for build's per-layer spreads.
 #include "common/options.hpp"
+#include "powderbed/bed/json.hpp"
 #include "powderbed/dem/scene.hpp"
 #include "powderbed/dem/solver.hpp"
 #include "powderbed/dem/spread.hpp"
@@ -24,5 +25,22 @@ void add_deposit_options(po::options_description& desc, DepositOptions& bound);
 // The scene of a drop or a spread: `bound` (DepositOptions::scene) with what the options give
 // as words (contact law, friction model), the linear law's stiffness checked and the effects.
 dem::Scene deposit_scene(const po::variables_map& vm, const dem::Scene& bound);
+
+// The head of deposit's --json summary, the same for a drop (dem::RunSummary) and a spread
+// (dem::SpreadSummary): the bed's size, the run's steps and times, and the contact laws.
+template <class Summary>
+void write_run_head(bed::JsonWriter& j, std::size_t n, const Summary& r, double young_scale,
+                    const dem::Scene& scene) {
+  j.value("n", static_cast<std::uint64_t>(n))
+      .value("steps", r.steps)
+      .value("sim_time", r.sim_time)
+      .value("wall_time", r.wall_time)
+      .value("particle_steps_per_s", r.particle_steps_per_s)
+      .value("dt", r.dt)
+      .value("dt_stable", r.dt_stable)
+      .value("young_scale", young_scale)
+      .value("contact_law", dem::contact_law_name(scene.law))
+      .value("friction_model", dem::friction_model_name(scene.friction_model));
+}
 
 }  // namespace powderbed::app

@@ -356,18 +356,9 @@ void print_spread_summary(const po::variables_map& vm, const dem::SpreadSummary&
                           const bed::Bed& bed, std::size_t lost, const std::string& out) {
   if (vm.count("json")) {
     bed::JsonWriter j;
-    j.begin_object()
-        .value("n", static_cast<std::uint64_t>(bed.n()))
-        .value("steps", r.steps)
-        .value("sim_time", r.sim_time)
-        .value("wall_time", r.wall_time)
-        .value("particle_steps_per_s", r.particle_steps_per_s)
-        .value("dt", r.dt)
-        .value("dt_stable", r.dt_stable)
-        .value("young_scale", s.young_scale)
-        .value("contact_law", dem::contact_law_name(scene.law))
-        .value("friction_model", dem::friction_model_name(scene.friction_model))
-        .value("rolling", scene.material.rolling)
+    j.begin_object();
+    write_run_head(j, bed.n(), r, s.young_scale, scene);
+    j.value("rolling", scene.material.rolling)
         .value("tool", vm["recoater.tool"].as<std::string>())
         .value("max_overlap", r.max_overlap)
         .value("neighbour_rebuilds", r.neighbour_rebuilds)
