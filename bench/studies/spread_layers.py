@@ -196,7 +196,7 @@ def plot(rows, path):
     ax2.legend(fontsize=8)
     for a in (ax, ax2):
         a.set_xlabel("layer")
-        a.set_xticks(k if len(k) <= 20 else k[::2])
+        a.set_xticks(k if len(k) <= 12 else k[::2])
         a.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
