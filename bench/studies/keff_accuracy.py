@@ -429,10 +429,7 @@ def main():
     plot(rays_tables, tol_tables)
     text = page(rays_tables, tol_tables, rays_best, tol_best, machine)
     # keff_softening.py's section of the page stays (it regenerates it on its own).
-    kept = report.marked_section(report.read_page(PAGE), SOFTENING)
-    if kept:
-        text = report.splice(text, SOFTENING, kept)
-    print(report.write_page(PAGE, text))
+    print(report.write_page_keeping(PAGE, text, [SOFTENING]))
 
 
 if __name__ == "__main__":

@@ -17,8 +17,6 @@ Beds (kept in out/studies/keff-speed/):
 import argparse
 import json
 import os
-import re
-import shutil
 import statistics
 import subprocess
 import time
@@ -32,48 +30,11 @@ REPEATS = 3
 THREADS = [1, 2]
 TEMPERATURE = 1000.0  # K: radiation carries ~half the heat of the 1 mm steel bed here
 RAYS = int(apps.scene_value(SCENE, None, "rays"))  # the default (keff-accuracy.md chose it)
-GROW = 1.001  # radius factor that gives packgen's touching spheres a contact
 # packgen beds: label, particles, box width in diameters
 PACKGEN = [(1100, 10), (10000, 15), (100000, 46)]
 VALIDATION = "deposit (validation bed)"
 PROFILED = "packgen 100,000 +0.1 %"  # the 100,000-particle bed with contacts
 RUNS = apps.KEFF_SPEED_RUNS  # the last full run's measurements (keff_accuracy.py reads them)
-
-
-def packgen_bed(count, width):
-    """packgen's bed of `count` touching 1 mm spheres, top wall at the highest sphere top, and
-    its copy with radii grown by GROW (top wall moved likewise): (placed, grown, packgen wall s)."""
-    import h5py
-    import numpy as np
-    raw = os.path.join(WORK, f"packgen-{count}-raw.h5")
-    placed = os.path.join(WORK, f"packgen-{count}.h5")
-    grown = os.path.join(WORK, f"packgen-{count}-grown.h5")
-    meta = raw + ".json"
-    if not os.path.exists(meta):
-        os.makedirs(WORK, exist_ok=True)
-        d = 1e-3
-        height = 1.3 * count * 0.5236 / 0.58 / width ** 2 * d  # 3-lowest fills ~0.58 of the box
-        proc = subprocess.run(
-            [app("packgen"), "--dim", "3", "--domain", f"{width * d:g},{width * d:g},{height:g}",
-             "--psd", "mono:d=0.001", "--approach", "3", "--site-order", "lowest", "--count",
-             str(count), "--seed", "1", "--out", raw, "--json"],
-            capture_output=True, text=True, check=True)
-        s = json.loads(proc.stdout)
-        if s["n"] != count:
-            raise RuntimeError(f"packgen placed {s['n']} of {count}")
-        for path, factor in ((placed, 1.0), (grown, GROW)):
-            shutil.copyfile(raw, path + ".tmp")
-            with h5py.File(path + ".tmp", "r+") as f:
-                r = np.array(f["particles/radius"]) * factor
-                f["particles/radius"][...] = r
-                upper = np.array(f["domain"].attrs["upper"])
-                upper[2] = float(np.max(np.array(f["particles/position"])[:, 2] + r))
-                f["domain"].attrs["upper"] = upper
-            os.replace(path + ".tmp", path)
-        with open(meta, "w") as f:
-            json.dump(s, f)
-    with open(meta) as f:
-        return placed, grown, json.load(f)
 
 
 def keff_run(bed, threads, radiation, extra=()):
@@ -93,8 +54,8 @@ def keff_run(bed, threads, radiation, extra=()):
     return json.loads(proc.stdout), wall, rss, cpu
 
 
-def measure(bed, threads, radiation):
-    runs = [keff_run(bed, threads, radiation) for _ in range(REPEATS)]
+def measure(bed, threads, radiation, extra=()):
+    runs = [keff_run(bed, threads, radiation, extra) for _ in range(REPEATS)]
     s = runs[0][0]
     for other, *_ in runs[1:]:  # same input, same answer: any thread count agrees bit for bit
         if other["k_eff"] != s["k_eff"]:
@@ -278,25 +239,11 @@ def findings(beds, rows, prof, loads):
 
 
 def profile(bed):
-    """perf's flat profile of one keff run with radiation on `bed` (one thread): the functions
-    over 1 % of the samples, as (percent, short name); None without perf."""
-    if not shutil.which("perf"):
-        return None
-    data = os.path.join(WORK, "perf.data")
+    """perf's flat profile of one keff run with radiation on the packgen `bed` (one thread):
+    apps.perf_profile's list, or None without perf."""
     args = [app("keff"), "--config", SCENE, "--bed", bed, "--temperature", f"{TEMPERATURE:g}",
-            "--effects.radiation", "true"]
-    subprocess.run(["perf", "record", "-q", "-F", "199", "-o", data] + args, check=True,
-                   capture_output=True, env=apps.omp_env(1))
-    text = subprocess.run(["perf", "report", "-i", data, "--stdio", "--sort", "symbol",
-                           "--percent-limit", "1"], check=True, capture_output=True,
-                          text=True).stdout
-    out = []
-    for line in text.splitlines():
-        m = re.match(r"\s*([\d.]+)%\s+\[(.)\]\s+(.+?)\s*(-\s+-)?\s*$", line)
-        if m:
-            name = re.sub(r"<.*", "", m.group(3)).replace("(anonymous namespace)::", "")
-            out.append((float(m.group(1)), name + (" (kernel)" if m.group(2) == "k" else "")))
-    return out
+            "--effects.radiation", "true", *apps.KEFF_GEOMETRIC]
+    return apps.perf_profile(args, os.path.join(WORK, "perf.data"), env=apps.omp_env(1))
 
 
 def measure_all(beds):
@@ -304,7 +251,7 @@ def measure_all(beds):
     for b in beds:
         for radiation in (False, True):
             for threads in THREADS:
-                m = measure(b["path"], threads, radiation)
+                m = measure(b["path"], threads, radiation, b.get("options", ()))
                 s = m["summary"]
                 b["n"] = s["particles"]
                 b["links"] = (s["contact_links"], s["gas_links"],
@@ -338,10 +285,11 @@ def main():
         beds.append({"label": VALIDATION, "path": path, "how": "deposit, lid held",
                      "box": "10 × 10", "make": summary["wall_time"]})
         for count, width in PACKGEN:
-            placed, grown, s = packgen_bed(count, width)
+            placed, grown, s = apps.packgen_mono_bed(count, width)
             for label, p in ((f"packgen {count:,}", placed),
                              (f"packgen {count:,} +0.1 %", grown)):
                 beds.append({"label": label, "path": p, "how": "packgen 3 lowest",
+                             "options": apps.KEFF_GEOMETRIC,
                              "box": f"{width} × {width}", "make": s["wall_time"]})
         path, summary, _ = apps.held_lid_bed(10000, 30)
         beds.append({"label": "deposit 10,000", "path": path, "how": "deposit, lid held",
@@ -353,7 +301,9 @@ def main():
         with open(RUNS, "w") as f:
             json.dump({"beds": beds, "rows": [(b["label"], r, t, m) for b, r, t, m in rows],
                        "loads": loads, "profile": prof, "machine": machine}, f)
-    print(report.write_page("keff-speed.md", page(beds, rows, loads, prof, machine)))
+    # speed_targets.py's section stays (it regenerates it on its own).
+    print(report.write_page_keeping("keff-speed.md", page(beds, rows, loads, prof, machine),
+                                    ["million"]))
 
 
 if __name__ == "__main__":

@@ -6,6 +6,7 @@ import json
 import math
 import os
 import re
+import shutil
 import subprocess
 import time
 
@@ -58,6 +59,26 @@ def run_json(args, env=None):
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(args)} exited {proc.returncode}: {proc.stderr.strip()}")
     return json.loads(proc.stdout), wall
+
+
+def perf_profile(args, data, env=None, limit=1.0):
+    """perf's flat profile of one run of `args` (199 samples/s, written to `data`): the functions
+    over `limit` % of the samples (inlined callees count in their caller), as (percent, short
+    name); None when perf is not installed."""
+    if not shutil.which("perf"):
+        return None
+    subprocess.run(["perf", "record", "-q", "-F", "199", "-o", data] + list(args), check=True,
+                   capture_output=True, env=env)
+    text = subprocess.run(["perf", "report", "-i", data, "--stdio", "--sort", "symbol",
+                           "--percent-limit", str(limit)], check=True, capture_output=True,
+                          text=True).stdout
+    out = []
+    for line in text.splitlines():
+        m = re.match(r"\s*([\d.]+)%\s+\[(.)\]\s+(.+?)\s*(-\s+-)?\s*$", line)
+        if m:
+            name = re.sub(r"<.*", "", m.group(3)).replace("(anonymous namespace)::", "")
+            out.append((float(m.group(1)), name + (" (kernel)" if m.group(2) == "k" else "")))
+    return out
 
 
 def cached_json(path, args, env=None):
@@ -198,6 +219,51 @@ def ke2016_soft_bed(case, k_n):
 # measurements (keff_accuracy.py reads the 100,000-particle runs).
 KEFF_SPEED_WORK = os.path.join(WORK, "keff-speed")
 KEFF_SPEED_RUNS = os.path.join(KEFF_SPEED_WORK, "speed-runs.json")
+
+
+# Radius factor that gives packgen's touching spheres a contact (keff's +0.1 % beds).
+GROW = 1.001
+
+
+def packgen_mono_bed(count, width):
+    """packgen's bed of `count` touching 1 mm spheres (approach 3, lowest site first, seed 1) in
+    a box `width` diameters wide, top wall at the highest sphere top, and its copy with radii
+    grown by GROW (top wall moved likewise): (placed, grown, packgen --json summary), kept in
+    KEFF_SPEED_WORK. keff reads them with contact.hertz-correction = false (KEFF_GEOMETRIC):
+    packgen records no contact law."""
+    import h5py
+    import numpy as np
+    raw = os.path.join(KEFF_SPEED_WORK, f"packgen-{count}-raw.h5")
+    placed = os.path.join(KEFF_SPEED_WORK, f"packgen-{count}.h5")
+    grown = os.path.join(KEFF_SPEED_WORK, f"packgen-{count}-grown.h5")
+    meta = raw + ".json"
+    if not os.path.exists(meta):
+        os.makedirs(KEFF_SPEED_WORK, exist_ok=True)
+        d = 1e-3
+        height = 1.3 * count * 0.5236 / 0.58 / width ** 2 * d  # 3-lowest fills ~0.58 of the box
+        s, _ = run_json([app("packgen"), "--dim", "3", "--domain",
+                         f"{width * d:g},{width * d:g},{height:g}", "--psd", "mono:d=0.001",
+                         "--approach", "3", "--site-order", "lowest", "--count", str(count),
+                         "--seed", "1", "--out", raw])
+        if s["n"] != count:
+            raise RuntimeError(f"packgen placed {s['n']} of {count}")
+        for path, factor in ((placed, 1.0), (grown, GROW)):
+            shutil.copyfile(raw, path + ".tmp")
+            with h5py.File(path + ".tmp", "r+") as f:
+                r = np.array(f["particles/radius"]) * factor
+                f["particles/radius"][...] = r
+                upper = np.array(f["domain"].attrs["upper"])
+                upper[2] = float(np.max(np.array(f["particles/position"])[:, 2] + r))
+                f["domain"].attrs["upper"] = upper
+            os.replace(path + ".tmp", path)
+        with open(meta, "w") as f:
+            json.dump(s, f)
+    with open(meta) as f:
+        return placed, grown, json.load(f)
+
+
+# keff's option for a bed without a recorded contact law (packgen's): the geometric contact circle.
+KEFF_GEOMETRIC = ("--contact.hertz-correction", "false")
 
 
 def held_lid_bed(count, width):

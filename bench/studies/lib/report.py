@@ -55,6 +55,17 @@ def splice(text, key, block):
     return text.rstrip("\n") + "\n\n" + block + "\n"
 
 
+def write_page_keeping(name, text, keys):
+    """write_page with the sections `keys` that other studies keep in this page carried over
+    from the page as it is (each study regenerates only its own part)."""
+    old = read_page(name)
+    for key in keys:
+        kept = marked_section(old, key)
+        if kept:
+            text = splice(text, key, kept)
+    return write_page(name, text)
+
+
 def table_row(*cells):
     """One line of a Markdown table."""
     return "| " + " | ".join(str(c) for c in cells) + " |"

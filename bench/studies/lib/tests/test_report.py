@@ -37,6 +37,14 @@ def test_write_page_replaces_whole(tmp_path, monkeypatch):
     assert os.listdir(tmp_path) == ["p.md"]
 
 
+def test_write_page_keeping_carries_other_studies_sections(tmp_path, monkeypatch):
+    monkeypatch.setattr(report, "RESULTS", str(tmp_path))
+    begin, end = report.section_markers("theirs")
+    report.write_page("p.md", f"old body\n\n{begin}\nkept\n{end}\n")
+    report.write_page_keeping("p.md", "new body\n", ["theirs", "absent"])
+    assert report.read_page("p.md") == f"new body\n\n{begin}\nkept\n{end}\n"
+
+
 def test_machine_names_cores_loads_and_source():
     text = report.machine("9.00 8.00 7.00", "1.00 2.00 3.00")
     assert text.startswith("Machine: ") and text.endswith(".")
