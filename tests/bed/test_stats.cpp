@@ -389,6 +389,33 @@ TEST(Voronoi, SimpleCubicInteriorCellsAreCubes) {
   EXPECT_TRUE(std::isnan(v.local_fraction[0]));
 }
 
+// Layers of two sizes: the simple cubic lattice (spacing a = 2) with radius 1 in the even z
+// layers and 0.7 in the odd ones. Across x and y the neighbours are alike (radical planes
+// halfway, at +-1); along z the plane lies t = (a^2 + r^2 - r'^2) / (2a) from the centre of
+// radius r. The diagonal neighbours' planes only touch the box's edges and corners (e.g.
+// x + z = 1 + t for the one at (2, 0, 2)), so every interior cell is the box 2 x 2 x 2t: the
+// weighted case in closed form, where the cell is not centred on its sphere.
+TEST(Voronoi, LayersOfTwoSizesHaveBoxCellsShiftedByTheWeights) {
+  pb::Bed bed = pb::simple_cubic_lattice(5, 1.0);
+  const double a = 2.0, big = 1.0, small = 0.7;
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    const long layer = std::lround((bed.z[i] - 1) / a);  // centres at 1, 3, 5, ...
+    bed.radius[i] = layer % 2 == 0 ? big : small;
+  }
+  const pb::VoronoiStats v = pb::voronoi_stats(bed);
+  EXPECT_EQ(v.interior, 27u);
+  const auto expected = [&](double r, double other) {
+    const double t = (a * a + r * r - other * other) / (2 * a);
+    return 4.0 / 3.0 * pi * r * r * r / (2.0 * 2.0 * 2.0 * t);
+  };
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    if (std::isnan(v.local_fraction[i])) continue;
+    const double want = bed.radius[i] == big ? expected(big, small) : expected(small, big);
+    // Circumcentres of the cospherical lattice in doubles, as in the FCC case.
+    EXPECT_NEAR(v.local_fraction[i], want, 1e-9 * want) << "particle " << i;
+  }
+}
+
 TEST(Voronoi, RandomNonOverlappingBedHasFractionsBelowOne) {
   // 500 spheres of radius 0.4-0.6 by random sequential addition in a 10^3 box (seed 5).
   // A non-overlapping sphere lies inside its own Laguerre cell, so 0 < phi_local < 1.
