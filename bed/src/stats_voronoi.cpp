@@ -63,7 +63,7 @@ void check_positions(const Bed& bed) {
   }
 }
 
-// The unit vector along a, and a's length.
+// The unit vector along a.
 Vector unit(const Vector& a) { return a / std::sqrt(a.squared_length()); }
 
 // The signed orthoschemes of one finite cell, added to its four vertices' volumes (the file's
