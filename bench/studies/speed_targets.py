@@ -59,6 +59,7 @@ def cached(name, measure, fresh):
     load = report.load_average()
     value = measure()
     value["load"] = [load, report.load_average()]
+    value["machine"] = report.machine(*value["load"])  # the source as it was measured
     with open(path + ".tmp", "w") as f:
         json.dump(value, f)
     os.replace(path + ".tmp", path)
@@ -130,9 +131,9 @@ def sinter_pass():
             "bandwidth": stream_bandwidth()}
 
 
-def machine_line(loads):
-    """The machine sentence over a set of measurements' (before, after) load pairs."""
-    return report.machine(loads[0][0], loads[-1][1])
+def machine_line(measurements):
+    """The machine sentences of a set of measurements, each once."""
+    return " ".join(dict.fromkeys(m["machine"] for m in measurements))
 
 
 def protocol_section(paper, default):
@@ -153,7 +154,7 @@ def protocol_section(paper, default):
         begin,
         "## [GZ]'s own protocol, one thread (issue 19)",
         "",
-        "Written by `bench/studies/speed_targets.py`. " + machine_line([paper["load"], default["load"]]),
+        "Written by `bench/studies/speed_targets.py`. " + machine_line([paper, default]),
         "The 600-particle drop of data/scenes/gz2016-deposit.ini (seed 1) with the paper's "
         "parameters: no softening and [GZ]'s step of 2e-8 s, which is 2.7 times the Rayleigh "
         "step of the smallest particle, so deposit refuses it unless told `--unsafe-dt`; beside "
@@ -204,7 +205,7 @@ def keff_section(runs, bed_summary):
         "## A million particles (issue 19)",
         "",
         "Written by `bench/studies/speed_targets.py`. "
-        + machine_line([r["load"] for r in runs.values()]),
+        + machine_line(runs.values()),
         f"The bed: `packgen --dim 3 --psd mono:d=0.001 --approach 3 --site-order lowest --count "
         f"{n} --seed 1` in a box {width} D wide (placement {bed_summary['wall_time']:.1f} s), "
         "radii grown by 0.1 % as the +0.1 % beds above; keff as above with "
@@ -237,7 +238,7 @@ def voronoi_section(million, hundred):
         "## bedstat --voronoi on packgen beds (issue 19)",
         "",
         "Written by `bench/studies/speed_targets.py`. "
-        + machine_line([million["load"], hundred["load"]]),
+        + machine_line([million, hundred]),
         "`bedstat BED.h5 --voronoi --json`, whole process, median of "
         f"{REPEATS}, on packgen's touching monodisperse beds (lowest site first, keff-speed.md's "
         "beds of 1e5 and 1e6 spheres); bedstat is serial.",
@@ -280,7 +281,7 @@ def sinter_section(p):
         begin,
         "## Where the Beer-Lambert pass's time goes (issue 19)",
         "",
-        "Written by `bench/studies/speed_targets.py`. " + machine_line([p["load"]]),
+        "Written by `bench/studies/speed_targets.py`. " + machine_line([p]),
         "`sinter --config data/scenes/gz2016-sinter.ini --bed BED.h5 --threads 1 "
         "--laser.absorption beer-lambert --effects.wetting false`, median of "
         f"{REPEATS}: process {p['wall']:.1f} s, sinter's own wall_time {p['own']:.1f} s, CPU "
