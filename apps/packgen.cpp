@@ -66,8 +66,9 @@ void add_options(po::options_description& desc, packgen::PackOptions& o) {
       ("directions", po::value<int>(), directions_help.c_str())
       ("count", po::value<std::size_t>(&o.count), "stop at N particles")
       ("target-density", po::value<double>(&o.target_density),
-       "stop at this density (0 < F < 1); if it cannot be reached the run stops at "
-       "--max-failures, still writes the bed, warns on stderr and exits 0")
+       "stop at this density (0 < F < 1); if it cannot be reached the run stops by "
+       "--max-failures or the default stop rule, still writes the bed, warns on stderr and "
+       "exits 0")
       ("max-failures", po::value<std::size_t>(),
        "stop after M consecutive failed placements (default: 100, and in 3D approach 3 with "
        "--site-order lowest also when more than half of the last 20 sizes found no place)")

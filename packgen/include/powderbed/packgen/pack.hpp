@@ -50,10 +50,10 @@ constexpr int kDirections3D = 16;
 // known site and no floor spot takes it, i.e. the front has met the lid for that size; each
 // size placed after that is one that fitted where larger ones did not, so running on to 100
 // failures in a row packs the last layers with the small tail of the PSD (GenGeo scene of
-// docs/results/packgen-speed.md, seeds 1-8: KS 0.11-0.17 against 0.03-0.05 at the first
+// docs/results/packgen-speed.md, seeds 1-10: KS 0.08-0.17 against 0.02-0.05 at the first
 // failure). The window stops once most draws fail: that keeps most of the top layer the front
-// was filling (phi 0.52 against 0.50 at the first failure and 0.54 at 100 in a row) at KS
-// 0.03-0.08, and, unlike a cap on the total failures or on the density gained per attempt,
+// was filling (median phi 0.519 against 0.498 at the first failure and 0.536 at 100 in a row)
+// at KS 0.03-0.08 and 188 attempts per sphere (174 and 235), and, unlike a cap on the total failures or on the density gained per attempt,
 // it does not stop a mixture whose large sizes fail all along the growth (a 1:10 bimodal mix
 // fails 9 % of its draws from the start, far from half).
 constexpr std::size_t kMaxFailures = 100;
