@@ -177,14 +177,17 @@ PackResult Packer<Backend>::run() {
     }
     const double r = sizes_.next(core_.rng());
     PackResult& result = core_.result();
-    const bool placed = place_one(o_.phases[phase].approach, r);
+    const int approach = o_.phases[phase].approach;
+    const bool placed = place_one(approach, r);
     if (placed) {
       result.failures_in_a_row = 0;
     } else {
       ++result.failed_placements;
       ++result.failures_in_a_row;
     }
-    recent_.add(!placed);
+    // Only growth's draws: a failure of an earlier phase (n_T random tries) says nothing about
+    // the front having met the lid.
+    if (approach == 3 && lowest_) recent_.add(!placed);
     if (o_.progress && loop % 256 == 0) report_progress();
   }
   return finish();
