@@ -66,10 +66,12 @@ void add_options(po::options_description& desc, packgen::PackOptions& o) {
       ("directions", po::value<int>(), directions_help.c_str())
       ("count", po::value<std::size_t>(&o.count), "stop at N particles")
       ("target-density", po::value<double>(&o.target_density),
-       "stop at this density (0 < F < 1); if it cannot be reached the run stops at "
-       "--max-failures, still writes the bed, warns on stderr and exits 0")
-      ("max-failures", po::value<std::size_t>(&o.max_failures)->default_value(o.max_failures),
-       "stop after M consecutive failed placements (the default stop rule)")
+       "stop at this density (0 < F < 1); if it cannot be reached the run stops by "
+       "--max-failures or the default stop rule, still writes the bed, warns on stderr and "
+       "exits 0")
+      ("max-failures", po::value<std::size_t>(),
+       "stop after M consecutive failed placements (default: 100, and in 3D approach 3 with "
+       "--site-order lowest also when more than half of the last 20 sizes found no place)")
       ("retire-after", po::value<int>(&o.retire_after)->default_value(o.retire_after),
        "drop a particle from the partner list after this many consecutive failed tries "
        "around it (0 = never; O(N) front advancing)")
@@ -109,6 +111,7 @@ packgen::PackOptions pack_options(const po::variables_map& vm, const packgen::Pa
                                 : std::vector<packgen::Phase>{{vm["approach"].as<int>(), 1.0}};
   o.collision = packgen::parse_collision(vm["collision"].as<std::string>());
   if (vm.count("directions")) o.directions = vm["directions"].as<int>();
+  if (vm.count("max-failures")) o.max_failures = vm["max-failures"].as<std::size_t>();
   if (vm.count("count")) {
     if (o.count == 0) throw InputError("--count: 0 (accepted: a number of particles >= 1)");
     packgen::check_count_fits(domain, psd, o.count);
@@ -122,13 +125,16 @@ packgen::PackOptions pack_options(const po::variables_map& vm, const packgen::Pa
 }
 
 // A stop rule that was not reached: the bed is written all the same, with a warning.
-void warn_unreached(const packgen::PackOptions& o, const bed::Bed& b, double density) {
+void warn_unreached(const packgen::PackOptions& o, const packgen::PackResult& result,
+                    double density) {
   const std::string target =
       o.count > 0 ? fmt::format("--count {}", o.count)
                   : fmt::format("--target-density {}", app::tolerance_key(o.target_density));
-  std::cerr << fmt::format("packgen: warning: {} not reached: stopped after {} consecutive failed "
-                           "placements with {} particles at density {:g}; the bed was written\n",
-                           target, o.max_failures, b.n(), density);
+  std::cerr << fmt::format("packgen: warning: {} not reached: stopped by the {} rule after {} "
+                           "failed placements, {} in a row, with {} particles at density {:g}; "
+                           "the bed was written\n",
+                           target, result.stop_reason, result.failed_placements,
+                           result.failures_in_a_row, result.bed.n(), density);
 }
 
 // What --json prints: the bed's density and contacts, the run's counters and settings.
@@ -180,7 +186,7 @@ void report(packgen::PackResult& result, const packgen::PackOptions& o, std::uin
   bed::write_bed_h5(b, vm["out"].as<std::string>());
 
   const double density = bed::packing_density(b);
-  if (!result.target_reached) warn_unreached(o, b, density);
+  if (!result.target_reached) warn_unreached(o, result, density);
   const std::vector<bed::ContactStats> by_tol = bed::contact_stats(
       b, std::vector<double>(std::begin(app::kReportedTolerances), std::end(app::kReportedTolerances)));
   if (vm.count("json")) {

@@ -8,8 +8,12 @@
      on the same scenes: radii 0.2-1.0 in a cube of side 10 (packgen: truncated Gaussians with
      mean 0.6 and 0.35, stratified sizes; the 0.6 one also iid) and monodisperse r = 0.5; density
      of the whole box and of the core (2 r_max from every wall, the floor and the packing's top).
+     packgen runs each scene with its default stop rule and with --max-failures 1 (the tuned run),
+     the iid 0.6 scene also with --max-failures 100 (the default before the failure window).
 Writes docs/results/packgen-speed.md and packgen-speed.png. Run with python3 (h5py,
 numpy, scipy, matplotlib); POWDERBED_BUILD selects the build directory (default build/).
+GenGeo runs under the interpreter that runs this script: Debian's python3-gengeo is found by
+/usr/bin/python3 only (../shared/peers/README.md), so run `/usr/bin/python3 packgen_speed.py`.
 """
 import argparse
 import math
@@ -17,6 +21,7 @@ import os
 import resource
 import statistics
 import subprocess
+import sys
 import tempfile
 import time
 
@@ -56,8 +61,68 @@ print(t1 - t0)
 """
 
 
+# Section (iii), measured by hand (not rerun by this script: perf and A/B builds), kept here so a
+# regeneration keeps it; the commits name what was measured.
+WHERE_THE_TIME_GOES = [
+    "## (iii) 1e6 spheres: where the time goes (measured by hand)",
+    "",
+    "The run of (i): `packgen --dim 3 --domain 103,103,103 --psd mono:r=0.5 --approach 3 --site-order lowest",
+    "--count 1000000 --seed 1 --json`. Target: under 4 s of placement; the row of (i) before this branch gave",
+    "9.92 s on a quieter machine.",
+    "",
+    "A/B, interleaved (main 82fc374, then branch packgen-stop da24baf, three rounds), one run at a time on the",
+    "shared 2-core machine at load 5.1–5.3: placement `wall_time` is 2.3× the CPU time, so the CPU time of the",
+    "whole process (perf stat task-clock: placement + `--json` statistics + writing the bed) is the number to",
+    "compare.",
+    "",
+    "| build | process CPU (s), median [range] | placement wall (s), median [range] | attempts | sites found | "
+    "failed sizes | φ_core | Z | q6 | Q6 |",
+    "|---|---|---|---|---|---|---|---|---|---|",
+    "| main 82fc374 | 12.81 [12.46, 13.85] | 29.28 [28.80, 31.72] | 6,978,280 | 7,006,460 | 65 | 0.6048 | 6.033 | "
+    "0.455 | 0.0565 |",
+    "| packgen-stop da24baf | 13.38 [13.38, 14.07] | 30.43 [29.95, 32.17] | 6,981,539 | 7,010,771 | 0 | 0.6048 | "
+    "6.035 | 0.455 | 0.0563 |",
+    "",
+    "The branch changes which spheres are placed: a popped site that is covered no longer counts as one of",
+    "the n_T tries of a size (packgen/src/lowest_site_growth.hpp `try_size`), so the 65 sizes that main gave",
+    "up after 1000 covered sites in a row (each followed by a floor sweep, which draws random numbers) now go",
+    "on to the next live site. φ_core and q6 agree to every digit shown, Z and Q6 differ by 0.002 and 0.0002. The CPU times",
+    "differ by 4 %, inside the spread of the runs of one build (11 % for main); no speed-up is claimed.",
+    "",
+    "Where the time goes (perf record of the 1e6 run above with lowest-site growth's helpers kept out of line,",
+    "`[[gnu::noinline]]`, so each is charged its own samples; share of all samples of the process):",
+    "",
+    "| step | share |",
+    "|---|---|",
+    "| `gather_site_partners`: the new sphere's partners within 2 diameters from the cell grid (5³ cells), sorted by gap | 22.1 % + 2.6 % (sort) |",
+    "| `free_locally`: is a trilaterated centre free of the partners (90 centres per sphere) | 13.0 % |",
+    "| `CellGrid::fits`: a popped site against the spheres placed since it was found | 8.2 % |",
+    "| `pair_sites` (without trilateration) and the pair loop of `find_sites` | 8.0 % + 6.5 % |",
+    "| `trilaterate`: the 3-contact centre | 7.5 % |",
+    "| `circle_covered`: skip a partner whose circle of sites one neighbour covers | 6.2 % |",
+    "| site heap: pop / push | 5.7 % / 1.5 % |",
+    "| `prepare_sizes`, `pair_plane`, `touches_all`, `load_free_test`, `collect_live` | 5.0 % |",
+    "| the random stream (mt19937_64) | 0.3 % |",
+    "| not placement: `--json` contact statistics, overlap check, writing the bed | ~7.3 % |",
+    "",
+    "Tried and dropped (beds bit for bit the same): scanning only the grid cells that reach the query",
+    "sphere, with a packed copy (x, y, z, r) of the centres in the grid: 1e5 spheres 1.28–1.31 s CPU against",
+    "1.13–1.15 s; the packed copy alone: 1.14–1.21 s against 1.13–1.15 s at 1e5, 13.6–14.4 s against",
+    "13.3–13.9 s at 1e6, no gain beyond the noise. `free_locally` in branch-free blocks of 4 partners:",
+    "570 M against 506 M instructions at 1e4 spheres (callgrind).",
+    "",
+    "What stands in the way of 4 s: per sphere 7.0 sites are found and 7.0 popped, and one is used; finding",
+    "them (the partner search, the free tests, the trilaterations, the heap) is about four fifths of the",
+    "placement, spread over steps none of which is a quarter of it, so no single step's speed-up gives 2.5×.",
+    "That needs fewer sites found per sphere (found lazily, or from fewer partner pairs), which changes",
+    "which sites exist and so the bed, and a quiet machine to measure it on: at load 4.7 the 1e6 row of (i)",
+    "took 17.6 s of placement where the page before this branch had 9.92 s, and CPU time alone is 11–14 s.",
+    "",
+]
+
+
 def gengeo_available():
-    return subprocess.run(["python3", "-c", "import gengeo"], capture_output=True).returncode == 0
+    return subprocess.run([sys.executable, "-c", "import gengeo"], capture_output=True).returncode == 0
 
 
 def bedstat(path, extra):
@@ -155,7 +220,7 @@ def scaling(tmp):
 def run_gengeo(tmp, rmin, rmax, psds):
     """GenGeo in the walled cube, one run; KS to the uniform request and to each of `psds`."""
     csv = os.path.join(tmp, "gengeo.csv")
-    proc = subprocess.run(["python3", "-c", GENGEO, str(SIDE), str(rmin), str(rmax), "1000", csv],
+    proc = subprocess.run([sys.executable, "-c", GENGEO, str(SIDE), str(rmin), str(rmax), "1000", csv],
                           capture_output=True, text=True, check=True)
     t = float(proc.stdout.strip().splitlines()[-1])
     st = bedstat(csv, ["--domain", f"0,0,0,{SIDE},{SIDE},{SIDE}"])
@@ -171,11 +236,15 @@ def run_gengeo(tmp, rmin, rmax, psds):
     return run
 
 
-SCENES = [  # label, PSD, sampling, (rmin, rmax) of the GenGeo request
-    ("Gaussian mean 0.6, radii 0.2-1.0", GAUSS, "stratified", (0.2, 1.0)),
-    ("Gaussian mean 0.6, radii 0.2-1.0", GAUSS, "iid", (0.2, 1.0)),
-    ("Gaussian mean 0.35, radii 0.2-1.0", GAUSS_LOW, "stratified", (0.2, 1.0)),
-    ("mono r = 0.5", f"mono:r={R_MONO}", "iid", (R_MONO, R_MONO)),
+# packgen's stop rules per scene: the default (no option: 100 failures in a row or the failure
+# window, docs/physics.md §3), the tuned run, and once the default before the window.
+DEFAULT, TUNED, OLD_DEFAULT = ("default", []), ("--max-failures 1", ["--max-failures", "1"]), \
+    ("--max-failures 100", ["--max-failures", "100"])
+SCENES = [  # label, PSD, sampling, (rmin, rmax) of the GenGeo request, stop rules
+    ("Gaussian mean 0.6, radii 0.2-1.0", GAUSS, "stratified", (0.2, 1.0), (DEFAULT, TUNED)),
+    ("Gaussian mean 0.6, radii 0.2-1.0", GAUSS, "iid", (0.2, 1.0), (DEFAULT, TUNED, OLD_DEFAULT)),
+    ("Gaussian mean 0.35, radii 0.2-1.0", GAUSS_LOW, "stratified", (0.2, 1.0), (DEFAULT, TUNED)),
+    ("mono r = 0.5", f"mono:r={R_MONO}", "iid", (R_MONO, R_MONO), (DEFAULT, TUNED)),
 ]
 
 
@@ -187,27 +256,33 @@ def side_by_side(tmp):
     gengeo = {}
     if have_gengeo:
         for rng in sorted({sc[3] for sc in SCENES}):
-            psds = {"ks_" + psd: psd for _, psd, _, r in SCENES if r == rng and r[1] > r[0]}
+            psds = {"ks_" + psd: psd for _, psd, _, r, _ in SCENES if r == rng and r[1] > r[0]}
             gengeo[rng] = med([run_gengeo(tmp, rng[0], rng[1], psds) for _ in SEEDS])
             print(f"GenGeo {rng}: {gengeo[rng]}", flush=True)
     results = []
-    for label, psd, sampling, (rmin, rmax) in SCENES:
-        pg = []
-        for seed in SEEDS:
-            # Until the first drawn size finds no site: later failures let only small sizes in.
-            s, path = packgen(tmp, "scene", f"{SIDE},{SIDE},{SIDE}", psd, seed,
-                              ["--max-failures", "1", "--size-sampling", sampling])
-            st = bedstat(path, ["--psd", psd] if rmax > rmin else [])
-            _, r = read_bed(path)
-            layer, core, top = scene_core(path, SIDE, rmax)
-            pg.append({"n": s["n"], "t": s["wall_time"], "rate": s["n"] / s["wall_time"], "phi": st["box_density"],
-                       "phi_layer": layer, "phi_core": core, "top": top,
-                       "ks": st.get("ks_distance", 0.0), "r_mean": float(np.mean(r)), "z": st["coordination"],
-                       "q6": st["q6_local_mean"], "Q6": st["q6_global"], "overlap": st["max_overlap"]})
-            os.remove(path)
-        results.append((label, psd, sampling, med(pg), gengeo.get((rmin, rmax))))
-        print(f"scene {label} ({sampling}): packgen {med(pg)}", flush=True)
+    for label, psd, sampling, (rmin, rmax), stops in SCENES:
+        for stop, args in stops:
+            pg = [run_scene(tmp, psd, sampling, (rmin, rmax), seed, args) for seed in SEEDS]
+            results.append((label, psd, sampling, stop, med(pg), gengeo.get((rmin, rmax))))
+            print(f"scene {label} ({sampling}, {stop}): packgen {med(pg)}", flush=True)
     return results, have_gengeo
+
+
+def run_scene(tmp, psd, sampling, radii, seed, stop_args):
+    """One packgen run of a side-by-side scene with the stop options `stop_args`."""
+    rmin, rmax = radii
+    s, path = packgen(tmp, "scene", f"{SIDE},{SIDE},{SIDE}", psd, seed,
+                      stop_args + ["--size-sampling", sampling])
+    st = bedstat(path, ["--psd", psd] if rmax > rmin else [])
+    _, r = read_bed(path)
+    layer, core, top = scene_core(path, SIDE, rmax)
+    run = {"n": s["n"], "t": s["wall_time"], "rate": s["n"] / s["wall_time"], "attempts": s["attempts"],
+           "per_sphere": s["attempts"] / s["n"], "phi": st["box_density"], "phi_layer": layer,
+           "phi_core": core, "top": top, "ks": st.get("ks_distance", 0.0), "r_mean": float(np.mean(r)),
+           "z": st["coordination"], "q6": st["q6_local_mean"], "Q6": st["q6_global"],
+           "overlap": st["max_overlap"]}
+    os.remove(path)
+    return run
 
 
 def plot(rows):
@@ -233,7 +308,7 @@ def page(rows, scenes, have_gengeo, elapsed, machine):
     lines = [
         "# packgen speed: 3D densest rule, scaling and GenGeo side by side",
         "",
-        "Regenerate: `python3 bench/studies/packgen_speed.py` (POWDERBED_BUILD = a Release build;",
+        "Regenerate: `/usr/bin/python3 bench/studies/packgen_speed.py` (POWDERBED_BUILD = a Release build;",
         f"this run took {elapsed:.0f} s). One core; times are packgen's own `wall_time` (placement only, not",
         "file output) and GenGeo's `generatePacking` call; medians of 3 seeds / 3 runs.",
         "",
@@ -274,19 +349,38 @@ def page(rows, scenes, have_gengeo, elapsed, machine):
         "## (ii) GenGeo and packgen on the same scenes (walled cube of side 10)",
         "",
     ]
+    lines += side_by_side_lines(scenes, have_gengeo)
+    lines += [
+        "Peer numbers quoted in issue 3 for GenGeo on radii 0.2–1.0: about 2,600 spheres at φ ≈ 0.68 in about 4 s",
+        "(≈ 600 spheres/s), mean radius 0.32, KS 0.56 to the uniform request; monodisperse ~0.7 M spheres/s, Z ≈ 11.8,",
+        "φ → 0.72 (a crystal).",
+        "",
+    ]
+    lines += WHERE_THE_TIME_GOES
+    report.write_page("packgen-speed.md", "\n".join(lines))
+
+
+def side_by_side_lines(scenes, have_gengeo):
+    """Section (ii): the scenes' text, the table (packgen per stop rule, then GenGeo) and the ratios."""
+    lines = []
     if not have_gengeo:
         lines += ["GenGeo was **not run**: python3-gengeo is not installed (`apt-get install -y python3-gengeo`).", ""]
     lines += [
         f"packgen: `--psd {GAUSS}` resp. `{GAUSS_LOW}` (truncated Gaussians on the issue's 0.2–1.0 range; sd 0.2",
         "chosen; mean 0.35 lies near the mean radius GenGeo returns, so that scene has more, smaller spheres and a",
-        "fairer rate comparison) resp. `mono:r=0.5`, `--approach 3 --site-order lowest --max-failures 1` (stop when",
-        "a drawn size first finds no site: further draws would let only small sizes in and bias the PSD, the [LP]",
-        "n_T effect). `--size-sampling stratified`: the k-th size from the golden-ratio sequence through the",
-        "inverse CDF (packgen/include/powderbed/packgen/size_sampler.hpp), so the placed sizes, a prefix of that",
-        "sequence, match the PSD to O(log N / N); `iid`: independent draws (the default, [LP]).",
+        "fairer rate comparison) resp. `mono:r=0.5`, `--approach 3 --site-order lowest`, each with two stop rules:",
+        "**default** (no stop option: what a user gets; 100 failed sizes in a row or, in lowest-site growth, more",
+        "than half of the last 20 drawn sizes failed, docs/physics.md §3 \"Stop rules\") and **`--max-failures 1`**",
+        "(the tuned run: stop when a drawn size first finds no site, before any later draw lets only small sizes",
+        "in, the [LP] n_T effect). The iid 0.6 scene also with `--max-failures 100`, the default before the",
+        "failure window, which fills the last holes with the PSD's small tail (its KS). attempts: candidate",
+        "centres tested for collision (`attempts` of `--json`). `--size-sampling stratified`: the k-th size from",
+        "the golden-ratio sequence through the inverse CDF (packgen/include/powderbed/packgen/size_sampler.hpp), so",
+        "the placed sizes, a prefix of that sequence, match the PSD to O(log N / N); `iid`: independent draws",
+        "(the default, [LP]).",
         "GenGeo: `InsertGenerator3D(rmin, rmax, insertFails=1000, maxIter=1000, tol=1e-6, seed=True)` in",
         "`BoxWithPlanes3D` with six planes; it draws radii uniformly in [rmin, rmax] but then fits them to holes.",
-        "It is asked the same thing in both Gaussian scenes (one run per seed, shown in both rows).",
+        "It is asked the same thing in both Gaussian scenes (one run per seed, shown in each scene).",
         "KS: distance of the placed radii to the PSD each was asked for (packgen: its Gaussian; GenGeo: uniform on",
         "[0.2, 1.0]) and, for GenGeo, also to the Gaussian of the row.",
         "",
@@ -295,44 +389,48 @@ def page(rows, scenes, have_gengeo, elapsed, machine):
         "zones are in); φ(core) = the region 2 r_max (one largest diameter) from all four side walls, the floor",
         "and z_top, by centre counting (volumes of the spheres whose centres lie in it over its volume).",
         "",
-        "| scene | packer | sizes | N | time (s) | spheres / s | z_top | φ (box) | φ (layer) | φ (core) | mean r | KS (asked PSD) | KS (row's Gaussian) | Z | q6 | Q6 |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "| scene | packer | sizes | stop | N | attempts | attempts / sphere | time (s) | spheres / s | z_top | φ (box) "
+        "| φ (layer) | φ (core) | mean r | KS (asked PSD) | KS (row's Gaussian) | Z | q6 | Q6 |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
-    for label, psd, sampling, pg, gg in scenes:
-        lines.append(f"| {label} | packgen | {sampling} | {pg['n']:.0f} | {pg['t']:.4f} | {pg['rate']:,.0f} | {pg['top']:.2f} | "
-                     f"{pg['phi']:.4f} | {pg['phi_layer']:.4f} | {pg['phi_core']:.4f} | {pg['r_mean']:.3f} | {pg['ks']:.4f} | "
-                     f"{pg['ks']:.4f} | {pg['z']:.3f} | {pg['q6']:.3f} | {pg['Q6']:.3f} |")
-        if gg:
+    for k, (label, psd, sampling, stop, pg, gg) in enumerate(scenes):
+        lines.append(f"| {label} | packgen | {sampling} | {stop} | {pg['n']:.0f} | {pg['attempts']:,.0f} | "
+                     f"{pg['per_sphere']:.0f} | {pg['t']:.4f} | {pg['rate']:,.0f} | {pg['top']:.2f} | "
+                     f"{pg['phi']:.4f} | {pg['phi_layer']:.4f} | {pg['phi_core']:.4f} | {pg['r_mean']:.3f} | "
+                     f"{pg['ks']:.4f} | {pg['ks']:.4f} | {pg['z']:.3f} | {pg['q6']:.3f} | {pg['Q6']:.3f} |")
+        last_of_scene = k + 1 == len(scenes) or scenes[k + 1][:3] != (label, psd, sampling)
+        if gg and last_of_scene:
             ks_row = gg.get("ks_" + psd, 0.0)
-            lines.append(f"| {label} | GenGeo | uniform, fitted | {gg['n']:.0f} | {gg['t']:.3f} | {gg['rate']:,.0f} | {gg['top']:.2f} | "
-                         f"{gg['phi']:.4f} | {gg['phi_layer']:.4f} | {gg['phi_core']:.4f} | {gg['r_mean']:.3f} | "
-                         f"{gg['ks_uniform']:.4f} | {ks_row:.4f} | {gg['z']:.3f} | {gg['q6']:.3f} | {gg['Q6']:.3f} |")
+            lines.append(f"| {label} | GenGeo | uniform, fitted | insertFails 1000 | {gg['n']:.0f} | | | {gg['t']:.3f} | "
+                         f"{gg['rate']:,.0f} | {gg['top']:.2f} | {gg['phi']:.4f} | {gg['phi_layer']:.4f} | "
+                         f"{gg['phi_core']:.4f} | {gg['r_mean']:.3f} | {gg['ks_uniform']:.4f} | {ks_row:.4f} | "
+                         f"{gg['z']:.3f} | {gg['q6']:.3f} | {gg['Q6']:.3f} |")
     lines.append("")
     if have_gengeo:
         lines += ["Ratio packgen / GenGeo per placed sphere (spheres per second):", ""]
-        for label, psd, sampling, pg, gg in scenes:
-            lines.append(f"- {label}, {sampling}: {pg['rate'] / gg['rate']:.1f}× (packgen {pg['rate']:,.0f} /s at "
-                         f"φ(core) {pg['phi_core']:.3f}, φ(box) {pg['phi']:.3f}; GenGeo {gg['rate']:,.0f} /s at "
+        for label, psd, sampling, stop, pg, gg in scenes:
+            lines.append(f"- {label}, {sampling}, {stop}: {pg['rate'] / gg['rate']:.1f}× (packgen {pg['rate']:,.0f} /s "
+                         f"at φ(core) {pg['phi_core']:.3f}, φ(layer) {pg['phi_layer']:.3f}, φ(box) {pg['phi']:.3f}, "
+                         f"{pg['per_sphere']:.0f} attempts per sphere; GenGeo {gg['rate']:,.0f} /s at "
                          f"φ(core) {gg['phi_core']:.3f}, φ(box) {gg['phi']:.3f})")
         lines.append("")
     lines += [
         "Which density the φ ≥ 0.58 target is read against: φ(core). The cube is only 5 largest diameters wide,",
         "so φ(box) mixes the bulk with a depleted layer about one radius deep at each of the six faces (a wall",
         "cuts the sphere centres off at r from it, the known wall effect), and for packgen also with an",
-        "unfinished top layer: the run stops at the first drawn size that finds no site, which happens when the",
-        "growth front meets the lid (z_top above), so the last layer under the lid is partly empty. The core",
-        "removes both for both packers alike, so it compares the bulk packings the issue asks about; φ(layer)",
-        "shows how much the side walls alone take. With stratified sizes the KS",
-        "distance is the sequence's discrepancy (≤ 0.01 for these N, tests/packgen/test_pack.cpp); with iid",
-        "sizes it has median ≈ 0.83/√N (≈ 0.04 at N ≈ 480), so KS ≤ 0.02 at this N needs stratification.",
+        "unfinished top layer: sizes start to fail when the growth front meets the lid (z_top above), so the",
+        "last layer under the lid is partly empty: `--max-failures 1` stops at the first failure, the default",
+        "fills more of that layer (φ(box) up) and stops once most draws fail, before the small tail alone fills",
+        "the rest. The core removes both for both packers alike, so it compares the bulk packings the issue",
+        "asks about; φ(layer) shows how much the side walls alone take. With stratified sizes and",
+        "`--max-failures 1` the KS distance is the sequence's discrepancy (≤ 0.01 for these N,",
+        "tests/packgen/test_pack.cpp); the default's failed draws add at most their fraction of all draws",
+        "(docs/physics.md §3). With iid sizes it has median ≈ 0.83/√N (≈ 0.04 at N ≈ 480), so KS ≤ 0.02 at this",
+        "N needs stratification.",
         "On a shared machine wall times are inflated and noisy (its load: the machine line above).",
         "",
-        "Peer numbers quoted in issue 3 for GenGeo on radii 0.2–1.0: about 2,600 spheres at φ ≈ 0.68 in about 4 s",
-        "(≈ 600 spheres/s), mean radius 0.32, KS 0.56 to the uniform request; monodisperse ~0.7 M spheres/s, Z ≈ 11.8,",
-        "φ → 0.72 (a crystal).",
-        "",
     ]
-    report.write_page("packgen-speed.md", "\n".join(lines))
+    return lines
 
 
 def main():

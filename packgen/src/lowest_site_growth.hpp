@@ -93,7 +93,8 @@ class LowestSiteGrowth {
     std::size_t index = 0;  // into near_site_
   };
 
-  bool try_site(Site s, double r);
+  enum class SiteOutcome { placed, refused, covered };
+  SiteOutcome try_site(Site s, double r);
   bool floor_sweep(double r);
   bool try_floor(double r);
   // find_sites and its steps, in order.
@@ -137,8 +138,9 @@ class LowestSiteGrowth {
 };
 
 // Lowest-site growth for a drawn radius r: pop the lowest sites, re-solve each for r and place
-// at the first that fits (up to n_T sites). Until the floor seed is laid, and whenever no site
-// is known or none takes r, r is dropped at a random spot onto the floor instead.
+// at the first that fits (up to n_T sites that are still free for the smallest size). Until the
+// floor seed is laid, and whenever no site is known or none takes r, r is dropped at a random
+// spot onto the floor instead.
 template <class Backend>
 bool LowestSiteGrowth<Backend>::try_size(double r) {
   const bed::Domain& d = core_.domain();
@@ -147,9 +149,15 @@ bool LowestSiteGrowth<Backend>::try_size(double r) {
   }
   retry_.clear();
   bool placed = false;
-  for (int t = 0; t < o_.tries && !placed && !sites_.empty(); ++t) {
+  // A covered site is refuse left behind by the growth (each is popped once and dropped), not a
+  // try of r: counting it, a size failed when n_T covered sites lay at the bottom of the queue
+  // (a full floor layer in a 1e6 mono run: 11 such failures within 20 draws), which made
+  // failures, and so the stop rules, depend on the queue's refuse instead of on the bed.
+  for (int t = 0; t < o_.tries && !placed && !sites_.empty();) {
     ++core_.result().tries;
-    placed = try_site(sites_.pop(), r);
+    const SiteOutcome k = try_site(sites_.pop(), r);
+    placed = k == SiteOutcome::placed;
+    t += k != SiteOutcome::covered;
   }
   for (const Site& s : retry_) sites_.push(s);
   if (placed) return true;
@@ -159,25 +167,32 @@ bool LowestSiteGrowth<Backend>::try_size(double r) {
 
 // One popped site for r: the centre it stores when r is the size it was found for, else
 // re-solved for r; put back for a later size when it is free for the smallest (kSiteRetries).
+// `covered`: not free even for the smallest size, so it never will be (sites are only covered).
 template <class Backend>
-bool LowestSiteGrowth<Backend>::try_site(Site s, double r) {
+typename LowestSiteGrowth<Backend>::SiteOutcome LowestSiteGrowth<Backend>::try_site(Site s,
+                                                                                    double r) {
   const double r_min = core_.r_min();
   const bool stored = r == (s.found_for == 0 ? r_min : core_.r_max());
   if (stored) {
     // find_sites tested the stored centre against every particle up to its finder s.a (all
     // that can reach it), so only the particles placed since can cover it now.
-    if (core_.accept({s.x, s.y, s.key}, r, s.a)) return true;
-    if (r == r_min) return false;
+    if (core_.accept({s.x, s.y, s.key}, r, s.a)) return SiteOutcome::placed;
+    if (r == r_min) return SiteOutcome::covered;
   }
   const Partner a = core_.partner(s.a), b = core_.partner(s.b), c = core_.partner(s.c);
   Vec3 x;
-  if (!stored && site_centre(a, b, c, r, s.side, x) && core_.accept(x, r)) return true;
-  if (r > r_min && s.retries < kSiteRetries && site_centre(a, b, c, r_min, s.side, x) &&
-      core_.inside(x, r_min) && core_.backend().fits(x.x, x.y, x.z, r_min)) {
-    ++s.retries;
-    retry_.push_back(s);
+  if (!stored && site_centre(a, b, c, r, s.side, x) && core_.accept(x, r)) {
+    return SiteOutcome::placed;
   }
-  return false;
+  if (!(r > r_min)) return SiteOutcome::covered;
+  if (s.retries >= kSiteRetries) return SiteOutcome::refused;  // free or not: dropped
+  if (!(site_centre(a, b, c, r_min, s.side, x) && core_.inside(x, r_min) &&
+        core_.backend().fits(x.x, x.y, x.z, r_min))) {
+    return SiteOutcome::covered;
+  }
+  ++s.retries;
+  retry_.push_back(s);
+  return SiteOutcome::refused;
 }
 
 // Up to n_T random drops of r onto the floor. Once a sweep fails for r, the floor is closed to

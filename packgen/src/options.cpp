@@ -51,7 +51,7 @@ void check_numbers(const PackOptions& o) {
   if (o.retire_after < 0) {
     fail("--retire-after: " + std::to_string(o.retire_after) + " (accepted: >= 0, 0 = never)");
   }
-  if (o.max_failures < 1) fail("--max-failures: 0 (accepted: >= 1)");
+  if (o.max_failures && *o.max_failures < 1) fail("--max-failures: 0 (accepted: >= 1)");
   if (o.target_density != 0 && !(o.target_density > 0 && o.target_density < 1)) {
     fail(fmt::format("--target-density: {:g} (accepted: 0 < F < 1)", o.target_density));
   }

@@ -3,6 +3,8 @@
 // lowest_site_growth.hpp) over the shared placement core (placement_core.hpp), the stop rules
 // and the progress reports. The run is a template over the collision back-end, dispatched once
 // in pack(), so no test in the hot loop goes through a virtual call.
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <utility>
 
@@ -67,6 +69,22 @@ bool grows_lowest_sites(const bed::Domain& domain, const PackOptions& o) {
   return false;
 }
 
+// The last kFailureWindow placements, failed or not (pack.hpp: the failure window); before
+// kFailureWindow draws the missing ones count as placed.
+class FailureWindow {
+ public:
+  void add(bool failed) {
+    failures_ += std::size_t{failed} - std::size_t{ring_[next_]};
+    ring_[next_] = failed;
+    next_ = (next_ + 1) % kFailureWindow;
+  }
+  std::size_t failures() const { return failures_; }
+
+ private:
+  std::array<bool, kFailureWindow> ring_{};
+  std::size_t next_ = 0, failures_ = 0;
+};
+
 template <class Backend>
 class Packer {
  public:
@@ -77,7 +95,9 @@ class Packer {
         sizes_(psd, options.size_sampling, core_.rng()),
         contacts_(core_),
         growth_(core_),
-        lowest_(grows_lowest_sites(domain, options)) {
+        lowest_(grows_lowest_sites(domain, options)),
+        max_failures_(options.max_failures.value_or(kMaxFailures)),
+        window_(!options.max_failures && lowest_) {
     core_.on_placed([this](std::uint32_t i) {
       contacts_.placed(i);
       if (lowest_) growth_.placed(i);
@@ -104,23 +124,35 @@ class Packer {
   ContactApproaches<Backend> contacts_;
   LowestSiteGrowth<Backend> growth_;
   bool lowest_;
+  std::size_t max_failures_;  // --max-failures, else kMaxFailures
+  bool window_;               // the failure window is in force (pack.hpp)
+  FailureWindow recent_;
   Clock::time_point start_, last_report_;  // of run()
 };
 
-// Whether a stop rule holds (docs/physics.md §3): --count, --target-density, or
-// --max-failures sizes in a row that found no place (then the target, if any, was missed).
+// Whether a stop rule holds (docs/physics.md §3): --count, --target-density, or --max-failures
+// sizes in a row that found no place, or by default the failure window (pack.hpp); the last two
+// mean the target, if any, was missed.
 template <class Backend>
 bool Packer<Backend>::stopped() {
   PackResult& result = core_.result();
   if (o_.count > 0 && core_.particles().size() >= o_.count) {
     result.stop_reason = "count";
-  } else if (o_.target_density > 0 && core_.density() >= o_.target_density) {
-    result.stop_reason = "target density";
-  } else if (result.failures_in_a_row >= o_.max_failures) {
-    result.stop_reason = "max failures";
-    result.target_reached = o_.count == 0 && o_.target_density == 0;
+    return true;
   }
-  return !result.stop_reason.empty();
+  if (o_.target_density > 0 && core_.density() >= o_.target_density) {
+    result.stop_reason = "target density";
+    return true;
+  }
+  if (result.failures_in_a_row >= max_failures_) {
+    result.stop_reason = "max failures";
+  } else if (window_ && recent_.failures() > kFailureWindow / 2) {
+    result.stop_reason = "failure window";
+  } else {
+    return false;
+  }
+  result.target_reached = o_.count == 0 && o_.target_density == 0;
+  return true;
 }
 
 // One drawn size: lowest-site growth in its phase, else up to n_T tries of the phase's approach.
@@ -145,12 +177,17 @@ PackResult Packer<Backend>::run() {
     }
     const double r = sizes_.next(core_.rng());
     PackResult& result = core_.result();
-    if (place_one(o_.phases[phase].approach, r)) {
+    const int approach = o_.phases[phase].approach;
+    const bool placed = place_one(approach, r);
+    if (placed) {
       result.failures_in_a_row = 0;
     } else {
       ++result.failed_placements;
       ++result.failures_in_a_row;
     }
+    // Only growth's draws: a failure of an earlier phase (n_T random tries) says nothing about
+    // the front having met the lid.
+    if (approach == 3 && lowest_) recent_.add(!placed);
     if (o_.progress && loop % 256 == 0) report_progress();
   }
   return finish();
@@ -161,7 +198,9 @@ template <class Backend>
 double Packer<Backend>::fraction_done() const {
   if (o_.count > 0) return double(core_.particles().size()) / double(o_.count);
   if (o_.target_density > 0) return core_.density() / o_.target_density;
-  return double(core_.result().failures_in_a_row) / double(o_.max_failures);
+  const double in_a_row = double(core_.result().failures_in_a_row) / double(max_failures_);
+  if (!window_) return in_a_row;
+  return std::max(in_a_row, double(recent_.failures()) / double(kFailureWindow / 2 + 1));
 }
 
 // Calls o.progress about every 0.25 s.
