@@ -301,6 +301,10 @@ void print_json(const Report& p) {
   j.begin_object();
   app::write_run_head(j, p.bed.n(), r, p.settings.young_scale, p.scene);
   j.value("integrator", p.integrator)
+      .value("dt_limited_by", r.dt_limited_by)
+      .value("dt_limiting_radius", r.dt_limiting_radius)
+      .value("fines_scaling", dem::fines_scaling_name(p.scene.fines.scaling))
+      .value("fines_radius", p.scene.fines.radius)
       .value("stiffness", p.scene.stiffness)
       .value("kinetic_energy", r.kinetic_energy)
       .value("max_speed", r.max_speed)

@@ -96,7 +96,13 @@ void add_scene_options(po::options_description& desc, dem::Scene& s) {
       ("wall.young", po::value<double>(&s.wall.young)->default_value(s.wall.young), "wall E (Pa)")
       ("wall.poisson", po::value<double>(&s.wall.poisson)->default_value(s.wall.poisson),
        "wall nu")
-      ("gravity", po::value<double>(&s.gravity)->default_value(s.gravity), "g (m/s^2)");
+      ("gravity", po::value<double>(&s.gravity)->default_value(s.gravity), "g (m/s^2)")
+      ("fines.scaling", po::value<std::string>()->default_value("none"),
+       "keep the smallest particles from setting the time step (drop solver): none, mass (their "
+       "inertial mass x (R_ref/r)^2; gravity and drag unchanged) or stiffness (their E x "
+       "(r/R_ref)^2, Hertz law); docs/deposit-fines.md")
+      ("fines.radius", po::value<double>(&s.fines.radius)->default_value(s.fines.radius),
+       "R_ref (m): particles of radius below it get the Rayleigh step of a particle of R_ref");
 }
 
 // The lid's consolidation after the settle (dem::LidSettings).
@@ -163,6 +169,7 @@ dem::Scene deposit_scene(const po::variables_map& vm, const dem::Scene& bound) {
   }
   scene.friction_model = dem::parse_friction_model(vm["friction.model"].as<std::string>());
   scene.law = dem::parse_contact_law(vm["contact.law"].as<std::string>());
+  scene.fines.scaling = dem::parse_fines_scaling(vm["fines.scaling"].as<std::string>());
   if (vm.count("contact.stiffness")) {
     if (scene.law != dem::ContactLaw::linear)
       throw InputError("contact.stiffness: given with contact.law = hertz (accepted: with "

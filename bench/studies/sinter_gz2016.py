@@ -17,7 +17,7 @@ import os
 import subprocess
 
 from lib import apps, references, report
-from lib.apps import pool_um
+from lib.apps import pool_um, vaporised_by_size
 
 SCENE = apps.GZ2016_SINTER_SCENE
 DEPOSIT_SCENE = apps.scene("gz2016-deposit.ini")
@@ -31,11 +31,7 @@ SPEEDS = [0.4, 0.8, 1.2, 1.6, 2.0, 2.5, 3.0, 3.5, 4.0]     # m/s at 200 W
 # fines set the time step; at the scene's 1e3 the bimodal bed takes ~30 min) and 60 ms of
 # settling: a fine falls at its Stokes speed 2 r^2 rho g / (9 mu) ~ 1.3 cm/s, ~25 ms from the
 # top of the drop (at 30 ms some were still in the air above the bed).
-FIG13_PSDS = [
-    ("550 of 30 +- 5 um", "gauss:mean=30e-6,sd=5e-6,min=20e-6,max=40e-6", 550),
-    ("+ 3000 of 8 +- 2 um", "gauss:mean=30e-6,sd=5e-6,min=20e-6,max=40e-6,count=550"
-                            "+gauss:mean=8e-6,sd=2e-6,min=4e-6,max=12e-6,count=3000", 3550),
-]
+FIG13_PSDS = apps.GZ2016_TABLE3_PSDS
 
 
 def fig13_beds():
@@ -244,10 +240,7 @@ def validation(bed, machine):
 
 
 # The two models of the sweeps: the scene's default and Beer-Lambert as [GZ]'s text has it.
-SWEEP_MODELS = [
-    ("default (ray-traced, wetting)", []),
-    ("Beer-Lambert, no wetting", ["--laser.absorption", "beer-lambert", "--effects.wetting", "false"]),
-]
+SWEEP_MODELS = apps.GZ2016_LASER_MODELS
 
 
 def sweep_table(title, unit, rows):
@@ -328,18 +321,6 @@ def sweeps(bed, machine):
         "![sweeps](sinter-sweeps.png)",
     ]
     return report.write_page("sinter-sweeps.md", "\n".join(lines) + "\n")
-
-
-def vaporised_by_size(run_path, boiling_point, split_diameter):
-    """Particles whose peak reached T_v, counted below and above `split_diameter` (m)."""
-    import h5py
-    import numpy as np
-    with h5py.File(run_path, "r") as f:
-        peak = np.array(f["melt/particle"])
-        radius = np.array(f["particles/radius"])
-    gone = peak >= boiling_point
-    fine = 2 * radius < split_diameter
-    return int((gone & fine).sum()), int((gone & ~fine).sum()), int(fine.sum()), int((~fine).sum())
 
 
 def fig13(machine):

@@ -31,6 +31,9 @@ struct ForceParams {
   // z velocity of the box's top face: the lid while it is lowered (solver.hpp LidSettings);
   // 0 otherwise, when the subtraction below leaves every approach rate bit for bit unchanged.
   double top_velocity = 0;
+  // For the per-contact E* of stiffness-scaled fines (ForceArrays::young): the particles' and
+  // the wall's nu and the wall's (softened) E, Pa.
+  double poisson = 0, wall_poisson = 0, wall_young = 0;
 };
 
 // Positions and velocities in (the current RK4 stage or the Verlet half step), forces out.
@@ -42,8 +45,12 @@ struct ForceArrays {
   const double* vy;
   const double* vz;
   const double* radius;
-  const double* mass;
-  const double* drag;  // 6 pi mu_f r per particle
+  const double* mass;    // inertial mass (the fines' scaled one under mass scaling), kg
+  const double* weight;  // the mass gravity acts on: the physical one (== mass without scaling)
+  const double* drag;    // 6 pi mu_f r per particle
+  // Per-particle E (Pa) under fines stiffness scaling, whose contacts take E* from their two
+  // moduli at the tabulation; nullptr: every contact has the scene's E* (ForceParams).
+  const double* young;
   double* fx;
   double* fy;
   double* fz;
@@ -87,11 +94,34 @@ struct ContactTables {
   std::vector<ContactBuffer> buffers = std::vector<ContactBuffer>(1);  // one per thread
 };
 
+// The law's parameters of a contact of particles i and j: the scene's, or with stiffness-
+// scaled fines E* = 1 / ((1 - nu^2)/E_i + (1 - nu^2)/E_j) of the two particles' moduli.
+inline NormalLawParams pair_params(const ForceArrays& a, const ForceParams& p, std::size_t i,
+                                   std::size_t j) {
+  NormalLawParams law = p.pair;
+  if (a.young != nullptr) {
+    law.hertz.effective_modulus = effective_modulus(a.young[i], p.poisson, a.young[j], p.poisson);
+  }
+  return law;
+}
+
+// The same for particle i on a wall: E* of its E_i and the wall's E.
+inline NormalLawParams wall_params(const ForceArrays& a, const ForceParams& p, std::size_t i) {
+  NormalLawParams law = p.wall;
+  if (a.young != nullptr) {
+    law.hertz.effective_modulus =
+        effective_modulus(a.young[i], p.poisson, p.wall_young, p.wall_poisson);
+  }
+  return law;
+}
+
 // Per-particle wall constants, once per run.
 template <class Law>
 void tabulate_wall_constants(ContactTables& t, const ForceArrays& a, const ForceParams& p) {
   t.wall.resize(a.n);
-  for (std::size_t i = 0; i < a.n; ++i) t.wall[i] = Law::constants(p.wall, a.radius[i], a.mass[i]);
+  for (std::size_t i = 0; i < a.n; ++i) {
+    t.wall[i] = Law::constants(wall_params(a, p, i), a.radius[i], a.mass[i]);
+  }
   t.wall_faces.assign(a.n, 0);
 }
 
@@ -115,7 +145,8 @@ void tabulate_contacts(ContactTables& t, const ForceArrays& a, const ForceParams
       const std::uint32_t j = *it;
       const double reach = ri + a.radius[j];
       t.reach[k] = reach;
-      t.pair[k] = Law::constants(p.pair, ri * a.radius[j] / reach, mi * a.mass[j] / (mi + a.mass[j]));
+      t.pair[k] = Law::constants(pair_params(a, p, i, j), ri * a.radius[j] / reach,
+                                 mi * a.mass[j] / (mi + a.mass[j]));
     }
     const double pos[3] = {a.x[i], a.y[i], a.z[i]};
     std::uint8_t faces = 0;
@@ -306,14 +337,14 @@ void body_forces(const ForceArrays& a, const ForceParams& p, std::size_t begin, 
   double* __restrict fx = a.fx;
   double* __restrict fy = a.fy;
   double* __restrict fz = a.fz;
-  const double* __restrict mass = a.mass;
+  const double* __restrict weight = a.weight;
   const double* __restrict drag = a.drag;
   const double* __restrict vx = a.vx;
   const double* __restrict vy = a.vy;
   const double* __restrict vz = a.vz;
   for (std::size_t i = begin; i < end; ++i) {
     double f[3] = {0, 0, 0};
-    if constexpr ((E & kGravity) != 0) f[2] += gravity_force_z(p.gravity, mass[i]);
+    if constexpr ((E & kGravity) != 0) f[2] += gravity_force_z(p.gravity, weight[i]);
     if constexpr ((E & kDrag) != 0) {
       f[0] -= drag[i] * vx[i];
       f[1] -= drag[i] * vy[i];

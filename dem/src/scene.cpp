@@ -22,6 +22,22 @@ const char* friction_model_name(FrictionModel model) {
   return model == FrictionModel::history ? "history" : "sliding";
 }
 
+FinesScaling parse_fines_scaling(const std::string& text, const std::string& option) {
+  if (text == "none") return FinesScaling::none;
+  if (text == "mass") return FinesScaling::mass;
+  if (text == "stiffness") return FinesScaling::stiffness;
+  throw InputError(option + ": '" + text + "' is not a fines scaling (accepted: none, mass, stiffness)");
+}
+
+const char* fines_scaling_name(FinesScaling scaling) {
+  switch (scaling) {
+    case FinesScaling::mass: return "mass";
+    case FinesScaling::stiffness: return "stiffness";
+    case FinesScaling::none: break;
+  }
+  return "none";
+}
+
 const char* contact_law_name(ContactLaw law) {
   return law == ContactLaw::linear ? "linear" : "hertz";
 }
@@ -46,6 +62,15 @@ void Scene::validate() const {
   if (law == ContactLaw::linear) {
     require(finite_positive(stiffness), "contact.stiffness", stiffness,
             "k_n > 0 N/m with contact.law = linear");
+  }
+  if (fines.scaling != FinesScaling::none) {
+    require(finite_positive(fines.radius), "fines.radius", fines.radius,
+            "R_ref > 0 m with fines.scaling = mass or stiffness");
+    // The linear law's one k_n has no modulus to scale (its fines: fines.scaling = mass).
+    if (fines.scaling == FinesScaling::stiffness && law == ContactLaw::linear) {
+      throw InputError("fines.scaling: 'stiffness' with contact.law = linear (accepted: none or "
+                       "mass with the linear law)");
+    }
   }
   require(gravity >= 0 && std::isfinite(gravity), "gravity", gravity, "g >= 0 m/s^2");
   if (has(kDrag)) {

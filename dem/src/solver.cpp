@@ -22,6 +22,7 @@
 #include "powderbed/bed/softening.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
 #include "powderbed/dem/diagnostics.hpp"
+#include "powderbed/dem/fines_scaling.hpp"
 #include "powderbed/dem/stokes_drag.hpp"
 #include "powderbed/dem/time_step.hpp"
 #include "powderbed/dem/trajectory.hpp"
@@ -98,7 +99,9 @@ struct Context {
   int threads = 1;
   double dt = 0;
   ForceParams params;
-  std::vector<double> mass, inv_mass, drag, fx, fy, fz;
+  // mass: inertial (scaled for fines under mass scaling); weight: physical (gravity, energy);
+  // young: per-particle E under stiffness scaling (empty otherwise).
+  std::vector<double> mass, inv_mass, weight, young, drag, fx, fy, fz;
   // RK4: state at the start of the step and the weighted sums of the stage derivatives.
   std::vector<double> x0, y0, z0, u0, v0, w0, sx, sy, sz, su, sv, sw;
   NeighbourList list;
@@ -113,9 +116,10 @@ struct Context {
 
   ParticleView view() const { return {bed.x.data(), bed.y.data(), bed.z.data(), bed.radius.data(), n}; }
   ForceArrays arrays() {
-    return {bed.x.data(), bed.y.data(), bed.z.data(), bed.vx.data(), bed.vy.data(),
-            bed.vz.data(), bed.radius.data(), mass.data(), drag.data(), fx.data(),
-            fy.data(),     fz.data(),     n};
+    return {bed.x.data(),  bed.y.data(),  bed.z.data(),      bed.vx.data(),
+            bed.vy.data(), bed.vz.data(), bed.radius.data(), mass.data(),
+            weight.data(), drag.data(),   young.empty() ? nullptr : young.data(),
+            fx.data(),     fy.data(),     fz.data(),         n};
   }
   void rebuild() {
     list.build(view(), threads, threads > 1);
@@ -287,7 +291,7 @@ void kinetic_state(const Context& c, double& energy, double& max_speed) {
   for (std::size_t i = 0; i < c.n; ++i) {
     const double v2 =
         c.bed.vx[i] * c.bed.vx[i] + c.bed.vy[i] * c.bed.vy[i] + c.bed.vz[i] * c.bed.vz[i];
-    energy += 0.5 * c.mass[i] * v2;
+    energy += 0.5 * c.weight[i] * v2;
     max2 = std::max(max2, v2);
   }
   max_speed = std::sqrt(max2);
@@ -408,6 +412,9 @@ void set_up_laws(Context& c, const Scene& scene) {
   c.params.wall.linear = {scene.stiffness, mat.damping};
   c.tabulate = scene.law == ContactLaw::linear ? &detail::tabulate_contacts<detail::LinearLaw>
                                                : &detail::tabulate_contacts<detail::HertzLaw>;
+  c.params.poisson = mat.poisson;
+  c.params.wall_poisson = scene.wall.poisson;
+  c.params.wall_young = moduli.wall_young;
   c.params.friction.coefficient = mat.friction;
   c.params.gravity.acceleration = scene.gravity;
   c.params.box = Box::from(c.bed.domain);
@@ -430,16 +437,24 @@ Totals set_up_particles(Context& c, const Scene& scene) {
   }
   c.mass.resize(n);
   c.inv_mass.resize(n);
+  c.weight.resize(n);
   c.drag.resize(n);
+  const bool stiffness = scene.fines.scaling == FinesScaling::stiffness;
+  c.young.assign(stiffness ? n : 0, 0.0);
+  const double young = contact_moduli(scene, c.settings.young_scale).young;
   for (auto* v : {&c.fx, &c.fy, &c.fz}) v->assign(n, 0.0);
   Totals totals;
   for (std::size_t i = 0; i < n; ++i) {
     const double r = bed.radius[i];
-    c.mass[i] = 4.0 / 3.0 * std::numbers::pi * r * r * r * scene.material.density;
+    // docs/physics.md §4 "Fines": gravity and drag act on the particle as it is; only its
+    // inertia (mass scaling) or its modulus (stiffness scaling) is scaled.
+    c.weight[i] = 4.0 / 3.0 * std::numbers::pi * r * r * r * scene.material.density;
+    c.mass[i] = c.weight[i] * fines_mass_factor(scene.fines, r);
     c.inv_mass[i] = 1.0 / c.mass[i];
+    if (stiffness) c.young[i] = young * fines_stiffness_factor(scene.fines, r);
     c.drag[i] = stokes_drag_coefficient({scene.fluid_viscosity}, r);
     totals.r_max = std::max(totals.r_max, r);
-    totals.total_mass += c.mass[i];
+    totals.total_mass += c.weight[i];
   }
   if (c.settings.integrator == Integrator::rk4) {
     for (auto* v : {&c.x0, &c.y0, &c.z0, &c.u0, &c.v0, &c.w0, &c.sx, &c.sy, &c.sz, &c.su, &c.sv,
@@ -574,7 +589,7 @@ class Insertion {
     }
     if (!run_.inserting && run_.settings.rest.kinetic_energy <= 0) {  // the rest criterion's mass
       double inserted_mass = 0;
-      for (std::size_t i = 0; i < c.n; ++i) inserted_mass += c.mass[i];
+      for (std::size_t i = 0; i < c.n; ++i) inserted_mass += c.weight[i];
       const double v = run_.settings.rest.max_speed;
       run_.rest_energy = 1e-2 * 0.5 * inserted_mass * v * v;
     }
@@ -834,6 +849,8 @@ void summarise(Run& run, const TimeStepBound& bound) {
   summary.sim_time = run.time();
   summary.dt = c.dt;
   summary.dt_stable = bound.stable;
+  summary.dt_limited_by = bound.limited_by;
+  summary.dt_limiting_radius = bound.limiting_radius;
   kinetic_state(c, summary.kinetic_energy, summary.max_speed);
   const Overlap overlap = max_overlap(c.bed, run.scene);
   summary.max_overlap = overlap.relative;

@@ -943,6 +943,14 @@ void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSetting
     throw InputError("effects.walls: off in a spreading run (accepted: on; the plate and the tool "
                      "are walls)");
   }
+  // Its contacts and inertia (rotation, history springs, rolling) are set per particle in this
+  // solver's own tables; the fines' scaled masses and moduli are the drop solver's only.
+  if (scene.fines.scaling != FinesScaling::none) {
+    throw InputError(fmt::format("fines.scaling: '{}' in a spreading run or a drop with history "
+                                 "friction or rolling resistance (accepted: none; the fines are "
+                                 "scaled by the drop solver only)",
+                                 fines_scaling_name(scene.fines.scaling)));
+  }
   if (!(settings.layers >= 1)) throw InputError("--layers: 0 (accepted: N >= 1)");
   require_in_range(std::isfinite(settings.layer_thickness) && settings.layer_thickness >= 0,
                    "recoater.layer-thickness", settings.layer_thickness, "thickness >= 0 m");

@@ -652,6 +652,18 @@ std::vector<Case> all_cases() {
   add("deposit_trajectory_no_folder", "deposit", dep + "--trajectory @nowhere/traj.h5 --every 10 --out @out.h5", 2,
       {"--trajectory", "nowhere"});
   add("deposit_material_young_gpa", "deposit", dep + "--material.young 193 --out @out.h5", 2, {"material.young", "193"});
+  add("deposit_fines_scaling_word", "deposit", dep + "--fines.scaling volume --out @out.h5", 2,
+      {"fines.scaling", "volume"});
+  add("deposit_fines_radius_zero", "deposit", dep + "--fines.scaling mass --out @out.h5", 2,
+      {"fines.radius", "0"});
+  add("deposit_fines_radius_negative", "deposit",
+      dep + "--fines.scaling stiffness --fines.radius -1e-6 --out @out.h5", 2, {"fines.radius", "-1e-06"});
+  add("deposit_fines_stiffness_linear", "deposit",
+      dep + "--contact.law linear --contact.stiffness 100 --fines.scaling stiffness --fines.radius 1e-5 --out @out.h5",
+      2, {"fines.scaling", "linear"});
+  add("deposit_fines_rotating", "deposit",
+      dep + "--friction.model history --fines.scaling mass --fines.radius 1e-5 --out @out.h5", 2,
+      {"fines.scaling", "mass"});
 
   // keff.
   const std::string kf = "--bed @good.h5 ";

@@ -299,6 +299,35 @@ def gz2016_bed():
     return path
 
 
+# [GZ] Table 3's beds for Fig. 13 (PSD, count): 550 particles of 30 +- 5 um in [20, 40] um, and
+# the same with 3,000 fines of 8 +- 2 um in [4, 12] um (diameters); sinter_gz2016.py's Fig. 13
+# and deposit_fines.py deposit them.
+GZ2016_TABLE3_PSDS = [
+    ("550 of 30 +- 5 um", "gauss:mean=30e-6,sd=5e-6,min=20e-6,max=40e-6", 550),
+    ("+ 3000 of 8 +- 2 um", "gauss:mean=30e-6,sd=5e-6,min=20e-6,max=40e-6,count=550"
+                            "+gauss:mean=8e-6,sd=2e-6,min=4e-6,max=12e-6,count=3000", 3550),
+]
+
+# The two laser models the [GZ] sweeps run: sinter's default and the paper's own.
+GZ2016_LASER_MODELS = [
+    ("default (ray-traced, wetting)", []),
+    ("Beer-Lambert, no wetting", ["--laser.absorption", "beer-lambert", "--effects.wetting", "false"]),
+]
+
+
+def vaporised_by_size(run_path, boiling_point, split_diameter):
+    """Particles of a sinter run file whose peak reached T_v: (fine, coarse, fines, coarse ones)
+    counted below and above `split_diameter` (m)."""
+    import h5py
+    import numpy as np
+    with h5py.File(run_path, "r") as f:
+        peak = np.array(f["melt/particle"])
+        radius = np.array(f["particles/radius"])
+    gone = peak >= boiling_point
+    fine = 2 * radius < split_diameter
+    return int((gone & fine).sum()), int((gone & ~fine).sum()), int(fine.sum()), int((~fine).sum())
+
+
 def sinter(scene_path, bed, out, *options, threads=1):
     """sinter on `bed` with the scene and `options`, its run file at `out` (a bare name: in
     out/studies/): (--json summary with "out_path", process wall s). One thread by default: the

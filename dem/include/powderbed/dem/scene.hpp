@@ -41,6 +41,21 @@ FrictionModel parse_friction_model(const std::string& text,
                                    const std::string& option = "friction.model");
 const char* friction_model_name(FrictionModel model);
 
+// How the smallest particles of a wide PSD are kept from setting the time step (fines_scaling.hpp,
+// docs/physics.md §4 "Fines"): none; mass (their inertial mass multiplied by (R_ref / r)^2,
+// gravity and drag unchanged); stiffness (their E multiplied by (r / R_ref)^2, Hertz law only).
+// Either gives every particle of radius r < R_ref the Rayleigh step of a particle of R_ref.
+enum class FinesScaling { none, mass, stiffness };
+// "none" | "mass" | "stiffness"; throws InputError naming `option` otherwise.
+FinesScaling parse_fines_scaling(const std::string& text,
+                                 const std::string& option = "fines.scaling");
+const char* fines_scaling_name(FinesScaling scaling);
+
+struct Fines {
+  FinesScaling scaling = FinesScaling::none;
+  double radius = 0;  // R_ref, m: particles with r < R_ref are scaled (> 0 when scaling is on)
+};
+
 // The effects of docs/architecture.md "Effects a scene calls for", one bit each: the name the
 // force loop tests at compile time (dem/src/forces.hpp).
 enum Effect : unsigned {
@@ -94,12 +109,13 @@ struct Scene {
   double fluid_viscosity = 2.1e-5;  // mu_f, Pa s (argon at 293 K, [GZ] Table 2)
   double gravity = 9.81;            // g, m/s^2
   unsigned effects = kAllEffects;
+  Fines fines;
 
   bool has(unsigned effect) const { return (effects & effect) != 0; }
   // Throws InputError (naming the scene field, the value and the accepted range) for
   // non-positive E, rho, viscosity (when drag is on); nu outside [0, 0.5); zeta outside [0, 1];
   // negative mu_d, mu_r or g; damping or friction switched on with neither hertz nor walls; the
-  // linear law with k_n <= 0.
+  // linear law with k_n <= 0; fines scaling with R_ref <= 0, or by stiffness with the linear law.
   void validate() const;
 };
 

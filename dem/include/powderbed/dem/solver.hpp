@@ -129,7 +129,9 @@ struct RunSummary {
   double wall_time = 0;            // s
   double particle_steps_per_s = 0;
   double dt = 0, dt_stable = 0;    // s
-  double kinetic_energy = 0;       // J, at the end
+  const char* dt_limited_by = "none";  // TimeStepBound::limited_by
+  double dt_limiting_radius = 0;       // m, TimeStepBound::limiting_radius
+  double kinetic_energy = 0;       // J, at the end (physical masses)
   double max_speed = 0;            // m/s, at the end
   double max_overlap = 0;          // largest overlap / smaller radius (pairs and walls), at end
   double max_overlap_m = 0;        // the same overlap in m

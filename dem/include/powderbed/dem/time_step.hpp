@@ -29,10 +29,12 @@ struct TimeStepBound {
   // "rayleigh" (Hertz contact), "contact" (linear contact, 1/omega_0), "drag" (Stokes
   // relaxation), "none"
   const char* limited_by = "none";
+  double limiting_radius = 0;  // m, the radius of the particle whose step is the bound
 };
 
-// Bound for the bed's smallest particle with E / young_scale for particle and wall:
-// min over the effects that are on of t_R (hertz or walls; the wall's E when it is softer;
+// Bound over the bed's particles (the smallest one without fines scaling; with it, each
+// particle's own step with its scaled mass or modulus, fines_scaling.hpp) with E / young_scale
+// for particle and wall: min over the effects that are on of t_R (hertz or walls; the wall's E when it is softer;
 // with the linear law linear_stable_time_step instead)
 // and the Stokes relaxation time m / (6 pi mu_f r) (drag; velocity Verlet on a linear drag is
 // stable below twice that). Both are +inf when no effect bounds the step (hertz, walls and
