@@ -59,7 +59,7 @@ def cached(name, measure, fresh):
     load = report.load_average()
     value = measure()
     value["load"] = [load, report.load_average()]
-    value["machine"] = report.machine(*value["load"])  # the source as it was measured
+    value["source"] = report.source()  # the code as it was measured
     with open(path + ".tmp", "w") as f:
         json.dump(value, f)
     os.replace(path + ".tmp", path)
@@ -132,8 +132,11 @@ def sinter_pass():
 
 
 def machine_line(measurements):
-    """The machine sentences of a set of measurements, each once."""
-    return " ".join(dict.fromkeys(m["machine"] for m in measurements))
+    """The machine sentence of a set of measurements: the load before the first and after the
+    last, and the source each was measured at."""
+    ms = list(measurements)
+    sources = " and ".join(dict.fromkeys(m["source"] for m in ms))
+    return report.machine(ms[0]["load"][0], ms[-1]["load"][1], source_text=sources)
 
 
 def protocol_section(paper, default):
@@ -255,12 +258,12 @@ def voronoi_section(million, hundred):
         *[report.table_row(f"{pct:.1f} %", f"`{name.split('<')[0][:60]}`")
           for pct, name in (million.get("profile") or [])],
         "",
-        "What stands in the way: `cell_volumes`, our pass over the triangulation's edges (for "
-        "each edge a circulation around it to collect its face's corners, so every cell is "
-        "visited once per edge, six times), then CGAL's insertion; bedstat's default contact "
-        "statistics are a few per cent. "
-        "A pass over the cells instead of the edges (each cell's signed pieces of its four "
-        "vertices' cells) and threads over it are the next steps; neither exists yet.",
+        "Where the time goes: `laguerre_cells`, the one pass over the triangulation's cells "
+        "that adds each cell's signed orthoschemes to its four vertices' volumes "
+        "(bed/src/stats_voronoi.cpp; it replaced a pass over the edges that circulated around "
+        "each of them and took 38 % of the run), then CGAL's insertion (the TDS and "
+        "Regular_triangulation_3 entries); bedstat's default contact statistics are a few per "
+        "cent.",
         end,
     ])
 
@@ -276,6 +279,7 @@ def sinter_section(p):
     node_steps = p["steps"] * p["nodes"]
     ns = p["own"] / node_steps * 1e9
     rate = GRID_BYTES_PER_NODE * node_steps / p["cpu"] / 1e9  # CPU: what a loaded machine spares
+    floor = GRID_BYTES_PER_NODE * node_steps / (p["bandwidth"] * 1e9)  # s at full bandwidth
     prof = [report.table_row(f"{pct:.1f} %", f"`{name}`") for pct, name in (p["profile"] or [])]
     return "\n".join([
         begin,
@@ -298,14 +302,15 @@ def sinter_section(p):
         f"What stands in the way: the grid. Each step moves at least {GRID_BYTES_PER_NODE} bytes "
         f"per node (the flux pass reads T and K and updates e; the second pass reads e and writes "
         f"T and K), so the pass streams {GRID_BYTES_PER_NODE * node_steps / 1e9:.0f} GB: "
-        f"{rate:.1f} GB/s over the process's CPU time, against {p['bandwidth']:.1f} GB/s that numpy's "
-        "c = a + b streams on this core in the same session. The step is memory-bound; the "
-        "tables (T(e), K(T): uniform tables, one multiply and one load each), the particles and "
-        "the output are the small entries above. Under 3 s needs about "
-        f"{p['cpu'] / 3:.0f}x less traffic: fewer nodes where nothing happens (a grid that "
-        "coarsens away from the track; the 10 um grid of sinter-accuracy.md runs this pass's "
-        "first 0.36 ms in 0.8 s) or several steps per sweep (temporal blocking), neither of "
-        "which exists yet.",
+        f"{rate:.1f} GB/s over the process's CPU time, against {p['bandwidth']:.1f} GB/s that "
+        "numpy's c = a + b streams on this core in the same session. A loop that streamed at "
+        f"that rate would take the pass from {p['cpu']:.1f} s to {floor:.1f} s and no further; "
+        "the tables (T(e), K(T): uniform tables, one multiply and one load each), the particles "
+        "and the output are the small entries above. Under 3 s therefore needs about "
+        f"{floor / 3:.1f}x less traffic even at full bandwidth: fewer nodes "
+        "where nothing happens (a grid that coarsens away from the track; the 10 um grid of "
+        "sinter-accuracy.md runs this pass's first 0.36 ms in 0.8 s), both passes fused into "
+        "one sweep, or several steps per sweep (temporal blocking); none of them exists yet.",
         end,
     ])
 

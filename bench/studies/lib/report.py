@@ -126,12 +126,12 @@ def source(program=None):
     return text
 
 
-def machine(load_before, load_after=None, program=None):
+def machine(load_before, load_after=None, program=None, source_text=None):
     """The sentence a page gives on where its numbers were measured: the host (CPU model, and
     whether virtual), its cores, the platform, the load average (1, 5, 15 min) before the runs
     (`load_before`, from load_average()) and after them (`load_after`, default now), and the
-    source (source(program))."""
+    source (source(program), or `source_text`: what source() said when the numbers were taken)."""
     load_after = load_after or load_average()
     return (f"Machine: {_host()}, {os.cpu_count()} cores, {platform.platform()}; load average "
             f"(1, 5, 15 min) {load_before} before the runs, {load_after} after; source at "
-            f"{source(program)}.")
+            f"{source_text or source(program)}.")
