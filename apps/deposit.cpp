@@ -251,6 +251,8 @@ void record_provenance(bed::Bed& bed, const po::variables_map& vm, int argc, cha
   made.wall_poisson = scene.wall.poisson;
   made.young_scale = young_scale;
   made.stiffness = scene.stiffness;
+  if (scene.fines.scaling == dem::FinesScaling::stiffness)
+    made.fines_stiffness_radius = scene.fines.radius;
 }
 
 // The core density, or why there is none: a bed less than two margins thick (a monolayer) has

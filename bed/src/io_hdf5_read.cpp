@@ -321,6 +321,14 @@ class H5Reader {
       if (!std::isfinite(*value))
         fail("/provenance", std::string(name) + " is not finite (accepted: a finite number)");
     }
+    // Optional: beds written before fines scaling existed have none.
+    if (has_attr(g, "contact_fines_stiffness_radius")) {
+      numeric_attr(g, "/provenance", "contact_fines_stiffness_radius", H5T_NATIVE_DOUBLE,
+                   &c.fines_stiffness_radius, 1);
+      if (!(c.fines_stiffness_radius >= 0) || !std::isfinite(c.fines_stiffness_radius))
+        fail("/provenance", "contact_fines_stiffness_radius is not a finite radius >= 0 "
+                            "(accepted: 0 for none, or R_ref in m)");
+    }
   }
 
   // The extent a dataset declares, checked against what the file stores and what this machine

@@ -137,7 +137,8 @@ class H5Writer {
     const std::pair<const char*, double> values[] = {
         {"contact_young", c.young},           {"contact_poisson", c.poisson},
         {"contact_wall_young", c.wall_young}, {"contact_wall_poisson", c.wall_poisson},
-        {"contact_young_scale", c.young_scale}, {"contact_stiffness", c.stiffness}};
+        {"contact_young_scale", c.young_scale}, {"contact_stiffness", c.stiffness},
+        {"contact_fines_stiffness_radius", c.fines_stiffness_radius}};
     for (const auto& [name, value] : values)
       numeric_attr(group, "/provenance", name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value, 1);
   }

@@ -41,6 +41,12 @@ ContactRadiusParams contact_radius_params(const bed::ContactProvenance& made,
   const auto number = [](double v) { return fmt::format("{:g}", v); };
   const auto differs = [](double a, double b) { return std::abs(a - b) > 1e-12 * std::abs(b); };
   if (given.law && *given.law != made.law) contradicts("contact.law", *given.law, made.law);
+  if (hertz_correction && made.fines_stiffness_radius > 0)
+    throw InputError(fmt::format(
+        "contact.hertz-correction: the bed's particles below r = {:g} m ran with E (r/R)^2 "
+        "(deposit fines.scaling = stiffness), which the correction does not model (accepted: "
+        "contact.hertz-correction = false, or a bed deposited without stiffness scaling)",
+        made.fines_stiffness_radius));
   p.law = made.law == "linear" ? BedContactLaw::linear : BedContactLaw::hertz;
   if (p.law == BedContactLaw::linear) {
     if (given.young_scale && *given.young_scale != 1)

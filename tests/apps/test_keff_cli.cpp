@@ -236,6 +236,13 @@ TEST(KeffCli, ContactRecordMissingOrContradictedExitsTwo) {
                  {"contact.stiffness", "k_n > 0"});
   expect_refused(test::run_app("keff", base + hertz + " --contact.young 0"), dir,
                  {"contact.young", "E > 0"});
+  // Stiffness-scaled fines (deposit fines.scaling = stiffness): their E is not the record's, so
+  // the correction is refused; the record survives the file (written, then read by keff).
+  bed::Bed scaled = column();
+  scaled.provenance.contact.fines_stiffness_radius = 6e-6;
+  bed::write_bed_h5(scaled, dir + "/scaled.h5");
+  expect_refused(test::run_app("keff", base + dir + "/scaled.h5"), dir,
+                 {"contact.hertz-correction", "6e-06", "fines.scaling = stiffness"});
   bed::Bed linear = column();
   linear.provenance.contact = {"linear", 198e9, 0.28, 198e9, 0.28, 1.0, 1e5};
   bed::write_bed_h5(linear, dir + "/linear.h5");

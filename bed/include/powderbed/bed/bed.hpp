@@ -22,6 +22,9 @@ struct ContactProvenance {
   double wall_poisson = 0;  // walls' nu
   double young_scale = 1;   // hertz: the DEM ran with E / young_scale (particles and walls)
   double stiffness = 0;     // linear: k_n, N/m (pairs and walls)
+  // hertz: particles below this radius (m) ran with E (r / R)^2 (deposit's fines.scaling =
+  // stiffness, docs/deposit-fines.md), which keff's Hertz correction does not model; 0: none.
+  double fines_stiffness_radius = 0;
 };
 
 struct Provenance {
