@@ -186,12 +186,15 @@ def findings(beds, rows, prof, loads):
             f"{off['rss']:.0f} MiB without. Target 120 s: "
             f"{'met' if on['wall'] < 120 else 'missed'} ({120 / on['wall']:.1f}× margin).")
     if prof:
-        tracing = ("view_factors", "trace", "unit_sphere", "cosine_direction")
-        rays = sum(pct for pct, name in prof if any(f"thermal::{t}" in name for t in tracing))
+        # The tracer's functions by name, wherever they live (keff's view factors, bed's grid).
+        tracing = ("::view_factors", "::trace", "::unit_sphere", "::cosine_direction",
+                   "::SphereGrid::")
+        rays = sum(pct for pct, name in prof if any(t in name for t in tracing))
         solve = sum(pct for pct, name in prof if "bicgstab" in name or "conjugate" in name)
         out.append(
             f"- **Where the time goes** (the 100,000-particle radiation run): the ray tracing "
-            f"(view_factors, trace and the direction sampling) {rays:.0f} % of the samples, the "
+            f"(view_factors, trace, the sphere grid's hits and the direction sampling) "
+            f"{rays:.0f} % of the samples, the "
             f"CG start and the BiCGSTAB Newton steps {solve:.0f} %, the rest (building the "
             "network, copies, the kernel) spread thin. The tracing scales with particles × "
             "rays (docs/results/keff-accuracy.md for the rays against accuracy), the solves with "
@@ -223,12 +226,11 @@ def findings(beds, rows, prof, loads):
              for b in beds for r in (False, True) if pick(rows, b["label"], r, 1)["wall"] > 1]
     out.append(
         f"- **Two threads**: one-thread / two-thread wall time {min(ratio):.2f}–{max(ratio):.2f} "
-        f"on the runs over 1 s, with the machine's two cores shared with other jobs (load "
-        f"average {loads[0].split()[0]}–{loads[1].split()[0]}): the second OpenMP thread waits "
-        "for a core, and without radiation, where only Eigen's CG product runs threaded (one "
-        "fork and barrier per iteration), two threads can be several times slower (compare the "
-        "CPU column; keff since commit 8dca5af runs CG serially below 65,536 unknowns for this "
-        "reason). k_eff is "
+        f"on the runs over 1 s (load average {loads[0].split()[0]}–{loads[1].split()[0]}). On a "
+        "machine whose cores are busy the second OpenMP thread waits for a core, and without "
+        "radiation, where only Eigen's CG product runs threaded (one fork and barrier per "
+        "iteration), two threads can then be several times slower (keff runs CG serially "
+        "below 65,536 unknowns for this reason, since commit 8dca5af). k_eff is "
         + ("identical bit for bit at 1 and 2 threads on every bed." if same else
            "NOT identical at 1 and 2 threads: see the table."))
     out.append(
