@@ -26,7 +26,6 @@
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/spread.hpp"
-#include "powderbed/dem/time_step.hpp"
 #include "powderbed/packgen/pack.hpp"
 
 namespace powderbed::app {
@@ -253,9 +252,8 @@ dem::RunSummary run_rotating_drop(bed::Bed& bed, const dem::Scene& scene,
   r.particle_steps_per_s = g.particle_steps_per_s;
   r.dt = g.dt;
   r.dt_stable = g.dt_stable;
-  const dem::TimeStepBound bound = dem::time_step_bound(bed, scene, settings.young_scale);
-  r.dt_limited_by = bound.limited_by;  // what run_spread's bound (the same) was limited by
-  r.dt_limiting_radius = bound.limiting_radius;
+  r.dt_limited_by = g.dt_limited_by;
+  r.dt_limiting_radius = g.dt_limiting_radius;
   const dem::Overlap overlap = dem::max_overlap(bed, scene);  // pairs and walls, as a drop's
   r.max_overlap = overlap.relative;
   r.max_overlap_m = overlap.absolute;

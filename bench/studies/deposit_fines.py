@@ -13,9 +13,6 @@ and CPU seconds, command and load average (BED.h5.json), so a rerun only redoes 
 import argparse
 import json
 import os
-import resource
-import subprocess
-import time
 
 import numpy as np
 
@@ -51,19 +48,6 @@ def deposit_args(options, seed):
             "--count", str(BIMODAL_COUNT), "--seed", str(seed), "--threads", "1", *options]
 
 
-def timed_run(args):
-    """(the program's --json summary, wall s, CPU s of the child) of one run."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    start = time.perf_counter()
-    proc = subprocess.run(args + ["--json"], capture_output=True, text=True)
-    wall = time.perf_counter() - start
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if proc.returncode != 0:
-        raise RuntimeError(f"{' '.join(args)} exited {proc.returncode}: {proc.stderr.strip()}")
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return json.loads(proc.stdout), wall, cpu
-
-
 def shown(args):
     """A command line as the page shows it: paths relative to the repository."""
     return " ".join(os.path.relpath(a, apps.ROOT) if a.startswith(apps.ROOT) else a for a in args)
@@ -83,7 +67,8 @@ def bed(name, options, seed=1):
         os.makedirs(apps.WORK, exist_ok=True)
         args = deposit_args(options, seed) + ["--out", path]
         load = os.getloadavg()
-        summary, wall, cpu = timed_run(args)
+        run = apps.timed(args + ["--json"])
+        summary, wall, cpu = json.loads(run["stdout"]), run["wall"], run["cpu"]
         with open(meta, "w") as f:
             json.dump({"summary": summary, "wall": wall, "cpu": cpu, "command": shown(args),
                        "load_before": load, "load_after": os.getloadavg()}, f)

@@ -18,8 +18,6 @@ import argparse
 import json
 import os
 import statistics
-import subprocess
-import time
 
 from lib import apps, report
 from lib.apps import app
@@ -41,17 +39,8 @@ def keff_run(bed, threads, radiation, extra=()):
     """One keff run: (summary, whole-process wall s, peak RSS MiB, user + system CPU s)."""
     args = [app("keff"), "--config", SCENE, "--bed", bed, "--temperature", f"{TEMPERATURE:g}",
             "--effects.radiation", "true" if radiation else "false", *extra, "--json"]
-    times = os.path.join(WORK, "time-v.txt")
-    start = time.perf_counter()
-    proc = subprocess.run(["/usr/bin/time", "-v", "-o", times] + args, capture_output=True,
-                          text=True, env=apps.omp_env(threads))
-    wall = time.perf_counter() - start
-    if proc.returncode != 0:
-        raise RuntimeError(f"{' '.join(args)} exited {proc.returncode}: {proc.stderr.strip()}")
-    fields = dict(line.strip().rsplit(": ", 1) for line in open(times) if ": " in line)
-    cpu = float(fields["User time (seconds)"]) + float(fields["System time (seconds)"])
-    rss = int(fields["Maximum resident set size (kbytes)"]) / 1024
-    return json.loads(proc.stdout), wall, rss, cpu
+    run = apps.timed(args, env=apps.omp_env(threads))
+    return json.loads(run["stdout"]), run["wall"], run["rss"], run["cpu"]
 
 
 def measure(bed, threads, radiation, extra=()):

@@ -9,10 +9,7 @@ for this pass. Writes docs/results/sinter-speed.md. Run with python3:
 """
 import argparse
 import os
-import resource
 import statistics
-import subprocess
-import time
 
 from lib import apps, references, report
 
@@ -21,18 +18,12 @@ REPEATS = 3
 
 
 def timed(args):
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    start = time.perf_counter()
-    subprocess.run(args, check=True, capture_output=True)
-    wall = time.perf_counter() - start
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return wall, cpu, after.ru_maxrss / 1024  # MiB (ru_maxrss is the largest child so far)
+    """(wall s, CPU s, peak MiB) of one whole run."""
+    run = apps.timed(args)
+    return run["wall"], run["cpu"], run["rss"]
 
 
-MODELS = [("default: ray-traced, wetting", []),
-          ("Beer-Lambert, no wetting", ["--laser.absorption", "beer-lambert",
-                                        "--effects.wetting", "false"])]
+MODELS = apps.GZ2016_LASER_MODELS  # the scene's default, and the paper's own model
 
 
 def main():

@@ -20,7 +20,6 @@ import argparse
 import json
 import os
 import statistics
-import subprocess
 import time
 
 from lib import apps, report
@@ -32,22 +31,6 @@ KEFF_SCENE = scene("ke2016-steel-1mm.ini")
 MILLION = (1_000_000, 100)  # packgen bed: spheres, box width in diameters
 PAPER = ["--young-scale", "1", "--dt", "2e-8", "--unsafe-dt"]  # [GZ] section 4's protocol
 REPEATS = 3
-
-
-def timed(args, env=None):
-    """One run of `args` under /usr/bin/time -v: {"stdout", "wall", "cpu" (user + system s),
-    "rss" (peak MiB)}."""
-    times = os.path.join(WORK, "time-v.txt")
-    start = time.perf_counter()
-    proc = subprocess.run(["/usr/bin/time", "-v", "-o", times] + args, capture_output=True,
-                          text=True, env=env)
-    wall = time.perf_counter() - start
-    if proc.returncode != 0:
-        raise RuntimeError(f"{' '.join(args)} exited {proc.returncode}: {proc.stderr.strip()}")
-    fields = dict(line.strip().rsplit(": ", 1) for line in open(times) if ": " in line)
-    cpu = float(fields["User time (seconds)"]) + float(fields["System time (seconds)"])
-    return {"stdout": proc.stdout, "wall": wall, "cpu": cpu,
-            "rss": int(fields["Maximum resident set size (kbytes)"]) / 1024}
 
 
 def cached(name, measure, fresh):
@@ -71,7 +54,7 @@ def deposit_bed(options):
     out = os.path.join(WORK, "gz2016-" + ("paper" if options else "default") + ".h5")
     args = [app("deposit"), "--config", DEPOSIT_SCENE, "--seed", "1", "--threads", "1",
             *options, "--out", out, "--json"]
-    run = timed(args)
+    run = apps.timed(args)
     run["summary"] = json.loads(run.pop("stdout"))
     run["command"] = " ".join(["deposit", "--config", "data/scenes/gz2016-deposit.ini",
                                "--seed", "1", "--threads", "1", *options])
@@ -83,7 +66,7 @@ def keff_million(bed, threads, radiation):
     args = [app("keff"), "--config", KEFF_SCENE, "--bed", bed, "--temperature", "1000",
             "--effects.radiation", "true" if radiation else "false", *apps.KEFF_GEOMETRIC,
             "--json"]
-    run = timed(args, env=apps.omp_env(threads))
+    run = apps.timed(args, env=apps.omp_env(threads))
     run["summary"] = json.loads(run.pop("stdout"))
     return run
 
@@ -92,7 +75,7 @@ def voronoi(bed, profile=False):
     """bedstat --voronoi on `bed`: median of REPEATS whole runs, and with `profile` perf's
     profile of one more."""
     args = [app("bedstat"), bed, "--voronoi", "--json"]
-    runs = [timed(args) for _ in range(REPEATS)]
+    runs = [apps.timed(args) for _ in range(REPEATS)]
     beds = json.loads(runs[0]["stdout"])["beds"][0]
     prof = apps.perf_profile(args, os.path.join(WORK, "bedstat.perf"), limit=2) if profile else None
     return {"wall": statistics.median(r["wall"] for r in runs), "walls": [r["wall"] for r in runs],
@@ -100,7 +83,7 @@ def voronoi(bed, profile=False):
             "voronoi": beds["voronoi"], "n": beds["n"], "profile": prof}
 
 
-BEER_LAMBERT = ["--laser.absorption", "beer-lambert", "--effects.wetting", "false"]
+BEER_LAMBERT = apps.GZ2016_LASER_MODELS[1][1]  # the paper's model: Beer-Lambert, no wetting
 
 
 def stream_bandwidth(n=20_000_000, repeats=5):
@@ -121,7 +104,7 @@ def sinter_pass():
     profile of one more."""
     args = [app("sinter"), "--config", apps.GZ2016_SINTER_SCENE, "--bed", apps.gz2016_bed(),
             "--out", os.path.join(WORK, "pass.h5"), "--threads", "1", *BEER_LAMBERT]
-    runs = [timed(args + ["--json"]) for _ in range(REPEATS)]
+    runs = [apps.timed(args + ["--json"]) for _ in range(REPEATS)]
     summary = json.loads(runs[0]["stdout"])
     profile = apps.perf_profile(args, os.path.join(WORK, "sinter.perf"), limit=0.5)
     return {"wall": statistics.median(r["wall"] for r in runs),

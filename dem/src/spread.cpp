@@ -1019,6 +1019,8 @@ struct Spreader {
   void set_time_step() {
     const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
     summary.dt_stable = bound.stable;
+    summary.dt_limited_by = bound.limited_by;
+    summary.dt_limiting_radius = bound.limiting_radius;
     if (restart) {
       run.dt = restart->dt;
     } else if (settings.dt > 0) {

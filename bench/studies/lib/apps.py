@@ -81,6 +81,24 @@ def perf_profile(args, data, env=None, limit=1.0):
     return out
 
 
+def timed(args, env=None):
+    """One run of `args` under /usr/bin/time -v: {"stdout", "wall" (s, the whole process),
+    "cpu" (user + system s), "rss" (the process's peak resident set, MiB)}. Raises naming the
+    command when it fails."""
+    import tempfile
+    with tempfile.NamedTemporaryFile("r", suffix=".time") as times:
+        start = time.perf_counter()
+        proc = subprocess.run(["/usr/bin/time", "-v", "-o", times.name] + list(args),
+                              capture_output=True, text=True, env=env)
+        wall = time.perf_counter() - start
+        fields = dict(line.strip().rsplit(": ", 1) for line in times if ": " in line)
+    if proc.returncode != 0:
+        raise RuntimeError(f"{' '.join(args)} exited {proc.returncode}: {proc.stderr.strip()}")
+    return {"stdout": proc.stdout, "wall": wall,
+            "cpu": float(fields["User time (seconds)"]) + float(fields["System time (seconds)"]),
+            "rss": int(fields["Maximum resident set size (kbytes)"]) / 1024}
+
+
 def cached_json(path, args, env=None):
     """Runs `args` + `--out path` unless `path` is there with its record `path`.json (the --json
     summary and the wall seconds of the run that made it): (summary, wall s). A study rerun, or

@@ -117,6 +117,8 @@ struct SpreadSummary {
   std::vector<LayerSummary> layers;
   std::uint64_t steps = 0;
   double sim_time = 0, dt = 0, dt_stable = 0, wall_time = 0;
+  const char* dt_limited_by = "none";  // TimeStepBound::limited_by of dt_stable
+  double dt_limiting_radius = 0;       // m, TimeStepBound::limiting_radius
   double particle_steps_per_s = 0;
   double max_overlap = 0;         // largest overlap / smaller radius at the end (pairs)
   std::uint64_t neighbour_rebuilds = 0;
