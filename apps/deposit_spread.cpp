@@ -98,6 +98,7 @@ void write_json_layer(bed::JsonWriter& j, const dem::LayerSummary& l) {
       .value("max_speed", l.max_speed)
       .value("lost", static_cast<std::uint64_t>(l.lost))
       .value("overflow", static_cast<std::uint64_t>(l.overflow))
+      .value("frozen", static_cast<std::uint64_t>(l.frozen))
       .end_object();
 }
 
@@ -192,6 +193,10 @@ void add_spread_options(po::options_description& desc, dem::SpreadSettings& spre
       ("recoater.layer-thickness",
        po::value<double>(&spread.layer_thickness)->default_value(spread.layer_thickness),
        "how far the plate goes down before each layer after the first (m)")
+      ("recoater.freeze-depth",
+       po::value<double>(&spread.freeze_depth)->default_value(spread.freeze_depth),
+       "at each layer's start freeze the particles more than this below the tool's bottom (m; "
+       "0: off; docs/deposit-spread.md \"Many layers\")")
       ("supply.x0", po::value<double>(&spread.supply_x0)->default_value(spread.supply_x0),
        "supply region: start along x (m)")
       ("supply.x1", po::value<double>(&spread.supply_x1)->default_value(spread.supply_x1),

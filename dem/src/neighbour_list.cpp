@@ -77,9 +77,9 @@ void NeighbourList::for_each_candidate(const ParticleView& p, std::size_t i, F&&
 }
 
 // Count partners, prefix-sum, then fill: both passes per particle, in parallel.
-void NeighbourList::fill_in_parallel(const ParticleView& p, int threads) {
+void NeighbourList::fill_in_parallel(const ParticleView& p, int threads, std::size_t owners) {
   const std::size_t n = p.n;
-  for_each_particle(n, threads, [&](std::size_t i) {
+  for_each_particle(owners, threads, [&](std::size_t i) {
     std::uint32_t k = 0;
     for_each_candidate(p, i, [&](std::uint32_t) { ++k; });
     offset_[i + 1] = k;
@@ -87,7 +87,7 @@ void NeighbourList::fill_in_parallel(const ParticleView& p, int threads) {
   for (std::size_t i = 0; i < n; ++i) offset_[i + 1] += offset_[i];
   partners_.resize(offset_[n]);
   owners_.resize(offset_[n]);
-  for_each_particle(n, threads, [&](std::size_t i) {
+  for_each_particle(owners, threads, [&](std::size_t i) {
     std::uint32_t* out = partners_.data() + offset_[i];
     for_each_candidate(p, i, [&](std::uint32_t j) { *out++ = j; });
     std::fill(owners_.begin() + offset_[i], owners_.begin() + offset_[i + 1],
@@ -95,8 +95,9 @@ void NeighbourList::fill_in_parallel(const ParticleView& p, int threads) {
   });
 }
 
-void NeighbourList::build(const ParticleView& p, int threads, bool with_incident) {
+void NeighbourList::build(const ParticleView& p, int threads, bool with_incident, std::size_t owners) {
   const std::size_t n = p.n;
+  owners = std::min(owners, n);
   const std::size_t cells = static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2];
   // Counting sort of particles by cell (serial: O(N), and the order is then fixed).
   particle_cell_.resize(n);
@@ -121,15 +122,16 @@ void NeighbourList::build(const ParticleView& p, int threads, bool with_incident
   if (threads <= 1) {  // one pass, appending in the order the parallel fill below writes
     partners_.clear();
     owners_.clear();
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < owners; ++i) {
       for_each_candidate(p, i, [&](std::uint32_t j) {
         partners_.push_back(j);
         owners_.push_back(static_cast<std::uint32_t>(i));
       });
       offset_[i + 1] = static_cast<std::uint32_t>(partners_.size());
     }
+    std::fill(offset_.begin() + static_cast<std::ptrdiff_t>(owners) + 1, offset_.end(), offset_[owners]);
   } else {
-    fill_in_parallel(p, threads);
+    fill_in_parallel(p, threads, owners);
   }
   if (with_incident) {
     // Serial fill in increasing i: a particle's pairs under lower indices arrive first, in the

@@ -28,7 +28,10 @@ class NeighbourList {
   // periodic axis is shorter than 3 cells (the minimum image would then miss or repeat partners).
   void configure(const Box& box, double r_max, double skin, std::size_t n);
   // Builds the half list; with_incident also builds the incident lists (parallel force sums).
-  void build(const ParticleView& p, int threads, bool with_incident = false);
+  // Only particles below `owners` own pairs: those above it (frozen, spread.cpp) are partners
+  // of the ones below and have no pairs among themselves.
+  void build(const ParticleView& p, int threads, bool with_incident = false,
+             std::size_t owners = static_cast<std::size_t>(-1));
   // Whether some particle moved more than `limit` since the last build (minimum image).
   bool moved_more_than(const ParticleView& p, double limit, int threads) const;
   double skin() const { return skin_; }
@@ -54,7 +57,7 @@ class NeighbourList {
   template <class F>
   void for_each_candidate(const ParticleView& p, std::size_t i, F&& f) const;
   int cell_coordinate(int axis, double v) const;
-  void fill_in_parallel(const ParticleView& p, int threads);
+  void fill_in_parallel(const ParticleView& p, int threads, std::size_t owners);
 
   Box box_;
   double skin_ = 0;

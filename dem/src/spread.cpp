@@ -170,18 +170,19 @@ struct ActiveContacts {
 };
 
 // The particles of `b` in the order of the cells of side `cell` they lie in (x fastest, then y,
-// then z; ties by index): particles that touch lie close together in memory, so the contact loop
-// finds its partners in the nearest caches.
-std::vector<std::size_t> spatial_order(const bed::Bed& b, double cell) {
+// then z; ties by index), the frozen ones (`frozen` set) after all the others: particles that
+// touch lie close together in memory, so the contact loop finds its partners in the nearest
+// caches, and the moving ones are the first indices (Run::moving).
+std::vector<std::size_t> spatial_order(const bed::Bed& b, double cell, const std::vector<std::uint8_t>& frozen) {
   if (b.n() == 0) return {};
   const auto at = [&](int a, double v) {
     return static_cast<std::uint64_t>(std::max(0.0, std::floor((v - b.domain.lower[a]) / cell)));
   };
   const std::uint64_t nx = at(0, b.domain.upper[0]) + 1, ny = at(1, b.domain.upper[1]) + 1;
-  std::vector<std::uint64_t> key(b.n());
+  std::vector<std::pair<std::uint8_t, std::uint64_t>> key(b.n());
   std::vector<std::size_t> order(b.n());
   for (std::size_t i = 0; i < b.n(); ++i) {
-    key[i] = (at(2, b.z[i]) * ny + at(1, b.y[i])) * nx + at(0, b.x[i]);
+    key[i] = {frozen[i], (at(2, b.z[i]) * ny + at(1, b.y[i])) * nx + at(0, b.x[i])};
     order[i] = i;
   }
   std::stable_sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return key[p] < key[q]; });
@@ -199,6 +200,10 @@ struct Run {
   double g[3] = {0, 0, 0};
   double e_pair = 0, e_wall = 0, g_pair = 0, g_wall = 0;
   std::vector<double> mass, inv_mass, inv_inertia, drag, wx, wy, wz, fx, fy, fz, tx, ty, tz;
+  // Particles [0, moving) are integrated; the others are frozen (SpreadSettings::freeze_depth):
+  // they keep their places, act on the moving ones' contacts as fixed spheres, and their own
+  // force arrays collect those contacts' reactions, which nothing reads.
+  std::size_t moving = 0;
   std::vector<double> wall_history;   // kWallSlots * kHistory per particle
   // Per particle, bit `slot` set when that wall's history may be non-zero: a wall out of reach
   // (most walls, most steps) then costs a test, not the write of its six zeros.
@@ -269,6 +274,20 @@ struct Run {
       // Against a wall: R* = r, m* = m, I_r = 7/5 m r^2 (rolling_resistance.hpp).
       wall[i] = make_constants(model, e_wall, g_wall, scene.stiffness, r, mass[i], 1.4 * mass[i] * r * r);
     }
+    moving = count;  // until the next layer's start freezes some (sort_by_cell)
+  }
+
+  // Which particles a layer's start freezes (SpreadSettings::freeze_depth): those whose
+  // centres lie below `level`, stopped where they are. None when freezing is off.
+  std::vector<std::uint8_t> freeze_below(double level) {
+    std::vector<std::uint8_t> frozen(n(), 0);
+    if (!(settings.freeze_depth > 0)) return frozen;
+    for (std::size_t i = 0; i < n(); ++i) {
+      if (!(bed.z[i] < level)) continue;
+      frozen[i] = 1;
+      bed.vx[i] = bed.vy[i] = bed.vz[i] = wx[i] = wy[i] = wz[i] = 0;
+    }
+    return frozen;
   }
 
   ActiveContacts active() const {
@@ -287,14 +306,15 @@ struct Run {
 
   // A list build that keeps the history of every contact: the new list's pair (i, j) takes
   // the history the old one had (contacts are few per particle: a short scan).
-  // The particles reordered by the cells they lie in (spatial_order), everything kept per
+  // The particles reordered by the cells they lie in, the frozen ones last (spatial_order), everything kept per
   // particle with them; a carried contact whose owner would come after its partner is turned
   // round (its history is the force and torque on the owner: they change sign) and the
   // contacts are put back in owner order, as rebuild_with reads them. Done at each layer's
   // start: a spread carries powder millimetres along x, and a bed of several layers in supply
   // order had its contact partners scattered through memory.
-  void sort_by_cell(ActiveContacts& carried) {
-    const std::vector<std::size_t> order = spatial_order(bed, 2.0 * largest_radius(bed));
+  void sort_by_cell(ActiveContacts& carried, const std::vector<std::uint8_t>& frozen) {
+    const std::vector<std::size_t> order = spatial_order(bed, 2.0 * largest_radius(bed), frozen);
+    moving = static_cast<std::size_t>(std::count(frozen.begin(), frozen.end(), 0));
     const auto permute = [&](auto& values, std::size_t stride) {
       if (values.empty()) return;
       const auto old = values;
@@ -346,7 +366,7 @@ struct Run {
   }
 
   void rebuild_with(const ActiveContacts& a) {
-    list.build(view(), 1);
+    list.build(view(), 1, false, moving);
     const std::size_t entries = list.pair_entries();
     pair.resize(entries);
     pair_reach.resize(entries);
@@ -408,7 +428,7 @@ struct Run {
     const double hx = px ? 0.5 * Lx : inf, hy = py ? 0.5 * Ly : inf;
     const double limit = 0.5 * list.skin(), limit2 = limit * limit;
     unsigned moved = 0, finite = 1;
-    for (std::size_t i = 0, count = n(); i < count; ++i) {
+    for (std::size_t i = 0, count = moving; i < count; ++i) {
       vx[i] += h * ax[i] * inv[i];
       vy[i] += h * ay[i] * inv[i];
       vz[i] += h * az[i] * inv[i];
@@ -531,7 +551,7 @@ struct Run {
 
   void wall_forces(bool update) {
     const double still[3] = {0, 0, 0};
-    for (std::size_t i = 0; i < n(); ++i) {
+    for (std::size_t i = 0; i < moving; ++i) {
       if (!wall_touch[i] && !near_wall(i)) continue;  // no contact now, no history to drop
       const double r = bed.radius[i];
       plate_contact(i, update);
@@ -615,7 +635,7 @@ struct Run {
   // Gravity and Stokes drag (stokes_drag.hpp) at the velocities as they are, torques zeroed:
   // what start_step computes in its pass, for a layer's first evaluation.
   void body_forces() {
-    for (std::size_t i = 0; i < n(); ++i) {
+    for (std::size_t i = 0; i < moving; ++i) {
       fx[i] = mass[i] * g[0] - drag[i] * bed.vx[i];
       fy[i] = mass[i] * g[1] - drag[i] * bed.vy[i];
       fz[i] = mass[i] * g[2] - drag[i] * bed.vz[i];
@@ -640,7 +660,7 @@ struct Run {
   // v += h F / m and omega += h T / I (or omega only); whether every velocity is still finite
   // (a NaN fails the comparison, as Inf does), tested with no branch so the loops vectorise.
   bool kick(double h, bool translation = true) {
-    const std::size_t count = n();
+    const std::size_t count = moving;
     const auto axis = [&](double* __restrict v, const double* __restrict f, const double* __restrict inv) {
       unsigned finite = 1;
       for (std::size_t i = 0; i < count; ++i) {
@@ -680,8 +700,8 @@ struct Run {
   // The kinetic energy at the last whole step, whether or not its second half kick is pending.
   double kinetic_energy() const {
     const double h = synced ? 0.0 : 0.5 * dt;
-    double energy = 0;
-    for (std::size_t i = 0; i < n(); ++i) {
+    double energy = 0;  // the frozen particles' is 0
+    for (std::size_t i = 0; i < moving; ++i) {
       const double a = h * inv_mass[i];
       const double vx = bed.vx[i] + a * fx[i], vy = bed.vy[i] + a * fy[i], vz = bed.vz[i] + a * fz[i];
       energy += 0.5 * mass[i] * (vx * vx + vy * vy + vz * vz);
@@ -954,6 +974,8 @@ void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSetting
   if (!(settings.layers >= 1)) throw InputError("--layers: 0 (accepted: N >= 1)");
   require_in_range(std::isfinite(settings.layer_thickness) && settings.layer_thickness >= 0,
                    "recoater.layer-thickness", settings.layer_thickness, "thickness >= 0 m");
+  require_in_range(std::isfinite(settings.freeze_depth) && settings.freeze_depth >= 0,
+                   "recoater.freeze-depth", settings.freeze_depth, "depth >= 0 m; 0: off");
   check_floor(settings.floor, box);
 }
 
@@ -1133,7 +1155,8 @@ struct Spreader {
     out.tool_bottom = bottom;
     out.supplied = add_supply(run, number);
     run.grow();
-    run.sort_by_cell(carried);
+    run.sort_by_cell(carried, run.freeze_below(bottom - settings.freeze_depth));
+    out.frozen = run.n() - run.moving;
     run.bound_floor();
     check_tool_clear(run);
     if (run.dt == 0) set_time_step();

@@ -1,10 +1,12 @@
 // The spreading run (spread.hpp): static friction on a slope, rolling resistance, the tool's
 // geometry, a blade pushing one sphere or passing over it, particle count over a spread, and a
-// continued run against the uninterrupted one.
+// continued run against the uninterrupted one, and powder frozen deep under the tool.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <numbers>
 #include <utility>
 #include <unistd.h>
@@ -372,6 +374,70 @@ TEST(Recoater, ContinuedRunEqualsTheUninterruptedOneBitForBit) {
   EXPECT_EQ(rest.state.pair_history, straight.state.pair_history);
 }
 
+// Three layers of small_spread with the overflow kept and the powder more than `depth` below
+// the tool's bottom frozen at each layer's start.
+dem::SpreadSettings frozen_spread(std::uint64_t layers, double depth) {
+  dem::SpreadSettings st = small_spread();
+  st.remove_overflow = false;
+  st.layers = layers;
+  st.freeze_depth = depth;
+  return st;
+}
+
+TEST(Recoater, FrozenPowderStaysPutAndHoldsThePowderOnIt) {
+  // Layer 3's tool bottom is at 60 + 2 x 30 um; with depth 60 um every centre below 60 um is
+  // frozen at its start: it must end the layer exactly where it began, at rest, and the
+  // powder spread on it must stay above it (none lost through it).
+  const dem::Scene s = granular_scene(0.5, 0.05, dem::FrictionModel::history);
+  const double depth = 60e-6, level = 60e-6 + 2 * 30e-6 - depth;
+  dem::SpreadSettings st = frozen_spread(3, depth);
+  std::map<std::uint64_t, std::array<double, 3>> before;  // by id, after layer 2
+  st.layer_done = [&](const dem::LayerSummary& l, const bed::Bed& bed, const dem::SpreadState&) {
+    if (l.layer != 2) return;
+    for (std::size_t i = 0; i < bed.n(); ++i) before[bed.id[i]] = {bed.x[i], bed.y[i], bed.z[i]};
+  };
+  bed::Bed b = strip();
+  const dem::SpreadSummary r = dem::run_spread(b, s, st);
+  ASSERT_EQ(r.layers.size(), 3u);
+  EXPECT_EQ(r.layers[0].frozen, 0u);  // layer 1's level, 60 - 60 um, lies below every centre
+  EXPECT_GT(r.layers[1].frozen, 0u);  // layer 2's, 30 um: the spheres on the plate
+  std::size_t frozen = 0;
+  for (std::size_t i = 0; i < b.n(); ++i) {
+    const auto it = before.find(b.id[i]);
+    if (it == before.end() || !(it->second[2] < level)) continue;
+    ++frozen;
+    EXPECT_EQ(b.x[i], it->second[0]);
+    EXPECT_EQ(b.y[i], it->second[1]);
+    EXPECT_EQ(b.z[i], it->second[2]);
+    EXPECT_EQ(std::hypot(b.vx[i], b.vy[i], b.vz[i]), 0.0);
+  }
+  EXPECT_GT(frozen, 20u);
+  EXPECT_EQ(r.layers[2].frozen, frozen);
+  EXPECT_EQ(r.layers[2].lost, 0u);
+  EXPECT_EQ(b.n(), r.layers[0].supplied + r.layers[1].supplied + r.layers[2].supplied);
+}
+
+TEST(Recoater, ContinuedRunWithFrozenPowderEqualsTheUninterruptedOne) {
+  // The frozen set is decided at each layer's start from the positions, so a run continued
+  // from layer 2's state freezes the same particles in layer 3 as the uninterrupted run.
+  const dem::Scene s = granular_scene(0.5, 0.05, dem::FrictionModel::history);
+  bed::Bed whole = strip();
+  const dem::SpreadSummary straight = dem::run_spread(whole, s, frozen_spread(3, 60e-6));
+  ASSERT_GT(straight.layers[2].frozen, 0u);
+  bed::Bed part = strip();
+  const dem::SpreadSummary first = dem::run_spread(part, s, frozen_spread(2, 60e-6));
+  const dem::SpreadSummary rest = dem::run_spread(part, s, frozen_spread(1, 60e-6), &first.state);
+  EXPECT_EQ(rest.layers[0].frozen, straight.layers[2].frozen);
+  ASSERT_EQ(part.n(), whole.n());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < whole.n(); ++i) {
+    differ += (part.x[i] != whole.x[i] || part.z[i] != whole.z[i] || part.vx[i] != whole.vx[i] ||
+               rest.state.wy[i] != straight.state.wy[i] || part.id[i] != whole.id[i]) ? 1 : 0;
+  }
+  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(rest.state.pair_history, straight.state.pair_history);
+}
+
 TEST(Recoater, BadToolOrSupplyIsRefused) {
   const dem::Scene s = granular_scene(0.5, 0, dem::FrictionModel::history);
   {
@@ -389,6 +455,12 @@ TEST(Recoater, BadToolOrSupplyIsRefused) {
   {  // a supply taller than the box
     dem::SpreadSettings st = small_spread();
     st.supply_height = 1e-3;
+    bed::Bed b = strip();
+    EXPECT_THROW(dem::run_spread(b, s, st), InputError);
+  }
+  {  // a negative freezing depth
+    dem::SpreadSettings st = small_spread();
+    st.freeze_depth = -1e-6;
     bed::Bed b = strip();
     EXPECT_THROW(dem::run_spread(b, s, st), InputError);
   }

@@ -68,6 +68,7 @@ struct LayerSummary {
   double density_under_gap = 0;
   std::size_t lost = 0;           // centres below the plate or outside non-periodic faces
   std::size_t overflow = 0;       // removed past the tool's end (SpreadSettings::remove_overflow)
+  std::size_t frozen = 0;         // particles frozen through the layer (SpreadSettings::freeze_depth)
 };
 
 struct SpreadSettings {
@@ -84,6 +85,14 @@ struct SpreadSettings {
   // up over many layers. false keeps every particle.
   bool remove_overflow = true;
   double layer_thickness = 0;     // m, how far the plate goes down between layers
+  // > 0: at each layer's start, the particles whose centres lie more than this (m) below the
+  // tool's bottom are frozen for the rest of the run: they keep their places with no velocity,
+  // the moving particles touch them as fixed spheres, and they are not integrated, nor are
+  // their contacts among themselves computed (LIGGGHTS's `fix freeze` with the frozen group's
+  // own pairs excluded from the neighbour list). Powder that deep lies still under a passing
+  // blade, and without freezing every earlier layer is integrated every step, so N layers cost
+  // ~N^2 (docs/deposit-spread.md "Many layers"). 0: off, every particle moves.
+  double freeze_depth = 0;
   // The solid the powder is spread on (the fused top of earlier layers, build): a wall at
   // z = floor.at(x, y) in the bed's frame, touched along its local normal; empty: the flat plate
   // at the box's floor (or the restart's floor, when it has one). Heights at or above the box's
