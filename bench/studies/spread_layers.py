@@ -35,6 +35,12 @@ With --work DIR the beds and deposit's JSON are kept there and a later call with
 measures them without running deposit again; --measure-only measures a stopped run (the layers
 whose beds exist, wall times from the beds' file times, the run's start time in DIR/started;
 particles from bedstat, no overflow or quick look: those are in deposit's JSON at the run's end).
+--reference K runs the same scene a second time with recoater.freeze-depth = 0 (nothing frozen:
+every particle integrated every step) for its first K layers, in DIR/unfrozen, measures it the
+same way and sets it beside the main run layer by layer, with each run's wall time: what
+freezing the powder deep under the tool (docs/deposit-spread.md "Many layers") changes and saves.
+Its beds are reused like the main run's.
+
 --resume continues a stopped run from its last bed L-K.h5 (`deposit --in L-K.h5 --layers
 LAYERS-K`, the bed's /restart group: with the same build the continued run equals the
 uninterrupted one bit for bit, docs/deposit-spread.md "Restarts"); that segment's start time and
@@ -75,7 +81,7 @@ def segments(work):
     return sorted(found)
 
 
-def run_deposit(scene, layers, seed, work, measure_only, resume):
+def run_deposit(scene, layers, seed, work, measure_only, resume, options=()):
     """deposit's JSON summaries of the run's segments (deposit.json, deposit-from-K.json), running
     the first (or, with resume, a continuation from the last bed) unless its JSON exists; a
     segment that did not finish (or, with measure_only, was not run here) has none."""
@@ -89,7 +95,7 @@ def run_deposit(scene, layers, seed, work, measure_only, resume):
     if measure_only or done == layers or (not resume and os.path.exists(os.path.join(work, "deposit.err"))):
         return summaries
     cmd = [app("deposit"), "--config", scene.path, "--seed", str(seed), "--threads", "1",
-           "--out", os.path.join(work, "L.h5"), "--json"]
+           "--out", os.path.join(work, "L.h5"), "--json", *options]
     err_name, saved = "deposit.err", os.path.join(work, "deposit.json")
     if resume and done > 0:
         with open(os.path.join(work, f"started-{done:03d}"), "w") as f:
@@ -174,32 +180,142 @@ def measure(scene, work, layers, window, summaries):
         if k in by_layer:
             s = by_layer[k]
             row.update(n=s["n"], supplied=s["supplied"], overflow=s["overflow"],
-                       quick=s["density_under_gap"], wall=s["wall_time"], steps=s["steps"])
+                       quick=s["density_under_gap"], wall=s["wall_time"], steps=s["steps"],
+                       frozen=s.get("frozen", 0))
         rows.append(row)
     return rows
 
 
-def plot(rows, path):
+def plot(rows, reference, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     k = [r["layer"] for r in rows]
-    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(8.5, 3.4))
+    kr = [r["layer"] for r in reference]
+    fig, (ax, ax2, ax3) = plt.subplots(1, 3, figsize=(12.5, 3.6))
     ax.plot(k, [r["added_density"] for r in rows], "o-", label="added by the layer (mass)")
     ax.plot(k, [r["slab_density"] for r in rows], "s--", label="new layer's slab")
     ax.plot(k, [r["bed_density"] for r in rows], "^:", label="whole bed under the tool")
-    ax.set_ylabel("solid fraction")
-    ax.legend(fontsize=8)
     ax2.plot(k, [r["top"] * 1e6 for r in rows], "k-", label="tool bottom H_k")
     ax2.plot(k, [r["mean_height"] * 1e6 for r in rows], "o-", label="mean surface height")
+    ax3.plot(k, [r.get("wall", r["wall_file"]) for r in rows], "o-", label="frozen below the depth")
+    if reference:
+        ax.plot(kr, [r["added_density"] for r in reference], "o", mfc="none", color="C3",
+                label="added, nothing frozen")
+        ax.plot(kr, [r["bed_density"] for r in reference], "^", mfc="none", color="C4",
+                label="bed, nothing frozen")
+        ax2.plot(kr, [r["mean_height"] * 1e6 for r in reference], "o", mfc="none", color="C3",
+                 label="surface, nothing frozen")
+        ax3.plot(kr, [r.get("wall", r["wall_file"]) for r in reference], "s--", color="C3",
+                 label="nothing frozen")
+    ax.set_ylabel("solid fraction")
     ax2.set_ylabel("height above the plate (µm)")
-    ax2.legend(fontsize=8)
-    for a in (ax, ax2):
+    ax3.set_ylabel("wall time of the layer (s, one core)")
+    for a in (ax, ax2, ax3):
         a.set_xlabel("layer")
         a.set_xticks(k if len(k) <= 12 else k[::2])
         a.grid(alpha=0.3)
+        a.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
+
+
+def prepare(work):
+    """The work folder, with the run's start time, source and load noted on its first use; returns
+    the load average noted then."""
+    os.makedirs(work, exist_ok=True)
+    if not os.path.exists(os.path.join(work, "started")):
+        with open(os.path.join(work, "started"), "w") as f:
+            f.write(repr(time.time()))
+        with open(os.path.join(work, "source"), "w") as f:
+            f.write(source(app("deposit")))
+        with open(os.path.join(work, "load-before"), "w") as f:
+            f.write(load_average())
+    with open(os.path.join(work, "load-before")) as f:
+        return f.read().strip()
+
+
+def layer_table(rows):
+    """The main table: one row per layer."""
+    lines = ["| layer | H_k (µm) | particles | frozen | overflow | added | slab | bed | quick look | h̄ (µm) "
+             "| H_k − h̄ (µm) | slab coverage | Sa (µm) | Sq (µm) | solid height by quarter of the window "
+             "(µm) | wall (s) |",
+             "|---" * 16 + "|"]
+    for r in rows:
+        lines.append(
+            f"| {r['layer']} | {r['top'] * 1e6:.0f} | {r['n']} | {r.get('frozen', '–')} | {r.get('overflow', '–')} | "
+            f"{r['added_density']:.3f} | {r['slab_density']:.3f} | {r['bed_density']:.3f} | "
+            + (f"{r['quick']:.3f}" if "quick" in r else "–")
+            + f" | {r['mean_height'] * 1e6:.1f} | {(r['top'] - r['mean_height']) * 1e6:.1f}"
+            f" | {r['coverage']:.3f} | {r['sa'] * 1e6:.1f} | {r['sq'] * 1e6:.1f} | "
+            + " / ".join(f"{h * 1e6:.0f}" for h in r["quarters"]) + " | "
+            f"{r.get('wall', r['wall_file']):.0f} |")
+    return lines
+
+
+def comparison_table(rows, reference, runs):
+    """The main run beside the reference (nothing frozen), layer by layer."""
+    if not reference:
+        return []
+    lines = ["", f"## Frozen against nothing frozen (layers 1–{reference[-1]['layer']})", "",
+             f"The same scene and seed with recoater.freeze-depth = 0 (every particle integrated every "
+             f"step): {runs}. Each cell is *frozen / nothing frozen*.", "",
+             "| layer | particles frozen | added | bed | h̄ (µm) | slab coverage | Sa (µm) | wall (s) |",
+             "|---" * 8 + "|"]
+    for r, q in zip(rows, reference):
+        wall = (r.get("wall", r["wall_file"]), q.get("wall", q["wall_file"]))
+        lines.append(
+            f"| {r['layer']} | {r.get('frozen', '–')} of {r['n']} | {r['added_density']:.3f} / {q['added_density']:.3f} | "
+            f"{r['bed_density']:.3f} / {q['bed_density']:.3f} | {r['mean_height'] * 1e6:.1f} / "
+            f"{q['mean_height'] * 1e6:.1f} | {r['coverage']:.3f} / {q['coverage']:.3f} | "
+            f"{r['sa'] * 1e6:.1f} / {q['sa'] * 1e6:.1f} | {wall[0]:.0f} / {wall[1]:.0f} |")
+    return lines
+
+
+def header(args, scene, rows, summaries, runs, load_before):
+    t = float(scene.options["recoater.layer-thickness"])
+    window = scene.window()
+    cmd = f"python3 bench/studies/spread_layers.py {args.layers} {args.seed}"
+    if os.path.abspath(args.scene) != SCENE:
+        cmd += f" --scene {shown_path(args.scene)}"
+    if args.reference:
+        cmd += f" --reference {args.reference}"
+    total = sum(r.get("wall", r["wall_file"]) for r in rows)
+    depth = float(scene.options.get("recoater.freeze-depth", 0))
+    return [
+        "# Spreading layer after layer (blade scene)",
+        "",
+        f"`{cmd}` (method in the script's docstring): `{shown_path(args.scene)}`, strip "
+        f"{scene.lx * 1e3:g} x {scene.ly * 1e3:g} mm periodic in y, box {scene.lz * 1e3:g} mm tall, "
+        f"gap {scene.gap * 1e6:.0f} um, {scene.speed * 1e3:.0f} mm/s, layer thickness {t * 1e6:.0f} um, "
+        f"supply {scene.options.get('supply.count', '?')} particles a layer, young-scale "
+        f"{scene.young_scale:g}, powder more than {depth * 1e6:.0f} um below the tool frozen; "
+        f"{len(rows)} of {args.layers} layers, seed {args.seed}, one thread; "
+        f"{total:.0f} s of wall time in all"
+        + (f", {sum(r['steps'] for r in rows)} steps of {summaries[0]['dt']:.3g} s."
+           if all("steps" in r for r in rows) else "."),
+        f"Segments: {runs}.",
+        machine(load_before),
+        "",
+        f"Window x in [{window[0] * 1e3:.3f}, {window[1] * 1e3:.3f}] mm. In layer k the tool's bottom "
+        f"is at H_k = gap + (k − 1) t. *Frozen*: the particles frozen through the layer. *Added*: the solid "
+        "the layer added under the tool over the "
+        "window, divided by the window area × t (layer 1: × the gap). *Slab*: bedstat's density of "
+        "[H_(k−1), H_k] (spheres cut exactly). *Bed*: bedstat's density of [0, H_k]. Surface: bedstat's "
+        "mean height h̄ of the bed's top over the plate, the tool's bottom H_k − h̄ above it, coverage "
+        "of the new slab, Sa and Sq of the top surface. Solid height: solid volume per plate area in each "
+        "quarter of the window along x (from the start). *Quick look*: deposit's JSON, by centres under the gap, "
+        "between the supply's back and the tool's end.",
+        "",
+    ]
+
+
+def run_and_measure(args, scene, work, layers, options=()):
+    """The run in `work` (run or reused) and its rows; its load average before and segments."""
+    load_before = prepare(work)
+    summaries = run_deposit(scene, layers, args.seed, work, args.measure_only, args.resume, options)
+    rows = measure(scene, work, layers, scene.window(), summaries)
+    return rows, summaries, load_before, run_segments(work, rows) if rows else ""
 
 
 def main():
@@ -212,74 +328,26 @@ def main():
                         help="with --work: measure the beds there, do not run deposit (a stopped run)")
     parser.add_argument("--resume", action="store_true",
                         help="with --work: continue a stopped run from its last layer bed")
+    parser.add_argument("--reference", type=int, default=0,
+                        help="also run the first K layers with nothing frozen, side by side")
     args = parser.parse_args()
     scene = Scene(os.path.abspath(args.scene), {})
-    window = scene.window()
     with tempfile.TemporaryDirectory() as tmp:
         work = os.path.abspath(args.work) if args.work else tmp
-        os.makedirs(work, exist_ok=True)
-        if not os.path.exists(os.path.join(work, "started")):
-            with open(os.path.join(work, "started"), "w") as f:
-                f.write(repr(time.time()))
-            with open(os.path.join(work, "source"), "w") as f:
-                f.write(source(app("deposit")))
-            with open(os.path.join(work, "load-before"), "w") as f:
-                f.write(load_average())
-        with open(os.path.join(work, "load-before")) as f:
-            load_before = f.read().strip()
-        summaries = run_deposit(scene, args.layers, args.seed, work, args.measure_only, args.resume)
-        rows = measure(scene, work, args.layers, window, summaries)
-        runs = run_segments(work, rows)
+        rows, summaries, load_before, runs = run_and_measure(args, scene, work, args.layers)
+        reference, ref_runs = [], ""
+        if args.reference:
+            reference, _, _, ref_runs = run_and_measure(args, scene, os.path.join(work, "unfrozen"),
+                                                        args.reference, ["--recoater.freeze-depth", "0"])
     if not rows:
         sys.exit("spread_layers: no layer bed was written")
-    t = float(scene.options["recoater.layer-thickness"])
-    cmd = f"python3 bench/studies/spread_layers.py {args.layers} {args.seed}"
-    if os.path.abspath(args.scene) != SCENE:
-        cmd += f" --scene {shown_path(args.scene)}"
-    total = sum(r.get("wall", r["wall_file"]) for r in rows)
-    lines = [
-        "# Spreading layer after layer (blade scene)",
-        "",
-        f"`{cmd}` (method in the script's docstring): `{shown_path(args.scene)}`, strip "
-        f"{scene.lx * 1e3:g} x {scene.ly * 1e3:g} mm periodic in y, box {scene.lz * 1e3:g} mm tall, "
-        f"gap {scene.gap * 1e6:.0f} um, {scene.speed * 1e3:.0f} mm/s, layer thickness {t * 1e6:.0f} um, "
-        f"supply {scene.options.get('supply.count', '?')} particles a layer, young-scale "
-        f"{scene.young_scale:g}; {len(rows)} of {args.layers} layers, seed {args.seed}, one thread; "
-        f"{total:.0f} s of wall time in all"
-        + (f", {sum(r['steps'] for r in rows)} steps of {summaries[0]['dt']:.3g} s."
-           if all("steps" in r for r in rows) else "."),
-        f"Segments: {runs}.",
-        machine(load_before),
-        "",
-        f"Window x in [{window[0] * 1e3:.3f}, {window[1] * 1e3:.3f}] mm. In layer k the tool's bottom "
-        f"is at H_k = gap + (k − 1) t. *Added*: the solid the layer added under the tool over the "
-        "window, divided by the window area × t (layer 1: × the gap). *Slab*: bedstat's density of "
-        "[H_(k−1), H_k] (spheres cut exactly). *Bed*: bedstat's density of [0, H_k]. Surface: bedstat's "
-        "mean height h̄ of the bed's top over the plate, the tool's bottom H_k − h̄ above it, coverage "
-        "of the new slab, Sa and Sq of the top surface. Solid height: solid volume per plate area in each "
-        "quarter of the window along x (from the start). *Quick look*: deposit's JSON, by centres under the gap, "
-        "between the supply's back and the tool's end.",
-        "",
-        "| layer | H_k (µm) | particles | overflow | added | slab | bed | quick look | h̄ (µm) "
-        "| H_k − h̄ (µm) | slab coverage | Sa (µm) | Sq (µm) | solid height by quarter of the window "
-        "(µm) | wall (s) |",
-        "|---" * 15 + "|",
-    ]
-    for r in rows:
-        lines.append(
-            f"| {r['layer']} | {r['top'] * 1e6:.0f} | {r['n']} | {r.get('overflow', '–')} | "
-            f"{r['added_density']:.3f} | {r['slab_density']:.3f} | {r['bed_density']:.3f} | "
-            + (f"{r['quick']:.3f}" if "quick" in r else "–")
-            + f" | {r['mean_height'] * 1e6:.1f} | {(r['top'] - r['mean_height']) * 1e6:.1f}"
-            f" | {r['coverage']:.3f} | {r['sa'] * 1e6:.1f} | {r['sq'] * 1e6:.1f} | "
-            + " / ".join(f"{h * 1e6:.0f}" for h in r["quarters"]) + " | "
-            f"{r.get('wall', r['wall_file']):.0f} |")
-    png = os.path.join(RESULTS, "spread-layers.png")
-    plot(rows, png)
-    lines += ["", "![density over layers](spread-layers.png)"]
+    lines = header(args, scene, rows, summaries, runs, load_before) + layer_table(rows)
+    lines += comparison_table(rows, reference, ref_runs)
+    plot(rows, reference, os.path.join(RESULTS, "spread-layers.png"))
+    lines += ["", "![density over layers; the same with nothing frozen; wall time per layer](spread-layers.png)"]
     if args.work:
         with open(os.path.join(work, "spread-layers-rows.json"), "w") as f:
-            json.dump(rows, f, indent=1)
+            json.dump({"rows": rows, "reference": reference}, f, indent=1)
     # The hand-written discussion below the marker in the page survives a regeneration.
     old = os.path.join(RESULTS, "spread-layers.md")
     tail = ""

@@ -209,6 +209,7 @@ struct Run {
   // (most walls, most steps) then costs a test, not the write of its six zeros.
   std::vector<std::uint8_t> wall_touch;
   std::vector<Constants> wall;        // per particle
+  std::vector<std::uint32_t> near_walls, near_tool;  // find_wall_candidates, at each list build
   NeighbourList list;
   std::vector<Constants> pair;        // per list entry, made when it comes into contact
   std::vector<double> pair_reach;     // per list entry: r_i + r_j (apart from `pair`: every
@@ -391,6 +392,7 @@ struct Run {
       }
       first = last;
     }
+    find_wall_candidates();
   }
 
   // One pass over the particles for the start of a step: the kick v += h F / m (the first half
@@ -532,54 +534,74 @@ struct Run {
     wall_contact(i, kPlate, r - p.distance, n, still, update);
   }
 
-  // The plate, the box's top and the side faces that are not periodic (a particle the tool
-  // throws up stays in the box, so the bed stays a valid bed file) and the tool.
-  // Whether particle i may touch a wall: the contact tests of wall_forces, plate_contact and
-  // tool_contact's first line, without their work. Most particles touch none most steps.
-  bool near_wall(std::size_t i) const {
-    const double r = bed.radius[i], x = bed.x[i], y = bed.y[i], z = bed.z[i];
-    bool near = floor.empty() ? r - (z - box.lower[2]) > 0 : !(z - r > floor_high.at(x, y));
-    near = near || r - (box.upper[2] - z) > 0;
-    if (!box.periodic[0]) near = near || r - (x - box.lower[0]) > 0 || r - (box.upper[0] - x) > 0;
-    if (!box.periodic[1]) near = near || r - (y - box.lower[1]) > 0 || r - (box.upper[1] - y) > 0;
-    if (tool_on) {
-      const double reach = r + profile.rounding;
-      near = near || !(std::abs(x - tool_x) - profile.half_width >= reach || profile.z_low - z >= reach);
+  // The moving particles that may touch a wall before the next list build, found at each
+  // build: none moves more than half the skin (`margin`) from where the build saw it, and the
+  // tool only moves on along +x within a layer (each layer's start rebuilds), so a particle
+  // farther than that from the plate, the box's top and its side faces (walls), or lower than
+  // the tool's bottom or behind it by more than its reach plus the margin (tool), cannot touch
+  // them before the next build. A particle whose history with a wall may be non-zero is kept
+  // with that wall: it touched it at the last evaluation. With a floor (the solid of earlier
+  // layers) every moving particle is a wall candidate.
+  void find_wall_candidates() {
+    const double margin = 0.5 * list.skin();
+    constexpr std::uint8_t tool_bit = 1u << kTool;
+    near_walls.clear();
+    near_tool.clear();
+    for (std::size_t i = 0; i < moving; ++i) {
+      const double r = bed.radius[i], x = bed.x[i], y = bed.y[i], z = bed.z[i];
+      bool walls = !floor.empty() || z - box.lower[2] < r + margin || box.upper[2] - z < r + margin ||
+                   (wall_touch[i] & ~tool_bit) != 0;
+      for (int axis = 0; axis < 2; ++axis) {
+        const double p = axis == 0 ? x : y;
+        walls = walls || (!box.periodic[axis] && (p - box.lower[axis] < r + margin || box.upper[axis] - p < r + margin));
+      }
+      if (walls) near_walls.push_back(static_cast<std::uint32_t>(i));
+      const double reach = r + profile.rounding + margin;
+      const bool tool = tool_on && ((wall_touch[i] & tool_bit) != 0 ||
+                                    (profile.z_low - z < reach && x > tool_x - profile.half_width - reach));
+      if (tool) near_tool.push_back(static_cast<std::uint32_t>(i));
     }
-    return near;
   }
 
-  void wall_forces(bool update) {
+  // The plate, the box's top and the side faces that are not periodic (a particle the tool
+  // throws up stays in the box, so the bed stays a valid bed file).
+  void static_walls(std::size_t i, bool update) {
     const double still[3] = {0, 0, 0};
-    for (std::size_t i = 0; i < moving; ++i) {
-      if (!wall_touch[i] && !near_wall(i)) continue;  // no contact now, no history to drop
-      const double r = bed.radius[i];
-      plate_contact(i, update);
-      {
-        const double n[3] = {0, 0, 1};
-        wall_contact(i, kTop, r - (box.upper[2] - bed.z[i]), n, still, update);
-      }
-      for (int axis = 0; axis < 2; ++axis) {
-        if (box.periodic[axis]) continue;
-        const double p = axis == 0 ? bed.x[i] : bed.y[i];
-        double n[3] = {0, 0, 0};
-        n[axis] = -1;
-        wall_contact(i, axis == 0 ? kXLow : kYLow, r - (p - box.lower[axis]), n, still, update);
-        n[axis] = 1;
-        wall_contact(i, axis == 0 ? kXHigh : kYHigh, r - (box.upper[axis] - p), n, still, update);
-      }
-      if (!tool_on) continue;
-      ToolContact t;
-      if (!tool_contact(profile, bed.x[i] - tool_x, bed.z[i], r, t)) {
-        leave_wall(i, kTool);
-        continue;
-      }
-      // Surface velocity: the tool's translation plus its spin about the roller's axis.
-      const double ex = t.surface[0], ez = t.surface[2] - profile.z_low;
-      const double omega = settings.tool.shape == ToolShape::roller ? settings.tool.omega : 0.0;
-      const double v[3] = {tool_v + omega * ez, 0.0, -omega * ex};
-      wall_contact(i, kTool, t.delta, t.n, v, update);
+    const double r = bed.radius[i];
+    plate_contact(i, update);
+    {
+      const double n[3] = {0, 0, 1};
+      wall_contact(i, kTop, r - (box.upper[2] - bed.z[i]), n, still, update);
     }
+    for (int axis = 0; axis < 2; ++axis) {
+      if (box.periodic[axis]) continue;
+      const double p = axis == 0 ? bed.x[i] : bed.y[i];
+      double n[3] = {0, 0, 0};
+      n[axis] = -1;
+      wall_contact(i, axis == 0 ? kXLow : kYLow, r - (p - box.lower[axis]), n, still, update);
+      n[axis] = 1;
+      wall_contact(i, axis == 0 ? kXHigh : kYHigh, r - (box.upper[axis] - p), n, still, update);
+    }
+  }
+
+  void tool_wall(std::size_t i, bool update) {
+    ToolContact t;
+    if (!tool_contact(profile, bed.x[i] - tool_x, bed.z[i], bed.radius[i], t)) {
+      leave_wall(i, kTool);
+      return;
+    }
+    // Surface velocity: the tool's translation plus its spin about the roller's axis.
+    const double ex = t.surface[0], ez = t.surface[2] - profile.z_low;
+    const double omega = settings.tool.shape == ToolShape::roller ? settings.tool.omega : 0.0;
+    const double v[3] = {tool_v + omega * ez, 0.0, -omega * ex};
+    wall_contact(i, kTool, t.delta, t.n, v, update);
+  }
+
+  // The candidates' walls, then their tool contacts: each particle still adds its walls in the
+  // order plate, top, sides, tool, and the tool's force sums its contacts by index.
+  void wall_forces(bool update) {
+    for (const std::uint32_t i : near_walls) static_walls(i, update);
+    for (const std::uint32_t i : near_tool) tool_wall(i, update);
   }
 
   // Local copies of the arrays' addresses: contact() is not inlined, and through a member the
