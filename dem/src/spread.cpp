@@ -395,13 +395,13 @@ struct Run {
     find_wall_candidates();
   }
 
-  // One pass over the particles for the start of a step: the kick v += h F / m (the first half
-  // kick, with the last step's second when it is pending: step()), the drift x += dt v (wrapped
-  // on periodic axes), the body forces at the half-step velocity (gravity and Stokes drag,
-  // stokes_drag.hpp; torques zeroed) and the test whether some particle moved more than half the
-  // skin since the list was built (minimum image: both coordinates lie in the box), after which
-  // the list is rebuilt. In separate loops these read the velocities three times. False when a
-  // velocity is no longer finite.
+  // The start of a step in two passes over the moving particles: (1) the kick v += h F / m
+  // (the first half kick, with the last step's second when it is pending: step()), the drift
+  // x += dt v (wrapped on periodic axes) and the body forces at the half-step velocity (gravity
+  // and Stokes drag, stokes_drag.hpp; torques zeroed); (2) whether some particle moved more than
+  // half the skin since the list was built (NeighbourList::moved_more_than), after which the list
+  // is rebuilt. Two short loops rather than one: the fused loop needed more registers than x86-64
+  // has and ran scalar, spilling its flags. False when a velocity is no longer finite.
   bool start_step(double h) {
     double* __restrict x = bed.x.data();
     double* __restrict y = bed.y.data();
@@ -418,42 +418,36 @@ struct Run {
     const double* __restrict inv = inv_mass.data();
     const double* __restrict m = mass.data();
     const double* __restrict c = drag.data();
-    const double* __restrict x0 = list.built_at(0);
-    const double* __restrict y0 = list.built_at(1);
-    const double* __restrict z0 = list.built_at(2);
-    // Per periodic axis (x, y; z never is: check_settings) its bounds, length and half length;
-    // on other axes bounds and halves that never trigger the conditional shifts.
+    // Per periodic axis (x, y; z never is: check_settings) its bounds and length; on other axes
+    // bounds that never trigger the conditional shifts.
     const double inf = std::numeric_limits<double>::infinity();
     const bool px = box.periodic[0], py = box.periodic[1];
     const double lx = px ? box.lower[0] : -inf, ux = px ? box.upper[0] : inf, Lx = px ? box.length[0] : 0.0;
     const double ly = py ? box.lower[1] : -inf, uy = py ? box.upper[1] : inf, Ly = py ? box.length[1] : 0.0;
-    const double hx = px ? 0.5 * Lx : inf, hy = py ? 0.5 * Ly : inf;
-    const double limit = 0.5 * list.skin(), limit2 = limit * limit;
-    unsigned moved = 0, finite = 1;
+    const double step = dt, gx = g[0], gy = g[1], gz = g[2];
+    unsigned finite = 1;
     for (std::size_t i = 0, count = moving; i < count; ++i) {
-      vx[i] += h * ax[i] * inv[i];
-      vy[i] += h * ay[i] * inv[i];
-      vz[i] += h * az[i] * inv[i];
-      double xi = x[i] + dt * vx[i], yi = y[i] + dt * vy[i];
+      const double vxi = vx[i] + h * ax[i] * inv[i], vyi = vy[i] + h * ay[i] * inv[i], vzi = vz[i] + h * az[i] * inv[i];
+      vx[i] = vxi;
+      vy[i] = vyi;
+      vz[i] = vzi;
+      double xi = x[i] + step * vxi, yi = y[i] + step * vyi;
       xi += (xi < lx ? Lx : 0.0) - (xi >= ux ? Lx : 0.0);
       yi += (yi < ly ? Ly : 0.0) - (yi >= uy ? Ly : 0.0);
       x[i] = xi;
       y[i] = yi;
-      z[i] += dt * vz[i];
-      double ex = xi - x0[i], ey = yi - y0[i];
-      const double ez = z[i] - z0[i];
-      ex += (ex < -hx ? Lx : 0.0) - (ex > hx ? Lx : 0.0);
-      ey += (ey < -hy ? Ly : 0.0) - (ey > hy ? Ly : 0.0);
-      moved |= static_cast<unsigned>(ex * ex + ey * ey + ez * ez > limit2);
-      finite &= static_cast<unsigned>(std::abs(vx[i]) + std::abs(vy[i]) + std::abs(vz[i]) <=
+      z[i] += step * vzi;
+      finite &= static_cast<unsigned>(std::abs(vxi) + std::abs(vyi) + std::abs(vzi) <=
                                       std::numeric_limits<double>::max());
-      ax[i] = m[i] * g[0] - c[i] * vx[i];
-      ay[i] = m[i] * g[1] - c[i] * vy[i];
-      az[i] = m[i] * g[2] - c[i] * vz[i];
+      ax[i] = m[i] * gx - c[i] * vxi;
+      ay[i] = m[i] * gy - c[i] * vyi;
+      az[i] = m[i] * gz - c[i] * vzi;
       mx[i] = my[i] = mz[i] = 0;
     }
     if (!finite) return false;  // no list of non-finite positions: the caller stops the run
-    if (moved) {
+    ParticleView moved = view();
+    moved.n = moving;
+    if (list.moved_more_than(moved, 0.5 * list.skin(), 1)) {
       rebuild_with(active());
       ++rebuilds;
     }
