@@ -65,10 +65,10 @@ void NeighbourList::for_each_candidate(const ParticleView& p, std::size_t i, F&&
         for (std::uint32_t s = cell_start_[cell]; s < cell_start_[cell + 1]; ++s) {
           const std::uint32_t j = cell_particles_[s];
           if (j <= i) continue;  // half list: each pair under its lower index
-          const double ex = box_.image(0, p.x[j] - p.x[i]);
-          const double ey = box_.image(1, p.y[j] - p.y[i]);
-          const double ez = box_.image(2, p.z[j] - p.z[i]);
-          const double reach = ri + p.radius[j] + skin_;
+          const double ex = box_.image(0, sorted_[4 * s] - p.x[i]);
+          const double ey = box_.image(1, sorted_[4 * s + 1] - p.y[i]);
+          const double ez = box_.image(2, sorted_[4 * s + 2] - p.z[i]);
+          const double reach = ri + sorted_[4 * s + 3] + skin_;
           if (ex * ex + ey * ey + ez * ez <= reach * reach) f(j);
         }
       }
@@ -117,6 +117,14 @@ void NeighbourList::build(const ParticleView& p, int threads, bool with_incident
     for (std::size_t i = 0; i < n; ++i) {
       cell_particles_[fill[particle_cell_[i]]++] = static_cast<std::uint32_t>(i);
     }
+  }
+  sorted_.resize(4 * n);
+  for (std::size_t s = 0; s < n; ++s) {
+    const std::uint32_t j = cell_particles_[s];
+    sorted_[4 * s] = p.x[j];
+    sorted_[4 * s + 1] = p.y[j];
+    sorted_[4 * s + 2] = p.z[j];
+    sorted_[4 * s + 3] = p.radius[j];
   }
   offset_.assign(n + 1, 0);
   if (threads <= 1) {  // one pass, appending in the order the parallel fill below writes

@@ -66,6 +66,9 @@ class NeighbourList {
   std::vector<std::uint32_t> cell_start_;     // size cells + 1
   std::vector<std::uint32_t> cell_particles_; // particle indices sorted by cell, then index
   std::vector<std::uint32_t> particle_cell_;  // flat cell index per particle
+  // x, y, z, r of cell_particles_[s] at 4 s: a cell's candidates read in one sweep of memory
+  // rather than gathered from the particle arrays.
+  std::vector<double> sorted_;
   std::vector<std::uint32_t> offset_;         // size n + 1
   std::vector<std::uint32_t> partners_;
   std::vector<std::uint32_t> owners_;         // per pair: its lower index
