@@ -35,9 +35,6 @@ class NeighbourList {
   // Whether some particle moved more than `limit` since the last build (minimum image).
   bool moved_more_than(const ParticleView& p, double limit, int threads) const;
   double skin() const { return skin_; }
-  // Where the last build saw each particle along `axis` (a loop that moves the particles can
-  // test the rebuild criterion as it goes).
-  const double* built_at(int axis) const { return axis == 0 ? x0_.data() : axis == 1 ? y0_.data() : z0_.data(); }
 
   const std::uint32_t* begin(std::size_t i) const { return partners_.data() + offset_[i]; }
   const std::uint32_t* end(std::size_t i) const { return partners_.data() + offset_[i + 1]; }
