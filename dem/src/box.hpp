@@ -2,6 +2,7 @@
 // The simulation box as the inner loops see it: lower corner, lengths, periodic flags, and the
 // minimum-image convention on periodic axes.
 #include <cmath>
+#include <limits>
 
 #include "powderbed/bed/domain.hpp"
 
@@ -43,6 +44,25 @@ struct Box {
     if (v >= upper[axis]) return v - length[axis];
     return v;
   }
+};
+
+// The minimum image of the separation of two wrapped coordinates (|delta| < length on a
+// periodic axis), without a branch: what Box::image gives them, for the loops that take it per
+// pair or per particle every step. On other axes the shift is 0 and the bound infinite.
+class WrappedImage {
+ public:
+  explicit WrappedImage(const Box& b) {
+    for (int a = 0; a < 3; ++a) {
+      shift_[a] = b.periodic[a] ? b.length[a] : 0.0;
+      half_[a] = b.periodic[a] ? 0.5 * b.length[a] : std::numeric_limits<double>::infinity();
+    }
+  }
+  double operator()(int axis, double delta) const {
+    return delta - (delta > half_[axis] ? shift_[axis] : 0.0) + (delta < -half_[axis] ? shift_[axis] : 0.0);
+  }
+
+ private:
+  double shift_[3], half_[3];
 };
 
 }  // namespace powderbed::dem::detail

@@ -7,6 +7,7 @@
 
 #include <omp.h>
 
+#include "lane_tests.hpp"
 #include "parallel.hpp"
 #include "powderbed/bed/errors.hpp"
 
@@ -48,6 +49,7 @@ void NeighbourList::for_each_candidate(const ParticleView& p, std::size_t i, F&&
   const int cy = cell_coordinate(1, p.y[i]);
   const int cz = cell_coordinate(2, p.z[i]);
   const double ri = p.radius[i];
+  const WrappedImage image(box_);
   for (int dz = -1; dz <= 1; ++dz) {
     int kz = cz + dz;
     if (box_.periodic[2]) kz = (kz + cells_[2]) % cells_[2];
@@ -62,12 +64,17 @@ void NeighbourList::for_each_candidate(const ParticleView& p, std::size_t i, F&&
         if (kx < 0 || kx >= cells_[0]) continue;
         const std::size_t cell =
             (static_cast<std::size_t>(kz) * cells_[1] + ky) * cells_[0] + kx;
-        for (std::uint32_t s = cell_start_[cell]; s < cell_start_[cell + 1]; ++s) {
+        // Half list: each pair under its lower index. A cell lists its particles by index,
+        // so those above i are a tail of it, found by bisection (in a spread, whose particles
+        // are put in cell order at each layer's start, most candidates lie below i).
+        const std::uint32_t* first = cell_particles_.data() + cell_start_[cell];
+        const std::uint32_t* last = cell_particles_.data() + cell_start_[cell + 1];
+        for (auto s = static_cast<std::size_t>(std::upper_bound(first, last, i) - cell_particles_.data());
+             s < cell_start_[cell + 1]; ++s) {
           const std::uint32_t j = cell_particles_[s];
-          if (j <= i) continue;  // half list: each pair under its lower index
-          const double ex = box_.image(0, sorted_[4 * s] - p.x[i]);
-          const double ey = box_.image(1, sorted_[4 * s + 1] - p.y[i]);
-          const double ez = box_.image(2, sorted_[4 * s + 2] - p.z[i]);
+          const double ex = image(0, sorted_[4 * s] - p.x[i]);
+          const double ey = image(1, sorted_[4 * s + 1] - p.y[i]);
+          const double ez = image(2, sorted_[4 * s + 2] - p.z[i]);
           const double reach = ri + sorted_[4 * s + 3] + skin_;
           if (ex * ex + ey * ey + ez * ez <= reach * reach) f(j);
         }
@@ -167,25 +174,16 @@ void NeighbourList::build(const ParticleView& p, int threads, bool with_incident
 namespace {
 
 // Whether some particle of [begin, end) moved more than sqrt(limit2) from (x0, y0, z0): a
-// restrict-qualified loop with an integer OR, which the compiler vectorises. On a periodic axis
-// the separation takes its minimum image by one conditional shift by the length (`shift`; 0 on
-// other axes): both coordinates are wrapped into the box, so they are less than a length apart.
-bool any_moved(std::size_t begin, std::size_t end, double limit2, const Box& box,
+// restrict-qualified loop ORing above_bit (lane_tests.hpp), which the compiler vectorises. Both
+// positions are wrapped into the box, so WrappedImage gives the separation's minimum image.
+bool any_moved(std::size_t begin, std::size_t end, double limit2, const WrappedImage image,
                const double* __restrict x, const double* __restrict y,
                const double* __restrict z, const double* __restrict x0,
                const double* __restrict y0, const double* __restrict z0) {
-  double shift[3], half[3];
-  for (int a = 0; a < 3; ++a) {
-    shift[a] = box.periodic[a] ? box.length[a] : 0.0;
-    half[a] = box.periodic[a] ? 0.5 * box.length[a] : std::numeric_limits<double>::infinity();
-  }
-  const auto image = [&](int a, double e) {
-    return e - shift[a] * static_cast<double>(e > half[a]) + shift[a] * static_cast<double>(e < -half[a]);
-  };
-  unsigned moved = 0;
+  std::uint64_t moved = 0;
   for (std::size_t i = begin; i < end; ++i) {
     const double ex = image(0, x[i] - x0[i]), ey = image(1, y[i] - y0[i]), ez = image(2, z[i] - z0[i]);
-    moved |= static_cast<unsigned>(ex * ex + ey * ey + ez * ez > limit2);
+    moved |= above_bit(ex * ex + ey * ey + ez * ez, limit2);
   }
   return moved != 0;
 }
@@ -195,14 +193,14 @@ bool any_moved(std::size_t begin, std::size_t end, double limit2, const Box& box
 bool NeighbourList::moved_more_than(const ParticleView& p, double limit, int threads) const {
   const double limit2 = limit * limit;
   if (threads <= 1) {
-    return any_moved(0, p.n, limit2, box_, p.x, p.y, p.z, x0_.data(), y0_.data(), z0_.data());
+    return any_moved(0, p.n, limit2, WrappedImage(box_), p.x, p.y, p.z, x0_.data(), y0_.data(), z0_.data());
   }
   bool moved = false;
 #pragma omp parallel num_threads(threads) reduction(|| : moved)
   {
     const auto team = static_cast<std::size_t>(omp_get_num_threads());
     const auto rank = static_cast<std::size_t>(omp_get_thread_num());
-    moved = any_moved(p.n * rank / team, p.n * (rank + 1) / team, limit2, box_, p.x, p.y, p.z,
+    moved = any_moved(p.n * rank / team, p.n * (rank + 1) / team, limit2, WrappedImage(box_), p.x, p.y, p.z,
                       x0_.data(), y0_.data(), z0_.data());
   }
   return moved;

@@ -13,6 +13,7 @@
 #include <unordered_set>
 
 #include "box.hpp"
+#include "lane_tests.hpp"
 #include "neighbour_list.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
@@ -36,6 +37,8 @@ namespace {
 using detail::Box;
 using detail::NeighbourList;
 using detail::ParticleView;
+using detail::WrappedImage;
+using detail::non_finite_bit;
 
 double largest_radius(const bed::Bed& b) {
   double r_max = 0;
@@ -187,6 +190,44 @@ std::vector<std::size_t> spatial_order(const bed::Bed& b, double cell, const std
   }
   std::stable_sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return key[p] < key[q]; });
   return order;
+}
+
+// The constants of kick_drift: the kick h, the step dt, gravity, and per axis x, y the bounds
+// that wrap a position and the length it is shifted by (periodic), or -inf, inf and 0.
+struct DriftConstants {
+  double h, dt, g[3], lower[2], upper[2], length[2];
+};
+
+// Run::start_step's first pass over particles [0, count): v += h F / m, x += dt v (wrapped),
+// F = m g - c v (gravity and Stokes drag, stokes_drag.hpp), T = 0. A free function because GCC 12
+// honours __restrict on parameters only: without it the loop over fifteen arrays needs more
+// aliasing checks than GCC makes and runs one particle at a time. Non-zero when a velocity is
+// not finite.
+std::uint64_t kick_drift(std::size_t count, const DriftConstants k, double* __restrict x, double* __restrict y,
+                         double* __restrict z, double* __restrict vx, double* __restrict vy, double* __restrict vz,
+                         double* __restrict ax, double* __restrict ay, double* __restrict az, double* __restrict mx,
+                         double* __restrict my, double* __restrict mz, const double* __restrict inv,
+                         const double* __restrict m, const double* __restrict c) {
+  std::uint64_t bad = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double vxi = vx[i] + k.h * ax[i] * inv[i], vyi = vy[i] + k.h * ay[i] * inv[i],
+                 vzi = vz[i] + k.h * az[i] * inv[i];
+    vx[i] = vxi;
+    vy[i] = vyi;
+    vz[i] = vzi;
+    double xi = x[i] + k.dt * vxi, yi = y[i] + k.dt * vyi;
+    xi += (xi < k.lower[0] ? k.length[0] : 0.0) - (xi >= k.upper[0] ? k.length[0] : 0.0);
+    yi += (yi < k.lower[1] ? k.length[1] : 0.0) - (yi >= k.upper[1] ? k.length[1] : 0.0);
+    x[i] = xi;
+    y[i] = yi;
+    z[i] += k.dt * vzi;
+    bad |= non_finite_bit(std::abs(vxi) + std::abs(vyi) + std::abs(vzi));
+    ax[i] = m[i] * k.g[0] - c[i] * vxi;
+    ay[i] = m[i] * k.g[1] - c[i] * vyi;
+    az[i] = m[i] * k.g[2] - c[i] * vzi;
+    mx[i] = my[i] = mz[i] = 0;
+  }
+  return bad;
 }
 
 struct Run {
@@ -395,56 +436,28 @@ struct Run {
     find_wall_candidates();
   }
 
-  // The start of a step in two passes over the moving particles: (1) the kick v += h F / m
+  // The start of a step in two passes over the moving particles: (1) kick_drift, the kick v += h F / m
   // (the first half kick, with the last step's second when it is pending: step()), the drift
   // x += dt v (wrapped on periodic axes) and the body forces at the half-step velocity (gravity
   // and Stokes drag, stokes_drag.hpp; torques zeroed); (2) whether some particle moved more than
   // half the skin since the list was built (NeighbourList::moved_more_than), after which the list
-  // is rebuilt. Two short loops rather than one: the fused loop needed more registers than x86-64
-  // has and ran scalar, spilling its flags. False when a velocity is no longer finite.
+  // is rebuilt. Two loops rather than one, each of which vectorises. False when a velocity is no
+  // longer finite.
   bool start_step(double h) {
-    double* __restrict x = bed.x.data();
-    double* __restrict y = bed.y.data();
-    double* __restrict z = bed.z.data();
-    double* __restrict vx = bed.vx.data();
-    double* __restrict vy = bed.vy.data();
-    double* __restrict vz = bed.vz.data();
-    double* __restrict ax = fx.data();
-    double* __restrict ay = fy.data();
-    double* __restrict az = fz.data();
-    double* __restrict mx = tx.data();
-    double* __restrict my = ty.data();
-    double* __restrict mz = tz.data();
-    const double* __restrict inv = inv_mass.data();
-    const double* __restrict m = mass.data();
-    const double* __restrict c = drag.data();
     // Per periodic axis (x, y; z never is: check_settings) its bounds and length; on other axes
     // bounds that never trigger the conditional shifts.
     const double inf = std::numeric_limits<double>::infinity();
-    const bool px = box.periodic[0], py = box.periodic[1];
-    const double lx = px ? box.lower[0] : -inf, ux = px ? box.upper[0] : inf, Lx = px ? box.length[0] : 0.0;
-    const double ly = py ? box.lower[1] : -inf, uy = py ? box.upper[1] : inf, Ly = py ? box.length[1] : 0.0;
-    const double step = dt, gx = g[0], gy = g[1], gz = g[2];
-    unsigned finite = 1;
-    for (std::size_t i = 0, count = moving; i < count; ++i) {
-      const double vxi = vx[i] + h * ax[i] * inv[i], vyi = vy[i] + h * ay[i] * inv[i], vzi = vz[i] + h * az[i] * inv[i];
-      vx[i] = vxi;
-      vy[i] = vyi;
-      vz[i] = vzi;
-      double xi = x[i] + step * vxi, yi = y[i] + step * vyi;
-      xi += (xi < lx ? Lx : 0.0) - (xi >= ux ? Lx : 0.0);
-      yi += (yi < ly ? Ly : 0.0) - (yi >= uy ? Ly : 0.0);
-      x[i] = xi;
-      y[i] = yi;
-      z[i] += step * vzi;
-      finite &= static_cast<unsigned>(std::abs(vxi) + std::abs(vyi) + std::abs(vzi) <=
-                                      std::numeric_limits<double>::max());
-      ax[i] = m[i] * gx - c[i] * vxi;
-      ay[i] = m[i] * gy - c[i] * vyi;
-      az[i] = m[i] * gz - c[i] * vzi;
-      mx[i] = my[i] = mz[i] = 0;
+    DriftConstants k{h, dt, {g[0], g[1], g[2]}, {-inf, -inf}, {inf, inf}, {0.0, 0.0}};
+    for (int a = 0; a < 2; ++a) {
+      if (!box.periodic[a]) continue;
+      k.lower[a] = box.lower[a];
+      k.upper[a] = box.upper[a];
+      k.length[a] = box.length[a];
     }
-    if (!finite) return false;  // no list of non-finite positions: the caller stops the run
+    const std::uint64_t bad = kick_drift(moving, k, bed.x.data(), bed.y.data(), bed.z.data(), bed.vx.data(),
+                                         bed.vy.data(), bed.vz.data(), fx.data(), fy.data(), fz.data(), tx.data(),
+                                         ty.data(), tz.data(), inv_mass.data(), mass.data(), drag.data());
+    if (bad) return false;  // no list of non-finite positions: the caller stops the run
     ParticleView moved = view();
     moved.n = moving;
     if (list.moved_more_than(moved, 0.5 * list.skin(), 1)) {
@@ -610,11 +623,10 @@ struct Run {
     double* history = pair_history.data();
     std::uint8_t* touch = touching.data();
     Constants* constants = pair.data();
+    const WrappedImage image(box);  // positions are wrapped at every drift
     for (std::size_t k = 0, entries = list.pair_entries(); k < entries; ++k) {
       const std::uint32_t i = owner[k], j = partner[k];
-      const double ex = box.image(0, x[j] - x[i]);
-      const double ey = box.image(1, y[j] - y[i]);
-      const double ez = box.image(2, z[j] - z[i]);
+      const double ex = image(0, x[j] - x[i]), ey = image(1, y[j] - y[i]), ez = image(2, z[j] - z[i]);
       const double d2 = ex * ex + ey * ey + ez * ez, reach = reach_of[k];
       double* h = history + k * kHistory;
       if (d2 >= reach * reach) {
@@ -678,20 +690,20 @@ struct Run {
   bool kick(double h, bool translation = true) {
     const std::size_t count = moving;
     const auto axis = [&](double* __restrict v, const double* __restrict f, const double* __restrict inv) {
-      unsigned finite = 1;
+      std::uint64_t bad = 0;
       for (std::size_t i = 0; i < count; ++i) {
         v[i] += h * f[i] * inv[i];
-        finite &= static_cast<unsigned>(std::abs(v[i]) <= std::numeric_limits<double>::max());
+        bad |= non_finite_bit(v[i]);
       }
-      return finite;
+      return bad;
     };
-    unsigned finite = axis(wx.data(), tx.data(), inv_inertia.data()) &
-                      axis(wy.data(), ty.data(), inv_inertia.data()) & axis(wz.data(), tz.data(), inv_inertia.data());
+    std::uint64_t bad = axis(wx.data(), tx.data(), inv_inertia.data()) |
+                        axis(wy.data(), ty.data(), inv_inertia.data()) | axis(wz.data(), tz.data(), inv_inertia.data());
     if (translation) {
-      finite &= axis(bed.vx.data(), fx.data(), inv_mass.data()) & axis(bed.vy.data(), fy.data(), inv_mass.data()) &
-                axis(bed.vz.data(), fz.data(), inv_mass.data());
+      bad |= axis(bed.vx.data(), fx.data(), inv_mass.data()) | axis(bed.vy.data(), fy.data(), inv_mass.data()) |
+             axis(bed.vz.data(), fz.data(), inv_mass.data());
     }
-    return finite != 0;
+    return bad == 0;
   }
 
   // Velocity Verlet with each step's second half kick deferred and taken with the next step's
