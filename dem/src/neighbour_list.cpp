@@ -190,6 +190,33 @@ bool any_moved(std::size_t begin, std::size_t end, double limit2, const WrappedI
 
 }  // namespace
 
+void NeighbourList::prune(const ParticleView& p, double margin) {
+  margin_ = margin;
+  const WrappedImage image(box_);
+  hot_.clear();
+  for (std::size_t k = 0; k < partners_.size(); ++k) {
+    const std::uint32_t i = owners_[k], j = partners_[k];
+    const double ex = image(0, p.x[j] - p.x[i]), ey = image(1, p.y[j] - p.y[i]), ez = image(2, p.z[j] - p.z[i]);
+    const double reach = p.radius[i] + p.radius[j] + margin;
+    if (ex * ex + ey * ey + ez * ez < reach * reach) hot_.push_back(static_cast<std::uint32_t>(k));
+  }
+  xp_.assign(p.x, p.x + p.n);
+  yp_.assign(p.y, p.y + p.n);
+  zp_.assign(p.z, p.z + p.n);
+}
+
+NeighbourList::Stale NeighbourList::stale(const ParticleView& p) const {
+  const WrappedImage image(box_);
+  const double half_margin = 0.5 * margin_;
+  if (!any_moved(0, p.n, half_margin * half_margin, image, p.x, p.y, p.z, xp_.data(), yp_.data(), zp_.data())) {
+    return Stale::no;
+  }
+  const double limit = 0.5 * (skin_ - margin_);
+  return any_moved(0, p.n, limit * limit, image, p.x, p.y, p.z, x0_.data(), y0_.data(), z0_.data())
+             ? Stale::build
+             : Stale::prune;
+}
+
 bool NeighbourList::moved_more_than(const ParticleView& p, double limit, int threads) const {
   const double limit2 = limit * limit;
   if (threads <= 1) {

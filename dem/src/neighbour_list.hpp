@@ -5,7 +5,8 @@
 // pairs in a fixed order (the pairs under lower indices, by that index, then its own), the order
 // in which a serial loop over i that adds F to i and subtracts it from j meets them. Cells are
 // at least the largest diameter plus the skin wide, so one build costs O(N); the list is rebuilt
-// when some particle has moved more than skin/2 since the last build.
+// when some particle has moved more than skin/2 since the last build (moved_more_than), or, with
+// pruning (the spread), as `stale` says.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -35,6 +36,22 @@ class NeighbourList {
   // Whether some particle moved more than `limit` since the last build (minimum image).
   bool moved_more_than(const ParticleView& p, double limit, int threads) const;
   double skin() const { return skin_; }
+
+  // Dynamic pruning, as GROMACS's outer and inner pair lists (rlistOuter, rlistInner;
+  // Pall et al. 2020, J. Chem. Phys. 153, 134110), but on a measured displacement where GROMACS
+  // prunes at a fixed interval: the entries whose separation is within r_i + r_j + margin
+  // ("hot", in entry order), for a force loop to scan instead of them all. No other entry can
+  // touch while no particle has moved more than margin / 2 since the prune. Serial; wrapped
+  // positions.
+  void prune(const ParticleView& p, double margin);
+  const std::uint32_t* hot() const { return hot_.data(); }
+  std::size_t hot_entries() const { return hot_.size(); }
+  // What the particles' motion asks for: nothing while none has moved more than margin / 2
+  // since the last prune (one pass over them, every step); else a build if one has moved more
+  // than (skin - margin) / 2 since the last build, so that the list holds until the next
+  // prune (a second pass), else a prune.
+  enum class Stale { no, prune, build };
+  Stale stale(const ParticleView& p) const;
 
   const std::uint32_t* begin(std::size_t i) const { return partners_.data() + offset_[i]; }
   const std::uint32_t* end(std::size_t i) const { return partners_.data() + offset_[i + 1]; }
@@ -72,6 +89,9 @@ class NeighbourList {
   std::vector<std::uint32_t> incident_offset_;  // size n + 1 (with_incident)
   std::vector<std::uint32_t> incident_;
   std::vector<double> x0_, y0_, z0_;          // positions at the last build
+  std::vector<std::uint32_t> hot_;            // prune: the entries within reach + margin_
+  double margin_ = 0;
+  std::vector<double> xp_, yp_, zp_;          // positions at the last prune
 };
 
 }  // namespace powderbed::dem::detail
