@@ -101,7 +101,7 @@ struct SpreadSettings {
   double young_scale = 1;
   double dt = 0;                  // s; 0: 0.2 x the Rayleigh step (time_step.hpp)
   bool unsafe_dt = false;
-  double skin = 0;                // m; 0: 0.2 x the largest radius
+  double skin = 0;                // m; 0: 0.5 x the largest radius (less on a narrow periodic axis)
   double t_end = 0;               // without tool: simulated time, s
   // Gravity tilted by this angle about +y (rad): g = g (sin a, 0, -cos a), a plate inclined
   // by a (tests of friction on a slope).
