@@ -65,4 +65,24 @@ class WrappedImage {
   double shift_[3], half_[3];
 };
 
+// Box::wrap for a coordinate less than a length outside the box (one step's drift), without a
+// branch: for the drift loop, which must vectorise. On other axes the bounds are infinite and
+// the shift 0.
+class BranchFreeWrap {
+ public:
+  explicit BranchFreeWrap(const Box& b) {
+    for (int a = 0; a < 3; ++a) {
+      lower_[a] = b.periodic[a] ? b.lower[a] : -std::numeric_limits<double>::infinity();
+      upper_[a] = b.periodic[a] ? b.upper[a] : std::numeric_limits<double>::infinity();
+      length_[a] = b.periodic[a] ? b.length[a] : 0.0;
+    }
+  }
+  double operator()(int axis, double v) const {
+    return v + ((v < lower_[axis] ? length_[axis] : 0.0) - (v >= upper_[axis] ? length_[axis] : 0.0));
+  }
+
+ private:
+  double lower_[3], upper_[3], length_[3];
+};
+
 }  // namespace powderbed::dem::detail

@@ -35,6 +35,7 @@ ToolShape parse_tool_shape(const std::string& text, const std::string& option) {
 namespace {
 
 using detail::Box;
+using detail::BranchFreeWrap;
 using detail::NeighbourList;
 using detail::ParticleView;
 using detail::WrappedImage;
@@ -210,10 +211,11 @@ double default_skin(const Box& box, double r_max) {
 // entries but more prunes). Results do not depend on it.
 constexpr double kPruneMargin = 0.05;
 
-// The constants of kick_drift: the kick h, the step dt, gravity, and per axis x, y the bounds
-// that wrap a position and the length it is shifted by (periodic), or -inf, inf and 0.
+// The constants of kick_drift: the kick h, the step dt, gravity, and the wrap of x and y (z is
+// never periodic: check_settings).
 struct DriftConstants {
-  double h, dt, g[3], lower[2], upper[2], length[2];
+  double h, dt, g[3];
+  BranchFreeWrap wrap;
 };
 
 // Run::start_step's first pass over particles [0, count): v += h F / m, x += dt v (wrapped),
@@ -233,11 +235,8 @@ std::uint64_t kick_drift(std::size_t count, const DriftConstants k, double* __re
     vx[i] = vxi;
     vy[i] = vyi;
     vz[i] = vzi;
-    double xi = x[i] + k.dt * vxi, yi = y[i] + k.dt * vyi;
-    xi += (xi < k.lower[0] ? k.length[0] : 0.0) - (xi >= k.upper[0] ? k.length[0] : 0.0);
-    yi += (yi < k.lower[1] ? k.length[1] : 0.0) - (yi >= k.upper[1] ? k.length[1] : 0.0);
-    x[i] = xi;
-    y[i] = yi;
+    x[i] = k.wrap(0, x[i] + k.dt * vxi);
+    y[i] = k.wrap(1, y[i] + k.dt * vyi);
     z[i] += k.dt * vzi;
     bad |= non_finite_bit(std::abs(vxi) + std::abs(vyi) + std::abs(vzi));
     ax[i] = m[i] * k.g[0] - c[i] * vxi;
@@ -477,21 +476,11 @@ struct Run {
   // The start of a step in two passes over the moving particles: (1) kick_drift, the kick v += h F / m
   // (the first half kick, with the last step's second when it is pending: step()), the drift
   // x += dt v (wrapped on periodic axes) and the body forces at the half-step velocity (gravity
-  // and Stokes drag, stokes_drag.hpp; torques zeroed); (2) whether some particle moved more than
-  // half the skin since the list was built (NeighbourList::moved_more_than), after which the list
-  // is rebuilt. Two loops rather than one, each of which vectorises. False when a velocity is no
-  // longer finite.
+  // and Stokes drag, stokes_drag.hpp; torques zeroed); (2) NeighbourList::stale, after which the
+  // list is rebuilt or pruned. Two loops rather than one, each of which vectorises. False when a
+  // velocity is no longer finite.
   bool start_step(double h) {
-    // Per periodic axis (x, y; z never is: check_settings) its bounds and length; on other axes
-    // bounds that never trigger the conditional shifts.
-    const double inf = std::numeric_limits<double>::infinity();
-    DriftConstants k{h, dt, {g[0], g[1], g[2]}, {-inf, -inf}, {inf, inf}, {0.0, 0.0}};
-    for (int a = 0; a < 2; ++a) {
-      if (!box.periodic[a]) continue;
-      k.lower[a] = box.lower[a];
-      k.upper[a] = box.upper[a];
-      k.length[a] = box.length[a];
-    }
+    const DriftConstants k{h, dt, {g[0], g[1], g[2]}, BranchFreeWrap(box)};
     const std::uint64_t bad = kick_drift(moving, k, bed.x.data(), bed.y.data(), bed.z.data(), bed.vx.data(),
                                          bed.vy.data(), bed.vz.data(), fx.data(), fy.data(), fz.data(), tx.data(),
                                          ty.data(), tz.data(), inv_mass.data(), mass.data(), drag.data());
