@@ -60,6 +60,9 @@ std::string explain_json(const th::ExplainReport& r) {
       .value("heating_time", r.heating_time)
       .value("absorptance", r.absorptance)
       .value("wetting_time", r.wetting_time)
+      .value("normalised_enthalpy", r.normalised_enthalpy)
+      .value("keyhole_threshold", r.keyhole_threshold)
+      .value("evaporation_ratio", r.evaporation_ratio)
       .value("text", r.text)
       .end_object();
   return j.str() + '\n';
@@ -127,6 +130,7 @@ void ray_trace_json(bed::JsonWriter& j, const th::TraceSummary& t) {
       .value("outside", t.outside / n)
       .value("dropped", t.dropped / n)
       .value("hits_per_ray", t.hits / n)
+      .value("depression", t.absorbed_depression / n)
       .end_object();
 }
 
@@ -137,6 +141,7 @@ void energy_json(bed::JsonWriter& j, const th::EnergyLedger& e) {
       .value("laser_substrate", e.laser_substrate)
       .value("convection", e.convection)
       .value("radiation", e.radiation)
+      .value("evaporation", e.evaporation)
       .value("boundary", e.boundary)
       .value("internal_particles", e.internal_particles)
       .value("internal_substrate", e.internal_substrate)
@@ -165,6 +170,13 @@ std::string result_json(const po::variables_map& vm, const RunReport& run) {
       .value("depth", r.melt_pool.depth)
       .end_object()
       .value("max_temperature", r.max_temperature)
+      .value("max_temperature_particles", r.peaks.particles)
+      .value("max_temperature_substrate", r.peaks.substrate)
+      .value("evaporated_mass", r.evaporated_mass)
+      .value("evaporated_mass_particles", r.evaporated_mass_particles)
+      .value("peak_recoil_pressure", r.peak_recoil_pressure)
+      .value("depression_temperature", r.depression_temperature)
+      .value("depression_depth", r.depression_depth)
       .value("particles", static_cast<std::uint64_t>(run.bed.n()))
       .value("particles_molten", static_cast<std::uint64_t>(r.particles_molten))
       .value("particles_vaporised", static_cast<std::uint64_t>(r.particles_vaporised))
@@ -199,11 +211,13 @@ std::string result_json(const po::variables_map& vm, const RunReport& run) {
 // The text report: the run's line, a line per track of a scan path, the fusion's line.
 void print_result(const th::SinterScene& scene, const RunReport& run) {
   const th::SinterResult& r = run.result;
-  std::printf("sinter: melt pool height %.1f um, width %.1f um, depth %.1f um; T_max %.0f K; "
-              "%zu of %zu particles molten, %zu vaporised; absorptance %.3f; energy balance "
+  std::printf("sinter: melt pool height %.1f um, width %.1f um, depth %.1f um; peak T %.0f K "
+              "(particles), %.0f K (substrate); %zu of %zu particles molten, %zu vaporised; "
+              "evaporated %.3g kg; absorptance %.3f; energy balance "
               "%.1e; %llu steps of %.3g s, %.1f s wall -> %s\n",
               r.melt_pool.height * 1e6, r.melt_pool.width * 1e6, r.melt_pool.depth * 1e6,
-              r.max_temperature, r.particles_molten, run.bed.n(), r.particles_vaporised,
+              r.peaks.particles, r.peaks.substrate, r.particles_molten, run.bed.n(),
+              r.particles_vaporised, r.evaporated_mass,
               r.absorptance, r.energy.relative_error(), static_cast<unsigned long long>(r.steps),
               r.dt_grid, run.wall, run.out.c_str());
   if (!scene.scan_path.empty()) print_tracks(r.tracks);
@@ -255,9 +269,9 @@ th::SinterResult scan(const po::variables_map& vm, th::Sinter& sinter, th::RunWr
   const auto start = std::chrono::steady_clock::now();
   app::ProgressBar bar("sinter", app::progress_interval(vm));
   const auto progress = [&bar](const th::SinterProgress& p) {
-    char detail[64];
-    std::snprintf(detail, sizeof detail, "t = %.3e s  T_max(particles) = %.0f K", p.time,
-                  p.max_temperature);
+    char detail[96];
+    std::snprintf(detail, sizeof detail, "t = %.3e s  peak T: particles %.0f K, substrate %.0f K",
+                  p.time, p.peaks.particles, p.peaks.substrate);
     bar.draw(p.time / p.t_end, detail);
   };
   const th::SinterResult r = sinter.run(
@@ -271,6 +285,9 @@ th::SinterResult scan(const po::variables_map& vm, th::Sinter& sinter, th::RunWr
 std::vector<std::pair<std::string, double>> summary_of(const th::SinterResult& r, double wall) {
   return {{"melt_pool_height", r.melt_pool.height}, {"melt_pool_width", r.melt_pool.width},
           {"melt_pool_depth", r.melt_pool.depth}, {"max_temperature", r.max_temperature},
+          {"max_temperature_particles", r.peaks.particles},
+          {"max_temperature_substrate", r.peaks.substrate},
+          {"evaporated_mass", r.evaporated_mass},
           {"particles_molten", static_cast<double>(r.particles_molten)},
           {"particles_vaporised", static_cast<double>(r.particles_vaporised)},
           {"energy_balance_error", r.energy.relative_error()},

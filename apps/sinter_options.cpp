@@ -143,9 +143,29 @@ void add_laser_options(po::options_description& desc, th::SinterScene& s) {
        "ray-trace: a ray carrying less than this fraction of its power is dropped")
       ("laser.ray-seed", po::value<std::uint64_t>(&s.rays.seed)->default_value(s.rays.seed),
        "ray-trace: seed of the rays' jitter")
+      ("laser.optics", po::value<std::string>()->default_value("fresnel"),
+       "ray-trace: fresnel (absorptance from the phase's refractive index n + ik at the angle of "
+       "incidence) or constant (laser.absorptivity, laser.absorptivity-liquid)")
+      ("laser.index-n-solid", po::value<double>(&s.index_n_solid)->default_value(s.index_n_solid),
+       "fresnel: n of the solid at the laser's wavelength")
+      ("laser.index-k-solid", po::value<double>(&s.index_k_solid)->default_value(s.index_k_solid),
+       "fresnel: k of the solid")
+      ("laser.index-n-liquid",
+       po::value<double>(&s.index_n_liquid)->default_value(s.index_n_liquid),
+       "fresnel: n of the liquid")
+      ("laser.index-k-liquid",
+       po::value<double>(&s.index_k_liquid)->default_value(s.index_k_liquid),
+       "fresnel: k of the liquid")
+      ("evaporation.back-condensation",
+       po::value<double>(&s.back_condensation)->default_value(s.back_condensation),
+       "effects.evaporation: back-condensed fraction beta_r of the Hertz-Knudsen flux")
       ("wetting.contact-angle",
        po::value<double>(&s.contact_angle)->default_value(s.contact_angle),
-       "effects.wetting: contact angle of the melt on the solid substrate (degrees)");
+       "effects.wetting: contact angle of the melt on remelted solid (degrees)")
+      ("wetting.arrested-conductance",
+       po::value<double>(&s.arrested_conductance)->default_value(s.arrested_conductance),
+       "effects.wetting: interfacial conductance of a molten particle on solid that has not "
+       "remelted (W/m^2K)");
 }
 
 // The material's phase change and properties, the environment, the substrate and the steps'
@@ -167,6 +187,11 @@ void add_material_and_grid_options(po::options_description& desc, th::SinterScen
       ("material.latent-vapour",
        po::value<double>(&p.latent_vapour)->default_value(p.latent_vapour),
        "L_v (J/kg)")
+      ("material.molar-mass", po::value<double>(&s.molar_mass)->default_value(s.molar_mass),
+       "M of the vapour (kg/mol): evaporation, depression")
+      ("material.surface-tension",
+       po::value<double>(&s.surface_tension)->default_value(s.surface_tension),
+       "gamma of the liquid (N/m): depression")
       ("material.window", po::value<double>(&p.window)->default_value(p.window),
        "phase-change window dT of the apparent heat capacity (K)")
       ("material.hold-from", po::value<double>(&s.hold_from)->default_value(s.hold_from),
@@ -180,6 +205,9 @@ void add_material_and_grid_options(po::options_description& desc, th::SinterScen
       ("environment.temperature",
        po::value<double>(&s.environment_temperature)->default_value(s.environment_temperature),
        "T_env (K)")
+      ("environment.pressure",
+       po::value<double>(&s.ambient_pressure)->default_value(s.ambient_pressure),
+       "p0, the ambient pressure at which the boiling point holds (Pa)")
       ("environment.initial-temperature",
        po::value<double>(&s.initial_temperature)->default_value(s.initial_temperature),
        "T0 of bed and substrate, and the substrate's Dirichlet value (K)")
@@ -253,6 +281,10 @@ void set_laser(const po::variables_map& vm, th::SinterScene& s) {
         fmt::format("laser.reflection: '{}' (accepted: specular, diffuse)", reflection));
   s.rays.reflection =
       reflection == "specular" ? th::Reflection::specular : th::Reflection::diffuse;
+  const std::string optics = vm["laser.optics"].as<std::string>();
+  if (optics != "fresnel" && optics != "constant")
+    throw InputError(fmt::format("laser.optics: '{}' (accepted: fresnel, constant)", optics));
+  s.optics = optics == "fresnel" ? th::Optics::fresnel : th::Optics::constant;
 }
 
 // The substrate's nodes (--grid-spacing: from the bed's x-y extent lx, ly and its depth).
@@ -287,6 +319,35 @@ void set_time(const po::variables_map& vm, th::SinterScene& s) {
     throw InputError(fmt::format("--dt: {:f} (accepted: dt > 0 s)", s.dt));
 }
 
+// A material file named by --material must give what the scene's models read of it: the
+// defaults are 316L's, wrong for any other metal.
+void require_material_keys(const po::variables_map& vm, const th::SinterScene& s) {
+  if (!vm.count("material")) return;
+  struct Need {
+    const char* option;
+    const char* why;
+    const char* instead;
+  };
+  std::vector<Need> needed;
+  if (s.absorption == th::LaserAbsorption::ray_trace && s.optics == th::Optics::fresnel)
+    for (const char* o : {"laser.index-n-solid", "laser.index-k-solid", "laser.index-n-liquid",
+                          "laser.index-k-liquid"})
+      needed.push_back({o, "laser.optics = fresnel", "laser.optics = constant"});
+  if (s.has(th::kEvaporation))
+    for (const char* o : {"material.boiling-point", "material.molar-mass"})
+      needed.push_back({o, "effects.evaporation", "effects.evaporation = false"});
+  if (s.has(th::kDepression))
+    for (const char* o : {"material.boiling-point", "material.molar-mass", "material.surface-tension"})
+      needed.push_back({o, "effects.depression", "effects.depression = false"});
+  for (const Need& n : needed) {
+    if (!vm[n.option].defaulted()) continue;  // from the file, the scene or the command line
+    throw InputError(fmt::format(
+        "--material: '{}' gives no {} for {} (accepted: a material file with it, --{} given, "
+        "or {})",
+        vm["material"].as<std::string>(), n.option, n.why, n.option, n.instead));
+  }
+}
+
 th::SinterScene make_scene(const po::variables_map& vm, const th::SinterScene& bound, double lx,
                            double ly) {
   th::SinterScene s = bound;
@@ -297,6 +358,7 @@ th::SinterScene make_scene(const po::variables_map& vm, const th::SinterScene& b
   s.effects = 0;
   for (const th::SinterEffectRow& row : th::kSinterEffects)
     if (vm[std::string("effects.") + row.name].as<bool>()) s.effects |= row.effect;
+  require_material_keys(vm, s);
   return s;
 }
 

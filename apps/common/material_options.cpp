@@ -37,6 +37,12 @@ constexpr MaterialOption kMaterialOptions[] = {
     {"sinter", "material.latent-vapour", "latent_vapour"},
     {"sinter", "material.hold-from", "hold_from"},
     {"sinter", "laser.absorptivity", "absorptivity"},
+    {"sinter", "laser.index-n-solid", "index_n_solid"},
+    {"sinter", "laser.index-k-solid", "index_k_solid"},
+    {"sinter", "laser.index-n-liquid", "index_n_liquid"},
+    {"sinter", "laser.index-k-liquid", "index_k_liquid"},
+    {"sinter", "material.molar-mass", "molar_mass"},
+    {"sinter", "material.surface-tension", "surface_tension"},
     {"keff", "solid.conductivity", "conductivity"},
 };
 

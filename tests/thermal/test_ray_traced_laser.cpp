@@ -65,9 +65,13 @@ AbsorptionMap trace(const bed::Bed& bed, const thermal::SubstrateGeometry& g, co
   p.rays = beam.rays;
   p.reflection = beam.reflection;
   p.cutoff = beam.cutoff;
-  const BeamTracer tracer(bed, g, beam.w, p);
-  return tracer.trace(beam.x, beam.y, beam.trace, std::vector<double>(bed.n(), beam.alpha),
-                      std::vector<double>(g.nx * g.ny, beam.alpha));
+  thermal::SurfaceOptics optics;  // constant: beam.alpha in both phases
+  optics.alpha[0] = optics.alpha[1] = beam.alpha;
+  const BeamTracer tracer(bed, g, beam.w, p, optics);
+  thermal::TraceSurfaces surfaces;
+  surfaces.particle_phase.assign(bed.n(), 0);
+  surfaces.node_phase.assign(g.nx * g.ny, 0);
+  return tracer.trace(beam.x, beam.y, beam.trace, surfaces);
 }
 
 double sum(const std::vector<AbsorptionMap::Entry>& entries) {
@@ -385,11 +389,11 @@ TEST(RayTraceTracer, RefusesZeroRaysAndCutoffsOutsideZeroOne) {
   const auto g = plate(100e-6, 100e-6, 5, 5);
   thermal::RayTraceParams p;
   p.rays = 0;
-  EXPECT_THROW(BeamTracer(bed, g, 20e-6, p), InputError);
+  EXPECT_THROW(BeamTracer(bed, g, 20e-6, p, {}), InputError);
   for (const double cutoff : {0.0, 1.0, -0.5, std::nan("")}) {
     p = {};
     p.cutoff = cutoff;
-    EXPECT_THROW(BeamTracer(bed, g, 20e-6, p), InputError) << cutoff;
+    EXPECT_THROW(BeamTracer(bed, g, 20e-6, p, {}), InputError) << cutoff;
   }
 }
 
@@ -561,6 +565,7 @@ namespace {
 thermal::SinterScene ray_traced_scene(unsigned effects) {
   auto scene = test::small_scene(effects, {15, 9, 7}, 60e-6);
   scene.absorption = thermal::LaserAbsorption::ray_trace;
+  scene.optics = thermal::Optics::constant;  // alpha per hit, as these tests expect
   scene.rays.rays = 2000;
   return scene;
 }

@@ -6,6 +6,8 @@
 
 #include "powderbed/thermal/beer_lambert_laser.hpp"
 #include "powderbed/thermal/contact_conduction.hpp"
+#include "powderbed/thermal/evaporation.hpp"
+#include "powderbed/thermal/fresnel_absorptance.hpp"
 #include "powderbed/thermal/surface_losses.hpp"
 #include "powderbed/thermal/wetting.hpp"
 
@@ -52,6 +54,26 @@ void conduction_ratios(const bed::Bed& bed, const Sinter& sinter, double k, doub
   r.substrate_ratio = contact_ratio(bed, floor_shape, k, dt, r.laser_flux);
 }
 
+// The regime by King et al.'s normalised enthalpy, and evaporation at T_b over the laser.
+void regime_numbers(const SinterScene& scene, const Material& m, ExplainReport& r) {
+  const PhaseChange& pc = m.phase_change();
+  const double t0 = scene.initial_temperature, t_m = pc.melting_point;
+  const double t_mid = 0.5 * (t0 + t_m);
+  const double rho_c = m.density(t_mid) * m.solid_specific_heat(t_mid);
+  const double diffusivity = m.solid_conductivity(t_mid) / rho_c;
+  const double flat = scene.absorption == LaserAbsorption::ray_trace && scene.optics == Optics::fresnel
+                          ? fresnel_absorptance({scene.index_n_solid, scene.index_k_solid}, 1.0)
+                          : scene.absorptivity;
+  const double w = scene.spot_radius;
+  r.normalised_enthalpy = flat * scene.power /
+                          (M_PI * rho_c * t_m * std::sqrt(diffusivity * scene.speed * w * w * w));
+  r.keyhole_threshold = M_PI * pc.boiling_point / t_m;
+  const EvaporationParams vapour{pc.boiling_point, pc.latent_vapour, scene.molar_mass,
+                                 scene.ambient_pressure, scene.back_condensation};
+  r.evaporation_ratio =
+      pc.latent_vapour * evaporation_mass_flux(vapour, pc.boiling_point) / r.laser_flux;
+}
+
 // The scale analysis's numbers (all but the text).
 ExplainReport scale_numbers(const bed::Bed& bed, const SinterScene& scene, const Sinter& sinter) {
   ExplainReport r;
@@ -82,6 +104,7 @@ ExplainReport scale_numbers(const bed::Bed& bed, const SinterScene& scene, const
                                       scene.contact_angle * M_PI / 180);
   r.wetting_time = m.density(t0) * 4.0 / 3.0 * M_PI * r_mean * r_mean * r_mean * c_mean /
                    (k * conduction_shape_factor(cap.base_radius, cap.centroid_height));
+  regime_numbers(scene, m, r);
   return r;
 }
 
@@ -127,6 +150,20 @@ std::string report_text(const ExplainReport& r, const SinterScene& scene, const 
       std::string(wetting_matters ? "shorter than the dwell, particles melt: wetting matters"
                                   : "particles do not melt or touch the substrate: negligible") +
           (scene.has(kWetting) ? " (on)" : wetting_matters ? " but is OFF" : " (off)"));
+  const auto on = [&](unsigned effect) { return scene.has(effect) ? " (on)" : " but is OFF"; };
+  const bool keyhole = r.normalised_enthalpy > r.keyhole_threshold;
+  row("normalised enthalpy dH/h_s (King 2014)", r.normalised_enthalpy,
+      keyhole ? std::string("above pi T_b/T_m: keyhole regime, the depression matters") +
+                    on(kDepression)
+              : r.normalised_enthalpy > 0.5 * r.keyhole_threshold
+                    ? std::string("transition: the surface nears T_b, the depression may open") +
+                          on(kDepression)
+                    : std::string("conduction regime"));
+  row("keyhole threshold pi T_b / T_m", r.keyhole_threshold, "");
+  row("evaporation at T_b / laser", r.evaporation_ratio,
+      r.normalised_enthalpy > 0.5 * r.keyhole_threshold
+          ? std::string("the surface reaches T_b: evaporation bounds it") + on(kEvaporation)
+          : verdict(r.evaporation_ratio, scene.has(kEvaporation)));
   row("phase change window (K)", sinter.material().phase_change().window,
       scene.has(kPhaseChange) ? "phase change on" : "phase change OFF: no latent heat");
   out << "Time steps: grid bound " << sinter.stable_steps().grid << " s, particle bound "

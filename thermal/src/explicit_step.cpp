@@ -232,13 +232,11 @@ void grid_step(Sinter::State& s, double dt) {
   }
   if (!s.top.empty()) raised_top_layer<Variable>(s, dt);
   // Energy from the laser and the particles (free nodes only, booked when it was produced).
-  if (s.top.empty()) {
-    const double top_volume = g.volume(g.nz - 1);
-    for (const auto& [node, energy] : s.sources) e[node] += energy / top_volume;
-  } else {
-    for (const auto& [node, energy] : s.sources) e[node] += energy / top_node_volume(s, node);
-  }
+  for (const auto& [node, energy] : s.sources) e[node] += energy / node_volume(s, node);
   s.sources.clear();
+  // The depression: the beam's energy drills from each column's surface down, each node filled
+  // to T_d with what conduction and the particles brought it this step counted.
+  if (s.scene.has(kDepression)) drill(s);
   // Second pass: the update above read only the old temperatures.
   double hottest = s.node_max;
 #pragma omp parallel for schedule(static) reduction(max : hottest) if (g.size() >= kParallelNodes)
@@ -265,8 +263,11 @@ void explicit_step(Sinter::State& s, double dt) {
   if (s.tracer && s.scene.has(kLaser | kLaserSubstrate)) prepare_traces(s, s.time, s.time + dt);
   if (!s.x.empty()) {
     const double dt_p = dt / static_cast<double>(s.substeps);
-    for (std::size_t sub = 0; sub < s.substeps; ++sub)
+    const bool evaporation = s.scene.has(kEvaporation);
+    for (std::size_t sub = 0; sub < s.substeps; ++sub) {
       particles(s, s.time + dt_p * static_cast<double>(sub), dt_p);
+      if (evaporation) evaporate_particles(s, dt_p);
+    }
     s.particle_steps += s.substeps;
   }
   if (s.scene.has(kWetting)) {
@@ -274,6 +275,7 @@ void explicit_step(Sinter::State& s, double dt) {
     wetted_exchange(s, dt);
   }
   if (s.scene.has(kLaserSubstrate)) s.substrate_laser(s, s.time, dt);
+  if (s.scene.has(kEvaporation)) evaporate_surface(s, dt);
   boundary_outflow(s, dt);
   if (s.scene.has(kVariableProperties)) grid_step<true>(s, dt);
   else grid_step<false>(s, dt);

@@ -6,7 +6,11 @@
 #include <cmath>
 #include <optional>
 
+#include <fmt/format.h>
+
+#include "powderbed/bed/errors.hpp"
 #include "powderbed/thermal/beer_lambert_laser.hpp"
+#include "powderbed/thermal/vapour_depression.hpp"
 #include "solver_state.hpp"
 
 namespace powderbed::thermal {
@@ -55,7 +59,7 @@ void beer_lambert_substrate(Sinter::State& s, double t, double dt) {
       const double dx = g.x(i) - xl;
       const double energy =
           node_laser_power(laser, dx * dx + dy * dy, s.transmission[i + g.nx * j], g.dx, g.dy) * dt;
-      s.sources.push_back({g.index(i, j, k), energy});
+      add_surface_energy(s, g.index(i, j, k), energy);
       absorbed += energy;
     }
   }
@@ -131,7 +135,7 @@ void ray_traced_substrate(Sinter::State& s, double t, double dt) {
       const double de = energy * e.fraction;
       absorbed += de;
       if (s.g.fixed_top(e.target)) into_boundary += de;  // a Dirichlet node passes it on
-      else s.sources.push_back({e.target, de});
+      else add_surface_energy(s, e.target, de);
     }
   };
   add(*blend.a, 1 - blend.u);
@@ -140,16 +144,21 @@ void ray_traced_substrate(Sinter::State& s, double t, double dt) {
   s.ledger.boundary += into_boundary;
 }
 
-// Absorptivity by phase: molten (T >= T_m) surfaces take the liquid value.
-void update_absorptivities(Sinter::State& s) {
-  const double solid = s.scene.absorptivity;
-  const double liquid = std::isnan(s.scene.absorptivity_liquid) ? solid : s.scene.absorptivity_liquid;
+// The surfaces as the next trace sees them: phases (molten: T >= T_m) and, with the
+// depression, the depth of the T_d isotherm on each top-face column.
+void update_surfaces(Sinter::State& s) {
   const double t_m = s.scene.phase_change.melting_point;
-  for (std::size_t i = 0; i < s.x.size(); ++i)
-    s.particle_alpha[i] = s.temperature[i] >= t_m ? liquid : solid;
-  const std::size_t top = s.g.index(0, 0, s.g.nz - 1);
-  for (std::size_t c = 0; c < s.node_alpha.size(); ++c)
-    s.node_alpha[c] = s.node_temperature[top + c] >= t_m ? liquid : solid;
+  TraceSurfaces& f = s.surfaces;
+  for (std::size_t i = 0; i < s.x.size(); ++i) f.particle_phase[i] = s.temperature[i] >= t_m;
+  const SubstrateGeometry& g = s.g;
+  const std::size_t plane = g.nx * g.ny, top = g.index(0, 0, g.nz - 1);
+  for (std::size_t c = 0; c < plane; ++c) f.node_phase[c] = s.node_temperature[top + c] >= t_m;
+  if (!s.scene.has(kDepression)) return;
+  for (std::size_t c = 0; c < plane; ++c) {
+    const auto column = [&](std::size_t k) { return s.node_temperature[top + c - k * plane]; };
+    f.depression[c] = isotherm_depth(column, g.nz - 1, g.dz, cavity_temperature(s));
+    s.depression_depth = std::max(s.depression_depth, f.depression[c]);
+  }
 }
 
 void trace(Sinter::State& s, std::uint64_t key) {
@@ -160,13 +169,12 @@ void trace(Sinter::State& s, std::uint64_t key) {
     s.tracer->remove(gone);
     s.vaporised_traced = s.vaporised;
   }
-  update_absorptivities(s);
+  update_surfaces(s);
   const std::size_t m = key_segment(key);
   const ScanSegment& seg = s.schedule.segments()[m];
   const auto d = s.schedule.direction(m);
   const double along = static_cast<double>(key - trace_key(m, 0)) * s.trace_spacing;
-  AbsorptionMap map = s.tracer->trace(seg.x0 + along * d[0], seg.y0 + along * d[1], key,
-                                      s.particle_alpha, s.node_alpha);
+  AbsorptionMap map = s.tracer->trace(seg.x0 + along * d[0], seg.y0 + along * d[1], key, s.surfaces);
   TraceSummary& sum = s.traces;
   ++sum.traces;
   sum.absorbed += map.absorptance();
@@ -175,6 +183,7 @@ void trace(Sinter::State& s, std::uint64_t key) {
   sum.outside += map.outside;
   sum.dropped += map.dropped;
   sum.hits += map.hits;
+  sum.absorbed_depression += map.absorbed_depression;
   s.traced.push_back({key, std::move(map)});
 }
 
@@ -202,17 +211,77 @@ void setup_laser(Sinter::State& s, const bed::Bed& bed) {
   }
   s.particle_laser = ray_traced_particles;
   s.substrate_laser = ray_traced_substrate;
-  s.tracer = std::make_unique<BeamTracer>(bed, s.g, s.scene.spot_radius, s.scene.rays);
+  s.tracer = std::make_unique<BeamTracer>(bed, s.g, s.scene.spot_radius, s.scene.rays,
+                                          surface_optics(s.scene));
   s.trace_spacing = s.scene.retrace_interval * s.scene.spot_radius;
-  s.particle_alpha.assign(s.x.size(), s.scene.absorptivity);
-  s.node_alpha.assign(s.g.nx * s.g.ny, s.scene.absorptivity);
+  s.surfaces.particle_phase.assign(s.x.size(), 0);
+  s.surfaces.node_phase.assign(s.g.nx * s.g.ny, 0);
+  if (s.scene.has(kDepression)) s.surfaces.depression.assign(s.g.nx * s.g.ny, 0.0);
+}
+
+SurfaceOptics surface_optics(const SinterScene& scene) {
+  SurfaceOptics o;
+  o.model = scene.optics;
+  const double liquid =
+      std::isnan(scene.absorptivity_liquid) ? scene.absorptivity : scene.absorptivity_liquid;
+  o.alpha[0] = scene.absorptivity;
+  o.alpha[1] = liquid;
+  o.index[0] = {scene.index_n_solid, scene.index_k_solid};
+  o.index[1] = {scene.index_n_liquid, scene.index_k_liquid};
+  return o;
+}
+
+void add_surface_energy(Sinter::State& s, std::size_t top_node, double energy) {
+  if (!s.scene.has(kDepression)) {
+    s.sources.push_back({top_node, energy});
+    return;
+  }
+  const std::size_t c = top_node - s.g.index(0, 0, s.g.nz - 1);
+  if (s.column_energy[c] == 0) s.touched_columns.push_back(static_cast<std::uint32_t>(c));
+  s.column_energy[c] += energy;
+}
+
+// Each column's energy from its surface down, into the nodes' enthalpies (the grid step's
+// conduction and sources are in them already): a node takes what brings it to T_d, the rest
+// goes on to the node below (the beam drills through what it displaces).
+void drill(Sinter::State& s) {
+  const SubstrateGeometry& g = s.g;
+  const std::size_t plane = g.nx * g.ny, top = g.index(0, 0, g.nz - 1);
+  const double e_d = s.per_m3.enthalpy(s.depression_temperature);
+  for (const std::uint32_t c : s.touched_columns) {
+    double energy = s.column_energy[c];
+    s.column_energy[c] = 0;
+    for (std::size_t node = top + c; energy > 0; node -= plane) {
+      const double room = node_volume(s, node) * (e_d - s.e[node]);
+      const double take = std::clamp(room, 0.0, energy);
+      s.e[node] += take / node_volume(s, node);
+      energy -= take;
+      if (energy > 0 && node < 2 * plane) {  // the lowest free node is full: nowhere to go
+        throw NumericalError(fmt::format(
+            "the vapour depression reached the substrate's bottom under column ({}, {}) at step "
+            "{} (t = {:g} s): the pool is deeper than the grid (accepted: a deeper "
+            "substrate.depth)",
+            c % g.nx, c / g.nx, s.step, s.time));
+      }
+    }
+  }
+  s.touched_columns.clear();
+}
+
+std::size_t surface_node(const Sinter::State& s, std::size_t top_node) {
+  if (!s.scene.has(kDepression)) return top_node;
+  const std::size_t plane = s.g.nx * s.g.ny;
+  std::size_t node = top_node;
+  while (node >= 2 * plane && s.node_temperature[node] >= cavity_temperature(s)) node -= plane;
+  return node;
 }
 
 double absorbed_fraction(const Sinter::State& s, double x, double y) {
   if (s.tracer) {
-    std::vector<double> particle_alpha(s.x.size(), s.scene.absorptivity);
-    std::vector<double> node_alpha(s.g.nx * s.g.ny, s.scene.absorptivity);
-    const AbsorptionMap map = s.tracer->trace(x, y, 0, particle_alpha, node_alpha);
+    TraceSurfaces start;  // solid and flat
+    start.particle_phase.assign(s.x.size(), 0);
+    start.node_phase.assign(s.g.nx * s.g.ny, 0);
+    const AbsorptionMap map = s.tracer->trace(x, y, 0, start);
     return map.absorptance() / (1 - map.outside);
   }
   // Beer–Lambert: the particles' share plus the substrate's, summed as the kernels deposit them.
@@ -247,6 +316,8 @@ void prepare_traces(Sinter::State& s, double t0, double t1) {
     for (std::uint64_t k = k_at(t0); k <= last; ++k) needed.push_back(trace_key(m, k));
   }
   if (needed.empty()) return;
+  // A particle that vaporised leaves the beam at once: every map is traced anew without it.
+  if (s.vaporised != s.vaporised_traced) s.traced.clear();
   std::erase_if(s.traced,
                 [&](const Sinter::State::TracedBeam& t) { return t.k < needed.front(); });
   bool added = false;

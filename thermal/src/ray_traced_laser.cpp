@@ -3,13 +3,16 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/ray_trace.hpp"
+#include "powderbed/thermal/fresnel_absorptance.hpp"
 
 namespace powderbed::thermal {
 
@@ -27,10 +30,78 @@ struct Event {
 
 struct ChunkTally {
   std::vector<Event> particles, nodes;
-  double escaped = 0, outside = 0, dropped = 0, hits = 0;
+  double escaped = 0, outside = 0, dropped = 0, hits = 0, depression = 0;
 };
 
+// The depression under one trace: depth per top-face column, bilinear between the columns'
+// nodes, and the x-y box of the columns it holds (empty: flat everywhere).
+class Depression {
+ public:
+  Depression(const SubstrateGeometry& g, const std::vector<double>& depth) : g_(g), depth_(depth) {
+    for (std::size_t c = 0; c < depth.size(); ++c) {
+      if (depth[c] <= 0) continue;
+      const double x = g.x(c % g.nx), y = g.y(c / g.nx);
+      lo_ = {std::min(lo_[0], x - g.dx), std::min(lo_[1], y - g.dy)};
+      hi_ = {std::max(hi_[0], x + g.dx), std::max(hi_[1], y + g.dy)};
+    }
+  }
+  // Whether the top face at (x, y) may be depressed.
+  bool over(double x, double y) const {
+    return x > lo_[0] && x < hi_[0] && y > lo_[1] && y < hi_[1];
+  }
+  // Height of the surface at (x, y) below z_top is g.z_top - depth(x, y); the gradient of depth.
+  double depth(double x, double y, double* ddx = nullptr, double* ddy = nullptr) const {
+    const double fx = std::clamp((x - g_.x0) / g_.dx, 0.0, static_cast<double>(g_.nx - 1) - 1e-9);
+    const double fy = std::clamp((y - g_.y0) / g_.dy, 0.0, static_cast<double>(g_.ny - 1) - 1e-9);
+    const auto i = static_cast<std::size_t>(fx), j = static_cast<std::size_t>(fy);
+    const double u = fx - static_cast<double>(i), v = fy - static_cast<double>(j);
+    const double* d = depth_.data() + i + g_.nx * j;
+    const double d00 = d[0], d10 = d[1], d01 = d[g_.nx], d11 = d[g_.nx + 1];
+    if (ddx) *ddx = ((1 - v) * (d10 - d00) + v * (d11 - d01)) / g_.dx;
+    if (ddy) *ddy = ((1 - u) * (d01 - d00) + u * (d11 - d10)) / g_.dy;
+    return (1 - v) * ((1 - u) * d00 + u * d10) + v * ((1 - u) * d01 + u * d11);
+  }
+  // Below the surface: the point lies inside the solid or melt.
+  bool inside(const Vec3& p) const { return p[2] < g_.z_top - depth(p[0], p[1]); }
+
+ private:
+  const SubstrateGeometry& g_;
+  const std::vector<double>& depth_;
+  std::array<double, 2> lo_{kInf, kInf}, hi_{-kInf, -kInf};
+};
+
+// Where a ray below the top face (inside the depression's cavity) next meets the surface:
+// marching along it from `o` in steps `h`, then bisecting the step that crossed it. nullopt: the
+// ray rose back through the top face first (at parameter `*t_exit`).
+std::optional<double> cavity_hit(const Depression& dep, double z_top, const Vec3& o,
+                                 const Vec3& d, double h, double* t_exit) {
+  const auto at = [&](double t) { return Vec3{o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]}; };
+  double t0 = 0;
+  for (;;) {
+    const double t1 = t0 + h;
+    const Vec3 p = at(t1);
+    if (p[2] >= z_top && d[2] > 0) {
+      *t_exit = (z_top - o[2]) / d[2];
+      return std::nullopt;
+    }
+    if (dep.inside(p)) {
+      double a = t0, b = t1;
+      for (int k = 0; k < 30; ++k) {
+        const double m = 0.5 * (a + b);
+        (dep.inside(at(m)) ? b : a) = m;
+      }
+      return a;
+    }
+    t0 = t1;
+  }
+}
+
 }  // namespace
+
+double SurfaceOptics::absorptance(unsigned liquid, double cos_incidence) const {
+  if (model == Optics::constant) return alpha[liquid];
+  return fresnel_absorptance(index[liquid], cos_incidence);
+}
 
 struct BeamTracer::Impl {
   bed::Bed bed;
@@ -39,6 +110,7 @@ struct BeamTracer::Impl {
   SubstrateGeometry g;
   double spot_radius = 0, z_start = 0;
   RayTraceParams params;
+  SurfaceOptics optics;
 
   void rebuild() {
     grid = std::make_unique<bed::SphereGrid>(bed);
@@ -48,51 +120,92 @@ struct BeamTracer::Impl {
   }
 
   // Follows one ray of power `power` from o downwards; books what it leaves where.
-  void follow(Vec3 o, double power, const std::vector<double>& particle_alpha,
-              const std::vector<double>& node_alpha, bed::RandomStream& rng,
-              ChunkTally& tally) const;
+  void follow(Vec3 o, double power, const TraceSurfaces& surfaces, const Depression& dep,
+              bed::RandomStream& rng, ChunkTally& tally) const;
+  // Books `absorbed` at the top face or wall point p on the columns around it.
+  void book_top(const Vec3& p, double absorbed, ChunkTally& tally) const {
+    const TopStencil st = top_stencil(g, p[0], p[1]);
+    for (int w = 0; w < 4; ++w)
+      if (st.weight[w] > 0)
+        tally.nodes.push_back({static_cast<std::uint32_t>(st.node[w]), st.weight[w] * absorbed});
+  }
+  unsigned column_phase(const Vec3& p, const TraceSurfaces& surfaces) const {
+    const TopStencil st = top_stencil(g, p[0], p[1]);
+    const int nearest = static_cast<int>(std::max_element(st.weight, st.weight + 4) - st.weight);
+    return surfaces.node_phase[st.node[nearest] % (g.nx * g.ny)];
+  }
 };
 
-void BeamTracer::Impl::follow(Vec3 o, double power, const std::vector<double>& particle_alpha,
-                              const std::vector<double>& node_alpha, bed::RandomStream& rng,
+void BeamTracer::Impl::follow(Vec3 o, double power, const TraceSurfaces& surfaces,
+                              const Depression& dep, bed::RandomStream& rng,
                               ChunkTally& tally) const {
   const double floor_power = params.cutoff * power;
   const double x1 = g.x(g.nx - 1), y1 = g.y(g.ny - 1);
+  const double march = 0.5 * std::min(g.dx, g.dy);
   Vec3 d = {0, 0, -1};
   std::uint32_t skip = bed::SphereGrid::kNoSphere;
+  bool below = false;  // in the depression's cavity, under the top face
   for (int bounce = 0; bounce < params.max_bounces; ++bounce) {
-    const double t_plane = d[2] < 0 ? (g.z_top - o[2]) / d[2] : kInf;
-    const auto [s, t] = grid->first_hit(o, d, skip, t_plane);
-    if (s == bed::SphereGrid::kNoSphere && !std::isfinite(t_plane)) {
-      tally.escaped += power;
-      return;
-    }
-    const double reach = s == bed::SphereGrid::kNoSphere ? t_plane : t;
-    const Vec3 p = {o[0] + reach * d[0], o[1] + reach * d[1], o[2] + reach * d[2]};
-    Vec3 n;
+    Vec3 p, n;
     double alpha;
-    tally.hits += 1;
-    if (s != bed::SphereGrid::kNoSphere) {
-      const Vec3 c = grid->centre(s);
-      n = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
-      const double len = std::sqrt(bed::dot(n, n));
-      for (double& v : n) v /= len;  // normalised: a ray that starts inside a sphere hits at o
-      alpha = particle_alpha[index[s]];
-      tally.particles.push_back({index[s], alpha * power});
-      skip = s;
-    } else {
+    if (below) {
+      double t_exit = 0;
+      const auto t = cavity_hit(dep, g.z_top, o, d, march, &t_exit);
+      if (!t) {  // back up through the top face: on among the spheres
+        o = {o[0] + t_exit * d[0], o[1] + t_exit * d[1], g.z_top};
+        below = false;
+        continue;
+      }
+      p = {o[0] + *t * d[0], o[1] + *t * d[1], o[2] + *t * d[2]};
+      tally.hits += 1;
       if (p[0] < g.x0 || p[0] > x1 || p[1] < g.y0 || p[1] > y1) {
         tally.outside += power;
         return;
       }
-      const TopStencil st = top_stencil(g, p[0], p[1]);
-      const int nearest = static_cast<int>(std::max_element(st.weight, st.weight + 4) - st.weight);
-      alpha = node_alpha[st.node[nearest] % (g.nx * g.ny)];
-      for (int w = 0; w < 4; ++w)
-        if (st.weight[w] > 0)
-          tally.nodes.push_back({static_cast<std::uint32_t>(st.node[w]), st.weight[w] * alpha * power});
-      n = {0, 0, 1};
-      skip = bed::SphereGrid::kNoSphere;
+      double ddx = 0, ddy = 0;
+      dep.depth(p[0], p[1], &ddx, &ddy);
+      n = {ddx, ddy, 1};
+      const double len = std::sqrt(bed::dot(n, n));
+      for (double& v : n) v /= len;
+      alpha = optics.absorptance(1, -bed::dot(d, n));  // the wall is molten
+      book_top(p, alpha * power, tally);
+      tally.depression += alpha * power;
+    } else {
+      const double t_plane = d[2] < 0 ? (g.z_top - o[2]) / d[2] : kInf;
+      const auto [s, t] = grid->first_hit(o, d, skip, t_plane);
+      if (s == bed::SphereGrid::kNoSphere && !std::isfinite(t_plane)) {
+        tally.escaped += power;
+        return;
+      }
+      const double reach = s == bed::SphereGrid::kNoSphere ? t_plane : t;
+      p = {o[0] + reach * d[0], o[1] + reach * d[1], o[2] + reach * d[2]};
+      const bool into_cavity = s == bed::SphereGrid::kNoSphere && dep.over(p[0], p[1]) &&
+                               dep.depth(p[0], p[1]) > 0;
+      if (!into_cavity) tally.hits += 1;
+      if (s != bed::SphereGrid::kNoSphere) {
+        const Vec3 c = grid->centre(s);
+        n = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+        const double len = std::sqrt(bed::dot(n, n));
+        for (double& v : n) v /= len;  // normalised: a ray that starts inside a sphere hits at o
+        const std::uint32_t target = index[s];
+        alpha = optics.absorptance(surfaces.particle_phase[target], -bed::dot(d, n));
+        tally.particles.push_back({target, alpha * power});
+        skip = s;
+      } else {
+        if (p[0] < g.x0 || p[0] > x1 || p[1] < g.y0 || p[1] > y1) {
+          tally.outside += power;
+          return;
+        }
+        skip = bed::SphereGrid::kNoSphere;
+        if (into_cavity) {
+          o = p;
+          below = true;
+          continue;
+        }
+        n = {0, 0, 1};
+        alpha = optics.absorptance(column_phase(p, surfaces), -d[2]);
+        book_top(p, alpha * power, tally);
+      }
     }
     power *= 1 - alpha;
     if (power < floor_power) {
@@ -116,10 +229,11 @@ void validate(const RayTraceParams& params) {
 }
 
 BeamTracer::BeamTracer(const bed::Bed& bed, const SubstrateGeometry& g, double spot_radius,
-                       const RayTraceParams& params)
+                       const RayTraceParams& params, const SurfaceOptics& optics)
     : impl_(std::make_unique<Impl>()) {
   validate(params);
   Impl& m = *impl_;
+  m.optics = optics;
   m.bed = bed;
   m.g = g;
   m.spot_radius = spot_radius;
@@ -156,9 +270,10 @@ void BeamTracer::remove(const std::vector<std::uint32_t>& particles) {
 }
 
 AbsorptionMap BeamTracer::trace(double x, double y, std::uint64_t trace,
-                                const std::vector<double>& particle_alpha,
-                                const std::vector<double>& node_alpha) const {
+                                const TraceSurfaces& surfaces) const {
   const Impl& m = *impl_;
+  static const std::vector<double> kFlat;
+  const Depression dep(m.g, surfaces.depression.empty() ? kFlat : surfaces.depression);
   const std::size_t rays = m.params.rays;
   bed::RandomStream jitter(m.params.seed, trace);
   const double xi = jitter.uniform(), zeta = jitter.uniform();
@@ -174,13 +289,13 @@ AbsorptionMap BeamTracer::trace(double x, double y, std::uint64_t trace,
       const double v = std::fmod(static_cast<double>(k) * golden + zeta, 1.0);
       const double r = m.spot_radius * std::sqrt(-0.5 * std::log1p(-u));
       const double phi = 2 * std::numbers::pi * v;
-      m.follow({x + r * std::cos(phi), y + r * std::sin(phi), m.z_start}, per_ray, particle_alpha,
-               node_alpha, rng, tally[c]);
+      m.follow({x + r * std::cos(phi), y + r * std::sin(phi), m.z_start}, per_ray, surfaces, dep,
+               rng, tally[c]);
     }
   }
   // Chunk order, then target order: the same sums for any thread count.
   AbsorptionMap map;
-  std::vector<double> particles(particle_alpha.size(), 0.0), nodes;
+  std::vector<double> particles(surfaces.particle_phase.size(), 0.0), nodes;
   std::vector<std::uint32_t> node_targets;
   for (const ChunkTally& t : tally) {
     for (const Event& e : t.particles) particles[e.target] += e.power;
@@ -189,6 +304,7 @@ AbsorptionMap BeamTracer::trace(double x, double y, std::uint64_t trace,
     map.outside += t.outside;
     map.dropped += t.dropped;
     map.hits += t.hits * per_ray;
+    map.absorbed_depression += t.depression;
   }
   std::sort(node_targets.begin(), node_targets.end());
   node_targets.erase(std::unique(node_targets.begin(), node_targets.end()), node_targets.end());

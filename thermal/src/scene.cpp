@@ -12,6 +12,34 @@ bool positive(double v) { return std::isfinite(v) && v > 0; }
 
 }  // namespace
 
+// The optics, evaporation and depression (docs/sinter.md "The melt pool at process settings").
+void SinterScene::validate_process_models() const {
+  const auto require = require_in_range;
+  if (absorption == LaserAbsorption::ray_trace && optics == Optics::fresnel) {
+    require(positive(index_n_solid), "laser.index-n-solid", index_n_solid,
+            "n > 0 (the material file's index_n_solid, or laser.optics = constant)");
+    require(positive(index_k_solid), "laser.index-k-solid", index_k_solid,
+            "k > 0 (the material file's index_k_solid, or laser.optics = constant)");
+    require(positive(index_n_liquid), "laser.index-n-liquid", index_n_liquid,
+            "n > 0 (the material file's index_n_liquid, or laser.optics = constant)");
+    require(positive(index_k_liquid), "laser.index-k-liquid", index_k_liquid,
+            "k > 0 (the material file's index_k_liquid, or laser.optics = constant)");
+  }
+  if (!has(kEvaporation) && !has(kDepression)) return;
+  const char* effect = has(kEvaporation) ? "effects.evaporation" : "effects.depression";
+  if (integrator != Integrator::explicit_euler)
+    throw InputError(fmt::format("{}: works with --integrator explicit only (accepted: "
+                                 "--integrator explicit, or {} = false)",
+                                 effect, effect));
+  require(positive(molar_mass), "material.molar-mass", molar_mass, "M > 0 kg/mol");
+  require(positive(ambient_pressure), "environment.pressure", ambient_pressure, "p0 > 0 Pa");
+  require(back_condensation >= 0 && back_condensation < 1, "evaporation.back-condensation",
+          back_condensation, "0 <= beta_r < 1");
+  if (has(kDepression))
+    require(positive(surface_tension), "material.surface-tension", surface_tension,
+            "gamma > 0 N/m");
+}
+
 void SinterScene::validate() const {
   const auto require = require_in_range;  // bed/errors.hpp
   require(convection >= 0 && std::isfinite(convection), "environment.convection", convection,
@@ -36,6 +64,8 @@ void SinterScene::validate() const {
           retrace_interval, "0 < interval <= 1 spot radius");
   require(contact_angle > 0 && contact_angle < 180, "wetting.contact-angle", contact_angle,
           "0 < theta < 180 degrees");
+  require(positive(arrested_conductance), "wetting.arrested-conductance", arrested_conductance,
+          "h_c > 0 W/m^2K");
   if (absorption == LaserAbsorption::ray_trace && integrator != Integrator::explicit_euler)
     throw InputError("laser.absorption: ray-trace works with --integrator explicit only "
                      "(accepted: --integrator explicit, or laser.absorption = beer-lambert)");
@@ -56,6 +86,7 @@ void SinterScene::validate() const {
   require(positive(max_particle_rise), "time.max-particle-rise", max_particle_rise,
           "a rise > 0 K per particle step");
   require(std::isnan(t_end) || positive(t_end), "t-end", t_end, "t_end > 0 s");
+  validate_process_models();
 }
 
 }  // namespace powderbed::thermal

@@ -10,6 +10,7 @@
 #include "powderbed/thermal/beer_lambert_laser.hpp"
 #include "powderbed/thermal/contact_conduction.hpp"
 #include "powderbed/thermal/melt_pool.hpp"
+#include "powderbed/thermal/vapour_depression.hpp"
 #include "solver_state.hpp"
 
 namespace powderbed::thermal {
@@ -29,6 +30,8 @@ double table_high(const SinterScene& s) {
 Material scene_material(const SinterScene& scene, const MaterialTable& table) {
   PhaseChange phase = scene.phase_change;
   if (!scene.has(kPhaseChange)) phase.latent_melt = phase.latent_vapour = 0;
+  // With evaporation L_v leaves with the evaporated mass (evaporation.cpp), not at T_v.
+  if (scene.has(kEvaporation)) phase.latent_vapour = 0;
   if (scene.has(kVariableProperties))
     return Material(table, phase, scene.hold_from, scene.liquid_conductivity);
   const Material full(table, scene.phase_change, scene.hold_from, scene.liquid_conductivity);
@@ -94,9 +97,15 @@ SubstrateGeometry make_grid(const bed::Bed& bed, const SinterScene& scene) {
 // Forward-Euler bounds (Gershgorin): dt <= C / Σ G per node and per particle, with the
 // smallest capacity over the temperatures a run can reach and the largest conductivity any
 // neighbour can have, so the bound holds in every state.
+// The hottest state the bounds consider: vaporisation, or with evaporation (no particle leaves
+// at a temperature) the top of the property tables.
+double hottest_state(const Sinter::State& s) {
+  return std::min(s.vaporised_temperature, table_high(s.scene));
+}
+
 double max_conductivity(const Sinter::State& s) {
   double k_max = 0;
-  for (double t = s.scene.initial_temperature; t <= s.vaporised_temperature; t += 0.25)
+  for (double t = s.scene.initial_temperature; t <= hottest_state(s); t += 0.25)
     k_max = std::max(k_max, s.conductivity(t));
   return k_max;
 }
@@ -104,7 +113,7 @@ double max_conductivity(const Sinter::State& s) {
 StableSteps compute_stable_steps(const Sinter::State& s) {
   StableSteps out;
   const SubstrateGeometry& g = s.g;
-  const double t_lo = s.scene.initial_temperature, t_hi = s.vaporised_temperature;
+  const double t_lo = s.scene.initial_temperature, t_hi = hottest_state(s);
   const double k_max = s.k_max;
   double capacity_over_k = std::numeric_limits<double>::infinity();
   for (double t = t_lo; t <= t_hi; t += 0.25) {
@@ -177,7 +186,7 @@ std::pair<double, double> internal_energy(const Sinter::State& s) {
 
 
 double EnergyLedger::relative_error() const {
-  const double in = absorbed() + convection + radiation;
+  const double in = absorbed() + convection + radiation + evaporation;
   const double out = internal_particles + internal_substrate + boundary;
   const double scale = std::max({std::abs(absorbed()), std::abs(in), std::abs(out)});
   return scale > 0 ? std::abs(in - out) / scale : 0.0;
@@ -233,6 +242,31 @@ void setup_track(Sinter::State& s, const bed::Bed& bed) {
                             scene.jump_speed);
 }
 
+// Vaporisation: past T_v's window, or with evaporation when a particle's mass has evaporated;
+// the vapour's parameters and the depression's temperature T_d.
+void setup_vapour(Sinter::State& s) {
+  const SinterScene& scene = s.scene;
+  s.vaporised_temperature = scene.has(kEvaporation)
+                                ? std::numeric_limits<double>::infinity()
+                                : scene.phase_change.boiling_point + 0.5 * scene.phase_change.window;
+  s.vapour = {scene.phase_change.boiling_point, scene.phase_change.latent_vapour, scene.molar_mass,
+              scene.ambient_pressure, scene.back_condensation};
+  s.depression_temperature =
+      scene.has(kDepression)
+          ? depression_temperature(s.vapour, scene.surface_tension, scene.spot_radius)
+          : std::numeric_limits<double>::infinity();
+  s.particle_depression_temperature.assign(s.x.size(), std::numeric_limits<double>::infinity());
+  s.particle_depression_enthalpy.assign(s.x.size(), std::numeric_limits<double>::infinity());
+  if (!scene.has(kDepression)) return;
+  s.particle_depression_temperature.clear();
+  s.particle_depression_enthalpy.clear();
+  for (const double r : s.radius) {
+    const double t_d = depression_temperature(s.vapour, scene.surface_tension, r);
+    s.particle_depression_temperature.push_back(t_d);
+    s.particle_depression_enthalpy.push_back(s.per_kg.enthalpy(t_d));
+  }
+}
+
 // Particles at T0: positions, masses, projected areas, Beer–Lambert factors, exposure.
 void setup_particles(Sinter::State& s, const bed::Bed& bed) {
   const std::size_t n = bed.n();
@@ -258,6 +292,7 @@ void setup_particles(Sinter::State& s, const bed::Bed& bed) {
   s.peak.assign(n, t0);
   s.heat.assign(n, 0.0);
   s.gone.assign(n, 0);
+  s.initial_mass = s.mass;
 }
 
 // Substrate nodes at T0 and the Beer–Lambert transmission above each top node (1 without
@@ -280,6 +315,7 @@ void setup_substrate(Sinter::State& s) {
   }
   s.k_fixed = s.material.conductivity(t0);
   s.node_k.assign(g.size(), s.k_fixed);
+  if (s.scene.has(kDepression)) s.column_energy.assign(g.nx * g.ny, 0.0);
 }
 
 // The grid step (the user's, checked against the bound, or safety x the bound) and the particle
@@ -376,7 +412,6 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
   setup_top(s, std::move(top));
   check_bed(bed, s.g, s.top);
   setup_track(s, bed);
-  s.vaporised_temperature = scene.phase_change.boiling_point + 0.5 * scene.phase_change.window;
   s.surface = analyse_surface(bed, s.g.z_top);
   s.net = build_network(bed, s.g, s.top);
   s.layer_height = s.surface.layer_height;
@@ -386,6 +421,7 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
   s.laser = {scene.power, scene.spot_radius, scene.absorptivity, s.beta};
   s.environment = {scene.convection, scene.emissivity, scene.environment_temperature};
   setup_particles(s, bed);
+  setup_vapour(s);
   setup_substrate(s);
   setup_laser(s, bed);
   if (scene.has(kWetting)) setup_wetting(s);
@@ -420,6 +456,13 @@ void check_finite(const Sinter::State& s, bool grid) {
 
 namespace {
 
+PeakTemperatures peak_temperatures(const Sinter::State& s) {
+  PeakTemperatures p;
+  for (const double t : s.peak) p.particles = std::max(p.particles, t);
+  p.substrate = s.node_max;
+  return p;
+}
+
 // The run's result from its end state, its energies measured against those at its start;
 // throws NumericalError if the energy balance is broken.
 SinterResult summarise(Sinter::State& s, double particles_start, double substrate_start) {
@@ -449,12 +492,23 @@ SinterResult summarise(Sinter::State& s, double particles_start, double substrat
         s.step, error));
   }
   const double t_m = s.scene.phase_change.melting_point;
+  const bool evaporation = s.scene.has(kEvaporation);
+  r.peaks = peak_temperatures(s);
+  r.max_temperature = r.peaks.highest();
   for (std::size_t i = 0; i < s.x.size(); ++i) {
-    r.max_temperature = std::max(r.max_temperature, s.peak[i]);
     if (s.peak[i] >= t_m) ++r.particles_molten;
-    if (s.peak[i] >= s.scene.phase_change.boiling_point) ++r.particles_vaporised;
+    // Without evaporation a particle that reached T_v counts ([GZ]'s reading); with it, one
+    // whose mass evaporated.
+    if (evaporation ? s.gone[i] != 0 : s.peak[i] >= s.scene.phase_change.boiling_point)
+      ++r.particles_vaporised;
   }
-  r.max_temperature = std::max(r.max_temperature, s.node_max);
+  r.evaporated_mass_particles = s.evaporated_particles;
+  r.evaporated_mass = s.evaporated_particles + s.evaporated_substrate;
+  r.peak_recoil_pressure = s.peak_recoil;
+  if (s.scene.has(kDepression)) {
+    r.depression_temperature = s.depression_temperature;
+    r.depression_depth = s.depression_depth;
+  }
   const SubstrateGeometry& g = s.g;
   MeltPoolInput in{&g, &s.node_peak, &s.x, &s.y, &s.z, &s.radius, &s.peak, t_m,
                    g.x0 + 0.5 * static_cast<double>(g.nx - 1) * g.dx};
@@ -494,9 +548,7 @@ SinterResult Sinter::run(const std::function<void(const Sinter&)>& snapshot, std
     const auto now = std::chrono::steady_clock::now();
     if (progress && now - last_report > std::chrono::seconds(1)) {
       last_report = now;
-      double hottest = 0;
-      for (const double t : s.temperature) hottest = std::max(hottest, t);
-      progress({s.time, t_end, hottest, s.step});
+      progress({s.time, t_end, peak_temperatures(s), s.step});
     }
   }
   check_finite(s);
@@ -532,7 +584,9 @@ const std::vector<double>& Sinter::substrate_peak_planes() const { return s_->no
 std::vector<std::uint8_t> Sinter::particle_phase() const {
   std::vector<std::uint8_t> phase(s_->x.size());
   for (std::size_t i = 0; i < phase.size(); ++i)
-    phase[i] = s_->gone[i] ? 2 : static_cast<std::uint8_t>(s_->material.phase(s_->temperature[i]));
+    phase[i] = s_->gone[i] ? 2 : static_cast<std::uint8_t>(std::min(
+                                     s_->material.phase(s_->temperature[i]),
+                                     s_->scene.has(kEvaporation) ? 1u : 2u));
   return phase;
 }
 

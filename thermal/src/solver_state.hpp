@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "powderbed/thermal/beer_lambert_laser.hpp"
+#include "powderbed/thermal/evaporation.hpp"
 #include "powderbed/thermal/ray_traced_laser.hpp"
 #include "powderbed/thermal/solver.hpp"
 #include "powderbed/thermal/surface_losses.hpp"
@@ -33,6 +34,20 @@ struct Sinter::State {
   double beta = 0, layer_height = 0, t_end = 0;
   ScanSchedule schedule;  // the laser's path: the scene's single track or its scan path
   double vaporised_temperature = 0;  // T_v + ΔT/2: beyond it a particle has left the bed
+  // Evaporation and the depression (evaporation.hpp, vapour_depression.hpp): the vapour's
+  // parameters, T_d (infinite without the depression), the mass each particle started with (a
+  // particle whose mass has evaporated below kVaporisedMass of it has left the bed), the peak
+  // recoil pressure.
+  EvaporationParams vapour{};
+  double depression_temperature = 0;
+  std::vector<double> initial_mass;
+  // The depression: per particle T_d(r) (recoil against 2γ/r; infinite without the depression)
+  // and its specific enthalpy.
+  std::vector<double> particle_depression_temperature, particle_depression_enthalpy;
+  double peak_recoil = 0, depression_depth = 0;
+  std::vector<double> column_energy;  // the depression: laser energy per top-face column, J
+  std::vector<std::uint32_t> touched_columns;  // those with energy this step
+  double evaporated_particles = 0, evaporated_substrate = 0;  // kg
 
   // Particles (structure of arrays).
   std::vector<double> x, y, z, radius, mass, area, laser_factor;
@@ -72,7 +87,7 @@ struct Sinter::State {
   };
   std::vector<TracedBeam> traced;
   double trace_spacing = 0;
-  std::vector<double> particle_alpha, node_alpha;
+  TraceSurfaces surfaces;  // the phases and the depression the next trace sees
   std::size_t vaporised = 0, vaporised_traced = 0;  // gone particles; those the tracer removed
   TraceSummary traces;
 
@@ -84,10 +99,13 @@ struct Sinter::State {
   std::vector<std::int64_t> substrate_of;
   struct WettedContact {
     std::uint32_t particle;
-    double shape;  // π a^2 / z_c of the spread cap, m
+    double shape;  // A / z_c of the cap's base area on the plate, m
+    double interface;  // 1 / (h_c A) of an arrested contact, K/W (0: spread on remelted solid)
     std::vector<std::pair<std::size_t, double>> footprint;  // top nodes under the cap, weights
   };
   std::vector<WettedContact> wetted;
+  std::vector<double> unwetted_area;  // per top-face column, m^2: what caps have not wetted
+  std::size_t arrested = 0;           // wetted contacts still arrested
   std::size_t bridges = 0;  // pairs whose bridge has grown
   double k_max = 0;  // largest conductivity a run can reach (stability bounds)
 
@@ -125,12 +143,30 @@ struct Sinter::State {
 // Laser models (laser_sources.cpp): chooses s.particle_laser and s.substrate_laser for the
 // scene and, for ray tracing, builds the tracer.
 void setup_laser(Sinter::State& s, const bed::Bed& bed);
+// The tracer's optics from the scene's absorptivities or refractive indices.
+SurfaceOptics surface_optics(const SinterScene& scene);
 // Ray tracing: traces the beam positions [t0, t1] needs (with the phases of now) and sets the
 // particle substeps so the laser raises no particle by more than time.max-particle-rise.
 void prepare_traces(Sinter::State& s, double t0, double t1);
 // Fraction of the beam the bed of the start state absorbs with the beam centred at (x, y)
 // (ray tracing: of what reaches the substrate's extent).
 double absorbed_fraction(const Sinter::State& s, double x, double y);
+// Nodes at or above this are in the depression's cavity: T_d less half the phase-change window
+// (drill() fills a node to T_d exactly; conduction then cools it by a fraction of a kelvin, which
+// must not close the cavity step by step).
+inline double cavity_temperature(const Sinter::State& s) {
+  return s.depression_temperature - 0.5 * s.scene.phase_change.window;
+}
+// The surface node of `top_node`'s column: the top node, or with the depression the column's
+// topmost node below the cavity (vapour_depression.hpp; the lowest free node at most).
+std::size_t surface_node(const Sinter::State& s, std::size_t top_node);
+// Laser energy onto the top face of `top_node`'s column over this grid step: into the top node,
+// or with the depression booked on the column for drill().
+void add_surface_energy(Sinter::State& s, std::size_t top_node, double energy);
+// The depression: adds each column's laser energy of the step to its nodes' enthalpies from
+// the surface down, none beyond T_d (NumericalError when the lowest free node is full: the
+// depression has reached the grid's bottom). Called by the grid step after its sources.
+void drill(Sinter::State& s);
 // Conductivity at temperature t: the table's with variable-properties (Variable), else held at
 // T0. A template argument, so a loop over contacts chooses once, not per contact.
 template <bool Variable>
@@ -145,15 +181,25 @@ double conductivity_at(const Sinter::State& s, double t) {
 void setup_wetting(Sinter::State& s);
 void spread_molten(Sinter::State& s);
 void wetted_exchange(Sinter::State& s, double dt);
-// New enthalpy of particle i: temperature, peak and vaporisation follow.
-inline void particle_enthalpy_changed(Sinter::State& s, std::size_t i) {
+// The depression on particle i (evaporation.cpp), hotter than its T_d(r): the excess evaporated.
+void ablate(Sinter::State& s, std::size_t i);
+// A particle whose evaporated mass leaves less than this fraction of its start has left the bed.
+inline constexpr double kVaporisedMass = 1e-3;
+// New enthalpy or mass of particle i: temperature, peak and vaporisation follow (without
+// evaporation: past the vaporisation window; with it: its mass evaporated).
+inline void particle_state_changed(Sinter::State& s, std::size_t i) {
   const double temp = s.per_kg.temperature(s.h[i]);
   s.temperature[i] = temp;
   if (temp > s.peak[i]) s.peak[i] = temp;
-  if (temp >= s.vaporised_temperature) {
+  if (temp >= s.vaporised_temperature || s.mass[i] < kVaporisedMass * s.initial_mass[i]) {
     s.gone[i] = 1;  // left the bed as vapour
     ++s.vaporised;
   }
+}
+// New enthalpy of particle i; with the depression none is hotter than its T_d(r) (ablate).
+inline void particle_enthalpy_changed(Sinter::State& s, std::size_t i) {
+  if (s.per_kg.temperature(s.h[i]) > s.particle_depression_temperature[i]) ablate(s, i);
+  else particle_state_changed(s, i);
 }
 
 // Per-track statistics (track_stats.cpp): the probes of each segment and the first window;
@@ -165,6 +211,10 @@ void close_tracks(Sinter::State& s);
 // Internal energy of the particles and of the free substrate nodes, J, from T0.
 std::pair<double, double> internal_energy(const Sinter::State& s);
 
+// Evaporation (evaporation.cpp) over dt: from the exposed particles (mass, energy), and from
+// the substrate's surface nodes (from their enthalpies, before the grid step).
+void evaporate_particles(Sinter::State& s, double dt);
+void evaporate_surface(Sinter::State& s, double dt);
 // One grid step of forward Euler (explicit_step.cpp): particles subcycle, then the grid.
 void explicit_step(Sinter::State& s, double dt);
 // One backward-Euler step of particles and free nodes together (implicit_step.cpp).
@@ -172,6 +222,11 @@ void implicit_step(Sinter::State& s, double dt);
 // Volume of top node `node` (a raised top lumps the solid above z_top into it).
 inline double top_node_volume(const Sinter::State& s, std::size_t node) {
   return s.top.empty() ? s.g.volume(s.g.nz - 1) : s.top_volume[node - s.g.index(0, 0, s.g.nz - 1)];
+}
+// Volume of any free node.
+inline double node_volume(const Sinter::State& s, std::size_t node) {
+  const std::size_t k = node / (s.g.nx * s.g.ny);
+  return k + 1 == s.g.nz ? top_node_volume(s, node) : s.g.volume(k);
 }
 
 // The beam at time t (off between segments and after the path).

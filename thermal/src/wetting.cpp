@@ -18,17 +18,58 @@ namespace powderbed::thermal {
 
 namespace {
 
+// Whether the solid under particle i's contact has remelted: the mean of the top nodes its cap
+// would cover is at or above T_m.
+bool substrate_molten(const Sinter::State& s, const std::vector<std::pair<std::size_t, double>>& footprint) {
+  double t = 0;
+  for (const auto& [node, weight] : footprint) t += weight * s.node_temperature[node];
+  return t >= s.scene.phase_change.melting_point;
+}
+
+// The area of the cap's base left on the plate: each top-face column is wetted once at most, so
+// a cap gets only what earlier caps left of the columns under it (and takes it).
+double claim_area(Sinter::State& s, const std::vector<std::pair<std::size_t, double>>& footprint,
+                  double area) {
+  const std::size_t first_top = s.g.index(0, 0, s.g.nz - 1);
+  double got = 0;
+  for (const auto& [node, weight] : footprint) {
+    double& left = s.unwetted_area[node - first_top];
+    const double take = std::min(left, weight * area);
+    left -= take;
+    got += take;
+  }
+  return got;
+}
+
+// A molten particle on the substrate: where the solid under it has remelted the melt spreads into
+// a spherical cap at the contact angle (Young); on solid that has not remelted, the contact line
+// arrests (splat physics: the interface sits below T_m) and the particle meets the plate over the
+// same base through the interfacial conductance h_c in series. Arrested contacts spread once
+// the solid under them remelts (spread_molten).
 void spread_on_substrate(Sinter::State& s, std::size_t i) {
   const std::int64_t c = s.substrate_of[i];
   if (c < 0) return;
   SubstrateContact& contact = s.net.substrate[static_cast<std::size_t>(c)];
-  if (contact.shape == 0) return;  // spread already
   const double r = s.radius[i];
-  const SpreadCap cap =
-      spherical_cap(4.0 / 3.0 * std::numbers::pi * r * r * r, s.scene.contact_angle * std::numbers::pi / 180);
-  s.wetted.push_back({static_cast<std::uint32_t>(i),
-                      conduction_shape_factor(cap.base_radius, cap.centroid_height),
-                      top_footprint(s.g, s.x[i], s.y[i], cap.base_radius)});
+  const SpreadCap cap = spherical_cap(4.0 / 3.0 * std::numbers::pi * r * r * r,
+                                      s.scene.contact_angle * std::numbers::pi / 180);
+  auto footprint = top_footprint(s.g, s.x[i], s.y[i], cap.base_radius);
+  const bool remelted = substrate_molten(s, footprint);
+  if (contact.shape == 0) {  // wetted before: an arrested contact spreads once remelted
+    if (!remelted) return;
+    for (auto& w : s.wetted) {
+      if (w.particle != i || w.interface == 0) continue;
+      w.interface = 0;
+      --s.arrested;
+    }
+    return;
+  }
+  const double area = claim_area(s, footprint, std::numbers::pi * cap.base_radius * cap.base_radius);
+  if (area <= 0) return;  // the plate under it is wetted already: the contact stays as it was
+  const double interface = remelted ? 0 : 1 / (s.scene.arrested_conductance * area);
+  if (!remelted) ++s.arrested;
+  s.wetted.push_back({static_cast<std::uint32_t>(i), area / cap.centroid_height, interface,
+                      std::move(footprint)});
   contact.shape = 0;  // out of the explicit network: wetted_exchange carries it
 }
 
@@ -49,6 +90,7 @@ void recheck_particle_step(Sinter::State& s, std::size_t i) {
 
 void setup_wetting(Sinter::State& s) {
   const std::size_t n = s.x.size();
+  s.unwetted_area.assign(s.g.nx * s.g.ny, s.g.dx * s.g.dy);
   s.molten.assign(n, 0);
   s.pairs_of.assign(n, {});
   s.substrate_of.assign(n, -1);
@@ -62,6 +104,11 @@ void setup_wetting(Sinter::State& s) {
 
 void spread_molten(Sinter::State& s) {
   const double t_m = s.scene.phase_change.melting_point;
+  if (s.arrested > 0) {  // arrested contacts whose solid has remelted since
+    for (std::size_t k = 0; k < s.wetted.size(); ++k)
+      if (s.wetted[k].interface > 0 && !s.gone[s.wetted[k].particle])
+        spread_on_substrate(s, s.wetted[k].particle);
+  }
   for (std::size_t i = 0; i < s.x.size(); ++i) {
     const bool now = !s.gone[i] && s.temperature[i] >= t_m;
     const bool melted = now && !s.molten[i];
@@ -119,8 +166,9 @@ void exchange_wetted(Sinter::State& s, double dt) {
     }
     const double c_particle = s.mass[i] * secant_capacity(s.per_kg, tp, ts);
     const double c_nodes = inverse_capacity > 0 ? 1 / inverse_capacity : 1e300;
-    const double conductance = path_conductance(conductivity_at<Variable>(s, tp),
-                                                conductivity_at<Variable>(s, ts), w.shape);
+    const double path = path_conductance(conductivity_at<Variable>(s, tp),
+                                         conductivity_at<Variable>(s, ts), w.shape);
+    const double conductance = w.interface > 0 ? 1 / (1 / path + w.interface) : path;
     double energy = exact_exchange(conductance, c_particle, tp, c_nodes, ts, dt);
     // Nor the particle beyond the nodes' mean temperature.
     limit = std::min(limit, s.mass[i] * std::abs(s.per_kg.enthalpy(ts) - s.h[i]));

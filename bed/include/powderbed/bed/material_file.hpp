@@ -37,6 +37,12 @@ inline constexpr MaterialKey kMaterialKeys[] = {
     {"latent_vapour", "J/kg", 0, 1e9, "latent heat of vaporisation L_v"},
     {"hold_from", "K", 0, 1e4, "solid rows extrapolated to this temperature, then held"},
     {"absorptivity", "1", 0, 1, "absorptivity of the flat surface at the laser's wavelength"},
+    {"index_n_solid", "1", 0, 100, "refractive index n of the solid at the laser's wavelength"},
+    {"index_k_solid", "1", 0, 100, "extinction coefficient k of the solid at the laser's wavelength"},
+    {"index_n_liquid", "1", 0, 100, "refractive index n of the liquid at the laser's wavelength"},
+    {"index_k_liquid", "1", 0, 100, "extinction coefficient k of the liquid"},
+    {"molar_mass", "kg/mol", 0, 1, "molar mass of the vapour (evaporation)"},
+    {"surface_tension", "N/m", 0, 10, "surface tension of the liquid near T_m"},
 };
 
 struct MaterialProperty {

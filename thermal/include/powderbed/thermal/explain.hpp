@@ -24,6 +24,11 @@ struct ExplainReport {
   double heating_time = 0;          // m c (T_m - T0) / (alpha I0 pi r^2), mean particle, s
   double absorptance = 0;           // the laser model's, beam at the bed's centre
   double wetting_time = 0;          // m c / (k π a^2 / z_c) of a mean particle's spread cap, s
+  // The regime (King et al., J. Mater. Process. Technol. 214:2915, 2014): ΔH/h_s =
+  // A P / (π h_s √(D v w³)), h_s = ρ c T_m, D = k/(ρ c) of the solid at (T0 + T_m)/2, w the
+  // beam's 1/e² radius, A the flat surface's absorptance; keyhole beyond π T_b / T_m.
+  double normalised_enthalpy = 0, keyhole_threshold = 0;
+  double evaporation_ratio = 0;     // L_v ṁ(T_b) / (alpha I0): evaporation at the boiling point
   std::string text;                 // the printed report
 };
 

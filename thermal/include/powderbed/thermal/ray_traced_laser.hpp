@@ -1,10 +1,14 @@
 #pragma once
 // Ray-traced laser absorption on the bed's own spheres (after Boley, King & Khairallah 2015,
 // Appl. Opt. 54:2477): rays drawn from the Gaussian beam profile (1/e^2 radius w) enter from
-// above, vertically; at every hit, on a sphere or on the substrate's top face, the surface
-// absorbs the fraction alpha of what the ray carries and the rest is reflected (specularly, or
-// diffusely with Lambert's law) until the ray leaves upward, falls outside the substrate's
-// extent, or carries less than `cutoff` of its start power. Every watt is booked: absorbed by
+// above, vertically; at every hit, on a sphere, on the substrate's top face or on the wall of
+// its vapour depression (vapour_depression.hpp), the surface absorbs the fraction A of what the
+// ray carries (SurfaceOptics: a constant per phase, or Fresnel's A(θ) of the metal's complex
+// index at the angle of incidence) and the rest is reflected (specularly, or diffusely with
+// Lambert's law) until the ray leaves upward, falls outside the substrate's extent, or carries
+// less than `cutoff` of its start power. The depression is a depth per top-face column,
+// bilinear between columns; a ray below the top face marches through it in steps of half a
+// grid spacing and the hit is refined by bisection. Every watt is booked: absorbed by
 // particles + absorbed by the substrate + escaped upward + outside + dropped = incident, to
 // round-off.
 //
@@ -16,6 +20,7 @@
 // sphere takes jumps at its outline.
 // Trace k of a run draws from the stream (seed, k) and its rays are split into fixed chunks
 // summed in chunk order, so a map is the same for any number of threads.
+#include <complex>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -27,6 +32,26 @@
 namespace powderbed::thermal {
 
 enum class Reflection { specular, diffuse };
+
+// How a surface absorbs: `constant`, one absorptivity per phase; `fresnel`, the Fresnel
+// absorptance (fresnel_absorptance.hpp) of the phase's complex refractive index at the angle
+// of incidence.
+enum class Optics { constant, fresnel };
+struct SurfaceOptics {
+  Optics model = Optics::constant;
+  double alpha[2] = {0.33, 0.33};  // constant: solid, liquid
+  std::complex<double> index[2] = {{3.2, 4.3}, {3.2, 4.3}};  // fresnel: solid, liquid
+  // Absorbed fraction at a hit on a surface of phase `liquid` (0 or 1), cos θ = `cos_incidence`.
+  double absorptance(unsigned liquid, double cos_incidence) const;
+};
+
+// The surfaces as one trace sees them: each particle's and each top-face column's phase
+// (0 solid, 1 liquid; columns i + nx j) and the depth of the depression below the top face per
+// column (m; empty: flat).
+struct TraceSurfaces {
+  std::vector<std::uint8_t> particle_phase, node_phase;
+  std::vector<double> depression;
+};
 
 struct RayTraceParams {
   std::size_t rays = 4000;        // rays per traced beam position
@@ -48,6 +73,7 @@ struct AbsorptionMap {
   double outside = 0;   // reached the substrate plane beyond its x-y extent
   double dropped = 0;   // below the cutoff, or after max_bounces
   double hits = 0;      // mean number of surface hits per ray
+  double absorbed_depression = 0;  // of absorbed_substrate: on the depression's walls
   double absorptance() const { return absorbed_particles + absorbed_substrate; }
 };
 
@@ -59,7 +85,7 @@ class BeamTracer {
  public:
   // The bed (kept by copy) over the substrate `g`. Throws as validate(params) does.
   BeamTracer(const bed::Bed& bed, const SubstrateGeometry& g, double spot_radius,
-             const RayTraceParams& params);
+             const RayTraceParams& params, const SurfaceOptics& optics);
   ~BeamTracer();
   BeamTracer(const BeamTracer&) = delete;
   BeamTracer& operator=(const BeamTracer&) = delete;
@@ -67,11 +93,10 @@ class BeamTracer {
   // Removes particles from the scene (vaporised): rays pass where they were.
   void remove(const std::vector<std::uint32_t>& particles);
 
-  // Traces the beam centred at (x, y). `particle_alpha[i]` and `node_alpha[i + nx j]` are the
-  // absorptivities of particle i and of top node (i, j) (a hit between nodes takes the nearest
-  // node's). `trace` numbers the random stream.
-  AbsorptionMap trace(double x, double y, std::uint64_t trace, const std::vector<double>& particle_alpha,
-                      const std::vector<double>& node_alpha) const;
+  // Traces the beam centred at (x, y) over `surfaces` (a hit between top nodes takes the
+  // nearest node's phase). `trace` numbers the random stream. Power absorbed on the top face
+  // or a depression's wall is booked on the top-face nodes of the columns around the hit.
+  AbsorptionMap trace(double x, double y, std::uint64_t trace, const TraceSurfaces& surfaces) const;
 
  private:
   struct Impl;

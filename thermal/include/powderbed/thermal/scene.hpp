@@ -24,6 +24,8 @@ enum SinterEffect : unsigned {
   kPhaseChange = 1u << 7,         // latent heats in the apparent heat capacity
   kVariableProperties = 1u << 8,  // c, k, rho from the table (off: held at T0)
   kWetting = 1u << 9,             // molten particles spread on what they touch (wetting.hpp)
+  kEvaporation = 1u << 10,        // mass and energy lost by evaporation (evaporation.hpp)
+  kDepression = 1u << 11,         // the vapour depression and the beam in it (vapour_depression.hpp)
 };
 // The list of the effects: one row each, its bit and its scene name (the option effects.NAME,
 // which sinter's options are made from); the solver's kernels name the effects that shape them
@@ -43,9 +45,14 @@ inline constexpr SinterEffectRow kSinterEffects[] = {
     {kPhaseChange, "phase-change"},
     {kVariableProperties, "variable-properties"},
     {kWetting, "wetting"},
+    {kEvaporation, "evaporation"},
+    {kDepression, "depression"},
 };
-// The effects of [GZ]'s model (wetting goes beyond it).
+// The effects of [GZ]'s model (wetting, evaporation and the depression go beyond it).
 constexpr unsigned kAllSinterEffects = (1u << 9) - 1;
+// What a melt pool at process settings needs besides (docs/sinter.md "The melt pool at process
+// settings"): the default of a scene.
+constexpr unsigned kProcessEffects = kWetting | kEvaporation | kDepression;
 
 enum class Integrator { explicit_euler, implicit_euler };
 
@@ -89,8 +96,21 @@ struct SinterScene {
   double absorptivity_liquid = NAN;
   RayTraceParams rays;
   double retrace_interval = 0.1;
-  // Wetting only: the contact angle of the melt on the solid substrate, degrees.
+  // Ray-trace only: how surfaces absorb (Fresnel from the complex refractive index n + ik of
+  // each phase at the laser's wavelength, or the constant absorptivities above). 316L near
+  // 1.06 µm by default (data/materials/316L.csv gives the sources).
+  Optics optics = Optics::fresnel;
+  double index_n_solid = 3.235, index_k_solid = 4.322, index_n_liquid = 3.235, index_k_liquid = 4.322;
+  // Evaporation and the depression: molar mass M of the vapour, ambient pressure p0 (at which
+  // the boiling point holds), back-condensation β_r, the liquid's surface tension γ.
+  double molar_mass = 0.05585;      // kg/mol
+  double ambient_pressure = 101325; // Pa
+  double back_condensation = 0.18;
+  double surface_tension = 1.8;     // N/m
+  // Wetting only: the contact angle of the melt on molten solid, degrees, and the interfacial
+  // conductance of an arrested contact (a molten particle on solid that has not remelted).
   double contact_angle = 30;
+  double arrested_conductance = 1e6;  // W/m^2K
   // Substrate under the bed: x, y extents are the bed's domain; depth and node counts here.
   double substrate_depth = 0.3e-3;
   std::array<std::size_t, 3> nodes{201, 101, 61};
@@ -103,11 +123,14 @@ struct SinterScene {
   // per step (K), so tiny particles under the beam subcycle instead of overshooting T_v.
   double max_particle_rise = 50;
   double t_end = NAN;          // NaN: when the laser reaches end_x (or the path's end)
-  unsigned effects = kAllSinterEffects | kWetting;
+  unsigned effects = kAllSinterEffects | kProcessEffects;
 
   bool has(unsigned effect) const { return (effects & effect) != 0; }
   // Throws InputError naming the field, the value and the accepted range.
   void validate() const;
+
+ private:
+  void validate_process_models() const;
 };
 
 }  // namespace powderbed::thermal

@@ -27,6 +27,9 @@ namespace powderbed::thermal {
 struct EnergyLedger {
   double laser_particles = 0, laser_substrate = 0;
   double convection = 0, radiation = 0;  // into the particles (negative: losses)
+  // Into particles and substrate (negative: a loss): latent heat of what evaporated, and the
+  // enthalpy above T0 the evaporated particle mass carried off.
+  double evaporation = 0;
   double boundary = 0;                   // into the Dirichlet sides and bottom (outflow)
   double internal_particles = 0, internal_substrate = 0;  // change, from the state enthalpies
   double absorbed() const { return laser_particles + laser_substrate; }
@@ -64,8 +67,16 @@ struct StableSteps {
   std::size_t particle_index = 0;  // where the particle bound is set
 };
 
+// Where the peak temperatures of a run were: over the particles and over the substrate's nodes
+// (its surface: the hottest node is at the top face or the depression's wall).
+struct PeakTemperatures {
+  double particles = 0, substrate = 0;
+  double highest() const { return particles > substrate ? particles : substrate; }
+};
+
 struct SinterProgress {
-  double time, t_end, max_temperature;
+  double time, t_end;
+  PeakTemperatures peaks;
   std::uint64_t step;
 };
 
@@ -74,13 +85,20 @@ struct SinterProgress {
 struct TraceSummary {
   std::size_t traces = 0;
   double absorbed = 0, absorbed_particles = 0, escaped = 0, outside = 0, dropped = 0, hits = 0;
+  double absorbed_depression = 0;
   // Absorbed over what reached the bed (the beam less what fell beyond the substrate's extent).
   double bed_absorptance() const { return absorbed / (static_cast<double>(traces) - outside); }
 };
 
 struct SinterResult {
   MeltPool melt_pool;
-  double max_temperature = 0;
+  double max_temperature = 0;  // peaks.highest()
+  PeakTemperatures peaks;
+  // Evaporation: mass evaporated (particles + substrate), kg, and the peak recoil pressure,
+  // Pa; the depression: T_d (0 without it), its deepest point below the top face, m, and
+  // the share of the absorbed beam power its walls took.
+  double evaporated_mass = 0, evaporated_mass_particles = 0, peak_recoil_pressure = 0;
+  double depression_temperature = 0, depression_depth = 0;
   std::size_t particles_molten = 0, particles_vaporised = 0;
   EnergyLedger energy;
   std::uint64_t steps = 0, particle_steps = 0;

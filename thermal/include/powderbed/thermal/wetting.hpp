@@ -1,13 +1,21 @@
 #pragma once
 // Molten particles wet what they touch (the consolidation Ganeriwala & Zohdi 2016 name as their
-// model's main error). Liquid metal spreads on a capillary–viscous time τ = η r / γ (Frenkel
-// 1945; Eggers, Lister & Stone 1999): for liquid 316L, η ≈ 6e-3 Pa s and γ ≈ 1.8 N/m (Mills,
-// "Recommended values of thermophysical properties for selected commercial alloys", 2002) give
-// τ ≈ 45 ns for r = 13.5 µm, far shorter than the tens of microseconds a particle under the beam
-// stays molten, so the contact takes its end state at once:
-// - on the substrate: a spherical cap of the particle's volume V meeting the solid at the
-//   contact angle θ (Young's equilibrium); its base radius is the contact radius and the
-//   conduction length is the cap centroid's height above the base;
+// model's main error). Liquid 316L (η ≈ 6e-3 Pa s, γ ≈ 1.8 N/m, ρ ≈ 7300 kg/m³: Mills,
+// "Recommended values of thermophysical properties for selected commercial alloys", 2002) has
+// an Ohnesorge number Oh = η / √(ρ γ r) ≈ 0.015 ≪ 1 for r = 13.5 µm, so it spreads in the
+// inertial regime, on τ ≈ √(ρ r³ / γ) ≈ 3 µs (Eggers, Lister & Stone, J. Fluid Mech. 401:293,
+// 1999; Biance, Clanet & Quéré, Phys. Rev. E 69:016301, 2004), shorter than the tens of
+// microseconds a particle under the beam stays molten: the contact takes its end state at once.
+// - on remelted substrate (the top nodes under it at or above T_m): a spherical cap of the
+//   particle's volume V meeting the melt at the contact angle θ (Young's equilibrium); its base
+//   is the contact area and the conduction length is the cap centroid's height above the base;
+// - on solid that has not remelted: the liquid–solid interface sits below T_m and the contact
+//   line arrests on touch (splat solidification: Pasandideh-Fard et al., Int. J. Heat Mass
+//   Transfer 41:2929, 1998); the particle meets the plate through an interfacial conductance
+//   h_c (of order 1e5–1e6 W/m²K while the splat is liquid: Liu, Wang & Matthys, Int. J. Heat
+//   Mass Transfer 38:1387, 1995) in series with the cap's conduction, until the solid under it
+//   remelts and the cap spreads;
+// - each top-face column is wetted once: a cap takes only the plate area earlier caps left;
 // - with a molten neighbour: a liquid bridge whose neck has grown to the smaller sphere's
 //   radius (coalescence drives the neck to the smaller drop's section before the pair merges).
 // A wetted contact stays wetted after it freezes (the solid bridge remains).
