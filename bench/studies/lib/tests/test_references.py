@@ -70,3 +70,30 @@ def test_ke2016_case_lookup():
     assert references.ke2016_case("copper-0.15mm").diameter == 0.15e-3
     with pytest.raises(StopIteration):
         references.ke2016_case("gold")
+
+
+def test_fresnel_normal_of_316L():
+    # a flat 316L surface near 1.06 um absorbs about 0.35 at normal incidence
+    assert references.fresnel_normal(references.STEEL_316L_INDEX) == pytest.approx(0.354, abs=1e-3)
+    assert references.fresnel_normal(complex(1.0, 0.0)) == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize("xi, y, z", [(-300e-6, 0.0, 0.0), (-100e-6, 50e-6, -20e-6),
+                                      (50e-6, 0.0, -80e-6)])
+def test_eagar_tsai_tends_to_rosenthal(xi, y, z):
+    """A spot far smaller than the distance: Rosenthal's point source,
+    T - T0 = q / (2 pi k R) exp(-v (xi + R) / (2 kappa)) on the semi-infinite body."""
+    q, k, rho_c, v = 100.0, 20.0, 4.5e6, 1.0
+    et = references.EagarTsai(q, k, rho_c, 0.2e-6, v)
+    r = math.sqrt(xi * xi + y * y + z * z)
+    rosenthal = q / (2 * math.pi * k * r) * math.exp(-v * (xi + r) / (2 * k / rho_c))
+    assert et.temperature(xi, y, z) == pytest.approx(rosenthal, rel=2e-3)
+
+
+def test_eagar_tsai_point_source_pool_is_a_half_circle():
+    """Rosenthal's isotherms are spheres about the source in the cross-section's metric: the
+    widest half-width on the surface equals the deepest depth (W = 2 D)."""
+    et = references.EagarTsai(100.0, 20.0, 4.5e6, 0.5e-6, 1.0)
+    width, depth, length = et.melt_pool(1400.0)
+    assert width == pytest.approx(2 * depth, rel=1e-3)
+    assert length > width
