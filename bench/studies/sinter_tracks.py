@@ -249,7 +249,11 @@ def run_sinter(row, name, options, et, args, costs):
               "--spot", repr(row["spot_radius_m"]), "--threads", "1", "--snapshots", "1",
               "--out", out] + options
     if row["plate"] == "powder":
-        bed = apps.gz2016_bed()
+        try:
+            bed = apps.gz2016_bed()  # deposit's [GZ] bed, made once (about a minute)
+        except (OSError, subprocess.CalledProcessError) as e:
+            return {"error": f"no [GZ] bed: {e}", "grid": {"h": 5e-6, "lx": 1e-3, "ly": 0.5e-3,
+                                                             "depth": 0.3e-3, "estimate": None}}
         cmd = [apps.app("sinter"), "--config", apps.GZ2016_SINTER_SCENE, "--bed", bed] + common
         grid = {"h": 5e-6, "lx": 1e-3, "ly": 0.5e-3, "depth": 0.3e-3, "estimate": None}
     else:
@@ -263,7 +267,7 @@ def run_sinter(row, name, options, et, args, costs):
         grid = {"h": h, "lx": lx, "ly": ly, "depth": depth, "estimate": est}
     try:
         s, wall = apps.run_json(cmd)
-    except RuntimeError as e:
+    except (RuntimeError, OSError) as e:
         return {"error": str(e).splitlines()[-1][-400:], "grid": grid, "command": cmd}
     if row["plate"] != "powder":
         costs.append(wall / (s["nodes"] * max(s["steps"], 1)))
