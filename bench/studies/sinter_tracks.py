@@ -414,13 +414,15 @@ def plot(result, path):
     rows = {row["id"] + row["file"]: row for row in result["rows"]}
     fig, axes = plt.subplots(1, 2, figsize=(10, 4.6))
     markers = "osD^vP"
-    for (label, preds), marker in zip(predictions(result), markers):
+    for n, ((label, preds), marker) in enumerate(zip(predictions(result), markers)):
+        colour = "k" if label.startswith("Eagar") else f"C{n}"
         for ax, i, key in ((axes[0], 0, "width_m"), (axes[1], 1, "depth_m")):
             pts = [(rows[k][key] * 1e6, p[i] * 1e6) for k, p in preds.items()
                    if rows[k][key] is not None and p[i] is not None]
-            if pts:
-                ax.scatter(*zip(*pts), marker=marker, label=label, alpha=0.75,
-                           facecolors="none" if label.startswith("Eagar") else None)
+            if pts:  # Eagar–Tsai hollow, the sinter variants filled
+                ax.scatter(*zip(*pts), marker=marker, label=label, alpha=0.8,
+                           facecolors="none" if label.startswith("Eagar") else colour,
+                           edgecolors=colour)
     for ax, name in zip(axes, ("width", "depth")):
         lim = max(ax.get_xlim()[1], ax.get_ylim()[1])
         ax.plot([0, lim], [0, lim], "k--", lw=1, label="measured = predicted")
