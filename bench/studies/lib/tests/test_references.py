@@ -99,3 +99,39 @@ def test_eagar_tsai_point_source_pool_is_a_half_circle():
     width, depth, length = et.melt_pool(1400.0)
     assert width == pytest.approx(2 * depth, rel=1e-3)
     assert length > width
+
+
+def validation_rows():
+    """The rows of data/validation/*.csv (header comments skipped), with their file."""
+    import csv
+    import glob
+    import os
+    rows = []
+    for path in sorted(glob.glob(os.path.join(apps.ROOT, "data", "validation", "*.csv"))):
+        with open(path) as f:
+            for r in csv.DictReader(line for line in f if not line.startswith("#")):
+                rows.append((os.path.basename(path), r))
+    return rows
+
+
+def test_validation_rows_are_complete():
+    """Every measured track names its source and has SI numbers of the right size: a power, a
+    speed, a width or a depth in metres (tens to hundreds of um), a spot radius or none."""
+    rows = validation_rows()
+    assert len(rows) >= 30
+    for name, r in rows:
+        assert r["source"].strip(), name
+        assert 10 < float(r["power_W"]) < 2000 and 0.05 < float(r["speed_m_per_s"]) < 5, name
+        sizes = [float(r[k]) for k in ("width_m", "depth_m") if r[k].strip()]
+        assert sizes and all(5e-6 < x < 1e-3 for x in sizes), name
+        if r["spot_radius_m"].strip():
+            assert 10e-6 < float(r["spot_radius_m"]) < 200e-6, name
+        assert r["plate"] in ("bare", "powder", "unknown"), name
+
+
+def test_validation_ornl_depth_is_the_mean_and_w_is_half_d4sigma():
+    for name, r in validation_rows():
+        if name.startswith("ornl"):
+            assert float(r["depth_m"]) == pytest.approx(
+                0.5 * (float(r["depth_1_m"]) + float(r["depth_2_m"])), rel=1e-9)
+            assert float(r["spot_radius_m"]) == pytest.approx(109.69e-6 / 2, rel=1e-9)
