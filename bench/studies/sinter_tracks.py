@@ -462,6 +462,7 @@ def write_page(result):
         "machine": result["machine"],
         "study_wall": f"{result['study_wall']:.0f}",
         "runs": len(walls),
+        "run_wall_sum": f"{sum(walls):.0f}",
         "run_wall_max": f"{max(walls):.0f}" if walls else "–",
         "run_wall_median": f"{sorted(walls)[len(walls) // 2]:.0f}" if walls else "–",
         "budget": f"{result['budget']:g}",
