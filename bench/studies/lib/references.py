@@ -75,3 +75,123 @@ LP_2D = {
     ("gauss", 0): ((325, 425), (0.42, 0.52), (1.3, 1.5)),
     ("gauss", 1): ((525, 575), (0.68, 0.72), (3.3, 3.45)),
 }
+
+
+# ------------------------------------------------------------------------------------------------
+# Melt pools of single tracks: the flat surface's Fresnel absorptance and Eagar–Tsai's moving
+# Gaussian source (sinter_tracks.py).
+
+# 316L's complex refractive index near 1.06 um (n + ik), the flat-surface optics of the model.
+STEEL_316L_INDEX = complex(3.2, 4.3)
+
+
+def fresnel_normal(index):
+    """The absorptance of a flat metal surface at normal incidence, 1 - |(N - 1)/(N + 1)|^2 for
+    the complex index N = n + ik (s and p coincide there): 0.354 for 316L's 3.2 + 4.3i."""
+    r = (index - 1) / (index + 1)
+    return 1 - abs(r) ** 2
+
+
+class EagarTsai:
+    """Eagar & Tsai's quasi-steady temperature under a moving Gaussian surface source on a
+    semi-infinite body of constant properties (Eagar & Tsai, Welding J. 62 (1983) 346): the time
+    integral of the instantaneous Gaussian point-source kernel in the frame of the source,
+      T - T0 = q/(rho c) int_0^inf dtau gx gy gz,   s^2 = sigma^2 + 2 kappa tau,
+      gx = exp(-(xi + v tau)^2 / (2 s^2)) / sqrt(2 pi s^2),  gy likewise in y,
+      gz = 2 exp(-z^2 / (4 kappa tau)) / sqrt(4 pi kappa tau)          (adiabatic top),
+    q = A P the absorbed power, sigma = w/2 for the 1/e^2 radius w (I ~ exp(-2 r^2 / w^2)), xi the
+    distance ahead of the source along the track. The same solution as the reference of
+    tests/thermal/test_moving_source.cpp, there with the box's Dirichlet faces by images; here
+    the body is semi-infinite and t -> inf. No latent heat, no melt flow, no vaporisation. tau =
+    u^2 removes the 1/sqrt(tau) at the surface."""
+
+    def __init__(self, q, k, rho_c, w, v, t0=0.0):
+        self.q, self.k, self.rho_c, self.sigma, self.v, self.t0 = q, k, rho_c, w / 2, v, t0
+        self.kappa = k / rho_c
+
+    def temperature(self, xi, y, z):
+        """T at (xi, y, z), z <= 0 below the surface (z > 0 is read as -z)."""
+        from scipy.integrate import quad
+        kap, v, s0 = self.kappa, self.v, self.sigma ** 2
+
+        def integrand(u):
+            tau = u * u
+            s2 = s0 + 2 * kap * tau
+            gxy = math.exp(-((xi + v * tau) ** 2 + y * y) / (2 * s2)) / (2 * math.pi * s2)
+            # 2u (from dtau) x 2 exp(-z^2 / 4 kappa u^2) / sqrt(4 pi kappa) / u
+            return 4 * gxy * math.exp(-z * z / (4 * kap * tau)) / math.sqrt(4 * math.pi * kap) \
+                if tau > 0 else (4 * gxy / math.sqrt(4 * math.pi * kap) if z == 0 else 0.0)
+
+        # the integrand lives where xi + v tau is within a few s of 0, and dies as exp(-v^2 tau /
+        # 4 kappa) beyond: integrate to where both are negligible, split at the passage.
+        tau_end = max(0.0, -xi / v) + 200 * kap / v ** 2 + 40 * (self.sigma + abs(y)) / v
+        tau_pass = -xi / v
+        cuts = [0.0]
+        if tau_pass > 0:
+            cuts.append(math.sqrt(tau_pass))
+        cuts.append(math.sqrt(tau_end))
+        total = 0.0
+        for a, b in zip(cuts, cuts[1:]):
+            total += quad(integrand, a, b, limit=200, epsabs=0.0, epsrel=1e-9)[0]
+        return self.t0 + self.q / self.rho_c * total
+
+    def _extent(self, t_melt, along, scale):
+        """The largest distance d from the track's axis (along 'y' on the surface or 'z' below
+        the axis) at which T = t_melt, over the positions xi along the track: (d, xi there)."""
+        from scipy.optimize import brentq, minimize_scalar
+
+        def t_at(xi, d):
+            return self.temperature(xi, d, 0.0) if along == "y" else self.temperature(xi, 0.0, -d)
+
+        def reach(xi):
+            if t_at(xi, 0.0) <= t_melt:
+                return 0.0
+            hi = scale
+            while t_at(xi, hi) > t_melt:
+                hi *= 2
+            return brentq(lambda d: t_at(xi, d) - t_melt, 0.0, hi, xtol=1e-9)
+
+        # the surface's hottest point lies a little behind the source; the pool's widest and
+        # deepest sections further behind: scan, then refine around the best.
+        length = self.melt_length(t_melt)
+        if length == 0:
+            return 0.0, 0.0
+        xs = [self.sigma - (length + 2 * self.sigma) * i / 24 for i in range(25)]
+        best = max(xs, key=reach)
+        step = (length + 2 * self.sigma) / 24
+        r = minimize_scalar(lambda xi: -reach(xi), bounds=(best - step, best + step),
+                            method="bounded", options={"xatol": 1e-8})
+        return (-r.fun, r.x) if -r.fun > reach(best) else (reach(best), best)
+
+    def melt_length(self, t_melt):
+        """The length of the T = t_melt isotherm along the track's centre line on the surface
+        (0 when the surface does not melt)."""
+        from scipy.optimize import brentq, minimize_scalar
+        peak = minimize_scalar(lambda xi: -self.temperature(xi, 0.0, 0.0),
+                               bounds=(-10 * self.sigma, self.sigma), method="bounded")
+        if -peak.fun <= t_melt:
+            return 0.0
+        x_hot = peak.x
+        front = x_hot
+        while self.temperature(front, 0.0, 0.0) > t_melt:
+            front += self.sigma
+        back = x_hot
+        while self.temperature(back, 0.0, 0.0) > t_melt:
+            back -= 2 * self.sigma + (x_hot - back)
+        f = lambda xi: self.temperature(xi, 0.0, 0.0) - t_melt
+        return brentq(f, x_hot, front, xtol=1e-9) - brentq(f, back, x_hot, xtol=1e-9)
+
+    def peak_temperature(self):
+        """The surface's highest temperature (on the track's axis, a little behind the source)."""
+        from scipy.optimize import minimize_scalar
+        peak = minimize_scalar(lambda xi: -self.temperature(xi, 0.0, 0.0),
+                               bounds=(-10 * self.sigma, self.sigma), method="bounded")
+        return -peak.fun
+
+    def melt_pool(self, t_melt):
+        """(width, depth, length) of the T = t_melt isotherm, m: twice the largest half-width on
+        the surface, the largest depth under the axis, the length on the axis."""
+        scale = max(self.sigma, 1e-6)
+        half, _ = self._extent(t_melt, "y", scale)
+        depth, _ = self._extent(t_melt, "z", scale)
+        return 2 * half, depth, self.melt_length(t_melt)

@@ -70,3 +70,68 @@ def test_ke2016_case_lookup():
     assert references.ke2016_case("copper-0.15mm").diameter == 0.15e-3
     with pytest.raises(StopIteration):
         references.ke2016_case("gold")
+
+
+def test_fresnel_normal_of_316L():
+    # a flat 316L surface near 1.06 um absorbs about 0.35 at normal incidence
+    assert references.fresnel_normal(references.STEEL_316L_INDEX) == pytest.approx(0.354, abs=1e-3)
+    assert references.fresnel_normal(complex(1.0, 0.0)) == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize("xi, y, z", [(-300e-6, 0.0, 0.0), (-100e-6, 50e-6, -20e-6),
+                                      (50e-6, 0.0, -80e-6)])
+def test_eagar_tsai_tends_to_rosenthal(xi, y, z):
+    """A spot far smaller than the distance: Rosenthal's point source,
+    T - T0 = q / (2 pi k R) exp(-v (xi + R) / (2 kappa)) on the semi-infinite body."""
+    pytest.importorskip("scipy")  # EagarTsai integrates with scipy (not in scripts/setup.sh)
+    q, k, rho_c, v = 100.0, 20.0, 4.5e6, 1.0
+    et = references.EagarTsai(q, k, rho_c, 0.2e-6, v)
+    r = math.sqrt(xi * xi + y * y + z * z)
+    rosenthal = q / (2 * math.pi * k * r) * math.exp(-v * (xi + r) / (2 * k / rho_c))
+    assert et.temperature(xi, y, z) == pytest.approx(rosenthal, rel=2e-3)
+
+
+def test_eagar_tsai_point_source_pool_is_a_half_circle():
+    """Rosenthal's isotherms are spheres about the source in the cross-section's metric: the
+    widest half-width on the surface equals the deepest depth (W = 2 D)."""
+    pytest.importorskip("scipy")
+    et = references.EagarTsai(100.0, 20.0, 4.5e6, 0.5e-6, 1.0)
+    width, depth, length = et.melt_pool(1400.0)
+    assert width == pytest.approx(2 * depth, rel=1e-3)
+    assert length > width
+
+
+def validation_rows():
+    """The rows of data/validation/*.csv (header comments skipped), with their file."""
+    import csv
+    import glob
+    import os
+    rows = []
+    for path in sorted(glob.glob(os.path.join(apps.ROOT, "data", "validation", "*.csv"))):
+        with open(path) as f:
+            for r in csv.DictReader(line for line in f if not line.startswith("#")):
+                rows.append((os.path.basename(path), r))
+    return rows
+
+
+def test_validation_rows_are_complete():
+    """Every measured track names its source and has SI numbers of the right size: a power, a
+    speed, a width or a depth in metres (tens to hundreds of um), a spot radius or none."""
+    rows = validation_rows()
+    assert len(rows) >= 30
+    for name, r in rows:
+        assert r["source"].strip(), name
+        assert 10 < float(r["power_W"]) < 2000 and 0.05 < float(r["speed_m_per_s"]) < 5, name
+        sizes = [float(r[k]) for k in ("width_m", "depth_m") if r[k].strip()]
+        assert sizes and all(5e-6 < x < 1e-3 for x in sizes), name
+        if r["spot_radius_m"].strip():
+            assert 10e-6 < float(r["spot_radius_m"]) < 200e-6, name
+        assert r["plate"] in ("bare", "powder", "unknown"), name
+
+
+def test_validation_ornl_depth_is_the_mean_and_w_is_half_d4sigma():
+    for name, r in validation_rows():
+        if name.startswith("ornl"):
+            assert float(r["depth_m"]) == pytest.approx(
+                0.5 * (float(r["depth_1_m"]) + float(r["depth_2_m"])), rel=1e-9)
+            assert float(r["spot_radius_m"]) == pytest.approx(109.69e-6 / 2, rel=1e-9)
