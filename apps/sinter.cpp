@@ -169,6 +169,13 @@ std::string result_json(const po::variables_map& vm, const RunReport& run) {
       .value("width", r.melt_pool.width)
       .value("depth", r.melt_pool.depth)
       .end_object()
+      .begin_object("melt_pool_along")
+      .value("sections", static_cast<std::uint64_t>(r.along.sections))
+      .value("width_mean", r.along.width_mean)
+      .value("width_sd", r.along.width_sd)
+      .value("depth_mean", r.along.depth_mean)
+      .value("depth_sd", r.along.depth_sd)
+      .end_object()
       .value("max_temperature", r.max_temperature)
       .value("max_temperature_particles", r.peaks.particles)
       .value("max_temperature_substrate", r.peaks.substrate)
@@ -220,6 +227,11 @@ void print_result(const th::SinterScene& scene, const RunReport& run) {
               r.particles_vaporised, r.evaporated_mass,
               r.absorptance, r.energy.relative_error(), static_cast<unsigned long long>(r.steps),
               r.dt_grid, run.wall, run.out.c_str());
+  if (r.along.sections > 0)
+    std::printf("sinter: along the track's steady part (%zu sections): width %.1f +- %.1f um, "
+                "depth %.1f +- %.1f um\n",
+                r.along.sections, r.along.width_mean * 1e6, r.along.width_sd * 1e6,
+                r.along.depth_mean * 1e6, r.along.depth_sd * 1e6);
   if (!scene.scan_path.empty()) print_tracks(r.tracks);
   if (run.fused) {
     const th::Fusion& fused = *run.fused;

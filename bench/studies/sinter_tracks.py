@@ -126,11 +126,13 @@ def constant_properties(name, t_ref):
 
 
 def eagar_tsai_absorptivity(name):
-    """The flat surface's absorptance for Eagar–Tsai: Fresnel at normal incidence where the
-    material's complex index is at hand (316L), else the material file's value."""
-    if name == "316L":
-        return references.fresnel_normal(references.STEEL_316L_INDEX), "Fresnel, n = 3.2 + 4.3i"
-    return float(material(name)[0]["absorptivity"]), "material file"
+    """The flat surface's absorptance for Eagar–Tsai: Fresnel at normal incidence of the material
+    file's index of the solid (sinter's optics), else the file's absorptivity."""
+    props = material(name)[0]
+    if "index_n_solid" in props and "index_k_solid" in props:
+        index = complex(float(props["index_n_solid"]), float(props["index_k_solid"]))
+        return references.fresnel_normal(index), f"Fresnel, n = {index.real:g} + {index.imag:g}i"
+    return float(props["absorptivity"]), "material file"
 
 
 def eagar_tsai(row):
@@ -274,6 +276,10 @@ def run_sinter(row, name, options, et, args, costs):
     m = s["melt_pool"]
     return {"width": m["width"], "depth": m["depth"], "height": m["height"],
             "t_max": s["max_temperature"], "where": hottest(out), "wall": wall,
+            "t_max_particles": s.get("max_temperature_particles"),
+            "t_max_substrate": s.get("max_temperature_substrate"),
+            "evaporated_mass": s.get("evaporated_mass"),
+            "depression_depth": s.get("depression_depth"),
             "steps": s["steps"], "nodes": s["nodes"], "absorptance": s["absorptance"],
             "energy_balance_error": s["energy_balance_error"], "grid": grid,
             "options": options}
@@ -371,8 +377,9 @@ def error_table(result):
 def run_table(result):
     ran = [n for n in result["variants"] if result["variants"][n] is not None]
     lines = report.table_head("track", "variant", "grid h (um)", "Lx x Ly x depth (mm)", "nodes",
-                              "steps", "absorptance", "T_max (K)", "where (x, y - y_track; um)",
-                              "ET peak (K)", "wall (s)")
+                              "steps", "absorptance", "T_max (K)", "particles / substrate (K)",
+                              "where (x, y - y_track; um)", "evaporated (ng)", "ET peak (K)",
+                              "wall (s)")
     for row in result["rows"]:
         for n in ran:
             r = row["sinter"].get(n)
@@ -383,15 +390,43 @@ def run_table(result):
             if "error" in r:
                 lines.append(report.table_row(row["id"], n, f"{g['h'] * 1e6:g}", size, "–", "–",
                                               "–", "failed: " + r["error"].replace("|", "/"),
-                                              "–", "–", "–"))
+                                              "–", "–", "–", "–", "–"))
                 continue
             wh = r["where"]
             y_track = g["ly"] / 2
             lines.append(report.table_row(
                 row["id"], n, f"{g['h'] * 1e6:g}", size, f"{r['nodes']:,}", r["steps"],
-                f"{r['absorptance']:.3f}", f"{r['t_max']:.0f}",
+                f"{r['absorptance']:.3f}", f"{r['t_max']:.0f}", peaks_text(r),
                 f"{wh['on']} ({wh['x'] * 1e6:.0f}, {(wh['y'] - y_track) * 1e6:.0f})",
+                "–" if r.get("evaporated_mass") is None else f"{r['evaporated_mass'] * 1e12:.3g}",
                 f"{row['et']['peak']:.0f}", f"{r['wall']:.1f}"))
+    return "\n".join(lines)
+
+
+def peaks_text(r):
+    """The run's peaks over the particles and the substrate, as the program labels them."""
+    if r.get("t_max_substrate") is None:
+        return "–"
+    part = "–" if not r.get("t_max_particles") else f"{r['t_max_particles']:.0f}"
+    return f"{part} / {r['t_max_substrate']:.0f}"
+
+
+def bounds_table(result):
+    """Per variant: the hottest substrate and particle over its runs against T_b + 500 K."""
+    ran = [n for n in result["variants"] if result["variants"][n] is not None]
+    lines = report.table_head("variant", "runs", "hottest substrate (K)", "hottest particle (K)",
+                              "runs above T_b + 500 K")
+    for n in ran:
+        runs = [(row, row["sinter"][n]) for row in result["rows"]
+                if n in row["sinter"] and "error" not in row["sinter"][n]]
+        if not runs:
+            continue
+        t_b = {row["material"]: float(material(row["material"])[0]["boiling_point"]) for row, _ in runs}
+        sub = max(r.get("t_max_substrate") or r["t_max"] for _, r in runs)
+        part = max((r.get("t_max_particles") or 0) for _, r in runs)
+        above = sum(1 for row, r in runs if r["t_max"] > t_b[row["material"]] + 500)
+        lines.append(report.table_row(n, len(runs), f"{sub:.0f}", f"{part:.0f}" if part else "–",
+                                      above))
     return "\n".join(lines)
 
 
@@ -468,6 +503,7 @@ def write_page(result):
         "budget": f"{result['budget']:g}",
         "rows": len(rows),
         "variants": variants_text(result),
+        "bounds_table": bounds_table(result),
         "assumed_spot": f"{ASSUMED_SPOT * 1e6:g}",
         "et_absorptivity_316L": f"{et316['absorptivity']:.3f}" if et316 else "–",
         "track_table": track_table(result),
@@ -510,7 +546,9 @@ def main():
         row["et"] = eagar_tsai(row)
         row["sinter"] = {}
         for name, options in variants.items():
-            if options is None:
+            # The width-only rows (IN625) run today's model and the whole one; the single-effect
+            # variants run on the rows with depths, where they differ.
+            if options is None or (row["depth_m"] is None and name not in ("today", "all")):
                 continue
             r = run_sinter(row, name, options, row["et"], args, costs)
             row["sinter"][name] = r

@@ -223,3 +223,37 @@ TEST(MaterialCli, TheSameTrackMeltsTitaniumButNotCopper) {
   EXPECT_LT(test::json_number(copper.out, "absorptance"),
             0.2 * test::json_number(titanium.out, "absorptance"));
 }
+
+// Issue 31's bad input: a material file that lacks what a model asks for (n, k for Fresnel; the
+// boiling point and molar mass for evaporation; the surface tension for the depression), or a
+// negative k, exits 2 with one line naming the missing key and the way out.
+TEST(MaterialCli, ProcessModelsRefuseAMaterialWithoutTheirKeys) {
+  const std::string dir = test::scratch_dir("material_process");
+  const std::string bed_path = small_bed(dir);
+  // 316L's file without its optics, evaporation and depression keys.
+  std::ifstream in(std::string(POWDERBED_SOURCE_DIR) + "/data/materials/316L.csv");
+  std::ofstream out(dir + "/bare.csv");
+  for (std::string line; std::getline(in, line);) {
+    const bool dropped = line.rfind("index_", 0) == 0 || line.rfind("molar_mass", 0) == 0 ||
+                         line.rfind("surface_tension", 0) == 0 || line.rfind("boiling_point", 0) == 0;
+    if (!dropped) out << line << '\n';
+  }
+  out.close();
+  const std::string run = "--bed " + bed_path + " --substrate.nodes 21,11,11 --substrate.depth "
+                          "0.1e-3 --explain --material " + dir + "/bare.csv";
+  test::expect_refused(test::run_app("sinter", run), dir,
+                       {"--material", "laser.index-n-solid", "laser.optics = fresnel",
+                        "laser.optics = constant"});
+  test::expect_refused(test::run_app("sinter", run + " --laser.optics constant"), dir,
+                       {"--material", "material.boiling-point", "effects.evaporation"});
+  test::expect_refused(
+      test::run_app("sinter", run + " --laser.optics constant --effects.evaporation false "
+                                    "--material.boiling-point 3100 --material.molar-mass 0.056"),
+      dir, {"--material", "material.surface-tension", "effects.depression"});
+  EXPECT_EQ(test::run_app("sinter", run + " --laser.optics constant --effects.evaporation false "
+                                          "--effects.depression false").status,
+            0);
+  test::expect_refused(test::run_app("sinter", "--bed " + bed_path +
+                                                   " --explain --laser.index-k-solid -1"),
+                       dir, {"laser.index-k-solid", "accepted", "k > 0"});
+}

@@ -68,10 +68,11 @@ void regime_numbers(const SinterScene& scene, const Material& m, ExplainReport& 
   r.normalised_enthalpy = flat * scene.power /
                           (M_PI * rho_c * t_m * std::sqrt(diffusivity * scene.speed * w * w * w));
   r.keyhole_threshold = M_PI * pc.boiling_point / t_m;
-  const EvaporationParams vapour{pc.boiling_point, pc.latent_vapour, scene.molar_mass,
+  // The scene's L_v: the material's curve holds none when evaporation carries it.
+  const double latent = scene.phase_change.latent_vapour;
+  const EvaporationParams vapour{pc.boiling_point, latent, scene.molar_mass,
                                  scene.ambient_pressure, scene.back_condensation};
-  r.evaporation_ratio =
-      pc.latent_vapour * evaporation_mass_flux(vapour, pc.boiling_point) / r.laser_flux;
+  r.evaporation_ratio = latent * evaporation_mass_flux(vapour, pc.boiling_point) / r.laser_flux;
 }
 
 // The scale analysis's numbers (all but the text).

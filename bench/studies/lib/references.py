@@ -81,13 +81,10 @@ LP_2D = {
 # Melt pools of single tracks: the flat surface's Fresnel absorptance and Eagar–Tsai's moving
 # Gaussian source (sinter_tracks.py).
 
-# 316L's complex refractive index near 1.06 um (n + ik), the flat-surface optics of the model.
-STEEL_316L_INDEX = complex(3.2, 4.3)
-
-
 def fresnel_normal(index):
     """The absorptance of a flat metal surface at normal incidence, 1 - |(N - 1)/(N + 1)|^2 for
-    the complex index N = n + ik (s and p coincide there): 0.354 for 316L's 3.2 + 4.3i."""
+    the complex index N = n + ik (s and p coincide there): 0.353 for iron's 3.235 + 4.322i
+    (data/materials/316L.csv)."""
     r = (index - 1) / (index + 1)
     return 1 - abs(r) ** 2
 

@@ -41,6 +41,15 @@ struct MeltPool {  // on the plane x = Lx/2 (melt_pool.hpp says how)
   double height = 0, width = 0, depth = 0;  // m
 };
 
+// The melt pool on every cross-section of the track's steady part, as a user measures a track
+// in several polished sections: mean and standard deviation of width and depth (m) over the
+// grid columns between a quarter and three quarters of the bed's length (the single track on
+// the grid's line j = ny/2 only, where the peaks below the top face are kept; none otherwise).
+struct MeltPoolAlong {
+  std::size_t sections = 0;
+  double width_mean = 0, width_sd = 0, depth_mean = 0, depth_sd = 0;
+};
+
 // One segment of the scan path, measured over its window: from its start to the next segment's
 // (the jump after it included; the last one to t_end). Width and depth on the cross-section
 // through the segment's midpoint (melt_pool.hpp, measure_section), from the peaks of the window
@@ -92,6 +101,7 @@ struct TraceSummary {
 
 struct SinterResult {
   MeltPool melt_pool;
+  MeltPoolAlong along;
   double max_temperature = 0;  // peaks.highest()
   PeakTemperatures peaks;
   // Evaporation: mass evaporated (particles + substrate), kg, and the peak recoil pressure,
