@@ -433,7 +433,7 @@ def findings(results, seeds, sums):
         f"k_eff (share {100 * min(r['nominal']['radiation'] for r in every):.2f}–"
         f"{100 * max(r['nominal']['radiation'] for r in every):.2f} %). It costs the view "
         f"factors and Newton: keff's wall time (network and solve) {np.mean(t_on):.3f} s with it, "
-        f"{np.mean(t_off):.3f} s without (means over the beds; 100 rays per particle, one "
+        f"{np.mean(t_off):.3f} s without (means over the beds; 100 rays per particle; "
         "a process start and the bed's reading come on top of both). The rays "
         "are cosine-weighted (diffuse emission); [KE] describe uniform hemisphere directions, "
         "which keff does not offer (docs/keff.md).")
