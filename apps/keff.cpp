@@ -82,7 +82,7 @@ void add_options(po::options_description& desc, kf::KeffScene& s) {
        "A_c: scales the contact radius")
       ("contact.hertz-correction",
        po::value<bool>(&s.contact.hertz_correction)->default_value(s.contact.hertz_correction),
-       "contact radius from the equivalent Hertz overlap of a softened bed (else geometric); "
+       "contact radius from the equivalent Hertz overlap of a softened bed (else the bed's own); "
        "the DEM's law, E, nu and softening S or stiffness k_n are read from the bed")
       ("contact.radius", po::value<std::string>(),
        "hertz (a = sqrt(R* delta)) or geometric (the spheres' intersection circle, as MFiX); "
@@ -354,7 +354,8 @@ std::string result_json(const RunReport& run) {
   return j.str() + '\n';
 }
 
-// The text report: one line, and where the profile went.
+// The text report: the conductivities and the profile's shape, then the flows and paths, and
+// where the profile went.
 void print_result(const RunReport& run) {
   const kf::KeffResult& r = run.result;
   std::printf("keff: k_eff = %.6g W/mK wall to wall, k_core = %.6g W/mK (flux over the mean "
@@ -402,7 +403,7 @@ int run(int argc, char** argv) {
       scene.cold_temperature);
   const std::string profile_path =
       vm.count("out") ? write_outputs(vm, bed, scene, r, profile, argc, argv) : "";
-  const RunReport report{bed, scene,         network, r, core, kf::profile_r_squared(profile),
+  const RunReport report{bed, scene, network, r, core, kf::profile_r_squared(profile),
                          wall, profile_path};
   if (vm.count("json")) std::cout << result_json(report);
   else print_result(report);
