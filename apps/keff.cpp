@@ -21,6 +21,7 @@
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/h5_output.hpp"
 #include "powderbed/bed/json.hpp"
+#include "powderbed/keff/core_conductivity.hpp"
 #include "powderbed/keff/profile.hpp"
 #include "powderbed/keff/solve.hpp"
 
@@ -51,7 +52,8 @@ void add_options(po::options_description& desc, kf::KeffScene& s) {
       ("bed", po::value<std::string>(), "the bed (HDF5, CSV, LAMMPS dump)")
       ("out", po::value<std::string>(), "the bed with the particle temperatures (HDF5)")
       ("axis", po::value<std::string>()->default_value("z"),
-       "axis of the heat flow: hot wall at its upper face, cold wall at its lower face")
+       "axis of the heat flow: hot wall at its upper face, cold wall at its lower face (x, y: "
+       "the side walls a deposited bed was poured against; z: floor and the bed's top)")
       ("t-hot", po::value<double>()->default_value(d.hot_temperature), "T_hot (K)")
       ("t-cold", po::value<double>()->default_value(d.cold_temperature), "T_cold (K)")
       ("temperature", po::value<double>(),
@@ -80,8 +82,11 @@ void add_options(po::options_description& desc, kf::KeffScene& s) {
        "A_c: scales the contact radius")
       ("contact.hertz-correction",
        po::value<bool>(&s.contact.hertz_correction)->default_value(s.contact.hertz_correction),
-       "contact radius from the equivalent Hertz overlap of a softened bed (else geometric); "
+       "contact radius from the equivalent Hertz overlap of a softened bed (else the bed's own); "
        "the DEM's law, E, nu and softening S or stiffness k_n are read from the bed")
+      ("contact.radius", po::value<std::string>(),
+       "hertz (a = sqrt(R* delta)) or geometric (the spheres' intersection circle, as MFiX); "
+       "default: hertz with contact.hertz-correction, else geometric")
       ("contact.young", po::value<double>(),
        "E of the particles in the Hertz correction (Pa; default: the bed's): reads the same "
        "packing as a material of this modulus, the walls' modulus scaled alike")
@@ -149,6 +154,17 @@ void set_walls(const po::variables_map& vm, const po::variables_map& command_lin
   s.cold_temperature = vm["t-cold"].as<double>();
 }
 
+// contact.radius, whose default keeps what contact.hertz-correction alone chose before the
+// option existed: the Hertz circle of the corrected overlap, else the geometric circle.
+kf::ContactCircle contact_circle(const po::variables_map& vm, bool hertz_correction) {
+  if (!vm.count("contact.radius"))
+    return hertz_correction ? kf::ContactCircle::hertz : kf::ContactCircle::geometric;
+  const std::string word = vm["contact.radius"].as<std::string>();
+  if (word == "hertz") return kf::ContactCircle::hertz;
+  if (word == "geometric") return kf::ContactCircle::geometric;
+  throw InputError(fmt::format("contact.radius: '{}' (accepted: hertz, geometric)", word));
+}
+
 // The scene: `bound` (what add_options bound) with the axis, the walls and the models named by
 // words, validated.
 kf::KeffScene make_scene(const po::variables_map& vm, const po::variables_map& command_line,
@@ -171,6 +187,7 @@ kf::KeffScene make_scene(const po::variables_map& vm, const po::variables_map& c
     throw InputError(fmt::format("radiation.model: '{}' (accepted: pair, radiosity)", radiation));
   s.radiation_model =
       radiation == "radiosity" ? kf::RadiationModel::radiosity : kf::RadiationModel::pair;
+  s.contact.circle = contact_circle(vm, s.contact.hertz_correction);
   s.validate();
   return s;
 }
@@ -257,11 +274,10 @@ kf::KeffResult solve(const po::variables_map& vm, const bed::Bed& bed, const kf:
 // --out: the bed with the particle temperatures and, beside it, the binned profile; returns
 // the profile's path. The two files are written together or not at all.
 std::string write_outputs(const po::variables_map& vm, bed::Bed& bed, const kf::KeffScene& scene,
-                          const kf::KeffResult& r, std::size_t bins, int argc, char** argv) {
+                          const kf::KeffResult& r, const kf::TemperatureProfile& profile,
+                          int argc, char** argv) {
   const std::string out = vm["out"].as<std::string>();
   const std::string profile_path = profile_path_of(out);
-  const kf::TemperatureProfile profile =
-      kf::temperature_profile(bed, scene.axis, r.temperature, r.rattlers, bins);
   bed.temperature = r.temperature;
   bed.provenance.created_by = app::version_string("keff");
   bed.provenance.command_line = app::command_line(argc, argv);
@@ -284,6 +300,8 @@ struct RunReport {
   const kf::KeffScene& scene;
   const kf::KeffNetwork& network;
   const kf::KeffResult& result;
+  const kf::CoreConductivity& core;  // k_core and the walls' shares of the drop
+  double r_squared;                  // of the profile's bin means
   double wall;
   std::string profile_path;  // empty without --out
 };
@@ -295,6 +313,15 @@ std::string result_json(const RunReport& run) {
   bed::JsonWriter j;
   j.begin_object()
       .value("k_eff", r.k_eff)
+      .value("k_core", run.core.k_core)
+      .value("core_particles", static_cast<std::uint64_t>(run.core.particles))
+      .value("core_margin", run.core.margin)
+      .value("profile_r_squared", run.r_squared)
+      .value("wall_drop_hot", run.core.drop_hot)
+      .value("wall_drop_cold", run.core.drop_cold)
+      .value("axis", scene.axis == 0 ? "x" : scene.axis == 1 ? "y" : "z")
+      .value("contact_radius",
+             scene.contact.circle == kf::ContactCircle::hertz ? "hertz" : "geometric")
       .value("heat_flow_hot", r.heat_flow_hot)
       .value("heat_flow_cold", r.heat_flow_cold)
       .begin_object("share")
@@ -327,13 +354,19 @@ std::string result_json(const RunReport& run) {
   return j.str() + '\n';
 }
 
-// The text report: one line, and where the profile went.
+// The text report: the conductivities and the profile's shape, then the flows and paths, and
+// where the profile went.
 void print_result(const RunReport& run) {
   const kf::KeffResult& r = run.result;
-  std::printf("keff: k_eff = %.6g W/mK; wall flows %.6g / %.6g W (hot / cold); contact %.1f %%, "
+  std::printf("keff: k_eff = %.6g W/mK wall to wall, k_core = %.6g W/mK (flux over the mean "
+              "gradient of the %zu particles over %.3g m from both walls); profile R^2 = %.4f; "
+              "wall drops: hot %.1f %%, cold %.1f %% of T_hot - T_cold\n",
+              r.k_eff, run.core.k_core, run.core.particles, run.core.margin, run.r_squared,
+              100 * run.core.drop_hot, 100 * run.core.drop_cold);
+  std::printf("keff: wall flows %.6g / %.6g W (hot / cold); contact %.1f %%, "
               "gas %.1f %%, radiation %.1f %%; %zu rattlers of %zu particles; %zu Newton "
               "step%s; %.3g s\n",
-              r.k_eff, r.heat_flow_hot, r.heat_flow_cold, 100 * r.share_contact,
+              r.heat_flow_hot, r.heat_flow_cold, 100 * r.share_contact,
               100 * r.share_gas, 100 * r.share_radiation, r.rattlers.size(), run.bed.n(),
               r.newton_iterations, r.newton_iterations == 1 ? "" : "s", run.wall);
   if (!run.profile_path.empty())
@@ -355,14 +388,23 @@ int run(int argc, char** argv) {
   const auto bins = app::option_in_range<std::size_t>(vm, "profile-bins", 0, 1000000);
   check_files(vm);
   bed::Bed bed = bed::read_bed_any(vm["bed"].as<std::string>());
+  const kf::ContactCircle circle = scene.contact.circle;
   scene.contact = kf::contact_radius_params(bed.provenance.contact,
                                             scene.contact.hertz_correction, contact_options(vm));
+  scene.contact.circle = circle;
   kf::KeffNetwork network;
   double wall = 0;
   const kf::KeffResult r = solve(vm, bed, scene, network, wall);
+  const kf::TemperatureProfile profile =
+      kf::temperature_profile(bed, scene.axis, r.temperature, r.rattlers, bins);
+  const double flux = (r.heat_flow_hot + r.heat_flow_cold) / 2 / network.wall_area;
+  const kf::CoreConductivity core = kf::core_conductivity(
+      bed, scene.axis, r.temperature, r.rattlers, flux, scene.hot_temperature,
+      scene.cold_temperature);
   const std::string profile_path =
-      vm.count("out") ? write_outputs(vm, bed, scene, r, bins, argc, argv) : "";
-  const RunReport report{bed, scene, network, r, wall, profile_path};
+      vm.count("out") ? write_outputs(vm, bed, scene, r, profile, argc, argv) : "";
+  const RunReport report{bed, scene, network, r, core, kf::profile_r_squared(profile),
+                         wall, profile_path};
   if (vm.count("json")) std::cout << result_json(report);
   else print_result(report);
   return 0;

@@ -55,4 +55,25 @@ TemperatureProfile temperature_profile(const bed::Bed& bed, int axis,
   return p;
 }
 
+double profile_r_squared(const TemperatureProfile& profile) {
+  std::vector<double> x, t;
+  for (std::size_t b = 0; b < profile.position.size(); ++b)
+    if (profile.particles[b] > 0) {
+      x.push_back(profile.position[b]);
+      t.push_back(profile.mean[b]);
+    }
+  const double n = static_cast<double>(x.size());
+  if (x.size() < 3) return std::numeric_limits<double>::quiet_NaN();
+  const double mx = std::accumulate(x.begin(), x.end(), 0.0) / n;
+  const double mt = std::accumulate(t.begin(), t.end(), 0.0) / n;
+  double sxx = 0, sxt = 0, stt = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    sxx += (x[k] - mx) * (x[k] - mx);
+    sxt += (x[k] - mx) * (t[k] - mt);
+    stt += (t[k] - mt) * (t[k] - mt);
+  }
+  if (!(stt > 0)) return 1;  // a flat profile is its own line
+  return sxt * sxt / (sxx * stt);  // 1 − SS_res / SS_tot for a least-squares line
+}
+
 }  // namespace powderbed::keff

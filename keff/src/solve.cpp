@@ -66,6 +66,25 @@ std::size_t node(std::uint32_t j, std::size_t nodes) {
 
 bool is_wall(std::uint32_t j) { return j == kHotWall || j == kColdWall; }
 
+double mean_radius(const bed::Bed& bed) {
+  return bed.n() ? std::accumulate(bed.radius.begin(), bed.radius.end(), 0.0) /
+                       static_cast<double>(bed.n())
+                 : 0.0;
+}
+
+// The gap between the wall (the upper face of `axis`, or the lower) and the nearest particle
+// surface, m: what a user needs to see when no particle reaches the wall.
+double nearest_surface(const bed::Bed& bed, int axis, bool upper) {
+  const auto a = static_cast<std::size_t>(axis);
+  const std::vector<double>& centre = a == 0 ? bed.x : a == 1 ? bed.y : bed.z;
+  double gap = HUGE_VAL;
+  for (std::size_t p = 0; p < bed.n(); ++p) {
+    const double h = upper ? bed.domain.upper[a] - centre[p] : centre[p] - bed.domain.lower[a];
+    gap = std::min(gap, h - bed.radius[p]);
+  }
+  return gap;
+}
+
 using Matrix = Eigen::SparseMatrix<double>;
 
 // A link's heat flow from its j end into its i end (W) and its slopes ∂q/∂T_i, ∂q/∂T_j.
@@ -308,10 +327,14 @@ KeffResult solve_keff(const bed::Bed& bed, const KeffScene& scene, const KeffNet
   }
   for (const bool hot : {true, false}) {
     if (hot ? touches_hot : touches_cold) continue;
-    throw InputError(std::string("bed: no particle has a heat path to the ") +
-                     (hot ? "hot wall (upper " : "cold wall (lower ") + kAxisName[scene.axis] +
-                     " face; accepted: particles touching it, within their gas lens of it or "
-                     "seeing it)");
+    const double gap = nearest_surface(bed, scene.axis, hot);
+    throw InputError(fmt::format(
+        "axis: {} puts the {} wall at the {} {} face, which no particle reaches: the nearest "
+        "particle's surface is {:.3g} m ({:.3g} diameters) from it (accepted: an axis whose "
+        "walls the bed touches, within the gas lens or seeing it; a deposited bed touches its "
+        "side walls, x and y)",
+        kAxisName[scene.axis], hot ? "hot" : "cold", hot ? "upper" : "lower",
+        kAxisName[scene.axis], gap, gap / (2 * mean_radius(bed))));
   }
 
   // Unknowns: nodes connected to a wall; the particles among the rest are rattlers.

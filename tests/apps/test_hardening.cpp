@@ -676,6 +676,7 @@ std::vector<Case> all_cases() {
   add("keff_gas_model_word", "keff", kf + "--gas.model helium --out @out.h5", 2, {"gas.model", "helium"});
   add("keff_radiation_model_word", "keff", kf + "--radiation.model mc --out @out.h5", 2, {"radiation.model", "mc"});
   add("keff_lens_region_word", "keff", kf + "--gas.lens-region all --out @out.h5", 2, {"gas.lens-region"});
+  add("keff_contact_radius_word", "keff", kf + "--contact.radius elastic --out @out.h5", 2, {"contact.radius", "elastic"});
   add("keff_missing_bed", "keff", "--out @out.h5", 2, {"--bed"});
   add("keff_bed_missing_file", "keff", "--bed @missing.h5 --out @out.h5", 2, {"missing.h5"});
   add("keff_out_no_folder", "keff", kf + "--out @nowhere/out.h5", 2, {"--out", "nowhere"});

@@ -24,6 +24,9 @@ using powderbed::test::json_number;
 namespace {
 
 const std::string kScene = std::string(POWDERBED_SOURCE_DIR) + "/data/scenes/ke2016-steel-1mm.ini";
+// The column below stands on z; the scene's heat flows along x, between the side walls of a
+// deposited bed, with radiation on: these tests take the room-temperature column's paths.
+const std::string kConfig = "--config " + kScene + " --axis z --effects.radiation false";
 
 // Four 1 mm steel spheres stacked on z, overlapping each other and the walls by 1e-3 r; recorded
 // as made by a Hertz DEM at full stiffness (the scene asks for the Hertz correction).
@@ -49,7 +52,7 @@ TEST(KeffCli, ColumnPrintsJsonAndWritesTemperatures) {
   const std::string dir = test::scratch_dir("keff_run");
   const std::string bed_path = write_bed(column(), dir);
   // Geometric contact radius: the closed form below is that of the intersection circles.
-  const auto r = test::run_app("keff", "--config " + kScene + " --bed " + bed_path +
+  const auto r = test::run_app("keff", kConfig + " --bed " + bed_path +
                                            " --effects.gas false --contact.hertz-correction false"
                                            " --json --out " + dir + "/out.h5");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -96,7 +99,7 @@ TEST(KeffCli, ColumnPrintsJsonAndWritesTemperatures) {
 TEST(KeffCli, TemperatureOptionPutsTheWallsAroundIt) {
   const std::string dir = test::scratch_dir("keff_temperature");
   const std::string bed_path = write_bed(column(), dir);
-  const std::string base = "--config " + kScene + " --bed " + bed_path + " --json ";
+  const std::string base = kConfig + " --bed " + bed_path + " --json ";
   const auto r = test::run_app("keff", base + "--temperature 1000");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(json_number(r.out, "t_hot"), 1000.5);
@@ -119,7 +122,7 @@ TEST(KeffCli, TemperatureOptionPutsTheWallsAroundIt) {
 TEST(KeffCli, RadiationTakesAShareThroughNewton) {
   const std::string dir = test::scratch_dir("keff_radiation");
   const std::string bed_path = write_bed(column(), dir);
-  const auto r = test::run_app("keff", "--config " + kScene + " --bed " + bed_path +
+  const auto r = test::run_app("keff", "--config " + kScene + " --axis z --bed " + bed_path +
                                            " --effects.radiation true --rays 500 --t-hot 1300"
                                            " --t-cold 1100 --json");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -174,10 +177,14 @@ TEST(KeffCli, BadInputExitsTwoWithOneLine) {
   bed::write_bed_h5(flat, dir + "/flat.h5");
   expect_refused(test::run_app("keff", base + "--bed " + dir + "/flat.h5 --axis y"), dir,
                  {"axis", "2D"});
-  // The column touches neither x face: along x there is no path to a wall.
+  // The column touches neither x face: along x there is no path to a wall, and the message
+  // says how far the nearest particle is (tangent: 0 m).
   expect_refused(
-      test::run_app("keff", base + "--bed " + bed_path + " --axis x --effects.gas false"), dir,
-      {"hot wall"});
+      test::run_app("keff", "--config " + kScene + " --out " + dir + "/out.h5 --bed " + bed_path +
+                                " --axis x --effects.gas false --effects.radiation false"),
+      dir, {"hot wall", "nearest particle", "0 m"});
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --contact.radius elastic"),
+                 dir, {"contact.radius", "elastic", "geometric"});
 }
 
 TEST(KeffCli, HertzCorrectionReadsTheBedsContactLaw) {
@@ -188,7 +195,8 @@ TEST(KeffCli, HertzCorrectionReadsTheBedsContactLaw) {
   const double k_n = 1e5, e = 198e9, nu = 0.28;
   b.provenance.contact = {"linear", e, nu, e, nu, 1.0, k_n};
   const std::string bed_path = write_bed(b, dir);
-  const std::string base = "--config " + kScene + " --bed " + bed_path + " --effects.gas false --json";
+  const std::string base =
+      kConfig + " --bed " + bed_path + " --effects.gas false --contact.radius hertz --json";
   const auto r = test::run_app("keff", base);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("\"contact_law\":\"linear\""), std::string::npos) << r.out;
@@ -212,7 +220,7 @@ TEST(KeffCli, HertzCorrectionReadsTheBedsContactLaw) {
 
 TEST(KeffCli, ContactRecordMissingOrContradictedExitsTwo) {
   const std::string dir = test::scratch_dir("keff_bad_contact");
-  const std::string base = "--config " + kScene + " --out " + dir + "/out.h5 --bed ";
+  const std::string base = kConfig + " --out " + dir + "/out.h5 --bed ";
   bed::Bed bare = column();
   bare.provenance.contact = {};  // e.g. a packgen bed or a LAMMPS dump
   bed::write_bed_h5(bare, dir + "/bare.h5");
@@ -264,7 +272,7 @@ TEST(KeffCli, BedThatDoesNotJoinTheWallsExitsThree) {
   b.id = {0, 1};
   b.domain.upper[2] = 6 * r;
   const std::string bed_path = write_bed(b, dir);
-  const auto run = test::run_app("keff", "--config " + kScene + " --bed " + bed_path + " --out " +
+  const auto run = test::run_app("keff", kConfig + " --bed " + bed_path + " --out " +
                                             dir + "/out.h5");
   EXPECT_EQ(run.status, 3) << run.err;
   EXPECT_NE(run.err.find("k_eff"), std::string::npos) << run.err;

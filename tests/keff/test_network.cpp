@@ -72,6 +72,7 @@ TEST(Keff, ColumnWithHertzCorrectionAndCalibration) {
   const bed::Bed b = column();
   kf::KeffScene s = contact_only();
   s.contact.hertz_correction = true;
+  s.contact.circle = kf::ContactCircle::hertz;  // the closed form below is the Hertz circle's
   s.contact.young_scale = 1000;  // δ_h = δ_s S^{-2/3} = δ_s / 100
   s.calibration = 1.3;
   const kf::KeffResult r = kf::solve_keff(b, s);

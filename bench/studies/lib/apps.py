@@ -148,33 +148,15 @@ def coordination_at_gaps(centres, radii, gaps):
 # ------------------------------------------------------------------------------------------------
 # keff
 
-def core_gradient(path, s):
-    """k_core: the heat flux over the mean temperature gradient of the particles whose centres
-    lie more than 2 diameters from both walls (least-squares line T(z)), the bed's own
-    conductivity without the wall layers. `path`: keff's temperatures (--out), `s` its summary."""
-    import h5py
-    import numpy as np
-    with h5py.File(path, "r") as f:
-        z = np.array(f["particles/position"])[:, 2]
-        d = 2 * float(np.max(f["particles/radius"]))
-        temp = np.array(f["particles/temperature"])
-        lo, hi = f["domain"].attrs["lower"], f["domain"].attrs["upper"]
-    core = (z > lo[2] + 2 * d) & (z < hi[2] - 2 * d)
-    slope, _ = np.polyfit(z[core], temp[core], 1)
-    flux = 0.5 * (s["heat_flow_hot"] + s["heat_flow_cold"]) / ((hi[0] - lo[0]) * (hi[1] - lo[1]))
-    return flux / slope
-
-
 def keff(scene_path, bed, *options, out=None, env=None, core=False):
     """keff on `bed` with the scene and `options`: (--json summary, process wall s). `out`: where
-    the temperatures go (none written without); `core`: the summary gets k_core (core_gradient)
-    from them."""
+    the temperatures go (none written without). The summary carries k_core (the flux over the
+    core's mean gradient, keff's own since issue 35); `core` is kept for the callers that asked
+    for it when this script computed it."""
     args = [app("keff"), "--config", scene_path, "--bed", bed, *options]
     if out:
         args += ["--out", out]
     s, wall = run_json(args, env=env)
-    if core:
-        s["k_core"] = core_gradient(out, s)
     return s, wall
 
 

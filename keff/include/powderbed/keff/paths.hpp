@@ -25,33 +25,28 @@ inline double contact_conductance(double solid_conductivity, double calibration,
 }
 
 // The Hertz contact radius a = sqrt(R* delta_h) of an overlap delta_h at the true moduli
-// (bed/softening.hpp turns the DEM's overlap into it). For a wall R* = r (its radius is
-// infinite).
+// (bed/softening.hpp turns the DEM's overlap into it, conducting_overlap below). For a wall
+// R* = r (its radius is infinite).
 inline double hertz_contact_radius(double reduced_radius, double hertz_overlap) {
   return hertz_overlap > 0 ? std::sqrt(reduced_radius * hertz_overlap) : 0.0;
-}
-
-// A bed settled with Hertz contacts at E / S (S = young_scale, the DEM's softening).
-inline double softened_contact_radius(double reduced_radius, double soft_overlap, double young_scale) {
-  if (soft_overlap <= 0) return 0;
-  return hertz_contact_radius(reduced_radius, bed::hertz_overlap_of_softened(soft_overlap, young_scale));
-}
-
-// A bed settled with a linear spring k_n (the MFiX-DEM beds of [KE]); E* the true modulus of the
-// pair or of the particle on the wall.
-inline double linear_spring_contact_radius(double reduced_radius, double soft_overlap,
-                                           double stiffness, double effective_modulus) {
-  if (soft_overlap <= 0) return 0;
-  return hertz_contact_radius(
-      reduced_radius, bed::hertz_overlap_of_linear(soft_overlap, stiffness, effective_modulus, reduced_radius));
 }
 
 // The normal law of the DEM run that made the bed (bed::ContactProvenance).
 enum class BedContactLaw { hertz, linear };
 
+// Which circle an overlap δ (the bed's, or the Hertz overlap the correction reads from it)
+// conducts through:
+// - hertz: the elastic contact circle a = √(R* δ) (Hertz 1882);
+// - geometric: the circle where the two spheres intersect at centre distance r_i + r_j − δ,
+//   a² = r_i² − x², x = (d² + r_i² − r_j²) / (2d); for small δ a² ≈ 2 R* δ, √2 times the Hertz
+//   radius. This is what MFiX's DES conduction, which [KE] ran, takes (at its corrected
+//   overlap). A wall is the limit r_j → ∞ of both: √(r δ) and √(2 r δ − δ²).
+enum class ContactCircle { hertz, geometric };
+
 // How a contact radius is taken from the bed's geometry.
 struct ContactRadiusParams {
-  bool hertz_correction = false;  // false: the geometric circle where the spheres intersect
+  bool hertz_correction = false;  // false: the bed's own overlap; true: the equivalent Hertz one
+  ContactCircle circle = ContactCircle::geometric;
   BedContactLaw law = BedContactLaw::hertz;
   // hertz: E*_true / E*_DEM, the bed's softening S (E' / E_bed times it when the correction
   // reads the packing at another modulus E', contact.young)
@@ -61,21 +56,32 @@ struct ContactRadiusParams {
   double wall_modulus = 0;    // linear: E* of a particle on a wall, Pa
 };
 
-// Particle–particle contact radius at centre distance d (0 when apart).
-inline double pair_contact_radius(const ContactRadiusParams& p, double r_i, double r_j, double d) {
-  if (!p.hertz_correction) return bed::contact_radius(r_i, r_j, d);
-  const double reduced = r_i * r_j / (r_i + r_j), overlap = r_i + r_j - d;
+// The overlap a contact conducts through: the bed's `overlap` of reduced radius R* (a wall:
+// R* = r), or with the correction the Hertz overlap of the same force at the true moduli.
+inline double conducting_overlap(const ContactRadiusParams& p, double reduced_radius,
+                                 double overlap, bool wall) {
+  if (overlap <= 0) return 0;
+  if (!p.hertz_correction) return overlap;
   if (p.law == BedContactLaw::linear)
-    return linear_spring_contact_radius(reduced, overlap, p.stiffness, p.pair_modulus);
-  return softened_contact_radius(reduced, overlap, p.young_scale);
+    return bed::hertz_overlap_of_linear(overlap, p.stiffness, wall ? p.wall_modulus : p.pair_modulus,
+                                        reduced_radius);
+  return bed::hertz_overlap_of_softened(overlap, p.young_scale);
 }
 
-// Particle–wall contact radius, the centre `h` from the wall plane: a = √(r² − h²) geometric.
+// Particle–particle contact radius at centre distance d (0 when apart).
+inline double pair_contact_radius(const ContactRadiusParams& p, double r_i, double r_j, double d) {
+  const double reduced = r_i * r_j / (r_i + r_j);
+  const double delta = conducting_overlap(p, reduced, r_i + r_j - d, false);
+  if (p.circle == ContactCircle::hertz) return hertz_contact_radius(reduced, delta);
+  return delta > 0 ? bed::contact_radius(r_i, r_j, r_i + r_j - delta) : 0.0;
+}
+
+// Particle–wall contact radius, the centre `h` from the wall plane: the pair's law at
+// r_j → ∞ (R* = r; the plane cuts the sphere in a circle of radius √(r² − (r − δ)²)).
 inline double wall_contact_radius(const ContactRadiusParams& p, double r, double h) {
-  if (!p.hertz_correction) return bed::plane_contact_radius(r, h);
-  if (p.law == BedContactLaw::linear)
-    return linear_spring_contact_radius(r, r - h, p.stiffness, p.wall_modulus);
-  return softened_contact_radius(r, r - h, p.young_scale);
+  const double delta = conducting_overlap(p, r, r - h, true);
+  if (p.circle == ContactCircle::hertz) return hertz_contact_radius(r, delta);
+  return delta > 0 ? bed::plane_contact_radius(r, r - delta) : 0.0;
 }
 
 }  // namespace powderbed::keff

@@ -25,4 +25,10 @@ TemperatureProfile temperature_profile(const bed::Bed& bed, int axis,
                                        const std::vector<std::uint32_t>& excluded,
                                        std::size_t bins);
 
+// Linearity of the profile: R² = 1 − Σ (T_b − T̂_b)² / Σ (T_b − T̄)² of the bin means T_b
+// (empty bins left out, each bin one point) against their least-squares line T̂ in position:
+// 1 for a straight line, lower where the wall layers take jumps. NaN with fewer than 3 bins
+// holding particles (two points always lie on a line).
+double profile_r_squared(const TemperatureProfile& profile);
+
 }  // namespace powderbed::keff
