@@ -456,6 +456,33 @@ void check_finite(const Sinter::State& s, bool grid) {
 
 namespace {
 
+// The sections of the steady part of a single track on the grid line j = ny/2 (MeltPoolAlong).
+MeltPoolAlong measure_along(const Sinter::State& s, MeltPoolInput in) {
+  MeltPoolAlong a;
+  const SubstrateGeometry& g = s.g;
+  const auto& segments = s.schedule.segments();
+  if (!s.scene.scan_path.empty() || segments.size() != 1 ||
+      std::abs(segments.front().y0 - g.y(g.ny / 2)) > 0.5 * g.dy)
+    return a;
+  double sw = 0, sw2 = 0, sd = 0, sd2 = 0;
+  for (std::size_t i = g.nx / 4; i <= 3 * (g.nx - 1) / 4; ++i) {
+    in.x_plane = g.x(i);
+    const MeltPool p = measure_melt_pool(in);
+    ++a.sections;
+    sw += p.width;
+    sw2 += p.width * p.width;
+    sd += p.depth;
+    sd2 += p.depth * p.depth;
+  }
+  const double n = static_cast<double>(a.sections);
+  if (n == 0) return a;
+  a.width_mean = sw / n;
+  a.depth_mean = sd / n;
+  a.width_sd = std::sqrt(std::max(0.0, sw2 / n - a.width_mean * a.width_mean));
+  a.depth_sd = std::sqrt(std::max(0.0, sd2 / n - a.depth_mean * a.depth_mean));
+  return a;
+}
+
 PeakTemperatures peak_temperatures(const Sinter::State& s) {
   PeakTemperatures p;
   for (const double t : s.peak) p.particles = std::max(p.particles, t);
@@ -513,6 +540,7 @@ SinterResult summarise(Sinter::State& s, double particles_start, double substrat
   MeltPoolInput in{&g, &s.node_peak, &s.x, &s.y, &s.z, &s.radius, &s.peak, t_m,
                    g.x0 + 0.5 * static_cast<double>(g.nx - 1) * g.dx};
   r.melt_pool = measure_melt_pool(in);
+  r.along = measure_along(s, in);
   const double beam = s.schedule.beam_energy(t_end);
   r.absorptance = beam > 0 ? s.ledger.absorbed() / beam : 0.0;
   r.traces = s.traces;
