@@ -342,7 +342,7 @@ def track_table(result):
         for n in ran:
             r = row["sinter"].get(n)
             if not r or "error" in r:
-                cells += ["failed", "–"]
+                cells += ["not run" if not r else "failed", "–"]
                 continue
             cells += [f"{fmt_um(r['width'])} / {fmt_um(r['depth'])}",
                       f"{fmt_err(err(r['width'], row['width_m']))} / "
