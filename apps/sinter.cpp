@@ -193,6 +193,7 @@ std::string result_json(const po::variables_map& vm, const RunReport& run) {
   tracks_json(j, r.tracks);
   if (r.traces.traces > 0) ray_trace_json(j, r.traces);
   j.value("substrate_wetted", static_cast<std::uint64_t>(r.substrate_wetted))
+      .value("particles_merged", static_cast<std::uint64_t>(r.particles_merged))
       .value("bridges", static_cast<std::uint64_t>(r.bridges));
   if (run.fused) fusion_json(j, *run.fused, sinter.grid());
   energy_json(j, r.energy);

@@ -558,6 +558,13 @@ def main():
     result = {"rows": rows, "variants": variants, "quick": args.quick, "budget": args.budget,
               "study_wall": time.perf_counter() - start,
               "machine": report.machine(load, program=apps.app("sinter"))}
+    if args.only and os.path.exists(RESULTS_JSON):  # rerun rows replace theirs in the stored study
+        with open(RESULTS_JSON) as f:
+            stored = json.load(f)
+        rerun = {r["id"]: r for r in rows}
+        stored["rows"] = [rerun.pop(r["id"], r) for r in stored["rows"]] + list(rerun.values())
+        stored["machine"] += f" Rerun since: {', '.join(r['id'] for r in rows)}, {result['machine']}"
+        result = stored
     with open(RESULTS_JSON, "w") as f:
         json.dump(result, f, indent=1)
     write_page(result)

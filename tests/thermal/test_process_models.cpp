@@ -13,6 +13,7 @@
 #include "powderbed/thermal/evaporation.hpp"
 #include "powderbed/thermal/fresnel_absorptance.hpp"
 #include "powderbed/thermal/ray_traced_laser.hpp"
+#include "powderbed/thermal/fusion.hpp"
 #include "powderbed/thermal/solver.hpp"
 #include "powderbed/thermal/vapour_depression.hpp"
 #include "sinter_beds.hpp"
@@ -252,7 +253,9 @@ TEST(ProcessModels, AParticleThatVaporisesMidStepLeavesAtOnce) {
   scene.power = 100;
   scene.speed = 1.0;
   scene.spot_radius = 20e-6;
-  scene.effects &= ~thermal::kDepression;  // the plate's own pool is not the point here
+  // The plate's own pool is not the point here, and on remelted plate a wetting particle would
+  // merge into the pool before it vaporises.
+  scene.effects &= ~(thermal::kDepression | thermal::kWetting);
   scene.nodes = {41, 25, 11};
   scene.substrate_depth = 50e-6;
   thermal::Sinter sinter(bed, scene, test::table_316l());
@@ -264,6 +267,36 @@ TEST(ProcessModels, AParticleThatVaporisesMidStepLeavesAtOnce) {
   EXPECT_GT(r.evaporated_mass_particles, (1 - 1e-3) * mass);
   EXPECT_LE(r.evaporated_mass_particles, mass * (1 + 1e-12));  // a sum of its parts
   EXPECT_LT(r.energy.relative_error(), kBalance);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(ProcessModels, MoltenParticlesMergeIntoThePoolConservingMassAndEnergy) {
+  // A lattice bed under a 200 W beam: particles wholly molten on remelted plate merge into the
+  // pool; the volume they bring (m / rho0 each) raises the top exactly, the ledger closes, and
+  // fusion neither loses nor counts twice what merged.
+  const bed::Bed bed = test::lattice_bed(7, 4, 12.5e-6);
+  thermal::SinterScene scene;
+  scene.speed = 1.0;
+  scene.nodes = {37, 21, 21};
+  scene.substrate_depth = 150e-6;
+  thermal::Sinter sinter(bed, scene, test::table_316l());
+  const auto r = sinter.run(nullptr, 0, nullptr);
+  EXPECT_LT(r.energy.relative_error(), kBalance);
+  ASSERT_GT(r.particles_merged, 0u);
+  const auto& g = sinter.grid();
+  const double rho0 = sinter.material().density(scene.initial_temperature);
+  double merged = 0, raised = 0;
+  for (std::size_t i = 0; i < bed.n(); ++i)
+    if (sinter.particle_merged()[i]) merged += sinter.particle_mass()[i] / rho0;
+  for (const double z : sinter.top_height()) raised += (z - g.z_top) * g.dx * g.dy;
+  // Round-off of the sums: 1e-12.
+  EXPECT_NEAR(raised, merged, 1e-12 * merged);
+  const thermal::Fusion f = thermal::fuse(bed, sinter, 0.5);
+  EXPECT_LT(f.mass_error(), 1e-12);
+  EXPECT_GE(f.fused, r.particles_merged);
 }
 
 }  // namespace

@@ -144,6 +144,7 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
   const double rho0 = sinter.material().density(sinter.scene().initial_temperature);
   const auto& peak = sinter.particle_max_temperature();
   const auto& mass = sinter.particle_mass();
+  const auto& merged = sinter.particle_merged();
   const auto now = sinter.particle_phase();
   Fusion f;
   f.threshold = phase.melting_point + (melt_fraction - 0.5) * phase.window;
@@ -154,6 +155,12 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
   std::vector<std::uint8_t> keep(bed.n(), 1);
   const std::size_t first_top = g.index(0, 0, g.nz - 1);
   for (std::size_t i = 0; i < bed.n(); ++i) {
+    if (!merged.empty() && merged[i]) {  // in the pool during the scan: in the top already
+      f.state[i] = 1;
+      keep[i] = 0;
+      ++f.fused;
+      continue;
+    }
     f.powder_mass_before += mass[i];
     if (now[i] == 2) {  // vaporised: left the bed
       f.state[i] = 2;

@@ -389,6 +389,14 @@ void setup_top(Sinter::State& s, TopHeight top) {
     throw InputError("solid top: a raised top works with --integrator explicit only (accepted: "
                      "--integrator explicit)");
   s.top = std::move(top);
+  top_volumes(s);
+}
+
+}  // namespace
+
+void top_volumes(Sinter::State& s) {
+  const SubstrateGeometry& g = s.g;
+  if (s.top.empty()) s.top.assign(g.nx * g.ny, g.z_top);
   s.top_volume.resize(s.top.size());
   s.top_thickness.resize(s.top.size());
   for (std::size_t c = 0; c < s.top.size(); ++c) {
@@ -397,8 +405,6 @@ void setup_top(Sinter::State& s, TopHeight top) {
     s.top_thickness[c] = thick / g.dz;
   }
 }
-
-}  // namespace
 
 Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTable& table)
     : Sinter(bed, scene, table, TopHeight{}) {}
@@ -526,7 +532,8 @@ SinterResult summarise(Sinter::State& s, double particles_start, double substrat
     if (s.peak[i] >= t_m) ++r.particles_molten;
     // Without evaporation a particle that reached T_v counts ([GZ]'s reading); with it, one
     // whose mass evaporated.
-    if (evaporation ? s.gone[i] != 0 : s.peak[i] >= s.scene.phase_change.boiling_point)
+    const bool merged = !s.merged.empty() && s.merged[i];
+    if (evaporation ? s.gone[i] && !merged : s.peak[i] >= s.scene.phase_change.boiling_point)
       ++r.particles_vaporised;
   }
   r.evaporated_mass_particles = s.evaporated_particles;
@@ -547,6 +554,7 @@ SinterResult summarise(Sinter::State& s, double particles_start, double substrat
   close_tracks(s);
   r.tracks = s.tracks;
   r.substrate_wetted = s.wetted.size();
+  r.particles_merged = s.merged_count;
   r.bridges = s.bridges;
   return r;
 }
@@ -593,6 +601,7 @@ const SubstrateGeometry& Sinter::grid() const { return s_->g; }
 const TopHeight& Sinter::top_height() const { return s_->top; }
 const SinterScene& Sinter::scene() const { return s_->scene; }
 const std::vector<double>& Sinter::particle_mass() const { return s_->mass; }
+const std::vector<std::uint8_t>& Sinter::particle_merged() const { return s_->merged; }
 const BedSurface& Sinter::surface() const { return s_->surface; }
 const ConductionNetwork& Sinter::network() const { return s_->net; }
 const Material& Sinter::material() const { return s_->material; }
@@ -612,7 +621,9 @@ const std::vector<double>& Sinter::substrate_peak_planes() const { return s_->no
 std::vector<std::uint8_t> Sinter::particle_phase() const {
   std::vector<std::uint8_t> phase(s_->x.size());
   for (std::size_t i = 0; i < phase.size(); ++i)
-    phase[i] = s_->gone[i] ? 2 : static_cast<std::uint8_t>(std::min(
+    phase[i] = s_->gone[i] && (s_->merged.empty() || !s_->merged[i])
+                   ? 2
+                   : static_cast<std::uint8_t>(std::min(
                                      s_->material.phase(s_->temperature[i]),
                                      s_->scene.has(kEvaporation) ? 1u : 2u));
   return phase;

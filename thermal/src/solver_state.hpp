@@ -104,6 +104,11 @@ struct Sinter::State {
     std::vector<std::pair<std::size_t, double>> footprint;  // top nodes under the cap, weights
   };
   std::vector<WettedContact> wetted;
+  // Particles wholly molten on remelted solid that have merged into the pool (wetting.cpp):
+  // out of every loop as the vaporised are (gone), their enthalpy handed to the nodes under
+  // them, their mass kept for fusion.
+  std::vector<std::uint8_t> merged;
+  std::size_t merged_count = 0;
   std::vector<double> unwetted_area;  // per top-face column, m^2: what caps have not wetted
   std::size_t arrested = 0;           // wetted contacts still arrested
   std::size_t bridges = 0;  // pairs whose bridge has grown
@@ -140,6 +145,9 @@ struct Sinter::State {
   State(const SinterScene& scene, Material material);
 };
 
+// The raised top's per-column volumes and thicknesses from s.top (flat at z_top when empty:
+// the first particle that merges into the pool raises a flat plate's top, wetting.cpp).
+void top_volumes(Sinter::State& s);
 // Laser models (laser_sources.cpp): chooses s.particle_laser and s.substrate_laser for the
 // scene and, for ray tracing, builds the tracer.
 void setup_laser(Sinter::State& s, const bed::Bed& bed);

@@ -91,6 +91,7 @@ void recheck_particle_step(Sinter::State& s, std::size_t i) {
 void setup_wetting(Sinter::State& s) {
   const std::size_t n = s.x.size();
   s.unwetted_area.assign(s.g.nx * s.g.ny, s.g.dx * s.g.dy);
+  s.merged.assign(n, 0);
   s.molten.assign(n, 0);
   s.pairs_of.assign(n, {});
   s.substrate_of.assign(n, -1);
@@ -102,8 +103,55 @@ void setup_wetting(Sinter::State& s) {
     s.substrate_of[s.net.substrate[c].particle] = static_cast<std::int64_t>(c);
 }
 
+namespace {
+
+// A wholly molten particle whose cap has spread on remelted solid is part of the pool: its
+// mass and enthalpy go into the free top nodes under the cap, it leaves
+// the network and the beam (the maps are traced anew without it: the pool's surface is the
+// substrate's), its mass stays booked for fusion. The grid keeps its volume: the bead it would
+// raise is fusion's (docs/sinter.md "Fusion").
+void merge_into_pool(Sinter::State& s, const Sinter::State::WettedContact& w) {
+  const SubstrateGeometry& g = s.g;
+  // The free nodes under the cap take it all (a Dirichlet column holds no melt); a cap on
+  // Dirichlet columns alone stays a particle.
+  double free = 0;
+  for (const auto& [node, weight] : w.footprint)
+    if (!g.fixed_top(node)) free += weight;
+  if (free <= 0) return;
+  if (s.top.empty()) top_volumes(s);  // a flat plate: its top rises from here
+  const std::size_t i = w.particle, first_top = g.index(0, 0, g.nz - 1);
+  const double rho0 = s.material.density(s.scene.initial_temperature);
+  for (const auto& [node, weight] : w.footprint) {
+    if (g.fixed_top(node)) continue;
+    // The melt joins the top node: its volume m w / rho0 (as fusion books it) and its enthalpy.
+    const std::size_t c = node - first_top;
+    const double share = weight / free;
+    const double added = share * s.mass[i] / rho0, before = s.top_volume[c];
+    s.e[node] = (s.e[node] * before + share * s.mass[i] * s.h[i]) / (before + added);
+    s.top_volume[c] = before + added;
+    s.top[c] += added / (g.dx * g.dy);
+    s.top_thickness[c] = s.top_volume[c] / (g.dx * g.dy * g.dz);
+  }
+  s.h[i] = 0;
+  s.gone[i] = 1;
+  s.merged[i] = 1;
+  ++s.merged_count;
+  ++s.vaporised;  // the count of gone particles: the tracer removes them
+}
+
+// The spread caps whose particle is wholly molten merge into the pool.
+void merge_molten(Sinter::State& s) {
+  const double liquid = s.scene.phase_change.melting_point + 0.5 * s.scene.phase_change.window;
+  for (const auto& w : s.wetted)
+    if (w.interface == 0 && !s.gone[w.particle] && s.temperature[w.particle] >= liquid)
+      merge_into_pool(s, w);
+}
+
+}  // namespace
+
 void spread_molten(Sinter::State& s) {
   const double t_m = s.scene.phase_change.melting_point;
+  merge_molten(s);
   if (s.arrested > 0) {  // arrested contacts whose solid has remelted since
     for (std::size_t k = 0; k < s.wetted.size(); ++k)
       if (s.wetted[k].interface > 0 && !s.gone[s.wetted[k].particle])

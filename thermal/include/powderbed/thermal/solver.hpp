@@ -117,6 +117,7 @@ struct SinterResult {
   double absorptance = 0;  // laser energy absorbed over the beam's energy P t_end
   TraceSummary traces;     // ray tracing only
   std::size_t substrate_wetted = 0, bridges = 0;  // wetting: spread caps and liquid bridges
+  std::size_t particles_merged = 0;  // wetting: wholly molten on remelted solid, into the pool
   std::vector<TrackStats> tracks;  // one per scan segment begun by t_end
 };
 
@@ -139,7 +140,10 @@ class Sinter {
   const SubstrateGeometry& grid() const;
   const TopHeight& top_height() const;  // empty: flat at the grid's top face
   const SinterScene& scene() const;
-  const std::vector<double>& particle_mass() const;  // rho(T0) 4/3 π r^3, kg
+  const std::vector<double>& particle_mass() const;  // rho(T0) 4/3 π r^3 less what evaporated, kg
+  // Per particle, whether it merged into the pool (wetting): its volume is in top_height()
+  // already. Empty without wetting.
+  const std::vector<std::uint8_t>& particle_merged() const;
   const BedSurface& surface() const;
   const ConductionNetwork& network() const;
   const Material& material() const;
