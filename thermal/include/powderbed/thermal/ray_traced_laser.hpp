@@ -40,7 +40,7 @@ enum class Optics { constant, fresnel };
 struct SurfaceOptics {
   Optics model = Optics::constant;
   double alpha[2] = {0.33, 0.33};  // constant: solid, liquid
-  std::complex<double> index[2] = {{3.2, 4.3}, {3.2, 4.3}};  // fresnel: solid, liquid
+  std::complex<double> index[2] = {{3.235, 4.322}, {3.235, 4.322}};  // fresnel: solid, liquid (316L)
   // Absorbed fraction at a hit on a surface of phase `liquid` (0 or 1), cos θ = `cos_incidence`.
   double absorptance(unsigned liquid, double cos_incidence) const;
 };
