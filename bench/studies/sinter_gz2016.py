@@ -15,6 +15,7 @@ for the laser model and wetting, which each table names.
 import argparse
 import os
 import subprocess
+import sys
 
 from lib import apps, references, report
 from lib.apps import pool_um, vaporised_by_size
@@ -99,7 +100,7 @@ def track_means(run_path, x_from=0.2e-3, x_to=0.8e-3, slices=121):
 
 def picture(run_path, name, title):
     prefix = os.path.join(report.RESULTS, name)
-    subprocess.run(["python3", os.path.join(apps.ROOT, "scripts", "plot_sinter.py"), run_path,
+    subprocess.run([sys.executable, os.path.join(apps.ROOT, "scripts", "plot_sinter.py"), run_path,
                     prefix, "--title", title], check=True)
     return os.path.basename(prefix)
 
