@@ -52,15 +52,17 @@ void particle_step(Sinter::State& s, double t, double dt) {
   if constexpr ((Effects & kSubstrateContact) != 0) {
     for (const auto& c : s.net.substrate) {
       if (s.gone[c.particle]) continue;
-      double ts = 0;
-      for (int w = 0; w < 4; ++w) ts += c.stencil.weight[w] * s.node_temperature[c.stencil.node[w]];
-      const double ti = s.temperature[c.particle];
-      const double f = conduction_flow(k_of(ti), k_of(ts), c.shape, ts - ti);
-      q[c.particle] += f;
+      // The contact meets the top face between four nodes: weight w of it conducts to each, by
+      // that node's own difference (one flow from their interpolated mean, shared out by w,
+      // would draw heat from a node colder than the particle and swing it below T0).
+      const double ti = s.temperature[c.particle], ki = k_of(ti);
       for (int w = 0; w < 4; ++w) {
-        const double energy = c.stencil.weight[w] * f * dt;
-        if (s.g.fixed_top(c.stencil.node[w])) s.ledger.boundary -= energy;  // from the reservoir
-        else s.sources.push_back({c.stencil.node[w], -energy});
+        const std::size_t node = c.stencil.node[w];
+        const double tq = s.node_temperature[node];
+        const double f = c.stencil.weight[w] * conduction_flow(ki, k_of(tq), c.shape, tq - ti);
+        q[c.particle] += f;
+        if (s.g.fixed_top(node)) s.ledger.boundary -= f * dt;  // from the reservoir
+        else s.sources.push_back({node, -f * dt});
       }
     }
   }

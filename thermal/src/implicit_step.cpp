@@ -109,33 +109,22 @@ void add_pair_conduction(const Sinter::State& s, ImplicitSystem& sys) {
   }
 }
 
+// Weight w of a contact conducts to each of the four top nodes around it, by that node's own
+// difference (as the explicit step): couplings of the particle to each node alone, so the
+// matrix stays an M-matrix and no node is driven below its neighbours.
 template <bool Variable>
 void add_substrate_contacts(const Sinter::State& s, ImplicitSystem& sys) {
-  const std::vector<std::ptrdiff_t>& unknown = sys.unknown;
   for (const auto& c : s.net.substrate) {
-    double ts = 0;
-    for (int w = 0; w < 4; ++w) ts += c.stencil.weight[w] * s.node_temperature[c.stencil.node[w]];
-    const double G = s.gone[c.particle]
-                         ? 0.0
-                         : path_conductance(conductivity_at<Variable>(s, s.temperature[c.particle]),
-                                            conductivity_at<Variable>(s, ts), c.shape);
-    // Q = G (Σ w_l T_l - T_i) into the particle, w_k Q out of node k: symmetric in (i, nodes).
-    const auto pi = static_cast<std::ptrdiff_t>(c.particle);
-    sys.add(pi, pi, G);
+    const double ti = s.temperature[c.particle];
     for (int a = 0; a < 4; ++a) {
-      const double wa = c.stencil.weight[a];
-      const std::ptrdiff_t ua = unknown[c.stencil.node[a]];
-      const double ta = s.node_temperature[c.stencil.node[a]];
-      if (ua >= 0) sys.add(pi, ua, -G * wa);
-      else sys.rhs[pi] += G * wa * ta;
-      if (ua < 0) continue;
-      sys.add(ua, pi, -G * wa);
-      for (int b = 0; b < 4; ++b) {
-        const double wb = c.stencil.weight[b];
-        const std::ptrdiff_t ub = unknown[c.stencil.node[b]];
-        if (ub >= 0) sys.add(ua, ub, G * wa * wb);
-        else sys.rhs[ua] -= G * wa * wb * s.node_temperature[c.stencil.node[b]];
-      }
+      const std::size_t node = c.stencil.node[a];
+      const double ta = s.node_temperature[node];
+      const double G = s.gone[c.particle]
+                           ? 0.0
+                           : c.stencil.weight[a] *
+                                 path_conductance(conductivity_at<Variable>(s, ti),
+                                                  conductivity_at<Variable>(s, ta), c.shape);
+      sys.couple(static_cast<std::ptrdiff_t>(c.particle), ti, sys.unknown[node], ta, G);
     }
   }
 }

@@ -192,40 +192,36 @@ double secant_capacity(const EnthalpyCurve& curve, double t, double t_other) {
 namespace {
 
 // The exchange, with conductivities that follow temperature (Variable) or are held at T0: a
-// template argument, chosen once per step (wetted_exchange), not per contact.
+// template argument, chosen once per step (wetted_exchange), not per contact. The cap touches
+// each node under it over its share w_q of the base, so it is w_q of the cap's conductance to
+// that node alone, exchanged exactly pair by pair: a node's heat follows its own difference to
+// the particle (one exchange with the nodes' mean, shared out by w_q, would draw heat from a
+// node colder than the particle whenever the others are hotter and swing it below T0).
 template <bool Variable>
 void exchange_wetted(Sinter::State& s, double dt) {
   const SubstrateGeometry& g = s.g;
   for (const auto& w : s.wetted) {
     const std::size_t i = w.particle;
-    if (s.gone[i]) continue;
-    const double tp = s.temperature[i];
-    double ts = 0;
-    for (const auto& [node, weight] : w.footprint) ts += weight * s.node_temperature[node];
-    // The nodes under the cap as one body of capacity 1 / Σ w² / C_q (Dirichlet nodes: a
-    // reservoir), and the most energy that leaves no free node beyond the particle's
-    // temperature: node q takes w_q E.
-    double inverse_capacity = 0, limit = std::numeric_limits<double>::infinity();
     for (const auto& [node, weight] : w.footprint) {
-      if (g.fixed_top(node) || weight <= 0) continue;
-      const double tq = s.node_temperature[node], top_volume = top_node_volume(s, node);
-      inverse_capacity += weight * weight / (top_volume * secant_capacity(s.per_m3, tq, tp));
-      limit = std::min(limit, top_volume * std::abs(s.per_m3.enthalpy(tp) - s.e[node]) / weight);
-    }
-    const double c_particle = s.mass[i] * secant_capacity(s.per_kg, tp, ts);
-    const double c_nodes = inverse_capacity > 0 ? 1 / inverse_capacity : 1e300;
-    const double path = path_conductance(conductivity_at<Variable>(s, tp),
-                                         conductivity_at<Variable>(s, ts), w.shape);
-    const double conductance = w.interface > 0 ? 1 / (1 / path + w.interface) : path;
-    double energy = exact_exchange(conductance, c_particle, tp, c_nodes, ts, dt);
-    // Nor the particle beyond the nodes' mean temperature.
-    limit = std::min(limit, s.mass[i] * std::abs(s.per_kg.enthalpy(ts) - s.h[i]));
-    energy = std::clamp(energy, -limit, limit);
-    s.h[i] += energy / s.mass[i];
-    particle_enthalpy_changed(s, i);
-    for (const auto& [node, weight] : w.footprint) {
-      if (g.fixed_top(node)) s.ledger.boundary -= weight * energy;  // from the reservoir
-      else s.sources.push_back({node, -weight * energy});
+      if (s.gone[i]) break;  // ablated by an earlier node's heat
+      if (weight <= 0) continue;
+      const double tp = s.temperature[i], tq = s.node_temperature[node];
+      const double path = path_conductance(conductivity_at<Variable>(s, tp),
+                                           conductivity_at<Variable>(s, tq), w.shape);
+      const double conductance = weight / (1 / path + w.interface);
+      const double c_particle = s.mass[i] * secant_capacity(s.per_kg, tp, tq);
+      const bool reservoir = g.fixed_top(node);  // Dirichlet nodes
+      const double volume = reservoir ? 0 : top_node_volume(s, node);
+      const double c_node = reservoir ? 1e300 : volume * secant_capacity(s.per_m3, tq, tp);
+      double energy = exact_exchange(conductance, c_particle, tp, c_node, tq, dt);
+      // Neither side beyond the other's temperature (the capacities are secants, not exact).
+      double limit = s.mass[i] * std::abs(s.per_kg.enthalpy(tq) - s.h[i]);
+      if (!reservoir) limit = std::min(limit, volume * std::abs(s.per_m3.enthalpy(tp) - s.e[node]));
+      energy = std::clamp(energy, -limit, limit);
+      s.h[i] += energy / s.mass[i];
+      particle_enthalpy_changed(s, i);
+      if (reservoir) s.ledger.boundary -= energy;
+      else s.sources.push_back({node, -energy});
     }
   }
 }
