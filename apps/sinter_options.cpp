@@ -137,8 +137,13 @@ void add_laser_options(po::options_description& desc, th::SinterScene& s) {
       ("laser.retrace-interval",
        po::value<double>(&s.retrace_interval)->default_value(s.retrace_interval),
        "ray-trace: the beam is traced anew each time it moves this fraction of w")
-      ("laser.reflection", po::value<std::string>()->default_value("specular"),
-       "ray-trace: specular or diffuse (Lambert) reflection")
+      ("laser.reflection", po::value<std::string>()->default_value("rough"),
+       "ray-trace: specular, diffuse (Lambert) or rough (the solid top face reflects by its "
+       "roughness, particles and melt as mirrors)")
+      ("laser.roughness", po::value<double>(&s.rays.roughness)->default_value(s.rays.roughness),
+       "rough: rms height of the solid top face, m")
+      ("laser.wavelength", po::value<double>(&s.rays.wavelength)->default_value(s.rays.wavelength),
+       "rough: the laser's vacuum wavelength, m")
       ("laser.ray-cutoff", po::value<double>(&s.rays.cutoff)->default_value(s.rays.cutoff),
        "ray-trace: a ray carrying less than this fraction of its power is dropped")
       ("laser.ray-seed", po::value<std::uint64_t>(&s.rays.seed)->default_value(s.rays.seed),
@@ -276,11 +281,15 @@ void set_laser(const po::variables_map& vm, th::SinterScene& s) {
   s.absorption = absorption == "ray-trace" ? th::LaserAbsorption::ray_trace
                                            : th::LaserAbsorption::beer_lambert;
   const std::string reflection = vm["laser.reflection"].as<std::string>();
-  if (reflection != "specular" && reflection != "diffuse")
-    throw InputError(
-        fmt::format("laser.reflection: '{}' (accepted: specular, diffuse)", reflection));
-  s.rays.reflection =
-      reflection == "specular" ? th::Reflection::specular : th::Reflection::diffuse;
+  if (reflection == "specular")
+    s.rays.reflection = th::Reflection::specular;
+  else if (reflection == "diffuse")
+    s.rays.reflection = th::Reflection::diffuse;
+  else if (reflection == "rough")
+    s.rays.reflection = th::Reflection::rough;
+  else
+    throw InputError(fmt::format(
+        "laser.reflection: '{}' (accepted: specular, diffuse, rough)", reflection));
   const std::string optics = vm["laser.optics"].as<std::string>();
   if (optics != "fresnel" && optics != "constant")
     throw InputError(fmt::format("laser.optics: '{}' (accepted: fresnel, constant)", optics));

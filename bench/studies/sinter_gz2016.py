@@ -114,8 +114,9 @@ VARIANTS = [
      ["--laser.absorption", "beer-lambert", "--laser.substrate-shading", "column"]),
     ("ray-traced, specular", ["--laser.absorption", "ray-trace", "--laser.reflection", "specular"]),
     ("ray-traced, diffuse", ["--laser.absorption", "ray-trace", "--laser.reflection", "diffuse"]),
+    ("ray-traced, rough plate", ["--laser.absorption", "ray-trace", "--laser.reflection", "rough"]),
 ]
-DEFAULT = ("ray-traced, specular", True)  # the scene's default: why in docs/sinter.md
+DEFAULT = ("ray-traced, rough plate", True)  # the scene's default: why in docs/sinter.md
 
 
 def variant_runs(bed):
@@ -128,6 +129,41 @@ def variant_runs(bed):
             s["track"] = track_means(s["out_path"])
             runs.append((label, wetting, s, wall))
     return runs
+
+
+# The plate's rms roughness sigma (m) of the rough-plate default, swept with wetting on: from a
+# mirror (0) through polished (0.1 um) to ground and as-built plates (1-3 um).
+ROUGHNESS = [0, 0.05e-6, 0.1e-6, 0.3e-6, 1e-6, 3e-6]
+
+
+def roughness_runs(bed):
+    runs = []
+    for sigma in ROUGHNESS:
+        s, wall = apps.sinter(SCENE, bed, f"gz2016-roughness-{sigma * 1e6:g}.h5", "--laser.absorption",
+                              "ray-trace", "--laser.reflection", "rough", "--laser.roughness",
+                              f"{sigma:g}", "--effects.wetting", "true")
+        s["track"] = track_means(s["out_path"])
+        runs.append((sigma, s, wall))
+    return runs
+
+
+def specular_share_at_normal(sigma, wavelength=1.07e-6):
+    """exp(-(4 pi sigma / lambda)^2): thermal/include/powderbed/thermal/rough_reflection.hpp."""
+    import math
+    return math.exp(-(4 * math.pi * sigma / wavelength) ** 2)
+
+
+def roughness_table(runs):
+    out = ["| plate sigma (um) | specular share at normal incidence | height / width / depth on "
+           "x = Lx/2 (um) | track width (um) | track depth (um) | absorptance (run / bed) | "
+           "T_max (K) | wall (s) |", "|---|---|---|---|---|---|---|---|"]
+    for sigma, s, wall in runs:
+        h, w, d = pool_um(s)
+        out.append(f"| {sigma * 1e6:g} | {specular_share_at_normal(sigma):.3f} | {h:.1f} / {w:.1f} / "
+                   f"{d:.1f} | {fmt_track(s['track'], 'width')} | {fmt_track(s['track'], 'depth')} | "
+                   f"{s['absorptance']:.3f} / {s['ray_trace']['bed_absorptance']:.3f} | "
+                   f"{s['max_temperature']:.0f} | {wall:.1f} |")
+    return out
 
 
 def fmt_track(track, key):
@@ -197,6 +233,17 @@ def validation(bed, machine):
         f"extent {rt['outside']:.3f}, dropped below the cutoff {rt['dropped']:.1e}; "
         f"{rt['hits_per_ray']:.2f} hits per ray.",
         "",
+        "## The plate's roughness",
+        "",
+        "The default run again with the plate's rms roughness sigma swept (wetting on): the solid "
+        "top face reflects the share exp(-(4 pi sigma cos theta / lambda)^2) as a mirror and the "
+        "rest by Lambert's law (Bennett & Porteus 1961; docs/physics.md). sigma = 0 is the "
+        "specular row above; by sigma ~ 0.3 um the plate scatters almost all it reflects, and "
+        "ground or as-built plates (1-3 um) are past that: the answer no longer depends on "
+        "sigma there.",
+        "",
+        *roughness_table(roughness_runs(bed)),
+        "",
         "## Where the numbers differ and why",
         "",
         "- **Depth.** With Beer-Lambert the substrate receives alpha I0 exp(-beta H_layer): 26 % "
@@ -206,26 +253,28 @@ def validation(bed, machine):
         "after reflections off them. Neither is enough alone: the particles take most of the "
         "power, and without wetting their heat stays in them (their contact circles are ~1e-2 "
         "of their radius, so conduction to the substrate is ~1e-6 of the laser flux, `sinter "
-        "--explain`). A molten particle wets the substrate within ~45 ns (docs/sinter.md), its "
-        "contact becomes a spread cap, and its heat reaches the substrate while the beam is "
-        "still on it: wetting is what brings the depth to the references.",
+        "--explain`). A molten particle on remelted substrate spreads in the inertial regime "
+        "within ~3 us (Oh = 0.015, docs/sinter.md), its contact becomes a spread cap, and its "
+        "heat reaches the substrate while the beam is still on it.",
         "- **Width and height** are set by which particles the beam heats past T_m; with "
         "wetting the substrate under the molten particles melts too, which widens the pool on "
         "the substrate. The height is the top of the highest molten particle the plane cuts: a "
         "property of the bed (our bed is not the paper's; the particles stay where they are, "
         "the model has no melt flow).",
         "- **Absorptance.** The bed absorbs about half the beam with alpha = 0.33 per hit "
-        "(specular): more than a flat plate (alpha) because rays reflected off the spheres hit "
-        "others or the substrate, less than the ~0.6-0.7 measured and traced for powder layers "
-        "(Boley, King & Khairallah 2015; Trapp et al. 2017) because this layer is one sparse "
-        "particle deep on a flat plate: rays that reach the plate between the spheres go back up "
-        "through the same gaps.",
-        "- **T_max** is a substrate node's: the model has no evaporation loss or melt flow on "
-        "the substrate, so nodes under the beam keep heating past T_v (docs/sinter.md).",
+        "(spheres as mirrors, the ground plate scattering by Lambert's law): more than a flat "
+        "plate (alpha) because rays reflected off the spheres hit others or the substrate, and "
+        "because light the rough plate scatters sideways meets the spheres beside the gap it came "
+        "through (a mirror plate sends it back up the same gap: compare the specular row); less "
+        "than the ~0.6-0.7 measured and traced for powder layers (Boley, King & Khairallah 2015; "
+        "Trapp et al. 2017) because this layer is one sparse particle deep on a flat plate.",
+        "- **T_max** is a substrate node's: evaporation (Anisimov's recoil and the latent heat "
+        "it carries) holds the surface near T_b; no melt flow moves the heat sideways "
+        "(docs/sinter.md).",
         "- **Energy**: every joule is booked (laser into particles and substrate, convection, "
         "radiation, heat into the Dirichlet sides); the balance closes to round-off.",
         "",
-        "Default run (ray-traced, specular, wetting):",
+        "Default run (ray-traced, rough plate, wetting):",
         "",
         f"![top view]({pic}-top.png)",
         "",
@@ -302,7 +351,7 @@ def sweeps(bed, machine):
         "Generated by `bench/studies/sinter_gz2016.py`: the scene and bed of "
         "docs/results/sinter-gz2016.md, one option changed per run (power 40–400 W at 2.0 m/s, "
         "speed 0.4–4.0 m/s at 200 W, [GZ] §3), for the scene's default model (ray-traced "
-        "absorption, specular, with wetting) and for Beer-Lambert as [GZ]'s text has it without "
+        "absorption, rough plate, with wetting) and for Beer-Lambert as [GZ]'s text has it without "
         "wetting. Melt pool on x = Lx/2 and track mean ± sd over 121 planes between x = 0.2 and "
         "0.8 mm, as in docs/results/sinter-gz2016.md. One thread each.",
         "",

@@ -310,7 +310,7 @@ TEST(SinterCli, BadRayTraceAndWettingOptionsExit2) {
   refused("--laser.rays 0", {"laser.rays", "accepted", "at least 1"});
   refused("--laser.absorption foo",
           {"laser.absorption", "foo", "accepted", "beer-lambert", "ray-trace"});
-  refused("--laser.reflection foo", {"laser.reflection", "foo", "accepted", "specular", "diffuse"});
+  refused("--laser.reflection foo", {"laser.reflection", "foo", "accepted", "specular", "diffuse", "rough"});
   refused("--laser.retrace-interval 0", {"laser.retrace-interval", "accepted", "0 < interval"});
   refused("--laser.ray-cutoff 1", {"laser.ray-cutoff", "accepted", "0 < cutoff < 1"});
   refused("--laser.absorption ray-trace --integrator implicit",

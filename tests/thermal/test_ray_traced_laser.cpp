@@ -20,6 +20,7 @@
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/thermal/ray_traced_laser.hpp"
+#include "powderbed/thermal/rough_reflection.hpp"
 #include "powderbed/thermal/solver.hpp"
 #include "sinter_beds.hpp"
 
@@ -40,6 +41,11 @@ constexpr double kAlpha = 0.35;  // 316L near 1 µm (Boley et al. 2015: ~0.3–0
 // 1e-12 still catches a single ray of 1e5 booked twice or lost (1e-5).
 constexpr double kConserved = 1e-12;
 
+// A plate roughness at which the rough law mixes its two branches: at 1.07 µm and normal
+// incidence the specular share is exp(-(4π 0.1/1.07)²) = 0.25 (rough_reflection.hpp), so both
+// the mirror and the Lambert draw are taken.
+constexpr double kMixedRoughness = 0.1e-6;
+
 // A plate [0, lx] x [0, ly] at z = 0 with nx x ny top nodes (the tracer reads only the top).
 thermal::SubstrateGeometry plate(double lx, double ly, std::size_t nx, std::size_t ny) {
   thermal::SubstrateGeometry g;
@@ -58,6 +64,7 @@ struct Beam {
   Reflection reflection = Reflection::specular;
   double alpha = kAlpha;
   double cutoff = 1e-4;  // RayTraceParams' default
+  double roughness = 1e-6;  // rough: RayTraceParams' default (a ground plate)
 };
 
 AbsorptionMap trace(const bed::Bed& bed, const thermal::SubstrateGeometry& g, const Beam& beam) {
@@ -65,6 +72,7 @@ AbsorptionMap trace(const bed::Bed& bed, const thermal::SubstrateGeometry& g, co
   p.rays = beam.rays;
   p.reflection = beam.reflection;
   p.cutoff = beam.cutoff;
+  p.roughness = beam.roughness;
   thermal::SurfaceOptics optics;  // constant: beam.alpha in both phases
   optics.alpha[0] = optics.alpha[1] = beam.alpha;
   const BeamTracer tracer(bed, g, beam.w, p, optics);
@@ -292,9 +300,11 @@ TEST(RayTraceTracer, PowerIsConservedToRoundOff) {
   const auto g = plate(bed.domain.upper[0], bed.domain.upper[1], 15, 13);
   for (const double alpha : {0.02, kAlpha, 0.9})
     for (const double cutoff : {1e-4, 0.5})
-      for (const auto reflection : {Reflection::specular, Reflection::diffuse}) {
+      for (const auto reflection :
+           {Reflection::specular, Reflection::diffuse, Reflection::rough}) {
         Beam beam{30e-6, 0.45 * bed.domain.upper[0], 0.55 * bed.domain.upper[1]};
         beam.rays = 50000, beam.reflection = reflection, beam.alpha = alpha;
+        beam.roughness = kMixedRoughness;
         beam.cutoff = cutoff;
         const AbsorptionMap m = trace(bed, g, beam);
         expect_booked(m, bed.n(), g, alpha);
@@ -357,9 +367,10 @@ TEST(RayTraceTracer, SameMapForOneAndTwoThreads) {
   const bed::Bed bed = test::lattice_bed(6, 5, 12.5e-6);
   const auto g = plate(bed.domain.upper[0], bed.domain.upper[1], 15, 13);
   const int before = omp_get_max_threads();
-  for (const auto reflection : {Reflection::specular, Reflection::diffuse}) {
+  for (const auto reflection : {Reflection::specular, Reflection::diffuse, Reflection::rough}) {
     Beam beam{30e-6, 0.4 * bed.domain.upper[0], 0.5 * bed.domain.upper[1]};
     beam.rays = 20011, beam.reflection = reflection, beam.trace = 3;
+    beam.roughness = kMixedRoughness;
     omp_set_num_threads(1);
     const AbsorptionMap one = trace(bed, g, beam);
     omp_set_num_threads(2);
@@ -384,7 +395,58 @@ TEST(RayTraceTracer, SameMapForOneAndTwoThreads) {
   omp_set_num_threads(before);
 }
 
-TEST(RayTraceTracer, RefusesZeroRaysAndCutoffsOutsideZeroOne) {
+// rough_reflection.hpp's S = exp(-(4π σ cos θ / λ)²) at its limits and one worked value: a
+// smooth surface is a mirror at every angle, any surface is one at grazing incidence, and
+// σ = λ/(4π) at normal incidence keeps exp(-1).
+TEST(RayTraceTracer, SpecularShareOfARoughSurface) {
+  const double lambda = 1.07e-6;
+  for (const double c : {0.0, 0.3, 1.0}) EXPECT_EQ(thermal::specular_share(0, lambda, c), 1.0);
+  for (const double sigma : {0.02e-6, 1e-6, 10e-6})
+    EXPECT_EQ(thermal::specular_share(sigma, lambda, 0.0), 1.0);
+  const double sigma = lambda / (4 * std::numbers::pi);
+  EXPECT_NEAR(thermal::specular_share(sigma, lambda, 1.0), std::exp(-1.0), 1e-15);
+  EXPECT_NEAR(thermal::specular_share(sigma, lambda, 0.5), std::exp(-0.25), 1e-15);
+  EXPECT_LT(thermal::specular_share(1e-6, lambda, 1.0), 1e-50);  // a ground plate: diffuse
+}
+
+// A narrow beam on the plate beside a sphere resting on it, at horizontal distance s from the
+// sphere's centre (height h): the plate absorbs alpha and reflects the rest. A mirror plate
+// sends a vertical ray straight up, so the sphere gets nothing. A rough one (σ = 1 µm ≫ λ/4π:
+// Lambert) sends the view factor of the sphere from a horizontal element, F = r² h / d³ with
+// d² = s² + h² (Modest, "Radiative Heat Transfer", view factor of a sphere from a differential
+// element facing it, the sphere wholly above the element's plane), towards it, and the sphere
+// absorbs alpha of that: alpha (1 - alpha) F. A smooth plate under the rough law (σ = 0) is a
+// mirror again. Tolerance: the sphere is hit by a binomial count of N F rays, relative sd
+// sqrt((1 - F) / (N F)) = 1.2 % at N = 2e5, F = 0.032; 5 % is four of them. The light the
+// sphere reflects back to the plate and onto itself again is ~F² of it (0.1 %).
+TEST(RayTraceTracer, RoughPlateLightsASphereBesideTheBeamByItsViewFactor) {
+  const double r = 20e-6, h = test::resting_z(r), l = 400e-6, s = 3 * r;
+  bed::Bed bed = test::empty_bed(l, l, 100e-6);
+  bed.add(0.5 * l, 0.5 * l, h, r);
+  const auto g = plate(l, l, 41, 41);
+  const double alpha = 0.5, d = std::sqrt(s * s + h * h), view = r * r * h / (d * d * d);
+  struct Case {
+    Reflection law;
+    double roughness, expected;
+  };
+  for (const Case c : {Case{Reflection::rough, 1e-6, alpha * (1 - alpha) * view},
+                       Case{Reflection::diffuse, 1e-6, alpha * (1 - alpha) * view},
+                       Case{Reflection::rough, 0.0, 0.0}, Case{Reflection::specular, 1e-6, 0.0}}) {
+    Beam beam{0.02 * r, 0.5 * l + s, 0.5 * l};
+    beam.rays = 200000, beam.reflection = c.law, beam.alpha = alpha;
+    beam.roughness = c.roughness;
+    const AbsorptionMap m = trace(bed, g, beam);
+    expect_booked(m, 1, g, alpha);
+    std::printf("  roughness %.1e: sphere %.5f (alpha (1 - alpha) F = %.5f)\n", c.roughness,
+                m.absorbed_particles, c.expected);
+    if (c.expected == 0)
+      EXPECT_EQ(m.absorbed_particles, 0.0);
+    else
+      EXPECT_NEAR(m.absorbed_particles, c.expected, 0.05 * c.expected);
+  }
+}
+
+TEST(RayTraceTracer, RefusesBadRaysCutoffsRoughnessAndWavelength) {
   const bed::Bed bed = test::empty_bed(100e-6, 100e-6, 50e-6);
   const auto g = plate(100e-6, 100e-6, 5, 5);
   thermal::RayTraceParams p;
@@ -395,6 +457,17 @@ TEST(RayTraceTracer, RefusesZeroRaysAndCutoffsOutsideZeroOne) {
     p.cutoff = cutoff;
     EXPECT_THROW(BeamTracer(bed, g, 20e-6, p, {}), InputError) << cutoff;
   }
+  for (const double bad : {-1e-6, std::nan(""), kInf}) {
+    p = {};
+    p.roughness = bad;
+    EXPECT_THROW(BeamTracer(bed, g, 20e-6, p, {}), InputError) << bad;
+    p = {};
+    p.wavelength = bad;
+    EXPECT_THROW(BeamTracer(bed, g, 20e-6, p, {}), InputError) << bad;
+  }
+  p = {};
+  p.wavelength = 0;
+  EXPECT_THROW(BeamTracer(bed, g, 20e-6, p, {}), InputError);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -13,6 +13,7 @@
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/ray_trace.hpp"
 #include "powderbed/thermal/fresnel_absorptance.hpp"
+#include "powderbed/thermal/rough_reflection.hpp"
 
 namespace powderbed::thermal {
 
@@ -129,6 +130,19 @@ struct BeamTracer::Impl {
       if (st.weight[w] > 0)
         tally.nodes.push_back({static_cast<std::uint32_t>(st.node[w]), st.weight[w] * absorbed});
   }
+  // Share of the reflected light that goes on specularly from a hit on a surface of phase
+  // `liquid`; `top_face`: the substrate's flat top, not a particle or the depression's wall.
+  double specular(bool top_face, unsigned liquid, double cos_incidence) const {
+    switch (params.reflection) {
+      case Reflection::specular: return 1;
+      case Reflection::diffuse: return 0;
+      case Reflection::rough:
+        return top_face && !liquid
+                   ? specular_share(params.roughness, params.wavelength, cos_incidence)
+                   : 1;
+    }
+    return 1;
+  }
   unsigned column_phase(const Vec3& p, const TraceSurfaces& surfaces) const {
     const TopStencil st = top_stencil(g, p[0], p[1]);
     const int nearest = static_cast<int>(std::max_element(st.weight, st.weight + 4) - st.weight);
@@ -147,7 +161,7 @@ void BeamTracer::Impl::follow(Vec3 o, double power, const TraceSurfaces& surface
   bool below = false;  // in the depression's cavity, under the top face
   for (int bounce = 0; bounce < params.max_bounces; ++bounce) {
     Vec3 p, n;
-    double alpha;
+    double alpha, mirror;  // absorbed fraction; specular share of the rest
     if (below) {
       double t_exit = 0;
       const auto t = cavity_hit(dep, g.z_top, o, d, march, &t_exit);
@@ -168,6 +182,7 @@ void BeamTracer::Impl::follow(Vec3 o, double power, const TraceSurfaces& surface
       const double len = std::sqrt(bed::dot(n, n));
       for (double& v : n) v /= len;
       alpha = optics.absorptance(1, -bed::dot(d, n));  // the wall is molten
+      mirror = specular(false, 1, -bed::dot(d, n));
       book_top(p, alpha * power, tally);
       tally.depression += alpha * power;
     } else {
@@ -189,6 +204,7 @@ void BeamTracer::Impl::follow(Vec3 o, double power, const TraceSurfaces& surface
         for (double& v : n) v /= len;  // normalised: a ray that starts inside a sphere hits at o
         const std::uint32_t target = index[s];
         alpha = optics.absorptance(surfaces.particle_phase[target], -bed::dot(d, n));
+        mirror = specular(false, surfaces.particle_phase[target], -bed::dot(d, n));
         tally.particles.push_back({target, alpha * power});
         skip = s;
       } else {
@@ -203,7 +219,9 @@ void BeamTracer::Impl::follow(Vec3 o, double power, const TraceSurfaces& surface
           continue;
         }
         n = {0, 0, 1};
-        alpha = optics.absorptance(column_phase(p, surfaces), -d[2]);
+        const unsigned phase = column_phase(p, surfaces);
+        alpha = optics.absorptance(phase, -d[2]);
+        mirror = specular(true, phase, -d[2]);
         book_top(p, alpha * power, tally);
       }
     }
@@ -212,8 +230,10 @@ void BeamTracer::Impl::follow(Vec3 o, double power, const TraceSurfaces& surface
       tally.dropped += power;
       return;
     }
-    d = params.reflection == Reflection::specular ? bed::specular_reflection(d, n)
-                                                  : bed::cosine_direction(n, rng);
+    // A mixed surface draws which way this ray goes (the stream is the trace's own: the same
+    // for any thread count); a pure one draws nothing.
+    const bool specular_ray = mirror >= 1 || (mirror > 0 && rng.uniform() < mirror);
+    d = specular_ray ? bed::specular_reflection(d, n) : bed::cosine_direction(n, rng);
     o = p;
   }
   tally.dropped += power;
@@ -226,6 +246,12 @@ void validate(const RayTraceParams& params) {
     throw InputError("laser.ray-cutoff: " + std::to_string(params.cutoff) +
                      " (accepted: 0 < cutoff < 1, the fraction of its power below which a ray "
                      "is dropped)");
+  if (!(params.roughness >= 0 && std::isfinite(params.roughness)))
+    throw InputError("laser.roughness: " + std::to_string(params.roughness) +
+                     " (accepted: a finite rms height >= 0, m)");
+  if (!(params.wavelength > 0 && std::isfinite(params.wavelength)))
+    throw InputError("laser.wavelength: " + std::to_string(params.wavelength) +
+                     " (accepted: a finite wavelength > 0, m)");
 }
 
 BeamTracer::BeamTracer(const bed::Bed& bed, const SubstrateGeometry& g, double spot_radius,

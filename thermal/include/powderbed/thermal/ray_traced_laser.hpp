@@ -4,8 +4,9 @@
 // above, vertically; at every hit, on a sphere, on the substrate's top face or on the wall of
 // its vapour depression (vapour_depression.hpp), the surface absorbs the fraction A of what the
 // ray carries (SurfaceOptics: a constant per phase, or Fresnel's A(θ) of the metal's complex
-// index at the angle of incidence) and the rest is reflected (specularly, or diffusely with
-// Lambert's law) until the ray leaves upward, falls outside the substrate's extent, or carries
+// index at the angle of incidence) and the rest is reflected (Reflection: specularly, diffusely
+// with Lambert's law, or by the solid top face's roughness) until the ray leaves upward, falls
+// outside the substrate's extent, or carries
 // less than `cutoff` of its start power. The depression is a depth per top-face column,
 // bilinear between columns; a ray below the top face marches through it in steps of half a
 // grid spacing and the hit is refined by bisection. Every watt is booked: absorbed by
@@ -31,7 +32,12 @@
 
 namespace powderbed::thermal {
 
-enum class Reflection { specular, diffuse };
+// How reflected light leaves a hit: `specular` and `diffuse` (Lambert) on every surface;
+// `rough`: the solid top face (the plate, earlier layers) keeps the specular share of its rms
+// roughness (rough_reflection.hpp) and scatters the rest by Lambert's law, while particles
+// (gas-atomised spheres, smooth to the beam as in Boley et al. 2015) and molten surfaces
+// (smoothed by surface tension) are mirrors.
+enum class Reflection { specular, diffuse, rough };
 
 // How a surface absorbs: `constant`, one absorptivity per phase; `fresnel`, the Fresnel
 // absorptance (fresnel_absorptance.hpp) of the phase's complex refractive index at the angle
@@ -56,7 +62,9 @@ struct TraceSurfaces {
 struct RayTraceParams {
   std::size_t rays = 4000;        // rays per traced beam position
   double cutoff = 1e-4;           // a ray carrying less than this fraction of its power is dropped
-  Reflection reflection = Reflection::specular;
+  Reflection reflection = Reflection::rough;
+  double roughness = 1e-6;        // rough: rms height σ of the solid top face, m (a ground plate)
+  double wavelength = 1.07e-6;    // rough: the laser's vacuum wavelength, m (Yb fibre laser)
   std::uint64_t seed = 1;
   int max_bounces = 1000;         // a ray still bouncing after this many hits is dropped
 };
