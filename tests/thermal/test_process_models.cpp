@@ -8,12 +8,14 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <vector>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/thermal/evaporation.hpp"
 #include "powderbed/thermal/fresnel_absorptance.hpp"
 #include "powderbed/thermal/ray_traced_laser.hpp"
 #include "powderbed/thermal/fusion.hpp"
+#include "powderbed/thermal/lit_sphere_surface.hpp"
 #include "powderbed/thermal/solver.hpp"
 #include "powderbed/thermal/vapour_depression.hpp"
 #include "sinter_beds.hpp"
@@ -269,7 +271,87 @@ TEST(ProcessModels, AParticleThatVaporisesMidStepLeavesAtOnce) {
   EXPECT_LT(r.energy.relative_error(), kBalance);
 }
 
+// A 20 µm particle under a 20 µm, 100 W beam at 10 m/s: lit for ~2 µs with q0 r / k ~ 4e4 K, it
+// takes ~1e-4 J, under half of the 2.6e-4 J that would melt it, so its mean stays solid; its lit
+// surface passes T_b within a microsecond (the penetration excess, lit_sphere_surface.hpp) and
+// evaporates. Fed its mean, as before, it evaporated nothing.
+TEST(ProcessModels, ALitSolidParticleEvaporatesFromItsHotSurface) {
+  bed::Bed bed = test::empty_bed(100e-6, 60e-6, 50e-6);
+  bed.add(50e-6, 30e-6, test::resting_z(20e-6), 20e-6);
+  thermal::SinterScene scene;
+  scene.power = 100;
+  scene.speed = 10;
+  scene.spot_radius = 20e-6;
+  scene.effects &= ~thermal::kWetting;
+  scene.nodes = {41, 25, 11};
+  scene.substrate_depth = 50e-6;
+  thermal::Sinter sinter(bed, scene, test::table_316l());
+  const double mass = sinter.particle_mass()[0];
+  const auto r = sinter.run(nullptr, 0, nullptr);
+  std::printf("  peak %.0f K, evaporated %.3g of its mass, balance %.1e\n", r.peaks.particles,
+              r.evaporated_mass_particles / mass, r.energy.relative_error());
+  EXPECT_LT(r.peaks.particles, scene.phase_change.melting_point);
+  EXPECT_GT(r.evaporated_mass_particles, 0);
+  EXPECT_LT(r.evaporated_mass_particles, 1e-2 * mass);  // a skin, not the particle
+  EXPECT_LT(r.energy.relative_error(), kBalance);
+}
+
 }  // namespace
+
+// The quasi-steady excess of lit_sphere_surface.hpp from its Legendre series, summed here: the
+// flux μ on the lit hemisphere has components a_l = (2l+1)/2 ∫₀¹ μ P_l dμ, the surface deviation
+// a_0/5 + Σ a_l P_l(μ)/l (units q0 r / k), its μ-weighted mean over the lit disc 2 ∫₀¹ μ ΔT dμ.
+// Gauss–Legendre on [0, 1] integrates the polynomials exactly; the series converges like
+// Σ 1/l³ (a_l ~ l^-2), so 400 terms leave ~1e-6.
+TEST(LitSphere, QuasiSteadyExcessIsTheLegendreSeries) {
+  constexpr int kNodes = 450, kTerms = 400;  // exact to degree 899
+  std::vector<double> mu(kNodes), weight(kNodes);
+  for (int j = 0; j < kNodes; ++j) {  // Gauss–Legendre nodes on [-1, 1] by Newton, then [0, 1]
+    double x = std::cos(std::numbers::pi * (j + 0.75) / (kNodes + 0.5)), dp = 0;
+    for (int it = 0; it < 100; ++it) {
+      dp = kNodes * (x * std::legendre(kNodes, x) - std::legendre(kNodes - 1, x)) / (x * x - 1);
+      const double step = std::legendre(kNodes, x) / dp;
+      x -= step;
+      if (std::abs(step) < 1e-15) break;
+    }
+    mu[j] = 0.5 * (x + 1);
+    weight[j] = 1 / ((1 - x * x) * dp * dp);  // 2 / ((1 - x²) P'²) on [-1, 1], halved
+  }
+  const auto integral = [&](auto f) {
+    double sum = 0;
+    for (int j = 0; j < kNodes; ++j) sum += weight[j] * f(mu[j]);
+    return sum;
+  };
+  double excess = 0;
+  for (int l = 0; l < kTerms; ++l) {
+    const double moment = integral([&](double m) { return m * std::legendre(l, m); });
+    const double a = (2 * l + 1) / 2.0 * moment, shape = l == 0 ? 0.2 : 1.0 / l;
+    excess += a * shape * 2 * moment;  // 2 ∫₀¹ μ P_l dμ = 2 moment
+  }
+  EXPECT_NEAR(excess, thermal::kLitDiscExcess, 1e-4);
+}
+
+TEST(LitSphere, ExcessIsThePenetrationSolutionEarlyAndTheSteadyOneLate) {
+  const double q0 = 1e10, r = 15e-6, k = 20, kappa = 5e-6;
+  const double early = 1e-8, late = 1e-3;  // 1e-3 and 20 r^2 / kappa
+  EXPECT_NEAR(thermal::lit_surface_excess(q0, r, k, kappa, early),
+              4.0 / 3.0 * q0 * std::sqrt(kappa * early / std::numbers::pi) / k, 1e-9);
+  EXPECT_NEAR(thermal::lit_surface_excess(q0, r, k, kappa, late), thermal::kLitDiscExcess * q0 * r / k,
+              1e-9);
+  EXPECT_EQ(thermal::lit_surface_excess(q0, r, k, kappa, 0), 0);  // not lit yet
+}
+
+// The surface balance T_s = T + ΔT (1 - E(T_s)/P): without evaporation the whole excess; with
+// a loss linear in T_s - T, E = G (T_s - T), the closed form T + ΔT / (1 + ΔT G / P).
+TEST(LitSphere, SurfaceBalanceAgainstEvaporationIsItsRoot) {
+  const double t = 1500, excess = 2000, power = 10;
+  EXPECT_NEAR(thermal::lit_surface_temperature(t, excess, power, [](double) { return 0.0; }),
+              t + excess, 1e-3);
+  const double g = 0.01;  // W/K: at the full excess E would be twice the laser's P
+  EXPECT_NEAR(thermal::lit_surface_temperature(t, excess, power, [&](double ts) { return g * (ts - t); }),
+              t + excess / (1 + excess * g / power), 1e-3);
+  EXPECT_EQ(thermal::lit_surface_temperature(t, excess, 0, [](double) { return 0.0; }), t);  // unlit
+}
 
 namespace {
 

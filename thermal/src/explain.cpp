@@ -121,36 +121,41 @@ std::string report_text(const ExplainReport& r, const SinterScene& scene, const 
   out << "Scale analysis of the scene (Ganeriwala & Zohdi 2016 [GZ]: conduction ~1e-1,\n"
          "convection ~1e-5, radiation ~1e-4 of the laser flux during heating)\n";
   row("absorbed laser flux alpha I0 (W/m^2)", r.laser_flux, "");
-  row("conduction scale k dT / D / laser", r.conduction_scale,
-      "[GZ]'s estimate: as if particles touched over their whole section");
-  row("conduction (particle pairs) / laser", r.conduction_ratio,
-      verdict(r.conduction_ratio, scene.has(kConduction)));
-  row("conduction (to substrate) / laser", r.substrate_ratio,
-      verdict(r.substrate_ratio, scene.has(kSubstrateContact)));
   row("convection / laser", r.convection_ratio, verdict(r.convection_ratio, scene.has(kConvection)));
   row("radiation / laser", r.radiation_ratio, verdict(r.radiation_ratio, scene.has(kRadiation)));
-  row("Biot number of surface losses", r.biot_surface,
-      r.biot_surface < 0.1 ? "< 0.1: lumped particle temperatures are sound"
-                           : ">= 0.1: lumped temperatures are questionable");
-  row("Biot number of the laser flux", r.biot_laser,
-      r.biot_laser < 0.1 ? "< 0.1: lumped heating is sound"
-                         : ">= 0.1: a lit particle is hotter on top than the lumped value");
-  row("optical thickness beta H_layer", r.optical_thickness,
-      "laser reaching the substrate: exp(-beta H) = " +
-          std::to_string(std::exp(-r.optical_thickness)));
   row("laser dwell time w/v (s)", r.dwell_time, "");
-  row("time to heat a mean particle to T_m (s)", r.heating_time,
-      r.heating_time < r.dwell_time ? "shorter than the dwell: lit particles melt"
-                                    : "longer than the dwell: particles may not melt");
   row(scene.absorption == LaserAbsorption::ray_trace ? "absorptance (ray-trace)"
                                                       : "absorptance (beer-lambert)",
       r.absorptance,
       "316L near 1 um: flat ~0.3-0.35, powder layer ~0.6-0.7 (Boley et al. 2015; Trapp et al. "
       "2017)");
-  row("wetting time m c / (k pi a^2 / z_c) (s)", r.wetting_time,
-      std::string(wetting_matters ? "shorter than the dwell, particles melt: wetting matters"
-                                  : "particles do not melt or touch the substrate: negligible") +
-          (scene.has(kWetting) ? " (on)" : wetting_matters ? " but is OFF" : " (off)"));
+  // A bare plate has no particle rows (their numbers would be 0/0).
+  if (sinter.particle_temperature().empty()) {
+    out << "  (no particles: a bare plate; the particle rows do not apply)\n";
+  } else {
+    row("conduction scale k dT / D / laser", r.conduction_scale,
+        "[GZ]'s estimate: as if particles touched over their whole section");
+    row("conduction (particle pairs) / laser", r.conduction_ratio,
+        verdict(r.conduction_ratio, scene.has(kConduction)));
+    row("conduction (to substrate) / laser", r.substrate_ratio,
+        verdict(r.substrate_ratio, scene.has(kSubstrateContact)));
+    row("Biot number of surface losses", r.biot_surface,
+        r.biot_surface < 0.1 ? "< 0.1: lumped particle temperatures are sound"
+                             : ">= 0.1: lumped temperatures are questionable");
+    row("Biot number of the laser flux", r.biot_laser,
+        r.biot_laser < 0.1 ? "< 0.1: lumped heating is sound"
+                           : ">= 0.1: a lit particle is hotter on top than the lumped value");
+    row("optical thickness beta H_layer", r.optical_thickness,
+        "laser reaching the substrate: exp(-beta H) = " +
+            std::to_string(std::exp(-r.optical_thickness)));
+    row("time to heat a mean particle to T_m (s)", r.heating_time,
+        r.heating_time < r.dwell_time ? "shorter than the dwell: lit particles melt"
+                                      : "longer than the dwell: particles may not melt");
+    row("wetting time m c / (k pi a^2 / z_c) (s)", r.wetting_time,
+        std::string(wetting_matters ? "shorter than the dwell, particles melt: wetting matters"
+                                    : "particles do not melt or touch the substrate: negligible") +
+            (scene.has(kWetting) ? " (on)" : wetting_matters ? " but is OFF" : " (off)"));
+  }
   const auto on = [&](unsigned effect) { return scene.has(effect) ? " (on)" : " but is OFF"; };
   const bool keyhole = r.normalised_enthalpy > r.keyhole_threshold;
   row("normalised enthalpy dH/h_s (King 2014)", r.normalised_enthalpy,

@@ -84,7 +84,12 @@ void particle_step(Sinter::State& s, double t, double dt) {
     s.ledger.convection += convection * dt;
     s.ledger.radiation += radiation * dt;
   }
-  if constexpr ((Effects & kLaser) != 0) s.ledger.laser_particles += s.particle_laser(s, t, q) * dt;
+  if constexpr ((Effects & kLaser) != 0) {
+    auto& lit = s.laser_power;  // kept apart: evaporation reads the lit surface from it
+    std::fill(lit.begin(), lit.end(), 0.0);
+    s.ledger.laser_particles += s.particle_laser(s, t, lit) * dt;
+    for (std::size_t i = 0; i < n; ++i) q[i] += lit[i];
+  }
   for (std::size_t i = 0; i < n; ++i) {
     if (s.gone[i]) continue;
     s.h[i] += dt * q[i] / s.mass[i];

@@ -291,6 +291,8 @@ void setup_particles(Sinter::State& s, const bed::Bed& bed) {
   s.temperature.assign(n, t0);
   s.peak.assign(n, t0);
   s.heat.assign(n, 0.0);
+  s.laser_power.assign(n, 0.0);
+  s.lit_time.assign(n, 0.0);
   s.gone.assign(n, 0);
   s.initial_mass = s.mass;
 }

@@ -52,6 +52,9 @@ struct Sinter::State {
   // Particles (structure of arrays).
   std::vector<double> x, y, z, radius, mass, area, laser_factor;
   std::vector<double> h, temperature, peak, heat;  // heat: W, scratch of one step
+  // The laser's power into each particle at the last particle step (W) and how long it has
+  // been lit without a break (s): the lit surface's excess (lit_sphere_surface.hpp).
+  std::vector<double> laser_power, lit_time;
   std::vector<std::uint8_t> gone;                  // vaporised: out of the network
   std::vector<std::uint32_t> exposed;
 
