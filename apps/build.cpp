@@ -231,6 +231,26 @@ double tool_bottom(const Build& b, const bed::Bed& bed, std::uint64_t layer) {
          static_cast<double>(layer - 1) * b.spread.layer_thickness;
 }
 
+// Every layer's tool inside the box, checked before layer 1 is spread (the spread checks each
+// layer's only when it gets there): the last layer's bottom below the box's top, and no count
+// that wraps past the last layer number.
+void check_layers(const Build& b, const bed::Bed& bed, std::uint64_t first, std::uint64_t layers) {
+  const double top = bed.domain.upper[2];
+  const std::uint64_t last = first + layers - 1;
+  if (last >= first && tool_bottom(b, bed, last) < top) return;
+  // The last layer that fits (0: not even the first), by the spread's own test; the estimate
+  // from the box's height may be one off in floating point. Layers that do not raise the tool
+  // all fit or none does.
+  const double t = b.spread.layer_thickness;
+  const double room = t > 0 ? (top - bed.domain.lower[2] - b.spread.tool.gap) / t : 0.0;
+  auto fit = static_cast<std::uint64_t>(std::clamp(std::ceil(room), 0.0, 1e15));
+  if (fit > 0 && !(tool_bottom(b, bed, fit) < top)) --fit;
+  if (t > 0 && tool_bottom(b, bed, fit + 1) < top) ++fit;
+  throw InputError(fmt::format("--layers: {} from layer {}: the tool rises above the box's top "
+                               "after layer {} (accepted: a taller box or at most {} layers)",
+                               layers, first, fit, fit >= first ? fit - first + 1 : 0));
+}
+
 // The scan of layer k on the spread bed and its fusion; writes the scan file; returns the powder
 // that stays (fusion's keep flags), sets the solid's new top as the next spread's floor and
 // fills the report.
@@ -474,9 +494,10 @@ int run(int argc, char** argv) {
   std::optional<dem::SpreadState> state;
   bed::Bed bed = build_input(vm, b, state);
   check_scan(b, bed, state);
+  const std::uint64_t first = (state ? state->layers_done : 0) + 1;
+  check_layers(b, bed, first, layers);
   OutFolderGuard guard{b.out, fs::create_directories(b.out)};
 
-  const std::uint64_t first = (state ? state->layers_done : 0) + 1;
   app::ProgressBar bar("build", app::progress_interval(vm));
   std::vector<LayerReport> reports;
   const auto started = std::chrono::steady_clock::now();

@@ -34,6 +34,10 @@ TEST(BuildCli, BadInputExits2WithOneLineAndWritesNothing) {
   const std::string out = " --out " + dir + "/run";
   const std::pair<std::string, std::string> cases[] = {
       {"--layers 0" + out, "--layers"},
+      // The box (0.6 mm, gap 60 um, 30 um layers) holds 18 layers; a count that would wrap
+      // past the last layer number is refused the same way.
+      {"--layers 19" + out, "--layers"},
+      {"--layers 18446744073709551615" + out, "--layers"},
       {"--sinter-args '--scan.hatch 0'" + out, "scan.hatch"},
       {"--sinter-args '--scan.hatch -1e-6'" + out, "scan.hatch"},
       {"--sinter " + kScenes + "/scan-track.ini --sinter-args '--scan-path " + dir + "/off.csv'" + out,
