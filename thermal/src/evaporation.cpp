@@ -32,16 +32,22 @@ double evaporated_mass(const Sinter::State& s, double t, double area, double cap
   return flux * dt / (1 + slope * dt / capacity);
 }
 
-// Where particle i evaporates (docs/physics.md "Particles under the beam"): a lit particle not
-// yet wholly liquid at its lit surface, hotter than its mean by the conduction excess of
-// lit_sphere_surface.hpp less what the evaporation there carries off, and no hotter than its
-// T_d(r) (past it the recoil blows the melt off); k and κ of the solid. A liquid particle is
-// stirred by Marangoni flow (Ma = |dγ/dT| ΔT r / (μ κ) ~ 1e5 for 316L at ΔT ~ 1000 K) and
-// evaporates at its mean.
-double surface_temperature(const Sinter::State& s, std::size_t i) {
+// Where particle i evaporates and over what area (docs/physics.md "Particles under the beam").
+// One at a single temperature (unlit, or wholly liquid: stirred by Marangoni flow, Ma =
+// |dγ/dT| ΔT r / (μ κ) ~ 1e5 for 316L at ΔT ~ 1000 K) over its free upper hemisphere 2π r²
+// (the lower half faces the bed, where the vapour recondenses on its neighbours). A lit one not
+// yet wholly liquid at its lit disc π r², hotter than its mean by the conduction excess of
+// lit_sphere_surface.hpp less what evaporates there, and no hotter than its T_d(r) (past it the
+// recoil blows the melt off); k and κ of the solid.
+struct EvaporatingSurface {
+  double temperature, area;
+};
+
+EvaporatingSurface evaporating_surface(const Sinter::State& s, std::size_t i) {
   const double t = s.temperature[i], power = s.laser_power[i];
   const PhaseChange& pc = s.scene.phase_change;
-  if (power <= 0 || t >= pc.melting_point + 0.5 * pc.window) return t;
+  if (power <= 0 || s.lit_time[i] <= 0 || t >= pc.melting_point + 0.5 * pc.window)
+    return {t, 2 * s.area[i]};
   const double t_solid = std::min(t, pc.melting_point - 0.5 * pc.window);
   const double k = s.conductivity(t_solid), kappa = k / s.per_m3.capacity(t_solid);
   const double excess =
@@ -50,7 +56,7 @@ double surface_temperature(const Sinter::State& s, std::size_t i) {
   const double t_s = lit_surface_temperature(t, excess, power, [&](double ts) {
     return latent_flux * evaporation_mass_flux(s.vapour, ts);
   });
-  return std::max(t, std::min(t_s, s.particle_depression_temperature[i]));
+  return {std::max(t, std::min(t_s, s.particle_depression_temperature[i])), s.area[i]};
 }
 
 }  // namespace
@@ -75,18 +81,19 @@ std::pair<double, double> lose_mass(Sinter::State& s, std::size_t i, double dm, 
   return {before - s.mass[i] * s.h[i], dm};
 }
 
-// The exposed particles (over the projected area π r², as convection and radiation): each loses
-// dm, which carries its enthalpy and the latent heat L_v.
+// The exposed particles (evaporating_surface says where and over what): each loses dm, which
+// carries its enthalpy and the latent heat L_v.
 void evaporate_particles(Sinter::State& s, double dt) {
   const double latent = s.vapour.latent_vapour;
   double energy = 0, mass = 0;
   for (const auto i : s.exposed) {
     s.lit_time[i] = s.laser_power[i] > 0 ? s.lit_time[i] + dt : 0;
     if (s.gone[i]) continue;
-    const double t = surface_temperature(s, i);
+    const EvaporatingSurface surface = evaporating_surface(s, i);
+    const double t = surface.temperature;
     if (!evaporates(s, t)) continue;
     const double capacity = s.mass[i] * s.per_kg.capacity(s.temperature[i]);
-    const double dm = evaporated_mass(s, t, s.area[i], capacity, dt);
+    const double dm = evaporated_mass(s, t, surface.area, capacity, dt);
     s.peak_recoil = std::max(s.peak_recoil, recoil_pressure(s.vapour, t));
     const auto [de, dmass] = lose_mass(s, i, dm, s.h[i] + latent);
     energy += de;
