@@ -8,6 +8,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "powderbed/bed/errors.hpp"
@@ -245,21 +246,28 @@ TEST(ProcessModels, PowderWithFinesAndEveryEffectClosesItsBalances) {
   EXPECT_LT(r.peaks.particles, 4300);
 }
 
+// One particle of radius r alone at the centre of a 100 x 60 um plate under a 100 W, 20 um beam
+// at `speed` (41 x 25 x 11 nodes, 50 um deep).
+std::pair<bed::Bed, thermal::SinterScene> lone_particle(double r, double speed) {
+  bed::Bed bed = test::empty_bed(100e-6, 60e-6, 50e-6);
+  bed.add(50e-6, 30e-6, test::resting_z(r), r);
+  thermal::SinterScene scene;
+  scene.power = 100;
+  scene.speed = speed;
+  scene.spot_radius = 20e-6;
+  scene.nodes = {41, 25, 11};
+  scene.substrate_depth = 50e-6;
+  return {bed, scene};
+}
+
 TEST(ProcessModels, AParticleThatVaporisesMidStepLeavesAtOnce) {
   // One 1 µm particle alone under a 100 W, 20 µm beam (3e11 W/m^2): it evaporates wholly
   // within a microsecond, mid-step, and leaves; the maps are traced anew without it, its mass
   // is booked as evaporated and the balance still closes.
-  bed::Bed bed = test::empty_bed(100e-6, 60e-6, 50e-6);
-  bed.add(50e-6, 30e-6, test::resting_z(1e-6), 1e-6);
-  thermal::SinterScene scene;
-  scene.power = 100;
-  scene.speed = 1.0;
-  scene.spot_radius = 20e-6;
+  auto [bed, scene] = lone_particle(1e-6, 1.0);
   // The plate's own pool is not the point here, and on remelted plate a wetting particle would
   // merge into the pool before it vaporises.
   scene.effects &= ~(thermal::kDepression | thermal::kWetting);
-  scene.nodes = {41, 25, 11};
-  scene.substrate_depth = 50e-6;
   thermal::Sinter sinter(bed, scene, test::table_316l());
   const double mass = sinter.particle_mass()[0];
   const auto r = sinter.run(nullptr, 0, nullptr);
@@ -276,15 +284,8 @@ TEST(ProcessModels, AParticleThatVaporisesMidStepLeavesAtOnce) {
 // surface passes T_b within a microsecond (the penetration excess, lit_sphere_surface.hpp) and
 // evaporates. Fed its mean, as before, it evaporated nothing.
 TEST(ProcessModels, ALitSolidParticleEvaporatesFromItsHotSurface) {
-  bed::Bed bed = test::empty_bed(100e-6, 60e-6, 50e-6);
-  bed.add(50e-6, 30e-6, test::resting_z(20e-6), 20e-6);
-  thermal::SinterScene scene;
-  scene.power = 100;
-  scene.speed = 10;
-  scene.spot_radius = 20e-6;
+  auto [bed, scene] = lone_particle(20e-6, 10);
   scene.effects &= ~thermal::kWetting;
-  scene.nodes = {41, 25, 11};
-  scene.substrate_depth = 50e-6;
   thermal::Sinter sinter(bed, scene, test::table_316l());
   const double mass = sinter.particle_mass()[0];
   const auto r = sinter.run(nullptr, 0, nullptr);
