@@ -18,6 +18,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include "common/app_main.hpp"
 #include "common/options.hpp"
@@ -29,6 +30,7 @@
 #include "powderbed/bed/h5_output.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
+#include "powderbed/bed/temp_files.hpp"
 #include "powderbed/dem/recoater.hpp"
 #include "powderbed/dem/spread.hpp"
 #include "powderbed/thermal/fusion.hpp"
@@ -108,6 +110,36 @@ po::variables_map parse_stage(const char* option, const char* program,
   return vm;
 }
 
+// The stage options the build sets itself (its files, seed, layers, fusion, output, threads):
+// given in --spread-args or --sinter-args they would be silently overridden, so they are refused.
+struct OwnedOptions {
+  const char* extra;               // the build option that carries the stage's arguments
+  std::vector<std::string> names;  // the stage's options the build owns
+  const char* instead;             // what to use instead
+};
+const OwnedOptions kSpreadOwned{
+    "spread-args",
+    {"in", "out", "seed", "layers", "trajectory", "export-deck", "every", "tool-forces",
+     "tool-forces-every", "json", "threads", "progress", "config", "print-config"},
+    "build's own --in, --out, --seed, --layers, --threads and --progress"};
+const OwnedOptions kSinterOwned{
+    "sinter-args",
+    {"bed", "out", "explain", "fuse", "fuse.melt-fraction", "fused-bed", "snapshots", "scan.layer",
+     "json", "threads", "progress", "config", "print-config"},
+    "build's own --out, --fuse.melt-fraction, --snapshots, --threads and --progress"};
+
+void refuse_owned(const OwnedOptions& owned, const std::string& extra) {
+  std::istringstream words(extra);
+  for (std::string w; words >> w;) {
+    if (w.rfind("--", 0) != 0) continue;
+    const std::string name = w.substr(2, w.find('=') - 2);  // --name or --name=value
+    if (std::find(owned.names.begin(), owned.names.end(), name) == owned.names.end()) continue;
+    throw InputError(fmt::format("--{}: '--{}' is set by the build itself (accepted: the stage's "
+                                 "scene options; use the {})",
+                                 owned.extra, name, owned.instead));
+  }
+}
+
 std::string layer_file(const std::string& out, std::uint64_t layer, const char* suffix) {
   char name[48];
   std::snprintf(name, sizeof name, "layer-%03llu%s.h5", static_cast<unsigned long long>(layer), suffix);
@@ -115,23 +147,43 @@ std::string layer_file(const std::string& out, std::uint64_t layer, const char* 
 }
 
 // --out: a new folder (its parent must exist) or an empty one, so that no earlier build's
-// files are replaced.
-void prepare_out(const std::string& out) {
-  const fs::path dir(out);
-  if (fs::exists(dir)) {
+// files are replaced; the temporaries a killed build left there do not count (they are removed).
+// Returns the folder as a path without a trailing separator.
+std::string prepare_out(const std::string& out) {
+  if (out.empty()) throw InputError("--out: empty (accepted: a new or empty folder)");
+  fs::path dir = fs::path(out).lexically_normal();
+  if (!dir.has_filename()) dir = dir.parent_path();  // "run/" is the folder "run"
+  std::error_code ec;
+  if (fs::exists(dir, ec)) {
     if (!fs::is_directory(dir))
       throw InputError(fmt::format("--out: '{}' is a file (accepted: a new or empty folder)", out));
-    if (!fs::is_empty(dir))
+    if (::access(dir.c_str(), W_OK | X_OK) != 0)
+      throw InputError(fmt::format("--out: '{}' is not writable (accepted: a new or empty folder "
+                                   "that can be written)", out));
+    bed::remove_stale_temp_files_in(dir.string());
+    if (!fs::is_empty(dir, ec))
       throw InputError(fmt::format("--out: '{}' is not empty (accepted: a new or empty folder, so "
                                    "that no earlier build's files are replaced)",
                                    out));
-    return;
+    return dir.string();
   }
-  const fs::path parent = dir.has_parent_path() && dir.parent_path() != "" ? dir.parent_path() : ".";
-  if (!fs::is_directory(parent))
+  const fs::path parent = dir.has_parent_path() ? dir.parent_path() : ".";
+  if (!fs::is_directory(parent, ec))
     throw InputError(fmt::format("--out: the folder '{}' for '{}' does not exist (accepted: a "
                                  "folder whose parent exists)",
                                  parent.string(), out));
+  app::check_paths({}, {{"--out", dir.string()}});  // a writable parent, a name that fits
+  return dir.string();
+}
+
+// Makes the --out folder; one line naming it when the file system refuses.
+bool make_out(const std::string& out) {
+  std::error_code ec;
+  const bool made = fs::create_directories(out, ec);
+  if (ec)
+    throw InputError(fmt::format("--out: cannot make the folder '{}': {} (accepted: a folder that "
+                                 "can be made)", out, ec.message()));
+  return made;
 }
 
 // The solid fraction of the layer the scan met: the particles whose centres lie over the
@@ -298,8 +350,9 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   rep.captured = fused.captured;
   rep.vaporised = fused.vaporised;
   rep.powder_left = fused.powder.n();
-  rep.fused_fraction = fused.powder_mass_before > 0
-                           ? 1 - fused.powder_mass_after / fused.powder_mass_before : 0.0;
+  // What joined the solid; what vaporised left the powder but did not fuse.
+  const double joined = fused.powder_mass_before - fused.powder_mass_after - fused.vaporised_mass;
+  rep.fused_fraction = fused.powder_mass_before > 0 ? joined / fused.powder_mass_before : 0.0;
   rep.mass_error = fused.mass_error();
   rep.lack_of_fusion = lof.fraction();
   const auto [low, high] = std::minmax_element(fused.top.begin(), fused.top.end());
@@ -347,12 +400,14 @@ Build read_build(const po::variables_map& vm, int argc, char** argv) {
   const std::string sinter_scene = beside_config(vm, "sinter");
   app::check_paths({{"--spread", spread_scene}, {"--sinter", sinter_scene}}, {});
   if (vm.count("in")) app::check_paths({{"--in", vm["in"].as<std::string>()}}, {});
-  prepare_out(b.out);
+  b.out = prepare_out(b.out);
   app::apply_thread_team(vm);
 
   const auto spread_options = [&b](po::options_description& d) {
     app::add_deposit_options(d, b.spread_options);
   };
+  refuse_owned(kSpreadOwned, vm["spread-args"].as<std::string>());
+  refuse_owned(kSinterOwned, vm["sinter-args"].as<std::string>());
   b.dvm = parse_stage("spread", "deposit", spread_options, spread_scene,
                       vm["spread-args"].as<std::string>() + " --seed " + std::to_string(seed));
   if (!app::spread_requested(b.dvm))
@@ -449,8 +504,7 @@ LayerReport build_layer(const Build& b, bed::Bed& bed, std::optional<dem::Spread
   app::set_spread_provenance(bed, b.dvm, b.scene, "build", argc, argv);
   bed.provenance.stage = "build: powder after layer " + std::to_string(layer);
   const std::string layer_path = layer_file(b.out, layer, "");
-  bed::write_bed_h5(bed, layer_path);
-  dem::write_spread_state(layer_path, next, bed);
+  dem::write_spread_bed(layer_path, bed, next);
   state = next;
   return rep;
 }
@@ -496,7 +550,7 @@ int run(int argc, char** argv) {
   check_scan(b, bed, state);
   const std::uint64_t first = (state ? state->layers_done : 0) + 1;
   check_layers(b, bed, first, layers);
-  OutFolderGuard guard{b.out, fs::create_directories(b.out)};
+  OutFolderGuard guard{b.out, make_out(b.out)};
 
   app::ProgressBar bar("build", app::progress_interval(vm));
   std::vector<LayerReport> reports;

@@ -319,6 +319,15 @@ void check_spread_paths(const po::variables_map& vm, const std::string& out) {
   check_paths(inputs, outputs);
 }
 
+// A bed whose provenance scene names a recoater: a spread's layer, which is written with its
+// /restart (dem::write_spread_bed) and continues only with it.
+bool made_by_a_spread(const bed::Bed& bed) {
+  std::istringstream lines(bed.provenance.scene);
+  for (std::string line; std::getline(lines, line);)
+    if (line == "recoater.tool = blade" || line == "recoater.tool = roller") return true;
+  return false;
+}
+
 // The bed to spread on: --in's (with its /restart state when it has one) or an empty box.
 bed::Bed spread_input(const po::variables_map& vm, std::optional<dem::SpreadState>& restart) {
   if (!vm.count("in")) {
@@ -331,7 +340,14 @@ bed::Bed spread_input(const po::variables_map& vm, std::optional<dem::SpreadStat
     throw InputError(fmt::format("--in: '{}' with recoater.tool (accepted: an .h5 bed)", in));
   }
   bed::Bed bed = bed::read_bed_h5(in);
-  if (dem::has_spread_state(in)) restart = dem::read_spread_state(in, bed);
+  if (dem::has_spread_state(in)) {
+    restart = dem::read_spread_state(in, bed);
+  } else if (made_by_a_spread(bed)) {
+    throw InputError(fmt::format("--in: '{}' was written by a spreading run but has no /restart "
+                                 "group (damaged?; accepted: a layer file with its /restart, or a "
+                                 "bed that no spread made)",
+                                 in));
+  }
   bed.domain = spread_box(vm, bed.domain);
   return bed;
 }
@@ -427,8 +443,7 @@ int run_spread(const po::variables_map& vm, const DepositOptions& bound, int arg
   const auto write = [&](const bed::Bed& b, const std::string& path, const dem::SpreadState& st) {
     bed::Bed copy = b;
     set_spread_provenance(copy, vm, scene, "deposit", argc, argv);
-    bed::write_bed_h5(copy, path);
-    dem::write_spread_state(path, st, copy);
+    dem::write_spread_bed(path, copy, st);
   };
   if (layers > 1) {
     s.layer_done = [&](const dem::LayerSummary& l, const bed::Bed& b, const dem::SpreadState& st) {

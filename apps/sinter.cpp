@@ -256,6 +256,8 @@ void check_files(const po::variables_map& vm, const std::string& bed_path,
   }
   const bool fuse = vm["fuse"].as<bool>();
   const double melt_fraction = vm["fuse.melt-fraction"].as<double>();
+  if (!fuse && !vm["fuse.melt-fraction"].defaulted())
+    throw InputError("--fuse.melt-fraction: given without --fuse (accepted: --fuse --fuse.melt-fraction F)");
   if (fuse && !(melt_fraction > 0 && melt_fraction <= 1))
     throw InputError(fmt::format("--fuse.melt-fraction: {:f} (accepted: 0 < f <= 1; 0.5 fuses what "
                                  "reached T_m, 1 what was wholly liquid)",

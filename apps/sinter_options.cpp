@@ -73,6 +73,12 @@ std::vector<th::ScanSegment> scan_path_of(const po::variables_map& vm, const th:
   h.region = {bed.domain.lower[0], bed.domain.upper[0], bed.domain.lower[1], bed.domain.upper[1]};
   if (vm.count("scan.region")) {
     const auto r = parse_number_list(vm["scan.region"].as<std::string>(), 4, 4, "--scan.region");
+    const auto& lo = bed.domain.lower;
+    const auto& hi = bed.domain.upper;
+    if (!(r[0] >= lo[0] && r[1] <= hi[0] && r[2] >= lo[1] && r[3] <= hi[1]))
+      throw InputError(fmt::format("--scan.region: {:g},{:g},{:g},{:g} leaves the plate (accepted: "
+                                   "x0,x1,y0,y1 within x {:g} to {:g} m, y {:g} to {:g} m)",
+                                   r[0], r[1], r[2], r[3], lo[0], hi[0], lo[1], hi[1]));
     h.region = {r[0], r[1], r[2], r[3]};
   }
   h.power = s.power;
@@ -387,6 +393,12 @@ void check_units(const th::SinterScene& s, const bed::Bed& bed) {
     refuse(fmt::format("--power: {:g} W is beyond the lasers of powder-bed machines (accepted: "
                        "up to 1e4 W)",
                        s.power));
+  }
+  for (std::size_t m = 0; m < s.scan_path.size(); ++m) {
+    if (s.scan_path[m].power > 1e4)
+      refuse(fmt::format("--scan-path: segment {}: power {:g} W is beyond the lasers of powder-bed "
+                         "machines (accepted: up to 1e4 W)",
+                         m + 1, s.scan_path[m].power));
   }
   if (s.substrate_depth > 1e-2) {
     refuse(fmt::format("substrate.depth: {:g} m: a unit slip? (accepted: a depth in metres up "

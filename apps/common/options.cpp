@@ -393,6 +393,15 @@ void check_paths(const std::vector<PathArg>& inputs, const std::vector<PathArg>&
           "{}: folder '{}' of '{}' is not writable (accepted: a file in a writable folder)",
           out.option, folder, out.path));
     }
+    // The name, its sidecar (".h5" -> ".xmf": one more) and their temporaries (".tmp.<pid>")
+    // must fit the file system's limit on a name.
+    const std::size_t name = fs::path(out.path).filename().string().size(), room = 1 + 5 + 10;
+    const long limit = ::pathconf(folder.c_str(), _PC_NAME_MAX);
+    if (limit > 0 && name + room > static_cast<std::size_t>(limit)) {
+      throw InputError(fmt::format("{}: the file name of '{}' is {} characters long (accepted: at "
+                                   "most {}, the file system's {} less room for a temporary's suffix)",
+                                   out.option, out.path, name, static_cast<std::size_t>(limit) - room, limit));
+    }
     if (::access(out.path.c_str(), F_OK) == 0 && ::access(out.path.c_str(), W_OK) != 0) {
       // Replaced by rename, which needs only the folder; say so anyway: the user may mean it.
     }

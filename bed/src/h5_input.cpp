@@ -1,5 +1,6 @@
 #include "powderbed/bed/h5_input.hpp"
 
+#include "io_hdf5_checks.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/h5_handle.hpp"
 
@@ -24,6 +25,10 @@ struct H5Input::Impl {
         H5Sget_simple_extent_dims(space, dims, nullptr) < 0 || dims[1] != cols) {
       fail(name, "not an N x " + std::to_string(cols) + " array");
     }
+    H5Type file_type(H5Dget_type(set));
+    if (const std::string why = detail::oversized_dataset(set, file_type, dims[0], dims[1], sizeof(T));
+        !why.empty())
+      fail(name, why);
     std::vector<T> data(static_cast<std::size_t>(dims[0] * dims[1]));
     if (!data.empty() && H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
       fail(name, "cannot be read");

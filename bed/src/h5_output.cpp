@@ -13,11 +13,13 @@ using H5Plist = H5Handle<H5Pclose>;
 
 struct H5Output::Impl {
   std::string path;
+  std::string shown_as;  // the name in messages
   std::optional<detail::AtomicFile> atomic;  // Mode::create: the temporary and its rename
   H5File file;
   H5Plist make_groups{H5Pcreate(H5P_LINK_CREATE)};
 
-  Impl(const std::string& destination, Mode mode) : path(destination) {
+  Impl(const std::string& destination, Mode mode, const std::string& name)
+      : path(destination), shown_as(name.empty() ? destination : name) {
     silence_hdf5_errors();
     if (mode == Mode::create) {
       atomic.emplace(path);
@@ -31,7 +33,7 @@ struct H5Output::Impl {
   }
 
   [[noreturn]] void fail(const std::string& object, const std::string& what) const {
-    throw InputError(path + ": " + object + ": " + what);
+    throw InputError(shown_as + ": " + object + ": " + what);
   }
 
   void dataset(const std::string& name, hid_t file_type, hid_t mem_type, const void* data,
@@ -69,8 +71,8 @@ struct H5Output::Impl {
   }
 };
 
-H5Output::H5Output(const std::string& path, Mode mode)
-    : impl_(std::make_unique<Impl>(path, mode)) {}
+H5Output::H5Output(const std::string& path, Mode mode, const std::string& shown_as)
+    : impl_(std::make_unique<Impl>(path, mode, shown_as)) {}
 H5Output::~H5Output() = default;
 
 void H5Output::write(const std::string& name, const std::vector<double>& data,

@@ -4,6 +4,8 @@
 // §IV.A.2.q); every field is little-endian.
 #include "io_hdf5_checks.hpp"
 
+#include <fmt/format.h>
+
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
@@ -14,6 +16,9 @@
 #include <map>
 #include <utility>
 #include <vector>
+
+#include "io_detail.hpp"
+#include "powderbed/bed/h5_handle.hpp"
 
 namespace powderbed::bed::detail {
 
@@ -298,6 +303,33 @@ std::string damaged_attribute_messages(const std::string& path, hid_t file) {
   for (const char* name : {".", "domain", "provenance"}) {
     const std::string problem = check_object_header(mapped, file, name);
     if (!problem.empty()) return problem;
+  }
+  return "";
+}
+
+std::string oversized_dataset(hid_t set, hid_t type, hsize_t rows, hsize_t cols, std::size_t mem_size) {
+  constexpr double kMaxCompression = 2048;
+  const std::size_t file_size = H5Tget_size(type);
+  if (file_size == 0 || file_size > 16) {
+    return fmt::format("has {}-byte numbers (damaged file?; accepted: 1 to 16 bytes)", file_size);
+  }
+  const double values = static_cast<double>(rows) * static_cast<double>(cols);
+  if (values == 0) return "";
+  const double declared = values * static_cast<double>(file_size);
+  const double stored = static_cast<double>(H5Dget_storage_size(set));
+  H5Handle<H5Pclose> plist(H5Dget_create_plist(set));
+  const int filters = plist.valid() ? H5Pget_nfilters(plist) : 0;
+  const double holds = filters > 0 ? stored * kMaxCompression : stored;
+  if (declared > holds) {
+    return fmt::format("declares {} rows ({:g} bytes) but the file stores {:g} bytes{} (damaged or "
+                       "truncated file?; accepted: a dataset that holds its rows)",
+                       rows, declared, stored, filters > 0 ? " compressed" : "");
+  }
+  const double need = values * static_cast<double>(mem_size);
+  const double memory = physical_memory_bytes();
+  if (memory > 0 && need > 0.5 * memory) {
+    return fmt::format("has {} rows, needing {:g} GB (accepted: up to half of this machine's {:g} GB)",
+                       rows, need / 1e9, memory / 1e9);
   }
   return "";
 }

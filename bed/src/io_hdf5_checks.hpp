@@ -18,4 +18,12 @@ std::string damaged_global_heaps(const std::string& path);
 // open in libhdf5 (to find the headers), before any attribute is looked up.
 std::string damaged_attribute_messages(const std::string& path, hid_t file);
 
+// The extent `rows` x `cols` a dataset declares, checked against what the file stores and what
+// this machine holds BEFORE anything is allocated (a damaged or hostile 18 KB file can declare
+// 2e9 rows): an unfiltered dataset must store every byte it declares; a compressed one cannot be
+// more than 2048 times its stored size (deflate's limit is about 1032); and the rows, at
+// `mem_size` bytes a value, must fit in half the memory. Every HDF5 reader (beds, /restart)
+// calls it before it allocates.
+std::string oversized_dataset(hid_t set, hid_t type, hsize_t rows, hsize_t cols, std::size_t mem_size);
+
 }  // namespace powderbed::bed::detail

@@ -263,7 +263,9 @@ class H5Reader {
       fail(object, fmt::format("wrong shape (rank {}{}; accepted: {})", rank, shape,
                                cols == 0 ? "N" : "N x 3"));
     }
-    check_extent(set, type, object, dims[0], cols == 0 ? 1 : cols, sizeof(T));
+    if (const std::string why = detail::oversized_dataset(set, type, dims[0], cols == 0 ? 1 : cols, sizeof(T));
+        !why.empty())
+      fail(object, why);
     if (rows < 0) {
       rows = static_cast<hssize_t>(dims[0]);
     } else if (dims[0] != static_cast<hsize_t>(rows)) {
@@ -328,41 +330,6 @@ class H5Reader {
       if (!(c.fines_stiffness_radius >= 0) || !std::isfinite(c.fines_stiffness_radius))
         fail("/provenance", "contact_fines_stiffness_radius is not a finite radius >= 0 "
                             "(accepted: 0 for none, or R_ref in m)");
-    }
-  }
-
-  // The extent a dataset declares, checked against what the file stores and what this machine
-  // holds BEFORE anything is allocated (a damaged or hostile 18 KB file can declare 2e9 rows):
-  // an unfiltered dataset must store every byte it declares; a compressed one cannot be more
-  // than kMaxCompression times its stored size (deflate's limit is about 1032); and the rows
-  // must fit in memory.
-  void check_extent(hid_t set, hid_t type, const std::string& object, hsize_t rows, hsize_t cols,
-                    std::size_t mem_size) const {
-    constexpr double kMaxCompression = 2048;
-    const std::size_t file_size = H5Tget_size(type);
-    if (file_size == 0 || file_size > 16) {
-      fail(object, "has " + std::to_string(file_size) +
-                       "-byte numbers (damaged file?; accepted: 1 to 16 bytes)");
-    }
-    const double values = static_cast<double>(rows) * static_cast<double>(cols);
-    if (values == 0) return;
-    const double declared = values * static_cast<double>(file_size);
-    const double stored = static_cast<double>(H5Dget_storage_size(set));
-    H5Handle<H5Pclose> plist(H5Dget_create_plist(set));
-    const int filters = plist.valid() ? H5Pget_nfilters(plist) : 0;
-    const double holds = filters > 0 ? stored * kMaxCompression : stored;
-    if (declared > holds) {
-      fail(object, fmt::format("declares {} rows ({:g} bytes) but the file stores {:g} bytes{} "
-                               "(damaged or truncated file?; accepted: a dataset that holds its "
-                               "rows)",
-                               rows, declared, stored, filters > 0 ? " compressed" : ""));
-    }
-    const double need = values * static_cast<double>(mem_size);
-    const double memory = detail::physical_memory_bytes();
-    if (memory > 0 && need > 0.5 * memory) {
-      fail(object, fmt::format("has {} rows, needing {:g} GB (accepted: up to half of this "
-                               "machine's {:g} GB)",
-                               rows, need / 1e9, memory / 1e9));
     }
   }
 

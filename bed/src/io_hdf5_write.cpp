@@ -165,12 +165,14 @@ std::string file_name_of(const std::string& path) {
 
 }  // namespace
 
-void write_bed_h5(const Bed& bed, const std::string& path) {
+void write_bed_h5(const Bed& bed, const std::string& path,
+                  const std::function<void(const std::string& temp_path)>& extra) {
   bed.validate(path);
   silence_hdf5_errors();
   detail::AtomicFile h5(path);
   detail::AtomicFile xmf(detail::xdmf_path(path));
   H5Writer(path).write(bed, h5.temp_path());
+  if (extra) extra(h5.temp_path());
   detail::write_text(xmf.temp_path(), xmf.path(), detail::xdmf_text(bed, file_name_of(path)));
   h5.commit();
   xmf.commit();

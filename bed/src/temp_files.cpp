@@ -78,18 +78,23 @@ void unregister_temp_file(const std::string& temp) {
   }
 }
 
-int remove_stale_temp_files(const std::string& path) {
+namespace {
+
+// Removes the files of `folder` named `<prefix...>.tmp.<pid>` whose process no longer exists on
+// this machine (`prefix` empty: any such name); returns how many.
+int remove_stale_in(const std::filesystem::path& folder, const std::string& prefix) {
   namespace fs = std::filesystem;
-  const fs::path p(path);
-  const fs::path folder = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  const std::string prefix = p.filename().string() + ".tmp.";
   int removed = 0;
   std::error_code ec;
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string digits = name.substr(prefix.size());
-    if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const auto tmp = name.rfind(".tmp.");
+    if (tmp == std::string::npos || name.compare(0, prefix.size(), prefix) != 0) continue;
+    if (!prefix.empty() && tmp + 5 != prefix.size()) continue;  // another file's temporary
+    const std::string digits = name.substr(tmp + 5);
+    if (digits.empty() || digits.size() > 9 ||
+        digits.find_first_not_of("0123456789") != std::string::npos)
+      continue;
     const long pid = std::stol(digits);
     if (pid <= 0 || pid == ::getpid()) continue;
     if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // alive or not ours
@@ -98,6 +103,16 @@ int remove_stale_temp_files(const std::string& path) {
   }
   return removed;
 }
+
+}  // namespace
+
+int remove_stale_temp_files(const std::string& path) {
+  const std::filesystem::path p(path);
+  return remove_stale_in(p.has_parent_path() ? p.parent_path() : std::filesystem::path("."),
+                         p.filename().string() + ".tmp.");
+}
+
+int remove_stale_temp_files_in(const std::string& folder) { return remove_stale_in(folder, ""); }
 
 void remove_temp_files() {
   for (Slot& s : g_slots) {

@@ -1017,6 +1017,21 @@ void check_floor(const bed::HeightMap& floor, const Box& box) {
   }
 }
 
+// A continued bed's particles lie on the solid under them, not in it: a centre below the
+// floor's height at its (x, y) would be pushed out at once with the solid's whole stiffness.
+void check_above_floor(const bed::Bed& bed, const bed::HeightMap& floor) {
+  if (floor.empty()) return;
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    const double h = floor.at(bed.x[i], bed.y[i]);
+    if (bed.z[i] < h) {
+      throw InputError(fmt::format(
+          "--in: particle {} (id {}) has its centre at z = {:g} m, inside the solid whose top is "
+          "at {:g} m there (accepted: a bed written by a spreading run, unchanged)",
+          i, bed.id[i], bed.z[i], h));
+    }
+  }
+}
+
 void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSettings& settings,
                     const Box& box) {
   if (bed.domain.dimension != 3 || bed.domain.periodic[2]) {
@@ -1092,6 +1107,7 @@ struct Spreader {
       throw InputError("--in: the bed's /restart group does not match its particles (accepted: "
                        "a bed written by a spreading run, unchanged)");
     }
+    check_above_floor(bed, run.floor);
     state = *restart;
     step = state.step;
     run.wx = restart->wx;
@@ -1108,6 +1124,12 @@ struct Spreader {
     summary.dt_limited_by = bound.limited_by;
     summary.dt_limiting_radius = bound.limiting_radius;
     if (restart) {
+      if (restart->dt > bound.stable && !settings.unsafe_dt) {
+        throw InputError(fmt::format(
+            "--in: the bed's /restart time step {:g} s is above the stable bound {:g} s of this "
+            "scene (accepted: a bed written by a spreading run of this scene, or add --unsafe-dt)",
+            restart->dt, bound.stable));
+      }
       run.dt = restart->dt;
     } else if (settings.dt > 0) {
       if (settings.dt > bound.stable && !settings.unsafe_dt) {

@@ -2,6 +2,8 @@
 // docs/deposit-spread.md "Restarts"): attributes for the scalars, datasets for the per-particle
 // and per-contact state, all float64 or uint64 so that a continued run reads back every bit.
 #include <fmt/format.h>
+
+#include <cmath>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -9,6 +11,7 @@
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/h5_input.hpp"
 #include "powderbed/bed/h5_output.hpp"
+#include "powderbed/bed/io.hpp"
 #include "powderbed/dem/spread.hpp"
 
 namespace powderbed::dem {
@@ -31,10 +34,10 @@ void write_rows(bed::H5Output& out, const char* name, const std::vector<T>& data
   out.write(in_group(name), data, {data.size() / cols, cols}, units);
 }
 
-}  // namespace
-
-void write_spread_state(const std::string& path, const SpreadState& s, const bed::Bed& bed) {
-  bed::H5Output out(path, bed::H5Output::Mode::append);
+// The /restart group, added to the bed's temporary `temp` (named `path` in messages).
+void write_state(const std::string& temp, const std::string& path, const SpreadState& s,
+                 const bed::Bed& bed) {
+  bed::H5Output out(temp, bed::H5Output::Mode::append, path);
   out.attribute(kGroup, "layers_done", s.layers_done);
   out.attribute(kGroup, "step", s.step);
   out.attribute(kGroup, "dt", s.dt);
@@ -64,6 +67,12 @@ void write_spread_state(const std::string& path, const SpreadState& s, const bed
   out.commit();
 }
 
+}  // namespace
+
+void write_spread_bed(const std::string& path, const bed::Bed& bed, const SpreadState& state) {
+  bed::write_bed_h5(bed, path, [&](const std::string& temp) { write_state(temp, path, state, bed); });
+}
+
 bool has_spread_state(const std::string& path) {
   try {
     return bed::H5Input(path).exists(kGroup);
@@ -89,8 +98,12 @@ SpreadState read_spread_state(const std::string& path, const bed::Bed& bed) {
   s.pair_ids = in.read_uint64s(in_group("pair_ids"), 2);
   s.pair_history = in.read_doubles(in_group("pair_history"), 6);
   s.wall_history = in.read_doubles(in_group("wall_history"), kWallValues);
+  if (!(s.dt > 0) || !std::isfinite(s.dt))
+    fail(path, fmt::format("dt is {} (accepted: the time step of the run that wrote it, > 0 s)", s.dt));
+  if (!std::isfinite(s.time) || !std::isfinite(s.tool_x) || !std::isfinite(s.plate_offset))
+    fail(path, "time, tool_x or plate_offset is not finite (accepted: finite numbers)");
   if (omega.size() != 3 * bed.n() || s.wall_history.size() != kWallValues * bed.n() ||
-      s.pair_history.size() != 3 * s.pair_ids.size() || !(s.dt > 0)) {
+      s.pair_history.size() != 3 * s.pair_ids.size()) {
     fail(path, "sizes do not match the bed's " + std::to_string(bed.n()) + " particles");
   }
   for (std::size_t i = 0; i < bed.n(); ++i) {

@@ -2,8 +2,14 @@
 // spread; a build stopped after layer 2 and continued with --in equals the uninterrupted one bit
 // for bit; the per-layer files and the report.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <functional>
+#include <tuple>
+#include <vector>
 #include <fstream>
 #include <string>
 #include <utility>
@@ -45,6 +51,12 @@ TEST(BuildCli, BadInputExits2WithOneLineAndWritesNothing) {
       {"--spread " + dir + "/drop.ini" + out, "--spread"},
       {"--spread-args '--recoater.gap 0'" + out, "recoater.gap"},
       {"--out " + dir + "/full", "--out"},
+      {"--out ''", "--out: empty"},
+      {"--out " + dir + "/" + std::string(300, 'a'), "characters long"},
+      {"--out /proc/run", "--out"},  // a file system that makes no folders
+      {"--spread-args '--in " + dir + "/x.h5'" + out, "'--in' is set by the build itself"},
+      {"--sinter-args '--bed x.h5 --out y.h5'" + out, "'--bed' is set by the build itself"},
+      {"--sinter-args '--fuse.melt-fraction=0.3'" + out, "'--fuse.melt-fraction' is set by the build"},
       {"--in " + dir + "/missing.h5" + out, "--in"},
   };
   for (const auto& [args, field] : cases) {
@@ -62,7 +74,10 @@ TEST(BuildCli, ContinuedBuildEqualsTheUninterruptedOneBitForBit) {
   const std::string config = kConfig;
   const auto whole = test::run_app("build", "--config " + config + " --layers 3 --threads 2 --json --out " + dir + "/whole");
   ASSERT_EQ(whole.status, 0) << whole.err;
-  const auto first = test::run_app("build", "--config " + config + " --layers 2 --threads 1 --out " + dir + "/first");
+  // An empty folder with a dead process's temporary in it is taken; "first/" names the folder.
+  std::filesystem::create_directories(dir + "/first");
+  std::ofstream(dir + "/first/layer-001.h5.tmp.999999999") << "left by a killed build\n";
+  const auto first = test::run_app("build", "--config " + config + " --layers 2 --threads 1 --out " + dir + "/first/");
   ASSERT_EQ(first.status, 0) << first.err;
   const auto rest = test::run_app("build", "--config " + config + " --layers 1 --in " + dir +
                                                "/first/layer-002.h5 --out " + dir + "/rest");
@@ -89,4 +104,96 @@ TEST(BuildCli, ContinuedBuildEqualsTheUninterruptedOneBitForBit) {
   EXPECT_EQ(sa.floor.z, sb.floor.z);
   EXPECT_EQ(sa.pair_history, sb.pair_history);
   EXPECT_EQ(sa.wall_history, sb.wall_history);
+}
+
+namespace {
+
+// In-place damage of a copied layer file through the HDF5 C API (the writers refuse to write
+// such files).
+struct LayerFile {
+  explicit LayerFile(const std::string& path) : f(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT)) {}
+  ~LayerFile() { H5Fclose(f); }
+  void restart_double(const char* name, double v) const {
+    H5Adelete_by_name(f, "/restart", name, H5P_DEFAULT);
+    const hid_t space = H5Screate(H5S_SCALAR);
+    const hid_t a = H5Acreate_by_name(f, "/restart", name, H5T_IEEE_F64LE, space, H5P_DEFAULT,
+                                      H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(a, H5T_NATIVE_DOUBLE, &v);
+    H5Aclose(a);
+    H5Sclose(space);
+  }
+  // Particle 0's centre moved to (x, y, z).
+  void move_first(double x, double y, double z) const {
+    const hid_t set = H5Dopen2(f, "/particles/position", H5P_DEFAULT);
+    const hid_t space = H5Dget_space(set);
+    hsize_t dims[2];
+    H5Sget_simple_extent_dims(space, dims, nullptr);
+    std::vector<double> rows(dims[0] * dims[1]);
+    H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows.data());
+    rows[0] = x;
+    rows[1] = y;
+    rows[2] = z;
+    H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows.data());
+    H5Sclose(space);
+    H5Dclose(set);
+  }
+  // /restart/pair_ids declaring 1e9 rows with none stored (a few bytes on disk).
+  void huge_pair_ids() const {
+    H5Ldelete(f, "/restart/pair_ids", H5P_DEFAULT);
+    const hsize_t dims[2] = {1000000000, 2};
+    const hid_t space = H5Screate_simple(2, dims, nullptr);
+    H5Dclose(H5Dcreate2(f, "/restart/pair_ids", H5T_STD_U64LE, space, H5P_DEFAULT, H5P_DEFAULT,
+                        H5P_DEFAULT));
+    H5Sclose(space);
+  }
+  void no_restart() const { H5Ldelete(f, "/restart", H5P_DEFAULT); }
+  hid_t f;
+};
+
+}  // namespace
+
+// A layer file whose /restart or particles cannot be continued is refused by build --in and by
+// deposit --in before anything runs or is written (issue 36's probe: a 1 s time step ran the
+// spread to z = -2e39 m and wrote layer-002-spread.h5; 1e9 declared pair rows threw bad_alloc).
+TEST(BuildCli, DamagedLayerFileIsRefusedBeforeAnyWork) {
+  const std::string dir = test::scratch_dir("build_damaged_in");
+  const auto one = test::run_app("build", "--config " + kConfig + " --layers 1 --out " + dir + "/one");
+  ASSERT_EQ(one.status, 0) << one.err;
+  const std::string layer = dir + "/one/layer-001.h5";
+  const bed::Bed good = bed::read_bed_h5(layer);
+  // Where layer 1's solid stands highest: a centre a tenth of a radius above the plate there is
+  // inside it.
+  const bed::HeightMap floor = dem::read_spread_state(layer, good).floor;
+  const auto top = static_cast<std::size_t>(
+      std::max_element(floor.z.begin(), floor.z.end()) - floor.z.begin());
+  ASSERT_GT(floor.z[top], 0.5 * good.radius[0]);
+  const double top_x = floor.x0 + floor.dx * static_cast<double>(top % floor.nx);
+  const double top_y = floor.y0 + floor.dy * static_cast<double>(top / floor.nx);
+  const std::vector<std::tuple<std::string, std::function<void(const LayerFile&)>, std::string>> cases = {
+      {"dt_one_second", [](const LayerFile& l) { l.restart_double("dt", 1.0); }, "stable bound"},
+      {"dt_nan", [](const LayerFile& l) { l.restart_double("dt", NAN); }, "dt is nan"},
+      {"dt_zero", [](const LayerFile& l) { l.restart_double("dt", 0.0); }, "dt is 0"},
+      {"inside_solid",
+       [&](const LayerFile& l) { l.move_first(top_x, top_y, good.domain.lower[2] + 0.1 * good.radius[0]); },
+       "inside the solid"},
+      {"huge_pair_ids", [](const LayerFile& l) { l.huge_pair_ids(); }, "declares 1000000000 rows"},
+      {"no_restart", [](const LayerFile& l) { l.no_restart(); }, "/restart"},
+  };
+  for (const auto& [name, damage, words] : cases) {
+    const std::string bad = dir + "/" + name + ".h5";
+    std::filesystem::copy_file(layer, bad);
+    damage(LayerFile(bad));
+    const auto b = test::run_app("build", "--config " + kConfig + " --layers 1 --in " + bad +
+                                              " --out " + dir + "/b_" + name);
+    EXPECT_EQ(b.status, 2) << name << ": " << b.err;
+    EXPECT_EQ(b.err_lines(), 1) << name << ": " << b.err;
+    EXPECT_NE(b.err.find(words), std::string::npos) << name << ": " << b.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/b_" + name)) << name;
+    const auto d = test::run_app("deposit", "--config " + kScenes + "/spread.ini --seed 1 --in " +
+                                                bad + " --out " + dir + "/d_" + name + ".h5");
+    EXPECT_EQ(d.status, 2) << name << ": " << d.err;
+    EXPECT_EQ(d.err_lines(), 1) << name << ": " << d.err;
+    EXPECT_NE(d.err.find(words), std::string::npos) << name << ": " << d.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/d_" + name + ".h5")) << name;
+  }
 }

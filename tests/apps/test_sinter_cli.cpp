@@ -365,9 +365,14 @@ TEST(SinterCli, BadScanPathsExit2) {
   };
   refused("--scan.hatch 0", {"scan.hatch", "h > 0"});
   refused("--scan.hatch -20e-6", {"scan.hatch", "h > 0"});
-  refused("--scan.hatch 30e-6 --scan.region 0,0.3e-3,0,0.1e-3", {"leaves the plate"});
+  refused("--scan.hatch 30e-6 --scan.region 0,0.3e-3,0,0.1e-3", {"--scan.region", "leaves the plate"});
   refused("--scan.hatch 30e-6 --scan.direction sideways", {"scan.direction", "alternating"});
   refused("--scan.hatch 30e-6 --scan.tracks 9", {"scan.tracks", "accepted"});
+  // Refused at once, not after making 1e12 lines (issue 36: it hung).
+  refused("--scan.hatch 30e-6 --scan.tracks 1e12", {"scan.tracks", "1000000000000 tracks"});
+  refused("--scan-path " + csv("gigawatt", "10e-6,50e-6,150e-6,50e-6,1e9,1"),
+          {"--scan-path", "segment 1", "1e+09 W", "--trust-units"});
+  refused("--fuse.melt-fraction 0.7", {"--fuse.melt-fraction", "without --fuse"});
   refused("--scan-path " + csv("outside", "10e-6,50e-6,250e-6,50e-6,100,1"),
           {"segment 1", "leaves the plate"});
   refused("--scan-path " + csv("slow", "10e-6,50e-6,150e-6,50e-6,100,0"), {"speed", "> 0"});

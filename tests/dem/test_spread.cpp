@@ -350,8 +350,7 @@ TEST(Recoater, ContinuedRunEqualsTheUninterruptedOneBitForBit) {
   // Through the file, as deposit --in does.
   const std::string path =
       (std::filesystem::temp_directory_path() / ("spread-restart-" + std::to_string(getpid()) + ".h5")).string();
-  bed::write_bed_h5(first, path);
-  dem::write_spread_state(path, half.state, first);
+  dem::write_spread_bed(path, first, half.state);
   ASSERT_TRUE(dem::has_spread_state(path));
   bed::Bed again = bed::read_bed_h5(path);
   const dem::SpreadState state = dem::read_spread_state(path, again);

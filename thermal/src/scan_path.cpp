@@ -51,8 +51,17 @@ std::vector<ScanSegment> hatch_segments(const Hatch& h) {
   const std::array<double, 2> centre{0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3])};
   // The region's width across the tracks, and the number of lines that fit in it.
   const double across = std::abs(n[0]) * (box[1] - box[0]) + std::abs(n[1]) * (box[3] - box[2]);
-  const std::size_t count =
-      h.tracks > 0 ? h.tracks : static_cast<std::size_t>(std::floor(across / h.spacing)) + 1;
+  const double fit = std::floor(across / h.spacing) + 1;  // lines the region holds
+  const auto too_many = [&](std::size_t count, double fits) {
+    return InputError(fmt::format(
+        "scan.tracks: {} tracks at spacing {:g} m span {:g} m, wider than the region ({:g} m "
+        "across the tracks) (accepted: tracks <= {:g}, a smaller scan.hatch, or scan.tracks = 0 to "
+        "fill the region)",
+        count, h.spacing, static_cast<double>(count - 1) * h.spacing, across, fits));
+  };
+  // Refused before the lines are made: a count of 1e12 would run for hours first.
+  if (h.tracks > 0 && static_cast<double>(h.tracks) > fit) throw too_many(h.tracks, fit);
+  const std::size_t count = h.tracks > 0 ? h.tracks : static_cast<std::size_t>(fit);
   std::vector<ScanSegment> out;
   for (std::size_t m = 0; m < count; ++m) {
     const double offset = (static_cast<double>(m) - 0.5 * static_cast<double>(count - 1)) * h.spacing;
@@ -65,13 +74,8 @@ std::vector<ScanSegment> hatch_segments(const Hatch& h) {
     const auto y = [&](double t) { return std::clamp(c[1] + t * d[1], box[2], box[3]); };
     out.push_back({x(lo), y(lo), x(hi), y(hi), h.power, h.speed});
   }
-  if (out.size() < count) {
-    throw InputError(fmt::format(
-        "scan.tracks: {} tracks at spacing {:g} m span {:g} m, wider than the region ({:g} m "
-        "across the tracks) (accepted: tracks <= {}, a smaller scan.hatch, or scan.tracks = 0 to "
-        "fill the region)",
-        count, h.spacing, static_cast<double>(count - 1) * h.spacing, across, out.size()));
-  }
+  // A line exactly on the region's edge may clip to nothing in round-off.
+  if (out.size() < count) throw too_many(count, static_cast<double>(out.size()));
   return out;
 }
 

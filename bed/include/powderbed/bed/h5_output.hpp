@@ -14,11 +14,14 @@ namespace powderbed::bed {
 class H5Output {
  public:
   // create: a new file, written as `<path>.tmp.<pid>` and renamed by commit(). append: adds to
-  // the existing HDF5 file `path` in place (the spread's /restart group, added to the bed file
-  // just written), so a failure leaves what it had written.
+  // the existing HDF5 file `path` in place; used only on a temporary that is not yet renamed
+  // into place (write_bed_h5's `extra`: the spread's /restart beside the bed), never on a user's
+  // file, which a failure would leave half-written.
   enum class Mode { create, append };
-  // Throws InputError naming `path` when it cannot create (or open) the file.
-  explicit H5Output(const std::string& path, Mode mode = Mode::create);
+  // Throws InputError naming `path` (or `shown_as`, the name the user knows a temporary by) when
+  // it cannot create (or open) the file or write to it.
+  explicit H5Output(const std::string& path, Mode mode = Mode::create,
+                    const std::string& shown_as = "");
   ~H5Output();  // removes the temporary unless commit() succeeded
   H5Output(const H5Output&) = delete;
   H5Output& operator=(const H5Output&) = delete;

@@ -3,6 +3,7 @@
 // data files, LAMMPS/LIGGGHTS dumps, YADE text and GenGeo .geo (docs/decks.md). Every writer is atomic (temporary file + rename);
 // every reader validates and throws InputError naming the file, dataset/line and what is wrong.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -15,8 +16,11 @@ constexpr int kBedFormatVersion = 1;
 // the bed's scene nor the command line gives one.
 constexpr double kDefaultLammpsDensity = 7952.0;
 
-// HDF5 bed (format version 1) plus `<path without .h5>.xmf` for ParaView.
-void write_bed_h5(const Bed& bed, const std::string& path);
+// HDF5 bed (format version 1) plus `<path without .h5>.xmf` for ParaView. `extra`, when given,
+// adds to the bed's HDF5 file before it is renamed into place (it gets the temporary's path), so
+// that what it adds (a spread's /restart) appears together with the bed or not at all.
+void write_bed_h5(const Bed& bed, const std::string& path,
+                  const std::function<void(const std::string& temp_path)>& extra = {});
 Bed read_bed_h5(const std::string& path);
 
 // CSV with header "x,y,z,r" (SI units). The file carries no domain, so the reader needs one.

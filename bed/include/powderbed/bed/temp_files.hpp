@@ -22,6 +22,8 @@ void unregister_temp_file(const std::string& temp);
 // killed by SIGKILL cannot clean up after itself; the next writer of the same path does). A
 // temporary of a live process is never touched. Returns how many were removed.
 int remove_stale_temp_files(const std::string& path);
+// The same for every `*.tmp.<pid>` file of `folder` (a build's folder left by a killed run).
+int remove_stale_temp_files_in(const std::string& folder);
 // The handlers' work, callable directly (tests): removes every registered temporary.
 void remove_temp_files();
 

@@ -148,9 +148,11 @@ SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings
 // many went. What the overflow slot takes, and what fusion turns into solid (build).
 std::size_t remove_particles(bed::Bed& bed, SpreadState& state, const std::vector<char>& keep);
 
-// The /restart group of a bed file: written into an existing HDF5 bed file, read back
-// (InputError naming the file when it is missing or inconsistent with the bed).
-void write_spread_state(const std::string& h5_path, const SpreadState& state, const bed::Bed& bed);
+// A spread's bed file: the bed and its /restart group written to one temporary and renamed into
+// place once, so a kill or a full disk leaves the old file or the whole new one, never a bed
+// without its state. Read back with read_spread_state (InputError naming the file when the
+// group is missing or inconsistent with the bed).
+void write_spread_bed(const std::string& h5_path, const bed::Bed& bed, const SpreadState& state);
 bool has_spread_state(const std::string& h5_path);
 SpreadState read_spread_state(const std::string& h5_path, const bed::Bed& bed);
 
