@@ -126,7 +126,7 @@ void print_table(Table& out, const std::vector<Report>& reports, const Request& 
               cells(reports, [](auto& s, const Report& r) { s << r.at_tol.coordination; }));
   }
   // A particle on the floor or against a wall is held: only those touching nothing are rattlers.
-  table_row(out, "rattlers (no particle/wall contact)" + at, cells(reports, [](auto& s, const Report& r) { s << r.at_tol.rattlers; }));
+  table_row(out, "rattlers (no particle/wall)" + at, cells(reports, [](auto& s, const Report& r) { s << r.at_tol.rattlers; }));
   table_row(out, "wall contacts" + at,
             cells(reports, [](auto& s, const Report& r) { s << r.at_tol.wall_contacts; }));
   std::size_t kmax = 0;

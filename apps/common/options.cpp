@@ -435,10 +435,11 @@ std::string print_config_text(const po::options_description& desc, const po::var
     const std::string mark = value.defaulted() || filled ? "# " : "";
     const std::string why = value.defaulted() ? "  (default)" : filled ? "  (from --material)" : "";
     for (std::string item : value_items(value.value())) {
-      // A switch given is on, whether Boost holds it as "" (no value) or true (bool_switch).
-      if (switch_only && item.empty()) item = "true";
-      out += fmt::format("{}{} = {}{}\n", mark, key, scene_quoted(absolute_path(key, item, vm)),
-                         why);
+      // A switch given is on, whether Boost holds it as "" (no value) or true (bool_switch);
+      // bedstat's switch --spread is no path, build's --spread is.
+      if (switch_only) item = item.empty() ? "true" : item;
+      else item = absolute_path(key, item, vm);
+      out += fmt::format("{}{} = {}{}\n", mark, key, scene_quoted(item), why);
     }
   }
   return out;

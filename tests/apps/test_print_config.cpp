@@ -102,10 +102,11 @@ TEST(PrintConfig, KeffPathsAbsolute) {
 }
 
 TEST(PrintConfig, BedstatBedsAndSwitches) {
-  const auto t = round_trip("bedstat", "a.h5 'b c.h5' --layer 0,30e-6 --voronoi");
+  const auto t = round_trip("bedstat", "a.h5 'b c.h5' --layer 0,30e-6 --voronoi --spread");
   EXPECT_TRUE(has_line(t.text, "bed = " + t.a + "/a.h5")) << t.text;
   EXPECT_TRUE(has_line(t.text, "bed = " + t.a + "/b c.h5")) << t.text;
   EXPECT_TRUE(has_line(t.text, "voronoi = true")) << t.text;
+  EXPECT_TRUE(has_line(t.text, "spread = true")) << t.text;  // a switch here, not build's path
   EXPECT_TRUE(has_line(t.text, "# tol = 1e-06  (default)")) << t.text;
 }
 
@@ -129,7 +130,7 @@ TEST(PrintConfig, BuildStageScenesBesideTheBuildScene) {
 // quote naming the file and the line.
 TEST(SceneFile, QuotedValuesAndTheirErrors) {
   const std::string dir = scratch_dir("quoted");
-  std::ofstream(dir + "/q.ini") << "dim = 3\nseed = 1 # a comment\npsd = \"a\\\\b \\\"c\\\" #d\"  # e\n";
+  std::ofstream(dir + "/q.ini") << "dim = 3\ndomain = 1e-4,1e-4,1e-4\nout = o.h5\nseed = 1 # a comment\npsd = \"a\\\\b \\\"c\\\" #d\"  # e\n";
   const auto r = run_in(dir, "packgen", "--config q.ini --print-config");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(has_line(r.out, "psd = \"a\\\\b \\\"c\\\" #d\"")) << r.out;
