@@ -32,11 +32,31 @@ namespace po = app::po;
 using Report = app::BedReport;
 using Request = app::BedRequest;
 
+// The side-by-side table, gathered before it is printed so that every column is as wide as its
+// widest cell (a long bed name) plus two spaces: columns never run together.
+struct Table {
+  std::vector<std::pair<std::string, std::vector<std::string>>> rows;
+
+  void print(std::ostream& out) const {
+    std::size_t label_width = 30;
+    std::vector<std::size_t> width;
+    for (const auto& [label, cells] : rows) {
+      label_width = std::max(label_width, label.size() + 2);
+      width.resize(std::max(width.size(), cells.size()), 16);
+      for (std::size_t k = 0; k < cells.size(); ++k) width[k] = std::max(width[k], cells[k].size() + 2);
+    }
+    for (const auto& [label, cells] : rows) {
+      out << std::left << std::setw(static_cast<int>(label_width)) << label;
+      for (std::size_t k = 0; k < cells.size(); ++k)
+        out << std::right << std::setw(static_cast<int>(width[k])) << cells[k];
+      out << '\n';
+    }
+  }
+};
+
 // One row of the side-by-side table: a label and one cell per bed.
-void table_row(std::ostream& out, const std::string& label, const std::vector<std::string>& cells) {
-  out << std::left << std::setw(30) << label;
-  for (const auto& c : cells) out << std::right << std::setw(16) << c;
-  out << '\n';
+void table_row(Table& out, const std::string& label, const std::vector<std::string>& cells) {
+  out.rows.emplace_back(label, cells);
 }
 
 template <class F>
@@ -52,7 +72,7 @@ std::vector<std::string> cells(const std::vector<Report>& reports, F&& f) {
 }
 
 // --spread rows (docs/spread-layer.md), after the bed's other statistics.
-void print_spread_table(std::ostream& out, const std::vector<Report>& reports) {
+void print_spread_table(Table& out, const std::vector<Report>& reports) {
   auto row = [&](const std::string& label, auto&& f) {
     table_row(out, label, cells(reports, [&](auto& s, const Report& r) { f(s, *r.spread); }));
   };
@@ -81,7 +101,7 @@ void print_spread_table(std::ostream& out, const std::vector<Report>& reports) {
   row("spread: KS p", [](auto& s, const Spread& p) { if (p.ks) s << p.ks->p; else s << "-"; });
 }
 
-void print_table(std::ostream& out, const std::vector<Report>& reports, const Request& req) {
+void print_table(Table& out, const std::vector<Report>& reports, const Request& req) {
   table_row(out, "bed", cells(reports, [](auto& s, const Report& r) {
               const auto slash = r.file.find_last_of('/');
               s << (slash == std::string::npos ? r.file : r.file.substr(slash + 1));
@@ -105,7 +125,8 @@ void print_table(std::ostream& out, const std::vector<Report>& reports, const Re
     table_row(out, "coordination" + at,
               cells(reports, [](auto& s, const Report& r) { s << r.at_tol.coordination; }));
   }
-  table_row(out, "rattlers" + at, cells(reports, [](auto& s, const Report& r) { s << r.at_tol.rattlers; }));
+  // A particle on the floor or against a wall is held: only those touching nothing are rattlers.
+  table_row(out, "rattlers (no particle/wall)" + at, cells(reports, [](auto& s, const Report& r) { s << r.at_tol.rattlers; }));
   table_row(out, "wall contacts" + at,
             cells(reports, [](auto& s, const Report& r) { s << r.at_tol.wall_contacts; }));
   std::size_t kmax = 0;
@@ -326,7 +347,9 @@ int run(int argc, char** argv) {
     json.end_array().end_object();
     std::cout << json.str() << '\n';
   } else {
-    print_table(std::cout, reports, req);
+    Table table;
+    print_table(table, reports, req);
+    table.print(std::cout);
   }
   return 0;
 }

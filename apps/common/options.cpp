@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -113,9 +114,36 @@ namespace powderbed::app {
 
 namespace {
 
+// A value after "key =": "quoted" (escapes \\ \" \n \r \t; then only a comment may follow)
+// or plain text up to a '#' comment, trimmed. `where` prefixes errors ("<file>:<line>: ").
+std::string scene_value(const std::string& text, const std::string& where) {
+  const std::string s = trimmed(text);
+  if (s.empty() || s.front() != '"') return trimmed(s.substr(0, s.find('#')));
+  std::string value;
+  std::size_t k = 1;
+  for (; k < s.size() && s[k] != '"'; ++k) {
+    if (s[k] != '\\') {
+      value += s[k];
+      continue;
+    }
+    const char e = ++k < s.size() ? s[k] : '\0';
+    const auto known = std::string_view("\\\"nrt").find(e);
+    if (e == '\0' || known == std::string_view::npos)
+      throw InputError(fmt::format("{}{} has an unknown escape (accepted: \\\\ \\\" \\n \\r \\t "
+                                   "inside quotes)", where, s));
+    value += "\\\"\n\r\t"[known];
+  }
+  const std::string rest = k < s.size() ? trimmed(s.substr(k + 1)) : "";
+  if (k >= s.size() || (!rest.empty() && rest.front() != '#'))
+    throw InputError(fmt::format("{}{} (accepted: a quoted value \"...\" closed before the line "
+                                 "ends, then only a # comment)", where, s));
+  return value;
+}
+
 // The scene file, parsed as Boost's INI syntax ([section] sets the prefix "section.", key =
 // value, '#' starts a comment) but one line at a time, so that every error names the file and
-// the line: "<file>:<line>: <what>".
+// the line: "<file>:<line>: <what>". A value may be "quoted" (scene_value), as --print-config
+// writes one holding '#', a quote, a line break or spaces at its ends.
 void store_config_file(const std::string& path, const po::options_description& desc,
                        po::variables_map& vm) {
   struct stat st {};
@@ -129,9 +157,12 @@ void store_config_file(const std::string& path, const po::options_description& d
   while (std::getline(in, line)) {
     ++number;
     const std::string where = fmt::format("{}:{}: ", path, number);
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-    line = trimmed(line);
     if (!line.empty() && line.back() == '\r') line.pop_back();
+    // A '#' before the first '=' starts a comment; after it, the value's reader decides (quotes).
+    const auto hash = line.find('#');
+    const auto eq = line.find('=') < hash ? line.find('=') : std::string::npos;
+    const std::string raw_value = eq == std::string::npos ? "" : line.substr(eq + 1);
+    line = trimmed(line.substr(0, std::min(eq, hash)));
     if (line.empty()) continue;
     if (line.front() == '[') {
       if (line.back() != ']')
@@ -140,12 +171,11 @@ void store_config_file(const std::string& path, const po::options_description& d
       if (!prefix.empty()) prefix += '.';
       continue;
     }
-    const auto eq = line.find('=');
     if (eq == std::string::npos)
       throw InputError(
           fmt::format("{}'{}' (accepted: key = value, [section] or # comment)", where, line));
-    const std::string key = prefix + trimmed(line.substr(0, eq));
-    const std::string value = trimmed(line.substr(eq + 1));
+    const std::string key = prefix + line;
+    const std::string value = scene_value(raw_value, where);
     if (key == "config")
       throw InputError(fmt::format("{}config inside a scene file (accepted: one --config)", where));
     const po::option_description* known = desc.find_nothrow(key, false);
@@ -221,6 +251,7 @@ bool parse_options(const char* app, const std::string& usage, po::options_descri
   for (const auto& [key, value] : vm)
     if (!value.defaulted()) typed.insert(key);
   if (vm.count("help")) {
+    scene_style_defaults(desc);
     std::cout << "usage: " << usage << "\n\n" << desc << '\n';
     return false;
   }
@@ -237,12 +268,16 @@ bool parse_options(const char* app, const std::string& usage, po::options_descri
   check_common(vm);
   // A --material file's values are stored after po::notify (they need the resolved options): the
   // fields those options are bound to get them here.
-  for (const std::string& name : apply_material(app, vm, typed))
+  std::set<std::string> from_material;
+  for (const std::string& name : apply_material(app, vm, typed)) {
     desc.find(name, false).semantic()->notify(vm[name].value());
+    from_material.insert(name);
+  }
   if (vm.count("print-config")) {
     std::cout << "# " << version_string(app)
-              << ": the resolved options (--config reads this back)\n"
-              << scene_text(vm);
+              << ": the resolved options (--config reads this back from any folder; defaults "
+                 "and a material file's values commented out)\n"
+              << print_config_text(desc, vm, from_material);
     return false;
   }
   return true;
@@ -295,32 +330,140 @@ bed::Domain parse_domain_bounds(const std::string& text, const std::string& opti
   return d;
 }
 
-std::string scene_text(const po::variables_map& vm) {
-  std::ostringstream out;
-  out.precision(17);
-  for (const auto& [key, value] : vm) {
-    if (key == "config" || key == "json" || key == "help" || key == "version" ||
-        key == "progress" || key == "print-config" || key == "list-materials")
-      continue;
-    const auto& v = value.value();
-    if (const auto* list = boost::any_cast<std::vector<std::string>>(&v)) {
-      for (const auto& item : *list) out << key << " = " << item << '\n';  // lines add up
-      continue;
-    }
-    out << key << " = ";  // a switch without a value (bedstat's voronoi) prints an empty value
-    if (const auto* s = boost::any_cast<std::string>(&v)) out << *s;
-    else if (const auto* d = boost::any_cast<double>(&v)) {
-      char text[32];  // the shortest text that reads back to the same double
-      const auto end = std::to_chars(text, text + sizeof text, *d).ptr;
-      out.write(text, end - text);
-    }
-    else if (const auto* b = boost::any_cast<bool>(&v)) out << (*b ? "true" : "false");
-    else if (const auto* u = boost::any_cast<std::uint64_t>(&v)) out << *u;
-    else if (const auto* z = boost::any_cast<std::size_t>(&v)) out << *z;
-    else if (const auto* i = boost::any_cast<int>(&v)) out << *i;
-    out << '\n';
+namespace {
+
+// The options every scene leaves out: they say how to run, not what to run.
+bool meta_option(const std::string& key) {
+  return key == "config" || key == "json" || key == "help" || key == "version" ||
+         key == "progress" || key == "print-config" || key == "list-materials";
+}
+
+// The items of a value: one for a scalar, each line of a multi-valued option (lines add up).
+std::vector<std::string> value_items(const boost::any& v) {
+  if (const auto* list = boost::any_cast<std::vector<std::string>>(&v)) return *list;
+  return {value_text(v).value_or("")};
+}
+
+// The options whose value is a file or folder, written absolute by --print-config so that the
+// scene works from any folder; the second list also resolves beside the --config scene file when
+// not found from the working folder (material_file, build's stage scenes), as they are read.
+constexpr const char* kPathOptions[] = {
+    "bed", "in", "out", "fused-bed", "scan-path", "tool-forces", "trajectory", "deck-scene",
+    "height-map", "feed"};
+constexpr const char* kSceneRelativeOptions[] = {"material", "material.table", "spread", "sinter"};
+
+bool listed(const std::string& key, const auto& list) {
+  return std::find(std::begin(list), std::end(list), key) != std::end(list);
+}
+
+// `path` as an absolute path, found as the program finds it: from the working folder, else (for
+// the scene-relative options) beside the --config file. A material name stays a name.
+std::string absolute_path(const std::string& key, const std::string& path,
+                          const po::variables_map& vm) {
+  namespace fs = std::filesystem;
+  const bool beside = listed(key, kSceneRelativeOptions);
+  if (!beside && !listed(key, kPathOptions)) return path;
+  if (path.empty() || fs::path(path).is_absolute()) return path;
+  const bool material = key == "material" || key == "material.table";
+  if (material && path.find('/') == std::string::npos && bed::extension_of(path) != ".csv")
+    return path;  // a name of --list-materials
+  std::error_code ec;
+  fs::path found = fs::absolute(path, ec);
+  if (beside && !fs::exists(path, ec) && vm.count("config")) {
+    const fs::path there = fs::absolute(vm["config"].as<std::string>(), ec).parent_path() / path;
+    if (fs::exists(there, ec)) found = there;
   }
-  return out.str();
+  return found.lexically_normal().string();
+}
+
+// A value as a scene line holds it: "quoted" with escapes when it holds what the plain form
+// would lose ('#', a line break, a leading quote, spaces at its ends), else as it is.
+std::string scene_quoted(const std::string& value) {
+  const bool plain = value.find_first_of("#\n\r") == std::string::npos &&
+                     (value.empty() || (value.front() != '"' && value.front() != ' ' &&
+                                        value.front() != '\t' && value.back() != ' ' &&
+                                        value.back() != '\t'));
+  if (plain) return value;
+  std::string out = "\"";
+  for (const char c : value) {
+    if (c == '\\' || c == '"') out += {'\\', c};
+    else if (c == '\n') out += "\\n";
+    else if (c == '\r') out += "\\r";
+    else if (c == '\t') out += "\\t";
+    else out += c;
+  }
+  return out + '"';
+}
+
+}  // namespace
+
+std::optional<std::string> value_text(const boost::any& v) {
+  if (const auto* s = boost::any_cast<std::string>(&v)) return *s;
+  if (const auto* d = boost::any_cast<double>(&v)) {
+    char text[32];  // the shortest text that reads back to the same double
+    const auto end = std::to_chars(text, text + sizeof text, *d).ptr;
+    return std::string(text, end);
+  }
+  if (const auto* b = boost::any_cast<bool>(&v)) return *b ? "true" : "false";
+  if (const auto* u = boost::any_cast<std::uint64_t>(&v)) return std::to_string(*u);
+  if (const auto* z = boost::any_cast<std::size_t>(&v)) return std::to_string(*z);
+  if (const auto* i = boost::any_cast<int>(&v)) return std::to_string(*i);
+  if (const auto* w = boost::any_cast<unsigned>(&v)) return std::to_string(*w);
+  return std::nullopt;
+}
+
+std::string scene_text(const po::variables_map& vm) {
+  std::string out;
+  for (const auto& [key, value] : vm) {
+    if (meta_option(key)) continue;
+    // A switch without a value (bedstat's voronoi) prints an empty value.
+    for (const auto& item : value_items(value.value())) out += key + " = " + item + '\n';
+  }
+  return out;
+}
+
+std::string print_config_text(const po::options_description& desc, const po::variables_map& vm,
+                              const std::set<std::string>& from_material) {
+  std::string out;
+  for (const auto& [key, value] : vm) {
+    if (meta_option(key)) continue;
+    const po::option_description* known = desc.find_nothrow(key, false);
+    const bool switch_only = known && known->semantic()->max_tokens() == 0;
+    // Defaults and a material file's values are shown, commented out: read back as given, they
+    // would become given values (and a default given alone may be refused).
+    const bool filled = from_material.count(key) > 0;
+    const std::string mark = value.defaulted() || filled ? "# " : "";
+    const std::string why = value.defaulted() ? "  (default)" : filled ? "  (from --material)" : "";
+    for (std::string item : value_items(value.value())) {
+      // A switch given is on, whether Boost holds it as "" (no value) or true (bool_switch);
+      // bedstat's switch --spread is no path, build's --spread is.
+      if (switch_only) item = item.empty() ? "true" : item;
+      else item = absolute_path(key, item, vm);
+      out += fmt::format("{}{} = {}{}\n", mark, key, scene_quoted(item), why);
+    }
+  }
+  return out;
+}
+
+namespace {
+
+// Boost writes a default by lexical_cast (5.3999999999999998e-05, 1 for true): restated as a
+// scene file writes it. The description holds the semantic const; Boost's value<T>() made it.
+template <class T>
+void restate_default(const po::value_semantic* semantic) {
+  const auto* typed = dynamic_cast<const po::typed_value<T>*>(semantic);
+  boost::any v;
+  if (!typed || !typed->apply_default(v)) return;
+  const_cast<po::typed_value<T>*>(typed)->default_value(boost::any_cast<T>(v), *value_text(v));
+}
+
+}  // namespace
+
+void scene_style_defaults(po::options_description& desc) {
+  for (const auto& option : desc.options()) {
+    restate_default<double>(option->semantic().get());
+    restate_default<bool>(option->semantic().get());
+  }
 }
 
 namespace {

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
+#include <optional>
+#include <set>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -101,8 +103,25 @@ bed::Domain parse_domain_lengths(const std::string& text, const std::string& opt
 // "xlo,ylo,zlo,xhi,yhi,zhi" -> that box (3D; zlo == zhi == 0 makes it 2D).
 bed::Domain parse_domain_bounds(const std::string& text, const std::string& option);
 
+// A value as a scene file writes it: a double as the shortest decimal that reads back to the
+// same double (5.4e-05), a bool as true/false, whole numbers and strings as they are; nullopt
+// for a type no option has.
+std::optional<std::string> value_text(const boost::any& v);
+
 // The resolved options as INI text (key = value per line, full precision; --config, --json,
 // --help and --version left out): what a bed's or run's /provenance scene records.
 std::string scene_text(const po::variables_map& vm);
+
+// What --print-config prints after its header line: a scene file that --config reads back to
+// the same options from any folder (docs/hardening.md "Scene files"). Given values as
+// key = value; defaults and the values a --material file filled (`from_material`) commented
+// out with "(default)" / "(from --material)", so a reread does not turn them into given values;
+// paths absolute (as the program resolves them); a value holding '#', a line break, a leading
+// quote or spaces at its ends "quoted" with \\ \" \n \r \t escapes; a switch given as true.
+std::string print_config_text(const po::options_description& desc, const po::variables_map& vm,
+                              const std::set<std::string>& from_material);
+
+// Restates every double and bool default of `desc` as value_text writes it, for --help.
+void scene_style_defaults(po::options_description& desc);
 
 }  // namespace powderbed::app

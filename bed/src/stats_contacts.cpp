@@ -60,15 +60,19 @@ std::vector<ContactStats> contact_stats(const Bed& bed, const std::vector<double
     for (std::size_t i = 0; i < n; ++i) most = std::max(most, per_particle[i * nt + t]);
     o.histogram.assign(std::size_t{most} + 1, 0);
     for (std::size_t i = 0; i < n; ++i) ++o.histogram[per_particle[i * nt + t]];
-    o.rattlers = o.histogram[0];
-    for (int a = 0; a < dom.dimension; ++a) {
-      if (dom.periodic[a]) continue;
-      const std::vector<double>& c = *centre[a];
-      for (std::size_t i = 0; i < n; ++i) {
-        const double reach = bed.radius[i] * scale[t];
-        if (c[i] - dom.lower[a] <= reach) ++o.wall_contacts;
-        if (dom.upper[a] - c[i] <= reach) ++o.wall_contacts;
+    // A rattler touches nothing: a particle with no particle contact that rests on the floor or
+    // leans on a wall is held (docs/physics.md §2), so it is not one.
+    for (std::size_t i = 0; i < n; ++i) {
+      const double reach = bed.radius[i] * scale[t];
+      bool held = per_particle[i * nt + t] > 0;
+      for (int a = 0; a < dom.dimension; ++a) {
+        if (dom.periodic[a]) continue;
+        const double c = (*centre[a])[i];
+        const int touches = (c - dom.lower[a] <= reach) + (dom.upper[a] - c <= reach);
+        o.wall_contacts += touches;
+        held = held || touches > 0;
       }
+      if (!held) ++o.rattlers;
     }
   }
   return out;

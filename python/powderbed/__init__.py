@@ -19,12 +19,13 @@ except ImportError as error:
 import json as _json
 
 from . import _core
+from ._version import __version__
 from ._programs import PROGRAMS, ProgramError, run
 from ._bed import Bed
 
 InputError = _core.InputError
 
-__all__ = ["Bed", "InputError", "ProgramError", "PROGRAMS", "read_bed", "write_bed", "sample_psd",
+__all__ = ["__version__", "Bed", "InputError", "ProgramError", "PROGRAMS", "read_bed", "write_bed", "sample_psd",
            "stats", "run", *PROGRAMS]
 
 

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
+#include <sstream>
+#include <vector>
 #include <numbers>
 
 #include "powderbed/bed/io.hpp"
@@ -63,6 +66,46 @@ TEST_F(BedstatTest, TwoBedsPrintSideBySide) {
   EXPECT_NE(r.out.find("fcc.h5"), std::string::npos);
   EXPECT_NE(r.out.find("0.523599"), std::string::npos) << r.out;  // pi/6
   EXPECT_NE(r.out.find("0.74048"), std::string::npos) << r.out;   // pi/(3 sqrt 2)
+}
+
+// Two long bed names (longer than the 16-character columns) stay two words in the header row:
+// each column is as wide as its widest cell plus two spaces.
+TEST_F(BedstatTest, LongBedNamesNeverRunTogether) {
+  const std::string a = dir_ + "/gz-lammps-final-snapshot-of-the-run.h5";
+  const std::string b = dir_ + "/gz-deposit-final-snapshot-of-the-run.h5";
+  powderbed::bed::write_bed_h5(powderbed::bed::simple_cubic_lattice(3, 1e-5), a);
+  powderbed::bed::write_bed_h5(powderbed::bed::fcc_lattice(2, 1e-5), b);
+  const auto r = run_app("bedstat", a + " " + b);
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream lines(r.out);
+  std::string header;
+  std::getline(lines, header);
+  std::istringstream words(header);
+  std::vector<std::string> cells{std::istream_iterator<std::string>(words), {}};
+  ASSERT_EQ(cells.size(), 3u) << header;
+  EXPECT_EQ(cells[1], "gz-lammps-final-snapshot-of-the-run.h5");
+  EXPECT_EQ(cells[2], "gz-deposit-final-snapshot-of-the-run.h5");
+  // Every row lines up with the header: the cells end at the same column.
+  for (std::string line; std::getline(lines, line);) EXPECT_EQ(line.size(), header.size()) << line;
+}
+
+// A particle resting on the floor or against a wall, with no particle contact, is not a rattler;
+// only the one touching nothing is, and the table's label says which count it is.
+TEST_F(BedstatTest, ParticlesOnTheFloorAreNotRattlers) {
+  powderbed::bed::Bed bed;
+  bed.domain.upper = {1e-3, 1e-3, 1e-3};
+  bed.add(5e-4, 5e-4, 1e-5, 1e-5);  // on the floor
+  bed.add(1e-5, 2e-4, 5e-4, 1e-5);  // against the wall x = 0
+  bed.add(5e-4, 5e-4, 5e-4, 1e-5);  // floating
+  const std::string path = dir_ + "/floor.h5";
+  powderbed::bed::write_bed_h5(bed, path);
+  const auto json = run_app("bedstat", path + " --json");
+  ASSERT_EQ(json.status, 0) << json.err;
+  EXPECT_EQ(json_number(json.out, "rattlers"), 1) << json.out;
+  const auto table = run_app("bedstat", path);
+  ASSERT_EQ(table.status, 0) << table.err;
+  EXPECT_NE(table.out.find("rattlers (no particle/wall) (tol 1e-06)"), std::string::npos)
+      << table.out;
 }
 
 TEST_F(BedstatTest, RadiusHistogramAgainstTargetPsd) {

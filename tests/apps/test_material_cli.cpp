@@ -22,13 +22,18 @@ namespace {
 const std::vector<std::string> kMaterials = {"316L",  "AlSi10Mg",  "IN625",
                                              "IN718", "Ti-6Al-4V", "copper"};
 
-// The value printed for `key` by --print-config ("key = value" lines); "" when absent.
+// The value printed for `key` by --print-config ("key = value" lines, or the commented-out
+// "# key = value  (from --material)" of a value the material file filled, or a default's);
+// "" when absent.
 std::string config_value(const std::string& text, const std::string& key) {
-  const std::string prefix = "\n" + key + " = ";
-  const auto at = ("\n" + text).find(prefix);
-  if (at == std::string::npos) return "";
-  const auto start = at + prefix.size() - 1;
-  return text.substr(start, text.find('\n', start) - start);
+  for (const std::string& prefix : {"\n" + key + " = ", "\n# " + key + " = "}) {
+    const auto at = ("\n" + text).find(prefix);
+    if (at == std::string::npos) continue;
+    const auto start = at + prefix.size() - 1;
+    const std::string line = text.substr(start, text.find('\n', start) - start);
+    return line.substr(0, line.find("  ("));
+  }
+  return "";
 }
 
 double config_number(const std::string& text, const std::string& key) {

@@ -261,6 +261,23 @@ TEST(Contacts, RattlerAndTolerance) {
   EXPECT_EQ(pb::contact_stats(pb::Bed{}, 1e-6).coordination, 0.0);
 }
 
+// A particle resting on the floor (or leaning on a wall) with no particle contact is held, not a
+// rattler; one floating free is; the contacts histogram still counts particle contacts only.
+TEST(Contacts, ParticlesOnTheFloorOrAWallAreNotRattlers) {
+  pb::Bed bed;
+  bed.domain.upper = {10, 10, 10};
+  bed.add(5, 5, 1, 1);  // on the floor z = 0
+  bed.add(1, 8, 5, 1);  // against the wall x = 0
+  bed.add(5, 5, 5, 1);  // touching nothing
+  const pb::ContactStats s = pb::contact_stats(bed, 1e-6);
+  EXPECT_EQ(s.histogram[0], 3u);
+  EXPECT_EQ(s.wall_contacts, 2u);
+  EXPECT_EQ(s.rattlers, 1u);
+  // Periodic in z, the floor holds nothing: the first becomes a rattler too.
+  bed.domain.periodic = {false, false, true};
+  EXPECT_EQ(pb::contact_stats(bed, 1e-6).rattlers, 2u);
+}
+
 TEST(Contacts, WallContacts2dUseOnlyXAndYFaces) {
   pb::Bed bed;
   bed.domain.dimension = 2;

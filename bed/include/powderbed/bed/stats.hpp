@@ -24,7 +24,7 @@ struct ContactStats {
   std::size_t contacts = 0;             // particle–particle contacts
   double coordination = 0;              // Z = 2 contacts / N
   std::vector<std::size_t> histogram;   // histogram[k] = number of particles with k contacts
-  std::size_t rattlers = 0;             // particles with no particle contact
+  std::size_t rattlers = 0;             // particles touching nothing: no particle, wall or floor
   std::size_t wall_contacts = 0;        // particle–wall contacts (non-periodic faces), same tol
 };
 ContactStats contact_stats(const Bed& bed, double tolerance);
