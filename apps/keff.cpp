@@ -14,6 +14,7 @@
 
 #include "common/app_main.hpp"
 #include "common/material_options.hpp"
+#include "powderbed/bed/material_file.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
@@ -226,6 +227,25 @@ void check_units(const po::variables_map& vm, const kf::KeffScene& scene) {
                                scene.lens.min_gap));
 }
 
+// With --material the bed must still be solid at the hot wall (below the file's solidus, else its
+// melting point): beyond it k_s is the table's last solid row held, and the number a solid bed's
+// k_eff at a temperature where the powder has melted. (gas.model = air bounds the walls to its
+// fit's 175-1900 K in the scene's own checks.)
+void check_wall_temperatures(const po::variables_map& vm, const kf::KeffScene& scene) {
+  if (!vm.count("material")) return;
+  const bed::MaterialFile file =
+      bed::read_material_file(app::material_file(vm["material"].as<std::string>(), vm, "--material"));
+  const bool solidus = file.get("solidus").has_value();
+  const auto solid_until = solidus ? file.get("solidus") : file.get("melting_point");
+  const double hot = scene.hot_temperature;
+  if (solid_until && !(hot < *solid_until)) {
+    throw InputError(fmt::format("--t-hot: the hot wall at {:g} K is not below {}'s {} {:g} K (accepted: a solid "
+                                 "bed, T_hot < {:g} K)",
+                                 hot, file.name, solidus ? "solidus" : "melting point",
+                                 *solid_until, *solid_until));
+  }
+}
+
 // Inputs and outputs checked before the work: a folder where the profile goes, or --out = the
 // bed, must not cost a solve or an existing file.
 void check_files(const po::variables_map& vm) {
@@ -385,6 +405,7 @@ int run(int argc, char** argv) {
   po::store(po::command_line_parser(argc, argv).options(desc).run(), command_line);
   kf::KeffScene scene = make_scene(vm, command_line, bound);
   check_units(vm, scene);
+  check_wall_temperatures(vm, scene);
   const auto bins = app::option_in_range<std::size_t>(vm, "profile-bins", 0, 1000000);
   check_files(vm);
   bed::Bed bed = bed::read_bed_any(vm["bed"].as<std::string>());

@@ -157,6 +157,13 @@ TEST(KeffCli, BadInputExitsTwoWithOneLine) {
   expect_refused(test::run_app("keff", base + "--bed " + bed_path +
                                            " --gas.model air --t-hot 2500 --t-cold 300"),
                  dir, {"t-hot", "1900"});
+  // A bed above its solidus is no longer powder: issue 36's --t-hot 1e5 gave k_eff = 40,580 W/mK.
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path +
+                                           " --material 316L --gas.model constant --t-hot 1e5"),
+                 dir, {"--t-hot", "100000 K", "solidus 1658 K"});
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path +
+                                           " --material 316L --gas.model constant --temperature 1700"),
+                 dir, {"--t-hot", "1700.5 K", "solidus"});
   expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --solid.conductivity -3"),
                  dir, {"solid.conductivity"});
   expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --gas.lens-region all"),
