@@ -224,6 +224,18 @@ TEST(SinterCli, HighPowerSlowScanStaysNearBoilingWithTheDefaults) {
   const auto shallow = test::run_app("sinter", args(bed, dir, "--power 400 --speed 0.4"));
   EXPECT_EQ(shallow.status, 3) << shallow.err;
   EXPECT_NE(shallow.err.find("substrate.depth"), std::string::npos) << shallow.err;
+  // Issue 36's probes, 9.9 kW at 1 m/s and 1 kW at 0.02 m/s (which reported 239,300 and 69,160 K
+  // as successes before the melt pool's models): the keyhole drills through the grid, exit 3
+  // with why, one line, no run file.
+  std::filesystem::remove(dir + "/out.h5");
+  for (const char* point : {"--power 9900 --speed 1", "--power 1000 --speed 0.02"}) {
+    const auto drilled = test::run_app("sinter", args(bed, dir, point));
+    EXPECT_EQ(drilled.status, 3) << point << ": " << drilled.err;
+    EXPECT_EQ(drilled.err_lines(), 1) << point << ": " << drilled.err;
+    EXPECT_NE(drilled.err.find("depression reached the substrate's bottom"), std::string::npos)
+        << drilled.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/out.h5")) << point;
+  }
 }
 
 TEST(SinterCli, BareSubstrateMelts) {
