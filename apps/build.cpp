@@ -219,6 +219,7 @@ struct LayerReport {
   std::size_t scanned_particles = 0, fused = 0, vaporised = 0, powder_left = 0;
   double fused_fraction = 0;               // of the powder's mass the scan met
   double mass_error = 0, lack_of_fusion = 0, top_min = 0, top_max = 0;  // top: above the plate
+  double scanned_area = 0;                 // m^2: the columns the lack-of-fusion map judged
   double solid_mass = 0;                   // kg above the plate after the layer
   std::size_t captured = 0;                // of the fused: powder the grown solid swallowed
 };
@@ -254,6 +255,7 @@ void layer_json(bed::JsonWriter& j, const LayerReport& l) {
       .value("captured", static_cast<std::uint64_t>(l.captured))
       .value("fused_fraction", l.fused_fraction)
       .value("lack_of_fusion", l.lack_of_fusion)
+      .value("scanned_area", l.scanned_area)
       .value("mass_error", l.mass_error)
       .value("solid_top_min", l.top_min)
       .value("solid_top_max", l.top_max)
@@ -334,12 +336,7 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   const th::Fusion fused = th::fuse(bed, sinter, b.melt_fraction, 0.05, level);
   const double half_width = app::hatch_requested(b.svm) ? 0.5 * b.svm["scan.hatch"].as<double>()
                                                         : scene.spot_radius;
-  const std::vector<th::ScanSegment> path =
-      scene.scan_path.empty()
-          ? std::vector<th::ScanSegment>{{scene.start_x, scene.laser_y, scene.end_x, scene.laser_y,
-                                          scene.power, scene.speed}}
-          : scene.scan_path;
-  const th::LackOfFusion lof = th::lack_of_fusion(sinter, path, half_width, fused.threshold);
+  const th::LackOfFusion lof = th::lack_of_fusion(sinter, half_width, fused.threshold);
   writer.fusion(fused);
   writer.lack_of_fusion(lof);
   writer.finish(sinter, rep.scan, {{"lack_of_fusion", lof.fraction()}});
@@ -355,6 +352,7 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   rep.fused_fraction = fused.powder_mass_before > 0 ? joined / fused.powder_mass_before : 0.0;
   rep.mass_error = fused.mass_error();
   rep.lack_of_fusion = lof.fraction();
+  rep.scanned_area = static_cast<double>(lof.scanned) * g.dx * g.dy;
   const auto [low, high] = std::minmax_element(fused.top.begin(), fused.top.end());
   rep.top_min = *low - g.z_top;
   rep.top_max = *high - g.z_top;

@@ -197,3 +197,21 @@ TEST(BuildCli, DamagedLayerFileIsRefusedBeforeAnyWork) {
     EXPECT_FALSE(std::filesystem::exists(dir + "/d_" + name + ".h5")) << name;
   }
 }
+
+// A build whose scan scene is one track (no hatch, no path: the [GZ] defaults place it) judges
+// lack of fusion along that track: its scanned area is the track's strip, 2 w wide along the
+// plate's length (issue 32: NaN ends counted nothing as scanned).
+TEST(BuildCli, SingleTrackBuildJudgesTheTracksStrip) {
+  const std::string dir = test::scratch_dir("build_single_track");
+  const auto r = test::run_app("build", "--config " + kConfig + " --sinter " + kScenes +
+                                            "/scan-track.ini --layers 1 --json --out " + dir + "/run");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto at = r.out.find("\"scanned_area\":");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const double area = std::stod(r.out.substr(at + 15));
+  const bed::Bed bed = bed::read_bed_h5(dir + "/run/layer-001-spread.h5");
+  const double w = 30e-6, grid = 20e-6;  // scan-track.ini's spot and grid
+  // The strip's columns: (2w / dy + 1) rows along the plate, to a row either way.
+  const double strip = bed.domain.length(0) * 2 * w;
+  EXPECT_NEAR(area, strip + bed.domain.length(0) * grid, bed.domain.length(0) * grid) << r.out;
+}

@@ -41,7 +41,7 @@ struct Scan {
 Scan scan(const bed::Bed& b, const thermal::SinterScene& scene, double half_width) {
   thermal::Sinter sinter(b, scene, test::table_316l());
   Scan s{sinter.run(nullptr, 0, nullptr), {}, sinter.grid()};
-  s.lof = thermal::lack_of_fusion(sinter, scene.scan_path, half_width,
+  s.lof = thermal::lack_of_fusion(sinter, half_width,
                                   sinter.material().phase_change().melting_point);
   return s;
 }
@@ -112,5 +112,21 @@ TEST(LackOfFusion, BadHalfWidthRefused) {
   const bed::Bed b = test::empty_bed(120e-6, 120e-6, 40e-6);
   auto scene = scene_for(b);
   thermal::Sinter sinter(b, scene, test::table_316l());
-  EXPECT_THROW(thermal::lack_of_fusion(sinter, {}, 0.0, 1700), InputError);
+  EXPECT_THROW(thermal::lack_of_fusion(sinter, 0.0, 1700), InputError);
+}
+
+// A scene without a scan path runs its single track from the [GZ] defaults (laser.y, start and end
+// x left NaN); the mask must come from that track as run, not from the scene's NaNs (issue 32: a
+// single-track build counted nothing as scanned).
+TEST(LackOfFusion, SingleTrackOfTheDefaultsIsScanned) {
+  const bed::Bed b = test::empty_bed(240e-6, 160e-6, 40e-6);
+  const thermal::SinterScene scene = scene_for(b);
+  ASSERT_TRUE(scene.scan_path.empty());
+  ASSERT_TRUE(std::isnan(scene.laser_y));
+  const Scan s = scan(b, scene, scene.spot_radius);
+  // The strip of half width w along the whole plate (the track starts and ends a spot beyond
+  // it): 2w / dy + 1 rows of nx columns, to one row.
+  const double rows = static_cast<double>(s.lof.scanned) / static_cast<double>(s.grid.nx);
+  EXPECT_NEAR(rows, 2 * scene.spot_radius / s.grid.dy + 1, 1.0);
+  EXPECT_GT(s.lof.scanned - s.lof.unbonded, 0u);  // the melt bonded to the plate under it
 }

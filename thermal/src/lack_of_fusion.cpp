@@ -19,12 +19,12 @@ bool within_strip(const ScanSegment& s, double half_width, double x, double y) {
 
 }  // namespace
 
-LackOfFusion lack_of_fusion(const Sinter& sinter, const std::vector<ScanSegment>& path,
-                            double half_width, double threshold) {
+LackOfFusion lack_of_fusion(const Sinter& sinter, double half_width, double threshold) {
   require_in_range(half_width > 0 && std::isfinite(half_width), "lack-of-fusion half width",
                    half_width, "a half width > 0 m");
   const SubstrateGeometry& g = sinter.grid();
   const auto& peak = sinter.substrate_peak_planes();
+  const std::vector<ScanSegment>& path = sinter.scan_path();
   LackOfFusion out;
   out.threshold = threshold;
   out.half_width = half_width;

@@ -600,6 +600,7 @@ double Sinter::dt() const { return s_->dt; }
 std::size_t Sinter::substeps() const { return s_->substeps; }
 double Sinter::t_end() const { return s_->t_end; }
 const SubstrateGeometry& Sinter::grid() const { return s_->g; }
+const std::vector<ScanSegment>& Sinter::scan_path() const { return s_->schedule.segments(); }
 const TopHeight& Sinter::top_height() const { return s_->top; }
 const SinterScene& Sinter::scene() const { return s_->scene; }
 const std::vector<double>& Sinter::particle_mass() const { return s_->mass; }

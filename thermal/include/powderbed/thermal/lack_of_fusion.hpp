@@ -31,9 +31,9 @@ struct LackOfFusion {
   }
 };
 
-// From the peak top-face temperatures of the run `sinter` has made along `path`.
-LackOfFusion lack_of_fusion(const Sinter& sinter, const std::vector<ScanSegment>& path,
-                            double half_width, double threshold);
+// From the peak top-face temperatures of the run `sinter` has made along its path
+// (Sinter::scan_path: a single track too, resolved as the run ran it).
+LackOfFusion lack_of_fusion(const Sinter& sinter, double half_width, double threshold);
 
 // The width of the bonded stripe across x = x_plane (the top-face column row nearest to it): the
 // bonded columns' count times dy: what a single track fuses of the solid under it.

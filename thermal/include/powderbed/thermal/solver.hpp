@@ -140,6 +140,9 @@ class Sinter {
   const SubstrateGeometry& grid() const;
   const TopHeight& top_height() const;  // empty: flat at the grid's top face
   const SinterScene& scene() const;
+  // The path the beam runs: the scene's scan path, or its single track resolved (the [GZ]
+  // defaults for what the scene left NaN).
+  const std::vector<ScanSegment>& scan_path() const;
   const std::vector<double>& particle_mass() const;  // rho(T0) 4/3 π r^3 less what evaporated, kg
   // Per particle, whether it merged into the pool (wetting): its volume is in top_height()
   // already. Empty without wetting.
