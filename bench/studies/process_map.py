@@ -1,21 +1,30 @@
 #!/usr/bin/env python3
 """Process map: a laser power x scan speed grid of single tracks on one powder layer, each
-track's mean melt pool (width W, depth D, length L along the track, from sinter --json
-"tracks"), and the usual criteria drawn as regions:
+track's mean melt pool (width W, depth D below the solid's top, length L along the track, from
+sinter --json "tracks"), with sinter's default melt-pool models (Fresnel optics, evaporation, the
+vapour depression with the beam traced into it: docs/sinter.md), and the usual criteria drawn as
+regions:
 
-  keyhole          W / D <= 1.5          (the threshold of Johnson et al. 2019, "Assessing
-                                          printability maps in additive manufacturing of metal
-                                          alloys", Acta Mater. 176)
-  lack of fusion   (h / W)^2 + (t / D)^2 > 1  for hatch h and layer t (Tang, Pistorius & Beuth
-                                          2017, Addit. Manuf. 14: neighbouring elliptic pools
-                                          no longer overlap down to the layer below)
-  balling          L / W > pi            (Plateau-Rayleigh: a liquid cylinder longer than pi
-                                          times its width breaks up; Yadroitsev et al. 2010,
-                                          J. Mater. Process. Technol. 210)
+  keyhole          dH/h_s > pi T_b / T_m   (King et al. 2014, J. Mater. Process. Technol. 214:
+                                          the normalised enthalpy of sinter --explain), or the
+                                          pool itself W / D <= 1.5 (Johnson et al. 2019, Acta
+                                          Mater. 176), which the depression model now deepens
+  lack of fusion   (h / W)^2 + (t / D_t)^2 > 1  for hatch h and layer t, with D_t = t + D the
+                                          pool's depth from the top of the new layer (Tang,
+                                          Pistorius & Beuth 2017, Addit. Manuf. 14: neighbouring
+                                          elliptic pools no longer overlap down to the layer
+                                          below); and wherever the powder melts but the solid
+                                          under it does not (D = 0: nothing bonds)
+  balling          L / W > pi where the melt does not remelt the solid under it (D = 0)
+                                          (Plateau-Rayleigh: a free liquid cylinder longer than
+                                          pi times its width breaks up; Yadroitsev et al. 2010,
+                                          J. Mater. Process. Technol. 210). A pool that remelts
+                                          the solid along its length has pinned contact lines,
+                                          which hold a rivulet of contact angle below 90 degrees
+                                          against that instability at any length (Davis 1980,
+                                          J. Fluid Mech. 98)
 
-The thermal model has no recoil pressure, evaporation or melt flow (docs/sinter.md), so the
-keyhole line marks where its conduction-mode answer stops being trustworthy, not a keyhole it
-simulates. Writes docs/results/process-map.md and process-map.png. Run with python3:
+Writes docs/results/process-map.md and process-map.png. Run with python3:
     POWDERBED_BUILD=build python3 bench/studies/process_map.py [--bed LAYER.h5] [--small]
 The bed defaults to a spread layer (data/scenes/spread-blade.ini, seed 1), made once in
 out/studies/. --small runs a 3 x 3 grid for a quick look.
@@ -72,14 +81,25 @@ def track_of(bed, length):
 
 def run_point(bed, power, speed, track, extra):
     x0, x1, y = track
+    options = ["--power", str(power), "--speed", str(speed), "--laser.start-x", repr(x0),
+               "--laser.end-x", repr(x1), "--laser.y", repr(y), *extra]
     summary, wall = apps.sinter(SINTER_SCENE, bed, f"process-map-{power:g}W-{speed:g}ms.h5",
-                                "--power", str(power), "--speed", str(speed), "--snapshots", "1",
-                                "--laser.start-x", repr(x0), "--laser.end-x", repr(x1),
-                                "--laser.y", repr(y), *extra)
+                                "--snapshots", "1", *options)
+    regime, _ = apps.run_json([apps.app("sinter"), "--config", SINTER_SCENE, "--bed", bed,
+                               "--explain", *options])
     width, depth, length = track_pool(summary)
     return {"power": power, "speed": speed, "width": width, "depth": depth, "length": length,
-            "peak": summary["max_temperature"], "vaporised": summary["particles_vaporised"],
+            "enthalpy": regime["normalised_enthalpy"], "keyhole_at": regime["keyhole_threshold"],
+            "peak_particles": summary["max_temperature_particles"],
+            "peak_substrate": summary["max_temperature_substrate"],
+            "evaporated": summary["evaporated_mass"], "vaporised": summary["particles_vaporised"],
             "wall": wall}
+
+
+def tang_sum(p, hatch, layer):
+    """(h/W)^2 + (t/D_t)^2 with D_t = t + D, the depth from the new layer's top (inf: no bond)."""
+    w, d = p["width"], p["depth"]
+    return (hatch / w) ** 2 + (layer / (layer + d)) ** 2 if w > 0 and d > 0 else float("inf")
 
 
 def classify(p, hatch, layer):
@@ -87,14 +107,12 @@ def classify(p, hatch, layer):
     w, d, length = p["width"], p["depth"], p["length"]
     if not w > 0:
         return ["no melt"]
-    if not d > 0:  # the powder melts but not the solid under it: no bond to the layer below
-        return ["lack of fusion"]
     regions = []
-    if w / d <= 1.5:
+    if p["enthalpy"] > p["keyhole_at"] or (d > 0 and w / d <= 1.5):
         regions.append("keyhole")
-    if (hatch / w) ** 2 + (layer / d) ** 2 > 1:
+    if tang_sum(p, hatch, layer) > 1:  # D = 0: the powder melts but nothing bonds below
         regions.append("lack of fusion")
-    if math.isfinite(length) and length / w > math.pi:
+    if not d > 0 and math.isfinite(length) and length / w > math.pi:
         regions.append("balling")
     return regions or ["fused"]
 
@@ -132,17 +150,20 @@ def plot(points, hatch, layer, path):
 
 
 def table(points, hatch, layer):
-    rows = ["| P (W) | v (m/s) | W (um) | D (um) | L (um) | W/D | L/W | (h/W)^2+(t/D)^2 | regions | "
-            "peak T (K) | vaporised | wall (s) |", "|" + "---|" * 12]
+    rows = ["| P (W) | v (m/s) | E = P/(v h t) (J/mm^3) | dH/h_s | W (um) | D (um) | L (um) | W/D | "
+            "L/W | (h/W)^2+(t/D_t)^2 | regions | peak T particles / substrate (K) | evaporated (ng) "
+            "| vaporised | wall (s) |", "|" + "---|" * 15]
     for p in points:
         w, d, length = p["width"], p["depth"], p["length"]
         ok = w > 0 and d > 0
-        lof = (hatch / w) ** 2 + (layer / d) ** 2 if ok else float("inf")
+        energy = p["power"] / (p["speed"] * hatch * layer) * 1e-9
         rows.append(
-            f"| {p['power']:g} | {p['speed']:g} | {w * 1e6:.1f} | {d * 1e6:.1f} | "
+            f"| {p['power']:g} | {p['speed']:g} | {energy:.0f} | {p['enthalpy']:.1f} "
+            f"(keyhole > {p['keyhole_at']:.1f}) | {w * 1e6:.1f} | {d * 1e6:.1f} | "
             f"{length * 1e6:.0f} | {w / d if ok else float('nan'):.2f} | "
-            f"{length / w if ok else float('nan'):.2f} | {lof:.2f} | "
-            f"{', '.join(classify(p, hatch, layer))} | {p['peak']:.0f} | {p['vaporised']} | "
+            f"{length / w if w > 0 else float('nan'):.2f} | {tang_sum(p, hatch, layer):.2f} | "
+            f"{', '.join(classify(p, hatch, layer))} | {p['peak_particles']:.0f} / "
+            f"{p['peak_substrate']:.0f} | {p['evaporated'] * 1e12:.3g} | {p['vaporised']} | "
             f"{p['wall']:.1f} |")
     return "\n".join(rows)
 
@@ -193,16 +214,23 @@ the criteria and their sources). Bed: `{bed_name}`; scene `data/scenes/gz2016-si
 
 W: the melt's width across the track (powder and solid); D: its depth below the solid's top
 (the plate here); L: the longest stretch of the track's centre line molten at once (at most the
-track's {args.track_length * 1e6:.0f} um). Criteria: keyhole W/D <= 1.5; lack of fusion
-(h/W)^2 + (t/D)^2 > 1 with hatch h = {args.hatch * 1e6:.0f} um and layer thickness
-t = {args.layer * 1e6:.0f} um (the plate's drop per layer), and wherever the powder melts but the
-solid under it does not (D = 0); balling L/W > pi. The model is conduction only (no recoil, evaporation or melt flow): points in
-the keyhole region say where its answer stops being trustworthy.
+track's {args.track_length * 1e6:.0f} um); E: the volumetric energy density P/(v h t) machines are
+set by. Criteria (the script's docstring gives the sources): keyhole when King's normalised
+enthalpy dH/h_s passes pi T_b/T_m or the pool's W/D <= 1.5; lack of fusion when
+(h/W)^2 + (t/D_t)^2 > 1 with hatch h = {args.hatch * 1e6:.0f} um, layer thickness
+t = {args.layer * 1e6:.0f} um (the plate's drop per layer) and D_t = t + D, the pool's depth from
+the top of the new layer as Tang et al. take it, and wherever the powder melts but the solid under
+it does not (D = 0); balling where such an unbonded melt is longer than pi times its width
+(a pool that remelts the solid along its length is pinned there and does not break up). The tracks run with sinter's default melt-pool models
+(Fresnel optics, evaporation, the vapour depression with the beam traced into it), so peak
+temperatures stay near the depression temperature instead of running away; keyhole porosity is
+not modelled (the depression does not collapse into pores).
 
-Peak temperatures above the boiling point (3130 K) are particles that vaporised and kept
-absorbing: the model removes no vapour (docs/sinter.md), so read them as "vaporises", not as a
-temperature. The map's points are single tracks; the hatch enters only through h in the
+The map's points are single tracks on the first layer; the hatch enters only through h in the
 criterion, not through the heat one track leaves for the next (sinter's `--scan.hatch` runs that).
+Tang's criterion asks the elliptic pools of neighbouring tracks to overlap down to the layer
+below, which is stricter than bonding alone: a point it calls lack of fusion may still bond along
+each track's centre.
 
 ![process map](process-map.png)
 
