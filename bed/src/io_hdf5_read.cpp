@@ -13,6 +13,7 @@
 #include "io_hdf5_checks.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/h5_handle.hpp"
+#include "powderbed/bed/input_file.hpp"
 #include "powderbed/bed/io.hpp"
 
 namespace powderbed::bed {
@@ -76,6 +77,7 @@ class H5Reader {
   }
 
   void open() {
+    require_regular_file(path_, "bed file");  // a FIFO would block the open below
     if (!std::ifstream(path_)) throw InputError(path_ + ": cannot open (missing or unreadable)");
     if (H5Fis_hdf5(path_.c_str()) <= 0)
       throw InputError(path_ + ": not an HDF5 file (accepted: a powderbed bed, format version 1)");
@@ -358,10 +360,10 @@ class H5Reader {
                                rows, declared, stored, filters > 0 ? " compressed" : ""));
     }
     const double need = values * static_cast<double>(mem_size);
-    const double memory = detail::physical_memory_bytes();
+    const double memory = detail::usable_memory_bytes();
     if (memory > 0 && need > 0.5 * memory) {
-      fail(object, fmt::format("has {} rows, needing {:g} GB (accepted: up to half of this "
-                               "machine's {:g} GB)",
+      fail(object, fmt::format("has {} rows, needing {:g} GB (accepted: up to half of the "
+                               "{:g} GB this process may use)",
                                rows, need / 1e9, memory / 1e9));
     }
   }
