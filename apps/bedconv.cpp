@@ -11,6 +11,7 @@
 
 #include "common/app_main.hpp"
 #include "common/deck_export.hpp"
+#include "deposit_options.hpp"
 #include "common/options.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
@@ -137,6 +138,14 @@ bed::DeckLaws laws_for(const bed::Bed& b, const std::string& in, const po::varia
   app::DeckScene scene = scene_of(b, in);
   if (vm.count("deck-scene")) {
     const std::string path = vm["deck-scene"].as<std::string>();
+    // Read first as deposit reads its --config, so that a line that is not key = value, a key
+    // deposit does not know or a value it refuses exits 2 naming the line, instead of being
+    // skipped (apply_scene_text takes the deck's keys and ignores deposit's others).
+    app::DepositOptions bound;
+    po::options_description deposit("deposit");
+    app::add_deposit_options(deposit, bound);
+    po::variables_map checked;
+    app::store_scene_file(path, deposit, checked, "--deck-scene");
     std::ifstream file(path);
     std::ostringstream text;
     text << file.rdbuf();

@@ -122,7 +122,9 @@ py::dict bed_to_dict(const bed::Bed& b) {
   return d;
 }
 
-bed::Bed bed_from_dict(const py::dict& d) {
+namespace {
+
+bed::Bed bed_fields(const py::dict& d) {
   bed::Bed b;
   b.x = vector_of<double>(d, "x", static_cast<std::size_t>(-1), true);
   const std::size_t n = b.x.size();
@@ -139,6 +141,22 @@ bed::Bed bed_from_dict(const py::dict& d) {
   b.domain = domain_from_dict(d["domain"].cast<py::dict>());
   if (d.contains("provenance")) b.provenance = provenance_from_dict(d["provenance"].cast<py::dict>());
   return b;
+}
+
+}  // namespace
+
+// A missing domain key or a value of the wrong type (pybind11's cast_error, Python's KeyError)
+// is bad input like any other: InputError, the documented ValueError, not a RuntimeError.
+bed::Bed bed_from_dict(const py::dict& d) {
+  try {
+    return bed_fields(d);
+  } catch (const py::cast_error& e) {
+    throw InputError(std::string("bed: a domain or provenance value of the wrong type (accepted: "
+                                 "the dict Bed.as_dict() gives): ") + e.what());
+  } catch (const py::error_already_set& e) {
+    throw InputError(std::string("bed: a domain or provenance value is missing or wrong (accepted: "
+                                 "the dict Bed.as_dict() gives): ") + e.what());
+  }
 }
 
 }  // namespace powderbed::python

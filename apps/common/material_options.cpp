@@ -20,31 +20,41 @@ namespace po = boost::program_options;
 // What a material file fills, program by program: the option and the file's key. Two keys are
 // not scalars: "file" is the material file itself (sinter reads its table), "conductivity" the
 // table's solid conductivity at the bed's temperature (keff: the mean of the walls, or
-// --temperature).
+// --temperature). A required key is one the program's models always read: a file without it is
+// refused unless the option is given beside it, since the option's default is 316L's (wrong for
+// any other metal). The keys only some models read (optics, evaporation) are checked by the
+// program that knows its models (sinter: require_material_keys).
 struct MaterialOption {
   const char* app;
   const char* option;
   const char* key;
+  bool required;
 };
 constexpr MaterialOption kMaterialOptions[] = {
-    {"deposit", "material.density", "density"},
-    {"deposit", "material.young", "young_modulus"},
-    {"deposit", "material.poisson", "poisson_ratio"},
-    {"sinter", "material.table", "file"},
-    {"sinter", "material.melting-point", "melting_point"},
-    {"sinter", "material.boiling-point", "boiling_point"},
-    {"sinter", "material.latent-melt", "latent_melt"},
-    {"sinter", "material.latent-vapour", "latent_vapour"},
-    {"sinter", "material.hold-from", "hold_from"},
-    {"sinter", "laser.absorptivity", "absorptivity"},
-    {"sinter", "laser.index-n-solid", "index_n_solid"},
-    {"sinter", "laser.index-k-solid", "index_k_solid"},
-    {"sinter", "laser.index-n-liquid", "index_n_liquid"},
-    {"sinter", "laser.index-k-liquid", "index_k_liquid"},
-    {"sinter", "material.molar-mass", "molar_mass"},
-    {"sinter", "material.surface-tension", "surface_tension"},
-    {"keff", "solid.conductivity", "conductivity"},
+    {"deposit", "material.density", "density", true},
+    {"deposit", "material.young", "young_modulus", true},
+    {"deposit", "material.poisson", "poisson_ratio", true},
+    {"sinter", "material.table", "file", true},
+    {"sinter", "material.melting-point", "melting_point", true},
+    {"sinter", "material.boiling-point", "boiling_point", false},
+    {"sinter", "material.latent-melt", "latent_melt", true},
+    {"sinter", "material.latent-vapour", "latent_vapour", false},
+    {"sinter", "material.hold-from", "hold_from", true},
+    {"sinter", "laser.absorptivity", "absorptivity", false},
+    {"sinter", "laser.index-n-solid", "index_n_solid", false},
+    {"sinter", "laser.index-k-solid", "index_k_solid", false},
+    {"sinter", "laser.index-n-liquid", "index_n_liquid", false},
+    {"sinter", "laser.index-k-liquid", "index_k_liquid", false},
+    {"sinter", "material.molar-mass", "molar_mass", false},
+    {"sinter", "material.surface-tension", "surface_tension", false},
+    {"keff", "solid.conductivity", "conductivity", true},
 };
+
+// Whether `file` gives what `key` needs: the table for "file" and "conductivity", else the key.
+bool file_gives(const bed::MaterialFile& file, const std::string& key) {
+  if (key == "file" || key == "conductivity") return !file.solid.empty();
+  return file.get(key).has_value();
+}
 
 // The bed temperature keff's k_s is read at: --temperature, else the mean of the two walls.
 double keff_temperature(const po::variables_map& vm) {
@@ -127,6 +137,15 @@ std::vector<std::string> apply_material(const char* app, po::variables_map& vm,
     const bool in_scene = vm.count(m.option) && !vm[m.option].defaulted();
     if (typed.count(m.option) || (in_scene && !material_typed)) continue;
     const std::string key = m.key;
+    // The file itself is stored as sinter's table even over a scene's table: it must hold one.
+    if (m.required && !file_gives(file, key) && (!in_scene || key == "file")) {
+      const bool table = key == "file" || key == "conductivity";
+      throw InputError(fmt::format(
+          "--material: '{}' gives no {} for {} (accepted: a material file with {}, or --{} "
+          "given beside it)",
+          path, table ? "property table" : key, m.option,
+          table ? "the table temperature_K,...,phase" : "the key " + key, m.option));
+    }
     if (key == "file") {
       store(vm, m.option, path);
     } else if (key == "conductivity") {

@@ -19,6 +19,7 @@
 #include "common/app_main.hpp"
 #include "common/material_options.hpp"
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/input_file.hpp"
 #include "powderbed/bed/io.hpp"
 
 namespace {
@@ -140,17 +141,17 @@ std::string scene_value(const std::string& text, const std::string& where) {
   return value;
 }
 
+}  // namespace
+
 // The scene file, parsed as Boost's INI syntax ([section] sets the prefix "section.", key =
 // value, '#' starts a comment) but one line at a time, so that every error names the file and
 // the line: "<file>:<line>: <what>". A value may be "quoted" (scene_value), as --print-config
 // writes one holding '#', a quote, a line break or spaces at its ends.
-void store_config_file(const std::string& path, const po::options_description& desc,
-                       po::variables_map& vm) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
-    throw InputError(fmt::format("--config: '{}' is a folder (accepted: a scene file)", path));
+void store_scene_file(const std::string& path, const po::options_description& desc,
+                      po::variables_map& vm, const std::string& option) {
+  bed::require_regular_file(path, option);  // a folder, a FIFO (would block), a device
   std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("--config: cannot open scene file '{}'", path));
+  if (!in) throw InputError(fmt::format("{}: cannot open scene file '{}'", option, path));
   std::string line, prefix;
   std::size_t number = 0;
   po::parsed_options all(&desc);
@@ -166,14 +167,14 @@ void store_config_file(const std::string& path, const po::options_description& d
     if (line.empty()) continue;
     if (line.front() == '[') {
       if (line.back() != ']')
-        throw InputError(fmt::format("{}'{}' (accepted: [section])", where, line));
+        throw InputError(fmt::format("{}{} (accepted: [section])", where, bed::quoted_excerpt(line)));
       prefix = trimmed(line.substr(1, line.size() - 2));
       if (!prefix.empty()) prefix += '.';
       continue;
     }
     if (eq == std::string::npos)
-      throw InputError(
-          fmt::format("{}'{}' (accepted: key = value, [section] or # comment)", where, line));
+      throw InputError(fmt::format("{}{} (accepted: key = value, [section] or # comment)", where,
+                                   bed::quoted_excerpt(line)));
     const std::string key = prefix + line;
     const std::string value = scene_value(raw_value, where);
     if (key == "config")
@@ -181,7 +182,7 @@ void store_config_file(const std::string& path, const po::options_description& d
     const po::option_description* known = desc.find_nothrow(key, false);
     if (!known)
       throw InputError(
-          fmt::format("{}unknown option '{}' (see --help for the options)", where, key));
+          fmt::format("{}unknown option {} (see --help for the options)", where, bed::quoted_excerpt(key)));
     po::option opt;
     opt.string_key = key;
     // A switch without a value (bedstat's voronoi) is on with an empty value, as --print-config
@@ -209,6 +210,8 @@ void store_config_file(const std::string& path, const po::options_description& d
   // parse_config_file stores them: lines of one multi-valued option add up.
   po::store(all, vm);
 }
+
+namespace {
 
 // The conventions every program shares (README "The programs", docs/hardening.md), checked once here.
 void check_common(const po::variables_map& vm) {
@@ -262,7 +265,7 @@ bool parse_options(const char* app, const std::string& usage, po::options_descri
   if (list_materials(vm)) return false;
   if (vm.count("config")) {
     // Stored after the command line, so command-line values win (first store wins).
-    store_config_file(vm["config"].as<std::string>(), desc, vm);
+    store_scene_file(vm["config"].as<std::string>(), desc, vm);
   }
   po::notify(vm);  // the options bound to fields (po::value<T>(&field)) fill them
   check_common(vm);
@@ -501,9 +504,7 @@ void check_paths(const std::vector<PathArg>& inputs, const std::vector<PathArg>&
     if (::stat(in.path.c_str(), &st) != 0)
       throw InputError(fmt::format("{}: '{}' does not exist (accepted: a readable file)",
                                    in.option, in.path));
-    if (S_ISDIR(st.st_mode))
-      throw InputError(fmt::format("{}: '{}' is a folder (accepted: a readable file)", in.option,
-                                   in.path));
+    bed::require_regular_file(in.path, in.option);  // a folder, a FIFO, a device
     if (::access(in.path.c_str(), R_OK) != 0)
       throw InputError(fmt::format("{}: '{}' is not readable (accepted: a readable file)",
                                    in.option, in.path));

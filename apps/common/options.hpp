@@ -52,6 +52,15 @@ bool parse_options(const char* app, const std::string& usage, po::options_descri
                    const po::positional_options_description& positional, int argc, char** argv,
                    po::variables_map& vm);
 
+// A scene file stored into `vm` after what `vm` holds (which wins): Boost's INI syntax
+// ([section] sets the prefix "section.", key = value, '#' starts a comment) read one line at a
+// time, so that every error names the file and the line: "<file>:<line>: <what>" (a line
+// without '=', an unclosed [section, an unknown key of `desc`, a value its option refuses, a
+// nested config). `option` names the file in the messages about the file itself (not a regular
+// file, cannot be opened). parse_options reads --config with it.
+void store_scene_file(const std::string& path, const po::options_description& desc,
+                      po::variables_map& vm, const std::string& option = "--config");
+
 // The value of a required option; throws InputError "--<name>: missing (required)".
 template <class T>
 T required(const po::variables_map& vm, const char* name) {

@@ -3,6 +3,7 @@
 #include "io_hdf5_checks.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/h5_handle.hpp"
+#include "powderbed/bed/input_file.hpp"
 
 namespace powderbed::bed {
 
@@ -59,6 +60,7 @@ struct H5Input::Impl {
 H5Input::H5Input(const std::string& path) : impl_(std::make_unique<Impl>()) {
   silence_hdf5_errors();
   impl_->path = path;
+  require_regular_file(path, "HDF5 file");  // a FIFO would block H5Fopen
   impl_->file = H5File(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!impl_->file.valid()) impl_->fail("/", "cannot open as an HDF5 file");
 }

@@ -36,12 +36,19 @@ class AtomicFile {
 // Writes `text` to `temp_path` in one go; throws InputError naming `path` on failure.
 void write_text(const std::string& temp_path, const std::string& path, std::string_view text);
 
-// The whole file; throws InputError naming `path` when it cannot be read.
+// The whole file, gunzipped when it is gzip data; throws InputError naming `path` when it is not
+// a regular file (require_regular_file), cannot be read, or holds more than `limit_bytes`
+// (stored, or once gunzipped: inflating stops at the limit). The one-argument form takes the
+// readers' memory guard, text_guard_bytes().
 std::string read_text(const std::string& path);
+std::string read_text(const std::string& path, double limit_bytes);
 
-// Physical memory of this machine in bytes (0 when unknown): the readers refuse a declared
-// size that could not fit before allocating it.
-double physical_memory_bytes();
+// The memory this process may use, in bytes (0 when unknown): the least of the machine's
+// memory, its control group's limit and the process's address-space and data limits. The
+// readers refuse a declared size that could not fit before allocating it.
+double usable_memory_bytes();
+// The text readers' guard: a quarter of usable_memory_bytes() (1e12 when it is unknown).
+double text_guard_bytes();
 
 // The XDMF sidecar of an HDF5 bed: `<path minus .h5>.xmf`.
 std::string xdmf_path(const std::string& h5_path);

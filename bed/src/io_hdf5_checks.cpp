@@ -326,9 +326,10 @@ std::string oversized_dataset(hid_t set, hid_t type, hsize_t rows, hsize_t cols,
                        rows, declared, stored, filters > 0 ? " compressed" : "");
   }
   const double need = values * static_cast<double>(mem_size);
-  const double memory = physical_memory_bytes();
+  const double memory = usable_memory_bytes();
   if (memory > 0 && need > 0.5 * memory) {
-    return fmt::format("has {} rows, needing {:g} GB (accepted: up to half of this machine's {:g} GB)",
+    return fmt::format("has {} rows, needing {:g} GB (accepted: up to half of the {:g} GB this "
+                       "process may use)",
                        rows, need / 1e9, memory / 1e9);
   }
   return "";

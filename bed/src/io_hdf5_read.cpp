@@ -13,6 +13,7 @@
 #include "io_hdf5_checks.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/h5_handle.hpp"
+#include "powderbed/bed/input_file.hpp"
 #include "powderbed/bed/io.hpp"
 
 namespace powderbed::bed {
@@ -76,6 +77,7 @@ class H5Reader {
   }
 
   void open() {
+    require_regular_file(path_, "bed file");  // a FIFO would block the open below
     if (!std::ifstream(path_)) throw InputError(path_ + ": cannot open (missing or unreadable)");
     if (H5Fis_hdf5(path_.c_str()) <= 0)
       throw InputError(path_ + ": not an HDF5 file (accepted: a powderbed bed, format version 1)");

@@ -183,6 +183,10 @@ class DataReader {
     if (type == 0 || (types_ && type > *types_) || type > 65536)
       fail("atom type " + std::to_string(type) + " (accepted: 1 to the declared atom types)");
     const double diameter = number(2, "diameter");
+    // The bed keeps no density, but a data file whose density is not a mass density is not
+    // one LAMMPS would run: refused rather than dropped unseen.
+    if (const double density = number(3, "density"); !(std::isfinite(density) && density > 0))
+      fail("density is '" + std::string(words_[3]) + "' (accepted: a finite number > 0, kg/m^3)");
     for (std::size_t k : {2u, 4u, 5u, 6u})
       digits_ = std::max(digits_, detail::significant_digits(words_[k]));
     bed_.x.push_back(number(4, "x"));

@@ -4,13 +4,16 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <fmt/format.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
 
 #include "io_detail.hpp"
-#include "powderbed/bed/io.hpp"
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/input_file.hpp"
+#include "powderbed/bed/io.hpp"
 
 namespace powderbed::bed::detail {
 
@@ -23,11 +26,9 @@ bool is_gzip(std::string_view bytes) {
 }
 
 // The text of a gzipped file (concatenated members too, as gunzip reads them), capped like an
-// uncompressed file at a quarter of this machine's memory so that a small damaged or hostile
-// file cannot ask for more.
-std::string gunzip(const std::string& path, const std::string& bytes) {
-  const double memory = physical_memory_bytes();
-  const double cap = memory > 0 ? 0.25 * memory : 1e12;
+// uncompressed file at `cap` bytes: inflating stops there, so a small damaged or hostile file
+// (a few MB of zeros declaring gigabytes) cannot ask for more.
+std::string gunzip(const std::string& path, const std::string& bytes, double cap) {
   if (bytes.size() > 0xffffffffu)
     throw InputError(path + ": gzip file above 4 GB (accepted: smaller; gunzip it first)");
   z_stream z{};
@@ -44,8 +45,10 @@ std::string gunzip(const std::string& path, const std::string& bytes) {
     out.append(chunk, sizeof chunk - z.avail_out);
     if (static_cast<double>(out.size()) > cap) {
       inflateEnd(&z);
-      throw InputError(path + ": more than a quarter of this machine's memory once gunzipped "
-                       "(accepted: smaller files; convert it on a larger machine)");
+      throw InputError(fmt::format("{}: more than {:.0f} bytes once gunzipped, the reader's "
+                                   "memory guard (accepted: smaller files, up to a quarter of "
+                                   "the memory this process may use; convert it on a larger "
+                                   "machine)", path, cap));
     }
     const std::string_view rest(reinterpret_cast<const char*>(z.next_in), z.avail_in);
     if (rc == Z_STREAM_END && is_gzip(rest)) {
@@ -64,22 +67,44 @@ std::string gunzip(const std::string& path, const std::string& bytes) {
 
 }  // namespace
 
-double physical_memory_bytes() {
+// The smallest of the machine's memory, the control group's limit (a container's) and the
+// process's address-space and data limits (ulimit -v, -d): a guard on the machine's memory
+// alone lets a reader in a 4 GB container allocate its way to bad_alloc.
+double usable_memory_bytes() {
   const long pages = ::sysconf(_SC_PHYS_PAGES);
   const long page = ::sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
+  double memory = pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
+  const auto lower = [&](double limit) {
+    if (limit > 0 && (memory == 0 || limit < memory)) memory = limit;
+  };
+  for (const char* file : {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
+    std::ifstream in(file);
+    double limit = 0;
+    if (in >> limit) lower(limit);  // "max" (no limit) does not parse: left alone
+  }
+  for (const int resource : {RLIMIT_AS, RLIMIT_DATA}) {
+    struct rlimit r {};
+    if (::getrlimit(resource, &r) == 0 && r.rlim_cur != RLIM_INFINITY)
+      lower(static_cast<double>(r.rlim_cur));
+  }
+  return memory;
 }
 
-std::string read_text(const std::string& path) {
+double text_guard_bytes() {
+  const double memory = usable_memory_bytes();
+  return memory > 0 ? 0.25 * memory : 1e12;
+}
+
+std::string read_text(const std::string& path) { return read_text(path, text_guard_bytes()); }
+
+std::string read_text(const std::string& path, double limit_bytes) {
+  require_regular_file(path, "bed file");
   struct stat st {};
-  if (::stat(path.c_str(), &st) == 0) {
-    if (S_ISDIR(st.st_mode)) throw InputError(path + ": is a folder (accepted: a bed file)");
-    const double memory = physical_memory_bytes();
-    if (memory > 0 && static_cast<double>(st.st_size) > 0.25 * memory) {
-      throw InputError(path + ": " + std::to_string(st.st_size) +
-                       " bytes, too large to read into memory (accepted: up to a quarter of this "
-                       "machine's memory; convert it to .h5 on a larger machine)");
-    }
+  if (::stat(path.c_str(), &st) == 0 && static_cast<double>(st.st_size) > limit_bytes) {
+    throw InputError(fmt::format("{}: {} bytes, too large to read into memory (accepted: up to "
+                                 "{:.0f} bytes, a quarter of the memory this process may use; "
+                                 "convert it to .h5 on a larger machine)",
+                                 path, st.st_size, limit_bytes));
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open: " + std::strerror(errno));
@@ -87,10 +112,9 @@ std::string read_text(const std::string& path) {
   text << in.rdbuf();
   if (in.bad()) throw InputError(path + ": read error");
   std::string bytes = std::move(text).str();
-  if (is_gzip(bytes)) return gunzip(path, bytes);
+  if (is_gzip(bytes)) return gunzip(path, bytes, limit_bytes);
   return bytes;
 }
-
 
 void split_words(std::string_view line, std::vector<std::string_view>& words) {
   words.clear();

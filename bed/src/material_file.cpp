@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/input_file.hpp"
 
 namespace powderbed::bed {
 
@@ -45,8 +46,8 @@ double parse_positive(const std::string& text, const std::string& where, const c
     used = 0;
   }
   if (used != text.size() || text.empty() || !std::isfinite(value) || value <= 0) {
-    throw InputError(where + ": " + what + " '" + text +
-                     "' is not a finite positive number (accepted: value > 0)");
+    throw InputError(where + ": " + what + " " + quoted_excerpt(text) +
+                     " is not a finite positive number (accepted: value > 0)");
   }
   return value;
 }
@@ -79,16 +80,16 @@ void read_scalar(const std::vector<std::string>& all, const std::string& line,
   }
   const MaterialKey* known = find_key(key);
   if (!known) {
-    throw InputError(where + ": unknown property '" + key + "' (accepted: " + key_list() +
+    throw InputError(where + ": unknown property " + quoted_excerpt(key) + " (accepted: " + key_list() +
                      ", then the table header " + kTableHeader + ")");
   }
   const auto fields = split_fields(line, 3);
   if (fields.size() < 3) {
-    throw InputError(where + ": '" + line + "' (accepted: " + key + ",value," + known->unit +
+    throw InputError(where + ": " + quoted_excerpt(line) + " (accepted: " + key + ",value," + known->unit +
                      ",source)");
   }
   if (fields[2] != known->unit) {
-    throw InputError(where + ": " + key + " in '" + fields[2] + "' (accepted: " + known->unit +
+    throw InputError(where + ": " + key + " in " + quoted_excerpt(fields[2]) + " (accepted: " + known->unit +
                      ", SI)");
   }
   const double value = parse_positive(fields[1], where, known->key);
@@ -128,7 +129,7 @@ void read_row(const std::string& line, const std::string& where, MaterialFile& f
     row.liquid = true;
     file.liquid = row;
   } else {
-    throw InputError(where + ": phase '" + fields[4] + "' (accepted: solid or liquid)");
+    throw InputError(where + ": phase " + quoted_excerpt(fields[4]) + " (accepted: solid or liquid)");
   }
 }
 
@@ -170,6 +171,7 @@ double MaterialFile::solid_conductivity(double temperature) const {
 }
 
 MaterialFile read_material_file(const std::string& path) {
+  require_regular_file(path, "material file");  // a FIFO would block, /dev/zero never end
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open the material file");
   MaterialFile file;
@@ -186,7 +188,7 @@ MaterialFile read_material_file(const std::string& path) {
       const auto header = split_fields(line, 5);
       if (header.size() < 5 || header[4] != "phase" ||
           (header.size() == 6 && header[5] != "source")) {
-        throw InputError(where + ": header '" + line + "' (accepted: " + kTableHeader +
+        throw InputError(where + ": header " + quoted_excerpt(line) + " (accepted: " + kTableHeader +
                          "[,source])");
       }
       table = true;

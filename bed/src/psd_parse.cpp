@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/input_file.hpp"
 #include "powderbed/bed/psd.hpp"
 
 namespace powderbed::bed {
@@ -324,6 +325,11 @@ PsdComponent parse_table(const ComponentParser& p) {
   c.kind = PsdComponent::Kind::table;
   c.on = p.on();
   const std::string& path = p.text("file");
+  try {
+    require_regular_file(path, "file");  // a FIFO would block, /dev/zero never end
+  } catch (const InputError& e) {
+    p.fail(e.what());
+  }
   std::ifstream in(path);
   if (!in) p.fail("file '" + path + "' cannot be read");
   auto bad = [&](std::size_t line, const std::string& what) {

@@ -18,7 +18,7 @@ except ImportError as error:
 
 import json as _json
 
-from . import _core
+from . import _checks, _core
 from ._version import __version__
 from ._programs import PROGRAMS, ProgramError, run
 from ._bed import Bed
@@ -33,21 +33,25 @@ def read_bed(path, domain=None):
     """The bed in `path` (.h5, .csv with domain=(xlo, ylo, zlo, xhi, yhi, zhi), .dump / .lammpstrj
     (the last snapshot), LAMMPS .data, YADE .txt (domain optional), GenGeo .geo, .gz of the text
     ones: docs/decks.md), read by the C++ bed library with all its checks; raises InputError (a
-    ValueError) on a bad file."""
-    fields = _core.read_bed(str(path), None if domain is None else [float(v) for v in domain])
-    return Bed(fields, source=str(path))
+    ValueError) on a bad file or a bad argument."""
+    path = _checks.path(path, "read_bed: path")
+    bounds = None if domain is None else _checks.numbers_of(domain, 6, "read_bed: domain")
+    return Bed(_core.read_bed(path, bounds), source=path)
 
 
 def write_bed(bed, path):
     """Writes `bed` to `path` by its extension (.h5 with its .xmf sidecar, .csv, .data), through
-    a temporary file and a rename, as the programs do."""
-    _core.write_bed(bed.as_dict(), str(path))
+    a temporary file and a rename, as the programs do; raises InputError on a bad bed or
+    argument."""
+    _core.write_bed(_bed_of(bed, "write_bed: bed").as_dict(), _checks.path(path, "write_bed: path"))
 
 
 def sample_psd(spec, n, seed=0):
     """n radii (m) drawn from the PSD string `spec` (README "Particle size distributions") with
-    the programs' random engine seeded by `seed`."""
-    return _core.sample_psd(spec, int(n), int(seed))
+    the programs' random engine seeded by `seed`; raises InputError on a bad string or
+    argument."""
+    return _core.sample_psd(_checks.text(spec, "sample_psd: spec"), _checks.whole(n, "sample_psd: n"),
+                            _checks.whole(seed, "sample_psd: seed"))
 
 
 def stats(bed, tol=1e-6, layer=None, psd=None, profile=0, rdf=0, histogram=0, voronoi=False,
@@ -55,12 +59,22 @@ def stats(bed, tol=1e-6, layer=None, psd=None, profile=0, rdf=0, histogram=0, vo
     """The dict `bedstat --json` prints for this one bed (its entry under "beds"): box_density,
     layer_density (with layer=(z0, z1)), coordination at `tol` and coordination_by_tol, contacts,
     rattlers, wall_contacts, max_overlap, radius, and the optional statistics bedstat's options
-    of the same names ask for."""
-    text = _core.stats_json(bed.as_dict(), float(tol),
-                            None if layer is None else (float(layer[0]), float(layer[1])), psd,
-                            int(profile), int(rdf), int(histogram), bool(voronoi),
-                            float(order_margin) if order else None, label or bed.source)
+    of the same names ask for. Raises InputError on a bad bed or argument."""
+    bed = _bed_of(bed, "stats: bed")
+    text = _core.stats_json(bed.as_dict(), _checks.number(tol, "stats: tol"),
+                            None if layer is None else tuple(_checks.numbers_of(layer, 2, "stats: layer")),
+                            None if psd is None else _checks.text(psd, "stats: psd"),
+                            _checks.whole(profile, "stats: profile"), _checks.whole(rdf, "stats: rdf"),
+                            _checks.whole(histogram, "stats: histogram"), bool(voronoi),
+                            _checks.number(order_margin, "stats: order_margin") if order else None,
+                            _checks.text(label or bed.source, "stats: label"))
     return _json.loads(text)
+
+
+def _bed_of(value, what):
+    if not isinstance(value, Bed):
+        _checks.refuse(what, value, "a powderbed.Bed, e.g. from read_bed")
+    return value
 
 
 def _program(name):

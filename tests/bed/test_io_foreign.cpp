@@ -2,6 +2,7 @@
 // gzipped dumps, YADE text, GenGeo .geo, the printed-precision warning, the deck writer and its
 // damping mapping. Each reader refuses a bad file with one line naming file and line.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -15,7 +16,9 @@
 
 #include "powderbed/bed/deck.hpp"
 #include "powderbed/bed/deck_damping.hpp"
+#include "io_detail.hpp"
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/input_file.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/lattice.hpp"
 
@@ -208,6 +211,72 @@ TEST_F(Foreign, GzippedDumpReadsAsThePlainOne) {
   std::string bytes = slurp(path("two.dump.gz"));
   write("cut.dump.gz", bytes.substr(0, bytes.size() / 2));
   expect_input_error([&] { read_bed_any(path("cut.dump.gz")); }, {"cut.dump.gz", "damaged gzip"});
+}
+
+// A gzip stream is inflated only up to the readers' memory guard (issue 36: a 3 MB .gz that
+// inflated to 3 GB ended in bad_alloc): 8 MB of zeros (about 8 KB gzipped) against a 1 MB guard
+// is refused naming the file and the guard, and read whole under a guard above its size.
+TEST_F(Foreign, GunzipStopsAtTheMemoryGuard) {
+  if (std::system("command -v gzip > /dev/null 2>&1") != 0) GTEST_SKIP() << "gzip not on PATH";
+  const std::string cmd = "head -c 8000000 /dev/zero | gzip -c > '" + path("zeros.dump.gz") + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_LT(fs::file_size(path("zeros.dump.gz")), 100000u);
+  expect_input_error([&] { detail::read_text(path("zeros.dump.gz"), 1e6); },
+                     {"zeros.dump.gz", "more than 1000000 bytes once gunzipped", "memory guard"});
+  EXPECT_EQ(detail::read_text(path("zeros.dump.gz"), 1e7), std::string(8000000, '\0'));
+  // The guard of the readers themselves is a quarter of the memory this process may use.
+  EXPECT_GT(detail::text_guard_bytes(), 0.0);
+  EXPECT_LE(detail::text_guard_bytes(), 0.25 * detail::usable_memory_bytes());
+}
+
+// The stored size is held against the same guard before anything is read.
+TEST_F(Foreign, ATextFileAboveTheGuardIsRefusedBeforeReading) {
+  write("big.csv", std::string(2000, 'x'));
+  expect_input_error([&] { detail::read_text(path("big.csv"), 1000); },
+                     {"big.csv", "2000 bytes", "too large"});
+}
+
+// Every reader refuses a FIFO (its open would block until a writer came) and a character device
+// (/dev/zero never ends) before opening it, naming the path and what it is (issue 36).
+TEST_F(Foreign, EveryReaderRefusesWhatIsNotARegularFile) {
+  for (const char* name : {"p.h5", "p.csv", "p.dump", "p.data", "p.txt", "p.geo", "p.dump.gz"})
+    ASSERT_EQ(::mkfifo(path(name).c_str(), 0600), 0) << name;
+  Domain box;
+  box.upper = {1e-4, 1e-4, 1e-4};
+  expect_input_error([&] { read_bed_h5(path("p.h5")); }, {"p.h5", "FIFO", "regular file"});
+  expect_input_error([&] { read_bed_csv(path("p.csv"), box); }, {"p.csv", "FIFO"});
+  expect_input_error([&] { read_lammps_dump(path("p.dump")); }, {"p.dump", "FIFO"});
+  expect_input_error([&] { read_lammps_dump_all(path("p.dump.gz")); }, {"p.dump.gz", "FIFO"});
+  expect_input_error([&] { read_lammps_data(path("p.data")); }, {"p.data", "FIFO"});
+  expect_input_error([&] { read_yade_text(path("p.txt")); }, {"p.txt", "FIFO"});
+  expect_input_error([&] { read_gengeo(path("p.geo")); }, {"p.geo", "FIFO"});
+  for (const char* name : {"p.h5", "p.csv", "p.dump", "p.data"})
+    expect_input_error([&] { read_bed_any(path(name), &box); }, {name, "FIFO"});
+  fs::create_symlink("/dev/zero", path("zero.csv"));
+  expect_input_error([&] { read_bed_csv(path("zero.csv"), box); }, {"zero.csv", "character device"});
+  expect_input_error([&] { read_bed_h5("/dev/null"); }, {"/dev/null", "character device"});
+  expect_input_error([&] { require_regular_file(dir_.string(), "--in"); }, {"--in", "folder"});
+  EXPECT_NO_THROW(require_regular_file(path("missing.h5"), "--in"));  // the open names it
+}
+
+// Messages quote what they read in one printable line: control bytes and the bytes of a binary
+// file as \xNN, printable UTF-8 kept, long text cut.
+TEST(QuotedExcerpt, OneLineOfPrintableText) {
+  EXPECT_EQ(quoted_excerpt("abc"), "'abc'");
+  EXPECT_EQ(quoted_excerpt(std::string("a\nb\r\0\x7f\xff", 7)), "'a\\x0ab\\x0d\\x00\\x7f\\xff'");
+  EXPECT_EQ(quoted_excerpt("5 \xc2\xb5m"), "'5 \xc2\xb5m'");  // µ
+  EXPECT_EQ(quoted_excerpt("\xc2\x85"), "'\\xc2\\x85'");      // C1 control U+0085
+  EXPECT_EQ(quoted_excerpt(std::string(100, 'x'), 10), "'xxxxxxxxxx...'");
+}
+
+// A LAMMPS data file's density column must be a mass density, even though the bed keeps none.
+TEST_F(Foreign, DataFileRefusesADensityThatIsNotPositive) {
+  for (const char* density : {"nan", "-7952", "0", "inf"}) {
+    write("d.data", std::string("t\n\n1 atoms\n1 atom types\n0 4e-5 xlo xhi\n0 4e-5 ylo yhi\n"
+                                "0 4e-5 zlo zhi\n\nAtoms # sphere\n\n1 1 2e-5 ") +
+                        density + " 2e-5 2e-5 2e-5\n");
+    expect_input_error([&] { read_lammps_data(path("d.data")); }, {"d.data:11", "density", density});
+  }
 }
 
 TEST_F(Foreign, DumpRefusesATypeOfZero) {

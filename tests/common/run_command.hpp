@@ -29,10 +29,14 @@ inline std::string read_text(const std::string& path) {
   return s.str();
 }
 
-// `args` is appended to POWDERBED_APPS_DIR/<app> and run through the shell.
-inline CommandResult run_app(const std::string& app, const std::string& args) {
+// `args` is appended to POWDERBED_APPS_DIR/<app> and run through the shell, under coreutils'
+// timeout: a program still running after `timeout_s` seconds is sent SIGTERM (SIGKILL 5 s
+// later) and the result has status 124 (137 when killed), so a program that hangs (a reader
+// blocked on a FIFO) fails its test instead of hanging the suite.
+inline CommandResult run_app(const std::string& app, const std::string& args, int timeout_s = 600) {
   const std::string stem = "/tmp/powderbed_test_" + std::to_string(::getpid()) + "_" + app;
-  const std::string cmd = std::string(POWDERBED_APPS_DIR) + "/" + app + " " + args + " >" + stem +
+  const std::string cmd = "timeout --kill-after=5 " + std::to_string(timeout_s) + " " +
+                          std::string(POWDERBED_APPS_DIR) + "/" + app + " " + args + " >" + stem +
                           ".out 2>" + stem + ".err </dev/null";
   CommandResult r;
   const int raw = std::system(cmd.c_str());

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/input_file.hpp"
 
 namespace powderbed::thermal {
 
@@ -80,6 +81,7 @@ std::vector<ScanSegment> hatch_segments(const Hatch& h) {
 }
 
 std::vector<ScanSegment> read_scan_csv(const std::string& path) {
+  bed::require_regular_file(path, "--scan-path");  // a FIFO would block, /dev/zero never end
   std::ifstream in(path);
   if (!in) throw InputError("--scan-path: cannot open " + path);
   std::vector<ScanSegment> out;
