@@ -83,13 +83,22 @@ def run_point(bed, power, speed, track, extra):
     x0, x1, y = track
     options = ["--power", str(power), "--speed", str(speed), "--laser.start-x", repr(x0),
                "--laser.end-x", repr(x1), "--laser.y", repr(y), *extra]
-    summary, wall = apps.sinter(SINTER_SCENE, bed, f"process-map-{power:g}W-{speed:g}ms.h5",
-                                "--snapshots", "1", *options)
     regime, _ = apps.run_json([apps.app("sinter"), "--config", SINTER_SCENE, "--bed", bed,
                                "--explain", *options])
+    point = {"power": power, "speed": speed, "enthalpy": regime["normalised_enthalpy"],
+             "keyhole_at": regime["keyhole_threshold"]}
+    try:
+        summary, wall = apps.sinter(SINTER_SCENE, bed, f"process-map-{power:g}W-{speed:g}ms.h5",
+                                    "--snapshots", "1", *options)
+    except RuntimeError as error:  # sinter exits 3 when the keyhole drills through the grid
+        if "depression reached the substrate's bottom" not in str(error):
+            raise
+        nan = float("nan")
+        return {**point, "width": nan, "depth": nan, "length": nan, "drilled": True,
+                "peak_particles": nan, "peak_substrate": nan, "evaporated": nan, "vaporised": 0,
+                "wall": nan}
     width, depth, length = track_pool(summary)
-    return {"power": power, "speed": speed, "width": width, "depth": depth, "length": length,
-            "enthalpy": regime["normalised_enthalpy"], "keyhole_at": regime["keyhole_threshold"],
+    return {**point, "width": width, "depth": depth, "length": length, "drilled": False,
             "peak_particles": summary["max_temperature_particles"],
             "peak_substrate": summary["max_temperature_substrate"],
             "evaporated": summary["evaporated_mass"], "vaporised": summary["particles_vaporised"],
@@ -105,6 +114,8 @@ def tang_sum(p, hatch, layer):
 def classify(p, hatch, layer):
     """The regions a point falls in (a point may be in several), or 'fused' when in none."""
     w, d, length = p["width"], p["depth"], p["length"]
+    if p.get("drilled"):  # the keyhole went through the substrate grid (sinter's exit 3)
+        return ["keyhole"]
     if not w > 0:
         return ["no melt"]
     regions = []
@@ -162,7 +173,9 @@ def table(points, hatch, layer):
             f"(keyhole > {p['keyhole_at']:.1f}) | {w * 1e6:.1f} | {d * 1e6:.1f} | "
             f"{length * 1e6:.0f} | {w / d if ok else float('nan'):.2f} | "
             f"{length / w if w > 0 else float('nan'):.2f} | {tang_sum(p, hatch, layer):.2f} | "
-            f"{', '.join(classify(p, hatch, layer))} | {p['peak_particles']:.0f} / "
+            f"{', '.join(classify(p, hatch, layer))}"
+            f"{' (drilled through the grid: sinter exit 3)' if p.get('drilled') else ''} | "
+            f"{p['peak_particles']:.0f} / "
             f"{p['peak_substrate']:.0f} | {p['evaporated'] * 1e12:.3g} | {p['vaporised']} | "
             f"{p['wall']:.1f} |")
     return "\n".join(rows)
@@ -224,7 +237,9 @@ it does not (D = 0); balling where such an unbonded melt is longer than pi times
 (a pool that remelts the solid along its length is pinned there and does not break up). The tracks run with sinter's default melt-pool models
 (Fresnel optics, evaporation, the vapour depression with the beam traced into it), so peak
 temperatures stay near the depression temperature instead of running away; keyhole porosity is
-not modelled (the depression does not collapse into pores).
+not modelled (the depression does not collapse into pores). A point whose depression drilled
+through the substrate grid (sinter's exit 3, "deeper than the grid") is a keyhole by any measure
+and is marked so, without a pool.
 
 The map's points are single tracks on the first layer; the hatch enters only through h in the
 criterion, not through the heat one track leaves for the next (sinter's `--scan.hatch` runs that).

@@ -28,6 +28,7 @@
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/lattice.hpp"
+#include "powderbed/dem/spread.hpp"
 #include "run_command.hpp"
 
 namespace {
@@ -111,6 +112,38 @@ void write(const std::string& path, const std::string& text) { std::ofstream(pat
 
 const char* kDumpHead = "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n";
 const char* kDumpBox = "ITEM: BOX BOUNDS ff ff ff\n0 4e-5\n0 4e-5\n0 4e-5\n";
+
+// A layer file of the small build with one of issue 36's damages (layer_<damage>.h5), built in
+// `dir`/layer_build (which stays: a refused run must leave it as it is too).
+void make_layer_file(const std::string& dir, const std::string& name) {
+  const std::string build = dir + "/layer_build", layer = build + "/layer-001.h5";
+  if (!fs::exists(layer)) {
+    const auto r = powderbed::test::run_app(
+        "build", "--config " POWDERBED_TEST_DATA "/build-small/build.ini --layers 1 --out " + build);
+    if (r.status != 0) throw std::runtime_error("the small build failed: " + r.err);
+  }
+  const std::string p = dir + "/" + name;
+  fs::copy_file(layer, p);
+  H5 h(p);
+  const auto restart_dt = [&](double dt) { h.attr_numbers<double>("/restart", "dt", H5T_NATIVE_DOUBLE, {dt}); };
+  if (name == "layer_dt_one.h5") restart_dt(1.0);
+  if (name == "layer_dt_nan.h5") restart_dt(NAN);
+  if (name == "layer_dt_zero.h5") restart_dt(0.0);
+  if (name == "layer_no_restart.h5") h.remove("/restart");
+  if (name == "layer_huge_pairs.h5") {
+    h.dataset("/restart/pair_ids", H5T_STD_U64LE, H5T_NATIVE_UINT64, nullptr, {1000000000, 2});
+  }
+  if (name == "layer_in_solid.h5") {  // particle 0 a tenth of a radius above the plate, where
+    const powderbed::bed::Bed bed = powderbed::bed::read_bed_h5(layer);  // the solid is highest
+    const auto floor = powderbed::dem::read_spread_state(layer, bed).floor;
+    const auto top = static_cast<std::size_t>(std::max_element(floor.z.begin(), floor.z.end()) - floor.z.begin());
+    auto rows = rows_of(bed);
+    rows[0] = floor.x0 + floor.dx * static_cast<double>(top % floor.nx);
+    rows[1] = floor.y0 + floor.dy * static_cast<double>(top / floor.nx);
+    rows[2] = bed.domain.lower[2] + 0.1 * bed.radius[0];
+    h.doubles("/particles/position", rows, 3);
+  }
+}
 
 // The scratch files a command can name, built on demand.
 void make_file(const std::string& dir, const std::string& name) {
@@ -345,6 +378,8 @@ void make_file(const std::string& dir, const std::string& name) {
       {"nan_value.ini", "# doubles refuse nan\ntol = nan\n"},
       {"nested_config.ini", "config = other.ini\n"},
       {"packgen_count.ini", "# count\n\ncount = -5\n"},
+      {"bad_escape.ini", "# a scene\nseed = \"a\\qb\"\n"},
+      {"open_quote.ini", "seed = \"12\n"},
   };
   if (auto it = ini.find(name); it != ini.end()) return write(p, it->second);
   // What is not a regular file (issue 36): a FIFO (a reader that opens it blocks until a
@@ -384,6 +419,12 @@ void make_file(const std::string& dir, const std::string& name) {
     return write(p, "title\n\n1 atoms\n1 atom types\n0 4e-5 xlo xhi\n0 4e-5 ylo yhi\n0 4e-5 zlo zhi\n\n"
                     "Atoms # sphere\n\n1 1 2e-5 nan 2e-5 2e-5 2e-5\n");
   }
+  // A scan path whose one row asks for a gigawatt (inside wide.h5's 0.4 mm floor).
+  if (name == "gigawatt_scan.csv")
+    return write(p, "x0,y0,x1,y1,power,speed\n50e-6,200e-6,350e-6,200e-6,1e9,1\n");
+  // Layer files of the small build (tests/data/build-small, ~1 s), damaged as issue 36's probe
+  // damaged them.
+  if (name.rfind("layer_", 0) == 0) return make_layer_file(dir, name);
   // Any other name (out.h5, new.csv, missing.h5, nowhere/...) is meant not to exist.
 }
 
@@ -424,6 +465,10 @@ std::vector<Case> all_cases() {
     add(app + "_config_fifo", app, base + "--config @fifo.ini", 2, {"--config", "@fifo.ini", "FIFO"});
     add(app + "_config_dev_null", app, base + "--config /dev/null", 2,
         {"--config", "/dev/null", "character device"});
+    add(app + "_config_bad_escape", app, base + "--config @bad_escape.ini", 2,
+        {"bad_escape.ini:2", "unknown escape"});
+    add(app + "_config_open_quote", app, base + "--config @open_quote.ini", 2,
+        {"open_quote.ini:1", "closed before the line ends"});
     add(app + "_help", app, "--help", 0, {});
     add(app + "_version", app, "--version", 0, {});
   }
@@ -592,6 +637,64 @@ std::vector<Case> all_cases() {
   add("bedconv_deck_scene_unknown_key", "bedconv",
       "@good.h5 @out.data --deck lammps --deck-scene @deck_unknown.ini", 2, {"deck_unknown.ini:2", "material.foo"});
   add("bedconv_data_density_nan", "bedconv", "@nan_density.data @out.h5", 2, {"@nan_density.data", "density", "nan"});
+
+  // build, sinter and keff before any work (issue 36): --out, the stages' own options, counts and
+  // powers that hung or ran, walls beyond the solid.
+  const std::string bld = "--config {scenes}/build-316L.ini --layers 1 ";
+  add("build_out_empty", "build", bld + "--out ''", 2, {"--out: empty"});
+  // 250 characters: a name the file system takes, but not with a temporary's suffix on it.
+  add("build_out_too_long", "build", bld + "--out @" + std::string(250, 'r'), 2, {"--out", "250 characters long"});
+  add("build_out_unmakeable", "build", bld + "--out /proc/powderbed_run", 2, {"--out", "cannot make the folder"});
+  add("build_spread_args_in", "build", bld + "--out @run --spread-args '--in @good.h5'", 2,
+      {"--spread-args", "'--in' is set by the build itself"});
+  add("build_sinter_args_bed_out", "build", bld + "--out @run --sinter-args '--bed @good.h5 --out @o.h5'", 2,
+      {"--sinter-args", "'--bed' is set by the build itself"});
+  add("build_sinter_args_melt_fraction", "build", bld + "--out @run --sinter-args --fuse.melt-fraction=0.3", 2,
+      {"--sinter-args", "'--fuse.melt-fraction'"});
+  add("build_layers_wrap", "build", bld + "--out @run --layers 18446744073709551615", 2, {"--layers"});
+  add("build_config_bad_escape", "build", bld + "--out @run --spread @bad_escape.ini", 2,
+      {"bad_escape.ini:2", "unknown escape"});
+  add("sinter_tracks_1e12", "sinter", sinter + "--bed @wide.h5 --scan.hatch 30e-6 --scan.tracks 1e12 --out @out.h5",
+      2, {"scan.tracks", "1000000000000 tracks"});
+  add("sinter_scan_row_gigawatt", "sinter", sinter + "--bed @wide.h5 --scan-path @gigawatt_scan.csv --out @out.h5",
+      2, {"--scan-path", "segment 1", "1e+09 W"});
+  add("sinter_melt_fraction_without_fuse", "sinter", sinter + "--bed @wide.h5 --fuse.melt-fraction 0.7 --out @out.h5",
+      2, {"--fuse.melt-fraction", "without --fuse"});
+  add("sinter_region_off_plate", "sinter",
+      sinter + "--bed @wide.h5 --scan.hatch 30e-6 --scan.region 0,1e-3,0,0.4e-3 --out @out.h5", 2,
+      {"--scan.region", "leaves the plate"});
+  add("sinter_9900W_drills_through", "sinter", sinter + "--bed @wide.h5 --power 9900 --speed 1 --out @out.h5", 3,
+      {"depression reached the substrate's bottom", "substrate.depth"});
+  add("keff_t_hot_above_solidus", "keff",
+      "--bed @good.h5 --material 316L --gas.model constant --t-hot 1e5 --out @out.h5", 2, {"--t-hot", "solidus"});
+  add("keff_temperature_above_solidus", "keff",
+      "--bed @good.h5 --material 316L --gas.model constant --temperature 1700 --out @out.h5", 2, {"--t-hot", "solidus"});
+  // Every program: an output name the file system cannot hold with its temporary's suffix.
+  const std::string long_h5 = "@" + std::string(250, 'o') + ".h5";
+  add("packgen_out_too_long", "packgen", pk + "--seed 1 --out " + long_h5, 2, {"--out", "characters long"});
+  add("deposit_out_too_long", "deposit", "--in @good.h5 " + deposit + "--out " + long_h5, 2,
+      {"--out", "characters long"});
+  add("sinter_out_too_long", "sinter", sinter + "--bed @wide.h5 --out " + long_h5, 2, {"--out", "characters long"});
+  add("keff_out_too_long", "keff", "--bed @good.h5 --out " + long_h5, 2, {"--out", "characters long"});
+  add("bedconv_out_too_long", "bedconv", "@good.h5 " + long_h5, 2, {"characters long"});
+
+  // A layer file that cannot be continued, refused by both programs that continue one before
+  // anything runs (issue 36: a 1 s step spread to z = -2e39 m; 1e9 declared pairs: bad_alloc).
+  // The run's own checks (step, particles) name --in; the reader's name the file as well.
+  const std::vector<std::pair<std::string, std::vector<std::string>>> layers = {
+      {"dt_one", {"--in", "stable bound"}},
+      {"dt_nan", {"@layer_dt_nan.h5", "dt is nan"}},
+      {"dt_zero", {"@layer_dt_zero.h5", "dt is 0"}},
+      {"no_restart", {"@layer_no_restart.h5", "/restart"}},
+      {"huge_pairs", {"@layer_huge_pairs.h5", "declares 1000000000 rows"}},
+      {"in_solid", {"--in", "inside the solid"}}};
+  for (const auto& [damage, with_file] : layers) {
+    const std::string file = "@layer_" + damage + ".h5";
+    add("build_in_layer_" + damage, "build",
+        "--config {testdata}/build-small/build.ini --layers 1 --in " + file + " --out @run", 2, with_file);
+    add("deposit_in_layer_" + damage, "deposit",
+        "--config {testdata}/build-small/spread.ini --seed 1 --in " + file + " --out @out.h5", 2, with_file);
+  }
 
   // Paths: missing, folders, outputs that cannot be written, outputs that are inputs.
   add("bedstat_bed_missing", "bedstat", "@missing.h5", 2, {"@missing.h5", "does not exist"});
@@ -850,6 +953,9 @@ std::string expand(const std::string& text, const std::string& dir, bool make) {
     } else if (text.compare(i, 8, "{scenes}") == 0) {
       out += std::string(POWDERBED_SOURCE_DIR) + "/data/scenes";
       i += 7;
+    } else if (text.compare(i, 10, "{testdata}") == 0) {
+      out += POWDERBED_TEST_DATA;
+      i += 9;
     } else {
       out += text[i];
     }
@@ -893,9 +999,9 @@ std::string case_name(const ::testing::TestParamInfo<Case>& info) { return info.
 
 INSTANTIATE_TEST_SUITE_P(Table, Hardening, ::testing::ValuesIn(all_cases()), case_name);
 
-TEST(HardeningTable, HasAtLeast506CasesWithUniqueNames) {
+TEST(HardeningTable, HasAtLeast550CasesWithUniqueNames) {
   const auto t = all_cases();
-  EXPECT_GE(t.size(), 506u);
+  EXPECT_GE(t.size(), 550u);
   std::map<std::string, int> seen;
   for (const auto& c : t) EXPECT_EQ(++seen[c.name], 1) << c.name;
 }
