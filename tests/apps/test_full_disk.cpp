@@ -115,6 +115,8 @@ struct Writer {
   std::function<void(const std::string& dir)> prepare;
 };
 
+void PrintTo(const Writer& w, std::ostream* out) { *out << w.app << " " << w.args; }
+
 std::string expand(std::string args, const std::string& dir) {
   for (std::size_t at; (at = args.find("{dir}")) != std::string::npos;) args.replace(at, 5, dir);
   return args;
