@@ -25,6 +25,7 @@
 #include "powderbed/bed/json.hpp"
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/random.hpp"
+#include "powderbed/bed/temp_files.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/scene.hpp"
 #include "powderbed/dem/solver.hpp"
@@ -371,6 +372,8 @@ int run(int argc, char** argv) {
     bar.draw(p.t_end > 0 ? p.time / p.t_end : 1.0, detail);
   };
 
+  // The trajectory, out.h5 and the deck replace the old ones together or not at all.
+  bed::CommitTogether together;
   // History friction and rolling resistance need particle rotation: the spreading run's loop
   // without a tool (deposit_spread.cpp); every other drop runs the drop solver.
   const dem::RunSummary r = app::rotating(scene) ? app::run_rotating_drop(bed, scene, s)
@@ -383,6 +386,7 @@ int run(int argc, char** argv) {
   bed::write_bed_h5(bed, out);
   if (vm.count("export-deck"))
     app::export_run_deck(bed, scene, s.young_scale, r.dt, vm["export-deck"].as<std::string>(), out);
+  together.commit();
   const std::string integrator = vm["integrator"].as<std::string>();
   const Report report{bed, scene, s, r, removed, core, margin, integrator, out};
   if (vm.count("json")) {

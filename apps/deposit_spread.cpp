@@ -24,6 +24,7 @@
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
 #include "powderbed/bed/psd.hpp"
+#include "powderbed/bed/temp_files.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/spread.hpp"
 #include "powderbed/packgen/pack.hpp"
@@ -454,8 +455,10 @@ int run_spread(const po::variables_map& vm, const DepositOptions& bound, int arg
   const dem::SpreadSummary r = dem::run_spread(bed, scene, s, restart ? &*restart : nullptr);
   bar.finish();
   const std::size_t lost = check_spread_result(vm, r, bed);
+  bed::CommitTogether together;  // out.h5 and the tool forces replace the old ones together
   write(bed, out, r.state);
   if (forces_path) bed::write_text_file(*forces_path, forces.str());
+  together.commit();
   print_spread_summary(vm, r, scene, s, bed, lost, out);
   return 0;
 }

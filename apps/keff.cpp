@@ -22,6 +22,7 @@
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/h5_output.hpp"
 #include "powderbed/bed/json.hpp"
+#include "powderbed/bed/temp_files.hpp"
 #include "powderbed/keff/core_conductivity.hpp"
 #include "powderbed/keff/profile.hpp"
 #include "powderbed/keff/solve.hpp"
@@ -303,14 +304,10 @@ std::string write_outputs(const po::variables_map& vm, bed::Bed& bed, const kf::
   bed.provenance.command_line = app::command_line(argc, argv);
   bed.provenance.stage = "keff";
   bed.provenance.scene = app::scene_text(vm);
+  bed::CommitTogether together;  // a full disk on the profile leaves the old out.h5
   bed::write_bed_h5(bed, out);
-  try {
-    bed::write_text_file(profile_path, profile_csv(profile, scene));
-  } catch (const InputError&) {
-    std::filesystem::remove(out);  // the run's files all or none
-    std::filesystem::remove(bed::xdmf_sidecar_path(out));
-    throw;
-  }
+  bed::write_text_file(profile_path, profile_csv(profile, scene));
+  together.commit();
   return profile_path;
 }
 

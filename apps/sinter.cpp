@@ -24,6 +24,7 @@
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
+#include "powderbed/bed/temp_files.hpp"
 #include "powderbed/thermal/explain.hpp"
 #include "powderbed/thermal/fusion.hpp"
 #include "powderbed/thermal/run_output.hpp"
@@ -356,11 +357,14 @@ int run(int argc, char** argv) {
   bed.provenance.command_line = app::command_line(argc, argv);
   bed.provenance.stage = "sinter";
   bed.provenance.scene = app::scene_text(vm);
+  // The run file and --fused-bed replace the old ones together or not at all.
+  bed::CommitTogether together;
   th::RunWriter writer(out, bed, sinter, vm["full-fields"].as<bool>());
   double wall = 0;
   const th::SinterResult r = scan(vm, sinter, writer, wall);
   const std::optional<th::Fusion> fused = fuse_if_asked(vm, bed, sinter, writer);
   writer.finish(sinter, r, summary_of(r, wall));
+  together.commit();
   const RunReport report{bed, sinter, r, fused, wall, out};
   if (vm.count("json")) std::cout << result_json(vm, report);
   else print_result(scene, report);

@@ -24,16 +24,20 @@ struct H5Output::Impl {
     if (mode == Mode::create) {
       atomic.emplace(path);
       file = H5File(H5Fcreate(atomic->temp_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
-      if (!file.valid()) fail("/", "cannot create HDF5 file");
+      if (!file.valid()) fail_io("/", "cannot create HDF5 file");
     } else {
       file = H5File(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
-      if (!file.valid()) fail("/", "cannot open the HDF5 file to add to it");
+      if (!file.valid()) fail_io("/", "cannot open the HDF5 file to add to it");
     }
     H5Pset_create_intermediate_group(make_groups, 1);
   }
 
   [[noreturn]] void fail(const std::string& object, const std::string& what) const {
     throw InputError(shown_as + ": " + object + ": " + what);
+  }
+  // A failed write (a full disk, EIO): the system's reason, read before any other HDF5 call.
+  [[noreturn]] void fail_io(const std::string& object, const std::string& what) const {
+    fail(object, what + ": " + hdf5_failure_reason());
   }
 
   void dataset(const std::string& name, hid_t file_type, hid_t mem_type, const void* data,
@@ -45,16 +49,19 @@ struct H5Output::Impl {
     H5Space space(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr));
     H5Dataset set(H5Dcreate2(file, name.c_str(), file_type, space, make_groups, H5P_DEFAULT,
                              H5P_DEFAULT));
-    if (!set.valid()) fail(name, "cannot create dataset");
+    if (!set.valid()) fail_io(name, "cannot create dataset");
     if (size > 0 && H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
-      fail(name, "cannot write dataset (disk full?)");
+      fail_io(name, "cannot write dataset");
+    // A small dataset waits in HDF5's sieve buffer until closed; a failed flush there loses it
+    // and a later file close still succeeds, so the close is checked too.
+    if (!set.close()) fail_io(name, "cannot write dataset");
   }
 
   // The object `name`, opened (a group is created when nothing exists there yet).
   hid_t open_object(const std::string& name) {
     if (name != "/" && H5Lexists(file, name.c_str(), H5P_DEFAULT) <= 0) {
       H5Group created(H5Gcreate2(file, name.c_str(), make_groups, H5P_DEFAULT, H5P_DEFAULT));
-      if (!created.valid()) fail(name, "cannot create group");
+      if (!created.valid() || !created.close()) fail_io(name, "cannot create group");
     }
     const hid_t id = H5Oopen(file, name.c_str(), H5P_DEFAULT);
     if (id < 0) fail(name, "cannot open object");
@@ -66,8 +73,8 @@ struct H5Output::Impl {
     H5Handle<H5Oclose> where(open_object(object));
     H5Space space(count == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &count, nullptr));
     H5Attr attr(H5Acreate2(where, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT));
-    if (!attr.valid() || H5Awrite(attr, mem_type, data) < 0)
-      fail(object, "cannot write attribute " + name);
+    if (!attr.valid() || H5Awrite(attr, mem_type, data) < 0 || !attr.close())
+      fail_io(object, "cannot write attribute " + name);
   }
 };
 
@@ -118,7 +125,7 @@ void H5Output::attribute(const std::string& object, const std::string& name,
 }
 
 void H5Output::commit() {
-  if (!impl_->file.close()) impl_->fail("/", "cannot close HDF5 file (disk full?)");
+  if (!impl_->file.close()) impl_->fail_io("/", "cannot finish the HDF5 file");
   if (impl_->atomic) impl_->atomic->commit();
 }
 

@@ -24,13 +24,15 @@ class AtomicFile {
 
   const std::string& path() const { return path_; }
   const std::string& temp_path() const { return temp_; }
-  // Renames the temporary over `path`; throws InputError naming `path` on failure.
+  // Renames the temporary over `path` (or, while a CommitTogether lives on this thread, hands
+  // it to that to rename with the run's other outputs); throws InputError naming `path`.
   void commit();
 
  private:
   std::string path_;
   std::string temp_;
   bool committed_ = false;
+  bool handed_over_ = false;  // to the CommitTogether alive at commit()
 };
 
 // Writes `text` to `temp_path` in one go; throws InputError naming `path` on failure.

@@ -17,8 +17,9 @@ class H5Writer {
  public:
   explicit H5Writer(std::string path) : path_(std::move(path)) {}
 
+  // A failed write (a full disk, EIO): the system's reason, read before any other HDF5 call.
   [[noreturn]] void fail(const std::string& object, const std::string& what) const {
-    throw InputError(path_ + ": " + object + ": " + what);
+    throw InputError(path_ + ": " + object + ": " + what + ": " + hdf5_failure_reason());
   }
 
   // Variable-length UTF-8 string attribute (h5py reads it as str, not bytes).
@@ -30,7 +31,7 @@ class H5Writer {
     H5Space space(H5Screate(H5S_SCALAR));
     H5Attr attr(H5Acreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT));
     const char* text = value.c_str();
-    if (!attr.valid() || H5Awrite(attr, type, &text) < 0)
+    if (!attr.valid() || H5Awrite(attr, type, &text) < 0 || !attr.close())
       fail(object, std::string("cannot write attribute ") + name);
   }
 
@@ -39,7 +40,7 @@ class H5Writer {
                     hid_t mem_type, const void* data, hsize_t count) const {
     H5Space space(count == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &count, nullptr));
     H5Attr attr(H5Acreate2(loc, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT));
-    if (!attr.valid() || H5Awrite(attr, mem_type, data) < 0)
+    if (!attr.valid() || H5Awrite(attr, mem_type, data) < 0 || !attr.close())
       fail(object, std::string("cannot write attribute ") + name);
   }
 
@@ -54,8 +55,11 @@ class H5Writer {
                              H5P_DEFAULT));
     if (!set.valid()) fail(object, "cannot create dataset");
     if (rows > 0 && H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
-      fail(object, "cannot write dataset (disk full?)");
+      fail(object, "cannot write dataset");
     string_attr(set, object, "units", units);
+    // A small dataset waits in HDF5's sieve buffer until closed; a failed flush there loses it
+    // and a later file close still succeeds, so the close is checked too.
+    if (!set.close()) fail(object, "cannot write dataset");
   }
 
   void write(const Bed& bed, const std::string& file_name) const {
@@ -66,7 +70,7 @@ class H5Writer {
     write_particles(file, bed);
     write_polyvertex(file, bed.n());
     write_provenance(file, bed.provenance);
-    if (!file.close()) fail("/", "cannot close HDF5 file '" + file_name + "' (disk full?)");
+    if (!file.close()) fail("/", "cannot finish HDF5 file '" + file_name + "'");
   }
 
  private:

@@ -5,6 +5,7 @@
 // and H5Input.
 #include <hdf5.h>
 
+#include <string>
 #include <utility>
 
 namespace powderbed::bed {
@@ -54,5 +55,11 @@ using H5Type = H5Handle<H5Tclose>;
 
 // HDF5 prints its error stack to stderr by default; we report our own one-line errors instead.
 inline void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+// The system's reason for the HDF5 write that just failed ("No space left on device"), read
+// from HDF5's error stack, so call it before any other HDF5 call (each clears the stack); a
+// generic reason when HDF5 recorded none (h5_failure.cpp, which also keeps libhdf5 from crashing
+// at exit after such a failure).
+std::string hdf5_failure_reason();
 
 }  // namespace powderbed::bed

@@ -5,6 +5,8 @@
 // cannot be caught) leaves at most its own `.tmp.<pid>` files, never a damaged output: outputs
 // only ever appear by rename.
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace powderbed::bed {
 
@@ -42,6 +44,29 @@ class TempFile {
  private:
   std::string path_;
   bool released_ = false;
+};
+
+// The outputs of one run, replaced together: while a CommitTogether lives on this thread, every
+// atomic writer (write_bed_h5, H5Output, write_text_file, the CSV and deck writers) leaves its
+// finished temporary in place instead of renaming it; commit() renames them all, in the order
+// written, once every one of them was written. Without commit() (a full disk on the second
+// file) the destructor removes them, so no old output of the run was replaced.
+class CommitTogether {
+ public:
+  CommitTogether();
+  ~CommitTogether();
+  CommitTogether(const CommitTogether&) = delete;
+  CommitTogether& operator=(const CommitTogether&) = delete;
+  // Renames every waiting temporary over its path; throws InputError naming the path on failure.
+  void commit();
+  // The one alive on this thread, or nullptr (for the writers).
+  static CommitTogether* active();
+  // A writer's finished temporary `temp` of `path` (still registered for SIGINT/SIGTERM).
+  void add(std::string temp, std::string path);
+
+ private:
+  std::vector<std::pair<std::string, std::string>> waiting_;  // temporary, path
+  CommitTogether* outer_;
 };
 
 }  // namespace powderbed::bed
