@@ -63,6 +63,11 @@ std::string explain_json(const th::ExplainReport& r) {
       .value("normalised_enthalpy", r.normalised_enthalpy)
       .value("keyhole_threshold", r.keyhole_threshold)
       .value("evaporation_ratio", r.evaporation_ratio)
+      .value("cooling_time", r.cooling_time)
+      .value("conduction_cooling", r.conduction_cooling)
+      .value("substrate_cooling", r.substrate_cooling)
+      .value("convection_cooling", r.convection_cooling)
+      .value("radiation_cooling", r.radiation_cooling)
       .value("text", r.text)
       .end_object();
   return j.str() + '\n';
