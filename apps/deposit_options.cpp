@@ -1,5 +1,6 @@
 // deposit's options and the DEM scene they make: shared by deposit and build, which reads a
 // deposit recoater scene for each layer's spread.
+#include "common/thermo_table.hpp"
 #include "deposit_options.hpp"
 
 #include <string>
@@ -145,6 +146,7 @@ void add_deposit_options(po::options_description& desc, DepositOptions& bound) {
   add_common_options(desc);
   add_threads_option(desc);
   add_progress_option(desc);
+  add_thermo_options(desc);
   add_material_options(desc, "deposit");
   add_source_options(desc, bound.run.insertion);
   add_run_options(desc, bound.run, bound.scene);
