@@ -157,3 +157,18 @@ TEST(Thermo, LogClashingWithTheInputExits2) {
   EXPECT_EQ(r.err_lines(), 1) << r.err;
   EXPECT_NE(r.err.find("--log"), std::string::npos) << r.err;
 }
+
+// With insertion the bed is a pool parked at the box's centre until each particle enters: the
+// rows count only the particles in the box (the pool's parked spheres lie inside each other).
+TEST(Thermo, InsertionRowsCountOnlyTheParticlesThatEntered) {
+  const std::string dir = test::scratch_dir("thermo_insert");
+  const auto r = test::run_app("deposit", "--psd mono:d=0.5e-3 --count 20 --domain 2.5e-3,2.5e-3,6e-3 "
+                                          "--young-scale 1e4 --insert.enabled true --insert.rate 2000 "
+                                          "--insert.speed 0.1 --t-end 0.02 --seed 3 --thermo 100 "
+                                          "--out " + dir + "/a.h5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto rows = table_rows(r.err, kDropHeader);
+  ASSERT_GT(rows.size(), 10u);
+  for (const auto& row : rows) EXPECT_LT(std::stod(row[3]), 0.1) << row[0];
+  EXPECT_EQ(rows[0][4], "0");  // the first particle alone, in the air
+}
