@@ -2,8 +2,10 @@
 // (readable: .h5, .csv, .dump, .lammpstrj, .data, YADE .txt, GenGeo .geo, .gz of the text ones;
 // writable: .h5, .csv, .data), writes LAMMPS / LIGGGHTS decks (--deck, docs/decks.md) and
 // turns a multi-snapshot dump into a trajectory (--all-snapshots).
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -13,6 +15,7 @@
 #include "common/deck_export.hpp"
 #include "deposit_options.hpp"
 #include "common/options.hpp"
+#include "common/json_units.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
@@ -57,10 +60,11 @@ void add_options(po::options_description& desc) {
       "steps the deck runs by default (its variable NSTEPS)")(
       "dt", po::value<double>(),
       "time step (s): the deck's (default: the scene's dt, else deposit's default step for this "
-      "bed), or a dump's snapshot spacing for --all-snapshots when it has no ITEM: TIME")(
+      "bed), or a dump's step for --all-snapshots when it has no ITEM: TIME (default: the "
+      "timestep of the deck bedconv wrote beside it)")(
       "all-snapshots", po::bool_switch(),
       "IN a .dump / .lammpstrj: every snapshot into OUT, a trajectory .h5 (+ .xmf), time from "
-      "ITEM: TIME or step x --dt")(
+      "ITEM: TIME or step x --dt (or x the timestep of the deck beside it)")(
       "tol", po::value<double>()->default_value(1e-6),
       "contact tolerance the precision warning of a text IN is judged against (bedstat --tol)");
   app::add_common_options(desc);
@@ -86,7 +90,43 @@ std::vector<double> densities(const po::variables_map& vm, const app::DeckScene&
   return {bed::kDefaultLammpsDensity};
 }
 
+// The time step of the deck that wrote the dump `dump`: a deck bedconv exported (in.*) in the
+// dump's folder whose `variable DUMP index NAME` names it, and its `timestep` line. LAMMPS
+// decks also write ITEM: TIME into their dumps; LIGGGHTS 3.8 has no such option, so its dumps
+// take the step from here. nullopt when no deck there names the dump.
+std::optional<double> deck_timestep(const std::string& dump) {
+  namespace fs = std::filesystem;
+  const fs::path path(dump);
+  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(folder, error)) {
+    if (!entry.is_regular_file(error) || entry.path().filename().string().rfind("in.", 0) != 0)
+      continue;
+    std::ifstream deck(entry.path());
+    bool names_dump = false;
+    std::optional<double> dt;
+    for (std::string line; std::getline(deck, line);) {
+      std::istringstream words(line);
+      std::string first, second, third, fourth;
+      words >> first >> second >> third >> fourth;
+      if (first == "variable" && second == "DUMP" && third == "index")
+        names_dump = fs::path(fourth).filename() == path.filename();
+      if (first == "timestep") {
+        try {
+          dt = std::stod(second);
+        } catch (const std::exception&) {
+          dt.reset();
+        }
+      }
+    }
+    if (names_dump && dt && *dt > 0) return dt;
+  }
+  return std::nullopt;
+}
+
 // Every snapshot of the dump `in` into the trajectory `out`; returns the number of snapshots.
+// A snapshot's time: its ITEM: TIME, else step x (--dt, else the timestep of the deck that
+// wrote the dump, deck_timestep).
 std::size_t write_trajectory(const std::string& in, const std::string& out,
                              const po::variables_map& vm) {
   const auto snapshots = bed::read_lammps_dump_all(in);
@@ -98,14 +138,21 @@ std::size_t write_trajectory(const std::string& in, const std::string& out,
                                    "(accepted: the same atoms, sorted alike, in every snapshot: "
                                    "dump_modify sort id)",
                                    in, k, snapshots[k].step));
-    if (snapshots[k].time < 0 && !vm.count("dt"))
-      throw InputError(fmt::format("{}: no ITEM: TIME in step {} (accepted: a dump with times, or "
-                                   "--dt DT for time = step x DT)",
-                                   in, snapshots[k].step));
+  }
+  std::optional<double> dt;
+  if (vm.count("dt")) dt = vm["dt"].as<double>();
+  for (const auto& s : snapshots) {
+    if (s.time >= 0 || dt) continue;
+    dt = deck_timestep(in);
+    if (!dt)
+      throw InputError(fmt::format("{}: no ITEM: TIME in step {} and no deck beside it naming it "
+                                   "(accepted: a dump with times, --dt DT for time = step x DT, "
+                                   "or the dump's folder holding the in.* deck bedconv wrote)",
+                                   in, s.step));
   }
   dem::TrajectoryWriter writer(out, first);
   for (const auto& s : snapshots) {
-    const double time = s.time >= 0 ? s.time : static_cast<double>(s.step) * vm["dt"].as<double>();
+    const double time = s.time >= 0 ? s.time : static_cast<double>(s.step) * *dt;
     writer.write(s.step, time, s.bed);
   }
   writer.close();
@@ -283,6 +330,9 @@ int convert(int argc, char** argv) {
     json.value("dimension", b.domain.dimension);
     if (r.deck) json.value("deck", files.input);
   }
+  // The units of bedconv's --json numbers (common/json_units).
+  static constexpr app::UnitEntry kUnits[] = {{"snapshots", "1"}, {"particles", "1"}, {"dimension", "1"}};
+  app::write_units(json, kUnits);
   json.end_object();
   if (vm.count("json")) std::cout << json.str() << '\n';
   return 0;

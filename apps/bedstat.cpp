@@ -17,6 +17,7 @@
 #include "common/contact_report.hpp"
 #include "common/options.hpp"
 #include "common/spread_report.hpp"
+#include "common/json_units.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
@@ -344,7 +345,9 @@ int run(int argc, char** argv) {
     bed::JsonWriter json;
     json.begin_object().begin_array("beds");
     for (const auto& r : reports) app::write_bed_json(json, r, req);
-    json.end_array().end_object();
+    json.end_array();
+    app::write_units(json, app::bed_report_units());
+    json.end_object();
     std::cout << json.str() << '\n';
   } else {
     Table table;

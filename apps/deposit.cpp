@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include <fmt/format.h>
@@ -17,6 +18,7 @@
 #include "common/material_options.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
+#include "common/thermo_table.hpp"
 #include "common/threads.hpp"
 #include "deposit_options.hpp"
 #include "deposit_spread.hpp"
@@ -109,6 +111,7 @@ void check_files(const po::variables_map& vm, const std::string& out) {
   if (vm.count("export-deck")) {
     for (auto& p : app::deck_outputs(vm["export-deck"].as<std::string>(), out)) outputs.push_back(p);
   }
+  if (const auto log = app::log_path(vm)) outputs.push_back(*log);
   app::check_paths(inputs, outputs);
 }
 
@@ -298,7 +301,7 @@ void print_lid_json(bed::JsonWriter& j, const dem::RunSummary& r, bool released)
       .end_object();
 }
 
-void print_json(const Report& p) {
+std::string json_text(const Report& p) {
   const dem::RunSummary& r = p.run;
   bed::JsonWriter j;
   j.begin_object();
@@ -328,22 +331,26 @@ void print_json(const Report& p) {
         .end_object();
   }
   if (r.lid_used) print_lid_json(j, r, p.settings.lid.release);
-  j.value("out", p.out).end_object();
-  std::cout << j.str() << '\n';
+  j.value("out", p.out);
+  app::write_units(j, app::deposit_units());
+  j.end_object();
+  return j.str() + '\n';
 }
 
-void print_text(const Report& p) {
+std::string summary_text(const Report& p) {
   const dem::RunSummary& r = p.run;
-  std::cout << "deposit: " << p.bed.n() << " particles (" << p.removed << " lost), " << r.steps
+  std::ostringstream out;
+  out << "deposit: " << p.bed.n() << " particles (" << p.removed << " lost), " << r.steps
             << " steps of " << r.dt << " s to t = " << r.sim_time << " s, " << r.wall_time
             << " s wall, " << r.particle_steps_per_s << " particle-steps/s, max overlap "
             << r.max_overlap << " r" << (r.at_rest ? ", at rest" : "") << ", "
             << core_text(p.core, p.margin);
   if (r.lid_used) {
-    std::cout << ", lid " << r.lid.start_z << " -> " << r.lid.stop_z << " m (" << r.lid.stopped_by
+    out << ", lid " << r.lid.start_z << " -> " << r.lid.stop_z << " m (" << r.lid.stopped_by
               << ", max force " << r.lid.max_force << " N)";
   }
-  std::cout << " -> " << p.out << '\n';
+  out << " -> " << p.out << '\n';
+  return out.str();
 }
 
 int run(int argc, char** argv) {
@@ -365,6 +372,7 @@ int run(int argc, char** argv) {
   dem::RunSettings s = run_settings(vm, bound.run, inserting, seed);
   warn_unsafe_dt(bed, scene, s);
   const double margin = core_margin(vm, bed);
+  const auto table = app::attach_thermo(vm, false, s.thermo, s.thermo_every);
   app::ProgressBar bar("deposit", app::progress_interval(vm));
   s.progress = [&bar](const dem::Progress& p) {
     char detail[64];
@@ -389,11 +397,9 @@ int run(int argc, char** argv) {
   together.commit();
   const std::string integrator = vm["integrator"].as<std::string>();
   const Report report{bed, scene, s, r, removed, core, margin, integrator, out};
-  if (vm.count("json")) {
-    print_json(report);
-  } else {
-    print_text(report);
-  }
+  const std::string summary = vm.count("json") ? json_text(report) : summary_text(report);
+  std::cout << summary;
+  if (table) table->summary(summary);
   return 0;
 }
 

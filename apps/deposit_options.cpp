@@ -1,5 +1,6 @@
 // deposit's options and the DEM scene they make: shared by deposit and build, which reads a
 // deposit recoater scene for each layer's spread.
+#include "common/thermo_table.hpp"
 #include "deposit_options.hpp"
 
 #include <string>
@@ -145,6 +146,7 @@ void add_deposit_options(po::options_description& desc, DepositOptions& bound) {
   add_common_options(desc);
   add_threads_option(desc);
   add_progress_option(desc);
+  add_thermo_options(desc);
   add_material_options(desc, "deposit");
   add_source_options(desc, bound.run.insertion);
   add_run_options(desc, bound.run, bound.scene);
@@ -157,6 +159,29 @@ void add_deposit_options(po::options_description& desc, DepositOptions& bound) {
     desc.add_options()(name.c_str(), po::value<bool>()->default_value(true),
                        "effect on/off (true/false)");
   }
+}
+
+std::span<const UnitEntry> deposit_units() {
+  static constexpr UnitEntry kUnits[] = {
+      // the run (write_run_head)
+      {"n", "1"}, {"steps", "1"}, {"sim_time", "s"}, {"wall_time", "s"},
+      {"particle_steps_per_s", "1/s"}, {"dt", "s"}, {"dt_stable", "s"}, {"young_scale", "1"},
+      // a drop
+      {"dt_limiting_radius", "m"}, {"fines_radius", "m"}, {"stiffness", "N/m"},
+      {"kinetic_energy", "J"}, {"max_speed", "m/s"}, {"max_overlap", "1"},
+      {"max_overlap_m", "m"}, {"max_overlap_full_stiffness", "1"}, {"lost", "1"},
+      {"neighbour_rebuilds", "1"}, {"core_density", "1"}, {"core_margin", "m"},
+      {"domain_top", "m"}, {"inserted", "1"}, {"end_time", "s"},
+      // the lid
+      {"start_z", "m"}, {"stop_z", "m"}, {"surface_z", "m"}, {"travel", "m"},
+      {"target_force", "N"}, {"stop_force", "N"}, {"max_force", "N"}, {"hold_end_force", "N"},
+      {"hold_end_z", "m"}, {"hold_late_force", "N"}, {"release_time", "s"},
+      // a spread and its layers
+      {"rolling", "1"}, {"layers_done", "1"}, {"layer", "1"}, {"supplied", "1"},
+      {"tool_bottom", "m"}, {"max_tool_force", "N"}, {"mean_tool_force_x", "N"},
+      {"density_under_gap", "1"}, {"overflow", "1"}, {"frozen", "1"},
+  };
+  return kUnits;
 }
 
 dem::Scene deposit_scene(const po::variables_map& vm, const dem::Scene& bound) {

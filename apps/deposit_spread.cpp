@@ -18,6 +18,7 @@
 
 #include "common/app_main.hpp"
 #include "common/progress.hpp"
+#include "common/thermo_table.hpp"
 #include "deposit_options.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/h5_output.hpp"
@@ -128,13 +129,15 @@ bed::Domain spread_box(const po::variables_map& vm, std::optional<bed::Domain> g
 }
 
 dem::SpreadSettings spread_settings(const po::variables_map& vm, const dem::SpreadSettings& bound,
-                                    std::uint64_t seed) {
+                                    std::uint64_t seed, std::shared_ptr<ThermoTable>* table) {
   dem::SpreadSettings s = bound;
   s.tool.shape = dem::parse_tool_shape(vm["recoater.tool"].as<std::string>());
   s.supply = supply_maker(vm, seed);
   s.young_scale = vm["young-scale"].as<double>();
   if (vm.count("dt")) s.dt = vm["dt"].as<double>();
   s.unsafe_dt = vm["unsafe-dt"].as<bool>();
+  auto thermo = attach_thermo(vm, true, s.thermo, s.thermo_every);
+  if (table) *table = std::move(thermo);
   return s;
 }
 
@@ -240,6 +243,8 @@ dem::RunSummary run_rotating_drop(bed::Bed& bed, const dem::Scene& scene,
   s.dt = settings.dt;
   s.unsafe_dt = settings.unsafe_dt;
   s.skin = settings.skin;
+  s.thermo = settings.thermo;  // the drop's table: no layer, no tool
+  s.thermo_every = settings.thermo_every;
   if (settings.progress) {
     s.progress = [&settings](double fraction, double kinetic_energy) {
       dem::Progress p;
@@ -317,6 +322,7 @@ void check_spread_paths(const po::variables_map& vm, const std::string& out) {
     check_extension({"--tool-forces", *forces}, {".csv"});
     outputs.push_back({"--tool-forces", *forces});
   }
+  if (const auto log = log_path(vm)) outputs.push_back(*log);
   check_paths(inputs, outputs);
 }
 
@@ -375,9 +381,9 @@ std::size_t check_spread_result(const po::variables_map& vm, const dem::SpreadSu
   return lost;
 }
 
-void print_spread_summary(const po::variables_map& vm, const dem::SpreadSummary& r,
-                          const dem::Scene& scene, const dem::SpreadSettings& s,
-                          const bed::Bed& bed, std::size_t lost, const std::string& out) {
+std::string spread_summary(const po::variables_map& vm, const dem::SpreadSummary& r,
+                           const dem::Scene& scene, const dem::SpreadSettings& s,
+                           const bed::Bed& bed, std::size_t lost, const std::string& out) {
   if (vm.count("json")) {
     bed::JsonWriter j;
     j.begin_object();
@@ -391,19 +397,22 @@ void print_spread_summary(const po::variables_map& vm, const dem::SpreadSummary&
     j.begin_array("layers");
     for (const auto& l : r.layers) write_json_layer(j, l);
     j.end_array();
-    j.value("out", out).end_object();
-    std::cout << j.str() << '\n';
-    return;
+    j.value("out", out);
+    write_units(j, deposit_units());
+    j.end_object();
+    return j.str() + '\n';
   }
-  std::cout << "deposit: spread " << r.layers.size() << " layer(s) with a "
+  std::ostringstream text;
+  text << "deposit: spread " << r.layers.size() << " layer(s) with a "
             << vm["recoater.tool"].as<std::string>() << ", " << bed.n() << " particles ("
             << lost << " lost), " << r.steps << " steps of " << r.dt << " s to t = "
             << r.sim_time << " s, " << r.wall_time << " s wall";
   if (!r.layers.empty()) {
-    std::cout << ", layer " << r.layers.back().layer << " density under the gap "
-              << r.layers.back().density_under_gap;
+    text << ", layer " << r.layers.back().layer << " density under the gap "
+         << r.layers.back().density_under_gap;
   }
-  std::cout << " -> " << out << '\n';
+  text << " -> " << out << '\n';
+  return text.str();
 }
 
 }  // namespace
@@ -420,7 +429,8 @@ int run_spread(const po::variables_map& vm, const DepositOptions& bound, int arg
   std::optional<dem::SpreadState> restart;
   bed::Bed bed = spread_input(vm, restart);
   const dem::Scene scene = deposit_scene(vm, bound.scene);
-  dem::SpreadSettings s = spread_settings(vm, bound.spread, seed);
+  std::shared_ptr<ThermoTable> table;
+  dem::SpreadSettings s = spread_settings(vm, bound.spread, seed, &table);
   std::ostringstream forces;
   forces << std::setprecision(17) << "layer,time,x,fx,fy,fz\n";
   if (forces_path) {
@@ -459,7 +469,9 @@ int run_spread(const po::variables_map& vm, const DepositOptions& bound, int arg
   write(bed, out, r.state);
   if (forces_path) bed::write_text_file(*forces_path, forces.str());
   together.commit();
-  print_spread_summary(vm, r, scene, s, bed, lost, out);
+  const std::string summary = spread_summary(vm, r, scene, s, bed, lost, out);
+  std::cout << summary;
+  if (table) table->summary(summary);
   return 0;
 }
 

@@ -8,6 +8,7 @@
 #include "powderbed/dem/solver.hpp"
 #include "powderbed/dem/spread.hpp"
 
+#include <memory>
 #include <optional>
 
 namespace powderbed::app {
@@ -28,9 +29,12 @@ bed::Domain spread_box(const po::variables_map& vm,
                        std::optional<bed::Domain> given = std::nullopt);
 // The spread's settings: `bound` (the settings add_spread_options bound: the tool's numbers, the
 // supply region, --layers, the overflow, the layer thickness) with the tool's shape, the supply
-// (seeded per layer from `seed`), the softening and the time step.
+// (seeded per layer from `seed`), the softening, the time step and the thermo table of --thermo
+// and --log (common/thermo_table.hpp; `table`, when given, receives it for the run's summary).
+class ThermoTable;
 dem::SpreadSettings spread_settings(const po::variables_map& vm, const dem::SpreadSettings& bound,
-                                    std::uint64_t seed);
+                                    std::uint64_t seed,
+                                    std::shared_ptr<ThermoTable>* table = nullptr);
 // The provenance a spread bed carries: `program` and its command line, --seed, the resolved
 // scene and the contact law as made (softening included).
 void set_spread_provenance(bed::Bed& b, const po::variables_map& vm, const dem::Scene& scene,

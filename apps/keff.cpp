@@ -18,6 +18,7 @@
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
+#include "common/json_units.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/h5_output.hpp"
@@ -323,6 +324,19 @@ struct RunReport {
   std::string profile_path;  // empty without --out
 };
 
+// The units of keff's --json numbers (common/json_units).
+constexpr app::UnitEntry kUnits[] = {
+    {"k_eff", "W/(m K)"}, {"k_core", "W/(m K)"}, {"core_particles", "1"}, {"core_margin", "m"},
+    {"profile_r_squared", "1"}, {"wall_drop_hot", "1"}, {"wall_drop_cold", "1"},
+    {"heat_flow_hot", "W"}, {"heat_flow_cold", "W"},
+    // share: of the heat flow through each path
+    {"contact", "1"}, {"gas", "1"}, {"radiation", "1"},
+    {"rattlers", "1"}, {"newton_iterations", "1"}, {"newton_residual", "1"},
+    {"solver_iterations", "1"}, {"particles", "1"}, {"contact_links", "1"}, {"gas_links", "1"},
+    {"radiation_links", "1"}, {"rays", "1"}, {"lost_rays", "1"}, {"view_factor_error", "1"},
+    {"gas_conductivity", "W/(m K)"}, {"t_hot", "K"}, {"t_cold", "K"}, {"wall_time", "s"},
+};
+
 // --json: k_eff, the wall flows, each path's share and the solve's counters (SI).
 std::string result_json(const RunReport& run) {
   const kf::KeffResult& r = run.result;
@@ -367,6 +381,7 @@ std::string result_json(const RunReport& run) {
       .value("t_cold", scene.cold_temperature)
       .value("wall_time", run.wall);
   if (!run.profile_path.empty()) j.value("profile", run.profile_path);
+  app::write_units(j, kUnits);
   j.end_object();
   return j.str() + '\n';
 }

@@ -10,6 +10,7 @@
 
 #include "common/app_main.hpp"
 #include "common/contact_report.hpp"
+#include "common/json_units.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -137,6 +138,17 @@ void warn_unreached(const packgen::PackOptions& o, const packgen::PackResult& re
                            result.failures_in_a_row, result.bed.n(), density);
 }
 
+// The units of packgen's --json numbers (common/json_units).
+constexpr app::UnitEntry kUnits[] = {
+    {"n", "1"}, {"density", "1"}, {"coordination", "1"},
+    // coordination_by_tol, keyed by the relative tolerance (contact_report.hpp)
+    {"1e-06", "1"}, {"0.001", "1"}, {"0.01", "1"},
+    {"rattlers", "1"}, {"wall_contacts", "1"}, {"max_relative_overlap", "1"}, {"wall_time", "s"},
+    {"attempts", "1"}, {"tries", "1"}, {"failed_placements", "1"}, {"retired", "1"},
+    {"refused_valid", "1"}, {"accepted_overlapping", "1"}, {"approach", "1"}, {"sites", "1"},
+    {"seed", "1"},
+};
+
 // What --json prints: the bed's density and contacts, the run's counters and settings.
 void print_json(const packgen::PackResult& result, const packgen::PackOptions& o,
                 double density, const std::vector<bed::ContactStats>& by_tol, std::uint64_t seed) {
@@ -169,6 +181,7 @@ void print_json(const packgen::PackResult& result, const packgen::PackOptions& o
   j.value("size_sampling", packgen::size_sampling_name(o.size_sampling));
   j.value("sites", std::uint64_t{result.sites});
   j.value("seed", seed);
+  app::write_units(j, kUnits);
   j.end_object();
   std::cout << j.str() << '\n';
 }

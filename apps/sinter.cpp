@@ -20,6 +20,7 @@
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
+#include "common/json_units.hpp"
 #include "sinter_options.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
@@ -43,6 +44,45 @@ const char* const kUsage =
     "[--scan.rotation DEG --scan.layer K] [--scan.region X0,X1,Y0,Y1]] [--scan.jump-speed V] "
     "[--fuse [--fused-bed BED.h5]] [--json] [--explain]";
 
+// The units of sinter's --json numbers, the run's summary and --explain's (common/json_units).
+constexpr app::UnitEntry kUnits[] = {
+    // --explain
+    {"laser_flux", "W/m^2"}, {"conduction_scale", "1"}, {"conduction_ratio", "1"},
+    {"substrate_ratio", "1"}, {"convection_ratio", "1"}, {"radiation_ratio", "1"},
+    {"biot_surface", "1"}, {"biot_laser", "1"}, {"optical_thickness", "1"}, {"dwell_time", "s"},
+    {"heating_time", "s"}, {"absorptance", "1"}, {"wetting_time", "s"},
+    {"normalised_enthalpy", "1"}, {"keyhole_threshold", "1"}, {"evaporation_ratio", "1"},
+    {"cooling_time", "s"}, {"conduction_cooling", "1"}, {"substrate_cooling", "1"},
+    {"convection_cooling", "1"}, {"radiation_cooling", "1"},
+    // the melt pool and its tracks
+    {"height", "m"}, {"width", "m"}, {"depth", "m"}, {"sections", "1"}, {"width_mean", "m"},
+    {"width_sd", "m"}, {"depth_mean", "m"}, {"depth_sd", "m"}, {"length", "m"},
+    {"peak_temperature", "K"}, {"start_temperature", "K"}, {"stored_energy", "J"},
+    {"t_start", "s"},
+    // the run
+    {"max_temperature", "K"}, {"max_temperature_particles", "K"},
+    {"max_temperature_substrate", "K"}, {"evaporated_mass", "kg"},
+    {"evaporated_mass_particles", "kg"}, {"peak_recoil_pressure", "Pa"},
+    {"depression_temperature", "K"}, {"depression_depth", "m"}, {"particles", "1"},
+    {"particles_molten", "1"}, {"particles_vaporised", "1"}, {"energy_balance_error", "1"},
+    {"substrate_wetted", "1"}, {"particles_merged", "1"}, {"bridges", "1"}, {"steps", "1"},
+    {"particle_steps", "1"}, {"dt", "s"}, {"dt_particle", "s"}, {"dt_stable_grid", "s"},
+    {"dt_stable_particle", "s"}, {"t_end", "s"}, {"implicit_iterations", "1"}, {"nodes", "1"},
+    {"extinction", "1/m"}, {"porosity", "1"}, {"layer_height", "m"}, {"wall_time", "s"},
+    // ray_trace: fractions of the beam (particles: also the run's particle count, 1)
+    {"traces", "1"}, {"bed_absorptance", "1"}, {"substrate", "1"}, {"escaped", "1"},
+    {"outside", "1"}, {"dropped", "1"}, {"hits_per_ray", "1"}, {"depression", "1"},
+    // fusion
+    {"threshold", "K"}, {"fused", "1"}, {"vaporised", "1"}, {"powder_left", "1"},
+    {"powder_mass_before", "kg"}, {"powder_mass_after", "kg"}, {"solid_mass_before", "kg"},
+    {"solid_mass_after", "kg"}, {"vaporised_mass", "kg"}, {"mass_error", "1"},
+    {"top_min", "m"}, {"top_max", "m"},
+    // energy: the ledger
+    {"laser_particles", "J"}, {"laser_substrate", "J"}, {"convection", "J"}, {"radiation", "J"},
+    {"evaporation", "J"}, {"boundary", "J"}, {"internal_particles", "J"},
+    {"internal_substrate", "J"},
+};
+
 // --explain --json: the scale analysis's numbers (SI; ratios to the absorbed laser flux) and the
 // printed report as "text".
 std::string explain_json(const th::ExplainReport& r) {
@@ -64,8 +104,14 @@ std::string explain_json(const th::ExplainReport& r) {
       .value("normalised_enthalpy", r.normalised_enthalpy)
       .value("keyhole_threshold", r.keyhole_threshold)
       .value("evaporation_ratio", r.evaporation_ratio)
-      .value("text", r.text)
-      .end_object();
+      .value("cooling_time", r.cooling_time)
+      .value("conduction_cooling", r.conduction_cooling)
+      .value("substrate_cooling", r.substrate_cooling)
+      .value("convection_cooling", r.convection_cooling)
+      .value("radiation_cooling", r.radiation_cooling)
+      .value("text", r.text);
+  app::write_units(j, kUnits);
+  j.end_object();
   return j.str() + '\n';
 }
 
@@ -212,8 +258,9 @@ std::string result_json(const po::variables_map& vm, const RunReport& run) {
       .value("porosity", sinter.surface().porosity)
       .value("layer_height", sinter.surface().layer_height)
       .value("wall_time", run.wall)
-      .value("out", run.out)
-      .end_object();
+      .value("out", run.out);
+  app::write_units(j, kUnits);
+  j.end_object();
   return j.str() + '\n';
 }
 

@@ -184,4 +184,28 @@ void write_bed_json(bed::JsonWriter& json, const BedReport& r, const BedRequest&
   json.end_object();
 }
 
+std::span<const UnitEntry> bed_report_units() {
+  static constexpr UnitEntry kUnits[] = {
+      {"n", "1"}, {"dimension", "1"}, {"box_density", "1"}, {"z0", "m"}, {"z1", "m"},
+      {"layer_density", "1"},
+      // contacts (write_contacts); coordination_by_tol is keyed by the relative tolerance
+      {"tolerance", "1"}, {"coordination", "1"}, {"contacts", "1"}, {"1e-06", "1"},
+      {"0.001", "1"}, {"0.01", "1"}, {"contacts_histogram", "1"}, {"rattlers", "1"},
+      {"wall_contacts", "1"}, {"max_overlap", "1"},
+      // radius, diameter quantiles, the PSD test and histogram
+      {"mean", "m"}, {"sd", "m"}, {"min", "m"}, {"max", "m"}, {"d10", "m"}, {"d50", "m"},
+      {"d90", "m"}, {"ks_distance", "1"}, {"edges", "m"}, {"counts", "1"}, {"target", "1"},
+      // density profile (x: z) and g(r) (x: r)
+      {"x", "m"}, {"y", "1"},
+      {"interior_cells", "1"}, {"local_fraction_mean", "1"}, {"local_fraction_sd", "1"},
+      {"q6_local_mean", "1"}, {"q6_global", "1"}, {"q6_particles", "1"},
+      // spread (write_spread_json)
+      {"plate", "m"}, {"gap", "m"}, {"window", "m"}, {"raster", "m"}, {"particles", "1"},
+      {"density", "1"}, {"coverage", "1"}, {"mean_height", "m"}, {"sa", "m"}, {"sq", "m"},
+      {"mean_diameter", "m"}, {"count", "1"}, {"slope", "1"}, {"d", "1"}, {"p", "1"},
+      {"n_layer", "1"}, {"n_feed", "1"},
+  };
+  return kUnits;
+}
+
 }  // namespace powderbed::app

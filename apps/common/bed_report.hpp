@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "powderbed/bed/bed.hpp"
+#include "common/json_units.hpp"
 #include "powderbed/bed/json.hpp"
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/stats.hpp"
@@ -64,5 +65,9 @@ BedReport analyse_bed(bed::Bed bed, const std::string& file, const BedRequest& r
 
 // The report as one JSON object (an element of bedstat's "beds" array).
 void write_bed_json(bed::JsonWriter& json, const BedReport& r, const BedRequest& req);
+
+// The units of every number write_bed_json and write_spread_json write: bedstat's table
+// (common/json_units).
+std::span<const UnitEntry> bed_report_units();
 
 }  // namespace powderbed::app

@@ -273,11 +273,14 @@ void forces_and_run(std::ostringstream& out, const DeckLaws& laws, DeckEngine en
   out << "fix            move all nve\n"
       << "timestep       " << num(laws.dt) << "\n\n"
       << "dump           snapshots all custom ${DUMP_EVERY} ${DUMP} id type x y z vx vy vz radius\n";
+  // Each snapshot's time for `bedconv DUMP --all-snapshots`: LAMMPS writes it (ITEM: TIME);
+  // LIGGGHTS 3.8 cannot, and bedconv takes the `timestep` above from this deck (its DUMP).
   if (lammps) {
-    out << "dump_modify    snapshots sort id format float %.17g\n";
+    out << "dump_modify    snapshots sort id format float %.17g time yes\n";
   } else {
     out << "dump_modify    snapshots sort id format \"%d %d %.17g %.17g %.17g %.17g %.17g %.17g %.17g\"\n"
-        << "# LIGGGHTS 3.8 prints a dump's box bounds with %g; ${FINAL} has them exactly\n";
+        << "# LIGGGHTS 3.8 prints a dump's box bounds with %g; ${FINAL} has them exactly\n"
+        << "# and no ITEM: TIME: bedconv DUMP --all-snapshots reads the timestep above\n";
   }
   out << "thermo_style   custom step atoms ke\n"
       << "thermo         ${NSTEPS}\n"

@@ -1,5 +1,6 @@
 #include "powderbed/bed/json.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -42,39 +43,51 @@ void JsonWriter::key(const std::string& k) {
   need_comma_ = true;
 }
 
+void JsonWriter::numeric(const std::string& k) {
+  if (!k.empty() && std::find(numeric_keys_.begin(), numeric_keys_.end(), k) == numeric_keys_.end())
+    numeric_keys_.push_back(k);
+}
+
 JsonWriter& JsonWriter::begin_object(const std::string& k) {
+  open_.push_back(k);
   key(k);
   out_ << '{';
   need_comma_ = false;
   return *this;
 }
 JsonWriter& JsonWriter::end_object() {
+  if (!open_.empty()) open_.pop_back();
   out_ << '}';
   need_comma_ = true;
   return *this;
 }
 JsonWriter& JsonWriter::begin_array(const std::string& k) {
+  open_.push_back(k);
   key(k);
   out_ << '[';
   need_comma_ = false;
   return *this;
 }
 JsonWriter& JsonWriter::end_array() {
+  if (!open_.empty()) open_.pop_back();
   out_ << ']';
   need_comma_ = true;
   return *this;
 }
 JsonWriter& JsonWriter::value(const std::string& k, double v) {
+  numeric(k);
   key(k);
   out_ << json_number(v);
   return *this;
 }
 JsonWriter& JsonWriter::value(const std::string& k, std::int64_t v) {
+  numeric(k);
   key(k);
   out_ << v;
   return *this;
 }
 JsonWriter& JsonWriter::value(const std::string& k, std::uint64_t v) {
+  numeric(k);
   key(k);
   out_ << v;
   return *this;
@@ -90,6 +103,7 @@ JsonWriter& JsonWriter::value(const std::string& k, bool v) {
   return *this;
 }
 JsonWriter& JsonWriter::element(double v) {
+  if (!open_.empty()) numeric(open_.back());
   key("");
   out_ << json_number(v);
   return *this;

@@ -137,13 +137,45 @@ Overlap max_overlap(const bed::Bed& bed, const Scene& scene) {
   };
   for_each_overlap(bed, [&](std::size_t i, std::size_t j, double delta, double r_star) {
     note(delta, std::min(bed.radius[i], bed.radius[j]), r_star, false);
+    ++o.contacts;
   });
   if (scene.has(kWalls)) {
     for_each_wall_overlap(bed, [&](std::size_t i, int, int, double delta) {
       note(delta, bed.radius[i], bed.radius[i], true);
+      ++o.contacts;
     });
   }
   return o;
+}
+
+std::size_t count_outside(const bed::Bed& bed, std::size_t n) {
+  const Box box = Box::from(bed.domain);
+  std::size_t outside = 0;
+  for (std::size_t i = 0; i < std::min(n, bed.n()); ++i) {
+    const double p[3] = {bed.x[i], bed.y[i], bed.z[i]};
+    for (int a = 0; a < 3; ++a) {
+      if (!box.periodic[a] && (p[a] < box.lower[a] || p[a] > box.upper[a])) {
+        ++outside;
+        break;
+      }
+    }
+  }
+  return outside;
+}
+
+ThermoRow thermo_row(const bed::Bed& bed, const Scene& scene, std::size_t n) {
+  ThermoRow row;
+  row.lost = count_outside(bed, n);
+  if (n >= bed.n()) {
+    row.overlap = max_overlap(bed, scene);
+    return row;
+  }
+  bed::Bed head;  // an insertion's pool beyond the first n waits, overlapping, at the centre
+  head.domain = bed.domain;
+  head.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) head.add(bed.x[i], bed.y[i], bed.z[i], bed.radius[i]);
+  row.overlap = max_overlap(head, scene);
+  return row;
 }
 
 CoreDensity core_density(const bed::Bed& bed, double margin) {

@@ -488,6 +488,8 @@ struct Run {
   bool inserting = false;  // particles still enter (Insertion): rest is not tested
   double rest_energy = 0;  // J, RestCriteria::kinetic_energy or its default
   std::uint64_t rest_every = 1, window_steps = 0;
+  std::uint64_t thermo_every = 0;  // RunSettings::thermo_every resolved
+  std::uint64_t thermo_last = kNotQuiet;  // step of the last row
   RunSummary summary;
 
   double time() const { return static_cast<double>(step) * c.dt; }
@@ -511,6 +513,7 @@ struct Run {
         stopped = true;
         return false;
       }
+      if (settings.thermo && step % thermo_every == 0) thermo();
       if (after()) return false;
       if (until_rest && !inserting && step % rest_every == 0 && quiet_for_window(quiet_since)) {
         return true;
@@ -529,6 +532,16 @@ struct Run {
     }
     quiet_since = kNotQuiet;
     return false;
+  }
+  // A row of the thermo table: the state of the particles in the box (insertion: those in).
+  void thermo() {
+    ThermoRow row = thermo_row(c.bed, scene, c.n);
+    row.step = step;
+    row.time = time();
+    double vmax;
+    kinetic_state(c, row.kinetic_energy, vmax);
+    settings.thermo(row);
+    thermo_last = step;
   }
   void report(double progress_end) const {
     Progress p;
@@ -868,16 +881,7 @@ void summarise(Run& run, const TimeStepBound& bound) {
     summary.max_overlap_full_stiffness =
         bed::hertz_overlap_of_softened(overlap.relative, run.settings.young_scale);
   }
-  const Box& box = c.params.box;
-  for (std::size_t i = 0; i < c.n; ++i) {
-    const double p[3] = {c.bed.x[i], c.bed.y[i], c.bed.z[i]};
-    for (int a = 0; a < 3; ++a) {
-      if (!box.periodic[a] && (p[a] < box.lower[a] || p[a] > box.upper[a])) {
-        ++summary.lost;
-        break;
-      }
-    }
-  }
+  summary.lost = count_outside(c.bed, c.n);
   summary.neighbour_rebuilds = c.rebuilds;
 }
 
@@ -939,6 +943,8 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
     run.trajectory.emplace(settings.trajectory, bed);
     run.trajectory->write(0, 0.0, bed);
   }
+  run.thermo_every = settings.thermo_every > 0 ? settings.thermo_every : thermo_interval(total_steps);
+  if (settings.thermo) run.thermo();
 
   run.summary.at_rest = run.advance(total_steps, settings.until_rest, t_end,
                                     [&] { insertion.insert_due(); }, never);
@@ -950,6 +956,7 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
     if (run.step % settings.trajectory_every != 0) run.trajectory->write(run.step, run.time(), bed);
     run.trajectory->close();
   }
+  if (settings.thermo && run.thermo_last != run.step) run.thermo();
   summarise(run, bound);
   if (settings.progress) run.report(run.summary.sim_time);
   RunSummary& summary = run.summary;

@@ -1073,6 +1073,27 @@ struct Spreader {
   ActiveContacts carried;
   std::uint64_t step = 0;
   double particle_steps = 0;  // the particles each step moved (a layer's overflow included)
+  std::uint64_t thermo_every = 0;         // SpreadSettings::thermo_every resolved
+  std::uint64_t thermo_last = ~std::uint64_t{0};  // step of the last thermo row
+
+  // The interval of the thermo table, once the run's step count is known.
+  void resolve_thermo(std::uint64_t run_steps) {
+    if (thermo_every == 0)
+      thermo_every = settings.thermo_every > 0 ? settings.thermo_every : thermo_interval(run_steps);
+  }
+  // A row of the thermo table at this step (the tool's layer and x with a tool).
+  void thermo() {
+    ThermoRow row = thermo_row(bed, scene, bed.n());
+    row.step = step;
+    row.time = static_cast<double>(step) * run.dt;
+    row.kinetic_energy = run.kinetic_energy();
+    if (settings.with_tool) {
+      row.layer = state.layers_done + 1;
+      row.tool_x = run.tool_x;
+    }
+    settings.thermo(row);
+    thermo_last = step;
+  }
 
   // The contact model, the (softened) moduli, gravity, and the restart's state.
   void set_up() {
@@ -1173,12 +1194,14 @@ struct Spreader {
       if (settings.progress && step % settings.progress_every == 0) {
         settings.progress(static_cast<double>(s) / static_cast<double>(steps), run.kinetic_energy());
       }
+      if (settings.thermo && step % thermo_every == 0) thermo();
       if (settings.observer) {  // it reads whole-step velocities: no kick stays pending
         run.sync(step);
         if (settings.observer(step, static_cast<double>(step) * run.dt, bed, run.wy)) return false;
       }
     }
     run.sync(step);
+    if (settings.thermo && thermo_last != step) thermo();
     return true;
   }
 
@@ -1200,6 +1223,7 @@ struct Spreader {
     rebuild();
     run.forces();
     const auto steps = static_cast<std::uint64_t>(std::ceil(settings.t_end / run.dt - 1e-9));
+    resolve_thermo(steps);
     advance(steps, [](std::uint64_t) {});
     particle_steps = static_cast<double>(bed.n()) * static_cast<double>(steps);
     save_state(state.layers_done);
@@ -1254,6 +1278,7 @@ struct Spreader {
     const auto moving =
         static_cast<std::uint64_t>(std::ceil((tool.end - tool.start) / (tool.speed * run.dt) - 1e-9));
     const auto settle = static_cast<std::uint64_t>(std::ceil(tool.settle / run.dt - 1e-9));
+    resolve_thermo((delay + moving + settle) * settings.layers);
     double force_x = 0, force_max = 0;
     const bool finished = advance(delay + moving + settle, [&](std::uint64_t s) {
       const double travelled =

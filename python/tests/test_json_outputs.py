@@ -37,8 +37,10 @@ def test_bedstat_is_one_shape_for_one_and_many_beds(packed, tmp_path):
     path, _ = packed
     one = run_json("bedstat", path)
     two = run_json("bedstat", path, path, "--layer", "0,20e-6")
-    assert list(one) == ["beds"] and len(one["beds"]) == 1
-    assert list(two) == ["beds"] and len(two["beds"]) == 2
+    # "units" (each numeric key's SI unit) follows the beds.
+    assert list(one) == ["beds", "units"] and len(one["beds"]) == 1
+    assert list(two) == ["beds", "units"] and len(two["beds"]) == 2
+    assert one["units"]["box_density"] == "1" and two["units"]["z0"] == "m"
     assert "layer_density" in two["beds"][0] and "layer_density" not in one["beds"][0]
     # Every optional statistic on a simple cubic lattice of 8^3 spheres (g(r) needs centres
     # 5 mean radii from the walls, which a one-layer bed has not).

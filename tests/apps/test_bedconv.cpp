@@ -1,12 +1,14 @@
 // bedconv end to end (docs/architecture.md "Command-line programs"): converts by extension, refuses bad
 // input with exit status 2 and one line on stderr.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "powderbed/bed/h5_output.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/lattice.hpp"
 #include "run_command.hpp"
@@ -151,6 +153,40 @@ TEST_F(Bedconv, MultiSnapshotDumpBecomesATrajectory) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("\"snapshots\":2"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(path("t.xmf")));
+}
+
+// A dump without ITEM: TIME (LIGGGHTS 3.8 writes none) beside the deck bedconv wrote for it: the
+// snapshots' times are the steps times the deck's timestep, without --dt; a deck that names
+// another dump does not count.
+TEST_F(Bedconv, DumpTakesItsTimeStepFromTheDeckThatWroteIt) {
+  std::ofstream(path("run.liggghts.lammpstrj"))
+      << "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS ff ff ff\n0 1e-3\n0 1e-3\n0 1e-3\n"
+      << "ITEM: ATOMS id x y z vx vy vz radius\n1 5e-4 5e-4 5e-4 0 0 -1 2e-5\n"
+      << "ITEM: TIMESTEP\n100\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS ff ff ff\n0 1e-3\n0 1e-3\n0 1e-3\n"
+      << "ITEM: ATOMS id x y z vx vy vz radius\n1 5e-4 5e-4 4.9e-4 0 0 -1 2e-5\n";
+  std::ofstream(path("in.other.liggghts")) << "variable DUMP       index other.liggghts.lammpstrj\n"
+                                           << "timestep       1e-9\n";
+  const std::string args = path("run.liggghts.lammpstrj") + " " + path("t.h5") + " --all-snapshots";
+  auto r = run_app("bedconv", args);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err_lines(), 1) << r.err;
+  EXPECT_NE(r.err.find("--dt"), std::string::npos) << r.err;
+  std::ofstream(path("in.run.liggghts")) << "variable DUMP       index run.liggghts.lammpstrj\n"
+                                         << "timestep       2.5e-09\n";
+  r = run_app("bedconv", args);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const hid_t file = H5Fopen(path("t.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  double time = -1;
+  const hid_t attr = H5Aopen_by_name(file, bed::step_group(100).c_str(), "time", H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(attr, 0);
+  H5Aread(attr, H5T_NATIVE_DOUBLE, &time);
+  H5Aclose(attr);
+  H5Fclose(file);
+  EXPECT_DOUBLE_EQ(time, 100 * 2.5e-9);
+  // --dt, when given, wins over the deck.
+  r = run_app("bedconv", args + " --dt 1e-7");
+  ASSERT_EQ(r.status, 0) << r.err;
 }
 
 TEST_F(Bedconv, CoarseDumpWarnsOnStderrAndStillConverts) {

@@ -119,7 +119,9 @@ def main():
         if RANKS > 1 and f"on {RANKS} procs" not in out:
             sys.exit(f"{EXE} did not run on {RANKS} ranks:\n{out[-2000:]}")
         dump = f"bed.{ENGINE}.lammpstrj"
-        run([os.path.join(APPS, "bedconv"), dump, "traj.h5", "--all-snapshots", "--dt", "1e-9"], work)
+        # No --dt: the snapshots' times come from the deck (LAMMPS: ITEM: TIME in the dump;
+        # LIGGGHTS: the deck's timestep, found beside the dump).
+        run([os.path.join(APPS, "bedconv"), dump, "traj.h5", "--all-snapshots"], work)
         run([os.path.join(APPS, "bedconv"), dump, "last.h5"], work)
         run([os.path.join(APPS, "bedconv"), f"bed.{ENGINE}.final.data", "final.h5"], work)
 
@@ -128,6 +130,10 @@ def main():
         with h5py.File(os.path.join(work, "traj.h5"), "r") as t:
             steps = sorted(t["steps"].keys())
             assert [t["steps"][s].attrs["step"] for s in steps] == [0, STEPS], steps
+            deck_dt = float(next(l.split()[1] for l in open(os.path.join(work, deck)) if l.startswith("timestep")))
+            times = [t["steps"][s].attrs["time"] for s in steps]
+            # LAMMPS prints ITEM: TIME with 16 digits; LIGGGHTS's are step x the deck's step.
+            assert times[0] == 0 and abs(times[-1] - STEPS * deck_dt) <= 1e-15 * STEPS * deck_dt, times
             # Every value bit for bit: the deck's data file and dump both print %.17g.
             assert np.array_equal(t["id"][()], bed["id"][order]), "ids"
             assert np.array_equal(t["radius"][()], bed["radius"][order]), "radii"

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace powderbed::bed {
 
@@ -21,11 +22,17 @@ class JsonWriter {
   JsonWriter& value(const std::string& key, bool v);
   JsonWriter& element(double v);  // array element
   std::string str() const { return out_.str(); }
+  // The keys of the numbers written so far (an array of numbers: its key), each once, in the
+  // order of first appearance: what a summary's "units" object must name (apps/common/json_units).
+  const std::vector<std::string>& numeric_keys() const { return numeric_keys_; }
 
  private:
   void key(const std::string& k);
+  void numeric(const std::string& k);
   std::ostringstream out_;
   bool need_comma_ = false;
+  std::vector<std::string> open_;  // the keys of the open objects and arrays
+  std::vector<std::string> numeric_keys_;
 };
 
 // JSON string escaping.

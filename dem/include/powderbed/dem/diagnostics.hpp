@@ -1,7 +1,11 @@
 #pragma once
 // Quantities computed from a bed's state with the scene's laws: energies, wall forces,
 // overlaps. Used by tests (energy conservation, floor force) and the run summary.
+#include <algorithm>
 #include <array>
+#include <cstdint>
+#include <functional>
+#include <limits>
 
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/dem/scene.hpp"
@@ -26,9 +30,36 @@ struct Overlap {
   double absolute = 0;  // m
   double reduced_radius = 0;  // R* of that contact, m (r for a wall)
   bool wall = false;          // whether it is a particle–wall contact
+  // Overlapping particle pairs plus (walls on) particle–box-face contacts: the contacts the
+  // same pass finds.
+  std::size_t contacts = 0;
 };
 // Largest overlap among particle pairs and (walls on) particle–wall contacts.
 Overlap max_overlap(const bed::Bed& bed, const Scene& scene);
+
+// Particles whose centre is outside the box on a non-periodic axis (lost), among the first `n`.
+std::size_t count_outside(const bed::Bed& bed, std::size_t n);
+
+// One row of a run's thermo table (LAMMPS's `thermo N`; deposit --thermo, docs/deposit-thermo.md).
+struct ThermoRow {
+  std::uint64_t step = 0;
+  double time = 0;              // simulated, s
+  double kinetic_energy = 0;    // J, as the progress line's
+  Overlap overlap;              // max_overlap: relative overlap and contact count
+  std::size_t lost = 0;         // count_outside
+  std::uint64_t layer = 0;      // spreads: the layer being spread (0: a drop)
+  double tool_x = std::numeric_limits<double>::quiet_NaN();  // spreads: the tool's x, m
+};
+using ThermoFn = std::function<void(const ThermoRow&)>;
+// The overlap, contacts and lost particles of `bed`'s first `n` particles (the solvers add the
+// step, time and kinetic energy they hold). Costs a neighbour-list build: call it only at the
+// table's steps.
+ThermoRow thermo_row(const bed::Bed& bed, const Scene& scene, std::size_t n);
+// The default interval of a run of `steps` steps: about kThermoRows rows, at least 1 step.
+inline constexpr std::uint64_t kThermoRows = 30;
+inline std::uint64_t thermo_interval(std::uint64_t steps) {
+  return std::max<std::uint64_t>(1, steps / kThermoRows);
+}
 
 // Packing density (docs/physics.md §2) of the bed's core, away from the walls' ordering and the rough
 // top: the box shrunk by `margin` from the floor and from the non-periodic side faces, up to

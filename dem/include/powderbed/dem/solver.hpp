@@ -5,6 +5,7 @@
 #include <string>
 
 #include "powderbed/bed/bed.hpp"
+#include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/scene.hpp"
 
 namespace powderbed::dem {
@@ -102,6 +103,12 @@ struct RunSettings {
   // up to date); returning true stops the run. For tests and diagnostics.
   std::function<bool(std::uint64_t step, double time, const bed::Bed& bed)> observer;
   std::uint64_t observe_every = 1;
+  // The thermo table (diagnostics.hpp ThermoRow), when set: a row at step 0, every thermo_every
+  // steps (0: thermo_interval of the settle's steps, t_end or the until_rest cap) and at the
+  // run's last step. It reads the state only, so a run gives the same bed with or without it;
+  // unset, it costs nothing.
+  ThermoFn thermo;
+  std::uint64_t thermo_every = 0;
   LidSettings lid;
   InsertionSettings insertion;
 };

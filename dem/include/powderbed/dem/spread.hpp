@@ -13,6 +13,7 @@
 
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/bed/height_map.hpp"
+#include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/recoater.hpp"
 #include "powderbed/dem/scene.hpp"
 
@@ -120,6 +121,12 @@ struct SpreadSettings {
   // energy (J).
   std::function<void(double fraction, double kinetic_energy)> progress;
   std::uint64_t progress_every = 2000;
+  // The thermo table (diagnostics.hpp ThermoRow, with the layer and the tool's x), when set: a
+  // row every thermo_every steps of the run (0: thermo_interval of this run's steps, layers x a
+  // layer's) and at each layer's end. It reads the state only (the kinetic energy at the last
+  // whole step, as progress's), so the run's bits are the same with or without it.
+  ThermoFn thermo;
+  std::uint64_t thermo_every = 0;
 };
 
 struct SpreadSummary {

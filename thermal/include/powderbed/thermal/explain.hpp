@@ -2,7 +2,10 @@
 // `sinter --explain` (docs/architecture.md "Effects a scene calls for"): the scale analysis of [GZ]
 // (docs/physics.md §5) for this scene and bed — each heat path's flux relative to the absorbed laser
 // flux alpha I0 while a particle heats towards melting, the lumped-capacitance Biot numbers —
-// and which effects matter (ratio >= 1e-3) or could be switched off.
+// and which effects matter (ratio >= 1e-3) or could be switched off. A heat path is called
+// negligible only when it is so for the whole run: under the beam (its flux over the laser's)
+// and in the cooling after the beam has passed, up to the run's end (the heat it carries off a
+// lit particle over that time, per the heat the particle holds at T_m).
 #include <string>
 
 #include "powderbed/bed/bed.hpp"
@@ -29,6 +32,17 @@ struct ExplainReport {
   // beam's 1/e² radius, A the flat surface's absorptance; keyhole beyond π T_b / T_m.
   double normalised_enthalpy = 0, keyhole_threshold = 0;
   double evaporation_ratio = 0;     // L_v ṁ(T_b) / (alpha I0): evaporation at the boiling point
+  // The cooling after the beam: t_cool = t_end - w/v, the longest a lit particle (one lit at the
+  // run's start) cools before the run ends, s; and over it, per the heat m c (T_m - T0) a mean
+  // particle holds at T_m, what each path carries off (linearised: t_cool / tau, tau = m c / G
+  // the path's time constant; contacts: G = k Σ A/L, losses: the flux at T_b over π r²).
+  double cooling_time = 0;
+  double conduction_cooling = 0, substrate_cooling = 0;
+  double convection_cooling = 0, radiation_cooling = 0;
+  // Whether lit particles melt with wetting on: their pairs then cool through liquid bridges
+  // (wetting.hpp) whose necks have the smaller sphere's radius, and conduction_cooling is that
+  // of such a neck when it is the larger.
+  bool bridged = false;
   std::string text;                 // the printed report
 };
 
