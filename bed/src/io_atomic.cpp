@@ -93,6 +93,10 @@ CommitTogether::~CommitTogether() {
 CommitTogether* CommitTogether::active() { return g_together; }
 
 void CommitTogether::add(std::string temp, std::string path) {
+  // A file written again while it waits (deposit's --log, rewritten at every thermo row) has
+  // the same temporary, now holding its latest text: it waits once.
+  for (const auto& [waiting, ignored] : waiting_)
+    if (waiting == temp) return;
   waiting_.emplace_back(std::move(temp), std::move(path));
 }
 

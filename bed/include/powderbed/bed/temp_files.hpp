@@ -61,7 +61,8 @@ class CommitTogether {
   void commit();
   // The one alive on this thread, or nullptr (for the writers).
   static CommitTogether* active();
-  // A writer's finished temporary `temp` of `path` (still registered for SIGINT/SIGTERM).
+  // A writer's finished temporary `temp` of `path` (still registered for SIGINT/SIGTERM); a
+  // temporary already waiting (the same file written again) waits once, with its latest text.
   void add(std::string temp, std::string path);
 
  private:
