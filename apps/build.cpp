@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include "common/app_main.hpp"
+#include "common/json_units.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
@@ -507,6 +508,18 @@ LayerReport build_layer(const Build& b, bed::Bed& bed, std::optional<dem::Spread
   return rep;
 }
 
+// The units of build.json's numbers (common/json_units).
+constexpr app::UnitEntry kUnits[] = {
+    {"layers_done", "1"}, {"first_layer", "1"}, {"particles", "1"}, {"wall_time", "s"},
+    {"layer", "1"}, {"particles_spread", "1"}, {"supplied", "1"}, {"overflow", "1"},
+    {"tool_bottom", "m"}, {"recoater_clearance", "m"}, {"layer_density", "1"},
+    {"spread_steps", "1"}, {"neighbour_rebuilds", "1"}, {"ejected", "1"}, {"behind_start", "1"},
+    {"spread_wall_time", "s"}, {"tracks", "1"}, {"mean_track_width", "m"},
+    {"mean_track_depth", "m"}, {"max_temperature", "K"}, {"energy_balance_error", "1"},
+    {"scan_wall_time", "s"}, {"fused", "1"}, {"vaporised", "1"}, {"powder_left", "1"},
+    {"captured", "1"}, {"fused_fraction", "1"}, {"lack_of_fusion", "1"}, {"scanned_area", "m^2"},
+    {"mass_error", "1"}, {"solid_top_min", "m"}, {"solid_top_max", "m"}, {"solid_mass", "kg"}};
+
 // build.json, and the summary on stdout (the report itself with --json).
 void write_report(const po::variables_map& vm, const Build& b, const std::vector<LayerReport>& reports,
                   const dem::SpreadState& state, std::uint64_t first, std::size_t particles, double wall) {
@@ -519,7 +532,9 @@ void write_report(const po::variables_map& vm, const Build& b, const std::vector
   j.begin_array("layers");
   for (const auto& r : reports) layer_json(j, r);
   j.end_array();
-  j.value("out", b.out).end_object();
+  j.value("out", b.out);
+  app::write_units(j, kUnits);
+  j.end_object();
   bed::write_text_file((fs::path(b.out) / "build.json").string(), j.str() + "\n");
   if (vm.count("json")) {
     std::cout << j.str() << '\n';

@@ -191,3 +191,10 @@ TEST(JsonUnits, Bedconv) {
   expect_units(test::run_app("bedconv", dir + "/in.h5 " + dir + "/out.csv --json"),
                {{"particles", "1"}});
 }
+
+TEST(JsonUnits, Build) {
+  const std::string dir = test::scratch_dir("units_build");
+  expect_units(test::run_app("build", "--config " POWDERBED_TEST_DATA "/build-small/build.ini "
+                                      "--layers 1 --json --out " + dir + "/run"),
+               {{"scanned_area", "m^2"}, {"solid_mass", "kg"}, {"mean_track_depth", "m"}});
+}
