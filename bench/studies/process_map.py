@@ -239,7 +239,9 @@ it does not (D = 0); balling where such an unbonded melt is longer than pi times
 temperatures stay near the depression temperature instead of running away; keyhole porosity is
 not modelled (the depression does not collapse into pores). A point whose depression drilled
 through the substrate grid (sinter's exit 3, "deeper than the grid") is a keyhole by any measure
-and is marked so, without a pool.
+and is marked so, without a pool. The particles' peak is their own depression temperature
+T_d(r), where the recoil balances 2 gamma / r: 3731 K for the 15 um fines of this layer's PSD,
+above the plate's T_d (3178 K) because a small sphere's curvature holds more pressure.
 
 The map's points are single tracks on the first layer; the hatch enters only through h in the
 criterion, not through the heat one track leaves for the next (sinter's `--scan.hatch` runs that).
