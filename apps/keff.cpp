@@ -231,15 +231,26 @@ void check_units(const po::variables_map& vm, const kf::KeffScene& scene) {
 
 // With --material the bed must still be solid at the hot wall (below the file's solidus, else its
 // melting point): beyond it k_s is the table's last solid row held, and the number a solid bed's
-// k_eff at a temperature where the powder has melted. (gas.model = air bounds the walls to its
+// k_eff at a temperature where the powder has melted. Without one, no metal's powder is solid
+// above tungsten's melting point. (gas.model = air bounds the walls to its
 // fit's 175-1900 K in the scene's own checks.)
 void check_wall_temperatures(const po::variables_map& vm, const kf::KeffScene& scene) {
-  if (!vm.count("material")) return;
+  const double hot = scene.hot_temperature;
+  if (!vm.count("material")) {
+    // No melting point to hold the walls to: the highest of any metal, tungsten's 3695 K, bounds
+    // a powder bed; beyond it a wall is a slip (of units, or of a digit).
+    constexpr double kTungstenMelts = 3695;
+    if (hot > kTungstenMelts && !vm["trust-units"].as<bool>())
+      throw InputError(fmt::format("--t-hot: the hot wall at {:g} K is above any metal's melting "
+                                   "point (tungsten: 3695 K) (accepted: a solid bed; --material "
+                                   "bounds it by the material's solidus; --trust-units if meant)",
+                                   hot));
+    return;
+  }
   const bed::MaterialFile file =
       bed::read_material_file(app::material_file(vm["material"].as<std::string>(), vm, "--material"));
   const bool solidus = file.get("solidus").has_value();
   const auto solid_until = solidus ? file.get("solidus") : file.get("melting_point");
-  const double hot = scene.hot_temperature;
   if (solid_until && !(hot < *solid_until)) {
     throw InputError(fmt::format("--t-hot: the hot wall at {:g} K is not below {}'s {} {:g} K (accepted: a solid "
                                  "bed, T_hot < {:g} K)",

@@ -161,6 +161,8 @@ TEST(KeffCli, BadInputExitsTwoWithOneLine) {
   expect_refused(test::run_app("keff", base + "--bed " + bed_path +
                                            " --material 316L --gas.model constant --t-hot 1e5"),
                  dir, {"--t-hot", "100000 K", "solidus 1658 K"});
+  expect_refused(test::run_app("keff", base + "--bed " + bed_path + " --gas.model constant --t-hot 1e5"),
+                 dir, {"--t-hot", "100000 K", "tungsten", "--trust-units"});
   expect_refused(test::run_app("keff", base + "--bed " + bed_path +
                                            " --material 316L --gas.model constant --temperature 1700"),
                  dir, {"--t-hot", "1700.5 K", "solidus"});
