@@ -688,11 +688,11 @@ std::vector<Case> all_cases() {
       {"no_restart", {"@layer_no_restart.h5", "/restart"}},
       {"huge_pairs", {"@layer_huge_pairs.h5", "declares 1000000000 rows"}},
       {"in_solid", {"--in", "inside the solid"}}};
-  for (const auto& [damage, with_file] : layers) {
-    const std::string file = "@layer_" + damage + ".h5";
-    add("build_in_layer_" + damage, "build",
+  for (const auto& [kind, with_file] : layers) {
+    const std::string file = "@layer_" + kind + ".h5";
+    add("build_in_layer_" + kind, "build",
         "--config {testdata}/build-small/build.ini --layers 1 --in " + file + " --out @run", 2, with_file);
-    add("deposit_in_layer_" + damage, "deposit",
+    add("deposit_in_layer_" + kind, "deposit",
         "--config {testdata}/build-small/spread.ini --seed 1 --in " + file + " --out @out.h5", 2, with_file);
   }
 
