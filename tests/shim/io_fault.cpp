@@ -102,6 +102,18 @@ size_t total(const struct iovec* iov, int cnt) {
 
 }  // namespace
 
+// writev, pwritev and pwritev64 alike: the buffers up to the disk's remaining room reach the real
+// call (`real(fd, iov, cnt, at...)`), the rest fails with ENOSPC.
+template <class Real, class... At>
+ssize_t vector_write(Real real, int fd, const struct iovec* iov, int cnt, At... at) {
+  const size_t n = total(iov, cnt);
+  if (n == 0 || cnt > IOV_MAX || !fills(fd)) return real(fd, iov, cnt, at...);
+  const size_t ok = take(n);
+  if (ok == 0) return no_space();
+  struct iovec part[IOV_MAX];
+  return real(fd, part, cut(iov, cnt, ok, part), at...);
+}
+
 extern "C" {
 
 ssize_t write(int fd, const void* buf, size_t n) {
@@ -127,32 +139,17 @@ ssize_t pwrite64(int fd, const void* buf, size_t n, off64_t at) {
 
 ssize_t writev(int fd, const struct iovec* iov, int cnt) {
   static auto real = next<ssize_t (*)(int, const struct iovec*, int)>("writev");
-  const size_t n = total(iov, cnt);
-  if (n == 0 || cnt > IOV_MAX || !fills(fd)) return real(fd, iov, cnt);
-  const size_t ok = take(n);
-  if (ok == 0) return no_space();
-  struct iovec part[IOV_MAX];
-  return real(fd, part, cut(iov, cnt, ok, part));
+  return vector_write(real, fd, iov, cnt);
 }
 
 ssize_t pwritev(int fd, const struct iovec* iov, int cnt, off_t at) {
   static auto real = next<ssize_t (*)(int, const struct iovec*, int, off_t)>("pwritev");
-  const size_t n = total(iov, cnt);
-  if (n == 0 || cnt > IOV_MAX || !fills(fd)) return real(fd, iov, cnt, at);
-  const size_t ok = take(n);
-  if (ok == 0) return no_space();
-  struct iovec part[IOV_MAX];
-  return real(fd, part, cut(iov, cnt, ok, part), at);
+  return vector_write(real, fd, iov, cnt, at);
 }
 
 ssize_t pwritev64(int fd, const struct iovec* iov, int cnt, off64_t at) {
   static auto real = next<ssize_t (*)(int, const struct iovec*, int, off64_t)>("pwritev64");
-  const size_t n = total(iov, cnt);
-  if (n == 0 || cnt > IOV_MAX || !fills(fd)) return real(fd, iov, cnt, at);
-  const size_t ok = take(n);
-  if (ok == 0) return no_space();
-  struct iovec part[IOV_MAX];
-  return real(fd, part, cut(iov, cnt, ok, part), at);
+  return vector_write(real, fd, iov, cnt, at);
 }
 
 int fallocate(int fd, int mode, off_t at, off_t len) {
