@@ -223,6 +223,7 @@ struct LayerReport {
   double scanned_area = 0;                 // m^2: the columns the lack-of-fusion map judged
   double solid_mass = 0;                   // kg above the plate after the layer
   std::size_t captured = 0;                // of the fused: powder the grown solid swallowed
+  std::size_t balled = 0;                  // melted on solid that did not melt: balls left in the bed
 };
 
 void layer_json(bed::JsonWriter& j, const LayerReport& l) {
@@ -254,6 +255,7 @@ void layer_json(bed::JsonWriter& j, const LayerReport& l) {
       .value("vaporised", static_cast<std::uint64_t>(l.vaporised))
       .value("powder_left", static_cast<std::uint64_t>(l.powder_left))
       .value("captured", static_cast<std::uint64_t>(l.captured))
+      .value("balled", static_cast<std::uint64_t>(l.balled))
       .value("fused_fraction", l.fused_fraction)
       .value("lack_of_fusion", l.lack_of_fusion)
       .value("scanned_area", l.scanned_area)
@@ -346,6 +348,7 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   rep.scanned_particles = bed.n();
   rep.fused = fused.fused;
   rep.captured = fused.captured;
+  rep.balled = fused.balled;
   rep.vaporised = fused.vaporised;
   rep.powder_left = fused.powder.n();
   // What joined the solid; what vaporised left the powder but did not fuse.
@@ -362,7 +365,7 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   // rows into one seam (their mean; the volume is kept) before it captures what the seam buries.
   floor = th::top_surface(g, fused.top);
   std::vector<char> keep(bed.n());
-  for (std::size_t i = 0; i < bed.n(); ++i) keep[i] = fused.state[i] == 0 ? 1 : 0;
+  for (std::size_t i = 0; i < bed.n(); ++i) keep[i] = th::stays_in_bed(fused.state[i]) ? 1 : 0;
   return keep;
 }
 
@@ -517,7 +520,7 @@ constexpr app::UnitEntry kUnits[] = {
     {"spread_wall_time", "s"}, {"tracks", "1"}, {"mean_track_width", "m"},
     {"mean_track_depth", "m"}, {"max_temperature", "K"}, {"energy_balance_error", "1"},
     {"scan_wall_time", "s"}, {"fused", "1"}, {"vaporised", "1"}, {"powder_left", "1"},
-    {"captured", "1"}, {"fused_fraction", "1"}, {"lack_of_fusion", "1"}, {"scanned_area", "m^2"},
+    {"captured", "1"}, {"balled", "1"}, {"fused_fraction", "1"}, {"lack_of_fusion", "1"}, {"scanned_area", "m^2"},
     {"mass_error", "1"}, {"solid_top_min", "m"}, {"solid_top_max", "m"}, {"solid_mass", "kg"}};
 
 // build.json, and the summary on stdout (the report itself with --json).
@@ -542,11 +545,11 @@ void write_report(const po::variables_map& vm, const Build& b, const std::vector
   }
   for (const auto& r : reports)
     std::printf("build: layer %llu: %zu particles spread (density %.3f over the scan), %zu fused "
-                "(%.0f %% of the powder's mass), %zu vaporised; lack of fusion %.1f %% of the "
+                "(%.0f %% of the powder's mass), %zu balled, %zu vaporised; lack of fusion %.1f %% of the "
                 "scanned area; solid top %.1f to %.1f um; mass conserved to %.1e; %.0f s spread "
                 "+ %.0f s scan\n",
                 static_cast<unsigned long long>(r.layer), r.scanned_particles, r.density, r.fused,
-                100 * r.fused_fraction, r.vaporised, 100 * r.lack_of_fusion, r.top_min * 1e6,
+                100 * r.fused_fraction, r.balled, r.vaporised, 100 * r.lack_of_fusion, r.top_min * 1e6,
                 r.top_max * 1e6, r.mass_error, r.spread.wall_time, r.scan_wall);
   std::printf("build: %zu layer(s) in %.0f s -> %s\n", reports.size(), wall, b.out.c_str());
 }

@@ -73,7 +73,7 @@ constexpr app::UnitEntry kUnits[] = {
     {"traces", "1"}, {"bed_absorptance", "1"}, {"substrate", "1"}, {"escaped", "1"},
     {"outside", "1"}, {"dropped", "1"}, {"hits_per_ray", "1"}, {"depression", "1"},
     // fusion
-    {"threshold", "K"}, {"fused", "1"}, {"vaporised", "1"}, {"powder_left", "1"},
+    {"threshold", "K"}, {"fused", "1"}, {"vaporised", "1"}, {"balled", "1"}, {"powder_left", "1"},
     {"powder_mass_before", "kg"}, {"powder_mass_after", "kg"}, {"solid_mass_before", "kg"},
     {"solid_mass_after", "kg"}, {"vaporised_mass", "kg"}, {"mass_error", "1"},
     {"top_min", "m"}, {"top_max", "m"},
@@ -142,6 +142,7 @@ void fusion_json(bed::JsonWriter& j, const th::Fusion& f, const th::SubstrateGeo
       .value("threshold", f.threshold)
       .value("fused", static_cast<std::uint64_t>(f.fused))
       .value("vaporised", static_cast<std::uint64_t>(f.vaporised))
+      .value("balled", static_cast<std::uint64_t>(f.balled))
       .value("powder_left", static_cast<std::uint64_t>(f.powder.n()))
       .value("powder_mass_before", f.powder_mass_before)
       .value("powder_mass_after", f.powder_mass_after)
@@ -286,9 +287,10 @@ void print_result(const th::SinterScene& scene, const RunReport& run) {
     const th::Fusion& fused = *run.fused;
     const double z_top = run.sinter.grid().z_top;
     const auto [low, high] = std::minmax_element(fused.top.begin(), fused.top.end());
-    std::printf("sinter: fused %zu particles (%zu vaporised, %zu left as powder); solid top "
-                "%.1f to %.1f um above the plate; mass conserved to %.1e\n",
-                fused.fused, fused.vaporised, fused.powder.n(), (*low - z_top) * 1e6,
+    std::printf("sinter: fused %zu particles (%zu vaporised, %zu left in the bed, %zu of them "
+                "balls that melted on solid that did not); solid top %.1f to %.1f um above the "
+                "plate; mass conserved to %.1e\n",
+                fused.fused, fused.vaporised, fused.powder.n(), fused.balled, (*low - z_top) * 1e6,
                 (*high - z_top) * 1e6, fused.mass_error());
   }
 }

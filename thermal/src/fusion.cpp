@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/thermal/bonding.hpp"
 
 namespace powderbed::thermal {
 
@@ -118,12 +119,13 @@ void capture_buried(const bed::Bed& bed, const SubstrateGeometry& g, const std::
     const bed::HeightMap top = top_surface(g, f.top);
     std::vector<std::size_t> taken;
     for (std::size_t i = 0; i < bed.n(); ++i)
-      if (f.state[i] == 0 && top.overlap(bed.x[i], bed.y[i], bed.z[i], bed.radius[i]) > capture * bed.radius[i])
+      if (stays_in_bed(f.state[i]) && top.overlap(bed.x[i], bed.y[i], bed.z[i], bed.radius[i]) > capture * bed.radius[i])
         taken.push_back(i);
     if (taken.empty()) return;
     const TopHeight before = f.top;
     for (const std::size_t i : taken) {
-      f.state[i] = 1;
+      f.balled -= f.state[i] == kBalled ? 1 : 0;
+      f.state[i] = kFused;
       keep[i] = 0;
       ++f.fused;
       ++f.captured;
@@ -148,6 +150,7 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
   const auto now = sinter.particle_phase();
   Fusion f;
   f.threshold = phase.melting_point + (melt_fraction - 0.5) * phase.window;
+  const std::vector<std::uint8_t> bonded = bonded_melt(bed, sinter, f.threshold);
   f.top = sinter.top_height();
   if (f.top.empty()) f.top.assign(g.nx * g.ny, g.z_top);
   f.solid_mass_before = solid_mass(g, f.top, rho0);
@@ -156,24 +159,26 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
   const std::size_t first_top = g.index(0, 0, g.nz - 1);
   for (std::size_t i = 0; i < bed.n(); ++i) {
     if (!merged.empty() && merged[i]) {  // in the pool during the scan: in the top already
-      f.state[i] = 1;
+      f.state[i] = kFused;
       keep[i] = 0;
       ++f.fused;
       continue;
     }
     f.powder_mass_before += mass[i];
     if (now[i] == 2) {  // vaporised: left the bed
-      f.state[i] = 2;
+      f.state[i] = kVapour;
       keep[i] = 0;
       ++f.vaporised;
       f.vaporised_mass += mass[i];
       continue;
     }
-    if (peak[i] < f.threshold) {
+    if (peak[i] < f.threshold || !bonded[i]) {  // powder, or a ball that met no molten solid
+      f.state[i] = peak[i] < f.threshold ? kPowder : kBalled;
+      f.balled += f.state[i] == kBalled ? 1 : 0;
       f.powder_mass_after += mass[i];
       continue;
     }
-    f.state[i] = 1;
+    f.state[i] = kFused;
     keep[i] = 0;
     ++f.fused;
     const double volume = mass[i] / rho0;

@@ -103,6 +103,7 @@ void RunWriter::fusion(const Fusion& f) {
   s.out.attribute("/fusion", "threshold", f.threshold);
   s.out.attribute("/fusion", "fused", static_cast<std::uint64_t>(f.fused));
   s.out.attribute("/fusion", "vaporised", static_cast<std::uint64_t>(f.vaporised));
+  s.out.attribute("/fusion", "balled", static_cast<std::uint64_t>(f.balled));
   s.out.attribute("/fusion", "powder_mass_before", f.powder_mass_before);
   s.out.attribute("/fusion", "powder_mass_after", f.powder_mass_after);
   s.out.attribute("/fusion", "solid_mass_before", f.solid_mass_before);

@@ -3,7 +3,9 @@
 // peak temperature reached T_m + (f − 1/2) ΔT had a melt fraction f at some moment (the apparent
 // heat capacity spreads the latent heat evenly over the window ΔT around T_m): it leaves the
 // powder and its volume joins the solid, spread evenly over the top-face columns under its
-// projected disc (top_footprint), which raises the solid's top there by V w_c / (dx dy).
+// projected disc (top_footprint), which raises the solid's top there by V w_c / (dx dy) — when
+// its melt met molten solid (bonding.hpp); one that melted on solid that did not melt froze as
+// a ball and stays in the bed as a sphere (balled).
 // The default f = 1/2 fuses what reached T_m, the isotherm the melt pool is measured on, so the
 // fused stripe is the measured melt (the window is the model's smoothing of melting at T_m, not
 // a mushy zone it resolves); f = 1 fuses only what was wholly liquid. A particle below the
@@ -22,11 +24,17 @@
 
 namespace powderbed::thermal {
 
+// What became of a particle of the scanned bed.
+enum FusionState : std::uint8_t { kPowder = 0, kFused = 1, kVapour = 2, kBalled = 3 };
+// Whether a particle in that state is still in the bed for the next layer (powder and balls).
+inline bool stays_in_bed(std::uint8_t state) { return state == kPowder || state == kBalled; }
+
 struct Fusion {
-  bed::Bed powder;                    // the particles left as powder (ids kept)
+  bed::Bed powder;                    // the particles left in the bed: powder and balls (ids kept)
   TopHeight top;                      // the solid's new top, per top-face column i + nx j, m
-  std::vector<std::uint8_t> state;    // per particle of the scanned bed: 0 powder, 1 fused, 2 vapour
+  std::vector<std::uint8_t> state;    // per particle of the scanned bed: a FusionState
   std::size_t fused = 0, vaporised = 0;
+  std::size_t balled = 0;             // melted, met no molten solid: frozen balls left in the bed
   std::size_t captured = 0;           // of the fused: powder the grown solid swallowed (capture)
   double threshold = 0;               // K: T_m + (f - 1/2) ΔT
   double powder_mass_before = 0, powder_mass_after = 0;  // kg
