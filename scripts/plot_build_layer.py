@@ -24,6 +24,7 @@ try:
     from matplotlib.collections import EllipseCollection
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
+    from mpl_toolkits.axes_grid1 import make_axes_locatable
 except ImportError as err:
     sys.stderr.write(f"plot_build_layer: {err} (Debian: python3-matplotlib python3-h5py)\n")
     sys.exit(4)
@@ -122,7 +123,7 @@ def draw_fusion(d, layer):
               interpolation="nearest")
     cells = d["lof"].size
     handles = [Patch(facecolor=c, edgecolor="0.25",
-                     label=f"{name} ({np.sum(d['lof'] == v) / cells:.0%} of the plate)")
+                     label=f"{name} ({np.sum(d['lof'] == v) / cells:.1%} of the plate)")
                for v, name, c in LOF_CELLS]
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1), borderaxespad=0)
     ax.set_title(f"layer {layer}: lack of fusion, {d['lof_fraction']:.1%} of the scanned area")
@@ -134,7 +135,9 @@ def draw_height(d, layer):
     h = d["height"] / UM
     image = ax.imshow(h, origin="lower", extent=extent_um(d), cmap="viridis", vmin=0,
                       vmax=max(float(h.max()), 1e-3), interpolation="nearest")
-    fig.colorbar(image, ax=ax, label="solid top above the plate (µm)", shrink=0.9)
+    # A bar as tall as the map, whatever the plate's aspect.
+    bar = make_axes_locatable(ax).append_axes("right", size=0.2, pad=0.15)
+    fig.colorbar(image, cax=bar, label="height (µm)")
     ax.set_title(f"layer {layer}: the solid's top, {h.min():.1f} to {h.max():.1f} µm above the plate")
     return fig
 
