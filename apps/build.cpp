@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "build_pictures.hpp"
 #include "common/app_main.hpp"
 #include "common/json_units.hpp"
 #include "common/options.hpp"
@@ -50,7 +51,7 @@ namespace th = thermal;
 const char* const kUsage =
     "build --config BUILD.ini | --spread SPREAD.ini --sinter SINTER.ini --seed S --out DIR "
     "[--layers N] [--in DIR/layer-NNN.h5] [--spread-args \"...\"] [--sinter-args \"...\"] "
-    "[--fuse.melt-fraction F] [--snapshots K] [--json]";
+    "[--fuse.melt-fraction F] [--snapshots K] [--pictures false] [--json]";
 
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
@@ -78,7 +79,10 @@ void add_options(po::options_description& desc) {
        "capillary levelling of each layer's deposit: a Gaussian of this standard deviation (m; "
        "default half the beam radius; 0: none; thermal/fusion.hpp)")
       ("snapshots", po::value<std::size_t>()->default_value(10),
-       "snapshots in each layer's scan file (besides t = 0)");
+       "snapshots in each layer's scan file (besides t = 0)")
+      ("pictures", po::value<bool>()->default_value(true),
+       "draw each layer's pictures as PNGs: the particles by state, the lack-of-fusion map, the "
+       "solid's height (docs/build.md \"Pictures\"; without matplotlib: one warning, no pictures)");
 }
 
 // A scene path as given, or beside the build scene when it is relative and not found here.
@@ -224,6 +228,7 @@ struct LayerReport {
   double solid_mass = 0;                   // kg above the plate after the layer
   std::size_t captured = 0;                // of the fused: powder the grown solid swallowed
   std::size_t balled = 0;                  // melted on solid that did not melt: balls left in the bed
+  app::LayerPictureFiles pictures;         // the layer's PNGs in --out (none: --pictures false)
 };
 
 void layer_json(bed::JsonWriter& j, const LayerReport& l) {
@@ -262,8 +267,10 @@ void layer_json(bed::JsonWriter& j, const LayerReport& l) {
       .value("mass_error", l.mass_error)
       .value("solid_top_min", l.top_min)
       .value("solid_top_max", l.top_max)
-      .value("solid_mass", l.solid_mass)
-      .end_object();
+      .value("solid_mass", l.solid_mass);
+  j.begin_object("pictures");
+  for (const auto& [kind, file] : l.pictures) j.value(kind, file);
+  j.end_object().end_object();
 }
 
 // Everything a layer needs that stays from one layer to the next.
@@ -569,12 +576,15 @@ int run(int argc, char** argv) {
   OutFolderGuard guard{b.out, make_out(b.out)};
 
   app::ProgressBar bar("build", app::progress_interval(vm));
+  app::LayerPictures pictures(vm["pictures"].as<bool>());
   std::vector<LayerReport> reports;
   const auto started = std::chrono::steady_clock::now();
   for (std::uint64_t layer = first; layer < first + layers; ++layer) {
     const double done = static_cast<double>(layer - first) / static_cast<double>(layers);
     const double share = 0.5 / static_cast<double>(layers);
     reports.push_back(build_layer(b, bed, state, layer, bar, done, share, argc, argv));
+    // Drawn from the layer's files once they are in place: a picture never fails the build.
+    reports.back().pictures = pictures.draw(layer_file(b.out, layer, "-scan"), b.out, layer);
   }
   bar.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

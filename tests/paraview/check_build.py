@@ -7,13 +7,13 @@ lack of fusion). Exits 77 (ctest: skipped) with a message when pvpython or xvfb-
 Usage: check_build.py BUILD_PROGRAM"""
 import json
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
 
+import pvrun
+
 SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "build-small")
-XVFB = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24"]
 READ = """
 import json, sys
 from paraview.simple import XDMFReader
@@ -27,7 +27,7 @@ print(json.dumps({"blocks": data.GetNumberOfBlocks(),
 
 
 def main():
-    if not shutil.which("pvpython") or not shutil.which("xvfb-run"):
+    if pvrun.missing_tools():
         print("skipped: pvpython or xvfb-run not installed (scripts/setup.sh installs them)")
         return 77
     with tempfile.TemporaryDirectory() as work:
@@ -37,12 +37,7 @@ def main():
         script = os.path.join(work, "read.py")
         with open(script, "w") as f:
             f.write(READ)
-        for attempt in range(5):  # 5.11 sometimes fails to open the virtual display under load
-            run = subprocess.run([*XVFB, "pvpython", script, os.path.join(out, "layer-001-scan.xmf")],
-                                 capture_output=True, text=True, timeout=240)
-            if run.returncode == 0 or "bad X server connection" not in run.stderr:
-                break
-        assert run.returncode == 0, run.stderr[-2000:]
+        run = pvrun.pvpython(script, os.path.join(out, "layer-001-scan.xmf"))
         info = json.loads(run.stdout.strip().splitlines()[-1])
     print(info)
     assert info["blocks"] == 4, info

@@ -6,8 +6,6 @@ missing. Needs PYTHONPATH = the build's python/ folder (tests/CMakeLists.txt set
 import json
 import math
 import os
-import shutil
-import subprocess
 import sys
 import tempfile
 
@@ -16,12 +14,11 @@ import numpy as np
 from matplotlib import image
 
 import powderbed
+import pvrun
 
 SOURCE = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 RENDER = os.path.join(SOURCE, "scripts", "render_paraview.py")
 THRESHOLD = os.path.join(os.path.dirname(__file__), "threshold.py")
-# ParaView 5.11's OpenGL needs a 24-bit screen; xvfb-run's default is 8 bits.
-XVFB = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24"]
 
 # The known bed: 6 x 3 spheres on a 1 x 0.5 mm floor, radii 30 to 45 um, 167 um apart (no two
 # overlap in a top view). An 800 x 400 picture of the floor is 8e5 pixels per metre, so the
@@ -42,18 +39,7 @@ def known_bed(path):
 
 
 def pvpython(*args):
-    """pvpython ARGS under a fresh virtual X server. Retried (5 tries) when ParaView aborts with
-    "bad X server connection": on a loaded machine (here: 2 cores, load 13) 5.11's render window
-    failed to open its display in about half of the starts, with the server up and accepting
-    other clients."""
-    for attempt in range(5):
-        out = subprocess.run([*XVFB, "pvpython", *args], capture_output=True, text=True,
-                             timeout=240)
-        if out.returncode == 0 or "bad X server connection" not in out.stderr:
-            break
-        print(f"pvpython could not open the virtual display (try {attempt + 1} of 5)")
-    assert out.returncode == 0, out.stderr[-2000:]
-    return out.stdout
+    return pvrun.pvpython(*args).stdout
 
 
 def render(xmf, png, *options):
@@ -133,7 +119,7 @@ def check_sinter_series(work):
 
 
 def main():
-    missing = [tool for tool in ("pvpython", "xvfb-run") if shutil.which(tool) is None]
+    missing = pvrun.missing_tools()
     if missing:
         print(f"skipped: {' and '.join(missing)} not found (Debian: python3-paraview, xvfb, "
               "xauth; scripts/setup.sh installs them)")

@@ -1,0 +1,38 @@
+#pragma once
+// build's pictures of each layer (docs/build.md "Pictures"): scripts/plot_build_layer.py draws
+// them with matplotlib, run through the wrapper the build system writes beside the programs
+// (python/CMakeLists.txt), which pins the interpreter the build found. A picture is never worth
+// a failed build: when the plotter is missing or fails, one warning line says why and the build
+// goes on without pictures.
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace powderbed::app {
+
+// The picture files of a layer: (kind, file name in the build's folder), kind top, fusion, height.
+using LayerPictureFiles = std::vector<std::pair<std::string, std::string>>;
+
+class LayerPictures {
+ public:
+  // `on`: --pictures; the plotter is looked for beside this program (find_layer_plotter).
+  explicit LayerPictures(bool on);
+  // Draws layer `layer`'s pictures from its scan file into `out` as layer-NNN-KIND.png; returns
+  // the files written, none when pictures are off or could not be drawn (then, the first time,
+  // one warning line on stderr, and no later layer tries again).
+  LayerPictureFiles draw(const std::string& scan_file, const std::string& out, std::uint64_t layer);
+
+ private:
+  void give_up(std::uint64_t layer, const std::string& why);
+  bool on_;
+  std::string plotter_;
+  std::string missing_;  // why there is no plotter (empty when there is one)
+};
+
+// The plotter beside the running program: ../scripts/plot_build_layer in a build tree
+// (build/apps/build), ../libexec/powderbed/plot_build_layer where cmake --install put it. Empty
+// when neither is there; `looked` gets the paths tried.
+std::string find_layer_plotter(std::string& looked);
+
+}  // namespace powderbed::app
