@@ -21,6 +21,9 @@ def run_walk(tmp_path, page, budget=10):
     source.mkdir()
     build.mkdir()
     (source / "README.md").write_text("a source tree without git: copied whole\n")
+    (source / "docs").mkdir()
+    (source / "docs" / "build.md").write_text("copied: only the root's build* are build outputs\n")
+    (source / "build-other").mkdir()
     return subprocess.run([sys.executable, os.path.join(HERE, "walk.py"), "--source", str(source),
                            "--build", str(build), "--budget", str(budget),
                            os.path.join(FIXTURES, page)], capture_output=True, text=True,
@@ -31,9 +34,9 @@ def test_a_page_that_runs_passes_and_its_skipped_block_is_not_run(tmp_path):
     result = run_walk(tmp_path, "passes.md")
     assert result.returncode == 0, result.stdout + result.stderr
     assert "skip " in result.stdout and "it would fail" in result.stdout
-    # Three commands in the sh block's five lines (one a comment, two joined by a continuation), two
+    # Four commands in the sh block's six lines (one a comment, two joined by a continuation), two
     # in the console block; the ```text synopsis is not run.
-    assert result.stdout.count("run  ") == 5, result.stdout
+    assert result.stdout.count("run  ") == 6, result.stdout
 
 
 def test_a_failing_command_fails_the_walk_with_page_line_and_output(tmp_path):

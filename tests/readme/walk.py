@@ -25,6 +25,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import time
 from dataclasses import dataclass, field
 
 SHELL_LANGUAGES = {"sh", "bash", "shell"}
@@ -161,12 +162,23 @@ def tracked_files(source):
             if name and os.path.isfile(os.path.join(source, name))]
 
 
+def build_outputs(source):
+    """copytree's ignore: the root's build folders, out/ and .git (docs/build.md is a page)."""
+    root = os.path.abspath(source)
+
+    def ignored(folder, names):
+        if os.path.abspath(folder) != root:
+            return []
+        return [name for name in names if name.startswith("build") or name in ("out", ".git")]
+    return ignored
+
+
 def make_checkout(source, build, scratch):
     """A copy of the repository's files in `scratch` with `build` linked to the build folder."""
     names = tracked_files(source)
     if names is None:  # a source tree without git (an unpacked archive): all but build outputs
         shutil.copytree(source, scratch, dirs_exist_ok=True, symlinks=True,
-                        ignore=shutil.ignore_patterns("build*", "out", ".git"))
+                        ignore=build_outputs(source))
     else:
         for name in names:
             os.makedirs(os.path.join(scratch, os.path.dirname(name)), exist_ok=True)
@@ -237,7 +249,9 @@ def walk_page(page, blocks, session, budget):
             continue
         for command in block.commands:
             print(f"run  {page}:{command.line}: {command.text.splitlines()[0]}", flush=True)
+            start = time.monotonic()
             status, output = run_command(command, session, budget)
+            print(f"     {time.monotonic() - start:.1f} s", flush=True)  # how near the budget
             if status != 0:
                 # The commands after it read what it would have written: stop the page here.
                 return [failure_report(page, command, status, output, budget)]
