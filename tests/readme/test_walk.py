@@ -73,10 +73,15 @@ def test_markers_are_read_with_their_reason_and_refused_otherwise(tmp_path):
     blocks = walk.read_page(page_of(tmp_path, "<!-- readme-walk: skip (slow: 4 min) -->\n\n"
                                               "```sh\nfalse\n```\n"))
     assert blocks[0].skip_reason == "slow: 4 min"
+    # A marker quoted in prose is text, not a marker.
+    quoted = walk.read_page(page_of(tmp_path, "Write `<!-- readme-walk: skip (why) -->`.\n\n"
+                                              "```sh\ntrue\n```\n"))
+    assert quoted[0].skip_reason is None
     for bad in ("<!-- readme-walk: skip -->\n```sh\nx\n```\n",          # no reason
                 "<!-- readme-walk: skipp (typo) -->\n```sh\nx\n```\n",  # unknown marker
                 "<!-- readme-walk: skip (why) -->\ntext\n```sh\nx\n```\n",  # not right before
                 "<!-- readme-walk: skip (why) -->\n```ini\nx = 1\n```\n",   # not a shell block
+                "<!-- readme-walk skip (why) -->\n```sh\nx\n```\n",   # no colon: a typo
                 "<!-- readme-walk: skip (why) -->\n"):                     # no block after it
         with pytest.raises(walk.PageError):
             walk.read_page(page_of(tmp_path, bad))

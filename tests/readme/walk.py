@@ -30,7 +30,8 @@ from dataclasses import dataclass, field
 
 SHELL_LANGUAGES = {"sh", "bash", "shell"}
 CONSOLE_LANGUAGE = "console"
-MARKER = re.compile(r"<!--\s*readme-walk:(.*?)-->")
+# A marker is an HTML comment on a line of its own (one quoted in prose, in backticks, is text).
+MARKER = re.compile(r"^\s*<!--\s*readme-walk:(.*?)-->\s*$")
 SKIP = re.compile(r"^\s*skip\s*\((.*)\)\s*$")
 FENCE = re.compile(r"^( {0,3})(`{3,}|~{3,})\s*([^`\s]*)")
 OUTPUT_TAIL_LINES = 40
@@ -52,6 +53,19 @@ class Block:
     language: str
     skip_reason: str | None = None
     commands: list[Command] = field(default_factory=list)
+
+
+def marker_reason(line, where):
+    """The skip reason of a marker line; None for any other line. Refuses a comment that names
+    readme-walk but is not a marker the walk reads (a typo would otherwise drop the skip)."""
+    stripped = line.strip()
+    if not (stripped.startswith("<!--") and "readme-walk" in stripped):
+        return None
+    marker = MARKER.match(line)
+    if not marker:
+        raise PageError(f"{where}: not a readme-walk marker: '{stripped}' "
+                        "(accepted: <!-- readme-walk: skip (REASON) --> on a line of its own)")
+    return parse_marker(marker.group(1), where)
 
 
 def parse_marker(text, where):
@@ -122,7 +136,7 @@ def read_page(path, name=None):
     while index < len(lines):
         line, where = lines[index], f"{path}:{index + 1}"
         fence = FENCE.match(line)
-        marker = MARKER.search(line)
+        marker = marker_reason(line, where)
         if fence:
             indent, ticks, language = fence.groups()
             end = closing_fence(lines, index, ticks)
@@ -140,8 +154,8 @@ def read_page(path, name=None):
                                     commands_of(language, body, index + 2)))
             reason, index = None, end + 1
             continue
-        if marker:
-            reason, reason_line = parse_marker(marker.group(1), where), index + 1
+        if marker is not None:
+            reason, reason_line = marker, index + 1
         elif line.strip() and reason is not None:
             raise PageError(f"{path}:{reason_line}: a readme-walk marker must be the last "
                             "non-blank line before a shell block")
