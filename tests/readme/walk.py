@@ -128,40 +128,46 @@ def closing_fence(lines, start, fence):
     return len(lines)
 
 
+def fenced_block(lines, index, fence, where, marked):
+    """(Block or None, index of the closing fence) for the fence opened at `index`; `marked`: the
+    marker's place when a skip marker stands before it, else None."""
+    indent, ticks, language = fence.groups()
+    end = closing_fence(lines, index, ticks)
+    if not language:
+        raise PageError(f"{where}: a fence without a language: write ```sh for commands the walk "
+                        "runs, ```text for a synopsis or output")
+    if language not in SHELL_LANGUAGES and language != CONSOLE_LANGUAGE:
+        if marked:
+            raise PageError(f"{marked[0]}: a readme-walk marker before a ```{language} block "
+                            "(only shell blocks are walked)")
+        return None, end
+    # Content indented like its fence (in a list item) is read without that indentation.
+    body = [line[len(indent):] if line.startswith(indent) else line
+            for line in lines[index + 1:end]]
+    reason = marked[1] if marked else None
+    return Block(index + 1, language, reason, commands_of(language, body, index + 2)), end
+
+
 def read_page(path, name=None):
     """The page's shell blocks, with their skip markers; raises PageError on a refused page."""
     lines = open(path, encoding="utf-8").read().splitlines()
     path = name or path
-    blocks, reason, reason_line, index = [], None, 0, 0
+    blocks, marked, index = [], None, 0  # marked: (where, reason) of a pending skip marker
     while index < len(lines):
         line, where = lines[index], f"{path}:{index + 1}"
         fence = FENCE.match(line)
-        marker = marker_reason(line, where)
         if fence:
-            indent, ticks, language = fence.groups()
-            end = closing_fence(lines, index, ticks)
-            if not language:
-                raise PageError(f"{where}: a fence without a language: write ```sh for commands "
-                                "the walk runs, ```text for a synopsis or output")
-            body = [body_line[len(indent):] if body_line.startswith(indent) else body_line
-                    for body_line in lines[index + 1:end]]
-            walked = language in SHELL_LANGUAGES or language == CONSOLE_LANGUAGE
-            if reason is not None and not walked:
-                raise PageError(f"{path}:{reason_line}: a readme-walk marker before a "
-                                f"```{language} block (only shell blocks are walked)")
-            if walked:
-                blocks.append(Block(index + 1, language, reason,
-                                    commands_of(language, body, index + 2)))
-            reason, index = None, end + 1
-            continue
-        if marker is not None:
-            reason, reason_line = marker, index + 1
-        elif line.strip() and reason is not None:
-            raise PageError(f"{path}:{reason_line}: a readme-walk marker must be the last "
-                            "non-blank line before a shell block")
+            block, index = fenced_block(lines, index, fence, where, marked)
+            blocks += [block] if block else []
+            marked = None
+        elif (reason := marker_reason(line, where)) is not None:
+            marked = (where, reason)
+        elif line.strip() and marked:
+            raise PageError(f"{marked[0]}: a readme-walk marker must be the last non-blank line "
+                            "before a shell block")
         index += 1
-    if reason is not None:
-        raise PageError(f"{path}:{reason_line}: a readme-walk marker with no block after it")
+    if marked:
+        raise PageError(f"{marked[0]}: a readme-walk marker with no block after it")
     return blocks
 
 
