@@ -34,9 +34,9 @@ def test_a_page_that_runs_passes_and_its_skipped_block_is_not_run(tmp_path):
     result = run_walk(tmp_path, "passes.md")
     assert result.returncode == 0, result.stdout + result.stderr
     assert "skip " in result.stdout and "it would fail" in result.stdout
-    # Four commands in the sh block's six lines (one a comment, two joined by a continuation), two
+    # Four commands in the sh block's six lines (one a comment, two joined by a continuation), three
     # in the console block; the ```text synopsis is not run.
-    assert result.stdout.count("run  ") == 6, result.stdout
+    assert result.stdout.count("run  ") == 7, result.stdout
 
 
 def test_a_failing_command_fails_the_walk_with_page_line_and_output(tmp_path):

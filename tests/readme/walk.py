@@ -230,6 +230,10 @@ class Session:
     state: str  # folder the runner saves them in
 
     def load(self):
+        """Takes up what the command left; a command that ended the shell itself (`exit 0`)
+        left nothing, and the session stays as it was."""
+        if not os.path.exists(os.path.join(self.state, "cwd")):
+            return
         with open(os.path.join(self.state, "env"), "rb") as saved:
             pairs = [item.split(b"=", 1) for item in saved.read().split(b"\0") if b"=" in item]
         self.env = {key.decode(): value.decode(errors="surrogateescape") for key, value in pairs}
@@ -240,6 +244,9 @@ class Session:
 def run_command(command, session, budget):
     """(status, output) of one command; status None when it ran past the budget (then killed)."""
     env = dict(session.env, WALK_CWD=session.cwd, WALK_STATE=session.state)
+    for saved in ("env", "cwd"):  # what the previous command left is not this one's
+        if os.path.exists(os.path.join(session.state, saved)):
+            os.remove(os.path.join(session.state, saved))
     process = subprocess.Popen(["bash", "-c", RUNNER.format(command=command.text)], env=env,
                                cwd=session.cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                stdin=subprocess.DEVNULL, start_new_session=True)
