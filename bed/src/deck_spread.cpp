@@ -166,9 +166,11 @@ struct Names {
   std::string tool, floor;  // STL names relative to the deck's folder
 };
 
-// The wall/gran of a mesh, with the model and settings of the box's walls.
-std::string mesh_wall(const std::string& id, const std::string& mesh, const LiggghtsContact& c) {
-  return "fix            " + id + " all wall/gran " + c.model + " mesh n_meshes 1 meshes " + mesh +
+// The wall/gran of the meshes (the tool, and the floor when there is one: LIGGGHTS 3.8 takes one
+// mesh wall/gran fix only), with the model and settings of the box's walls.
+std::string mesh_wall(const SpreadDeck& s, const LiggghtsContact& c) {
+  return "fix            tool_wall all wall/gran " + c.model +
+         (s.floor.empty() ? " mesh n_meshes 1 meshes tool" : " mesh n_meshes 2 meshes floor tool") +
          c.settings + "\n";
 }
 
@@ -219,7 +221,7 @@ void layer_body(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, c
   const Domain& d = bed.domain;
   out << "  fix            tool all mesh/surface file " << names.tool << " type " << type_count(bed) + 1
       << " move 0 0 ${RAISE}\n"
-      << "  " << mesh_wall("tool_wall", "tool", c)
+      << "  " << mesh_wall(s, c)
       << "  run            " << steps_of(t.delay, laws.dt) << "  # recoater.delay: the supply settles\n"
       << "  fix            push all move/mesh mesh tool linear " << num(t.speed) << " 0 0\n";
   if (t.roller && t.omega != 0) {
@@ -254,8 +256,7 @@ std::string spread_body(const Bed& bed, const DeckLaws& laws, const SpreadDeck& 
   std::ostringstream out;
   if (!s.floor.empty()) {
     out << "# The solid the powder is spread on (the fused top of the layers before), as an STL\n"
-        << "fix            floor all mesh/surface file " << names.floor << " type " << type_count(bed) + 1 << "\n"
-        << mesh_wall("floor_wall", "floor", c);
+        << "fix            floor all mesh/surface file " << names.floor << " type " << type_count(bed) + 1 << "\n";
   }
   body_forces(out, laws);
   if (s.layers > 1) supply_templates(out, s, laws);
