@@ -164,6 +164,9 @@ void setup(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckEn
   } else {
     out << "newton         off\ncommunicate    single vel yes\n"
         << "hard_particles yes  # E above 1 GPa\n";
+    // LIGGGHTS refuses E < 5 MPa in SI units unless told (a young-scale of 1e5 softens 316L to 1.9 MPa)
+    if (laws.law == "hertz" && std::min(laws.young, laws.wall_young) / laws.young_scale < 5e6)
+      out << "soft_particles yes  # E / young-scale below 5 MPa\n";
   }
   out << "read_data      " << data_name << "\n"
       << "neighbor       " << num(0.1 * max_diameter(bed)) << " bin  # skin 0.1 x the largest diameter\n"
