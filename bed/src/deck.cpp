@@ -115,11 +115,13 @@ void header(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckE
   out << "# " << (lammps ? "LAMMPS" : "LIGGGHTS") << " input deck for " << data_name << ", written by "
       << (bed.provenance.created_by.empty() ? "powderbed" : bed.provenance.created_by) << "\n"
       << "# Run in this folder: " << exe << " -in " << name_of(files.input)
-      << " [-var NSTEPS N] [-var DUMP_EVERY K], or mpirun -np 4 " << exe << " -in "
-      << name_of(files.input) << "\n"
-      << "# Writes " << files.dump << " (id type x y z vx vy vz radius at %.17g: bedconv reads it "
-      << "back exactly) and " << files.final_data << ". SI units.\n"
-      << "# Where each number comes from:\n";
+      << (files.dump.empty() ? "" : " [-var NSTEPS N] [-var DUMP_EVERY K]") << ", or mpirun -np 4 "
+      << exe << " -in " << name_of(files.input) << "\n";
+  // a spreading deck (no dump of its own) says what it writes after its loop
+  if (!files.dump.empty())
+    out << "# Writes " << files.dump << " (id type x y z vx vy vz radius at %.17g: bedconv reads it "
+        << "back exactly) and " << files.final_data << ". SI units.\n";
+  out << "# Where each number comes from:\n";
   for (const auto& line : laws.origin) out << "#   " << line << "\n";
   out << "# Damping: deposit's dashpot c = 2 zeta sqrt(m* k_n) (k_n = dF/d delta); ";
   if (lammps) {
@@ -149,11 +151,12 @@ void setup(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckEn
            const std::string& data_name, const DeckFiles& files) {
   const bool lammps = engine == DeckEngine::lammps;
   const Domain& d = bed.domain;
-  out << "\nvariable NSTEPS     index " << laws.steps << "\n"
-      << "variable DUMP_EVERY index ${NSTEPS}\n"
-      << "variable DUMP       index " << files.dump << "\n"
-      << "variable FINAL      index " << files.final_data << "\n\n"
-      << "units          si\n"
+  if (!files.dump.empty())  // the run's length and snapshots (a spreading deck's are its tool's)
+    out << "\nvariable NSTEPS     index " << laws.steps << "\n"
+        << "variable DUMP_EVERY index ${NSTEPS}\n"
+        << "variable DUMP       index " << files.dump << "\n"
+        << "variable FINAL      index " << files.final_data << "\n";
+  out << "\nunits          si\n"
       << "atom_style     " << (lammps ? "sphere" : "granular") << "\n"
       << "atom_modify    map array\n"
       << "dimension      3\n"

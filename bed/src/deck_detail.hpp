@@ -15,7 +15,8 @@ std::string num(double v);                     // %.17g: reads back as the same 
 std::size_t type_count(const Bed& bed);        // particle atom types (materials)
 // The bed and the laws checked (InputError naming what is wrong).
 void check(const Bed& bed, const DeckLaws& laws, const std::string& data_path);
-// The comment header (where every number came from, the damping mapping).
+// The comment header (where every number came from, the damping mapping). A DeckFiles with no
+// dump (a spreading deck's) leaves out the drop deck's run variables and dump.
 void header(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckEngine engine,
             const std::string& data_name, const DeckFiles& files);
 // Variables, units, atom style, boundary, read_data, neighbour list.

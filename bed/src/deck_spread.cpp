@@ -295,13 +295,15 @@ void write_spread_deck(const Bed& bed, const DeckLaws& laws, const SpreadDeck& s
                        const std::string& data_path) {
   check(bed, laws, data_path);
   check_spread(bed, laws, s);
-  const DeckFiles files = deck_files(data_path, DeckEngine::liggghts);
+  DeckFiles files = deck_files(data_path, DeckEngine::liggghts);
+  files.dump.clear();  // each layer's dump instead (spread_layer_dump)
   const Names names{name_of(spread_tool_stl(data_path)), name_of(spread_floor_stl(data_path))};
   std::ostringstream deck;
   header(deck, bed, laws, DeckEngine::liggghts, name_of(data_path), files);
   deck << "# A spread (docs/decks.md \"Spreading decks\"): the recoater " << names.tool
        << " moves along +x at recoater.speed, layer after layer;\n#   each layer's bed is written to "
-       << stem_of(data_path) << ".liggghts.layer-L.lammpstrj.\n";
+       << stem_of(data_path) << ".liggghts.layer-L.lammpstrj (id type x y z vx vy vz radius at %.17g), the\n#   end to "
+       << files.final_data << ". SI units.\n";
   setup(deck, bed, laws, DeckEngine::liggghts, name_of(data_path), files);
   const LiggghtsContact contact = liggghts_laws(deck, bed, laws);
   const std::string layer_dump = stem_of(data_path) + ".liggghts.layer";
