@@ -142,20 +142,21 @@ void check_spread(const Bed& bed, const DeckLaws& laws, const SpreadDeck& s) {
   if (d.periodic[0])
     throw InputError("deck: a spread box periodic along x (accepted: periodic y or none)");
   if (t.start - half < d.lower[0] || t.end + half > d.upper[0])
-    throw InputError(fmt::format("deck: the tool spans x = {:g} to {:g} m, beyond the box [{:g}, {:g}] m "
-                                 "(LIGGGHTS drops mesh elements outside the box; accepted: a tool inside it)",
+    throw InputError(fmt::format("recoater.start, recoater.end: the tool spans x = {:g} to {:g} m, beyond the "
+                                 "box [{:g}, {:g}] m (LIGGGHTS drops mesh elements outside the box; accepted "
+                                 "for a deck: a tool inside it)",
                                  t.start - half, t.end + half, d.lower[0], d.upper[0]));
   const double bottom = d.lower[2] + t.gap;
   const double needed = t.roller ? bottom + 2 * t.rounding : bottom + 2 * t.rounding + 1e-9;
   if (s.layers == 0 || !(tool_top(d, s) > needed))
-    throw InputError(fmt::format("deck: the tool of layer {} rises above the box's top {:g} m (accepted: "
+    throw InputError(fmt::format("--layers: the tool of layer {} rises above the box's top {:g} m (accepted: "
                                  "a taller box or fewer layers)", s.layers, d.upper[2]));
   if (!(t.speed > 0) || !(t.end > t.start))
-    throw InputError("deck: the tool must move forwards (recoater.speed > 0, end > start)");
+    throw InputError("recoater.speed, recoater.end: the tool must move forwards (accepted: speed > 0, end > start)");
   if (s.layers > 1) {
     const double base = bottom + static_cast<double>(s.layers - 2) * s.layer_thickness;
     if (s.psd_bins.empty() || !(s.supply_x1 > s.supply_x0) || base + s.supply_height > d.upper[2])
-      throw InputError(fmt::format("deck: the supply of layer {} ({:g} m tall from z = {:g} m) does not fit "
+      throw InputError(fmt::format("supply.height: the supply of layer {} ({:g} m tall from z = {:g} m) does not fit "
                                    "the box (accepted: supply.height <= {:g} m)",
                                    s.layers, s.supply_height, base, d.upper[2] - base));
   }
