@@ -40,6 +40,7 @@
 #include "powderbed/thermal/run_output.hpp"
 #include "powderbed/thermal/solver.hpp"
 #include "sinter_options.hpp"
+#include "spread_engine_liggghts.hpp"
 
 namespace {
 
@@ -51,12 +52,13 @@ namespace th = thermal;
 const char* const kUsage =
     "build --config BUILD.ini | --spread SPREAD.ini --sinter SINTER.ini --seed S --out DIR "
     "[--layers N] [--in DIR/layer-NNN.h5] [--spread-args \"...\"] [--sinter-args \"...\"] "
-    "[--fuse.melt-fraction F] [--snapshots K] [--pictures false] [--json]";
+    "[--fuse.melt-fraction F] [--snapshots K] [--pictures false] [--spread-engine liggghts [--mpi N]] [--json]";
 
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
   app::add_threads_option(desc);
   app::add_progress_option(desc);
+  app::add_spread_engine_options(desc);
   desc.add_options()
       ("spread", po::value<std::string>(),
        "deposit recoater scene of every layer's spread (recoater.tool; relative: to the build "
@@ -287,6 +289,7 @@ struct Build {
   std::size_t snapshots = 10;
   std::size_t scan_layer0 = 0;  // the sinter scene's scan.layer: the first layer's rotation step
   std::string command_line;
+  std::optional<app::LiggghtsEngine> engine;  // --spread-engine liggghts; none: dem::run_spread
 };
 
 // The tool's lowest point above the plate at layer k (the plate has gone down k - 1 layers).
@@ -432,6 +435,7 @@ Build read_build(const po::variables_map& vm, int argc, char** argv) {
   b.scene = app::deposit_scene(b.dvm, b.spread_options.scene);
   b.spread = app::spread_settings(b.dvm, b.spread_options.spread, seed);
   b.spread.layers = 1;
+  b.engine = app::spread_engine(vm, b.dvm, seed);  // liggghts and mpirun found before layer 1
   return b;
 }
 
@@ -498,7 +502,10 @@ LayerReport build_layer(const Build& b, bed::Bed& bed, std::optional<dem::Spread
   s.progress = [&](double f, double) {
     bar.draw(done + share * f, fmt::format("layer {} spread", layer));
   };
-  const dem::SpreadSummary spread = dem::run_spread(bed, b.scene, s, state ? &*state : nullptr);
+  const dem::SpreadSummary spread =
+      b.engine ? app::liggghts_spread_layer(*b.engine, bed, b.scene, s, state, layer,
+                                            (fs::path(b.out) / fmt::format("liggghts-{:03d}", layer)).string())
+               : dem::run_spread(bed, b.scene, s, state ? &*state : nullptr);
   rep.spread = spread.layers.back();
   rep.rebuilds = spread.neighbour_rebuilds;
   dem::SpreadState next = spread.state;

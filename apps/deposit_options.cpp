@@ -76,7 +76,9 @@ void add_run_options(po::options_description& desc, dem::RunSettings& run, dem::
       ("trajectory", po::value<std::string>(), "HDF5 time series of snapshots (+ .xmf)")
       ("export-deck", po::value<std::string>(),
        "also write the settled bed as a LAMMPS data file and a lammps or liggghts input deck with "
-       "this run's laws beside --out: BED.data, in.BED.<engine> (docs/decks.md)")
+       "this run's laws beside --out: BED.data, in.BED.<engine> (docs/decks.md); with "
+       "recoater.tool (liggghts only) the spread's deck instead of the spread: the first "
+       "layer's supply, the tool as BED.tool.stl and the layer loop")
       ("every", po::value<std::uint64_t>()->default_value(0), "steps between snapshots");
 }
 

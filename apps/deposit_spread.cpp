@@ -17,9 +17,11 @@
 #include <fmt/format.h>
 
 #include "common/app_main.hpp"
+#include "common/deck_export.hpp"
 #include "common/progress.hpp"
 #include "common/thermo_table.hpp"
 #include "deposit_options.hpp"
+#include "spread_deck.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/h5_output.hpp"
 #include "powderbed/bed/io.hpp"
@@ -297,11 +299,6 @@ void refuse_drop_options(const po::variables_map& vm) {
                                    name));
     }
   }
-  if (vm.count("export-deck")) {  // a deck has the bed's laws but no moving tool
-    throw InputError("--export-deck: with recoater.tool (accepted: a drop; for a spread bed, "
-                     "bedconv BED.h5 BED.data --deck lammps writes the bed and its laws without "
-                     "the recoater)");
-  }
   if (vm["until-rest"].as<bool>() || vm["lid"].as<bool>() || vm["lid.enabled"].as<bool>() ||
       vm["insert.enabled"].as<bool>() || vm["integrator"].as<std::string>() != "verlet") {
     throw InputError("recoater.tool: with --until-rest, the lid, insertion or --integrator rk4 "
@@ -415,6 +412,44 @@ std::string spread_summary(const po::variables_map& vm, const dem::SpreadSummary
   return text.str();
 }
 
+// --export-deck in spreading mode: the deck of the spread instead of the spread (docs/decks.md
+// "Spreading decks"): the bed (--in's or none) with the first layer's supply as deposit places
+// it, the time step deposit would take, and the deck, tool and floor files beside --out.
+int export_spread_deck(const po::variables_map& vm, const DepositOptions& bound, std::uint64_t seed,
+                       const std::string& out, int argc, char** argv) {
+  const std::string engine = vm["export-deck"].as<std::string>();
+  check_spread_deck_engine(engine, "--export-deck");
+  check_paths({}, deck_outputs(engine, out));
+  std::optional<dem::SpreadState> restart;
+  bed::Bed bed = spread_input(vm, restart);
+  const dem::Scene scene = deposit_scene(vm, bound.scene);
+  const dem::SpreadSettings s = spread_settings(vm, bound.spread, seed);
+  SpreadDeckRequest r;
+  r.first = (restart ? restart->layers_done : 0) + 1;
+  if (restart) r.floor = restart->floor;
+  const std::size_t supplied = dem::add_layer_supply(bed, s, r.floor, r.first);
+  set_spread_provenance(bed, vm, scene, "deposit", argc, argv);
+  const bed::Psd psd = bed::Psd::parse(required<std::string>(vm, "psd"), "--psd");
+  r.bed = &bed;
+  r.scene = &scene;
+  r.settings = &s;
+  r.psd = &psd;
+  r.seed = seed;
+  r.layers = vm["layers"].as<std::uint64_t>();
+  r.dt = restart ? restart->dt : spread_time_step(bed, scene, s);
+  r.supply_count = vm["supply.count"].as<std::size_t>();
+  r.supply_volume = vm["supply.volume"].as<double>();
+  r.made_by = "the deposit scene of " + out;
+  const std::string data = deck_data_file(out);
+  write_spread_deck(r, data);
+  std::cout << fmt::format("deposit: wrote the LIGGGHTS deck of {} layer(s) from layer {} ({} particles, "
+                           "{} supplied, dt {:g} s): {}, {} and {}; run it in its folder (docs/decks.md)\n",
+                           r.layers, r.first, bed.n(), supplied, r.dt, data,
+                           bed::deck_files(data, bed::DeckEngine::liggghts).input,
+                           bed::spread_tool_stl(data));
+  return 0;
+}
+
 }  // namespace
 
 int run_spread(const po::variables_map& vm, const DepositOptions& bound, int argc, char** argv) {
@@ -425,6 +460,7 @@ int run_spread(const po::variables_map& vm, const DepositOptions& bound, int arg
   const auto layers = vm["layers"].as<std::uint64_t>();
   check_spread_paths(vm, out);
   if (layers == 0) throw InputError("--layers: 0 (accepted: N >= 1)");
+  if (vm.count("export-deck")) return export_spread_deck(vm, bound, seed, out, argc, argv);
 
   std::optional<dem::SpreadState> restart;
   bed::Bed bed = spread_input(vm, restart);

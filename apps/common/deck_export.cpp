@@ -179,8 +179,8 @@ void check_run_deck(const dem::Scene& scene, const std::string& engine) {
     bed::liggghts_hertz_restitution(scene.material.damping, "material.damping (--export-deck liggghts)");
 }
 
-void export_run_deck(const bed::Bed& bed, const dem::Scene& scene, double young_scale, double dt,
-                     const std::string& engine, const std::string& bed_path) {
+bed::DeckLaws run_deck_laws(const dem::Scene& scene, double young_scale, double dt,
+                            const std::string& made_by) {
   DeckScene s;
   s.scene = scene;
   s.young_scale = young_scale;
@@ -188,10 +188,17 @@ void export_run_deck(const bed::Bed& bed, const dem::Scene& scene, double young_
   for (const char* key : {"material.young", "material.poisson", "material.density", "material.damping",
                           "material.friction", "wall.young", "wall.poisson", "fluid.viscosity",
                           "gravity", "contact.law", "contact.stiffness", "young-scale", "effects.hertz"})
-    s.origin.emplace_back(key, "the deposit run that wrote " + bed_path);
-  const bed::DeckLaws laws = deck_laws(s, {scene.material.density}, "material.density of the run",
-                                       dt, "the run's time step");
+    s.origin.emplace_back(key, made_by);
+  return deck_laws(s, {scene.material.density}, "material.density of the run", dt,
+                   "the run's time step");
+}
+
+void export_run_deck(const bed::Bed& bed, const dem::Scene& scene, double young_scale, double dt,
+                     const std::string& engine, const std::string& bed_path) {
+  const bed::DeckLaws laws = run_deck_laws(scene, young_scale, dt, "the deposit run that wrote " + bed_path);
   bed::write_deck(bed, laws, bed::parse_deck_engine(engine, "--export-deck"), deck_data_path(bed_path));
 }
+
+std::string deck_data_file(const std::string& bed_path) { return deck_data_path(bed_path); }
 
 }  // namespace powderbed::app

@@ -39,6 +39,12 @@ std::vector<PathArg> deck_outputs(const std::string& engine, const std::string& 
 // Refuses (InputError) before the run a scene whose laws the engine cannot take (a zeta beyond
 // its damping input's range, deck_damping.hpp).
 void check_run_deck(const dem::Scene& scene, const std::string& engine);
+// The laws of a deposit run (its scene, young-scale and time step), each number's origin
+// `made_by`.
+bed::DeckLaws run_deck_laws(const dem::Scene& scene, double young_scale, double dt,
+                            const std::string& made_by);
+// The data file of --export-deck for --out BED_PATH: DIR/BED.data.
+std::string deck_data_file(const std::string& bed_path);
 // Writes them for the run's bed: the run's scene, young-scale and time step, the scene's one
 // density for every material.
 void export_run_deck(const bed::Bed& bed, const dem::Scene& scene, double young_scale, double dt,

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "deck_detail.hpp"
 #include "io_detail.hpp"
 #include "powderbed/bed/deck_damping.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -25,7 +26,7 @@ const char* deck_engine_name(DeckEngine engine) {
   return engine == DeckEngine::lammps ? "lammps" : "liggghts";
 }
 
-namespace {
+namespace deck_detail {
 
 std::string folder_of(const std::string& path) {
   const auto slash = path.find_last_of('/');
@@ -51,10 +52,14 @@ std::string num(double v) {
   return text;
 }
 
+namespace {
+
 // E* of two bodies (hertz_normal.hpp's effective_modulus; bed/ does not depend on dem/).
 double effective_modulus(double e1, double nu1, double e2, double nu2) {
   return 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
 }
+
+}  // namespace
 
 std::size_t type_count(const Bed& bed) {
   if (bed.material.empty()) return 1;
@@ -83,6 +88,8 @@ void check(const Bed& bed, const DeckLaws& laws, const std::string& data_path) {
   if (laws.steps == 0) throw InputError("deck: 0 steps (accepted: N >= 1)");
 }
 
+namespace {
+
 struct Stiffness {
   double pair = 0;  // LAMMPS hertz / hooke coefficient: 4/3 E* (Pa) or k_n (N/m)
   double wall = 0;
@@ -99,6 +106,8 @@ double max_diameter(const Bed& bed) {
   return 2 * *std::max_element(bed.radius.begin(), bed.radius.end());
 }
 
+}  // namespace
+
 void header(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckEngine engine,
             const std::string& data_name, const DeckFiles& files) {
   const bool lammps = engine == DeckEngine::lammps;
@@ -106,11 +115,13 @@ void header(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckE
   out << "# " << (lammps ? "LAMMPS" : "LIGGGHTS") << " input deck for " << data_name << ", written by "
       << (bed.provenance.created_by.empty() ? "powderbed" : bed.provenance.created_by) << "\n"
       << "# Run in this folder: " << exe << " -in " << name_of(files.input)
-      << " [-var NSTEPS N] [-var DUMP_EVERY K], or mpirun -np 4 " << exe << " -in "
-      << name_of(files.input) << "\n"
-      << "# Writes " << files.dump << " (id type x y z vx vy vz radius at %.17g: bedconv reads it "
-      << "back exactly) and " << files.final_data << ". SI units.\n"
-      << "# Where each number comes from:\n";
+      << (files.dump.empty() ? "" : " [-var NSTEPS N] [-var DUMP_EVERY K]") << ", or mpirun -np 4 "
+      << exe << " -in " << name_of(files.input) << "\n";
+  // a spreading deck (no dump of its own) says what it writes after its loop
+  if (!files.dump.empty())
+    out << "# Writes " << files.dump << " (id type x y z vx vy vz radius at %.17g: bedconv reads it "
+        << "back exactly) and " << files.final_data << ". SI units.\n";
+  out << "# Where each number comes from:\n";
   for (const auto& line : laws.origin) out << "#   " << line << "\n";
   out << "# Damping: deposit's dashpot c = 2 zeta sqrt(m* k_n) (k_n = dF/d delta); ";
   if (lammps) {
@@ -122,6 +133,14 @@ void header(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckE
         << "k_n, so beta = zeta / sqrt(5/6) and e = exp(-pi b / sqrt(1 - b^2)), b = zeta / "
         << "sqrt(5/6) (docs/decks.md, measured in docs/results/deck-damping.md).\n";
   }
+  if (laws.rotation) {
+    out << "# Rotation (fix nve/sphere) as deposit's spread; tangential force: "
+        << (laws.tangential_history ? "the history spring capped at mu F_n (friction.model = history)"
+                                    : "viscous, capped at Coulomb mu F_n (deposit's regularised sliding)")
+        << (laws.rolling > 0 ? "; rolling resistance: epsd (Ai et al. 2011), deposit's model" : "")
+        << ".\n";
+    return;
+  }
   out << "# Translation only (fix nve): deposit integrates no rotation; tangential force: viscous, "
          "capped at Coulomb mu F_n\n"
          "#   (the closest to deposit's regularised sliding; identical while sliding).\n";
@@ -132,11 +151,12 @@ void setup(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckEn
            const std::string& data_name, const DeckFiles& files) {
   const bool lammps = engine == DeckEngine::lammps;
   const Domain& d = bed.domain;
-  out << "\nvariable NSTEPS     index " << laws.steps << "\n"
-      << "variable DUMP_EVERY index ${NSTEPS}\n"
-      << "variable DUMP       index " << files.dump << "\n"
-      << "variable FINAL      index " << files.final_data << "\n\n"
-      << "units          si\n"
+  if (!files.dump.empty())  // the run's length and snapshots (a spreading deck's are its tool's)
+    out << "\nvariable NSTEPS     index " << laws.steps << "\n"
+        << "variable DUMP_EVERY index ${NSTEPS}\n"
+        << "variable DUMP       index " << files.dump << "\n"
+        << "variable FINAL      index " << files.final_data << "\n";
+  out << "\nunits          si\n"
       << "atom_style     " << (lammps ? "sphere" : "granular") << "\n"
       << "atom_modify    map array\n"
       << "dimension      3\n"
@@ -147,11 +167,16 @@ void setup(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckEn
   } else {
     out << "newton         off\ncommunicate    single vel yes\n"
         << "hard_particles yes  # E above 1 GPa\n";
+    // LIGGGHTS refuses E < 5 MPa in SI units unless told (a young-scale of 1e5 softens 316L to 1.9 MPa)
+    if (laws.law == "hertz" && std::min(laws.young, laws.wall_young) / laws.young_scale < 5e6)
+      out << "soft_particles yes  # E / young-scale below 5 MPa\n";
   }
   out << "read_data      " << data_name << "\n"
       << "neighbor       " << num(0.1 * max_diameter(bed)) << " bin  # skin 0.1 x the largest diameter\n"
       << "neigh_modify   delay 0\n\n";
 }
+
+namespace {
 
 // LAMMPS pair_style granular / fix wall/gran granular arguments after the style: the normal
 // law with its damping, the tangential law and the clamp.
@@ -186,8 +211,11 @@ void lammps_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws) 
   }
 }
 
-// LIGGGHTS: per-type properties (the walls are the last type) and gran / wall/gran styles.
-void liggghts_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws) {
+}  // namespace
+
+// LIGGGHTS: per-type properties (the walls are the last type) and gran / wall/gran styles;
+// returns the model and settings every wall/gran (primitive or mesh) takes.
+LiggghtsContact liggghts_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws) {
   const std::size_t types = type_count(bed) + 1;
   const std::string n = std::to_string(types);
   const bool hertz = laws.law == "hertz";
@@ -212,7 +240,7 @@ void liggghts_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws
     per_type("youngsModulus", laws.young / laws.young_scale, laws.wall_young / laws.young_scale);
     per_type("poissonsRatio", laws.poisson, laws.wall_poisson);
     per_pair("coefficientRestitution", liggghts_hertz_restitution(laws.damping_ratio, "material.damping"));
-    model = "model hertz tangential no_history";
+    model = "model hertz";
     settings = " limitForce on";  // deposit's Hertz force never pulls
   } else {
     // hooke/stiffness has one absolute dashpot per type pair: 2 zeta sqrt(m* k_n) for the
@@ -234,17 +262,24 @@ void liggghts_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws
     per_pair("kt", laws.stiffness);
     per_pair_wall("gamman_abs", gamma, gamma_wall);
     per_pair_wall("gammat_abs", gamma, gamma_wall);
-    model = "model hooke/stiffness tangential no_history";
+    model = "model hooke/stiffness";
     settings = " absolute_damping on";
   }
   per_pair("coefficientFriction", laws.friction);
+  model += laws.tangential_history ? " tangential history" : " tangential no_history";
+  if (laws.rolling > 0) {
+    // epsd: C_r = eta_r 2 sqrt(I_r k_r), deposit's 2 zeta sqrt(I_r k_r) for eta_r = zeta
+    per_pair("coefficientRollingFriction", laws.rolling);
+    per_pair("coefficientRollingViscousDamping", laws.damping_ratio);
+    model += " rolling_friction epsd";
+  }
   if (laws.contact) {
     out << "pair_style     gran " << model << settings << "\n"
         << "pair_coeff     * *\n";
   } else {
     out << "pair_style     none  # particle-particle contact is off in the scene\n";
   }
-  if (!laws.walls) return;
+  if (!laws.walls) return {model, settings};
   const Domain& d = bed.domain;
   for (int a = 0; a < 3; ++a) {
     if (d.periodic[a]) continue;
@@ -255,10 +290,10 @@ void liggghts_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws
           << num(side ? d.upper[a] : d.lower[a]) << settings << "\n";
     }
   }
+  return {model, settings};
 }
 
-void forces_and_run(std::ostringstream& out, const DeckLaws& laws, DeckEngine engine) {
-  const bool lammps = engine == DeckEngine::lammps;
+void body_forces(std::ostringstream& out, const DeckLaws& laws) {
   if (laws.gravity > 0)
     out << "fix            gravity all gravity " << num(laws.gravity) << " vector 0 0 -1\n";
   if (laws.viscosity > 0) {
@@ -270,9 +305,16 @@ void forces_and_run(std::ostringstream& out, const DeckLaws& laws, DeckEngine en
         << "variable       drag_z atom " << num(-c) << "*c_radius*vz\n"
         << "fix            drag all addforce v_drag_x v_drag_y v_drag_z\n";
   }
-  out << "fix            move all nve\n"
-      << "timestep       " << num(laws.dt) << "\n\n"
-      << "dump           snapshots all custom ${DUMP_EVERY} ${DUMP} id type x y z vx vy vz radius\n";
+  out << "fix            move all " << (laws.rotation ? "nve/sphere" : "nve") << "\n"
+      << "timestep       " << num(laws.dt) << "\n\n";
+}
+
+namespace {
+
+void forces_and_run(std::ostringstream& out, const DeckLaws& laws, DeckEngine engine) {
+  const bool lammps = engine == DeckEngine::lammps;
+  body_forces(out, laws);
+  out << "dump           snapshots all custom ${DUMP_EVERY} ${DUMP} id type x y z vx vy vz radius\n";
   // Each snapshot's time for `bedconv DUMP --all-snapshots`: LAMMPS writes it (ITEM: TIME);
   // LIGGGHTS 3.8 cannot, and bedconv takes the `timestep` above from this deck (its DUMP).
   if (lammps) {
@@ -289,6 +331,10 @@ void forces_and_run(std::ostringstream& out, const DeckLaws& laws, DeckEngine en
 }
 
 }  // namespace
+
+}  // namespace deck_detail
+
+using namespace deck_detail;
 
 DeckFiles deck_files(const std::string& data_path, DeckEngine engine) {
   const std::string stem = stem_of(data_path);
@@ -308,17 +354,24 @@ void write_deck(const Bed& bed, const DeckLaws& laws, DeckEngine engine,
   if (engine == DeckEngine::lammps) lammps_laws(deck, bed, laws);
   else liggghts_laws(deck, bed, laws);
   forces_and_run(deck, laws, engine);
+  write_deck_files(bed, laws, data_path, files.input, deck.str());
+}
 
+namespace deck_detail {
+
+void write_deck_files(const Bed& bed, const DeckLaws& laws, const std::string& data_path,
+                      const std::string& input_path, const std::string& text) {
   LammpsDataOptions data;
   data.type_density = laws.density;
   data.extra_types = 1;
   data.comments = {"atom type " + std::to_string(type_count(bed) + 1) +
                    " holds no atoms: the walls' material (LIGGGHTS wall/gran primitive type)"};
-  const std::string text = deck.str();
-  detail::AtomicFile input(files.input);
-  detail::write_text(input.temp_path(), files.input, text);
+  detail::AtomicFile input(input_path);
+  detail::write_text(input.temp_path(), input_path, text);
   write_lammps_data(bed, data_path, data);
   input.commit();
 }
+
+}  // namespace deck_detail
 
 }  // namespace powderbed::bed

@@ -815,54 +815,9 @@ void check_tool(const Recoater& t, const Box& box) {
   }
 }
 
-// Appends the layer's supply to the bed: the region in front of the tool, on the plate or on the
-// powder already under it.
+// The layer's supply through the public add_layer_supply (spread.hpp), with the run's floor.
 std::size_t add_supply(Run& run, std::uint64_t layer) {
-  const SpreadSettings& s = run.settings;
-  if (!s.supply) return 0;  // the powder is already in the bed
-  const Box& box = run.box;
-  const double front = s.tool.start + tool_half_extent(run.profile);
-  if (!(s.supply_x0 >= front && s.supply_x1 > s.supply_x0 && s.supply_x1 <= box.upper[0])) {
-    throw InputError(fmt::format(
-        "supply.x0, supply.x1: {:g}, {:g} (accepted: the tool's front {:g} <= x0 < x1 <= the "
-        "box's end {:g} m: the supply lies in front of the tool)",
-        s.supply_x0, s.supply_x1, front, box.upper[0]));
-  }
-  bed::Bed& bed = run.bed;
-  double base = run.floor.empty() ? box.lower[2] : std::max(box.lower[2], run.floor.highest());
-  for (std::size_t i = 0; i < bed.n(); ++i) {
-    const double r = bed.radius[i];
-    if (bed.x[i] + r > s.supply_x0 && bed.x[i] - r < s.supply_x1) base = std::max(base, bed.z[i] + r);
-  }
-  bed::Domain region = bed.domain;
-  region.lower[0] = s.supply_x0;
-  region.upper[0] = s.supply_x1;
-  region.lower[2] = base;
-  region.upper[2] = base + s.supply_height;
-  if (!(s.supply_height > 0) || region.upper[2] > box.upper[2]) {
-    throw InputError(fmt::format(
-        "supply.height: {:g} m on the powder at z = {:g} m does not fit the box (accepted: 0 < "
-        "height <= {:g} m)",
-        s.supply_height, base, box.upper[2] - base));
-  }
-  region.periodic = {false, false, false};
-  const bed::Bed more = s.supply(region, layer);
-  std::uint64_t next = 0;
-  for (const std::uint64_t id : bed.id) next = std::max(next, id + 1);
-  for (std::size_t k = 0; k < more.n(); ++k) {
-    bed.x.push_back(more.x[k]);
-    bed.y.push_back(more.y[k]);
-    bed.z.push_back(more.z[k]);
-    bed.radius.push_back(more.radius[k]);
-    bed.id.push_back(next++);
-    bed.vx.push_back(0);
-    bed.vy.push_back(0);
-    bed.vz.push_back(0);
-    if (!bed.material.empty()) bed.material.push_back(0);
-    if (!bed.temperature.empty()) bed.temperature.push_back(bed.temperature.front());
-    if (!bed.phase.empty()) bed.phase.push_back(0);
-  }
-  return more.n();
+  return add_layer_supply(run.bed, run.settings, run.floor, layer);
 }
 
 void check_tool_clear(const Run& run) {
@@ -915,6 +870,53 @@ std::size_t remove_overflow(bed::Bed& bed, SpreadState& s, double front) {
 }
 
 }  // namespace
+
+std::size_t add_layer_supply(bed::Bed& bed, const SpreadSettings& s, const bed::HeightMap& floor,
+                             std::uint64_t layer) {
+  if (!s.supply) return 0;  // the powder is already in the bed
+  const bed::Domain& box = bed.domain;
+  const double front = s.tool.start + tool_half_extent(tool_profile(s.tool, box.lower[2] + s.tool.gap));
+  if (!(s.supply_x0 >= front && s.supply_x1 > s.supply_x0 && s.supply_x1 <= box.upper[0])) {
+    throw InputError(fmt::format(
+        "supply.x0, supply.x1: {:g}, {:g} (accepted: the tool's front {:g} <= x0 < x1 <= the "
+        "box's end {:g} m: the supply lies in front of the tool)",
+        s.supply_x0, s.supply_x1, front, box.upper[0]));
+  }
+  double base = floor.empty() ? box.lower[2] : std::max(box.lower[2], floor.highest());
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    const double r = bed.radius[i];
+    if (bed.x[i] + r > s.supply_x0 && bed.x[i] - r < s.supply_x1) base = std::max(base, bed.z[i] + r);
+  }
+  bed::Domain region = bed.domain;
+  region.lower[0] = s.supply_x0;
+  region.upper[0] = s.supply_x1;
+  region.lower[2] = base;
+  region.upper[2] = base + s.supply_height;
+  if (!(s.supply_height > 0) || region.upper[2] > box.upper[2]) {
+    throw InputError(fmt::format(
+        "supply.height: {:g} m on the powder at z = {:g} m does not fit the box (accepted: 0 < "
+        "height <= {:g} m)",
+        s.supply_height, base, box.upper[2] - base));
+  }
+  region.periodic = {false, false, false};
+  const bed::Bed more = s.supply(region, layer);
+  std::uint64_t next = 0;
+  for (const std::uint64_t id : bed.id) next = std::max(next, id + 1);
+  for (std::size_t k = 0; k < more.n(); ++k) {
+    bed.x.push_back(more.x[k]);
+    bed.y.push_back(more.y[k]);
+    bed.z.push_back(more.z[k]);
+    bed.radius.push_back(more.radius[k]);
+    bed.id.push_back(next++);
+    bed.vx.push_back(0);
+    bed.vy.push_back(0);
+    bed.vz.push_back(0);
+    if (!bed.material.empty()) bed.material.push_back(0);
+    if (!bed.temperature.empty()) bed.temperature.push_back(bed.temperature.front());
+    if (!bed.phase.empty()) bed.phase.push_back(0);
+  }
+  return more.n();
+}
 
 std::size_t remove_particles(bed::Bed& bed, SpreadState& s, const std::vector<char>& keep) {
   std::unordered_set<std::uint64_t> gone;

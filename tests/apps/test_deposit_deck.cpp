@@ -3,7 +3,12 @@
 // before the run, writing nothing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <filesystem>
+#include <sstream>
+#include <vector>
 #include <string>
 
 #include "powderbed/bed/bed.hpp"
@@ -64,3 +69,81 @@ TEST(DepositDeck, AnEngineOrZetaItCannotTakeExits2BeforeTheRun) {
 }
 
 }  // namespace
+
+namespace {
+
+// The vertices of an ASCII STL.
+std::vector<std::array<double, 3>> stl_vertices(const std::string& path) {
+  std::istringstream in(test::read_text(path));
+  std::vector<std::array<double, 3>> v;
+  for (std::string word; in >> word;) {
+    if (word != "vertex") continue;
+    std::array<double, 3> p{};
+    in >> p[0] >> p[1] >> p[2];
+    v.push_back(p);
+  }
+  return v;
+}
+
+const std::string kSpreadScene = std::string(POWDERBED_TEST_DATA) + "/spread-liggghts/spread.ini";
+
+}  // namespace
+
+TEST(DepositDeck, SpreadWritesTheToolTheSupplyAndTheLayerLoop) {
+  const std::string dir = test::scratch_dir("deposit_spread_deck");
+  const auto r = test::run_app("deposit", "--config " + kSpreadScene + " --seed 1 --layers 3 --out " +
+                                              dir + "/L.h5 --export-deck liggghts");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/L.h5"));  // the deck instead of the spread
+  // The first layer's supply as deposit places it: 600 particles in the supply region.
+  const bed::Bed supply = bed::read_lammps_data(dir + "/L.data");
+  ASSERT_EQ(supply.n(), 600u);
+  for (std::size_t i = 0; i < supply.n(); ++i) {
+    EXPECT_GE(supply.x[i] - supply.radius[i], 0.16e-3 - 1e-12);
+    EXPECT_LE(supply.x[i] + supply.radius[i], 0.56e-3 + 1e-12);
+  }
+  // The blade: 100 um thick about x = 0.1 mm, its bottom at the 90 um gap, inset across y.
+  double x0 = 1, x1 = -1, z0 = 1, y0 = 1, y1 = -1;
+  for (const auto& p : stl_vertices(dir + "/L.tool.stl")) {
+    x0 = std::min(x0, p[0]), x1 = std::max(x1, p[0]), z0 = std::min(z0, p[2]);
+    y0 = std::min(y0, p[1]), y1 = std::max(y1, p[1]);
+  }
+  EXPECT_NEAR(x0, 0.05e-3, 1e-15);
+  EXPECT_NEAR(x1, 0.15e-3, 1e-15);
+  EXPECT_EQ(z0, 90e-6);
+  EXPECT_GT(y0, 0.0);
+  EXPECT_LT(y1, 0.3e-3);
+  const std::string deck = test::read_text(dir + "/in.L.liggghts");
+  for (const char* line : {"fix            tool all mesh/surface file L.tool.stl type 2 move 0 0 ${RAISE}",
+                           "fix            push all move/mesh mesh tool linear 0.20000000000000001 0 0",
+                           "variable       NLAYERS index 3", "fix            move all nve/sphere",
+                           "pair_style     gran model hertz tangential history rolling_friction epsd",
+                           "particles_in_region 600", "delete_atoms   region overflow${L}",
+                           "jump           SELF layer"})
+    EXPECT_NE(deck.find(line), std::string::npos) << line << "\n" << deck;
+  // LAMMPS has no moving mesh wall: refused with the reason, nothing written.
+  const auto l = test::run_app("deposit", "--config " + kSpreadScene + " --seed 1 --out " + dir +
+                                              "/M.h5 --export-deck lammps");
+  EXPECT_EQ(l.status, 2);
+  EXPECT_EQ(l.err_lines(), 1) << l.err;
+  EXPECT_NE(l.err.find("docs/decks.md"), std::string::npos) << l.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/M.data"));
+}
+
+TEST(DepositDeck, RollerIsACylinderOfItsRadiusAboveTheGap) {
+  const std::string dir = test::scratch_dir("deposit_roller_deck");
+  const auto r = test::run_app("deposit", "--config " + kSpreadScene + " --seed 1 --out " + dir +
+                               "/R.h5 --recoater.tool roller --recoater.radius 0.1e-3 "
+                               "--recoater.omega -200 --recoater.start 0.1e-3 --supply.x0 0.2e-3 --supply.x1 0.6e-3 "
+                               "--export-deck liggghts");
+  ASSERT_EQ(r.status, 0) << r.err;
+  double lowest = 1;
+  for (const auto& p : stl_vertices(dir + "/R.tool.stl")) {
+    lowest = std::min(lowest, p[2]);
+    // on the circle about the axis (x = start, z = gap + R)
+    const double d = std::hypot(p[0] - 0.1e-3, p[2] - (90e-6 + 0.1e-3));
+    EXPECT_NEAR(d, 0.1e-3, 1e-15) << p[0] << " " << p[2];
+  }
+  EXPECT_NEAR(lowest, 90e-6, 1e-18);
+  EXPECT_NE(test::read_text(dir + "/in.R.liggghts").find("rotate origin"), std::string::npos);
+}

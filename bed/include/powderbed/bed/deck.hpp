@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "powderbed/bed/bed.hpp"
+#include "powderbed/bed/height_map.hpp"
 
 namespace powderbed::bed {
 
@@ -33,6 +34,12 @@ struct DeckLaws {
   double dt = 0;            // s
   std::vector<double> density;  // kg/m^3 per atom type (type = material index + 1), or one
   std::uint64_t steps = 1000;   // the deck's default run length (variable NSTEPS)
+  // Spreading decks (deposit's spread loop, docs/deposit-spread.md): particle rotation (fix
+  // nve/sphere), static friction (friction.model = history: LIGGGHTS `tangential history`) and
+  // EPSD rolling resistance mu_r (`rolling_friction epsd`, viscous part zeta). A drop has none.
+  bool rotation = false;
+  bool tangential_history = false;
+  double rolling = 0;
   // Header comment lines: where each number came from (scene file, bed, option, default).
   std::vector<std::string> origin;
 };
@@ -52,5 +59,46 @@ DeckFiles deck_files(const std::string& data_path, DeckEngine engine);
 // dt <= 0, a law or zeta the engine cannot take (deck_damping.hpp), a missing density.
 void write_deck(const Bed& bed, const DeckLaws& laws, DeckEngine engine,
                 const std::string& data_path);
+
+// A spreading deck (LIGGGHTS only; docs/decks.md "Spreading decks"): the recoater of deposit's
+// scene (dem/recoater.hpp's rounded box, as plain numbers: bed/ does not depend on dem/) written
+// as an STL beside the deck and moved by fix move/mesh, the solid under the powder as a second
+// STL, the supply and the layer loop.
+struct DeckTool {
+  bool roller = false;
+  // The cross-section in the x-z plane: the points within `rounding` of the rectangle
+  // |x - x_c| <= half_width, bottom + rounding <= z <= bottom + rounding + height (roller:
+  // half_width = height = 0, rounding = R; blade: the box's height above its edges).
+  double half_width = 0, rounding = 0;
+  double gap = 0;                // the lowest point above the plate in layer 1, m
+  double start = 0, end = 0;     // x of the centre, m
+  double speed = 0;              // m/s along +x
+  double omega = 0;              // roller spin about +y, rad/s
+  double delay = 0, settle = 0;  // s
+};
+struct SpreadDeck {
+  DeckTool tool;
+  std::uint64_t layers = 1;
+  double layer_thickness = 0;  // m: the tool rises this much each layer (the plate's descent)
+  bool remove_overflow = true; // delete what lies past the tool's front where it stopped
+  // Layers 2.. take their supply from LIGGGHTS's insert/pack in x0..x1 across the box, from the
+  // tool's bottom of the layer before, `height` tall: `count` particles or `volume` m^3 of the
+  // PSD's `bins` (radius, number fraction). Layer 1's supply is in the bed (deposit placed it).
+  double supply_x0 = 0, supply_x1 = 0, supply_height = 0;
+  std::size_t supply_count = 0;
+  double supply_volume = 0;
+  std::vector<std::pair<double, double>> psd_bins;
+  std::uint64_t seed = 1;
+  HeightMap floor;  // the solid under the powder (empty: the plate)
+};
+// The files a spreading deck for "dir/bed.data" writes besides deck_files(): the tool's and the
+// floor's STL, and the bed after layer k ("bed.liggghts.layer-K.lammpstrj"); full paths.
+std::string spread_tool_stl(const std::string& data_path);
+std::string spread_floor_stl(const std::string& data_path);
+std::string spread_layer_dump(const std::string& data_path, std::uint64_t layer);
+// Writes the data file, the deck and the STL files. Throws InputError as write_deck does, for
+// a tool that leaves the box in x or rises above its top, a supply region out of the box.
+void write_spread_deck(const Bed& bed, const DeckLaws& laws, const SpreadDeck& spread,
+                       const std::string& data_path);
 
 }  // namespace powderbed::bed

@@ -150,6 +150,14 @@ struct SpreadSummary {
 SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings& settings,
                          const SpreadState* restart = nullptr);
 
+// Appends layer `layer`'s supply to `bed` as run_spread does at the layer's start: the region
+// supply_x0..supply_x1 across the box, on the plate, the floor's highest point or the powder
+// already under it, supply_height tall, filled by settings.supply (ids after the bed's, at rest);
+// returns how many came (0 without a maker). What an engine other than run_spread needs to
+// start a layer with deposit's supply (deck export, build --spread-engine). Throws InputError for
+// a region in front of no tool or out of the box.
+std::size_t add_layer_supply(bed::Bed& bed, const SpreadSettings& settings,
+                             const bed::HeightMap& floor, std::uint64_t layer);
 // Removes the particles whose `keep` is 0 from the bed and from the state a restart needs (their
 // rotation, wall history and every contact they had), keeping the others' order; returns how
 // many went. What the overflow slot takes, and what fusion turns into solid (build).
