@@ -27,8 +27,7 @@ print(json.dumps({"blocks": data.GetNumberOfBlocks(),
 
 
 def main():
-    if pvrun.missing_tools():
-        print("skipped: pvpython or xvfb-run not installed (scripts/setup.sh installs them)")
+    if pvrun.skipped():
         return 77
     with tempfile.TemporaryDirectory() as work:
         out = os.path.join(work, "run")

@@ -89,10 +89,7 @@ def refuse(folder):
 
 
 def main():
-    missing = pvrun.missing_tools()
-    if missing:
-        print(f"skipped: {' and '.join(missing)} not found (Debian: python3-paraview, xvfb, "
-              "xauth; scripts/setup.sh installs them)")
+    if pvrun.skipped():
         return 77
     mode, args = sys.argv[1], sys.argv[2:]
     {"layer": layer, "render": render, "refuse": refuse}[mode](*args)

@@ -119,10 +119,7 @@ def check_sinter_series(work):
 
 
 def main():
-    missing = pvrun.missing_tools()
-    if missing:
-        print(f"skipped: {' and '.join(missing)} not found (Debian: python3-paraview, xvfb, "
-              "xauth; scripts/setup.sh installs them)")
+    if pvrun.skipped():
         return 77
     with tempfile.TemporaryDirectory() as work:
         xmf, bed = check_true_size(work)

@@ -11,6 +11,16 @@ def missing_tools():
     return [tool for tool in ("pvpython", "xvfb-run") if shutil.which(tool) is None]
 
 
+def skipped():
+    """True, having said which tools are missing, when a ParaView test cannot run here (ctest
+    reads the test's exit status 77 as skipped)."""
+    missing = missing_tools()
+    if missing:
+        print(f"skipped: {' and '.join(missing)} not found (Debian: python3-paraview, xvfb, "
+              "xauth; scripts/setup.sh installs them)")
+    return bool(missing)
+
+
 def pvpython(*args, check=True):
     """pvpython ARGS under a fresh virtual X server; the finished process. Retried (5 tries) when
     ParaView aborts with "bad X server connection": on a loaded machine (here: 2 cores, load 13)
