@@ -361,9 +361,7 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   rep.balled = fused.balled;
   rep.vaporised = fused.vaporised;
   rep.powder_left = fused.powder.n();
-  // What joined the solid; what vaporised left the powder but did not fuse.
-  const double joined = fused.powder_mass_before - fused.powder_mass_after - fused.vaporised_mass;
-  rep.fused_fraction = fused.powder_mass_before > 0 ? joined / fused.powder_mass_before : 0.0;
+  rep.fused_fraction = fused.fused_fraction();
   rep.mass_error = fused.mass_error();
   rep.lack_of_fusion = lof.fraction();
   rep.scanned_area = static_cast<double>(lof.scanned) * g.dx * g.dy;

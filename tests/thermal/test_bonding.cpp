@@ -120,3 +120,21 @@ TEST(Bonding, RestingIsJudgedToHalfACell) {
     EXPECT_EQ(thermal::fuse(b, s).state[0], expected) << "gap " << gap;
   }
 }
+
+// The fused fraction counts what joined the solid only (issue 36: a layer was reported 100 %
+// fused when 156 of 159 particles vaporised): of three equal particles, one vaporised (above the
+// boiling point, no evaporation model) and two bonded, two thirds fused; all three vaporised,
+// none. Mass is conserved either way.
+TEST(Bonding, FusedFractionCountsNoVapour) {
+  const bed::Bed b = row(3);
+  for (const std::size_t vaporised : {1u, 3u}) {
+    thermal::Sinter s(b, scene(), test::table_316l());
+    for (std::size_t i = 0; i < 3; ++i) s.set_particle_temperature(i, i < vaporised ? 4000 : kHot);
+    for (std::size_t i = 0; i < 3; ++i) melt_top_under(s, b.x[i], b.y[i], kDx);
+    const thermal::Fusion f = thermal::fuse(b, s);
+    EXPECT_EQ(f.vaporised, vaporised);
+    EXPECT_EQ(f.fused, 3 - vaporised);
+    EXPECT_NEAR(f.fused_fraction(), (3.0 - static_cast<double>(vaporised)) / 3.0, 1e-12);
+    EXPECT_LT(f.mass_error(), 1e-12);
+  }
+}

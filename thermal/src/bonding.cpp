@@ -40,10 +40,11 @@ bool on_molten_solid(const bed::Bed& bed, const Sinter& sinter, std::size_t i, d
 std::vector<std::uint8_t> bonded_melt(const bed::Bed& bed, const Sinter& sinter, double threshold) {
   const auto& peak = sinter.particle_max_temperature();
   const auto& merged = sinter.particle_merged();
+  const std::vector<std::uint8_t> phase = sinter.particle_phase();
   const std::size_t n = peak.size();
-  std::vector<std::uint8_t> melted(n);
+  std::vector<std::uint8_t> melted(n);  // and still there: vapour carries no bond
   for (std::size_t i = 0; i < n; ++i)
-    melted[i] = peak[i] >= threshold || (!merged.empty() && merged[i]) ? 1 : 0;
+    melted[i] = phase[i] != 2 && (peak[i] >= threshold || (!merged.empty() && merged[i])) ? 1 : 0;
   Clusters clusters(n);
   for (const ContactPair& p : sinter.network().pairs)
     if (melted[p.i] && melted[p.j]) clusters.join(p.i, p.j);

@@ -42,6 +42,11 @@ double Fusion::mass_error() const {
   return before > 0 ? std::abs(after - before) / before : 0.0;
 }
 
+double Fusion::fused_fraction() const {
+  const double met = powder_mass_before + merged_mass;
+  return met > 0 ? (met - powder_mass_after - vaporised_mass) / met : 0.0;
+}
+
 double solid_mass(const SubstrateGeometry& g, const TopHeight& top, double density) {
   double volume = 0;
   for (const double h : top) volume += g.dx * g.dy * (h - g.z_top);
@@ -162,6 +167,7 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
       f.state[i] = kFused;
       keep[i] = 0;
       ++f.fused;
+      f.merged_mass += mass[i];
       continue;
     }
     f.powder_mass_before += mass[i];

@@ -12,7 +12,7 @@
 // within dz/2 of the solid's top, as finely as the grid resolves that surface) where a top-face
 // node of its footprint (the nodes within its projected disc) reached the threshold too, or when
 // it touches a bonded particle that melted (the conduction network's pairs: a cluster of molten
-// particles in contact is one body of liquid). A particle that merged into the pool during the
+// particles in contact is one body of liquid; a vaporised one has gone and carries none). A particle that merged into the pool during the
 // scan (wetting) is bonded: it merged only where the solid had melted.
 #include <cstdint>
 #include <vector>

@@ -40,6 +40,12 @@ struct Fusion {
   double powder_mass_before = 0, powder_mass_after = 0;  // kg
   double solid_mass_before = 0, solid_mass_after = 0;    // kg, above the plate's top face
   double vaporised_mass = 0;                             // kg
+  // kg: particles that merged into the pool during the scan (wetting): in the solid already, so
+  // in solid_mass_before and not in powder_mass_before.
+  double merged_mass = 0;
+  // Of the powder's mass the scan met (merged particles included), the share that joined the
+  // solid: vapour and balls did not.
+  double fused_fraction() const;
   // (powder + solid after + vapour) - (powder + solid before), over the total: round-off.
   double mass_error() const;
 };
