@@ -59,17 +59,17 @@ def page(report, wall, load):
         f"{max(0.0, wall - spread - scan):.0f} s.",
         "",
         "| layer | particles spread | supplied | overflow | spread steps | neighbour rebuilds "
-        "| spread (s) | scan (s) | layer density | fused | captured | vaporised | fused fraction "
+        "| spread (s) | scan (s) | layer density | fused | captured | balled | vaporised | fused fraction "
         "| lack of fusion | mean track width / depth (µm) | solid top max (µm) | recoater clearance (µm) "
         "| mass error |",
-        "|" + "---|" * 18,
+        "|" + "---|" * 19,
     ]
     for r in rows:
         lines.append(
             f"| {r['layer']} | {r['particles_spread']} | {r['supplied']} | {r['overflow']} | "
             f"{r['spread_steps']} | {r['neighbour_rebuilds']} | {r['spread_wall_time']:.0f} | "
             f"{r['scan_wall_time']:.0f} | {r['layer_density']:.3f} | {r['fused']} | "
-            f"{r['captured']} | {r['vaporised']} | {r['fused_fraction']:.2f} | "
+            f"{r['captured']} | {r['balled']} | {r['vaporised']} | {r['fused_fraction']:.2f} | "
             f"{r['lack_of_fusion']:.3f} | {r['mean_track_width'] * 1e6:.0f} / "
             f"{r['mean_track_depth'] * 1e6:.0f} | {r['solid_top_max'] * 1e6:.0f} | "
             f"{r['recoater_clearance'] * 1e6:.0f} | {r['mass_error']:.1e} |")
@@ -83,8 +83,10 @@ def page(report, wall, load):
         "",
         "Layer density is the solid fraction of the powder over the scanned columns between the "
         "solid's top and the tool's bottom; lack of fusion the area fraction of the scanned "
-        "columns whose solid top stayed below T_m (docs/build.md). Captured: powder the grown "
-        "solid overlapped by more than 5 % of its radius, fused with it.",
+        "columns whose solid top stayed below T_m (docs/build.md). Fused: melted and bonded to "
+        "molten solid, directly or through molten neighbours (docs/sinter.md \"Fusion\"). "
+        "Captured: powder the grown solid overlapped by more than 5 % of its radius, fused with "
+        "it. Balled: melted on solid that did not melt, left in the bed as a ball.",
         "",
     ]
     return "\n".join(lines)
