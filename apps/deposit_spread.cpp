@@ -418,13 +418,13 @@ std::string spread_summary(const po::variables_map& vm, const dem::SpreadSummary
 int export_spread_deck(const po::variables_map& vm, const DepositOptions& bound, std::uint64_t seed,
                        const std::string& out, int argc, char** argv) {
   const std::string engine = vm["export-deck"].as<std::string>();
-  check_spread_deck_engine(engine, "--export-deck");
   check_paths({}, deck_outputs(engine, out));
   std::optional<dem::SpreadState> restart;
   bed::Bed bed = spread_input(vm, restart);
   const dem::Scene scene = deposit_scene(vm, bound.scene);
   const dem::SpreadSettings s = spread_settings(vm, bound.spread, seed);
   SpreadDeckRequest r;
+  r.engine = bed::parse_deck_engine(engine, "--export-deck");
   r.first = (restart ? restart->layers_done : 0) + 1;
   if (restart) r.floor = restart->floor;
   const std::size_t supplied = dem::add_layer_supply(bed, s, r.floor, r.first);
@@ -442,11 +442,12 @@ int export_spread_deck(const po::variables_map& vm, const DepositOptions& bound,
   r.made_by = "the deposit scene of " + out;
   const std::string data = deck_data_file(out);
   write_spread_deck(r, data);
-  std::cout << fmt::format("deposit: wrote the LIGGGHTS deck of {} layer(s) from layer {} ({} particles, "
-                           "{} supplied, dt {:g} s): {}, {} and {}; run it in its folder (docs/decks.md)\n",
-                           r.layers, r.first, bed.n(), supplied, r.dt, data,
-                           bed::deck_files(data, bed::DeckEngine::liggghts).input,
-                           bed::spread_tool_stl(data));
+  const bool lammps = r.engine == bed::DeckEngine::lammps;
+  std::cout << fmt::format("deposit: wrote the {} deck of {} layer(s) from layer {} ({} particles, "
+                           "{} supplied, dt {:g} s): {} and {}{}; run it in its folder (docs/decks.md)\n",
+                           lammps ? "LAMMPS" : "LIGGGHTS", r.layers, r.first, bed.n(), supplied, r.dt, data,
+                           bed::deck_files(data, r.engine).input,
+                           lammps ? "" : " and " + bed::spread_tool_stl(data));
   return 0;
 }
 

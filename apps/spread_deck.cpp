@@ -1,4 +1,4 @@
-// A recoater spread as a LIGGGHTS deck (spread_deck.hpp).
+// A recoater spread as a LIGGGHTS or LAMMPS deck (spread_deck.hpp).
 #include "spread_deck.hpp"
 
 #include <algorithm>
@@ -14,7 +14,8 @@ namespace powderbed::app {
 
 namespace {
 
-// Bins of the supply's PSD for LIGGGHTS's discrete distribution (layers after the first): equal
+// Bins of the supply's PSD (layers after the first: LIGGGHTS's discrete distribution, LAMMPS's
+// create_atoms bin by bin): equal
 // widths in radius between its bounds, each at its middle radius with its number fraction.
 constexpr int kPsdBins = 10;
 
@@ -48,13 +49,6 @@ bed::DeckTool deck_tool(const dem::Recoater& t, double gap) {
 
 }  // namespace
 
-void check_spread_deck_engine(const std::string& engine, const std::string& option) {
-  if (bed::parse_deck_engine(engine, option) == bed::DeckEngine::liggghts) return;
-  throw InputError(option + ": lammps with recoater.tool (accepted: liggghts; LAMMPS has no "
-                   "moving triangulated wall, and its closest, fix wall/gran/region on a moving "
-                   "region, is not written: docs/decks.md \"Spreading decks\")");
-}
-
 double spread_time_step(const bed::Bed& bed, const dem::Scene& scene, const dem::SpreadSettings& s) {
   const dem::TimeStepBound bound = dem::time_step_bound(bed, scene, s.young_scale);
   if (s.dt > 0 && s.dt > bound.stable && !s.unsafe_dt)
@@ -74,6 +68,7 @@ void write_spread_deck(const SpreadDeckRequest& r, const std::string& data_path)
                                     laws.tangential_history ? "history" : "sliding", laws.rolling,
                                     r.made_by));
   bed::SpreadDeck deck;
+  deck.engine = r.engine;
   // the deck's layer 1 is the spread's layer `first`: the plate has gone down first - 1 layers
   deck.tool = deck_tool(s.tool, s.tool.gap + static_cast<double>(r.first - 1) * s.layer_thickness);
   deck.layers = r.layers;

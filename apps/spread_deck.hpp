@@ -1,5 +1,5 @@
 #pragma once
-// A recoater spread as a LIGGGHTS deck (docs/decks.md "Spreading decks"): what deposit
+// A recoater spread as a LIGGGHTS or LAMMPS deck (docs/decks.md "Spreading decks"): what deposit
 // --export-deck writes in spreading mode and build --spread-engine liggghts runs each layer.
 // The laws are the drop deck's (common/deck_export.hpp) plus rotation, history friction and
 // rolling resistance; the tool, supply and layers are the spread settings'.
@@ -14,16 +14,14 @@
 
 namespace powderbed::app {
 
-// The engine of a spreading deck: liggghts; lammps (and anything else) throws InputError naming
-// `option` and why (docs/decks.md).
-void check_spread_deck_engine(const std::string& engine, const std::string& option);
 // The time step run_spread takes for `bed` (settings.dt when given, checked against the stable
 // bound unless settings.unsafe_dt; else 0.2 x the bound).
 double spread_time_step(const bed::Bed& bed, const dem::Scene& scene, const dem::SpreadSettings& s);
-// Writes DATA_PATH, in.<stem>.liggghts and the STL files for `layers` layers from `bed` (its
+// Writes DATA_PATH, in.<stem>.<engine> and (LIGGGHTS) the STL files for `layers` layers from `bed` (its
 // first layer's supply in it), layer `first` of the spread being the deck's layer 1 (the tool
 // raised by first - 1 layer thicknesses), on `floor` (empty: the plate).
 struct SpreadDeckRequest {
+  bed::DeckEngine engine = bed::DeckEngine::liggghts;
   const bed::Bed* bed = nullptr;
   const dem::Scene* scene = nullptr;
   const dem::SpreadSettings* settings = nullptr;

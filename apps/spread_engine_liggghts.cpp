@@ -185,7 +185,7 @@ dem::SpreadSummary liggghts_spread_layer(const LiggghtsEngine& engine, bed::Bed&
     args.insert(args.begin(), {engine.mpirun, "--allow-run-as-root", "--oversubscribe", "-np",
                                std::to_string(engine.ranks)});
   const int status = run_in(args, folder);
-  const std::string dump = bed::spread_layer_dump(data, 1);
+  const std::string dump = bed::spread_layer_dump(data, 1, bed::DeckEngine::liggghts);
   if (status != 0 || !fs::exists(dump))
     throw NumericalError(fmt::format("--spread-engine liggghts: layer {}: LIGGGHTS exited {} (see {}/screen.txt "
                                      "and log.liggghts)", layer, status, folder));

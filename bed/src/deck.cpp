@@ -90,16 +90,25 @@ void check(const Bed& bed, const DeckLaws& laws, const std::string& data_path) {
 
 namespace {
 
+// G* of two bodies (tangential_history.hpp's effective_shear_modulus).
+double effective_shear(double e1, double nu1, double e2, double nu2) {
+  auto g = [](double e, double nu) { return e / (2.0 * (1.0 + nu)); };
+  return 1.0 / ((2.0 - nu1) / g(e1, nu1) + (2.0 - nu2) / g(e2, nu2));
+}
+
 struct Stiffness {
   double pair = 0;  // LAMMPS hertz / hooke coefficient: 4/3 E* (Pa) or k_n (N/m)
   double wall = 0;
+  double pair_shear = 0, wall_shear = 0;  // Mindlin's 8 G* (Pa; Hertz law only)
 };
 
 Stiffness stiffness(const DeckLaws& laws) {
-  if (laws.law == "linear") return {laws.stiffness, laws.stiffness};
+  if (laws.law == "linear") return {laws.stiffness, laws.stiffness, 0, 0};
   const double e = laws.young / laws.young_scale, ew = laws.wall_young / laws.young_scale;
   return {4.0 / 3.0 * effective_modulus(e, laws.poisson, e, laws.poisson),
-          4.0 / 3.0 * effective_modulus(e, laws.poisson, ew, laws.wall_poisson)};
+          4.0 / 3.0 * effective_modulus(e, laws.poisson, ew, laws.wall_poisson),
+          8.0 * effective_shear(e, laws.poisson, e, laws.poisson),
+          8.0 * effective_shear(e, laws.poisson, ew, laws.wall_poisson)};
 }
 
 double max_diameter(const Bed& bed) {
@@ -137,7 +146,10 @@ void header(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckE
     out << "# Rotation (fix nve/sphere) as deposit's spread; tangential force: "
         << (laws.tangential_history ? "the history spring capped at mu F_n (friction.model = history)"
                                     : "viscous, capped at Coulomb mu F_n (deposit's regularised sliding)")
-        << (laws.rolling > 0 ? "; rolling resistance: epsd (Ai et al. 2011), deposit's model" : "")
+        << (laws.rolling > 0 ? (lammps ? "; rolling resistance: sds, deposit's EPSD (Ai et al. 2011) with its spring "
+                                         "at a 1e-3 R overlap (docs/decks.md)"
+                                       : "; rolling resistance: epsd (Ai et al. 2011), deposit's model")
+                             : "")
         << ".\n";
     return;
   }
@@ -178,40 +190,97 @@ void setup(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckEn
 
 namespace {
 
+// The overlap at which a spread deck's rolling spring takes deposit's stiffness (LAMMPS's sds
+// spring is constant, deposit's k_r grows with k_n = 2 E* sqrt(R* delta)): 1e-3 of the mean
+// radius, the overlap of a particle under some ten others at E / 1e4 (docs/decks.md).
+constexpr double kRollingOverlap = 1e-3;
+
+// One side of a contact for LAMMPS: its stiffnesses, and for the rolling spring the reduced
+// radius and rolling inertia of two particles of the mean size (or one against a wall).
+struct LammpsSide {
+  double k = 0, shear = 0;         // Stiffness's pair or wall entries
+  double reduced_radius = 0, rolling_inertia = 0;
+};
+
+// Static friction (a spread's friction.model = history) as deposit's spring: Mindlin's
+// k_t = 8 G* a (Hertz) or 2/7 k_n (linear). LAMMPS's tangential dashpot is x_gamma_t times the
+// normal one, which the tsuji mapping makes 2 zeta sqrt(m* k_n); deposit's is 2 zeta sqrt(m* k_t),
+// so x_gamma_t = sqrt(k_t / k_n). Sliding friction: the drop deck's viscous, capped force.
+std::string lammps_tangential(const DeckLaws& laws, const LammpsSide& side) {
+  const std::string mu = num(laws.friction);
+  if (!laws.tangential_history) return " tangential linear_nohistory 1 " + mu;
+  if (laws.law == "linear")
+    return " tangential linear_history " + num(2.0 / 7.0 * laws.stiffness) + " " + num(std::sqrt(2.0 / 7.0)) + " " + mu;
+  return " tangential mindlin " + num(side.shear) + " " + num(std::sqrt(side.shear / (1.5 * side.k))) + " " + mu;
+}
+
+// deposit's EPSD rolling resistance as LAMMPS's sds: the torque is R* times the sds force of the
+// rolling displacement R* theta, so k_roll = k_r / R*^2 = 2.25 mu_r^2 k_n (k_n at kRollingOverlap
+// for Hertz), the cap mu_r R* F_n is deposit's, and gamma_roll = C_r / R*^2 =
+// 2 zeta sqrt(I_r k_r) / R*^2 for particles of the mean size.
+std::string lammps_rolling(const DeckLaws& laws, const LammpsSide& side, double mean_radius) {
+  if (laws.rolling <= 0) return "";
+  const double k_n = laws.law == "linear"
+                         ? laws.stiffness
+                         : 2.0 * 0.75 * side.k * std::sqrt(side.reduced_radius * kRollingOverlap * mean_radius);
+  const double k_roll = 2.25 * laws.rolling * laws.rolling * k_n;
+  const double r = side.reduced_radius;
+  const double gamma = 2.0 * laws.damping_ratio * std::sqrt(side.rolling_inertia * k_roll * r * r) / (r * r);
+  return " rolling sds " + num(k_roll) + " " + num(gamma) + " " + num(laws.rolling);
+}
+
 // LAMMPS pair_style granular / fix wall/gran granular arguments after the style: the normal
-// law with its damping, the tangential law and the clamp.
-std::string lammps_contact(const DeckLaws& laws, double k) {
+// law with its damping, the tangential law (and a spread's rolling resistance) and the clamp.
+std::string lammps_contact(const DeckLaws& laws, const LammpsSide& side, double mean_radius) {
   const bool hertz = laws.law == "hertz";
-  std::string s = std::string(hertz ? "hertz " : "hooke ") + num(k) + " ";
+  std::string s = std::string(hertz ? "hertz " : "hooke ") + num(side.k) + " ";
   if (laws.damping_ratio > 0) {
     s += num(lammps_tsuji_input(laws.damping_ratio, hertz, "material.damping")) + " damping tsuji";
   } else {
     s += "0 damping velocity";
   }
-  s += " tangential linear_nohistory 1 " + num(laws.friction);
+  s += lammps_tangential(laws, side) + lammps_rolling(laws, side, mean_radius);
   if (hertz) s += " limit_damping";  // deposit's Hertz force never pulls; its linear one may
   return s;
 }
 
-void lammps_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws) {
+}  // namespace
+
+MeanParticle mean_particle(const Bed& bed, const DeckLaws& laws) {
+  double mass = 0, radius = 0;
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    const std::size_t t = bed.material.empty() ? 0 : bed.material[i];
+    const double rho = laws.density.size() == 1 ? laws.density[0] : laws.density[t];
+    mass += rho * 4.0 / 3.0 * std::numbers::pi * std::pow(bed.radius[i], 3);
+    radius += bed.radius[i];
+  }
+  const double n = static_cast<double>(bed.n());
+  return {mass / n, radius / n};
+}
+
+std::string lammps_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws) {
   const Stiffness k = stiffness(laws);
+  const MeanParticle p = mean_particle(bed, laws);
+  // rolling_resistance.hpp's I_r: 1.4 m r^2 per particle, halved for two alike, none of a wall's
+  const LammpsSide pair{k.pair, k.pair_shear, 0.5 * p.radius, 0.7 * p.mass * p.radius * p.radius};
+  const LammpsSide wall{k.wall, k.wall_shear, p.radius, 1.4 * p.mass * p.radius * p.radius};
   if (laws.contact) {
     out << "pair_style     granular\n"
-        << "pair_coeff     * * " << lammps_contact(laws, k.pair) << "\n";
+        << "pair_coeff     * * " << lammps_contact(laws, pair, p.radius) << "\n";
   } else {
     out << "pair_style     none  # particle-particle contact is off in the scene\n";
   }
-  if (!laws.walls) return;
+  const std::string wall_contact = lammps_contact(laws, wall, p.radius);
+  if (!laws.walls) return wall_contact;
   const Domain& d = bed.domain;
   for (int a = 0; a < 3; ++a) {
     if (d.periodic[a]) continue;
     const char axis = "xyz"[a];
-    out << "fix            wall_" << axis << " all wall/gran granular " << lammps_contact(laws, k.wall)
+    out << "fix            wall_" << axis << " all wall/gran granular " << wall_contact
         << " " << axis << "plane " << num(d.lower[a]) << " " << num(d.upper[a]) << "\n";
   }
+  return wall_contact;
 }
-
-}  // namespace
 
 // LIGGGHTS: per-type properties (the walls are the last type) and gran / wall/gran styles;
 // returns the model and settings every wall/gran (primitive or mesh) takes.
@@ -246,13 +315,7 @@ LiggghtsContact liggghts_laws(std::ostringstream& out, const Bed& bed, const Dec
     // hooke/stiffness has one absolute dashpot per type pair: 2 zeta sqrt(m* k_n) for the
     // reduced mass of two particles of the mean mass, and of one against a wall (m* = m), exact
     // for equal particles.
-    double mass = 0;
-    for (std::size_t i = 0; i < bed.n(); ++i) {
-      const std::size_t t = bed.material.empty() ? 0 : bed.material[i];
-      const double rho = laws.density.size() == 1 ? laws.density[0] : laws.density[t];
-      mass += rho * 4.0 / 3.0 * std::numbers::pi * std::pow(bed.radius[i], 3);
-    }
-    const double mean = mass / static_cast<double>(bed.n());
+    const double mean = mean_particle(bed, laws).mass;
     const double gamma = 2 * laws.damping_ratio * std::sqrt(0.5 * mean * laws.stiffness);
     const double gamma_wall = 2 * laws.damping_ratio * std::sqrt(mean * laws.stiffness);
     out << "# linear law: one dashpot per type pair, " << num(gamma) << " N s/m for two particles of "

@@ -22,6 +22,15 @@ void header(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckE
 // Variables, units, atom style, boundary, read_data, neighbour list.
 void setup(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckEngine engine,
            const std::string& data_name, const DeckFiles& files);
+// The mean mass and radius of the bed's particles (the one dashpot LIGGGHTS's linear law takes;
+// LAMMPS's rolling spring).
+struct MeanParticle {
+  double mass = 0, radius = 0;
+};
+MeanParticle mean_particle(const Bed& bed, const DeckLaws& laws);
+// LAMMPS's pair style and the box's walls (fix wall/gran granular per fixed axis); returns the
+// walls' contact arguments (after `granular`), which a region wall takes too.
+std::string lammps_laws(std::ostringstream& out, const Bed& bed, const DeckLaws& laws);
 // LIGGGHTS's per-type properties, pair style and the box's primitive walls; the model and its
 // settings, which a mesh wall takes too.
 struct LiggghtsContact {

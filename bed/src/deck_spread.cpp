@@ -1,6 +1,7 @@
-// A LIGGGHTS spreading deck (deck.hpp write_spread_deck, docs/decks.md "Spreading decks"): the
-// drop deck's laws (deck_detail.hpp) plus the recoater as an STL moved by fix move/mesh, the
-// solid under the powder as an STL, the supply of later layers and the layer loop.
+// A spreading deck (deck.hpp write_spread_deck, docs/decks.md "Spreading decks"): the drop deck's
+// laws (deck_detail.hpp) plus the recoater, the supply of later layers and the layer loop. LIGGGHTS:
+// the tool as an STL moved by fix move/mesh, the solid under the powder as an STL; LAMMPS: the tool
+// as a moving region under fix wall/gran/region, the plate as the box's zplane wall.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -141,7 +142,7 @@ void check_spread(const Bed& bed, const DeckLaws& laws, const SpreadDeck& s) {
   const double half = t.half_width + t.rounding;
   if (d.periodic[0])
     throw InputError("deck: a spread box periodic along x (accepted: periodic y or none)");
-  if (t.start - half < d.lower[0] || t.end + half > d.upper[0])
+  if (s.engine == DeckEngine::liggghts && (t.start - half < d.lower[0] || t.end + half > d.upper[0]))
     throw InputError(fmt::format("recoater.start, recoater.end: the tool spans x = {:g} to {:g} m, beyond the "
                                  "box [{:g}, {:g}] m (LIGGGHTS drops mesh elements outside the box; accepted "
                                  "for a deck: a tool inside it)",
@@ -278,6 +279,134 @@ std::string spread_body(const Bed& bed, const DeckLaws& laws, const SpreadDeck& 
   return out.str();
 }
 
+
+// ---- LAMMPS (29 Sep 2021): the tool as a region, its motion a function of the step ----
+
+// The tool's travel and spin as equal-style variables of the step: at rest until step S0, then
+// recoater.speed (and omega) for the NMOVE steps of the travel, then at rest at recoater.end
+// (deposit's tool stops there). LAMMPS 29 Sep 2021 has no two-argument min/max: the clamp is
+// made of its 0/1 comparisons.
+void lammps_tool_motion(std::ostringstream& out, const DeckLaws& laws, const SpreadDeck& s) {
+  const DeckTool& t = s.tool;
+  const std::uint64_t moving = steps_of((t.end - t.start) / t.speed, laws.dt);
+  out << "  variable       S0 equal $(step+" << steps_of(t.delay, laws.dt) << ")  # the travel's first step\n"
+      << "  variable       S1 equal ${S0}+" << moving << "  # its end\n"
+      << "  variable       MOVED equal (step>${S0})*(step<${S1})*(step-${S0})+(step>=${S1})*" << moving << "\n"
+      << "  variable       TX equal (step<${S1})*" << num(t.speed * laws.dt) << "*v_MOVED+(step>=${S1})*"
+      << num(t.end - t.start) << "\n";
+  // deposit's spin is about +y (right-handed), as the region's rotate about (0 1 0); it turns
+  // while the roller travels, as the LIGGGHTS deck's move/mesh rotate
+  if (t.roller && t.omega != 0) out << "  variable       SPIN equal " << num(t.omega * laws.dt) << "*v_MOVED\n";
+}
+
+// The tool of one layer as a region (side out: the particles stay outside it) raised by RAISE:
+// the blade a block from the gap up through the box's top, the roller a cylinder along y.
+void lammps_tool_region(std::ostringstream& out, const Bed& bed, const SpreadDeck& s) {
+  const DeckTool& t = s.tool;
+  const Domain& d = bed.domain;
+  const double bottom = d.lower[2] + t.gap;
+  if (t.roller) {
+    const double axis = bottom + t.rounding;
+    out << "  region         tool cylinder y " << num(t.start) << " $(" << num(axis) << "+v_RAISE) "
+        << num(t.rounding) << " INF INF side out units box move v_TX NULL NULL";
+    if (t.omega != 0)
+      out << " rotate v_SPIN " << num(t.start) << " " << num(0.5 * (d.lower[1] + d.upper[1])) << " $("
+          << num(axis) << "+v_RAISE) 0 1 0";
+    out << "\n";
+    return;
+  }
+  out << "  region         tool block " << num(t.start - t.half_width) << " " << num(t.start + t.half_width)
+      << " INF INF $(" << num(bottom) << "+v_RAISE) INF side out units box move v_TX NULL NULL\n";
+}
+
+// The supply of layers 2.. by fix pour (LAMMPS 29 Sep 2021's create_atoms random has no overlap
+// check): the PSD's bins as its poly diameters (number fractions), all in one insertion (pour
+// counts a box thinner than 1 length unit as 1 thick, so in SI units its volume fraction never
+// limits the count), then `run 1` as the LIGGGHTS deck's insert/pack. Pour draws each particle's
+// height towards the region's top and ends the insertion at the first particle that finds no room
+// at its height: it may insert fewer than asked (LAMMPS warns "Less insertions than requested";
+// docs/decks.md has the count on the test scene), and it starts them at the speed of a fall from
+// the region's top.
+constexpr int kPourAttempts = 1000;
+
+void lammps_supply(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, const SpreadDeck& s) {
+  const Domain& d = bed.domain;
+  double total = 0, mean_volume = 0;
+  for (const auto& [r, w] : s.psd_bins) total += w;
+  for (const auto& [r, w] : s.psd_bins) mean_volume += w / total * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const auto count = s.supply_count > 0 ? s.supply_count
+                                        : static_cast<std::size_t>(std::llround(s.supply_volume / mean_volume));
+  const double base = d.lower[2] + s.tool.gap - s.layer_thickness;  // + (L - 1) t: RAISE
+  std::string poly = fmt::format("diam poly {}", s.psd_bins.size());
+  for (const auto& [r, w] : s.psd_bins) poly += fmt::format(" {} {}", num(2 * r), num(w / total));
+  out << "  # layer 2..: the supply on the powder the tool of the layer before left, by fix pour\n"
+      << "  variable       SUPPLY_LO equal " << num(base) << "+v_RAISE\n"
+      << "  variable       SUPPLY_HI equal " << num(base + s.supply_height) << "+v_RAISE\n"
+      << "  if \"${L} > 1\" then &\n"
+      << "    \"region supply block " << num(s.supply_x0) << " " << num(s.supply_x1) << " " << num(d.lower[1]) << " "
+      << num(d.upper[1]) << " ${SUPPLY_LO} ${SUPPLY_HI} units box\" &\n"
+      << "    \"fix supply all pour " << count << " 1 $(" << 10007 + 7919 * s.seed << "+v_L) region supply " << poly
+      << " dens " << num(laws.density.front()) << " " << num(laws.density.front()) << " vol 1 " << kPourAttempts
+      << "\" &\n"
+      << "    \"run 1\" \"unfix supply\" \"region supply delete\"\n";
+}
+
+void lammps_layer_body(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, const SpreadDeck& s,
+                       const std::string& wall_contact) {
+  const DeckTool& t = s.tool;
+  const Domain& d = bed.domain;
+  lammps_tool_motion(out, laws, s);
+  lammps_tool_region(out, bed, s);
+  out << "  fix            tool_wall all wall/gran/region granular " << wall_contact << " region tool\n"
+      << "  run            " << steps_of(t.delay, laws.dt) << "  # recoater.delay: the supply settles\n"
+      << "  run            " << steps_of((t.end - t.start) / t.speed, laws.dt)
+      << "  # the travel from recoater.start to recoater.end\n"
+      << "  run            " << steps_of(t.settle, laws.dt) << "  # recoater.settle\n";
+  if (s.remove_overflow) {
+    out << "  # the overflow: centres past the tool's front where it stopped\n"
+        << "  region         overflow block " << num(t.end + t.half_width + t.rounding) << " " << num(d.upper[0])
+        << " INF INF INF INF units box\n"
+        << "  delete_atoms   region overflow\n"
+        << "  region         overflow delete\n";
+  }
+  out << "  write_dump     all custom ${LAYER_DUMP}-${L}.lammpstrj id type x y z vx vy vz radius modify sort id "
+         "format float %.17g\n"
+      << "  unfix          tool_wall\n"
+      << "  region         tool delete\n";
+}
+
+std::string lammps_spread_body(const Bed& bed, const DeckLaws& laws, const SpreadDeck& s,
+                               const std::string& wall_contact, const DeckFiles& files,
+                               const std::string& layer_dump) {
+  std::ostringstream out;
+  body_forces(out, laws);
+  out << "thermo_style   custom step atoms ke\n"
+      << "thermo         " << std::max<std::uint64_t>(1, steps_of((s.tool.end - s.tool.start) / s.tool.speed, laws.dt) / 10)
+      << "\nthermo_modify  lost ignore norm no\n\n"
+      << "variable       NLAYERS index " << s.layers << "\n"
+      << "variable       LAYER_DUMP index " << layer_dump << "\n"
+      << "variable       L loop ${NLAYERS}\n"
+      << "label          layer\n"
+      << "  # the plate's descent: the tool (and the supply) rise instead, as in deposit\n"
+      << "  variable       RAISE equal (${L}-1)*" << num(s.layer_thickness) << "\n";
+  if (s.layers > 1) lammps_supply(out, bed, laws, s);
+  lammps_layer_body(out, bed, laws, s, wall_contact);
+  out << "next           L\n"
+      << "jump           SELF layer\n"
+      << "write_data     " << files.final_data << "\n";
+  return out.str();
+}
+
+// What a LAMMPS spread cannot take, refused (InputError) rather than approximated.
+void check_lammps_spread(const SpreadDeck& s) {
+  if (!s.floor.empty())
+    throw InputError("--export-deck: lammps with a raised floor (the fused top of a spread layer file; accepted: "
+                     "liggghts, which takes it as an STL: LAMMPS 29 Sep 2021 has no granular wall of a height map)");
+  if (!s.tool.roller && s.tool.rounding > 0)
+    throw InputError(fmt::format("recoater.edge-radius: {:g} m with --export-deck lammps (accepted: 0, or "
+                                 "--export-deck liggghts: the LAMMPS deck's blade is a sharp-edged region block)",
+                                 s.tool.rounding));
+}
 }  // namespace
 
 std::string spread_tool_stl(const std::string& data_path) {
@@ -288,28 +417,19 @@ std::string spread_floor_stl(const std::string& data_path) {
   return folder_of(data_path) + stem_of(data_path) + ".floor.stl";
 }
 
-std::string spread_layer_dump(const std::string& data_path, std::uint64_t layer) {
-  return fmt::format("{}{}.liggghts.layer-{}.lammpstrj", folder_of(data_path), stem_of(data_path), layer);
+std::string spread_layer_dump(const std::string& data_path, std::uint64_t layer, DeckEngine engine) {
+  return fmt::format("{}{}.{}.layer-{}.lammpstrj", folder_of(data_path), stem_of(data_path),
+                     deck_engine_name(engine), layer);
 }
 
-void write_spread_deck(const Bed& bed, const DeckLaws& laws, const SpreadDeck& s,
-                       const std::string& data_path) {
-  check(bed, laws, data_path);
-  check_spread(bed, laws, s);
-  DeckFiles files = deck_files(data_path, DeckEngine::liggghts);
-  files.dump.clear();  // each layer's dump instead (spread_layer_dump)
-  const Names names{name_of(spread_tool_stl(data_path)), name_of(spread_floor_stl(data_path))};
-  std::ostringstream deck;
-  header(deck, bed, laws, DeckEngine::liggghts, name_of(data_path), files);
-  deck << "# A spread (docs/decks.md \"Spreading decks\"): the recoater " << names.tool
-       << " moves along +x at recoater.speed, layer after layer;\n#   each layer's bed is written to "
-       << stem_of(data_path) << ".liggghts.layer-L.lammpstrj (id type x y z vx vy vz radius at %.17g), the\n#   end to "
-       << files.final_data << ". SI units.\n";
-  setup(deck, bed, laws, DeckEngine::liggghts, name_of(data_path), files);
-  const LiggghtsContact contact = liggghts_laws(deck, bed, laws);
-  const std::string layer_dump = stem_of(data_path) + ".liggghts.layer";
-  deck << spread_body(bed, laws, s, contact, names, files, layer_dump);
+namespace {
 
+// The LIGGGHTS deck's body and its meshes, committed with the deck and the data file.
+void write_liggghts_spread(const Bed& bed, const DeckLaws& laws, const SpreadDeck& s, const std::string& data_path,
+                           const DeckFiles& files, std::ostringstream& deck) {
+  const Names names{name_of(spread_tool_stl(data_path)), name_of(spread_floor_stl(data_path))};
+  const LiggghtsContact contact = liggghts_laws(deck, bed, laws);
+  deck << spread_body(bed, laws, s, contact, names, files, stem_of(data_path) + ".liggghts.layer");
   const Domain& d = bed.domain;
   const double margin = kInset * (d.upper[1] - d.lower[1]);
   const std::vector<Triangle> tool =
@@ -320,6 +440,31 @@ void write_spread_deck(const Bed& bed, const DeckLaws& laws, const SpreadDeck& s
   if (!s.floor.empty()) write_text_file(spread_floor_stl(data_path), stl_text(floor_mesh(s.floor, d), "floor"));
   write_deck_files(bed, laws, data_path, files.input, deck.str());
   together.commit();
+}
+
+}  // namespace
+
+void write_spread_deck(const Bed& bed, const DeckLaws& laws, const SpreadDeck& s,
+                       const std::string& data_path) {
+  check(bed, laws, data_path);
+  check_spread(bed, laws, s);
+  const bool lammps = s.engine == DeckEngine::lammps;
+  if (lammps) check_lammps_spread(s);
+  const char* engine = deck_engine_name(s.engine);
+  DeckFiles files = deck_files(data_path, s.engine);
+  files.dump.clear();  // each layer's dump instead (spread_layer_dump)
+  std::ostringstream deck;
+  header(deck, bed, laws, s.engine, name_of(data_path), files);
+  deck << "# A spread (docs/decks.md \"Spreading decks\"): the recoater "
+       << (lammps ? "(a moving region, fix wall/gran/region)" : name_of(spread_tool_stl(data_path)))
+       << " moves along +x at recoater.speed, layer after layer;\n#   each layer's bed is written to "
+       << stem_of(data_path) << "." << engine << ".layer-L.lammpstrj (id type x y z vx vy vz radius at %.17g), the\n#   end to "
+       << files.final_data << ". SI units.\n";
+  setup(deck, bed, laws, s.engine, name_of(data_path), files);
+  if (!lammps) return write_liggghts_spread(bed, laws, s, data_path, files, deck);
+  const std::string wall_contact = lammps_laws(deck, bed, laws);
+  deck << lammps_spread_body(bed, laws, s, wall_contact, files, stem_of(data_path) + ".lammps.layer");
+  write_deck_files(bed, laws, data_path, files.input, deck.str());
 }
 
 }  // namespace powderbed::bed

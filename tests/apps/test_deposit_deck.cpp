@@ -12,6 +12,7 @@
 #include <string>
 
 #include "powderbed/bed/bed.hpp"
+#include "powderbed/bed/deck.hpp"
 #include "powderbed/bed/io.hpp"
 #include "run_command.hpp"
 
@@ -121,13 +122,61 @@ TEST(DepositDeck, SpreadWritesTheToolTheSupplyAndTheLayerLoop) {
                            "particles_in_region 600", "delete_atoms   region overflow${L}",
                            "jump           SELF layer"})
     EXPECT_NE(deck.find(line), std::string::npos) << line << "\n" << deck;
-  // LAMMPS has no moving mesh wall: refused with the reason, nothing written.
+}
+
+// LAMMPS: the blade a region block moved by a step variable under fix wall/gran/region, the floor
+// the box's zplane wall, the supply of later layers by fix pour, the same layer dumps' names.
+TEST(DepositDeck, SpreadToLammpsMovesARegionWall) {
+  const std::string dir = test::scratch_dir("deposit_spread_lammps");
+  const auto r = test::run_app("deposit", "--config " + kSpreadScene + " --seed 1 --layers 3 --out " +
+                                              dir + "/L.h5 --export-deck lammps");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/L.h5"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/L.tool.stl"));  // no mesh: a region
+  EXPECT_EQ(bed::read_lammps_data(dir + "/L.data").n(), 600u);
+  const std::string deck = test::read_text(dir + "/in.L.lammps");
+  for (const char* line :
+       {"region         tool block 5.0000000000000002e-05 0.00015000000000000001 INF INF "
+        "$(9.0000000000000006e-05+v_RAISE) INF side out units box move v_TX NULL NULL",
+        "fix            tool_wall all wall/gran/region granular hertz ", " region tool\n",
+        "tangential mindlin ", " rolling sds ", "fix            wall_z all wall/gran granular hertz ",
+        "  run            16496  # recoater.delay", "  run            22682  # the travel",
+        "variable       TX equal (step<${S1})*4.8498041729800489e-08*v_MOVED+(step>=${S1})*0.0010999999999999998",
+        "fix supply all pour 600 1 ", "variable       LAYER_DUMP index L.lammps.layer",
+        "write_dump     all custom ${LAYER_DUMP}-${L}.lammpstrj", "delete_atoms   region overflow",
+        "region         tool delete", "variable       NLAYERS index 3", "jump           SELF layer"})
+    EXPECT_NE(deck.find(line), std::string::npos) << line << "\n" << deck;
+  EXPECT_EQ(bed::spread_layer_dump(dir + "/L.data", 2, bed::DeckEngine::lammps), dir + "/L.lammps.layer-2.lammpstrj");
+}
+
+// The roller: a cylinder along y through its axis, turned by `rotate` at omega while it travels.
+TEST(DepositDeck, LammpsRollerIsARotatingCylinderRegion) {
+  const std::string dir = test::scratch_dir("deposit_roller_lammps");
+  const auto r = test::run_app("deposit", "--config " + kSpreadScene + " --seed 1 --out " + dir +
+                               "/R.h5 --recoater.tool roller --recoater.radius 0.1e-3 --recoater.omega -200 "
+                               "--supply.x0 0.2e-3 --supply.x1 0.6e-3 --export-deck lammps");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string deck = test::read_text(dir + "/in.R.lammps");
+  EXPECT_NE(deck.find("region         tool cylinder y 0.0001 $(0.00019000000000000001+v_RAISE) 0.0001 INF INF "
+                      "side out units box move v_TX NULL NULL rotate v_SPIN 0.0001 0.00014999999999999999 "
+                      "$(0.00019000000000000001+v_RAISE) 0 1 0"),
+            std::string::npos)
+      << deck;
+  // -200 rad/s times the step
+  EXPECT_NE(deck.find("variable       SPIN equal -4.8498041729800"), std::string::npos) << deck;
+}
+
+// What the LAMMPS deck cannot take exits 2 with one line naming the engine that can, nothing written.
+TEST(DepositDeck, LammpsRefusesARoundedBlade) {
+  const std::string dir = test::scratch_dir("deposit_rounded_lammps");
   const auto l = test::run_app("deposit", "--config " + kSpreadScene + " --seed 1 --out " + dir +
-                                              "/M.h5 --export-deck lammps");
+                                              "/M.h5 --recoater.edge-radius 10e-6 --export-deck lammps");
   EXPECT_EQ(l.status, 2);
   EXPECT_EQ(l.err_lines(), 1) << l.err;
-  EXPECT_NE(l.err.find("docs/decks.md"), std::string::npos) << l.err;
+  EXPECT_NE(l.err.find("recoater.edge-radius"), std::string::npos) << l.err;
+  EXPECT_NE(l.err.find("liggghts"), std::string::npos) << l.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/M.data"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/in.M.lammps"));
 }
 
 TEST(DepositDeck, RollerIsACylinderOfItsRadiusAboveTheGap) {

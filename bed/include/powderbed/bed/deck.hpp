@@ -60,10 +60,11 @@ DeckFiles deck_files(const std::string& data_path, DeckEngine engine);
 void write_deck(const Bed& bed, const DeckLaws& laws, DeckEngine engine,
                 const std::string& data_path);
 
-// A spreading deck (LIGGGHTS only; docs/decks.md "Spreading decks"): the recoater of deposit's
-// scene (dem/recoater.hpp's rounded box, as plain numbers: bed/ does not depend on dem/) written
-// as an STL beside the deck and moved by fix move/mesh, the solid under the powder as a second
-// STL, the supply and the layer loop.
+// A spreading deck (docs/decks.md "Spreading decks"): the recoater of deposit's scene
+// (dem/recoater.hpp's rounded box, as plain numbers: bed/ does not depend on dem/), the supply and
+// the layer loop. LIGGGHTS: the tool an STL beside the deck moved by fix move/mesh, the solid
+// under the powder a second STL. LAMMPS: the tool a region (block or cylinder along y) moved by
+// its move/rotate keywords under fix wall/gran/region; no raised floor, no rounded blade edges.
 struct DeckTool {
   bool roller = false;
   // The cross-section in the x-z plane: the points within `rounding` of the rectangle
@@ -77,11 +78,12 @@ struct DeckTool {
   double delay = 0, settle = 0;  // s
 };
 struct SpreadDeck {
+  DeckEngine engine = DeckEngine::liggghts;
   DeckTool tool;
   std::uint64_t layers = 1;
   double layer_thickness = 0;  // m: the tool rises this much each layer (the plate's descent)
   bool remove_overflow = true; // delete what lies past the tool's front where it stopped
-  // Layers 2.. take their supply from LIGGGHTS's insert/pack in x0..x1 across the box, from the
+  // Layers 2.. take their supply from LIGGGHTS's insert/pack (LAMMPS: create_atoms random) in x0..x1 across the box, from the
   // tool's bottom of the layer before, `height` tall: `count` particles or `volume` m^3 of the
   // PSD's `bins` (radius, number fraction). Layer 1's supply is in the bed (deposit placed it).
   double supply_x0 = 0, supply_x1 = 0, supply_height = 0;
@@ -92,12 +94,13 @@ struct SpreadDeck {
   HeightMap floor;  // the solid under the powder (empty: the plate)
 };
 // The files a spreading deck for "dir/bed.data" writes besides deck_files(): the tool's and the
-// floor's STL, and the bed after layer k ("bed.liggghts.layer-K.lammpstrj"); full paths.
+// floor's STL (LIGGGHTS), and the bed after layer k ("bed.<engine>.layer-K.lammpstrj"); full paths.
 std::string spread_tool_stl(const std::string& data_path);
 std::string spread_floor_stl(const std::string& data_path);
-std::string spread_layer_dump(const std::string& data_path, std::uint64_t layer);
-// Writes the data file, the deck and the STL files. Throws InputError as write_deck does, for
-// a tool that leaves the box in x or rises above its top, a supply region out of the box.
+std::string spread_layer_dump(const std::string& data_path, std::uint64_t layer, DeckEngine engine);
+// Writes the data file, the deck and (LIGGGHTS) the STL files. Throws InputError as write_deck
+// does, for a tool that leaves the box in x (LIGGGHTS) or rises above its top, a supply region
+// out of the box, and for LAMMPS a raised floor or a blade with rounded edges.
 void write_spread_deck(const Bed& bed, const DeckLaws& laws, const SpreadDeck& spread,
                        const std::string& data_path);
 
