@@ -48,7 +48,7 @@ TEST(DepositSpread, BadToolAndSupplyExit2WithOneLine) {
       {"--supply.volume 1e-12", "supply.count / supply.volume"},
       {"--supply.count 0", "supply.count / supply.volume"},
       {"--periodic x", "--periodic"},
-      {"--export-deck lammps", "--export-deck"},
+      {"--export-deck yade", "--export-deck"},  // an engine no deck is written for
       // A tool that does not travel pushes the whole supply into the overflow: no layer. Found
       // after the run: --thermo 0 leaves the one line alone, without the run's thermo table.
       {"--recoater.end 0.100001e-3 --recoater.delay 0 --recoater.settle 0 --thermo 0",
