@@ -252,6 +252,21 @@ void layer_body(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, c
       << "  unfix          tool\n";
 }
 
+// The thermo output and the head of the layer loop both engines' decks share (the same LAMMPS
+// input syntax): about ten thermo rows a layer, and the rise of the tool and supply per layer.
+void layer_loop_head(std::ostringstream& out, const DeckLaws& laws, const SpreadDeck& s,
+                     const std::string& layer_dump) {
+  out << "thermo_style   custom step atoms ke\n"
+      << "thermo         " << std::max<std::uint64_t>(1, steps_of((s.tool.end - s.tool.start) / s.tool.speed, laws.dt) / 10)
+      << "\nthermo_modify  lost ignore norm no\n\n"
+      << "variable       NLAYERS index " << s.layers << "\n"
+      << "variable       LAYER_DUMP index " << layer_dump << "\n"
+      << "variable       L loop ${NLAYERS}\n"
+      << "label          layer\n"
+      << "  # the plate's descent: the tool (and the supply) rise instead, as in deposit\n"
+      << "  variable       RAISE equal (${L}-1)*" << num(s.layer_thickness) << "\n";
+}
+
 std::string spread_body(const Bed& bed, const DeckLaws& laws, const SpreadDeck& s,
                         const LiggghtsContact& c, const Names& names, const DeckFiles& files,
                         const std::string& layer_dump) {
@@ -262,15 +277,7 @@ std::string spread_body(const Bed& bed, const DeckLaws& laws, const SpreadDeck& 
   }
   body_forces(out, laws);
   if (s.layers > 1) supply_templates(out, s, laws);
-  out << "thermo_style   custom step atoms ke\n"
-      << "thermo         " << std::max<std::uint64_t>(1, steps_of((s.tool.end - s.tool.start) / s.tool.speed, laws.dt) / 10)
-      << "\nthermo_modify  lost ignore norm no\n\n"
-      << "variable       NLAYERS index " << s.layers << "\n"
-      << "variable       LAYER_DUMP index " << layer_dump << "\n"
-      << "variable       L loop ${NLAYERS}\n"
-      << "label          layer\n"
-      << "  # the plate's descent: the tool (and the supply) rise instead, as in deposit\n"
-      << "  variable       RAISE equal (${L}-1)*" << num(s.layer_thickness) << "\n";
+  layer_loop_head(out, laws, s, layer_dump);
   if (s.layers > 1) supply_of_layer(out, bed, s);
   layer_body(out, bed, laws, s, c, names);
   out << "next           L\n"
@@ -380,15 +387,7 @@ std::string lammps_spread_body(const Bed& bed, const DeckLaws& laws, const Sprea
                                const std::string& layer_dump) {
   std::ostringstream out;
   body_forces(out, laws);
-  out << "thermo_style   custom step atoms ke\n"
-      << "thermo         " << std::max<std::uint64_t>(1, steps_of((s.tool.end - s.tool.start) / s.tool.speed, laws.dt) / 10)
-      << "\nthermo_modify  lost ignore norm no\n\n"
-      << "variable       NLAYERS index " << s.layers << "\n"
-      << "variable       LAYER_DUMP index " << layer_dump << "\n"
-      << "variable       L loop ${NLAYERS}\n"
-      << "label          layer\n"
-      << "  # the plate's descent: the tool (and the supply) rise instead, as in deposit\n"
-      << "  variable       RAISE equal (${L}-1)*" << num(s.layer_thickness) << "\n";
+  layer_loop_head(out, laws, s, layer_dump);
   if (s.layers > 1) lammps_supply(out, bed, laws, s);
   lammps_layer_body(out, bed, laws, s, wall_contact);
   out << "next           L\n"
