@@ -227,6 +227,7 @@ struct LayerReport {
   double fused_fraction = 0;               // of the powder's mass the scan met
   double mass_error = 0, lack_of_fusion = 0, top_min = 0, top_max = 0;  // top: above the plate
   double scanned_area = 0;                 // m^2: the columns the lack-of-fusion map judged
+  double remelt_mean = 0, remelt_min = 0;  // m: remelt depth into the solid below (lack_of_fusion.hpp)
   double solid_mass = 0;                   // kg above the plate after the layer
   std::size_t captured = 0;                // of the fused: powder the grown solid swallowed
   std::size_t balled = 0;                  // melted on solid that did not melt: balls left in the bed
@@ -265,6 +266,8 @@ void layer_json(bed::JsonWriter& j, const LayerReport& l) {
       .value("balled", static_cast<std::uint64_t>(l.balled))
       .value("fused_fraction", l.fused_fraction)
       .value("lack_of_fusion", l.lack_of_fusion)
+      .value("remelt_depth_mean", l.remelt_mean)
+      .value("remelt_depth_min", l.remelt_min)
       .value("scanned_area", l.scanned_area)
       .value("mass_error", l.mass_error)
       .value("solid_top_min", l.top_min)
@@ -349,7 +352,7 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   const th::Fusion fused = th::fuse(bed, sinter, b.melt_fraction, 0.05, level);
   const double half_width = app::hatch_requested(b.svm) ? 0.5 * b.svm["scan.hatch"].as<double>()
                                                         : scene.spot_radius;
-  const th::LackOfFusion lof = th::lack_of_fusion(sinter, half_width, fused.threshold);
+  const th::LackOfFusion lof = th::lack_of_fusion(sinter, half_width, fused.threshold, floor.z);
   writer.fusion(fused);
   writer.lack_of_fusion(lof);
   writer.finish(sinter, rep.scan, {{"lack_of_fusion", lof.fraction()}});
@@ -364,6 +367,8 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   rep.fused_fraction = fused.fused_fraction();
   rep.mass_error = fused.mass_error();
   rep.lack_of_fusion = lof.fraction();
+  rep.remelt_mean = lof.mean_remelt();
+  rep.remelt_min = lof.min_remelt();
   rep.scanned_area = static_cast<double>(lof.scanned) * g.dx * g.dy;
   const auto [low, high] = std::minmax_element(fused.top.begin(), fused.top.end());
   rep.top_min = *low - g.z_top;
@@ -532,7 +537,8 @@ constexpr app::UnitEntry kUnits[] = {
     {"spread_wall_time", "s"}, {"tracks", "1"}, {"mean_track_width", "m"},
     {"mean_track_depth", "m"}, {"max_temperature", "K"}, {"energy_balance_error", "1"},
     {"scan_wall_time", "s"}, {"fused", "1"}, {"vaporised", "1"}, {"powder_left", "1"},
-    {"captured", "1"}, {"balled", "1"}, {"fused_fraction", "1"}, {"lack_of_fusion", "1"}, {"scanned_area", "m^2"},
+    {"captured", "1"}, {"balled", "1"}, {"fused_fraction", "1"}, {"lack_of_fusion", "1"},
+    {"remelt_depth_mean", "m"}, {"remelt_depth_min", "m"}, {"scanned_area", "m^2"},
     {"mass_error", "1"}, {"solid_top_min", "m"}, {"solid_top_max", "m"}, {"solid_mass", "kg"}};
 
 // build.json, and the summary on stdout (the report itself with --json).
@@ -558,11 +564,12 @@ void write_report(const po::variables_map& vm, const Build& b, const std::vector
   for (const auto& r : reports)
     std::printf("build: layer %llu: %zu particles spread (density %.3f over the scan), %zu fused "
                 "(%.0f %% of the powder's mass), %zu balled, %zu vaporised; lack of fusion %.1f %% of the "
-                "scanned area; solid top %.1f to %.1f um; mass conserved to %.1e; %.0f s spread "
-                "+ %.0f s scan\n",
+                "scanned area, remelt depth %.1f um mean (%.1f min); solid top %.1f to %.1f um; mass "
+                "conserved to %.1e; %.0f s spread + %.0f s scan\n",
                 static_cast<unsigned long long>(r.layer), r.scanned_particles, r.density, r.fused,
-                100 * r.fused_fraction, r.balled, r.vaporised, 100 * r.lack_of_fusion, r.top_min * 1e6,
-                r.top_max * 1e6, r.mass_error, r.spread.wall_time, r.scan_wall);
+                100 * r.fused_fraction, r.balled, r.vaporised, 100 * r.lack_of_fusion,
+                r.remelt_mean * 1e6, r.remelt_min * 1e6, r.top_min * 1e6, r.top_max * 1e6,
+                r.mass_error, r.spread.wall_time, r.scan_wall);
   std::printf("build: %zu layer(s) in %.0f s -> %s\n", reports.size(), wall, b.out.c_str());
 }
 

@@ -32,6 +32,9 @@ def load(path):
             "origin": np.array(sub["origin"]),
             "spacing": np.array(sub["spacing"]),
             "nodes": np.array(sub["nodes"]).astype(int),
+            # the plate's top plane (planes above it are room for a raised part); older files: the last
+            "plate_plane": int(sub["plate_plane"]) if "plate_plane" in sub
+            else int(np.array(sub["nodes"])[2]) - 1,
             "position": np.array(f["particles/position"]),
             "radius": np.array(f["particles/radius"]),
             "particle_peak": np.array(melt["particle"]),
@@ -89,7 +92,7 @@ def main():
     plt.close(fig)
 
     # Cross-section on x = x_plane: substrate section and the circles the plane cuts.
-    zs = (z_top - dz * np.arange(nz)[::-1]) * UM
+    zs = (z_top + dz * (np.arange(nz) - r["plate_plane"])) * UM
     fig, ax = plt.subplots(figsize=(10, 5.2))
     ax.pcolormesh(ys, zs, r["section_x"], cmap=cmap, norm=norm, shading="auto")
     ax.contour(ys, zs, r["section_x"], levels=[t_m], colors="cyan", linewidths=1.2)

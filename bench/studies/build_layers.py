@@ -60,9 +60,9 @@ def page(report, wall, load):
         "",
         "| layer | particles spread | supplied | overflow | spread steps | neighbour rebuilds "
         "| spread (s) | scan (s) | layer density | fused | captured | balled | vaporised | fused fraction "
-        "| lack of fusion | mean track width / depth (µm) | solid top max (µm) | recoater clearance (µm) "
-        "| mass error |",
-        "|" + "---|" * 19,
+        "| lack of fusion | remelt depth mean / min (µm) | mean track width / depth (µm) "
+        "| solid top max (µm) | recoater clearance (µm) | mass error |",
+        "|" + "---|" * 20,
     ]
     for r in rows:
         lines.append(
@@ -70,7 +70,8 @@ def page(report, wall, load):
             f"{r['spread_steps']} | {r['neighbour_rebuilds']} | {r['spread_wall_time']:.0f} | "
             f"{r['scan_wall_time']:.0f} | {r['layer_density']:.3f} | {r['fused']} | "
             f"{r['captured']} | {r['balled']} | {r['vaporised']} | {r['fused_fraction']:.2f} | "
-            f"{r['lack_of_fusion']:.3f} | {r['mean_track_width'] * 1e6:.0f} / "
+            f"{r['lack_of_fusion']:.3f} | {r['remelt_depth_mean'] * 1e6:.1f} / "
+            f"{r['remelt_depth_min'] * 1e6:.1f} | {r['mean_track_width'] * 1e6:.0f} / "
             f"{r['mean_track_depth'] * 1e6:.0f} | {r['solid_top_max'] * 1e6:.0f} | "
             f"{r['recoater_clearance'] * 1e6:.0f} | {r['mass_error']:.1e} |")
     lines += [
@@ -79,11 +80,13 @@ def page(report, wall, load):
         "thread (its steps are set by the softened Rayleigh step, 1.7e-7 s; its cost by the "
         "particles in the box, which grow with the powder each layer leaves, and by the "
         "neighbour-list rebuilds while the supply falls); the scan is sinter's explicit solver "
-        "on 261 × 51 × 31 nodes with the ray-traced beam.",
+        "on 261 × 51 × 31 nodes (and the planes over the plate the part grows into) with the "
+        "ray-traced beam.",
         "",
         "Layer density is the solid fraction of the powder over the scanned columns between the "
         "solid's top and the tool's bottom; lack of fusion the area fraction of the scanned "
-        "columns whose solid top stayed below T_m (docs/build.md). Fused: melted and bonded to "
+        "columns whose solid top stayed below T_m, the remelt depth how far the melt went into "
+        "the solid under the layer, from its top at the layer's start (docs/build.md). Fused: melted and bonded to "
         "molten solid, directly or through molten neighbours (docs/sinter.md \"Fusion\"). "
         "Captured: powder the grown solid overlapped by more than 5 % of its radius, fused with "
         "it. Balled: melted on solid that did not melt, left in the bed as a ball.",

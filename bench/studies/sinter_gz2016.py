@@ -35,6 +35,12 @@ SPEEDS = [0.4, 0.8, 1.2, 1.6, 2.0, 2.5, 3.0, 3.5, 4.0]     # m/s at 200 W
 FIG13_PSDS = apps.GZ2016_TABLE3_PSDS
 
 
+
+def plate_plane(f):
+    """The plate's top plane k of a run file (planes above it are room for a raised part)."""
+    sub = f["substrate"].attrs
+    return int(sub["plate_plane"]) if "plate_plane" in sub else int(sub["nodes"][2]) - 1
+
 def fig13_beds():
     """[(name, bed path)] of the two Fig. 13 beds, deposited once (~2 min for the bimodal one)."""
     os.makedirs(apps.WORK, exist_ok=True)
@@ -65,7 +71,8 @@ def track_means(run_path, x_from=0.2e-3, x_to=0.8e-3, slices=121):
         rad = np.array(f["particles/radius"])
         peak = np.array(f["melt/particle"])
         top = np.array(f["melt/top"])
-        section = np.array(f["melt/section_y"])  # nz x nx, k = nz - 1 the top face
+        section = np.array(f["melt/section_y"])  # nz x nx
+        section = section[:plate_plane(f) + 1]  # up to the plate's top face
         t_m = float(f["melt"].attrs["melting_point"])
         x0, y0, z_top = f["substrate"].attrs["origin"]
         dx, dy, dz = f["substrate"].attrs["spacing"]
@@ -162,7 +169,8 @@ def melted_mass(run_path):
     with h5py.File(run_path, "r") as f:
         rad = np.array(f["particles/radius"])
         peak = np.array(f["melt/particle"])
-        section = np.array(f["melt/section_x"])  # nz x ny, k = nz - 1 the top face
+        section = np.array(f["melt/section_x"])  # nz x ny
+        section = section[:plate_plane(f) + 1]  # up to the plate's top face
         t_m = float(f["melt"].attrs["melting_point"])
         nx = f["melt/top"].shape[1]
         dx, dy, dz = f["substrate"].attrs["spacing"]

@@ -38,7 +38,7 @@ void melt_top_under(thermal::Sinter& s, double x, double y, double reach) {
   const auto& g = s.grid();
   for (std::size_t j = 0; j < g.ny; ++j)
     for (std::size_t i = 0; i < g.nx; ++i)
-      if (std::hypot(g.x(i) - x, g.y(j) - y) <= reach) s.set_substrate_temperature(g.index(i, j, g.nz - 1), kHot);
+      if (std::hypot(g.x(i) - x, g.y(j) - y) <= reach) s.set_substrate_temperature(g.index(i, j, g.k_plate()), kHot);
 }
 
 bool top_is_flat(const thermal::Fusion& f, double z_top) {

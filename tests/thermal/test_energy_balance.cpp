@@ -69,9 +69,11 @@ Recomputed recompute_internal(const bed::Bed& bed, const thermal::SinterScene& s
     for (std::size_t j = 0; j < g.ny; ++j)
       for (std::size_t i = 0; i < g.nx; ++i) {
         if (g.fixed(i, j, k)) continue;
+        if (k > g.k_plate()) continue;  // room over the plate: empty (no fusion here)
         const double t = sinter.substrate_temperature()[g.index(i, j, k)];
-        out.internal += g.volume(k) * per_m3.enthalpy(t);
-        out.tolerance += g.volume(k) * share(t, step_m3, per_m3.min_capacity());
+        const double volume = g.cell_volume() * (k == g.k_plate() ? 0.5 : 1.0);
+        out.internal += volume * per_m3.enthalpy(t);
+        out.tolerance += volume * share(t, step_m3, per_m3.min_capacity());
       }
   return out;
 }

@@ -3,6 +3,7 @@
 // solid between them, tracks closer than half of it leave none.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -64,6 +65,46 @@ TEST(LackOfFusion, TrackOverABarePlateBondsAStripeAsWideAsItsMelt) {
   EXPECT_GT(s.lof.unbonded, 0u);
   std::printf("  stripe %.1f um, melt %.1f um (dy %.1f um); lack of fusion %.3f\n", stripe * 1e6,
               melt * 1e6, s.grid.dy * 1e6, s.lof.fraction());
+}
+
+// The remelt depth is the melt's depth into the solid: on a bare plate the deepest column's is
+// the track's pool depth on its mid section (both interpolate the same peaks to T_m; the section
+// is one plane, the columns all of them, so the deepest column lies within a cell of it), the
+// columns outside the melt have none, and over a plate raised by a block the depth counts from
+// the block's top, not the plate's.
+TEST(LackOfFusion, RemeltDepthIsTheMeltsDepthBelowTheSolidsTop) {
+  const bed::Bed b = test::empty_bed(240e-6, 160e-6, 40e-6);
+  auto scene = scene_for(b);
+  const double y = 0.5 * b.domain.length(1);
+  scene.scan_path = {{20e-6, y, 220e-6, y, kPower, kSpeed}};
+  const Scan s = scan(b, scene, 60e-6);
+  const double depth = s.result.tracks.at(0).pool.depth;
+  ASSERT_GT(depth, 2 * kDx);
+  ASSERT_EQ(s.lof.remelt.size(), s.lof.scanned);
+  const double deepest = *std::max_element(s.lof.remelt.begin(), s.lof.remelt.end());
+  EXPECT_NEAR(deepest, depth, kDx);
+  EXPECT_EQ(s.lof.min_remelt(), 0.0) << "scanned columns outside the melt";
+  std::size_t shallow = 0;
+  for (const double d : s.lof.remelt) shallow += d == 0 ? 1 : 0;
+  EXPECT_EQ(shallow, s.lof.unbonded);
+  // The whole plate raised 3 cells is a plate 3 cells deeper: the same track remelts what it
+  // remelts there, counted from the raised top (GrowingGrid.WholePlanesRaisedConductAsTheDeeperPlate).
+  const double lift = 3 * kDx;
+  auto deeper = scene;
+  deeper.nodes[2] += 3;
+  deeper.substrate_depth += lift;
+  const Scan d = scan(b, deeper, 60e-6);
+  const thermal::TopHeight top(scene.nodes[0] * scene.nodes[1], lift);
+  thermal::Sinter raised(b, scene, test::table_316l(), top);
+  raised.run(nullptr, 0, nullptr);
+  const auto lof = thermal::lack_of_fusion(raised, 60e-6,
+                                           raised.material().phase_change().melting_point, top);
+  ASSERT_EQ(lof.remelt.size(), d.lof.remelt.size());
+  for (std::size_t q = 0; q < lof.remelt.size(); ++q) EXPECT_NEAR(lof.remelt[q], d.lof.remelt[q], 1e-12);
+  std::printf("  pool depth %.2f um; deepest remelt %.2f um, mean %.2f um; on the raised plate "
+              "mean %.2f um (the deeper plate's %.2f um)\n",
+              depth * 1e6, deepest * 1e6, s.lof.mean_remelt() * 1e6, lof.mean_remelt() * 1e6,
+              d.lof.mean_remelt() * 1e6);
 }
 
 // Two tracks h apart, each answering for a strip h wide: h above twice the melt width leaves the

@@ -242,7 +242,7 @@ TEST(MovingSource, EagarTsaiPeakAndPoolConvergeAtSecondOrder) {
     const auto& g = sinter.grid();
     ASSERT_NEAR(g.x(g.nx / 2), xp, 1e-12);
     ASSERT_NEAR(g.y(g.ny / 2), yp, 1e-12);
-    runs.push_back({dx, sinter.substrate_peak_planes()[g.index(g.nx / 2, g.ny / 2, g.nz - 1)],
+    runs.push_back({dx, sinter.substrate_peak()[g.index(g.nx / 2, g.ny / 2, g.k_plate())],
                     result.melt_pool.width, result.melt_pool.depth});
   }
   const double level = c.level - t0;  // the isotherm as a rise
@@ -361,7 +361,7 @@ TEST(MovingSource, FarFieldMatchesRosenthal) {
     const double x = c.x_end + p.xi, y = c.ly / 2 + p.y;
     const auto i = static_cast<std::size_t>(std::lround(x / dx));
     const auto j = static_cast<std::size_t>(std::lround(y / dx));
-    const auto k = g.nz - 1 - static_cast<std::size_t>(std::lround(-p.z / dx));
+    const auto k = g.k_plate() - static_cast<std::size_t>(std::lround(-p.z / dx));
     ASSERT_NEAR(g.x(i), x, 1e-12);
     ASSERT_NEAR(g.y(j), y, 1e-12);
     ASSERT_NEAR(g.z(k), p.z, 1e-12);

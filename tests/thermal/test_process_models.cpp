@@ -377,6 +377,21 @@ TEST(ProcessModels, MoltenParticlesMergeIntoThePoolConservingMassAndEnergy) {
   for (const double z : sinter.top_height()) raised += (z - g.z_top) * g.dx * g.dy;
   // Round-off of the sums: 1e-12.
   EXPECT_NEAR(raised, merged, 1e-12 * merged);
+  // The grid grew with the merged melt: columns that rose past one dz have their top node in a
+  // plane of its own, none thicker than 1.5 dz.
+  std::size_t grown = 0;
+  for (std::size_t c = 0; c < g.columns(); ++c) {
+    const std::size_t plane = sinter.top_planes()[c];
+    grown += plane > g.k_plate() ? 1 : 0;
+    const double delta = sinter.top_height()[c] - g.z(plane);
+    EXPECT_GE(delta, -1e-12 * g.dz);
+    if (plane + 1 < g.nz) {
+      EXPECT_LT(delta, g.dz * (1 + 1e-9));
+    }
+  }
+  std::printf("  %zu merged, %zu columns grew a plane (dz %.1f um, %zu planes above)\n",
+              r.particles_merged, grown, g.dz * 1e6, g.nz_above);
+  EXPECT_GT(grown, 0u);
   const thermal::Fusion f = thermal::fuse(bed, sinter, 0.5);
   EXPECT_LT(f.mass_error(), 1e-12);
   EXPECT_GE(f.fused, r.particles_merged);

@@ -358,7 +358,7 @@ TEST(WettingSinter, StiffWettedContactDoesNotOvershoot) {
   scene.t_end = 400e-6;  // the beam leaves the domain at ~115 µs: ~140 grid steps of cooling
   thermal::Sinter sinter(bed, scene, test::table_316l());
   const auto& g = sinter.grid();
-  const std::size_t under = g.index(6, 6, g.nz - 1);
+  const std::size_t under = g.index(6, 6, g.k_plate());
   ASSERT_NEAR(g.x(6), bed.x[0], 1e-12);
   ASSERT_NEAR(g.y(6), bed.y[0], 1e-12);
   // Beer–Lambert's beam reaches sqrt(18.5) w (beer_lambert_laser.hpp): past that, no heating.

@@ -21,17 +21,18 @@ struct Clusters {
 // half a cell (dz/2) of the solid's top under its centre, which is as finely as the grid knows
 // where that surface is (the top node stands for the half cell below it); a spread layer's
 // particles often hover a fraction of a micrometre above the floor they settle on. Melted under
-// it: a top-face node of its footprint (the nodes within its projected disc, where fusion puts
-// its volume) reached the threshold, not only the corners under its centre: the particle shades
+// it: the top node of a column of its footprint (the columns within its projected disc, where
+// fusion puts its volume) reached the threshold, not only the corners under its centre: the particle shades
 // the solid right under it, and the pool that melts around that shadow is what the liquid slumps
 // into.
 bool on_molten_solid(const bed::Bed& bed, const Sinter& sinter, std::size_t i, double threshold) {
   const SubstrateGeometry& g = sinter.grid();
   const double gap = bed.z[i] - bed.radius[i] - top_height_at(g, sinter.top_height(), bed.x[i], bed.y[i]);
   if (gap >= 0.5 * g.dz) return false;
-  const auto& node_peak = sinter.substrate_peak_planes();
-  for (const auto& [node, weight] : top_footprint(g, bed.x[i], bed.y[i], bed.radius[i]))
-    if (weight > 0 && node_peak[node] >= threshold) return true;
+  const auto& node_peak = sinter.substrate_peak();
+  const auto& plane = sinter.top_planes();
+  for (const auto& [column, weight] : top_footprint(g, bed.x[i], bed.y[i], bed.radius[i]))
+    if (weight > 0 && node_peak[column + g.columns() * plane[column]] >= threshold) return true;
   return false;
 }
 

@@ -57,11 +57,11 @@ void particle_step(Sinter::State& s, double t, double dt) {
       // would draw heat from a node colder than the particle and swing it below T0).
       const double ti = s.temperature[c.particle], ki = k_of(ti);
       for (int w = 0; w < 4; ++w) {
-        const std::size_t node = c.stencil.node[w];
+        const std::size_t column = c.stencil.column[w], node = top_node(s, column);
         const double tq = s.node_temperature[node];
         const double f = c.stencil.weight[w] * conduction_flow(ki, k_of(tq), c.shape, tq - ti);
         q[c.particle] += f;
-        if (s.g.fixed_top(node)) s.ledger.boundary -= f * dt;  // from the reservoir
+        if (s.g.fixed_column(column)) s.ledger.boundary -= f * dt;  // from the reservoir
         else s.sources.push_back({node, -f * dt});
       }
     }
@@ -106,8 +106,13 @@ constexpr std::array<ParticleKernel, sizeof...(I)> particle_kernels(std::index_s
 constexpr auto kParticleKernels =
     particle_kernels(std::make_index_sequence<std::size_t{1} << kParticleEffects.size()>{});
 
+// The highest plane any column's solid reaches (the plate's while the top is flat).
+std::size_t highest_plane(const Sinter::State& s) {
+  return *std::max_element(s.top_plane.begin(), s.top_plane.end());
+}
+
 // Heat from the free nodes into the Dirichlet sides and bottom over dt, with the face fluxes
-// the grid step uses.
+// the grid step uses (a side face as tall as the thinner of its two nodes).
 void boundary_outflow(Sinter::State& s, double dt) {
   const SubstrateGeometry& g = s.g;
   const auto& t = s.node_temperature;
@@ -118,17 +123,12 @@ void boundary_outflow(Sinter::State& s, double dt) {
   };
   std::vector<double>& plane = s.plane_sums;  // reused: no allocation per step
   plane.assign(g.nz, 0.0);
-  const std::size_t first_top = g.index(0, 0, g.nz - 1);
-  // A raised top: the face between two top nodes is as thick as the thinner of the two.
-  const auto raised = [&](std::size_t a, std::size_t b) {
-    return std::min(s.top_thickness[a - first_top], s.top_thickness[b - first_top]);
-  };
+  const std::size_t k_end = highest_plane(s) + 1;
 #pragma omp parallel for schedule(static) if (g.size() >= kParallelNodes)
-  for (std::size_t kk = 1; kk < g.nz; ++kk) {
-    const bool top = kk + 1 == g.nz;
-    const double half = top ? 0.5 : 1.0;  // top nodes own half a cell
+  for (std::size_t kk = 1; kk < k_end; ++kk) {
     const auto side = [&](std::size_t a, std::size_t b, double shape) {
-      return flux(a, b, shape * (top && !s.top.empty() ? raised(a, b) : half));
+      const double w = std::min(node_thickness(s, a), node_thickness(s, b));
+      return w > 0 ? flux(a, b, shape * w) : 0.0;
     };
     double sum = 0;
     for (std::size_t j = 1; j + 1 < g.ny; ++j) {
@@ -151,49 +151,43 @@ void boundary_outflow(Sinter::State& s, double dt) {
   s.ledger.boundary += total * dt;
 }
 
-// Peak temperatures are kept where the melt pool is measured and drawn: the planes x = Lx/2
-// (nodes i = nx/2), y = Ly/2 (j = ny/2) and the top face; a full-field peak would double the
-// memory traffic of a step.
-void update_peak_planes(Sinter::State& s) {
-  const SubstrateGeometry& g = s.g;
-  const auto keep = [&](std::size_t c) {
-    s.node_peak[c] = std::max(s.node_peak[c], s.node_temperature[c]);
-  };
-  for (std::size_t k = 0; k < g.nz; ++k) {
-    for (std::size_t j = 0; j < g.ny; ++j) keep(g.index(g.nx / 2, j, k));
-    for (std::size_t i = 0; i < g.nx; ++i) keep(g.index(i, g.ny / 2, k));
-  }
-  for (std::size_t c = g.index(0, 0, g.nz - 1); c < g.size(); ++c) keep(c);
-}
-
-// The top layer of a raised top (fusion): each top node owns dx dy (dz/2 + δ) and meets its
-// neighbours over the thinner of the two thicknesses; the face below it is the flat grid's.
+// The planes from the plate's top up over a raised top (fusion): a node is as thick as
+// node_thickness says; a side face is as tall as the thinner of its two nodes (none to an empty
+// node), the face above exists while the column's solid goes on.
 template <bool Variable>
-void raised_top_layer(Sinter::State& s, double dt) {
+void raised_planes(Sinter::State& s, double dt) {
   const SubstrateGeometry& g = s.g;
   const double gx = g.dy * g.dz / g.dx, gy = g.dx * g.dz / g.dy, gz = g.dx * g.dy / g.dz;
-  const std::size_t sx = 1, sy = g.nx, sz = g.nx * g.ny, k = g.nz - 1, first = g.index(0, 0, k);
+  const std::size_t sx = 1, sy = g.nx, sz = g.columns();
   const double* t = s.node_temperature.data();
   const double* kk = s.node_k.data();
-  const double* thick = s.top_thickness.data();
   const double k0 = s.k_fixed;
   const auto k_at = [&](std::size_t a) {
     if constexpr (Variable) return kk[a];
     else return k0;
   };
-  for (std::size_t j = 1; j + 1 < g.ny; ++j) {
-    for (std::size_t i = 1; i + 1 < g.nx; ++i) {
-      const std::size_t c = g.index(i, j, k), col = c - first;
-      const double tc = t[c];
-      // A lateral face's conductance per metre of height, times the thinner of the two heights.
-      const auto lateral = [&](std::size_t nb, double shape) {
-        return path_conductance(k_at(c), k_at(nb), shape) *
-               std::min(thick[col], thick[nb - first]) * (t[nb] - tc);
-      };
-      const double energy = lateral(c - sx, gx) + lateral(c + sx, gx) + lateral(c - sy, gy) +
-                            lateral(c + sy, gy) +
-                            conduction_flow(k_at(c), k_at(c - sz), gz, t[c - sz] - tc);
-      s.e[c] += energy * dt / s.top_volume[col];
+  const std::size_t k_end = highest_plane(s) + 1;
+  for (std::size_t k = g.k_plate(); k < k_end; ++k) {
+    const auto thick = [&](std::size_t column) {
+      const std::size_t top = s.top_plane[column];
+      return k < top ? 1.0 : k == top ? s.top_thickness[column] : 0.0;
+    };
+    for (std::size_t j = 1; j + 1 < g.ny; ++j) {
+      for (std::size_t i = 1; i + 1 < g.nx; ++i) {
+        const std::size_t col = i + g.nx * j, c = col + sz * k;
+        const double th = thick(col);
+        if (th == 0) continue;
+        const double tc = t[c];
+        const auto side = [&](std::size_t nb_col, std::size_t nb, double shape) {
+          const double w = std::min(th, thick(nb_col));
+          return w > 0 ? conduction_flow(k_at(c), k_at(nb), shape * w, t[nb] - tc) : 0.0;
+        };
+        double energy = side(col - sx, c - sx, gx) + side(col + sx, c + sx, gx) +
+                        side(col - sy, c - sy, gy) + side(col + sy, c + sy, gy) +
+                        conduction_flow(k_at(c), k_at(c - sz), gz, t[c - sz] - tc);
+        if (k < s.top_plane[col]) energy += conduction_flow(k_at(c), k_at(c + sz), gz, t[c + sz] - tc);
+        s.e[c] += energy * dt / (g.cell_volume() * th);
+      }
     }
   }
 }
@@ -208,13 +202,16 @@ void grid_step(Sinter::State& s, double dt) {
   double* t = s.node_temperature.data();
   double* kk = s.node_k.data();
   const double k0 = s.k_fixed;
-  const std::size_t k_end = s.top.empty() ? g.nz : g.nz - 1;  // a raised top layer: below
+  // A flat top: every plane up to the plate's here (its top plane owns half cells); a raised
+  // top: the planes below the plate's here, from there raised_planes.
+  const bool raised = !s.top.empty();
+  const std::size_t k_end = raised ? g.k_plate() : g.k_plate() + 1;
 #pragma omp parallel for schedule(static) if (g.size() >= kParallelNodes)
   for (std::size_t k = 1; k < k_end; ++k) {
-    const bool top = k + 1 == g.nz;
+    const bool top = k == g.k_plate();
     const double half = top ? 0.5 : 1.0;
     const double cx = 0.5 * gx * half * dt, cy = 0.5 * gy * half * dt, cz = 0.5 * gz * dt;
-    const double inv_volume = 1 / g.volume(k);
+    const double inv_volume = 1 / (g.cell_volume() * half);
     for (std::size_t j = 1; j + 1 < g.ny; ++j) {
       const std::size_t row = g.index(0, j, k);
       for (std::size_t i = 1; i + 1 < g.nx; ++i) {
@@ -237,17 +234,20 @@ void grid_step(Sinter::State& s, double dt) {
       }
     }
   }
-  if (!s.top.empty()) raised_top_layer<Variable>(s, dt);
+  if (raised) raised_planes<Variable>(s, dt);
   // Energy from the laser and the particles (free nodes only, booked when it was produced).
   for (const auto& [node, energy] : s.sources) e[node] += energy / node_volume(s, node);
   s.sources.clear();
   // The depression: the beam's energy drills from each column's surface down, each node filled
   // to T_d with what conduction and the particles brought it this step counted.
   if (s.scene.has(kDepression)) drill(s);
-  // Second pass: the update above read only the old temperatures.
+  // Second pass: the update above read only the old temperatures. (The empty nodes over a
+  // raised column hold e = 0, T0, until raise_column fills them.)
   double hottest = s.node_max;
+  double* peak = s.node_peak.data();
+  const std::size_t k_top = raised ? highest_plane(s) + 1 : k_end;
 #pragma omp parallel for schedule(static) reduction(max : hottest) if (g.size() >= kParallelNodes)
-  for (std::size_t k = 1; k < g.nz; ++k) {
+  for (std::size_t k = 1; k < k_top; ++k) {
     for (std::size_t j = 1; j + 1 < g.ny; ++j) {
       const std::size_t row = g.index(0, j, k);
       for (std::size_t i = 1; i + 1 < g.nx; ++i) {
@@ -255,12 +255,12 @@ void grid_step(Sinter::State& s, double dt) {
         const double tc = s.per_m3.temperature(e[c]);
         t[c] = tc;
         if constexpr (Variable) kk[c] = s.conductivity(tc);
+        peak[c] = std::max(peak[c], tc);
         hottest = std::max(hottest, tc);
       }
     }
   }
   s.node_max = hottest;
-  update_peak_planes(s);
 }
 
 }  // namespace

@@ -116,7 +116,6 @@ void level_deposit(const SubstrateGeometry& g, const TopHeight& before, double l
 void capture_buried(const bed::Bed& bed, const SubstrateGeometry& g, const std::vector<double>& mass,
                     double rho0, double capture, double level, const TopHeight& unscanned,
                     Fusion& f, std::vector<std::uint8_t>& keep) {
-  const std::size_t first_top = g.index(0, 0, g.nz - 1);
   std::vector<std::uint8_t> pool(f.top.size());
   for (std::size_t c = 0; c < pool.size(); ++c) pool[c] = f.top[c] > unscanned[c] ? 1 : 0;
   for (std::size_t pass = 0; pass < 100; ++pass) {
@@ -135,8 +134,8 @@ void capture_buried(const bed::Bed& bed, const SubstrateGeometry& g, const std::
       ++f.fused;
       ++f.captured;
       f.powder_mass_after -= mass[i];
-      for (const auto& [node, weight] : top_footprint(g, bed.x[i], bed.y[i], bed.radius[i]))
-        f.top[node - first_top] += mass[i] / rho0 * weight / (g.dx * g.dy);
+      for (const auto& [column, weight] : top_footprint(g, bed.x[i], bed.y[i], bed.radius[i]))
+        f.top[column] += mass[i] / rho0 * weight / (g.dx * g.dy);
     }
     if (level > 0) level_deposit(g, before, level, f.top, &pool);
   }
@@ -161,7 +160,6 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
   f.solid_mass_before = solid_mass(g, f.top, rho0);
   f.state.assign(bed.n(), 0);
   std::vector<std::uint8_t> keep(bed.n(), 1);
-  const std::size_t first_top = g.index(0, 0, g.nz - 1);
   for (std::size_t i = 0; i < bed.n(); ++i) {
     if (!merged.empty() && merged[i]) {  // in the pool during the scan: in the top already
       f.state[i] = kFused;
@@ -188,8 +186,8 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
     keep[i] = 0;
     ++f.fused;
     const double volume = mass[i] / rho0;
-    for (const auto& [node, weight] : top_footprint(g, bed.x[i], bed.y[i], bed.radius[i]))
-      f.top[node - first_top] += volume * weight / (g.dx * g.dy);
+    for (const auto& [column, weight] : top_footprint(g, bed.x[i], bed.y[i], bed.radius[i]))
+      f.top[column] += volume * weight / (g.dx * g.dy);
   }
   require_in_range(level >= 0 && std::isfinite(level), "fuse.level", level, "a length >= 0 m");
   TopHeight before = sinter.top_height();

@@ -117,7 +117,7 @@ void add_substrate_contacts(const Sinter::State& s, ImplicitSystem& sys) {
   for (const auto& c : s.net.substrate) {
     const double ti = s.temperature[c.particle];
     for (int a = 0; a < 4; ++a) {
-      const std::size_t node = c.stencil.node[a];
+      const std::size_t node = top_node(s, c.stencil.column[a]);
       const double ta = s.node_temperature[node];
       const double G = s.gone[c.particle]
                            ? 0.0
@@ -174,7 +174,7 @@ void add_grid(const Sinter::State& s, ImplicitSystem& sys, double dt, const Lase
         const std::size_t c = g.index(i, j, k);
         const std::ptrdiff_t u = unknown[c];
         const double tc = s.node_temperature[c];
-        const double capacity = g.volume(k) * s.capacity_per_m3(tc) / dt;
+        const double capacity = g.cell_volume() * half * s.capacity_per_m3(tc) / dt;
         sys.add(u, u, capacity);
         sys.rhs[u] += capacity * tc;
         sys.guess[u] = tc;

@@ -17,13 +17,38 @@ bool within_strip(const ScanSegment& s, double half_width, double x, double y) {
   return along >= 0 && along <= length && across <= half_width;
 }
 
+// Column `column`'s remelt depth below `top` (m): down from its top node while the peak stays at
+// or above the threshold, the last step interpolated to the crossing.
+double remelt_depth(const SubstrateGeometry& g, const std::vector<double>& peak, std::size_t column,
+                    std::size_t top_plane, double top, double threshold) {
+  const auto at = [&](std::size_t k) { return peak[column + g.columns() * k]; };
+  if (at(top_plane) < threshold) return 0;
+  std::size_t k = top_plane;
+  while (k > 1 && at(k - 1) >= threshold) --k;
+  double z = g.z(k);
+  if (at(k) > at(k - 1)) z -= g.dz * std::clamp((at(k) - threshold) / (at(k) - at(k - 1)), 0.0, 1.0);
+  return std::max(0.0, top - z);
+}
+
 }  // namespace
 
-LackOfFusion lack_of_fusion(const Sinter& sinter, double half_width, double threshold) {
+double LackOfFusion::mean_remelt() const {
+  double sum = 0;
+  for (const double d : remelt) sum += d;
+  return remelt.empty() ? 0.0 : sum / static_cast<double>(remelt.size());
+}
+
+double LackOfFusion::min_remelt() const {
+  return remelt.empty() ? 0.0 : *std::min_element(remelt.begin(), remelt.end());
+}
+
+LackOfFusion lack_of_fusion(const Sinter& sinter, double half_width, double threshold,
+                            const TopHeight& start) {
   require_in_range(half_width > 0 && std::isfinite(half_width), "lack-of-fusion half width",
                    half_width, "a half width > 0 m");
   const SubstrateGeometry& g = sinter.grid();
-  const auto& peak = sinter.substrate_peak_planes();
+  const auto& peak = sinter.substrate_peak();
+  const auto& plane = sinter.top_planes();
   const std::vector<ScanSegment>& path = sinter.scan_path();
   LackOfFusion out;
   out.threshold = threshold;
@@ -35,8 +60,11 @@ LackOfFusion lack_of_fusion(const Sinter& sinter, double half_width, double thre
         return s.length() > 0 && within_strip(s, half_width, g.x(i), g.y(j));
       });
       if (!scanned) continue;
-      const bool bonded = peak[g.index(i, j, g.nz - 1)] >= threshold;
+      const std::size_t column = i + g.nx * j;
+      const bool bonded = peak[column + g.columns() * plane[column]] >= threshold;
       out.map[i + g.nx * j] = bonded ? kBonded : kUnbonded;
+      const double top = start.empty() ? g.z_top : start[column];
+      out.remelt.push_back(remelt_depth(g, peak, column, plane[column], top, threshold));
       ++out.scanned;
       out.unbonded += bonded ? 0 : 1;
     }

@@ -51,7 +51,6 @@ void beer_lambert_substrate(Sinter::State& s, double t, double dt) {
   const std::size_t i1 = first(g.x0, g.dx, g.nx, xl + reach);
   const std::size_t j0 = first(g.y0, g.dy, g.ny, yl - reach);
   const std::size_t j1 = first(g.y0, g.dy, g.ny, yl + reach);
-  const std::size_t k = g.nz - 1;
   double absorbed = 0;
   for (std::size_t j = j0; j < j1 && j + 1 < g.ny; ++j) {
     const double dy = g.y(j) - yl;
@@ -59,7 +58,7 @@ void beer_lambert_substrate(Sinter::State& s, double t, double dt) {
       const double dx = g.x(i) - xl;
       const double energy =
           node_laser_power(laser, dx * dx + dy * dy, s.transmission[i + g.nx * j], g.dx, g.dy) * dt;
-      add_surface_energy(s, g.index(i, j, k), energy);
+      add_surface_energy(s, i + g.nx * j, energy);
       absorbed += energy;
     }
   }
@@ -134,7 +133,7 @@ void ray_traced_substrate(Sinter::State& s, double t, double dt) {
     for (const auto& e : map.nodes) {
       const double de = energy * e.fraction;
       absorbed += de;
-      if (s.g.fixed_top(e.target)) into_boundary += de;  // a Dirichlet node passes it on
+      if (s.g.fixed_column(e.target)) into_boundary += de;  // a Dirichlet node passes it on
       else add_surface_energy(s, e.target, de);
     }
   };
@@ -151,12 +150,13 @@ void update_surfaces(Sinter::State& s) {
   TraceSurfaces& f = s.surfaces;
   for (std::size_t i = 0; i < s.x.size(); ++i) f.particle_phase[i] = s.temperature[i] >= t_m;
   const SubstrateGeometry& g = s.g;
-  const std::size_t plane = g.nx * g.ny, top = g.index(0, 0, g.nz - 1);
-  for (std::size_t c = 0; c < plane; ++c) f.node_phase[c] = s.node_temperature[top + c] >= t_m;
+  const std::size_t plane = g.columns();
+  for (std::size_t c = 0; c < plane; ++c) f.node_phase[c] = s.node_temperature[top_node(s, c)] >= t_m;
   if (!s.scene.has(kDepression)) return;
   for (std::size_t c = 0; c < plane; ++c) {
-    const auto column = [&](std::size_t k) { return s.node_temperature[top + c - k * plane]; };
-    f.depression[c] = isotherm_depth(column, g.nz - 1, g.dz, cavity_temperature(s));
+    const std::size_t top = top_node(s, c);
+    const auto column = [&](std::size_t k) { return s.node_temperature[top - k * plane]; };
+    f.depression[c] = isotherm_depth(column, s.top_plane[c], g.dz, cavity_temperature(s));
     s.depression_depth = std::max(s.depression_depth, f.depression[c]);
   }
 }
@@ -231,14 +231,13 @@ SurfaceOptics surface_optics(const SinterScene& scene) {
   return o;
 }
 
-void add_surface_energy(Sinter::State& s, std::size_t top_node, double energy) {
+void add_surface_energy(Sinter::State& s, std::size_t column, double energy) {
   if (!s.scene.has(kDepression)) {
-    s.sources.push_back({top_node, energy});
+    s.sources.push_back({top_node(s, column), energy});
     return;
   }
-  const std::size_t c = top_node - s.g.index(0, 0, s.g.nz - 1);
-  if (s.column_energy[c] == 0) s.touched_columns.push_back(static_cast<std::uint32_t>(c));
-  s.column_energy[c] += energy;
+  if (s.column_energy[column] == 0) s.touched_columns.push_back(static_cast<std::uint32_t>(column));
+  s.column_energy[column] += energy;
 }
 
 // Each column's energy from its surface down, into the nodes' enthalpies (the grid step's
@@ -246,12 +245,12 @@ void add_surface_energy(Sinter::State& s, std::size_t top_node, double energy) {
 // goes on to the node below (the beam drills through what it displaces).
 void drill(Sinter::State& s) {
   const SubstrateGeometry& g = s.g;
-  const std::size_t plane = g.nx * g.ny, top = g.index(0, 0, g.nz - 1);
+  const std::size_t plane = g.columns();
   const double e_d = s.per_m3.enthalpy(s.depression_temperature);
   for (const std::uint32_t c : s.touched_columns) {
     double energy = s.column_energy[c];
     s.column_energy[c] = 0;
-    for (std::size_t node = top + c; energy > 0; node -= plane) {
+    for (std::size_t node = top_node(s, c); energy > 0; node -= plane) {
       const double room = node_volume(s, node) * (e_d - s.e[node]);
       const double take = std::clamp(room, 0.0, energy);
       s.e[node] += take / node_volume(s, node);
@@ -268,10 +267,10 @@ void drill(Sinter::State& s) {
   s.touched_columns.clear();
 }
 
-std::size_t surface_node(const Sinter::State& s, std::size_t top_node) {
-  if (!s.scene.has(kDepression)) return top_node;
-  const std::size_t plane = s.g.nx * s.g.ny;
-  std::size_t node = top_node;
+std::size_t surface_node(const Sinter::State& s, std::size_t column) {
+  if (!s.scene.has(kDepression)) return top_node(s, column);
+  const std::size_t plane = s.g.columns();
+  std::size_t node = top_node(s, column);
   while (node >= 2 * plane && s.node_temperature[node] >= cavity_temperature(s)) node -= plane;
   return node;
 }

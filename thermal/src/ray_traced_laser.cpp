@@ -128,7 +128,7 @@ struct BeamTracer::Impl {
     const TopStencil st = top_stencil(g, p[0], p[1]);
     for (int w = 0; w < 4; ++w)
       if (st.weight[w] > 0)
-        tally.nodes.push_back({static_cast<std::uint32_t>(st.node[w]), st.weight[w] * absorbed});
+        tally.nodes.push_back({static_cast<std::uint32_t>(st.column[w]), st.weight[w] * absorbed});
   }
   // Share of the reflected light that goes on specularly from a hit on a surface of phase
   // `liquid`; `top_face`: the substrate's flat top, not a particle or the depression's wall.
@@ -146,7 +146,7 @@ struct BeamTracer::Impl {
   unsigned column_phase(const Vec3& p, const TraceSurfaces& surfaces) const {
     const TopStencil st = top_stencil(g, p[0], p[1]);
     const int nearest = static_cast<int>(std::max_element(st.weight, st.weight + 4) - st.weight);
-    return surfaces.node_phase[st.node[nearest] % (g.nx * g.ny)];
+    return surfaces.node_phase[st.column[nearest]];
   }
 };
 

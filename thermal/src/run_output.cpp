@@ -1,5 +1,7 @@
 #include "powderbed/thermal/run_output.hpp"
 
+#include <cstdint>
+
 #include "powderbed/bed/h5_output.hpp"
 #include "powderbed/bed/xdmf.hpp"
 #include "run_xdmf.hpp"
@@ -20,9 +22,12 @@ std::vector<double> mid_section(const SubstrateGeometry& g, const std::vector<do
       out.push_back(f[axis == 0 ? g.index(g.nx / 2, a, k) : g.index(a, g.ny / 2, k)]);
   return out;
 }
-std::vector<double> top_face(const SubstrateGeometry& g, const std::vector<double>& f) {
-  const auto first = f.begin() + static_cast<std::ptrdiff_t>(g.index(0, 0, g.nz - 1));
-  return std::vector<double>(first, first + static_cast<std::ptrdiff_t>(g.nx * g.ny));
+// Each column's top node (ny × nx): the plate's top face, or the raised solid's top.
+std::vector<double> top_face(const SubstrateGeometry& g, const std::vector<std::uint32_t>& plane,
+                             const std::vector<double>& f) {
+  std::vector<double> out(g.columns());
+  for (std::size_t c = 0; c < out.size(); ++c) out[c] = f[c + g.columns() * plane[c]];
+  return out;
 }
 
 }  // namespace
@@ -63,6 +68,8 @@ RunWriter::RunWriter(const std::string& path, const bed::Bed& bed, const Sinter&
   out.attribute("/substrate", "nodes", std::vector<double>{static_cast<double>(g.nx),
                                                            static_cast<double>(g.ny),
                                                            static_cast<double>(g.nz)});
+  // The plate's top plane k (its nodes at z = origin z): planes above it are the part's room.
+  out.attribute("/substrate", "plate_plane", static_cast<std::uint64_t>(g.k_plate()));
 }
 
 RunWriter::~RunWriter() = default;
@@ -76,7 +83,7 @@ void RunWriter::snapshot(const Sinter& sinter) {
   s.out.write(group + "/particle_phase", sinter.particle_phase(), {s.n}, "1");
   const auto& t = sinter.substrate_temperature();
   s.out.write(group + "/section_y", mid_section(s.g, t, 1), {s.g.nz, s.g.nx}, "K");
-  s.out.write(group + "/top", top_face(s.g, t), {s.g.ny, s.g.nx}, "K");
+  s.out.write(group + "/top", top_face(s.g, sinter.top_planes(), t), {s.g.ny, s.g.nx}, "K");
   if (s.full) {
     const std::vector<float> field(t.begin(), t.end());
     s.out.write(group + "/substrate", field, {s.g.nz, s.g.ny, s.g.nx}, "K");
@@ -125,11 +132,11 @@ void RunWriter::finish(const Sinter& sinter, const SinterResult& result,
                        const std::vector<std::pair<std::string, double>>& summary) {
   Impl& s = *impl_;
   const SubstrateGeometry& g = s.g;
-  const auto& peak = sinter.substrate_peak_planes();
+  const auto& peak = sinter.substrate_peak();
   s.out.write("/melt/particle", sinter.particle_max_temperature(), {s.n}, "K");
   s.out.write("/melt/section_x", mid_section(g, peak, 0), {g.nz, g.ny}, "K");
   s.out.write("/melt/section_y", mid_section(g, peak, 1), {g.nz, g.nx}, "K");
-  s.out.write("/melt/top", top_face(g, peak), {g.ny, g.nx}, "K");
+  s.out.write("/melt/top", top_face(g, sinter.top_planes(), peak), {g.ny, g.nx}, "K");
   s.out.attribute("/melt", "height", result.melt_pool.height);
   s.out.attribute("/melt", "width", result.melt_pool.width);
   s.out.attribute("/melt", "depth", result.melt_pool.depth);

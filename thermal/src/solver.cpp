@@ -80,17 +80,32 @@ void check_bed(const bed::Bed& bed, const SubstrateGeometry& g, const TopHeight&
   }
 }
 
-SubstrateGeometry make_grid(const bed::Bed& bed, const SinterScene& scene) {
+// The planes over the plate a part may fill in this run: up to the raised top's highest column
+// and, where wetting merges molten particles into the pool, up to the bed's highest particle
+// (a merged particle's volume stays under the top it had). The explicit integrator only (the
+// implicit one refuses a raised top; a merge there lumps into the plate's top node).
+std::size_t planes_above(const bed::Bed& bed, const SinterScene& scene, const TopHeight& top,
+                         double z_top, double dz) {
+  if (scene.integrator != Integrator::explicit_euler) return 0;
+  double highest = z_top;
+  for (const double h : top) highest = std::max(highest, h);
+  if (scene.has(kWetting))
+    for (std::size_t i = 0; i < bed.n(); ++i) highest = std::max(highest, bed.z[i] + bed.radius[i]);
+  return static_cast<std::size_t>(std::ceil((highest - z_top) / dz - 1e-9));
+}
+
+SubstrateGeometry make_grid(const bed::Bed& bed, const SinterScene& scene, const TopHeight& top) {
   SubstrateGeometry g;
   g.nx = scene.nodes[0];
   g.ny = scene.nodes[1];
-  g.nz = scene.nodes[2];
   g.x0 = bed.domain.lower[0];
   g.y0 = bed.domain.lower[1];
   g.z_top = bed.domain.lower[2];
   g.dx = bed.domain.length(0) / static_cast<double>(g.nx - 1);
   g.dy = bed.domain.length(1) / static_cast<double>(g.ny - 1);
-  g.dz = scene.substrate_depth / static_cast<double>(g.nz - 1);
+  g.dz = scene.substrate_depth / static_cast<double>(scene.nodes[2] - 1);
+  g.nz_above = planes_above(bed, scene, top, g.z_top, g.dz);
+  g.nz = scene.nodes[2] + g.nz_above;
   return g;
 }
 
@@ -127,17 +142,16 @@ StableSteps compute_stable_steps(const Sinter::State& s) {
   const double rho_c_min = s.per_m3.min_capacity();
   // (A raised top's thicker top nodes have more capacity and, against it, conductances that grow
   // no faster: the flat top's bound holds for them.)
-  std::vector<double> contact(g.size(), 0.0);
+  std::vector<double> contact(g.columns(), 0.0);
   for (const auto& c : s.net.substrate)
-    for (int w = 0; w < 4; ++w) contact[c.stencil.node[w]] += c.stencil.weight[w] * k_max * c.shape;
-  const std::size_t top = g.nz - 1;
+    for (int w = 0; w < 4; ++w) contact[c.stencil.column[w]] += c.stencil.weight[w] * k_max * c.shape;
   const double grid_g = k_max * (g.dy * g.dz / g.dx + g.dx * g.dz / g.dy + g.dx * g.dy / g.dz);
   for (const auto& c : s.net.substrate) {
-    for (const auto node : c.stencil.node) {
-      const double bound = rho_c_min * g.volume(top) / (grid_g + contact[node]);
+    for (const auto column : c.stencil.column) {
+      const double bound = rho_c_min * 0.5 * g.cell_volume() / (grid_g + contact[column]);
       if (bound < out.grid) {
         out.grid = bound;
-        out.grid_node = node;
+        out.grid_node = top_node(s, column);
       }
     }
   }
@@ -179,7 +193,7 @@ std::pair<double, double> internal_energy(const Sinter::State& s) {
     for (std::size_t j = 1; j + 1 < g.ny; ++j)
       for (std::size_t i = 1; i + 1 < g.nx; ++i) {
         const std::size_t c = g.index(i, j, k);
-        substrate += (k + 1 == g.nz ? top_node_volume(s, c) : g.volume(k)) * s.e[c];
+        substrate += node_volume(s, c) * s.e[c];
       }
   return {particles, substrate};
 }
@@ -368,11 +382,13 @@ void choose_steps(Sinter::State& s) {
 
 namespace {
 
-// A raised top: one height per top-face column, none below z_top; the top nodes' volumes and
-// thicknesses.
+// A raised top: one height per column, none below z_top.
 void setup_top(Sinter::State& s, TopHeight top) {
   const SubstrateGeometry& g = s.g;
-  if (top.empty()) return;
+  if (top.empty()) {
+    set_top_planes(s);
+    return;
+  }
   if (top.size() != g.nx * g.ny) {
     throw InputError(fmt::format(
         "solid top: {} column heights for a grid of {} x {} top nodes (accepted: one height per "
@@ -391,20 +407,38 @@ void setup_top(Sinter::State& s, TopHeight top) {
     throw InputError("solid top: a raised top works with --integrator explicit only (accepted: "
                      "--integrator explicit)");
   s.top = std::move(top);
-  top_volumes(s);
+  set_top_planes(s);
 }
 
 }  // namespace
 
-void top_volumes(Sinter::State& s) {
+void set_top_planes(Sinter::State& s) {
   const SubstrateGeometry& g = s.g;
-  if (s.top.empty()) s.top.assign(g.nx * g.ny, g.z_top);
-  s.top_volume.resize(s.top.size());
-  s.top_thickness.resize(s.top.size());
+  s.top_plane.assign(g.columns(), static_cast<std::uint32_t>(g.k_plate()));
+  s.top_thickness.assign(g.columns(), 0.5);
   for (std::size_t c = 0; c < s.top.size(); ++c) {
-    const double thick = 0.5 * g.dz + (s.top[c] - g.z_top);
-    s.top_volume[c] = g.dx * g.dy * thick;
-    s.top_thickness[c] = thick / g.dz;
+    // In planes; a height a whole number of planes up within round-off (3 x 4e-6 / 4e-6 is
+    // 2.9999999999999996) is that plane's, not a node 1.5 dz thick under it.
+    const double rise = (s.top[c] - g.z_top) / g.dz;
+    const double above = std::min(std::floor(rise + 1e-9), static_cast<double>(g.nz_above));
+    s.top_plane[c] = static_cast<std::uint32_t>(g.k_plate() + static_cast<std::size_t>(above));
+    s.top_thickness[c] = 0.5 + (rise - above);
+  }
+}
+
+void raise_column(Sinter::State& s, std::size_t column, double rise) {
+  const SubstrateGeometry& g = s.g;
+  if (s.top.empty()) s.top.assign(g.columns(), g.z_top);
+  s.top[column] += rise;
+  s.top_thickness[column] += rise / g.dz;
+  while (s.top_thickness[column] >= 1.5 && s.top_plane[column] + 1 < g.nz) {
+    const std::size_t below = top_node(s, column), above = below + g.columns();
+    s.e[above] = s.e[below];
+    s.node_temperature[above] = s.node_temperature[below];
+    s.node_k[above] = s.node_k[below];
+    s.node_peak[above] = s.node_temperature[below];
+    ++s.top_plane[column];
+    s.top_thickness[column] -= 1;
   }
 }
 
@@ -416,7 +450,7 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
   scene.validate();
   s_ = std::make_unique<State>(scene, scene_material(scene, table));
   State& s = *s_;
-  s.g = make_grid(bed, scene);
+  s.g = make_grid(bed, scene, top);
   setup_top(s, std::move(top));
   check_bed(bed, s.g, s.top);
   setup_track(s, bed);
@@ -546,7 +580,7 @@ SinterResult summarise(Sinter::State& s, double particles_start, double substrat
     r.depression_depth = s.depression_depth;
   }
   const SubstrateGeometry& g = s.g;
-  MeltPoolInput in{&g, &s.node_peak, &s.x, &s.y, &s.z, &s.radius, &s.peak, t_m,
+  MeltPoolInput in{&g, &s.node_peak, &s.top_plane, &s.x, &s.y, &s.z, &s.radius, &s.peak, t_m,
                    g.x0 + 0.5 * static_cast<double>(g.nx - 1) * g.dx};
   r.melt_pool = measure_melt_pool(in);
   r.along = measure_along(s, in);
@@ -619,7 +653,8 @@ const std::vector<double>& Sinter::particle_max_temperature() const { return s_-
 const std::vector<double>& Sinter::substrate_temperature() const {
   return s_->node_temperature;
 }
-const std::vector<double>& Sinter::substrate_peak_planes() const { return s_->node_peak; }
+const std::vector<double>& Sinter::substrate_peak() const { return s_->node_peak; }
+const std::vector<std::uint32_t>& Sinter::top_planes() const { return s_->top_plane; }
 
 std::vector<std::uint8_t> Sinter::particle_phase() const {
   std::vector<std::uint8_t> phase(s_->x.size());

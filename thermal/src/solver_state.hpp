@@ -60,13 +60,15 @@ struct Sinter::State {
 
   // Substrate nodes.
   std::vector<double> e, node_temperature, node_k;
-  // A raised top (fusion): the column heights, and per top-face column the top node's volume
-  // dx dy (dz/2 + δ) and its thickness over dz, (dz/2 + δ)/dz, δ the height above z_top.
-  // All empty when the top is flat.
+  // A raised top (fusion): the column heights (empty while the top is flat). Per column, its
+  // top node's plane (nodes above it are empty and never updated) and that node's thickness
+  // over dz, (dz/2 + δ)/dz with δ = height - z(plane) in [0, dz) while planes are left (the
+  // last plane lumps the rest); flat: the plate's plane and 1/2.
   TopHeight top;
-  std::vector<double> top_volume, top_thickness;
+  std::vector<std::uint32_t> top_plane;
+  std::vector<double> top_thickness;
   std::vector<double> transmission;  // per top-face node (i + nx j): laser fraction that arrives
-  std::vector<double> node_peak;  // peak T on the planes update_peak_planes keeps, else T0
+  std::vector<double> node_peak;  // peak T of every node (T0 while empty)
   double node_max = 0;            // highest node temperature so far
   struct Source {
     std::size_t node;
@@ -148,9 +150,12 @@ struct Sinter::State {
   State(const SinterScene& scene, Material material);
 };
 
-// The raised top's per-column volumes and thicknesses from s.top (flat at z_top when empty:
-// the first particle that merges into the pool raises a flat plate's top, wetting.cpp).
-void top_volumes(Sinter::State& s);
+// Each column's top plane and thickness from s.top (flat at z_top when empty).
+void set_top_planes(Sinter::State& s);
+// Raises column `column`'s solid by `rise` m (a particle merged into the pool, wetting.cpp):
+// its top node thickens, and past one dz the node above joins the solid at the top node's
+// enthalpy density (the energy is unchanged: the same e over the same total volume).
+void raise_column(Sinter::State& s, std::size_t column, double rise);
 // Laser models (laser_sources.cpp): chooses s.particle_laser and s.substrate_laser for the
 // scene and, for ray tracing, builds the tracer.
 void setup_laser(Sinter::State& s, const bed::Bed& bed);
@@ -168,12 +173,12 @@ double absorbed_fraction(const Sinter::State& s, double x, double y);
 inline double cavity_temperature(const Sinter::State& s) {
   return s.depression_temperature - 0.5 * s.scene.phase_change.window;
 }
-// The surface node of `top_node`'s column: the top node, or with the depression the column's
+// The surface node of column `column`: its top node, or with the depression the column's
 // topmost node below the cavity (vapour_depression.hpp; the lowest free node at most).
-std::size_t surface_node(const Sinter::State& s, std::size_t top_node);
-// Laser energy onto the top face of `top_node`'s column over this grid step: into the top node,
-// or with the depression booked on the column for drill().
-void add_surface_energy(Sinter::State& s, std::size_t top_node, double energy);
+std::size_t surface_node(const Sinter::State& s, std::size_t column);
+// Laser energy onto the top face of column `column` over this grid step: into its top node, or
+// with the depression booked on the column for drill().
+void add_surface_energy(Sinter::State& s, std::size_t column, double energy);
 // The depression: adds each column's laser energy of the step to its nodes' enthalpies from
 // the surface down, none beyond T_d (NumericalError when the lowest free node is full: the
 // depression has reached the grid's bottom). Called by the grid step after its sources.
@@ -230,14 +235,19 @@ void evaporate_surface(Sinter::State& s, double dt);
 void explicit_step(Sinter::State& s, double dt);
 // One backward-Euler step of particles and free nodes together (implicit_step.cpp).
 void implicit_step(Sinter::State& s, double dt);
-// Volume of top node `node` (a raised top lumps the solid above z_top into it).
-inline double top_node_volume(const Sinter::State& s, std::size_t node) {
-  return s.top.empty() ? s.g.volume(s.g.nz - 1) : s.top_volume[node - s.g.index(0, 0, s.g.nz - 1)];
+// The top node of column `column` (i + nx j).
+inline std::size_t top_node(const Sinter::State& s, std::size_t column) {
+  return column + s.g.columns() * s.top_plane[column];
 }
-// Volume of any free node.
+// A node's thickness over dz: 1 below its column's top node, the top node's own, 0 above (empty).
+inline double node_thickness(const Sinter::State& s, std::size_t node) {
+  const std::size_t plane = s.g.columns(), column = node % plane, k = node / plane;
+  const std::size_t top = s.top_plane[column];
+  return k < top ? 1.0 : k == top ? s.top_thickness[column] : 0.0;
+}
+// Volume of a node (0: empty).
 inline double node_volume(const Sinter::State& s, std::size_t node) {
-  const std::size_t k = node / (s.g.nx * s.g.ny);
-  return k + 1 == s.g.nz ? top_node_volume(s, node) : s.g.volume(k);
+  return s.g.cell_volume() * node_thickness(s, node);
 }
 
 // The beam at time t (off between segments and after the path).

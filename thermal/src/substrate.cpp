@@ -11,9 +11,8 @@ namespace powderbed::thermal {
 
 TopStencil top_stencil(const SubstrateGeometry& g, double x, double y) {
   const bed::GridCell c = bed::grid_cell(g.x0, g.dx, g.nx, g.y0, g.dy, g.ny, x, y);
-  const std::size_t k = g.nz - 1;
-  return TopStencil{{g.index(c.i, c.j, k), g.index(c.i + 1, c.j, k), g.index(c.i, c.j + 1, k),
-                     g.index(c.i + 1, c.j + 1, k)},
+  const std::size_t col = c.i + g.nx * c.j;
+  return TopStencil{{col, col + 1, col + g.nx, col + g.nx + 1},
                     {(1 - c.fx) * (1 - c.fy), c.fx * (1 - c.fy), (1 - c.fx) * c.fy, c.fx * c.fy}};
 }
 
@@ -30,11 +29,11 @@ std::vector<std::pair<std::size_t, double>> top_footprint(const SubstrateGeometr
   for (std::size_t j = j0; j <= j1; ++j)
     for (std::size_t i = i0; i <= i1; ++i) {
       const double dx = g.x(i) - x, dy = g.y(j) - y;
-      if (dx * dx + dy * dy <= a * a) nodes.push_back({g.index(i, j, g.nz - 1), 1.0});
+      if (dx * dx + dy * dy <= a * a) nodes.push_back({i + g.nx * j, 1.0});
     }
   if (nodes.empty()) {
     const TopStencil st = top_stencil(g, x, y);
-    for (int w = 0; w < 4; ++w) nodes.push_back({st.node[w], st.weight[w]});
+    for (int w = 0; w < 4; ++w) nodes.push_back({st.column[w], st.weight[w]});
     return nodes;
   }
   for (auto& node : nodes) node.second = 1.0 / static_cast<double>(nodes.size());
@@ -44,9 +43,8 @@ std::vector<std::pair<std::size_t, double>> top_footprint(const SubstrateGeometr
 double top_height_at(const SubstrateGeometry& g, const TopHeight& top, double x, double y) {
   if (top.empty()) return g.z_top;
   const TopStencil st = top_stencil(g, x, y);
-  const std::size_t first = g.index(0, 0, g.nz - 1);
   double h = 0;
-  for (int w = 0; w < 4; ++w) h += st.weight[w] * top[st.node[w] - first];
+  for (int w = 0; w < 4; ++w) h += st.weight[w] * top[st.column[w]];
   return h;
 }
 

@@ -15,7 +15,7 @@ namespace powderbed::thermal {
 
 namespace {
 
-// The top-face column nearest (x, y), or nothing outside the grid.
+// The column nearest (x, y), or nothing outside the grid.
 bool nearest_column(const SubstrateGeometry& g, double x, double y, std::size_t& column) {
   const double fi = std::round((x - g.x0) / g.dx), fj = std::round((y - g.y0) / g.dy);
   if (fi < 0 || fj < 0 || fi > static_cast<double>(g.nx - 1) || fj > static_cast<double>(g.ny - 1))
@@ -60,24 +60,23 @@ Sinter::State::TrackProbe make_probe(const Sinter::State& s, std::size_t m) {
 double top_temperature(const Sinter::State& s, double x, double y) {
   const TopStencil st = top_stencil(s.g, x, y);
   double t = 0;
-  for (int w = 0; w < 4; ++w) t += st.weight[w] * s.node_temperature[st.node[w]];
+  for (int w = 0; w < 4; ++w) t += st.weight[w] * s.node_temperature[top_node(s, st.column[w])];
   return t;
 }
 
-// Mean top-face temperature within one spot radius of (x, y) (the nearest node when none is).
+// Mean temperature of the columns' top nodes within one spot radius of (x, y) (the nearest node when none is).
 double mean_top_temperature(const Sinter::State& s, double x, double y) {
   const SubstrateGeometry& g = s.g;
   const double w = s.scene.spot_radius;
   double sum = 0;
   std::size_t n = 0;
-  const std::size_t top = g.index(0, 0, g.nz - 1);
   for (std::size_t j = 0; j < g.ny; ++j) {
     const double dy = g.y(j) - y;
     if (std::abs(dy) > w) continue;
     for (std::size_t i = 0; i < g.nx; ++i) {
       const double dx = g.x(i) - x;
       if (dx * dx + dy * dy > w * w) continue;
-      sum += s.node_temperature[top + i + g.nx * j];
+      sum += s.node_temperature[top_node(s, i + g.nx * j)];
       ++n;
     }
   }
@@ -115,7 +114,7 @@ void close_window(Sinter::State& s) {
   };
   const auto section = risen(s.section_peak, s.section_start);
   const auto particles_risen = risen(s.track_particle_peak, s.track_particle_start);
-  SectionInput in{&s.g, &p.columns, &p.across, &section,
+  SectionInput in{&s.g, &p.columns, &p.across, &section, &s.top_plane,
                   &s.x, &s.y, &s.z, &s.radius, &particles_risen,
                   s.scene.phase_change.melting_point,
                   0.5 * (seg.x0 + seg.x1), 0.5 * (seg.y0 + seg.y1), d[0], d[1], &s.top};
@@ -170,8 +169,7 @@ void update_window(Sinter::State& s) {
     s.track_particle_peak[i] = std::max(s.track_particle_peak[i], s.temperature[i]);
     hottest = std::max(hottest, s.temperature[i]);
   }
-  const std::size_t top = g.index(0, 0, g.nz - 1);
-  for (std::size_t c = top; c < top + plane; ++c) hottest = std::max(hottest, s.node_temperature[c]);
+  for (std::size_t c = 0; c < plane; ++c) hottest = std::max(hottest, s.node_temperature[top_node(s, c)]);
   s.current.peak_temperature = hottest;
   s.current.length = std::max(s.current.length, molten_length(s));
 }

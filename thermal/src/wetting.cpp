@@ -22,18 +22,17 @@ namespace {
 // would cover is at or above T_m.
 bool substrate_molten(const Sinter::State& s, const std::vector<std::pair<std::size_t, double>>& footprint) {
   double t = 0;
-  for (const auto& [node, weight] : footprint) t += weight * s.node_temperature[node];
+  for (const auto& [column, weight] : footprint) t += weight * s.node_temperature[top_node(s, column)];
   return t >= s.scene.phase_change.melting_point;
 }
 
-// The area of the cap's base left on the plate: each top-face column is wetted once at most, so
-// a cap gets only what earlier caps left of the columns under it (and takes it).
+// The area of the cap's base left on the plate: each column is wetted once at most, so a cap
+// gets only what earlier caps left of the columns under it (and takes it).
 double claim_area(Sinter::State& s, const std::vector<std::pair<std::size_t, double>>& footprint,
                   double area) {
-  const std::size_t first_top = s.g.index(0, 0, s.g.nz - 1);
   double got = 0;
-  for (const auto& [node, weight] : footprint) {
-    double& left = s.unwetted_area[node - first_top];
+  for (const auto& [column, weight] : footprint) {
+    double& left = s.unwetted_area[column];
     const double take = std::min(left, weight * area);
     left -= take;
     got += take;
@@ -106,31 +105,28 @@ void setup_wetting(Sinter::State& s) {
 namespace {
 
 // A wholly molten particle whose cap has spread on remelted solid is part of the pool: its
-// mass and enthalpy go into the free top nodes under the cap, it leaves
-// the network and the beam (the maps are traced anew without it: the pool's surface is the
-// substrate's), its mass stays booked for fusion. The grid keeps its volume: the bead it would
-// raise is fusion's (docs/sinter.md "Fusion").
+// mass and enthalpy go into the free top nodes under the cap, whose columns rise by its volume
+// (raise_column), it leaves the network and the beam (the maps are traced anew without it: the
+// pool's surface is the substrate's), its mass stays booked for fusion (docs/sinter.md
+// "Fusion").
 void merge_into_pool(Sinter::State& s, const Sinter::State::WettedContact& w) {
   const SubstrateGeometry& g = s.g;
   // The free nodes under the cap take it all (a Dirichlet column holds no melt); a cap on
   // Dirichlet columns alone stays a particle.
   double free = 0;
-  for (const auto& [node, weight] : w.footprint)
-    if (!g.fixed_top(node)) free += weight;
+  for (const auto& [column, weight] : w.footprint)
+    if (!g.fixed_column(column)) free += weight;
   if (free <= 0) return;
-  if (s.top.empty()) top_volumes(s);  // a flat plate: its top rises from here
-  const std::size_t i = w.particle, first_top = g.index(0, 0, g.nz - 1);
+  const std::size_t i = w.particle;
   const double rho0 = s.material.density(s.scene.initial_temperature);
-  for (const auto& [node, weight] : w.footprint) {
-    if (g.fixed_top(node)) continue;
+  for (const auto& [column, weight] : w.footprint) {
+    if (g.fixed_column(column)) continue;
     // The melt joins the top node: its volume m w / rho0 (as fusion books it) and its enthalpy.
-    const std::size_t c = node - first_top;
+    const std::size_t node = top_node(s, column);
     const double share = weight / free;
-    const double added = share * s.mass[i] / rho0, before = s.top_volume[c];
+    const double added = share * s.mass[i] / rho0, before = node_volume(s, node);
     s.e[node] = (s.e[node] * before + share * s.mass[i] * s.h[i]) / (before + added);
-    s.top_volume[c] = before + added;
-    s.top[c] += added / (g.dx * g.dy);
-    s.top_thickness[c] = s.top_volume[c] / (g.dx * g.dy * g.dz);
+    raise_column(s, column, added / (g.dx * g.dy));
   }
   s.h[i] = 0;
   s.gone[i] = 1;
@@ -202,16 +198,17 @@ void exchange_wetted(Sinter::State& s, double dt) {
   const SubstrateGeometry& g = s.g;
   for (const auto& w : s.wetted) {
     const std::size_t i = w.particle;
-    for (const auto& [node, weight] : w.footprint) {
+    for (const auto& [column, weight] : w.footprint) {
       if (s.gone[i]) break;  // ablated by an earlier node's heat
       if (weight <= 0) continue;
+      const std::size_t node = top_node(s, column);
       const double tp = s.temperature[i], tq = s.node_temperature[node];
       const double path = path_conductance(conductivity_at<Variable>(s, tp),
                                            conductivity_at<Variable>(s, tq), w.shape);
       const double conductance = weight / (1 / path + w.interface);
       const double c_particle = s.mass[i] * secant_capacity(s.per_kg, tp, tq);
-      const bool reservoir = g.fixed_top(node);  // Dirichlet nodes
-      const double volume = reservoir ? 0 : top_node_volume(s, node);
+      const bool reservoir = g.fixed_column(column);  // Dirichlet nodes
+      const double volume = reservoir ? 0 : node_volume(s, node);
       const double c_node = reservoir ? 1e300 : volume * secant_capacity(s.per_m3, tq, tp);
       double energy = exact_exchange(conductance, c_particle, tp, c_node, tq, dt);
       // Neither side beyond the other's temperature (the capacities are secants, not exact).

@@ -72,7 +72,7 @@ struct RayTraceParams {
 // The beam's power split over the bed for one beam position, as fractions of the beam power.
 struct AbsorptionMap {
   struct Entry {
-    std::uint32_t target;  // particle index, or top-face node index (g.index(i, j, nz - 1))
+    std::uint32_t target;  // particle index, or column index (i + nx j)
     double fraction;
   };
   std::vector<Entry> particles, nodes;  // sorted by target, fractions > 0
@@ -103,7 +103,7 @@ class BeamTracer {
 
   // Traces the beam centred at (x, y) over `surfaces` (a hit between top nodes takes the
   // nearest node's phase). `trace` numbers the random stream. Power absorbed on the top face
-  // or a depression's wall is booked on the top-face nodes of the columns around the hit.
+  // or a depression's wall is booked on the columns around the hit (on their top nodes).
   AbsorptionMap trace(double x, double y, std::uint64_t trace, const TraceSurfaces& surfaces) const;
 
  private:

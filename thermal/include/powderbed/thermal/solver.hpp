@@ -138,7 +138,7 @@ class Sinter {
   std::size_t substeps() const;  // particle steps per grid step
   double t_end() const;
   const SubstrateGeometry& grid() const;
-  const TopHeight& top_height() const;  // empty: flat at the grid's top face
+  const TopHeight& top_height() const;  // empty: flat at the plate's top face
   const SinterScene& scene() const;
   // The path the beam runs: the scene's scan path, or its single track resolved (the [GZ]
   // defaults for what the scene left NaN).
@@ -168,9 +168,11 @@ class Sinter {
   const std::vector<double>& particle_max_temperature() const;
   std::vector<std::uint8_t> particle_phase() const;
   const std::vector<double>& substrate_temperature() const;
-  // Peak node temperatures on the planes x = Lx/2 (i = nx/2), y = Ly/2 (j = ny/2) and the top
-  // face; T0 elsewhere (not tracked, to keep a step's memory traffic down).
-  const std::vector<double>& substrate_peak_planes() const;
+  // Peak temperature of every node (T0 for the empty nodes over a column's top): a node whose
+  // peak reached T_m was molten in this run.
+  const std::vector<double>& substrate_peak() const;
+  // Per column (i + nx j), the plane of its top node (grid().k_plate() where the top is flat).
+  const std::vector<std::uint32_t>& top_planes() const;
   // Sets one particle's or one node's temperature (tests: initial conditions other than T0; on
   // a Dirichlet node it sets the boundary value).
   void set_particle_temperature(std::size_t i, double t);
