@@ -144,7 +144,9 @@ void ray_traced_substrate(Sinter::State& s, double t, double dt) {
 }
 
 // The surfaces as the next trace sees them: phases (molten: T >= T_m) and, with the
-// depression, the depth of the T_d isotherm on each top-face column.
+// depression, the depth of the T_d isotherm on each column below the plate's top, where the
+// tracer's surface is (a raised column's isotherm is found from its top node down; the planes
+// it has over the plate are taken off).
 void update_surfaces(Sinter::State& s) {
   const double t_m = s.scene.phase_change.melting_point;
   TraceSurfaces& f = s.surfaces;
@@ -156,7 +158,9 @@ void update_surfaces(Sinter::State& s) {
   for (std::size_t c = 0; c < plane; ++c) {
     const std::size_t top = top_node(s, c);
     const auto column = [&](std::size_t k) { return s.node_temperature[top - k * plane]; };
-    f.depression[c] = isotherm_depth(column, s.top_plane[c], g.dz, cavity_temperature(s));
+    const double raised = g.dz * static_cast<double>(s.top_plane[c] - g.k_plate());
+    const double from_top = isotherm_depth(column, s.top_plane[c], g.dz, cavity_temperature(s));
+    f.depression[c] = std::max(0.0, from_top - raised);
     s.depression_depth = std::max(s.depression_depth, f.depression[c]);
   }
 }
