@@ -241,16 +241,17 @@ void grid_step(Sinter::State& s, double dt) {
   // The depression: the beam's energy drills from each column's surface down, each node filled
   // to T_d with what conduction and the particles brought it this step counted.
   if (s.scene.has(kDepression)) drill(s);
-  // Second pass: the update above read only the old temperatures. (The empty nodes over a
-  // raised column hold e = 0, T0, until raise_column fills them.)
+  // Second pass: the update above read only the old temperatures. The empty nodes over a
+  // raised column are skipped (they hold e = 0, T0, until raise_column fills them).
   double hottest = s.node_max;
   double* peak = s.node_peak.data();
-  const std::size_t k_top = raised ? highest_plane(s) + 1 : k_end;
+  const std::size_t k_top = raised ? highest_plane(s) + 1 : k_end, k_plate = g.k_plate();
 #pragma omp parallel for schedule(static) reduction(max : hottest) if (g.size() >= kParallelNodes)
   for (std::size_t k = 1; k < k_top; ++k) {
     for (std::size_t j = 1; j + 1 < g.ny; ++j) {
       const std::size_t row = g.index(0, j, k);
       for (std::size_t i = 1; i + 1 < g.nx; ++i) {
+        if (k > k_plate && s.top_plane[i + g.nx * j] < k) continue;
         const std::size_t c = row + i;
         const double tc = s.per_m3.temperature(e[c]);
         t[c] = tc;
