@@ -32,6 +32,7 @@
 #include "powderbed/bed/h5_output.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
+#include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/temp_files.hpp"
 #include "powderbed/dem/recoater.hpp"
 #include "powderbed/dem/spread.hpp"
@@ -307,6 +308,15 @@ double tool_bottom(const Build& b, const bed::Bed& bed, std::uint64_t layer) {
 void check_layers(const Build& b, const bed::Bed& bed, std::uint64_t first, std::uint64_t layers) {
   const double top = bed.domain.upper[2];
   const std::uint64_t last = first + layers - 1;
+  // A layer (past the first, whose gap is the tool's) thinner than the finest particle the
+  // supply holds: the plate would go down by less than any particle it is to take.
+  const double finest = 2 * bed::Psd::parse(b.dvm["psd"].as<std::string>(), "--psd").min_radius();
+  if (last > 1 && b.spread.layer_thickness < finest) {
+    throw InputError(fmt::format(
+        "recoater.layer-thickness: {:g} m, thinner than the finest particle of the spread scene's "
+        "psd ({:g} m across) (accepted: a layer at least as thick as the finest particle)",
+        b.spread.layer_thickness, finest));
+  }
   if (last >= first && tool_bottom(b, bed, last) < top) return;
   // The last layer that fits (0: not even the first), by the spread's own test; the estimate
   // from the box's height may be one off in floating point. Layers that do not raise the tool
