@@ -47,15 +47,22 @@ Scan scan(const bed::Bed& b, const thermal::SinterScene& scene, double half_widt
   return s;
 }
 
+// A bare plate 240 x 160 um and one track along its middle.
+bed::Bed bare_plate() { return test::empty_bed(240e-6, 160e-6, 40e-6); }
+thermal::SinterScene one_track(const bed::Bed& b) {
+  auto scene = scene_for(b);
+  const double y = 0.5 * b.domain.length(1);
+  scene.scan_path = {{20e-6, y, 220e-6, y, kPower, kSpeed}};
+  return scene;
+}
+
 }  // namespace
 
 // On a bare plate the melt is the solid's own: the bonded columns across the track's midpoint
 // span its melt width to within one column (each owns dy, so the extent is known to +-dy).
 TEST(LackOfFusion, TrackOverABarePlateBondsAStripeAsWideAsItsMelt) {
-  const bed::Bed b = test::empty_bed(240e-6, 160e-6, 40e-6);
-  auto scene = scene_for(b);
-  const double y = 0.5 * b.domain.length(1);
-  scene.scan_path = {{20e-6, y, 220e-6, y, kPower, kSpeed}};
+  const bed::Bed b = bare_plate();
+  const auto scene = one_track(b);
   const Scan s = scan(b, scene, 60e-6);
   const double melt = s.result.tracks.at(0).pool.width;
   ASSERT_GT(melt, 0);
@@ -73,10 +80,8 @@ TEST(LackOfFusion, TrackOverABarePlateBondsAStripeAsWideAsItsMelt) {
 // columns outside the melt have none, and over a plate raised by a block the depth counts from
 // the block's top, not the plate's.
 TEST(LackOfFusion, RemeltDepthIsTheMeltsDepthBelowTheSolidsTop) {
-  const bed::Bed b = test::empty_bed(240e-6, 160e-6, 40e-6);
-  auto scene = scene_for(b);
-  const double y = 0.5 * b.domain.length(1);
-  scene.scan_path = {{20e-6, y, 220e-6, y, kPower, kSpeed}};
+  const bed::Bed b = bare_plate();
+  const auto scene = one_track(b);
   const Scan s = scan(b, scene, 60e-6);
   const double depth = s.result.tracks.at(0).pool.depth;
   ASSERT_GT(depth, 2 * kDx);
@@ -90,7 +95,7 @@ TEST(LackOfFusion, RemeltDepthIsTheMeltsDepthBelowTheSolidsTop) {
   // The whole plate raised 3 cells is a plate 3 cells deeper: the same track remelts what it
   // remelts there, counted from the raised top (GrowingGrid.WholePlanesRaisedConductAsTheDeeperPlate).
   const double lift = 3 * kDx;
-  auto deeper = scene;
+  thermal::SinterScene deeper = scene;
   deeper.nodes[2] += 3;
   deeper.substrate_depth += lift;
   const Scan d = scan(b, deeper, 60e-6);
