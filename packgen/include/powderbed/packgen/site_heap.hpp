@@ -35,12 +35,8 @@ struct Site {
 // pushed below the current slab joins its heap (a slab's keys are all below the next slab's, so
 // pops come out in exactly the order of one heap over all sites). Growth from the floor keeps
 // the live sites within a few diameters of the front, so the heap touched per pop holds a few
-// slabs' worth instead of the whole front (its live sites grow with the floor area: 2.2e4 at
-// 1e5 spheres, ~1e5 at 1e6, beyond the caches).
-// The heaps and slabs move 16-byte entries (key, tie, slot) and the 48-byte sites stay put in a
-// pool (slots reused through a free list): a heap step moves a third of the bytes. The heap
-// algorithms see the same keys in the same order as a heap of whole sites, so the pops, and the
-// beds, are the same.
+// slabs' worth instead of the whole front (its live sites grow with the floor area: 2.2e4 of
+// 48 bytes at 1e5 spheres, ~1e5 at 1e6, beyond the caches).
 class SiteHeap {
  public:
   // Keys are expected in [lo, hi] (others go to the first or last slab); `width` > 0.
@@ -51,18 +47,17 @@ class SiteHeap {
   std::size_t size() const { return size_; }
   void push(const Site& s) {
     ++size_;
-    const Entry e{s.key, s.tie, store(s)};
     const std::size_t b = slab(s.key);
     if (b <= current_) {
-      heap_.push_back(e);
+      heap_.push_back(s);
       std::push_heap(heap_.begin(), heap_.end(), Later{});
     } else {
-      std::vector<Entry>& slab = slabs_[b];
+      std::vector<Site>& slab = slabs_[b];
       if (slab.capacity() == 0 && !spare_.empty()) {  // reuse a spent slab's storage
         slab.swap(spare_.back());
         spare_.pop_back();
       }
-      slab.push_back(e);
+      slab.push_back(s);
     }
   }
   Site pop() {  // the lowest (key, tie); requires !empty()
@@ -72,47 +67,29 @@ class SiteHeap {
       std::make_heap(heap_.begin(), heap_.end(), Later{});
     }
     std::pop_heap(heap_.begin(), heap_.end(), Later{});
-    const std::uint32_t slot = heap_.back().slot;
+    const Site s = heap_.back();
     heap_.pop_back();
     --size_;
-    free_.push_back(slot);
-    return pool_[slot];
+    return s;
   }
 
  private:
-  struct Entry {
-    double key;
-    std::uint32_t tie;
-    std::uint32_t slot;  // into pool_
-  };
   // std::push_heap builds a max-heap of its `less`, so "later" gives a min-heap.
   struct Later {
-    bool operator()(const Entry& s, const Entry& t) const {
+    bool operator()(const Site& s, const Site& t) const {
       return s.key > t.key || (s.key == t.key && s.tie > t.tie);
     }
   };
-  std::uint32_t store(const Site& s) {
-    if (free_.empty()) {
-      pool_.push_back(s);
-      return static_cast<std::uint32_t>(pool_.size() - 1);
-    }
-    const std::uint32_t slot = free_.back();
-    free_.pop_back();
-    pool_[slot] = s;
-    return slot;
-  }
   std::size_t slab(double key) const {
     const double f = std::floor((key - lo_) * inv_width_);
     return static_cast<std::size_t>(std::min(std::max(f, 0.0), double(slabs_.size() - 1)));
   }
   double lo_, inv_width_;
-  std::vector<std::vector<Entry>> slabs_;
-  std::vector<Entry> heap_;  // every site of slabs <= current_
+  std::vector<std::vector<Site>> slabs_;
+  std::vector<Site> heap_;  // every site of slabs <= current_
   // Emptied storage of spent slabs: growth fills slab after slab of about the same size, so
   // reusing it spares the copies of vector growth (measured: most of push() at 1e6 spheres).
-  std::vector<std::vector<Entry>> spare_;
-  std::vector<Site> pool_;            // the sites, by slot
-  std::vector<std::uint32_t> free_;   // slots of popped sites, reused first
+  std::vector<std::vector<Site>> spare_;
   std::size_t current_ = 0, size_ = 0;
 };
 
