@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <tuple>
 #include <vector>
 
 #include "placement_core.hpp"
@@ -124,12 +125,7 @@ class LowestSiteGrowth {
   // planes per size, the open circles, the live partners, and the particle partners for the
   // free test (relative to c_i: lx_ .. lr_; absolute: gx_ .. gz_).
   std::vector<SiteNear> near_site_, sorted_site_;
-  struct SortKey {  // a partner's place in the gap order (gather_site_partners)
-    double gap;
-    std::int32_t code;
-    std::uint32_t index;  // into near_site_
-  };
-  std::vector<SortKey> order_site_;
+  std::vector<std::tuple<double, std::int64_t, std::size_t>> order_site_;
   std::vector<PairPlane> planes_;
   std::vector<char> open_;  // per size and partner: !circle_covered
   std::vector<LivePartner> live_;
@@ -279,19 +275,13 @@ void LowestSiteGrowth<Backend>::gather_site_partners(const NewParticle& n) {
     near_site_.push_back(
         {Partner::plane(w.normal, w.offset - dot(w.normal, ci)), gap, wall_code(wall)});
   }
-  // Codes are unique (a particle's index or a wall's), so (gap, code) orders the partners
-  // totally: the 16-byte key sorts as the former (gap, code, position) tuple did, in 2/3 of
-  // the bytes.
   order_site_.clear();
   for (std::size_t k = 0; k < near_site_.size(); ++k) {
-    order_site_.push_back({near_site_[k].gap, static_cast<std::int32_t>(near_site_[k].code),
-                           static_cast<std::uint32_t>(k)});
+    order_site_.push_back({near_site_[k].gap, near_site_[k].code, k});
   }
-  std::sort(order_site_.begin(), order_site_.end(), [](const SortKey& a, const SortKey& b) {
-    return a.gap < b.gap || (a.gap == b.gap && a.code < b.code);
-  });
+  std::sort(order_site_.begin(), order_site_.end());
   sorted_site_.clear();
-  for (const SortKey& key : order_site_) sorted_site_.push_back(near_site_[key.index]);
+  for (const auto& key : order_site_) sorted_site_.push_back(near_site_[std::get<2>(key)]);
   near_site_.swap(sorted_site_);
 }
 
