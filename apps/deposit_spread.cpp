@@ -27,6 +27,7 @@
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
 #include "powderbed/bed/psd.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/bed/temp_files.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/spread.hpp"
@@ -66,7 +67,7 @@ dem::SupplyMaker supply_maker(const po::variables_map& vm, std::uint64_t seed) {
     packgen::PackResult placed = packgen::pack(region, psd, options, seed + 0x9E3779B97F4A7C15ull * layer);
     if (!placed.target_reached) {
       double solid = 0;
-      for (const double r : placed.bed.radius) solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+      for (const double r : placed.bed.radius) solid += bed::sphere_volume(r);
       const std::string supply = count > 0 ? fmt::format("supply.count: {} particles", count)
                                            : fmt::format("supply.volume: {:g} m^3", volume);
       throw InputError(fmt::format(

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
-#include <numbers>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -16,6 +15,7 @@
 #include "lane_tests.hpp"
 #include "neighbour_list.hpp"
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
 #include "powderbed/dem/hertz_normal.hpp"
 #include "powderbed/dem/rolling_resistance.hpp"
@@ -327,7 +327,7 @@ struct Run {
     wall.resize(count);
     for (std::size_t i = old; i < count; ++i) {
       const double r = bed.radius[i];
-      mass[i] = 4.0 / 3.0 * std::numbers::pi * r * r * r * scene.material.density;
+      mass[i] = bed::sphere_volume(r) * scene.material.density;
       inv_mass[i] = 1.0 / mass[i];
       inv_inertia[i] = 1.0 / (0.4 * mass[i] * r * r);  // solid sphere, 2/5 m r^2
       drag[i] = scene.has(kDrag) ? stokes_drag_coefficient({scene.fluid_viscosity}, r) : 0.0;
@@ -990,7 +990,7 @@ void finish_layer(const Run& run, LayerSummary& out, double window_x0, double wi
     }
     out.lost += outside ? 1 : 0;
     if (bed.x[i] >= window_x0 && bed.x[i] < window_x1 && bed.z[i] < bottom) {
-      solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+      solid += bed::sphere_volume(r);
     }
   }
   const double volume = (window_x1 - window_x0) * box.length[1] * (bottom - box.lower[2]);
