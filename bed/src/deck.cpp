@@ -10,6 +10,7 @@
 
 #include "deck_detail.hpp"
 #include "io_detail.hpp"
+#include "powderbed/bed/critical_damping.hpp"
 #include "powderbed/bed/deck_damping.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
@@ -316,8 +317,8 @@ LiggghtsContact liggghts_laws(std::ostringstream& out, const Bed& bed, const Dec
     // reduced mass of two particles of the mean mass, and of one against a wall (m* = m), exact
     // for equal particles.
     const double mean = mean_particle(bed, laws).mass;
-    const double gamma = 2 * laws.damping_ratio * std::sqrt(0.5 * mean * laws.stiffness);
-    const double gamma_wall = 2 * laws.damping_ratio * std::sqrt(mean * laws.stiffness);
+    const double gamma = critical_damping(laws.damping_ratio, 0.5 * mean, laws.stiffness);
+    const double gamma_wall = critical_damping(laws.damping_ratio, mean, laws.stiffness);
     out << "# linear law: one dashpot per type pair, " << num(gamma) << " N s/m for two particles of "
         << "the mean mass " << num(mean) << " kg, " << num(gamma_wall) << " N s/m against a wall; "
         << "deposit's varies with each pair's m*\n";

@@ -14,6 +14,7 @@
 #include "box.hpp"
 #include "lane_tests.hpp"
 #include "neighbour_list.hpp"
+#include "powderbed/bed/critical_damping.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
@@ -97,9 +98,9 @@ Constants make_constants(const Model& m, double e_star, double g_star, double st
     c.shear = 8.0 * g_star * std::sqrt(reduced_radius);
     normal_stiffness = 1.5 * h.elastic;  // 2 E* sqrt(R*)
   }
-  c.shear_damping = 2.0 * zeta * std::sqrt(reduced_mass * c.shear);
+  c.shear_damping = bed::critical_damping(zeta, reduced_mass, c.shear);
   c.rolling = rolling_stiffness(m.mu_r, reduced_radius, normal_stiffness);
-  c.rolling_damping = 2.0 * zeta * std::sqrt(rolling_inertia * c.rolling);
+  c.rolling_damping = bed::critical_damping(zeta, rolling_inertia, c.rolling);
   return c;
 }
 
