@@ -19,6 +19,7 @@
 #include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
 #include "powderbed/dem/hertz_normal.hpp"
+#include "powderbed/dem/linear_normal.hpp"
 #include "powderbed/dem/rolling_resistance.hpp"
 #include "powderbed/dem/sliding_friction.hpp"
 #include "powderbed/dem/stokes_drag.hpp"
@@ -87,8 +88,9 @@ Constants make_constants(const Model& m, double e_star, double g_star, double st
   c.reduced_radius = reduced_radius;
   double normal_stiffness;  // k_n (linear) or k_n / delta^{1/2} (Hertz)
   if (m.linear) {
-    c.elastic = stiffness;
-    c.damping = 2.0 * zeta * std::sqrt(reduced_mass * stiffness);
+    const LinearPairConstants l = linear_pair_constants({stiffness, zeta}, reduced_mass);
+    c.elastic = l.stiffness;
+    c.damping = l.damping;
     c.shear = 2.0 / 7.0 * stiffness;
     normal_stiffness = stiffness;
   } else {
@@ -124,10 +126,12 @@ void contact(const Model& m, const Constants& k, double delta, const double n[3]
              const double dv[3], const double wi[3], const double wj[3], double arm_i,
              double arm_j, double* h, bool update, ContactForce& out) {
   const double rate = dv[0] * n[0] + dv[1] * n[1] + dv[2] * n[2];  // > 0 closing
-  const double root = m.linear ? 1.0 : std::sqrt(delta);  // the powers of Constants
+  // The normal law's kernels at the constants of the list build: Hertz never pulls, the linear
+  // dashpot may.
+  const double fn = m.linear ? linear_damped_force(LinearPairConstants{k.elastic, k.damping}, delta, rate)
+                             : hertz_damped_force(HertzPairConstants{k.elastic, k.damping}, delta, rate);
+  const double root = m.linear ? 1.0 : std::sqrt(delta);  // the powers of Constants, for k_t and k_r
   const double quarter = m.linear ? 1.0 : std::sqrt(root);
-  double fn = k.elastic * root * delta + k.damping * quarter * rate;
-  if (!m.linear) fn = fn > 0.0 ? fn : 0.0;  // Hertz never pulls; the linear dashpot may
   const double load = std::abs(fn);  // friction takes |F_n|
   for (int a = 0; a < 3; ++a) {
     out.f[a] = -fn * n[a];
