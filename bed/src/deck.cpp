@@ -91,7 +91,7 @@ void check(const Bed& bed, const DeckLaws& laws, const std::string& data_path) {
 
 namespace {
 
-// G* of two bodies (tangential_history.hpp's effective_shear_modulus).
+// G* of two bodies (mindlin_tangential.hpp's effective_shear_modulus; bed/ does not depend on dem/).
 double effective_shear(double e1, double nu1, double e2, double nu2) {
   auto g = [](double e, double nu) { return e / (2.0 * (1.0 + nu)); };
   return 1.0 / ((2.0 - nu1) / g(e1, nu1) + (2.0 - nu2) / g(e2, nu2));

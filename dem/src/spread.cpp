@@ -20,6 +20,7 @@
 #include "powderbed/dem/contact_moduli.hpp"
 #include "powderbed/dem/hertz_normal.hpp"
 #include "powderbed/dem/linear_normal.hpp"
+#include "powderbed/dem/mindlin_tangential.hpp"
 #include "powderbed/dem/rolling_resistance.hpp"
 #include "powderbed/dem/sliding_friction.hpp"
 #include "powderbed/dem/stokes_drag.hpp"
@@ -97,7 +98,7 @@ Constants make_constants(const Model& m, double e_star, double g_star, double st
     const HertzPairConstants h = hertz_pair_constants({e_star, zeta}, reduced_radius, reduced_mass);
     c.elastic = h.elastic;
     c.damping = h.damping;
-    c.shear = 8.0 * g_star * std::sqrt(reduced_radius);
+    c.shear = mindlin_stiffness_constant(g_star, reduced_radius);
     normal_stiffness = 1.5 * h.elastic;  // 2 E* sqrt(R*)
   }
   c.shear_damping = bed::critical_damping(zeta, reduced_mass, c.shear);
