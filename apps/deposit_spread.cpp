@@ -27,6 +27,7 @@
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
 #include "powderbed/bed/psd.hpp"
+#include "powderbed/bed/softening.hpp"
 #include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/bed/temp_files.hpp"
 #include "powderbed/dem/diagnostics.hpp"
@@ -272,7 +273,7 @@ dem::RunSummary run_rotating_drop(bed::Bed& bed, const dem::Scene& scene,
   r.max_overlap = overlap.relative;
   r.max_overlap_m = overlap.absolute;
   if (scene.law == dem::ContactLaw::hertz) {
-    r.max_overlap_full_stiffness = overlap.relative * std::pow(settings.young_scale, -2.0 / 3.0);
+    r.max_overlap_full_stiffness = bed::hertz_overlap_of_softened(overlap.relative, settings.young_scale);
   }
   r.neighbour_rebuilds = g.neighbour_rebuilds;
   for (std::size_t i = 0; i < bed.n(); ++i) {

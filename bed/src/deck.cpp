@@ -14,6 +14,7 @@
 #include "powderbed/bed/deck_damping.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
+#include "powderbed/bed/softening.hpp"
 
 namespace powderbed::bed {
 
@@ -105,7 +106,8 @@ struct Stiffness {
 
 Stiffness stiffness(const DeckLaws& laws) {
   if (laws.law == "linear") return {laws.stiffness, laws.stiffness, 0, 0};
-  const double e = laws.young / laws.young_scale, ew = laws.wall_young / laws.young_scale;
+  const double e = softened_modulus(laws.young, laws.young_scale);
+  const double ew = softened_modulus(laws.wall_young, laws.young_scale);
   return {4.0 / 3.0 * effective_modulus(e, laws.poisson, e, laws.poisson),
           4.0 / 3.0 * effective_modulus(e, laws.poisson, ew, laws.wall_poisson),
           8.0 * effective_shear(e, laws.poisson, e, laws.poisson),
@@ -181,7 +183,7 @@ void setup(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckEn
     out << "newton         off\ncommunicate    single vel yes\n"
         << "hard_particles yes  # E above 1 GPa\n";
     // LIGGGHTS refuses E < 5 MPa in SI units unless told (a young-scale of 1e5 softens 316L to 1.9 MPa)
-    if (laws.law == "hertz" && std::min(laws.young, laws.wall_young) / laws.young_scale < 5e6)
+    if (laws.law == "hertz" && softened_modulus(std::min(laws.young, laws.wall_young), laws.young_scale) < 5e6)
       out << "soft_particles yes  # E / young-scale below 5 MPa\n";
   }
   out << "read_data      " << data_name << "\n"
@@ -307,7 +309,8 @@ LiggghtsContact liggghts_laws(std::ostringstream& out, const Bed& bed, const Dec
   // style before it.
   std::string model, settings;
   if (hertz) {
-    per_type("youngsModulus", laws.young / laws.young_scale, laws.wall_young / laws.young_scale);
+    per_type("youngsModulus", softened_modulus(laws.young, laws.young_scale),
+             softened_modulus(laws.wall_young, laws.young_scale));
     per_type("poissonsRatio", laws.poisson, laws.wall_poisson);
     per_pair("coefficientRestitution", liggghts_hertz_restitution(laws.damping_ratio, "material.damping"));
     model = "model hertz";
