@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "powderbed/bed/critical_damping.hpp"
+#include "powderbed/bed/radiative_exchange.hpp"
 #include "powderbed/bed/sphere_volume.hpp"
 
 namespace pb = powderbed::bed;
@@ -27,4 +28,18 @@ TEST(CriticalDamping, IsTwoZetaSqrtMkAndCriticalAtZetaOne) {
   const double c = pb::critical_damping(1.0, m, k);
   EXPECT_NEAR(c * c, 4 * m * k, 1e-12 * 4 * m * k);
   EXPECT_EQ(pb::critical_damping(0.0, m, k), 0.0);
+}
+
+TEST(RadiativeExchange, IsSigmaGDifferenceOfFourthPowersWithItsSlope) {
+  const double g = 3e-7, hot = 1000, cold = 300;  // m^2, K
+  const double q = pb::radiative_exchange(g, hot, cold);
+  // sigma G (T_a^4 - T_b^4) written out; 1e-14 relative: a few roundings.
+  EXPECT_NEAR(q, 5.670374419e-8 * g * (std::pow(hot, 4) - std::pow(cold, 4)), 1e-14 * q);
+  EXPECT_EQ(pb::radiative_exchange(g, cold, cold), 0.0);
+  EXPECT_EQ(pb::radiative_exchange(g, cold, hot), -q);
+  // The slope by central differences (step 1e-3 K: truncation ~1e-9 relative, 1e-6 is far above
+  // it and far below a wrong power).
+  const double h = 1e-3;
+  const double slope = (pb::radiative_exchange(g, hot + h, cold) - pb::radiative_exchange(g, hot - h, cold)) / (2 * h);
+  EXPECT_NEAR(pb::radiative_conductance(g, hot), slope, 1e-6 * slope);
 }
