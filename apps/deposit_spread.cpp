@@ -27,6 +27,8 @@
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
 #include "powderbed/bed/psd.hpp"
+#include "powderbed/bed/softening.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/bed/temp_files.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/spread.hpp"
@@ -66,7 +68,7 @@ dem::SupplyMaker supply_maker(const po::variables_map& vm, std::uint64_t seed) {
     packgen::PackResult placed = packgen::pack(region, psd, options, seed + 0x9E3779B97F4A7C15ull * layer);
     if (!placed.target_reached) {
       double solid = 0;
-      for (const double r : placed.bed.radius) solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+      for (const double r : placed.bed.radius) solid += bed::sphere_volume(r);
       const std::string supply = count > 0 ? fmt::format("supply.count: {} particles", count)
                                            : fmt::format("supply.volume: {:g} m^3", volume);
       throw InputError(fmt::format(
@@ -271,7 +273,7 @@ dem::RunSummary run_rotating_drop(bed::Bed& bed, const dem::Scene& scene,
   r.max_overlap = overlap.relative;
   r.max_overlap_m = overlap.absolute;
   if (scene.law == dem::ContactLaw::hertz) {
-    r.max_overlap_full_stiffness = overlap.relative * std::pow(settings.young_scale, -2.0 / 3.0);
+    r.max_overlap_full_stiffness = bed::hertz_overlap_of_softened(overlap.relative, settings.young_scale);
   }
   r.neighbour_rebuilds = g.neighbour_rebuilds;
   for (std::size_t i = 0; i < bed.n(); ++i) {

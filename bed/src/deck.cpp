@@ -10,9 +10,11 @@
 
 #include "deck_detail.hpp"
 #include "io_detail.hpp"
+#include "powderbed/bed/critical_damping.hpp"
 #include "powderbed/bed/deck_damping.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
+#include "powderbed/bed/softening.hpp"
 
 namespace powderbed::bed {
 
@@ -90,7 +92,7 @@ void check(const Bed& bed, const DeckLaws& laws, const std::string& data_path) {
 
 namespace {
 
-// G* of two bodies (tangential_history.hpp's effective_shear_modulus).
+// G* of two bodies (mindlin_tangential.hpp's effective_shear_modulus; bed/ does not depend on dem/).
 double effective_shear(double e1, double nu1, double e2, double nu2) {
   auto g = [](double e, double nu) { return e / (2.0 * (1.0 + nu)); };
   return 1.0 / ((2.0 - nu1) / g(e1, nu1) + (2.0 - nu2) / g(e2, nu2));
@@ -104,7 +106,8 @@ struct Stiffness {
 
 Stiffness stiffness(const DeckLaws& laws) {
   if (laws.law == "linear") return {laws.stiffness, laws.stiffness, 0, 0};
-  const double e = laws.young / laws.young_scale, ew = laws.wall_young / laws.young_scale;
+  const double e = softened_modulus(laws.young, laws.young_scale);
+  const double ew = softened_modulus(laws.wall_young, laws.young_scale);
   return {4.0 / 3.0 * effective_modulus(e, laws.poisson, e, laws.poisson),
           4.0 / 3.0 * effective_modulus(e, laws.poisson, ew, laws.wall_poisson),
           8.0 * effective_shear(e, laws.poisson, e, laws.poisson),
@@ -180,7 +183,7 @@ void setup(std::ostringstream& out, const Bed& bed, const DeckLaws& laws, DeckEn
     out << "newton         off\ncommunicate    single vel yes\n"
         << "hard_particles yes  # E above 1 GPa\n";
     // LIGGGHTS refuses E < 5 MPa in SI units unless told (a young-scale of 1e5 softens 316L to 1.9 MPa)
-    if (laws.law == "hertz" && std::min(laws.young, laws.wall_young) / laws.young_scale < 5e6)
+    if (laws.law == "hertz" && softened_modulus(std::min(laws.young, laws.wall_young), laws.young_scale) < 5e6)
       out << "soft_particles yes  # E / young-scale below 5 MPa\n";
   }
   out << "read_data      " << data_name << "\n"
@@ -306,7 +309,8 @@ LiggghtsContact liggghts_laws(std::ostringstream& out, const Bed& bed, const Dec
   // style before it.
   std::string model, settings;
   if (hertz) {
-    per_type("youngsModulus", laws.young / laws.young_scale, laws.wall_young / laws.young_scale);
+    per_type("youngsModulus", softened_modulus(laws.young, laws.young_scale),
+             softened_modulus(laws.wall_young, laws.young_scale));
     per_type("poissonsRatio", laws.poisson, laws.wall_poisson);
     per_pair("coefficientRestitution", liggghts_hertz_restitution(laws.damping_ratio, "material.damping"));
     model = "model hertz";
@@ -316,8 +320,8 @@ LiggghtsContact liggghts_laws(std::ostringstream& out, const Bed& bed, const Dec
     // reduced mass of two particles of the mean mass, and of one against a wall (m* = m), exact
     // for equal particles.
     const double mean = mean_particle(bed, laws).mass;
-    const double gamma = 2 * laws.damping_ratio * std::sqrt(0.5 * mean * laws.stiffness);
-    const double gamma_wall = 2 * laws.damping_ratio * std::sqrt(mean * laws.stiffness);
+    const double gamma = critical_damping(laws.damping_ratio, 0.5 * mean, laws.stiffness);
+    const double gamma_wall = critical_damping(laws.damping_ratio, mean, laws.stiffness);
     out << "# linear law: one dashpot per type pair, " << num(gamma) << " N s/m for two particles of "
         << "the mean mass " << num(mean) << " kg, " << num(gamma_wall) << " N s/m against a wall; "
         << "deposit's varies with each pair's m*\n";

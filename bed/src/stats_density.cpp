@@ -18,6 +18,7 @@
 #include <numbers>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/bed/stats.hpp"
 #include "powderbed/bed/stats_layer.hpp"
 
@@ -144,7 +145,7 @@ double ball_box_measure(int dim, const std::array<double, 3>& c, double r, const
     }
   }
   if (dim == 2) return disk_rect_area(r, lo[0], hi[0], lo[1], hi[1]);
-  if (cuts == 0) return 4.0 / 3.0 * pi * r * r * r;
+  if (cuts == 0) return sphere_volume(r);
   if (cuts == 1) return cap_primitive(r, hi[first_cut]) - cap_primitive(r, lo[first_cut]);
   const int u = (first_cut + 1) % 3, v = (first_cut + 2) % 3;
   return integrate_sections(r, lo[first_cut], hi[first_cut], lo[u], hi[u], lo[v], hi[v]);

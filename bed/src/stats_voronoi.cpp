@@ -23,11 +23,11 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
-#include <numbers>
 #include <utility>
 #include <vector>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/bed/stats.hpp"
 
 namespace powderbed::bed {
@@ -139,7 +139,7 @@ void local_fractions(const Regular& rt, const Bed& bed, const Cells& cells, Voro
     const std::size_t i = v->info();
     if (cells.cut[i]) continue;
     const double r = bed.radius[i];
-    out.local_fraction[i] = 4.0 / 3.0 * std::numbers::pi * r * r * r / cells.volume[i];
+    out.local_fraction[i] = sphere_volume(r) / cells.volume[i];
     ++out.interior;
     sum += out.local_fraction[i];
   }

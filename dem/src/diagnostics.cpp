@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <limits>
 #include <vector>
-#include <numbers>
 
 #include "box.hpp"
 #include "neighbour_list.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
 #include "powderbed/dem/hertz_normal.hpp"
 #include "powderbed/dem/linear_normal.hpp"
@@ -20,7 +20,7 @@ namespace {
 using detail::Box;
 
 double mass_of(double radius, double density) {
-  return 4.0 / 3.0 * std::numbers::pi * radius * radius * radius * density;
+  return bed::sphere_volume(radius) * density;
 }
 
 // Calls f(i, j, delta, r_star) once per overlapping pair (i < j).

@@ -11,7 +11,6 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
-#include <numbers>
 #include <optional>
 #include <utility>
 
@@ -20,6 +19,7 @@
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/random.hpp"
 #include "powderbed/bed/softening.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/fines_scaling.hpp"
@@ -448,7 +448,7 @@ Totals set_up_particles(Context& c, const Scene& scene) {
     const double r = bed.radius[i];
     // docs/physics.md §4 "Fines": gravity and drag act on the particle as it is; only its
     // inertia (mass scaling) or its modulus (stiffness scaling) is scaled.
-    c.weight[i] = 4.0 / 3.0 * std::numbers::pi * r * r * r * scene.material.density;
+    c.weight[i] = bed::sphere_volume(r) * scene.material.density;
     c.mass[i] = c.weight[i] * fines_mass_factor(scene.fines, r);
     c.inv_mass[i] = 1.0 / c.mass[i];
     if (stiffness) c.young[i] = young * fines_stiffness_factor(scene.fines, r);

@@ -8,16 +8,19 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
-#include <numbers>
 #include <unordered_map>
 #include <unordered_set>
 
 #include "box.hpp"
 #include "lane_tests.hpp"
 #include "neighbour_list.hpp"
+#include "powderbed/bed/critical_damping.hpp"
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
 #include "powderbed/dem/hertz_normal.hpp"
+#include "powderbed/dem/linear_normal.hpp"
+#include "powderbed/dem/mindlin_tangential.hpp"
 #include "powderbed/dem/rolling_resistance.hpp"
 #include "powderbed/dem/sliding_friction.hpp"
 #include "powderbed/dem/stokes_drag.hpp"
@@ -86,20 +89,21 @@ Constants make_constants(const Model& m, double e_star, double g_star, double st
   c.reduced_radius = reduced_radius;
   double normal_stiffness;  // k_n (linear) or k_n / delta^{1/2} (Hertz)
   if (m.linear) {
-    c.elastic = stiffness;
-    c.damping = 2.0 * zeta * std::sqrt(reduced_mass * stiffness);
+    const LinearPairConstants l = linear_pair_constants({stiffness, zeta}, reduced_mass);
+    c.elastic = l.stiffness;
+    c.damping = l.damping;
     c.shear = 2.0 / 7.0 * stiffness;
     normal_stiffness = stiffness;
   } else {
     const HertzPairConstants h = hertz_pair_constants({e_star, zeta}, reduced_radius, reduced_mass);
     c.elastic = h.elastic;
     c.damping = h.damping;
-    c.shear = 8.0 * g_star * std::sqrt(reduced_radius);
+    c.shear = mindlin_stiffness_constant(g_star, reduced_radius);
     normal_stiffness = 1.5 * h.elastic;  // 2 E* sqrt(R*)
   }
-  c.shear_damping = 2.0 * zeta * std::sqrt(reduced_mass * c.shear);
+  c.shear_damping = bed::critical_damping(zeta, reduced_mass, c.shear);
   c.rolling = rolling_stiffness(m.mu_r, reduced_radius, normal_stiffness);
-  c.rolling_damping = 2.0 * zeta * std::sqrt(rolling_inertia * c.rolling);
+  c.rolling_damping = bed::critical_damping(zeta, rolling_inertia, c.rolling);
   return c;
 }
 
@@ -123,10 +127,12 @@ void contact(const Model& m, const Constants& k, double delta, const double n[3]
              const double dv[3], const double wi[3], const double wj[3], double arm_i,
              double arm_j, double* h, bool update, ContactForce& out) {
   const double rate = dv[0] * n[0] + dv[1] * n[1] + dv[2] * n[2];  // > 0 closing
-  const double root = m.linear ? 1.0 : std::sqrt(delta);  // the powers of Constants
+  // The normal law's kernels at the constants of the list build: Hertz never pulls, the linear
+  // dashpot may.
+  const double fn = m.linear ? linear_damped_force(LinearPairConstants{k.elastic, k.damping}, delta, rate)
+                             : hertz_damped_force(HertzPairConstants{k.elastic, k.damping}, delta, rate);
+  const double root = m.linear ? 1.0 : std::sqrt(delta);  // the powers of Constants, for k_t and k_r
   const double quarter = m.linear ? 1.0 : std::sqrt(root);
-  double fn = k.elastic * root * delta + k.damping * quarter * rate;
-  if (!m.linear) fn = fn > 0.0 ? fn : 0.0;  // Hertz never pulls; the linear dashpot may
   const double load = std::abs(fn);  // friction takes |F_n|
   for (int a = 0; a < 3; ++a) {
     out.f[a] = -fn * n[a];
@@ -327,7 +333,7 @@ struct Run {
     wall.resize(count);
     for (std::size_t i = old; i < count; ++i) {
       const double r = bed.radius[i];
-      mass[i] = 4.0 / 3.0 * std::numbers::pi * r * r * r * scene.material.density;
+      mass[i] = bed::sphere_volume(r) * scene.material.density;
       inv_mass[i] = 1.0 / mass[i];
       inv_inertia[i] = 1.0 / (0.4 * mass[i] * r * r);  // solid sphere, 2/5 m r^2
       drag[i] = scene.has(kDrag) ? stokes_drag_coefficient({scene.fluid_viscosity}, r) : 0.0;
@@ -990,7 +996,7 @@ void finish_layer(const Run& run, LayerSummary& out, double window_x0, double wi
     }
     out.lost += outside ? 1 : 0;
     if (bed.x[i] >= window_x0 && bed.x[i] < window_x1 && bed.z[i] < bottom) {
-      solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+      solid += bed::sphere_volume(r);
     }
   }
   const double volume = (window_x1 - window_x0) * box.length[1] * (bottom - box.lower[2]);

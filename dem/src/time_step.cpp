@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
 #include "powderbed/dem/fines_scaling.hpp"
 #include "powderbed/dem/linear_normal.hpp"
@@ -35,7 +36,7 @@ ParticleSteps particle_steps(const Scene& scene, const ContactModuli& moduli, do
   const double mass_factor = fines_mass_factor(scene.fines, r);
   const double stiffness_factor = fines_stiffness_factor(scene.fines, r);
   const double density = m.density * mass_factor;
-  const double mass = 4.0 / 3.0 * std::numbers::pi * r * r * r * density;
+  const double mass = bed::sphere_volume(r) * density;
   ParticleSteps steps;
   if ((scene.has(kHertz) || scene.has(kWalls)) && scene.law == ContactLaw::linear) {
     // The stiffest contact is a pair of two such particles (m* = m/2), or the particle on a

@@ -24,6 +24,7 @@
 #include <string>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/radiative_exchange.hpp"
 #include "powderbed/keff/paths.hpp"
 
 namespace powderbed::keff {
@@ -110,9 +111,8 @@ struct State {
   LinkFlow flow(const KeffLink& l, const std::vector<double>& t) const {
     const double ti = t[l.i], tj = temperature(t, l.j);
     if (l.path == HeatPath::radiation) {
-      const double s = kStefanBoltzmann * l.conductance;
-      return {s * (tj * tj * tj * tj - ti * ti * ti * ti), -4 * s * ti * ti * ti,
-              4 * s * tj * tj * tj};
+      return {bed::radiative_exchange(l.conductance, tj, ti), -bed::radiative_conductance(l.conductance, ti),
+              bed::radiative_conductance(l.conductance, tj)};
     }
     if constexpr (GasFollows) {
       if (l.path == HeatPath::gas) {
@@ -356,8 +356,7 @@ KeffResult solve_keff(const bed::Bed& bed, const KeffScene& scene, const KeffNet
   else
     solve_network<false>(state, count, nodes, scene.newton_tolerance, r, dissipation);
   // Wall to wall through the gaps: the same flow leaves the hot wall and enters the cold one.
-  const double direct = kStefanBoltzmann * network.wall_exchange *
-                        (t_hot * t_hot * t_hot * t_hot - t_cold * t_cold * t_cold * t_cold);
+  const double direct = bed::radiative_exchange(network.wall_exchange, t_hot, t_cold);
   r.heat_flow_hot += direct;
   r.heat_flow_cold += direct;
   dissipation[static_cast<int>(HeatPath::radiation)] += direct * (t_hot - t_cold);

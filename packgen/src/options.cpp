@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/packgen/pack.hpp"
 #include "powderbed/packgen/raster_grid.hpp"
 
@@ -26,7 +27,7 @@ std::string lengths(const bed::Domain& domain, const char* separator) {
 // How many particles of radius r the domain holds at density 1, the bound no packing reaches.
 double domain_holds(const bed::Domain& domain, double r) {
   const double pi = 3.14159265358979323846;
-  const double each = domain.dimension == 3 ? 4.0 / 3.0 * pi * r * r * r : pi * r * r;
+  const double each = domain.dimension == 3 ? bed::sphere_volume(r) : pi * r * r;
   return domain.measure() / each;
 }
 

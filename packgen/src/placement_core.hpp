@@ -14,6 +14,7 @@
 #include "powderbed/bed/domain.hpp"
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/random.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/packgen/cell_grid.hpp"
 #include "powderbed/packgen/contact_geometry.hpp"
 #include "powderbed/packgen/pack.hpp"
@@ -156,7 +157,7 @@ void PlacementCore<Backend>::place(const Vec3& c, double r) {
   p_.r.push_back(r);
   partners_.insert(i);
   backend_.insert(i);
-  volume_ += dim_ == 3 ? 4.0 / 3.0 * kPi * r * r * r : kPi * r * r;
+  volume_ += dim_ == 3 ? bed::sphere_volume(r) : kPi * r * r;
   if (on_placed_) on_placed_(i);
 }
 

@@ -8,6 +8,7 @@
 #include "beds.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/dem/hertz_normal.hpp"
+#include "powderbed/dem/mindlin_tangential.hpp"
 #include "powderbed/dem/sliding_friction.hpp"
 #include "powderbed/dem/stokes_drag.hpp"
 #include "powderbed/dem/time_step.hpp"
@@ -105,4 +106,21 @@ TEST(Scene, RejectsNegativeDampingAndContactlessDamping) {
   EXPECT_THROW(s.validate(), InputError);
   dem::Scene t = test::scene_with(dem::kGravity | dem::kDamping);
   EXPECT_THROW(t.validate(), InputError);
+}
+
+TEST(MindlinTangential, StiffnessIsEightGStarSqrtRDeltaAndTheConstantFactorsIt) {
+  const double e = 193e9, nu = 0.26, r_star = 10e-6, delta = 1e-8;
+  const double g = e / (2 * (1 + nu));
+  // Two equal materials: 1 / G* = 2 (2 - nu) / G.
+  const double g_star = dem::effective_shear_modulus(e, nu, e, nu);
+  EXPECT_NEAR(g_star, g / (2 * (2 - nu)), 1e-15 * g_star);  // a few roundings
+  EXPECT_DOUBLE_EQ(dem::mindlin_stiffness(g_star, r_star, delta), 8 * g_star * std::sqrt(r_star * delta));
+  // The pair constant times delta^{1/2} is the same stiffness up to the roundings of the two
+  // roots (1e-15 relative).
+  const double k_t = dem::mindlin_stiffness(g_star, r_star, delta);
+  EXPECT_NEAR(dem::mindlin_stiffness_constant(g_star, r_star) * std::sqrt(delta), k_t, 1e-15 * k_t);
+  // k_t / k_n = 4 G* / E* (Mindlin's ratio; 2 (1 - nu) / (2 - nu) for equal materials), exact
+  // to the roundings: 1e-14.
+  const double k_n = dem::hertz_stiffness({dem::effective_modulus(e, nu, e, nu), 0.0}, r_star, delta);
+  EXPECT_NEAR(k_t / k_n, 2 * (1 - nu) / (2 - nu), 1e-14);
 }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/thermal/beer_lambert_laser.hpp"
 #include "powderbed/thermal/contact_conduction.hpp"
 #include "powderbed/thermal/evaporation.hpp"
@@ -139,7 +140,7 @@ ExplainReport scale_numbers(const bed::Bed& bed, const SinterScene& scene, const
   r.heating_time = m.density(t0) * 4.0 / 3.0 * r_mean * c_mean * (t_m - t0) / r.laser_flux;
   const auto& grid = sinter.grid();
   r.absorptance = sinter.absorptance_at(grid.x0 + 0.5 * static_cast<double>(grid.nx - 1) * grid.dx);
-  const SpreadCap cap = spherical_cap(4.0 / 3.0 * M_PI * r_mean * r_mean * r_mean,
+  const SpreadCap cap = spherical_cap(bed::sphere_volume(r_mean),
                                       scene.contact_angle * M_PI / 180);
   r.wetting_time = m.density(t0) * 4.0 / 3.0 * M_PI * r_mean * r_mean * r_mean * c_mean /
                    (k * conduction_shape_factor(cap.base_radius, cap.centroid_height));

@@ -1,13 +1,13 @@
 #pragma once
 // The moduli a run's contacts use: the materials' E softened by S (--young-scale) once, here,
 // and the pair and particle–wall effective moduli of the Hertz law (hertz_normal.hpp) and of
-// Mindlin's tangential spring (tangential_history.hpp) built from them. Every part of the DEM
+// Mindlin's tangential spring (mindlin_tangential.hpp) built from them. Every part of the DEM
 // that needs a contact's stiffness (the forces, the time step, the energy and wall forces of
 // diagnostics) takes it from contact_moduli, so S divides E in one place.
 #include "powderbed/bed/softening.hpp"
 #include "powderbed/dem/hertz_normal.hpp"
+#include "powderbed/dem/mindlin_tangential.hpp"
 #include "powderbed/dem/scene.hpp"
-#include "powderbed/dem/tangential_history.hpp"
 
 namespace powderbed::dem {
 

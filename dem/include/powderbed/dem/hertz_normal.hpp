@@ -3,6 +3,8 @@
 // gran_normal_hertz_force): stateless kernels over a small parameter struct.
 #include <cmath>
 
+#include "powderbed/bed/critical_damping.hpp"
+
 namespace powderbed::dem {
 
 // E* of a material pair (docs/physics.md §4): 1 / ((1 - nu_i^2)/E_i + (1 - nu_j^2)/E_j).
@@ -35,7 +37,7 @@ inline double hertz_damped_force(const HertzNormalParams& p, double reduced_radi
   const double elastic = (4.0 / 3.0) * p.effective_modulus * root * delta;
   const double stiffness = 2.0 * p.effective_modulus * root;
   const double force =
-      elastic + 2.0 * p.damping_ratio * std::sqrt(reduced_mass * stiffness) * approach_rate;
+      elastic + bed::critical_damping(p.damping_ratio, reduced_mass, stiffness) * approach_rate;
   return force > 0.0 ? force : 0.0;
 }
 
@@ -52,7 +54,7 @@ inline HertzPairConstants hertz_pair_constants(const HertzNormalParams& p, doubl
                                                double reduced_mass) {
   const double root_r = std::sqrt(reduced_radius);
   return {(4.0 / 3.0) * p.effective_modulus * root_r,
-          2.0 * p.damping_ratio * std::sqrt(2.0 * p.effective_modulus * root_r * reduced_mass)};
+          bed::critical_damping(p.damping_ratio, reduced_mass, 2.0 * p.effective_modulus * root_r)};
 }
 
 // F_e = a delta^{3/2}.

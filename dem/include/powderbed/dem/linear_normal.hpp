@@ -8,6 +8,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "powderbed/bed/critical_damping.hpp"
+
 namespace powderbed::dem {
 
 struct LinearNormalParams {
@@ -23,7 +25,7 @@ struct LinearPairConstants {
 
 inline LinearPairConstants linear_pair_constants(const LinearNormalParams& p,
                                                  double reduced_mass) {
-  return {p.stiffness, 2.0 * p.damping_ratio * std::sqrt(reduced_mass * p.stiffness)};
+  return {p.stiffness, bed::critical_damping(p.damping_ratio, reduced_mass, p.stiffness)};
 }
 
 // Elastic part F_e = k_n delta, delta > 0 the overlap.

@@ -7,18 +7,10 @@
 // deposit-spread.md gives the equations.
 #include <cmath>
 
+// The Hertz law's k_t (Mindlin) and G*, which the spring below takes.
+#include "powderbed/dem/mindlin_tangential.hpp"
+
 namespace powderbed::dem {
-
-// An isotropic material's shear modulus G = E / (2 (1 + nu)).
-inline double shear_modulus(double young, double poisson) { return young / (2.0 * (1.0 + poisson)); }
-
-// Mindlin's tangential stiffness k_t = 8 G* sqrt(R* delta) with G* the pair's effective shear
-// modulus, 1 / G* = (2 - nu_i) / G_i + (2 - nu_j) / G_j.
-inline double effective_shear_modulus(double young_i, double poisson_i, double young_j,
-                                      double poisson_j) {
-  return 1.0 / ((2.0 - poisson_i) / shear_modulus(young_i, poisson_i) +
-                (2.0 - poisson_j) / shear_modulus(young_j, poisson_j));
-}
 
 // Turns a stored tangential vector onto the plane normal to the current unit normal n,
 // keeping its length (the contact frame rotates with the pair; Luding 2008, eq. 17).

@@ -2,6 +2,7 @@
 // Losses of an exposed top particle (docs/physics.md §5) over its projected area A = π r^2:
 //   convection h (T_env - T) A,  radiation eps sigma (T_env^4 - T^4) A.
 #include "powderbed/bed/contact_geometry.hpp"
+#include "powderbed/bed/radiative_exchange.hpp"
 
 namespace powderbed::thermal {
 
@@ -18,12 +19,11 @@ inline double convection_gain(const SurfaceParams& p, double t, double area) {
   return p.convection * (p.environment - t) * area;
 }
 inline double radiation_gain(const SurfaceParams& p, double t, double area) {
-  const double te2 = p.environment * p.environment, t2 = t * t;
-  return p.emissivity * kStefanBoltzmann * (te2 * te2 - t2 * t2) * area;
+  return bed::radiative_exchange(p.emissivity, p.environment, t) * area;
 }
 // d(loss)/dT: the conductance that bounds the stable step (and linearises the implicit step).
 inline double radiation_conductance(const SurfaceParams& p, double t, double area) {
-  return 4 * p.emissivity * kStefanBoltzmann * t * t * t * area;
+  return bed::radiative_conductance(p.emissivity, t) * area;
 }
 
 }  // namespace powderbed::thermal
