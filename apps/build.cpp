@@ -11,7 +11,6 @@
 #include <filesystem>
 #include <functional>
 #include <iostream>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -33,6 +32,7 @@
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
 #include "powderbed/bed/psd.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/bed/temp_files.hpp"
 #include "powderbed/dem/recoater.hpp"
 #include "powderbed/dem/spread.hpp"
@@ -209,7 +209,7 @@ double scanned_layer_density(const bed::Bed& bed, const th::SubstrateGeometry& g
     };
     const std::size_t c = col(bed.x[i], g.x0, g.dx, g.nx) + g.nx * col(bed.y[i], g.y0, g.dy, g.ny);
     if (lof.map[c] == th::kNotScanned || bed.z[i] >= bottom) continue;
-    solid += 4.0 / 3.0 * std::numbers::pi * std::pow(bed.radius[i], 3);
+    solid += bed::sphere_volume(bed.radius[i]);
   }
   return space > 0 ? solid / space : 0.0;
 }

@@ -10,6 +10,7 @@
 #include <limits>
 #include <numbers>
 
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/thermal/contact_conduction.hpp"
 #include "powderbed/thermal/wetting.hpp"
 #include "solver_state.hpp"
@@ -50,7 +51,7 @@ void spread_on_substrate(Sinter::State& s, std::size_t i) {
   if (c < 0) return;
   SubstrateContact& contact = s.net.substrate[static_cast<std::size_t>(c)];
   const double r = s.radius[i];
-  const SpreadCap cap = spherical_cap(4.0 / 3.0 * std::numbers::pi * r * r * r,
+  const SpreadCap cap = spherical_cap(bed::sphere_volume(r),
                                       s.scene.contact_angle * std::numbers::pi / 180);
   auto footprint = top_footprint(s.g, s.x[i], s.y[i], cap.base_radius);
   const bool remelted = substrate_molten(s, footprint);
