@@ -32,7 +32,7 @@ bool on_molten_solid(const bed::Bed& bed, const Sinter& sinter, std::size_t i, d
   const auto& node_peak = sinter.substrate_peak();
   const auto& plane = sinter.top_planes();
   for (const auto& [column, weight] : top_footprint(g, bed.x[i], bed.y[i], bed.radius[i]))
-    if (weight > 0 && node_peak[column + g.columns() * plane[column]] >= threshold) return true;
+    if (weight > 0 && node_peak[g.node(column, plane[column])] >= threshold) return true;
   return false;
 }
 

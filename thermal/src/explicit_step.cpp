@@ -106,11 +106,6 @@ constexpr std::array<ParticleKernel, sizeof...(I)> particle_kernels(std::index_s
 constexpr auto kParticleKernels =
     particle_kernels(std::make_index_sequence<std::size_t{1} << kParticleEffects.size()>{});
 
-// The highest plane any column's solid reaches (the plate's while the top is flat).
-std::size_t highest_plane(const Sinter::State& s) {
-  return *std::max_element(s.top_plane.begin(), s.top_plane.end());
-}
-
 // Heat from the free nodes into the Dirichlet sides and bottom over dt, with the face fluxes
 // the grid step uses (a side face as tall as the thinner of its two nodes).
 void boundary_outflow(Sinter::State& s, double dt) {
@@ -123,7 +118,7 @@ void boundary_outflow(Sinter::State& s, double dt) {
   };
   std::vector<double>& plane = s.plane_sums;  // reused: no allocation per step
   plane.assign(g.nz, 0.0);
-  const std::size_t k_end = highest_plane(s) + 1;
+  const std::size_t k_end = s.highest_plane + 1;
 #pragma omp parallel for schedule(static) if (g.size() >= kParallelNodes)
   for (std::size_t kk = 1; kk < k_end; ++kk) {
     const auto side = [&](std::size_t a, std::size_t b, double shape) {
@@ -166,12 +161,9 @@ void raised_planes(Sinter::State& s, double dt) {
     if constexpr (Variable) return kk[a];
     else return k0;
   };
-  const std::size_t k_end = highest_plane(s) + 1;
+  const std::size_t k_end = s.highest_plane + 1;
   for (std::size_t k = g.k_plate(); k < k_end; ++k) {
-    const auto thick = [&](std::size_t column) {
-      const std::size_t top = s.top_plane[column];
-      return k < top ? 1.0 : k == top ? s.top_thickness[column] : 0.0;
-    };
+    const auto thick = [&](std::size_t column) { return column_thickness(s, column, k); };
     for (std::size_t j = 1; j + 1 < g.ny; ++j) {
       for (std::size_t i = 1; i + 1 < g.nx; ++i) {
         const std::size_t col = i + g.nx * j, c = col + sz * k;
@@ -245,7 +237,7 @@ void grid_step(Sinter::State& s, double dt) {
   // raised column are skipped (they hold e = 0, T0, until raise_column fills them).
   double hottest = s.node_max;
   double* peak = s.node_peak.data();
-  const std::size_t k_top = raised ? highest_plane(s) + 1 : k_end, k_plate = g.k_plate();
+  const std::size_t k_top = raised ? s.highest_plane + 1 : k_end, k_plate = g.k_plate();
 #pragma omp parallel for schedule(static) reduction(max : hottest) if (g.size() >= kParallelNodes)
   for (std::size_t k = 1; k < k_top; ++k) {
     for (std::size_t j = 1; j + 1 < g.ny; ++j) {

@@ -21,7 +21,7 @@ bool within_strip(const ScanSegment& s, double half_width, double x, double y) {
 // or above the threshold, the last step interpolated to the crossing.
 double remelt_depth(const SubstrateGeometry& g, const std::vector<double>& peak, std::size_t column,
                     std::size_t top_plane, double top, double threshold) {
-  const auto at = [&](std::size_t k) { return peak[column + g.columns() * k]; };
+  const auto at = [&](std::size_t k) { return peak[g.node(column, k)]; };
   if (at(top_plane) < threshold) return 0;
   std::size_t k = top_plane;
   while (k > 1 && at(k - 1) >= threshold) --k;
@@ -61,7 +61,7 @@ LackOfFusion lack_of_fusion(const Sinter& sinter, double half_width, double thre
       });
       if (!scanned) continue;
       const std::size_t column = i + g.nx * j;
-      const bool bonded = peak[column + g.columns() * plane[column]] >= threshold;
+      const bool bonded = peak[g.node(column, plane[column])] >= threshold;
       out.map[i + g.nx * j] = bonded ? kBonded : kUnbonded;
       const double top = start.empty() ? g.z_top : start[column];
       out.remelt.push_back(remelt_depth(g, peak, column, plane[column], top, threshold));

@@ -26,7 +26,7 @@ std::vector<double> mid_section(const SubstrateGeometry& g, const std::vector<do
 std::vector<double> top_face(const SubstrateGeometry& g, const std::vector<std::uint32_t>& plane,
                              const std::vector<double>& f) {
   std::vector<double> out(g.columns());
-  for (std::size_t c = 0; c < out.size(); ++c) out[c] = f[c + g.columns() * plane[c]];
+  for (std::size_t c = 0; c < out.size(); ++c) out[c] = f[g.node(c, plane[c])];
   return out;
 }
 

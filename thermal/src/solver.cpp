@@ -424,6 +424,7 @@ void set_top_planes(Sinter::State& s) {
     s.top_plane[c] = static_cast<std::uint32_t>(g.k_plate() + static_cast<std::size_t>(above));
     s.top_thickness[c] = 0.5 + (rise - above);
   }
+  s.highest_plane = *std::max_element(s.top_plane.begin(), s.top_plane.end());
 }
 
 void raise_column(Sinter::State& s, std::size_t column, double rise) {
@@ -440,6 +441,7 @@ void raise_column(Sinter::State& s, std::size_t column, double rise) {
     ++s.top_plane[column];
     s.top_thickness[column] -= 1;
   }
+  s.highest_plane = std::max<std::size_t>(s.highest_plane, s.top_plane[column]);
 }
 
 Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTable& table)

@@ -67,6 +67,7 @@ struct Sinter::State {
   TopHeight top;
   std::vector<std::uint32_t> top_plane;
   std::vector<double> top_thickness;
+  std::size_t highest_plane = 0;  // the largest of top_plane: the grid step's planes end there
   std::vector<double> transmission;  // per top-face node (i + nx j): laser fraction that arrives
   std::vector<double> node_peak;  // peak T of every node (T0 while empty)
   double node_max = 0;            // highest node temperature so far
@@ -237,13 +238,18 @@ void explicit_step(Sinter::State& s, double dt);
 void implicit_step(Sinter::State& s, double dt);
 // The top node of column `column` (i + nx j).
 inline std::size_t top_node(const Sinter::State& s, std::size_t column) {
-  return column + s.g.columns() * s.top_plane[column];
+  return s.g.node(column, s.top_plane[column]);
 }
-// A node's thickness over dz: 1 below its column's top node, the top node's own, 0 above (empty).
-inline double node_thickness(const Sinter::State& s, std::size_t node) {
-  const std::size_t plane = s.g.columns(), column = node % plane, k = node / plane;
+// The thickness over dz of column `column`'s node in plane k: 1 below its top node, the top
+// node's own, 0 above (empty).
+inline double column_thickness(const Sinter::State& s, std::size_t column, std::size_t k) {
   const std::size_t top = s.top_plane[column];
   return k < top ? 1.0 : k == top ? s.top_thickness[column] : 0.0;
+}
+// A node's thickness over dz.
+inline double node_thickness(const Sinter::State& s, std::size_t node) {
+  const std::size_t plane = s.g.columns();
+  return column_thickness(s, node % plane, node / plane);
 }
 // Volume of a node (0: empty).
 inline double node_volume(const Sinter::State& s, std::size_t node) {

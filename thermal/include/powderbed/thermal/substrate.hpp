@@ -33,6 +33,8 @@ struct SubstrateGeometry {
     return z_top + dz * (static_cast<double>(k) - static_cast<double>(k_plate()));
   }
   std::size_t columns() const { return nx * ny; }
+  // The node of column i + nx j in plane k.
+  std::size_t node(std::size_t column, std::size_t k) const { return column + columns() * k; }
   bool fixed(std::size_t i, std::size_t j, std::size_t k) const {
     return i == 0 || j == 0 || k == 0 || i + 1 == nx || j + 1 == ny;
   }
