@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/thermal/melt_pool.hpp"
 
 namespace powderbed::thermal {
 
@@ -25,9 +26,7 @@ double remelt_depth(const SubstrateGeometry& g, const std::vector<double>& peak,
   if (at(top_plane) < threshold) return 0;
   std::size_t k = top_plane;
   while (k > 1 && at(k - 1) >= threshold) --k;
-  double z = g.z(k);
-  if (at(k) > at(k - 1)) z -= g.dz * std::clamp((at(k) - threshold) / (at(k) - at(k - 1)), 0.0, 1.0);
-  return std::max(0.0, top - z);
+  return std::max(0.0, top - (g.z(k) - g.dz * crossing(at(k), at(k - 1), threshold)));
 }
 
 }  // namespace

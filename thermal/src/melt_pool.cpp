@@ -6,16 +6,10 @@
 
 namespace powderbed::thermal {
 
-namespace {
-
-// Where between two nodes (a molten, b not) the peak temperature crosses t_m, as a fraction of
-// the spacing from a.
 double crossing(double peak_a, double peak_b, double t_m) {
   if (peak_a <= peak_b) return 0;
   return std::clamp((peak_a - t_m) / (peak_a - peak_b), 0.0, 1.0);
 }
-
-}  // namespace
 
 MeltPool measure_melt_pool(const MeltPoolInput& in) {
   const SubstrateGeometry& g = *in.grid;

@@ -13,6 +13,10 @@
 
 namespace powderbed::thermal {
 
+// Where between two nodes (a molten, b not) the peak temperature crosses t_m, as a fraction of
+// the spacing from a (0 when a is not the hotter).
+double crossing(double peak_a, double peak_b, double t_m);
+
 struct MeltPoolInput {
   const SubstrateGeometry* grid;
   const std::vector<double>* node_peak;  // peak temperature per node
