@@ -38,6 +38,7 @@
 #include "powderbed/dem/spread.hpp"
 #include "powderbed/thermal/fusion.hpp"
 #include "powderbed/thermal/lack_of_fusion.hpp"
+#include "powderbed/thermal/part_porosity.hpp"
 #include "powderbed/thermal/run_output.hpp"
 #include "powderbed/thermal/solver.hpp"
 #include "sinter_options.hpp"
@@ -230,6 +231,8 @@ struct LayerReport {
   double scanned_area = 0;                 // m^2: the columns the lack-of-fusion map judged
   double remelt_mean = 0, remelt_min = 0;  // m: remelt depth into the solid below (lack_of_fusion.hpp)
   double solid_mass = 0;                   // kg above the plate after the layer
+  th::PartPorosity part;                   // the part so far (part_porosity.hpp)
+  double part_column_area = 0;             // m^2: dx dy of the part's columns
   std::size_t captured = 0;                // of the fused: powder the grown solid swallowed
   std::size_t balled = 0;                  // melted on solid that did not melt: balls left in the bed
   app::LayerPictureFiles pictures;         // the layer's PNGs in --out (none: --pictures false)
@@ -273,7 +276,9 @@ void layer_json(bed::JsonWriter& j, const LayerReport& l) {
       .value("mass_error", l.mass_error)
       .value("solid_top_min", l.top_min)
       .value("solid_top_max", l.top_max)
-      .value("solid_mass", l.solid_mass);
+      .value("solid_mass", l.solid_mass)
+      .value("part_porosity", l.part.fraction())
+      .value("part_core_area", static_cast<double>(l.part.core_columns) * l.part_column_area);
   j.begin_object("pictures");
   for (const auto& [kind, file] : l.pictures) j.value(kind, file);
   j.end_object().end_object();
@@ -335,8 +340,8 @@ void check_layers(const Build& b, const bed::Bed& bed, std::uint64_t first, std:
 // that stays (fusion's keep flags), sets the solid's new top as the next spread's floor and
 // fills the report.
 std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::HeightMap& floor,
-                                std::uint64_t layer, app::ProgressBar& bar, double done,
-                                double share, LayerReport& rep) {
+                                th::PartRecord& part, std::uint64_t layer, app::ProgressBar& bar,
+                                double done, double share, LayerReport& rep) {
   const th::SinterScene scene =
       app::sinter_scene(b.svm, b.scan_options, bed, b.scan_layer0 + layer - 1);
   th::Sinter sinter(bed, scene, b.table, floor.z);
@@ -365,6 +370,8 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   const th::LackOfFusion lof = th::lack_of_fusion(sinter, half_width, fused.threshold, floor.z);
   writer.fusion(fused);
   writer.lack_of_fusion(lof);
+  th::record_layer(part, sinter, fused, lof);
+  writer.part(part);
   writer.finish(sinter, rep.scan, {{"lack_of_fusion", lof.fraction()}});
   const th::SubstrateGeometry& g = sinter.grid();
   rep.density = scanned_layer_density(bed, g, floor.z, lof, rep.tool_bottom);
@@ -384,6 +391,8 @@ std::vector<char> scan_and_fuse(const Build& b, const bed::Bed& bed, bed::Height
   rep.top_min = *low - g.z_top;
   rep.top_max = *high - g.z_top;
   rep.solid_mass = fused.solid_mass_after;
+  rep.part = th::part_porosity(part);
+  rep.part_column_area = g.dx * g.dy;
   // The spread is periodic across y, the thermal grid is not: fuse joins the solid's two edge
   // rows into one seam (their mean; the volume is kept) before it captures what the seam buries.
   floor = th::top_surface(g, fused.top);
@@ -471,13 +480,19 @@ bed::Bed build_input(const po::variables_map& vm, const Build& b, std::optional<
 }
 
 // The scan stage checked before any layer is spread: its options, its path on the plate and its
-// grid under the solid (a bed without particles: the scene and the grid alone).
-void check_scan(Build& b, const bed::Bed& bed, const std::optional<dem::SpreadState>& state) {
+// grid under the solid (a bed without particles: the scene and the grid alone). Returns the
+// part's record to go on from: `record` (from --in) checked against that grid, or a new one on
+// it when `record` is empty.
+th::PartRecord check_scan(Build& b, const bed::Bed& bed, const std::optional<dem::SpreadState>& state,
+                          th::PartRecord record) {
   b.table = th::read_material_table(app::sinter_scene(b.svm, b.scan_options, bed).material_table);
   bed::Bed empty;
   empty.domain = bed.domain;
   th::Sinter probe(empty, app::sinter_scene(b.svm, b.scan_options, empty, b.scan_layer0), b.table,
                    state ? state->floor.z : th::TopHeight{});
+  if (record.empty()) return th::part_record(probe.grid());
+  th::check_part_grid(record, probe.grid());
+  return record;
 }
 
 // What ends the spread with its bottom above the tool's is not in the layer: the blade scraped
@@ -500,7 +515,7 @@ void remove_out_of_layer(const Build& b, bed::Bed& bed, dem::SpreadState& next, 
 // One layer: spread on the solid (the state's floor), scan, fuse, write the layer's files; the
 // state becomes the next layer's.
 LayerReport build_layer(const Build& b, bed::Bed& bed, std::optional<dem::SpreadState>& state,
-                        std::uint64_t layer, app::ProgressBar& bar, double done, double share,
+                        th::PartRecord& part, std::uint64_t layer, app::ProgressBar& bar, double done, double share,
                         int argc, char** argv) {
   LayerReport rep;
   rep.layer = layer;
@@ -528,12 +543,14 @@ LayerReport build_layer(const Build& b, bed::Bed& bed, std::optional<dem::Spread
   bed::write_bed_h5(spread_bed, layer_file(b.out, layer, "-spread"));
 
   // The fused solid becomes the floor of the next layer's spread; the rest stays powder.
-  const std::vector<char> keep = scan_and_fuse(b, spread_bed, next.floor, layer, bar, done + share, share, rep);
+  const std::vector<char> keep =
+      scan_and_fuse(b, spread_bed, next.floor, part, layer, bar, done + share, share, rep);
   dem::remove_particles(bed, next, keep);
   app::set_spread_provenance(bed, b.dvm, b.scene, "build", argc, argv);
   bed.provenance.stage = "build: powder after layer " + std::to_string(layer);
   const std::string layer_path = layer_file(b.out, layer, "");
-  dem::write_spread_bed(layer_path, bed, next);
+  dem::write_spread_bed(layer_path, bed, next,
+                        [&](bed::H5Output& out) { th::write_part_record(out, part); });
   state = next;
   return rep;
 }
@@ -549,7 +566,8 @@ constexpr app::UnitEntry kUnits[] = {
     {"scan_wall_time", "s"}, {"fused", "1"}, {"vaporised", "1"}, {"powder_left", "1"},
     {"captured", "1"}, {"balled", "1"}, {"fused_fraction", "1"}, {"lack_of_fusion", "1"},
     {"remelt_depth_mean", "m"}, {"remelt_depth_min", "m"}, {"scanned_area", "m^2"},
-    {"mass_error", "1"}, {"solid_top_min", "m"}, {"solid_top_max", "m"}, {"solid_mass", "kg"}};
+    {"mass_error", "1"}, {"solid_top_min", "m"}, {"solid_top_max", "m"}, {"solid_mass", "kg"},
+    {"part_porosity", "1"}, {"part_core_area", "m^2"}};
 
 // build.json, and the summary on stdout (the report itself with --json).
 void write_report(const po::variables_map& vm, const Build& b, const std::vector<LayerReport>& reports,
@@ -574,12 +592,12 @@ void write_report(const po::variables_map& vm, const Build& b, const std::vector
   for (const auto& r : reports)
     std::printf("build: layer %llu: %zu particles spread (density %.3f over the scan), %zu fused "
                 "(%.0f %% of the powder's mass), %zu balled, %zu vaporised; lack of fusion %.1f %% of the "
-                "scanned area, remelt depth %.1f um mean (%.1f min); solid top %.1f to %.1f um; mass "
-                "conserved to %.1e; %.0f s spread + %.0f s scan\n",
+                "scanned area, remelt depth %.1f um mean (%.1f min); solid top %.1f to %.1f um; part "
+                "porosity %.2f %%; mass conserved to %.1e; %.0f s spread + %.0f s scan\n",
                 static_cast<unsigned long long>(r.layer), r.scanned_particles, r.density, r.fused,
                 100 * r.fused_fraction, r.balled, r.vaporised, 100 * r.lack_of_fusion,
                 r.remelt_mean * 1e6, r.remelt_min * 1e6, r.top_min * 1e6, r.top_max * 1e6,
-                r.mass_error, r.spread.wall_time, r.scan_wall);
+                100 * r.part.fraction(), r.mass_error, r.spread.wall_time, r.scan_wall);
   std::printf("build: %zu layer(s) in %.0f s -> %s\n", reports.size(), wall, b.out.c_str());
 }
 
@@ -592,7 +610,8 @@ int run(int argc, char** argv) {
   const auto layers = vm["layers"].as<std::uint64_t>();
   std::optional<dem::SpreadState> state;
   bed::Bed bed = build_input(vm, b, state);
-  check_scan(b, bed, state);
+  th::PartRecord part = check_scan(
+      b, bed, state, vm.count("in") ? th::read_part_record(vm["in"].as<std::string>()) : th::PartRecord{});
   const std::uint64_t first = (state ? state->layers_done : 0) + 1;
   check_layers(b, bed, first, layers);
   OutFolderGuard guard{b.out, make_out(b.out)};
@@ -604,7 +623,7 @@ int run(int argc, char** argv) {
   for (std::uint64_t layer = first; layer < first + layers; ++layer) {
     const double done = static_cast<double>(layer - first) / static_cast<double>(layers);
     const double share = 0.5 / static_cast<double>(layers);
-    reports.push_back(build_layer(b, bed, state, layer, bar, done, share, argc, argv));
+    reports.push_back(build_layer(b, bed, state, part, layer, bar, done, share, argc, argv));
     // Drawn from the layer's files once they are in place: a picture never fails the build.
     reports.back().pictures = pictures.draw(layer_file(b.out, layer, "-scan"), b.out, layer);
   }

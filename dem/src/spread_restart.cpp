@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <functional>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -36,7 +37,7 @@ void write_rows(bed::H5Output& out, const char* name, const std::vector<T>& data
 
 // The /restart group, added to the bed's temporary `temp` (named `path` in messages).
 void write_state(const std::string& temp, const std::string& path, const SpreadState& s,
-                 const bed::Bed& bed) {
+                 const bed::Bed& bed, const std::function<void(bed::H5Output&)>& more) {
   bed::H5Output out(temp, bed::H5Output::Mode::append, path);
   out.attribute(kGroup, "layers_done", s.layers_done);
   out.attribute(kGroup, "step", s.step);
@@ -64,13 +65,16 @@ void write_state(const std::string& temp, const std::string& path, const SpreadS
     out.attribute(kGroup, "floor_dy", f.dy);
     write_rows(out, "floor", f.z, 1, "m");
   }
+  if (more) more(out);
   out.commit();
 }
 
 }  // namespace
 
-void write_spread_bed(const std::string& path, const bed::Bed& bed, const SpreadState& state) {
-  bed::write_bed_h5(bed, path, [&](const std::string& temp) { write_state(temp, path, state, bed); });
+void write_spread_bed(const std::string& path, const bed::Bed& bed, const SpreadState& state,
+                      const std::function<void(bed::H5Output&)>& more) {
+  bed::write_bed_h5(bed, path,
+                    [&](const std::string& temp) { write_state(temp, path, state, bed, more); });
 }
 
 bool has_spread_state(const std::string& path) {

@@ -17,6 +17,7 @@
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/dem/spread.hpp"
+#include "powderbed/thermal/part_porosity.hpp"
 #include "run_command.hpp"
 
 using namespace powderbed;
@@ -106,6 +107,20 @@ TEST(BuildCli, ContinuedBuildEqualsTheUninterruptedOneBitForBit) {
   EXPECT_EQ(sa.floor.z, sb.floor.z);
   EXPECT_EQ(sa.pair_history, sb.pair_history);
   EXPECT_EQ(sa.wall_history, sb.wall_history);
+  // The part's record (part_porosity.hpp) goes on from the layer file too.
+  const thermal::PartRecord pa = thermal::read_part_record(a), pb = thermal::read_part_record(b);
+  EXPECT_EQ(pa.layers, 3u);
+  EXPECT_EQ(pa.top, pb.top);
+  EXPECT_EQ(pa.scanned, pb.scanned);
+  ASSERT_EQ(pa.never_molten.size(), pb.never_molten.size());
+  for (std::size_t c = 0; c < pa.never_molten.size(); ++c) {
+    ASSERT_EQ(pa.never_molten[c].size(), pb.never_molten[c].size()) << c;
+    for (std::size_t k = 0; k < pa.never_molten[c].size(); ++k) {
+      EXPECT_EQ(pa.never_molten[c][k].lo, pb.never_molten[c][k].lo);
+      EXPECT_EQ(pa.never_molten[c][k].hi, pb.never_molten[c][k].hi);
+    }
+  }
+  EXPECT_NE(whole.out.find("\"part_porosity\""), std::string::npos) << whole.out;
 }
 
 namespace {

@@ -1,6 +1,7 @@
 // Lack of fusion (build, lack_of_fusion.hpp): a track over a bare plate bonds a stripe of the
 // solid as wide as its melt; hatched tracks more than twice the melt width apart leave unbonded
-// solid between them, tracks closer than half of it leave none.
+// solid between them, tracks closer than half of it leave none; the never-molten solid a part
+// keeps (part_porosity.hpp) loses what a later melt reaches.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/thermal/fusion.hpp"
 #include "powderbed/thermal/lack_of_fusion.hpp"
+#include "powderbed/thermal/part_porosity.hpp"
 #include "powderbed/thermal/scan_path.hpp"
 #include "powderbed/thermal/solver.hpp"
 #include "sinter_beds.hpp"
@@ -175,4 +177,60 @@ TEST(LackOfFusion, SingleTrackOfTheDefaultsIsScanned) {
   const double rows = static_cast<double>(s.lof.scanned) / static_cast<double>(s.grid.nx);
   EXPECT_NEAR(rows, 2 * scene.spot_radius / s.grid.dy + 1, 1.0);
   EXPECT_GT(s.lof.scanned - s.lof.unbonded, 0u);  // the melt bonded to the plate under it
+}
+
+// The part's porosity (part_porosity.hpp): a layer's melt takes the never-molten solid under it
+// down to the melt's bottom, column by column. The plate raised by a block of captured powder
+// (never molten, 3 cells thick) and one track over it: what is left in each scanned column is
+// the block less that column's remelt depth (lack_of_fusion's own), the porosity is that over
+// the block, and the cells of the field hold the same volumes.
+TEST(PartPorosity, MeltTakesTheNeverMoltenSolidDownToItsBottom) {
+  const bed::Bed b = bare_plate();
+  const auto scene = one_track(b);
+  const double lift = 3 * kDx;
+  const thermal::TopHeight top(scene.nodes[0] * scene.nodes[1], lift);
+  thermal::Sinter raised(b, scene, test::table_316l(), top);
+  raised.run(nullptr, 0, nullptr);
+  const double t_m = raised.material().phase_change().melting_point;
+  const auto lof = thermal::lack_of_fusion(raised, 60e-6, t_m, top);
+  thermal::Fusion f = thermal::fuse(b, raised);
+  const thermal::SubstrateGeometry& g = raised.grid();
+  thermal::PartRecord r = thermal::part_record(g);
+  r.layers = 1;  // the layer that left the block: scanned everywhere, never molten
+  for (std::size_t c = 0; c < g.columns(); ++c) {
+    r.top[c] = top[c];
+    r.scanned[c] = 1;
+    r.never_molten[c] = {{g.z_top, g.z_top + lift}};
+  }
+  // Powder this layer's fusion captured over column 0, far from the track.
+  f.top[0] += 5e-6;
+  thermal::record_layer(r, raised, f, lof);
+  ASSERT_EQ(r.never_molten[0].size(), 2u);
+  EXPECT_EQ(r.never_molten[0][1].lo, f.melt_top[0]);
+  EXPECT_EQ(r.never_molten[0][1].hi, f.top[0]);
+  double left = 0, held = 0;
+  std::size_t q = 0, emptied = 0;
+  for (std::size_t c = 0; c < g.columns(); ++c) {
+    if (lof.map[c] == thermal::kNotScanned) continue;
+    const double expected = std::max(0.0, lift - lof.remelt[q++]);
+    double kept = 0;
+    for (const auto& s : r.never_molten[c]) kept += s.hi - s.lo;
+    EXPECT_NEAR(kept, expected, 1e-15) << "column " << c;
+    emptied += kept == 0 ? 1 : 0;
+    left += expected;
+    held += lift;
+  }
+  EXPECT_GT(emptied, 0u) << "the track remelts more than the block under its middle";
+  const thermal::PartPorosity p = thermal::part_porosity(r);
+  EXPECT_EQ(p.core_columns, lof.scanned);
+  EXPECT_NEAR(p.fraction(), left / held, 1e-12);
+  const thermal::PartField field = thermal::part_field(r);
+  double cells = 0, intervals = 0;
+  for (const double v : field.never_molten) cells += v * g.dz;
+  for (const auto& column : r.never_molten)
+    for (const auto& s : column) intervals += s.hi - s.lo;
+  EXPECT_NEAR(cells, intervals, 1e-12 * intervals);
+  std::printf("  block %.0f um: porosity of the scanned columns %.3f after the track; %zu of %zu "
+              "columns remelted through\n",
+              lift * 1e6, p.fraction(), emptied, lof.scanned);
 }

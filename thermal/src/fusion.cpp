@@ -194,6 +194,7 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
   if (before.empty()) before.assign(g.nx * g.ny, g.z_top);
   if (level > 0) level_deposit(g, before, level, f.top);
   join_seams(bed, g, f.top);
+  f.melt_top = f.top;
   if (capture > 0) capture_buried(bed, g, mass, rho0, capture, level, before, f, keep);
   f.solid_mass_after = solid_mass(g, f.top, rho0);
   f.powder = keep_particles(bed, keep);

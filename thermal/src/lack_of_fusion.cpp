@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/thermal/melt_pool.hpp"
@@ -18,18 +19,16 @@ bool within_strip(const ScanSegment& s, double half_width, double x, double y) {
   return along >= 0 && along <= length && across <= half_width;
 }
 
-// Column `column`'s remelt depth below `top` (m): down from its top node while the peak stays at
-// or above the threshold, the last step interpolated to the crossing.
-double remelt_depth(const SubstrateGeometry& g, const std::vector<double>& peak, std::size_t column,
-                    std::size_t top_plane, double top, double threshold) {
+}  // namespace
+
+double molten_bottom(const SubstrateGeometry& g, const std::vector<double>& peak,
+                     std::size_t column, std::size_t top_plane, double threshold) {
   const auto at = [&](std::size_t k) { return peak[g.node(column, k)]; };
-  if (at(top_plane) < threshold) return 0;
+  if (at(top_plane) < threshold) return std::numeric_limits<double>::infinity();
   std::size_t k = top_plane;
   while (k > 1 && at(k - 1) >= threshold) --k;
-  return std::max(0.0, top - (g.z(k) - g.dz * crossing(at(k), at(k - 1), threshold)));
+  return g.z(k) - g.dz * crossing(at(k), at(k - 1), threshold);
 }
-
-}  // namespace
 
 double LackOfFusion::mean_remelt() const {
   double sum = 0;
@@ -63,7 +62,8 @@ LackOfFusion lack_of_fusion(const Sinter& sinter, double half_width, double thre
       const bool bonded = peak[g.node(column, plane[column])] >= threshold;
       out.map[i + g.nx * j] = bonded ? kBonded : kUnbonded;
       const double top = start.empty() ? g.z_top : start[column];
-      out.remelt.push_back(remelt_depth(g, peak, column, plane[column], top, threshold));
+      const double bottom = molten_bottom(g, peak, column, plane[column], threshold);
+      out.remelt.push_back(std::isfinite(bottom) ? std::max(0.0, top - bottom) : 0.0);
       ++out.scanned;
       out.unbonded += bonded ? 0 : 1;
     }

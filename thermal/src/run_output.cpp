@@ -39,6 +39,7 @@ struct RunWriter::Impl {
   bool full;
   std::vector<std::pair<std::uint64_t, double>> steps;
   bool fused = false, lof = false;
+  std::size_t part_cells = 0;  // planes of /part's cells (0: no /part)
   Impl(const std::string& path, std::size_t count, const SubstrateGeometry& grid, bool full_fields)
       : out(path), n(count), g(grid), full(full_fields) {}
 };
@@ -128,6 +129,11 @@ void RunWriter::lack_of_fusion(const LackOfFusion& lof) {
   s.lof = true;
 }
 
+void RunWriter::part(const PartRecord& record) {
+  write_part_record(impl_->out, record);
+  impl_->part_cells = part_field(record).nk;
+}
+
 void RunWriter::finish(const Sinter& sinter, const SinterResult& result,
                        const std::vector<std::pair<std::string, double>>& summary) {
   Impl& s = *impl_;
@@ -163,7 +169,8 @@ void RunWriter::finish(const Sinter& sinter, const SinterResult& result,
 
   s.out.commit();
   bed::write_text_file(bed::xdmf_sidecar_path(s.out.path()),
-                       detail::run_xdmf(bed::file_name_of(s.out.path()), s.n, g, s.steps, s.fused, s.lof));
+                       detail::run_xdmf(bed::file_name_of(s.out.path()), s.n, g, s.steps, s.fused, s.lof,
+                                        s.part_cells));
 }
 
 }  // namespace powderbed::thermal

@@ -86,10 +86,33 @@ void solid_top(Writer& w, const SubstrateGeometry& g, double time, bool lack_of_
   w.x << "  </Grid>\n";
 }
 
+// The part's cells (/part): nk planes of dz from the plate's top, each column's cell centred on
+// its node, at the run's last time; cell data, so a Threshold on never_molten_fraction shows
+// the pores as blocks.
+void part(Writer& w, const SubstrateGeometry& g, std::size_t nk, double time) {
+  const std::string cells = std::to_string(nk) + " " + std::to_string(g.ny) + " " + std::to_string(g.nx);
+  w.x << "  <Grid Name=\"part\" GridType=\"Uniform\">\n"
+      << "   <Time Value=\"" << time << "\"/>\n"
+      << "   <Topology TopologyType=\"3DCoRectMesh\" Dimensions=\"" << nk + 1 << " " << g.ny + 1
+      << " " << g.nx + 1 << "\"/>\n"
+      << "   <Geometry GeometryType=\"ORIGIN_DXDYDZ\">\n"
+      << "    <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">"
+      << g.z_top << " " << g.y0 - 0.5 * g.dy << " " << g.x0 - 0.5 * g.dx << "</DataItem>\n"
+      << "    <DataItem Dimensions=\"3\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">"
+      << g.dz << " " << g.dy << " " << g.dx << "</DataItem>\n"
+      << "   </Geometry>\n";
+  for (const char* name : {"solid_fraction", "never_molten_fraction"}) {
+    w.x << "   <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"Cell\">\n";
+    w.item(cells, std::string("/part/") + name);
+    w.x << "   </Attribute>\n";
+  }
+  w.x << "  </Grid>\n";
+}
+
 }  // namespace
 
 std::string run_xdmf(const std::string& h5, std::size_t count, const SubstrateGeometry& g,
-                     const Steps& steps, bool fused, bool lack_of_fusion) {
+                     const Steps& steps, bool fused, bool lack_of_fusion, std::size_t part_cells) {
   Writer w;
   w.h5 = h5;
   w.x.precision(17);
@@ -97,6 +120,7 @@ std::string run_xdmf(const std::string& h5, std::size_t count, const SubstrateGe
   plane(w, g, {"top", 1, g.ny, g.z_top, g.y0}, steps);
   plane(w, g, {"section_y", g.nz, 1, g.z(0), g.y(g.ny / 2)}, steps);
   if (fused && !steps.empty()) solid_top(w, g, steps.back().second, lack_of_fusion);
+  if (part_cells > 0 && !steps.empty()) part(w, g, part_cells, steps.back().second);
   return bed::xdmf_document(w.x.str());
 }
 

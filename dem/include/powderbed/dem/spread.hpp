@@ -17,6 +17,10 @@
 #include "powderbed/dem/recoater.hpp"
 #include "powderbed/dem/scene.hpp"
 
+namespace powderbed::bed {
+class H5Output;
+}
+
 namespace powderbed::dem {
 
 // The powder supply of a layer: the app fills `region` (a box in front of the tool, on the
@@ -166,8 +170,10 @@ std::size_t remove_particles(bed::Bed& bed, SpreadState& state, const std::vecto
 // A spread's bed file: the bed and its /restart group written to one temporary and renamed into
 // place once, so a kill or a full disk leaves the old file or the whole new one, never a bed
 // without its state. Read back with read_spread_state (InputError naming the file when the
-// group is missing or inconsistent with the bed).
-void write_spread_bed(const std::string& h5_path, const bed::Bed& bed, const SpreadState& state);
+// group is missing or inconsistent with the bed). `more` adds a caller's groups to the same
+// file before it is renamed (build: the part's record).
+void write_spread_bed(const std::string& h5_path, const bed::Bed& bed, const SpreadState& state,
+                      const std::function<void(bed::H5Output&)>& more = {});
 bool has_spread_state(const std::string& h5_path);
 SpreadState read_spread_state(const std::string& h5_path, const bed::Bed& bed);
 

@@ -32,6 +32,9 @@ inline bool stays_in_bed(std::uint8_t state) { return state == kPowder || state 
 struct Fusion {
   bed::Bed powder;                    // the particles left in the bed: powder and balls (ids kept)
   TopHeight top;                      // the solid's new top, per top-face column i + nx j, m
+  // The top before the capture (the scan's melt and its fused particles, levelled): what lies
+  // between it and `top` is captured powder that never melted (part_porosity.hpp).
+  TopHeight melt_top;
   std::vector<std::uint8_t> state;    // per particle of the scanned bed: a FusionState
   std::size_t fused = 0, vaporised = 0;
   std::size_t balled = 0;             // melted, met no molten solid: frozen balls left in the bed

@@ -44,6 +44,13 @@ struct LackOfFusion {
 LackOfFusion lack_of_fusion(const Sinter& sinter, double half_width, double threshold,
                             const TopHeight& start = {});
 
+// The bottom of the melt under column `column`'s top node (plane `top_plane`), from the peak
+// temperatures of the substrate's nodes: down from the top node while the peak stays at or above
+// the threshold, the last step interpolated to the crossing (linear between nodes, as the melt
+// pool's depth); +infinity when the top node's peak stayed below it (nothing melted there).
+double molten_bottom(const SubstrateGeometry& g, const std::vector<double>& peak,
+                     std::size_t column, std::size_t top_plane, double threshold);
+
 // The width of the bonded stripe across x = x_plane (the top-face column row nearest to it): the
 // bonded columns' count times dy: what a single track fuses of the solid under it.
 double bonded_width(const LackOfFusion& lof, const SubstrateGeometry& g, double x_plane);

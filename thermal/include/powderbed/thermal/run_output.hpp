@@ -25,6 +25,12 @@
 //   /fusion/lack_of_fusion ny×nx (build: per top-face column 0 not scanned, 1 bonded to the
 //                          solid below, 2 lack of fusion; lack_of_fusion.hpp); attrs
 //                          lack_of_fusion_fraction, scanned_columns, unbonded_columns
+//   /part                  (build) the part so far (part_porosity.hpp): attrs layers, nx, ny,
+//                          x0, y0, dx, dy, dz, z_top, porosity, core_columns; top ny×nx (m),
+//                          scanned ny×nx (layers whose scan covered each column),
+//                          never_molten M×3 (column, lo, hi: never-molten solid, m),
+//                          solid_fraction and never_molten_fraction nk×ny×nx (cells of dz
+//                          from the plate's top: the XDMF grid "part", cell data)
 //   /summary               attrs: the numbers `sinter --json` prints
 //   /xdmf/polyvertex       0..N-1, the particles' Polyvertex cells for ParaView
 // Every dataset has its SI unit as the attribute `units` (K, m; "1" without unit).
@@ -36,6 +42,7 @@
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/thermal/fusion.hpp"
 #include "powderbed/thermal/lack_of_fusion.hpp"
+#include "powderbed/thermal/part_porosity.hpp"
 #include "powderbed/thermal/solver.hpp"
 
 namespace powderbed::thermal {
@@ -53,6 +60,8 @@ class RunWriter {
   void fusion(const Fusion& fused);
   // Writes /fusion/lack_of_fusion (after fusion, before finish).
   void lack_of_fusion(const LackOfFusion& lof);
+  // Writes /part (build: after the layer's fusion, before finish).
+  void part(const PartRecord& record);
   // Writes /melt and /summary (name -> value), commits the file and its .xmf sidecar.
   void finish(const Sinter& sinter, const SinterResult& result,
               const std::vector<std::pair<std::string, double>>& summary);
