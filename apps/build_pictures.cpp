@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kKinds[] = {"top", "fusion", "height"};  // plot_build_layer.py's pictures
+constexpr const char* kKinds[] = {"top", "fusion", "height", "section"};  // plot_build_layer.py's pictures
 
 struct Finished {
   int status = -1;     // waitpid's status; -1: could not start

@@ -11,7 +11,8 @@
 
 namespace powderbed::app {
 
-// The picture files of a layer: (kind, file name in the build's folder), kind top, fusion, height.
+// The picture files of a layer: (kind, file name in the build's folder), kind top, fusion, height,
+// section.
 using LayerPictureFiles = std::vector<std::pair<std::string, std::string>>;
 
 class LayerPictures {

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Draws the pictures of one layer of a build (docs/build.md "Pictures") from its scan file
 layer-NNN-scan.h5: PREFIX-top.png (the particles by what the scan made of them, over the
-scanned columns), PREFIX-fusion.png (the lack-of-fusion map) and PREFIX-height.png (the solid's
-top above the plate). Each is written to PREFIX-NAME.png.tmp.<pid> and renamed into place, so a
+scanned columns), PREFIX-fusion.png (the lack-of-fusion map), PREFIX-height.png (the solid's
+top above the plate) and PREFIX-section.png (a cross-section of the part so far: the solid that
+melted and the solid that never did, its pores; thermal/part_porosity.hpp). Each is written to PREFIX-NAME.png.tmp.<pid> and renamed into place, so a
 killed run leaves no half picture. Prints the pictures' paths, one a line.
 
 `build` runs it after each layer (build/scripts/plot_build_layer, with the interpreter the build
@@ -71,6 +72,12 @@ def load(path):
             "height": dataset(f, "/fusion/height", grid),
             "lof": dataset(f, "/fusion/lack_of_fusion", grid),
             "lof_fraction": float(f["/fusion"].attrs.get("lack_of_fusion_fraction", np.nan)),
+            "part_solid": dataset(f, "/part/solid_fraction"),
+            "part_never": dataset(f, "/part/never_molten_fraction"),
+            "part_scanned": dataset(f, "/part/scanned", grid),
+            "part_layers": int(f["/part"].attrs["layers"]),
+            "part_porosity": float(f["/part"].attrs["porosity"]),
+            "dz": float(f["/part"].attrs["dz"]),
         }
 
 
@@ -143,6 +150,39 @@ def draw_height(d, layer):
     return fig
 
 
+def draw_section(d, layer):
+    """The part on the row of columns (fixed y) that holds the most of its core (the columns every
+    layer scanned): each cell of dz coloured by what its solid is, molten once or never; height
+    stretched, the part being thin."""
+    core = d["part_scanned"] == d["part_layers"]
+    j = int(np.argmax(core.sum(axis=1)))
+    solid, never = d["part_solid"][:, j, :], d["part_never"][:, j, :]
+    nk = solid.shape[0]
+    rgba = np.ones((max(nk, 1), solid.shape[1], 4))
+    molten_colour, never_colour = np.array([0.35, 0.45, 0.6]), np.array([0.87, 0.18, 0.15])
+    if nk > 0:
+        molten = np.clip(solid - never, 0, 1)[..., None]
+        rgba[..., :3] = 1 - molten * (1 - molten_colour) - never[..., None] * (1 - never_colour)
+    x0, x1, _, _ = extent_um(d)
+    top = max(nk, 1) * d["dz"] / UM
+    fig, ax = plt.subplots(figsize=(10.0, 3.2))
+    ax.imshow(np.clip(rgba, 0, 1), origin="lower", extent=[x0, x1, 0, top], aspect="auto",
+              interpolation="nearest")
+    span = core[j]
+    if span.any():
+        xs = d["gx"][span] / UM
+        ax.axvspan(xs.min(), xs.max(), ymin=0, ymax=0.03, color="0.2")
+    ax.set_xlabel("x (µm), spreading direction")
+    ax.set_ylabel("z above the plate (µm)")
+    ax.legend(handles=[Patch(facecolor=molten_colour, label="solid, melted"),
+                       Patch(facecolor=never_colour, label="solid, never molten (pores' powder)"),
+                       Patch(facecolor="0.2", label="the core (every layer scanned)")],
+              loc="upper left", bbox_to_anchor=(1.01, 1), borderaxespad=0)
+    ax.set_title(f"layer {layer}: the part at y = {d['gy'][j] / UM:.0f} µm; porosity of the core "
+                 f"{d['part_porosity']:.2%} (height stretched)")
+    return fig
+
+
 def save(fig, path):
     """Writes the picture to a temporary beside `path` and renames it into place."""
     temp = f"{path}.tmp.{os.getpid()}"
@@ -164,7 +204,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("scan", help="a build's layer-NNN-scan.h5")
     p.add_argument("prefix", help="the pictures go to PREFIX-top.png, PREFIX-fusion.png, "
-                   "PREFIX-height.png")
+                   "PREFIX-height.png, PREFIX-section.png")
     p.add_argument("--layer", type=int, help="the layer number in the titles (default: from the "
                    "file name)")
     args = p.parse_args()
@@ -174,7 +214,8 @@ def main():
         sys.stderr.write(f"plot_build_layer: {err}\n")
         return 2
     layer = args.layer if args.layer is not None else layer_number(args.scan)
-    for name, draw in (("top", draw_top), ("fusion", draw_fusion), ("height", draw_height)):
+    for name, draw in (("top", draw_top), ("fusion", draw_fusion), ("height", draw_height),
+                       ("section", draw_section)):
         path = f"{args.prefix}-{name}.png"
         save(draw(d, layer), path)
         print(path)
