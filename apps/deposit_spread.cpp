@@ -41,19 +41,44 @@ namespace {
 // Options of the drop that a spread does not have: refused rather than ignored.
 constexpr const char* kDropOnly[] = {"t-end", "count", "insert-z", "trajectory"};
 
-// The supply of a layer: supply.count particles of --psd, or as many as make supply.volume of
-// solid, placed without overlap at random in the region (packgen's 0-contact packing; a seed of
-// its own per layer, so that a continued run draws the same supply).
-dem::SupplyMaker supply_maker(const po::variables_map& vm, std::uint64_t seed) {
-  const bed::Psd psd = bed::Psd::parse(required<std::string>(vm, "psd"), "--psd");
+}  // namespace
+
+SupplyAmount supply_amount(const po::variables_map& vm, std::uint64_t layer, double width) {
   const std::size_t count = vm["supply.count"].as<std::size_t>();
   const double volume = vm["supply.volume"].as<double>();
-  if ((count > 0) == (volume > 0)) {
-    throw InputError(fmt::format("supply.count / supply.volume: {} given (accepted: one of them, "
-                                 "a count >= 1 or a volume > 0 m^3)",
-                                 count > 0 ? "both" : "neither"));
+  const bool dosed = vm.count("supply.dosing") > 0;
+  const double dosing = dosed ? vm["supply.dosing"].as<double>() : 0.0;
+  const double bulk = vm["supply.bulk-density"].as<double>();
+  if (dosed && !(dosing > 0 && std::isfinite(dosing)))
+    throw InputError(fmt::format("supply.dosing: {:g} (accepted: a factor > 0, the supply over "
+                                 "the powder of the layer's nominal volume)", dosing));
+  if (!(bulk > 0 && bulk < 1))
+    throw InputError(fmt::format("supply.bulk-density: {:g} (accepted: a solid fraction in (0, 1); "
+                                 "a gas-atomised powder's is about 0.5)", bulk));
+  const int given = (count > 0) + (volume > 0) + (dosed ? 1 : 0);
+  if (given != 1) {
+    throw InputError(fmt::format("supply.count / supply.volume / supply.dosing: {} given "
+                                 "(accepted: one of them, a count >= 1, a volume > 0 m^3 or a "
+                                 "dosing factor > 0)",
+                                 given == 0 ? "none" : "more than one"));
   }
-  return [psd, count, volume, seed](const bed::Domain& region, std::uint64_t layer) {
+  if (!dosed) return {count, volume};
+  const double strip = vm["recoater.end"].as<double>() - vm["recoater.start"].as<double>();
+  const double t = layer <= 1 ? vm["recoater.gap"].as<double>() : vm["recoater.layer-thickness"].as<double>();
+  return {0, dosing * bulk * strip * width * t};
+}
+
+namespace {
+
+// The supply of a layer (supply_amount) placed without overlap at random in the region
+// (packgen's 0-contact packing; a seed of its own per layer, so that a continued run draws the
+// same supply). The options are checked now, before any layer, and copied: the maker outlives
+// the caller's map.
+dem::SupplyMaker supply_maker(const po::variables_map& vm, std::uint64_t seed) {
+  const bed::Psd psd = bed::Psd::parse(required<std::string>(vm, "psd"), "--psd");
+  supply_amount(vm, 1, 1.0);
+  return [psd, vm, seed](const bed::Domain& region, std::uint64_t layer) {
+    const auto [count, volume] = supply_amount(vm, layer, region.upper[1] - region.lower[1]);
     packgen::PackOptions options;
     options.phases = {packgen::Phase{0, 1.0}};
     options.max_failures = 100;
@@ -69,8 +94,9 @@ dem::SupplyMaker supply_maker(const po::variables_map& vm, std::uint64_t seed) {
     if (!placed.target_reached) {
       double solid = 0;
       for (const double r : placed.bed.radius) solid += bed::sphere_volume(r);
-      const std::string supply = count > 0 ? fmt::format("supply.count: {} particles", count)
-                                           : fmt::format("supply.volume: {:g} m^3", volume);
+      const char* option = count > 0 ? "supply.count" : vm.count("supply.dosing") ? "supply.dosing" : "supply.volume";
+      const std::string supply = count > 0 ? fmt::format("{}: {} particles", option, count)
+                                           : fmt::format("{}: {:g} m^3", option, volume);
       throw InputError(fmt::format(
           "{} do not fit the supply region {:g} x {:g} x {:g} m of layer {} without overlap ({} "
           "particles, {:g} m^3 placed; accepted: at most that, or a longer or taller region)",
@@ -216,6 +242,13 @@ void add_spread_options(po::options_description& desc, dem::SpreadSettings& spre
        "supply per layer: particles of --psd (or supply.volume)")
       ("supply.volume", po::value<double>()->default_value(0),
        "supply per layer: solid volume of --psd particles (m^3; or supply.count)")
+      ("supply.dosing", po::value<double>(),
+       "supply per layer: dosing factor d, the powder of d layers' nominal volume at "
+       "supply.bulk-density: d phi_b (recoater.end - recoater.start) L_y t of solid, t the first "
+       "layer's gap, then recoater.layer-thickness (or supply.count, supply.volume)")
+      ("supply.bulk-density", po::value<double>()->default_value(0.5),
+       "the dosed powder's solid fraction phi_b (supply.dosing; a gas-atomised powder's apparent "
+       "density is about half its metal's)")
       ("layers", po::value<std::uint64_t>(&spread.layers)->default_value(spread.layers),
        "layers to spread (with --in a spread bed: after its own); each is also written to "
        "OUT-NNN.h5 when N > 1")
@@ -439,8 +472,10 @@ int export_spread_deck(const po::variables_map& vm, const DepositOptions& bound,
   r.seed = seed;
   r.layers = vm["layers"].as<std::uint64_t>();
   r.dt = restart ? restart->dt : spread_time_step(bed, scene, s);
-  r.supply_count = vm["supply.count"].as<std::size_t>();
-  r.supply_volume = vm["supply.volume"].as<double>();
+  // Layers 2.. of the deck (layer 1's supply is in the bed).
+  const SupplyAmount later = supply_amount(vm, 2, bed.domain.length(1));
+  r.supply_count = later.count;
+  r.supply_volume = later.volume;
   r.made_by = "the deposit scene of " + out;
   const std::string data = deck_data_file(out);
   write_spread_deck(r, data);

@@ -23,6 +23,18 @@ void add_spread_options(po::options_description& desc, dem::SpreadSettings& spre
                         dem::Scene& scene);
 // Whether the options name a recoater tool.
 bool spread_requested(const po::variables_map& vm);
+
+// The supply of layer `layer` (1: the first) of a strip `width` across: supply.count particles,
+// or a solid volume: supply.volume, or with supply.dosing d the powder of d times the layer's
+// nominal volume at the supply's bulk density φ_b, d φ_b (recoater.end - recoater.start) width t,
+// t the first layer's gap and then the plate's drop (recoater.layer-thickness): a machine's
+// dosing factor, the dose piston's rise over the build piston's drop. InputError when not
+// exactly one is given or a value is out of range.
+struct SupplyAmount {
+  std::size_t count = 0;
+  double volume = 0;  // m^3 of solid
+};
+SupplyAmount supply_amount(const po::variables_map& vm, std::uint64_t layer, double width);
 // The spread's box: --domain with --periodic (y unless given) for a new bed, or `given` (an --in
 // bed's); throws InputError for a bad --periodic or a box periodic along x (the tool's travel).
 bed::Domain spread_box(const po::variables_map& vm,

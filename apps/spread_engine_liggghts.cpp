@@ -20,6 +20,7 @@
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/dem/recoater.hpp"
+#include "deposit_spread.hpp"
 #include "spread_deck.hpp"
 
 namespace powderbed::app {
@@ -150,8 +151,10 @@ std::optional<LiggghtsEngine> spread_engine(const po::variables_map& vm, const p
   }
   e.seed = seed;
   e.psd = bed::Psd::parse(required<std::string>(spread, "psd"), "--psd");
-  e.supply_count = spread["supply.count"].as<std::size_t>();
-  e.supply_volume = spread["supply.volume"].as<double>();
+  // Layers 2.. of a deck (each deck's first layer is supplied by deposit's maker).
+  const SupplyAmount later = supply_amount(spread, 2, spread_box(spread).length(1));
+  e.supply_count = later.count;
+  e.supply_volume = later.volume;
   return e;
 }
 

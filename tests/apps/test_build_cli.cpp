@@ -51,6 +51,8 @@ TEST(BuildCli, BadInputExits2WithOneLineAndWritesNothing) {
        "scan"},
       {"--spread " + dir + "/drop.ini" + out, "--spread"},
       {"--spread-args '--recoater.gap 0'" + out, "recoater.gap"},
+      {"--spread-args '--supply.count 0 --supply.dosing 0'" + out, "supply.dosing"},
+      {"--spread-args '--supply.count 0 --supply.dosing -2'" + out, "supply.dosing"},
       // 30 um spheres under 20 um layers: thinner than the finest particle (one layer is fine).
       {"--layers 2 --spread-args '--recoater.layer-thickness 20e-6'" + out, "recoater.layer-thickness"},
       {"--out " + dir + "/full", "--out"},

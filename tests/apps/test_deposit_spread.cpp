@@ -3,6 +3,7 @@
 // one bit for bit; per-layer beds, the tool's force log and the JSON summary.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <string>
 #include <utility>
@@ -47,6 +48,10 @@ TEST(DepositSpread, BadToolAndSupplyExit2WithOneLine) {
       {"--t-end 1", "--t-end"},
       {"--supply.volume 1e-12", "supply.count / supply.volume"},
       {"--supply.count 0", "supply.count / supply.volume"},
+      {"--supply.dosing 2", "supply.count / supply.volume / supply.dosing"},
+      {"--supply.count 0 --supply.dosing 0", "supply.dosing"},
+      {"--supply.count 0 --supply.dosing -1", "supply.dosing"},
+      {"--supply.count 0 --supply.dosing 2 --supply.bulk-density 1", "supply.bulk-density"},
       {"--periodic x", "--periodic"},
       {"--export-deck yade", "--export-deck"},  // an engine no deck is written for
       // A tool that does not travel pushes the whole supply into the overflow: no layer. Found
@@ -71,6 +76,25 @@ TEST(DepositSpread, BadToolAndSupplyExit2WithOneLine) {
   EXPECT_EQ(r.err_lines(), 1) << r.err;
   EXPECT_NE(r.err.find("overlaps particle"), std::string::npos) << r.err;
   EXPECT_FALSE(std::ifstream(dir + "/out.h5").good());
+}
+
+// supply.dosing d supplies d phi_b (end - start) L_y t of solid a layer, t the first layer's gap
+// and then the plate's drop: mono 30 um spheres, so the count is that over one sphere's volume
+// (packgen stops at the first sphere that reaches the target: within one).
+TEST(DepositSpread, DosingSuppliesTheLayersNominalPowder) {
+  const std::string dir = test::scratch_dir("spread_dosing");
+  const auto r = test::run_app("deposit", "--config " + small_scene(dir) + " --seed 1 --out " + dir +
+                                              "/out.h5 --supply.count 0 --supply.dosing 1.5 "
+                                              "--supply.bulk-density 0.1 --layers 2 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const double sphere = 4.0 / 3.0 * M_PI * 15e-6 * 15e-6 * 15e-6;
+  const double per_height = 1.5 * 0.1 * (1.2e-3 - 0.1e-3) * 0.3e-3 / sphere;
+  const auto layers = r.out.find("\"layers\"");
+  ASSERT_NE(layers, std::string::npos) << r.out;
+  const std::string first = r.out.substr(layers);
+  const std::string second = first.substr(first.find("\"supplied\"") + 1);
+  EXPECT_NEAR(test::json_number(first, "supplied"), per_height * 60e-6, 1.0) << r.out;
+  EXPECT_NEAR(test::json_number(second, "supplied"), per_height * 30e-6, 1.0) << r.out;
 }
 
 TEST(DepositSpread, DropWithHistoryFrictionRunsInTheRotatingLoop) {
