@@ -67,7 +67,9 @@ struct Beam {
   double roughness = 1e-6;  // rough: RayTraceParams' default (a ground plate)
 };
 
-AbsorptionMap trace(const bed::Bed& bed, const thermal::SubstrateGeometry& g, const Beam& beam) {
+// `rise`: the solid's top over the plate per column (a part a build grew; empty: flat).
+AbsorptionMap trace(const bed::Bed& bed, const thermal::SubstrateGeometry& g, const Beam& beam,
+                    const std::vector<double>& rise = {}) {
   thermal::RayTraceParams p;
   p.rays = beam.rays;
   p.reflection = beam.reflection;
@@ -79,6 +81,7 @@ AbsorptionMap trace(const bed::Bed& bed, const thermal::SubstrateGeometry& g, co
   thermal::TraceSurfaces surfaces;
   surfaces.particle_phase.assign(bed.n(), 0);
   surfaces.node_phase.assign(g.nx * g.ny, 0);
+  surfaces.rise = rise;
   return tracer.trace(beam.x, beam.y, beam.trace, surfaces);
 }
 
@@ -289,6 +292,48 @@ TEST(RayTraceTracer, SphereOnPlateMatchesTheClosedForm) {
     EXPECT_GE(m.hits, 1.0);
     EXPECT_LE(m.hits, 2.0);
   }
+}
+
+// The optics see the part a build grew over the plate (TraceSurfaces::rise), not the plate under
+// it. A plate raised by 3 dz everywhere with the sphere resting on it traces as the sphere on
+// the plate 3 dz higher (every share to round-off); a sphere resting on the low half of a plate
+// whose other half stands 3 dz higher lies under the tracer's top plane and is still met there:
+// its share and the plate's are those of the flat plate to 1 ray (the step is > 4 R away from
+// the beam's 2w, and a reflection off the low plate rises out of the step's reach).
+TEST(RayTraceTracer, RaisedPartIsTheSurfaceTheBeamMeets) {
+  const double r = 20e-6, zc = test::resting_z(r), l = 200e-6;
+  const auto g = plate(l, l, 21, 21);
+  const double lift = 3 * g.dz;
+  Beam beam{r, 0.5 * l, 0.4 * l};
+  beam.rays = 20000;
+  bed::Bed low = test::empty_bed(l, l, 100e-6), high = low;
+  low.add(beam.x, beam.y, zc, r);
+  high.add(beam.x, beam.y, zc + lift, r);
+  thermal::SubstrateGeometry raised = g;
+  raised.z_top += lift;
+  const AbsorptionMap flat = trace(high, raised, beam);
+  const AbsorptionMap on = trace(high, g, beam, std::vector<double>(g.nx * g.ny, lift));
+  expect_booked(on, 1, g);
+  EXPECT_NEAR(on.absorbed_particles, flat.absorbed_particles, kConserved);
+  EXPECT_NEAR(on.absorbed_substrate, flat.absorbed_substrate, kConserved);
+  EXPECT_NEAR(on.outside, flat.outside, kConserved);
+  EXPECT_NEAR(on.escaped, flat.escaped, kConserved);
+  // Half the plate raised, far from the sphere: x >= 0.8 l stands 3 dz higher.
+  std::vector<double> step(g.nx * g.ny, 0.0);
+  for (std::size_t c = 0; c < step.size(); ++c)
+    if (g.x(c % g.nx) >= 0.8 * l) step[c] = lift;
+  beam.w = 0.25 * r;  // the whole beam on the sphere's upper cap: its reflections go up and out
+  const AbsorptionMap alone = trace(low, g, beam);
+  const AbsorptionMap beside = trace(low, g, beam, step);
+  expect_booked(beside, 1, g);
+  const double one_ray = 1.0 / static_cast<double>(beam.rays);
+  EXPECT_GT(beside.absorbed_particles, 0.9 * kAlpha);
+  EXPECT_NEAR(beside.absorbed_particles, alone.absorbed_particles, one_ray);
+  EXPECT_NEAR(beside.absorbed_substrate, alone.absorbed_substrate, one_ray);
+  std::printf("  raised plate: sphere %.6f (plate 3 dz higher %.6f), plate %.6f (%.6f); sphere "
+              "beside a raised half %.6f (flat %.6f)\n",
+              on.absorbed_particles, flat.absorbed_particles, on.absorbed_substrate,
+              flat.absorbed_substrate, beside.absorbed_particles, alone.absorbed_particles);
 }
 
 // Power conserved to round-off on a two-layer lattice for both reflection laws and a range of

@@ -143,10 +143,10 @@ void ray_traced_substrate(Sinter::State& s, double t, double dt) {
   s.ledger.boundary += into_boundary;
 }
 
-// The surfaces as the next trace sees them: phases (molten: T >= T_m) and, with the
-// depression, the depth of the T_d isotherm on each column below the plate's top, where the
-// tracer's surface is (a raised column's isotherm is found from its top node down; the planes
-// it has over the plate are taken off).
+// The surfaces as the next trace sees them: phases (molten: T >= T_m), the solid's top over the
+// plate (the part a build grew, merged melt), and with the depression the depth of the T_d
+// isotherm below each column's top (found from its top node down; the top node sits δ below
+// the column's top, so a depression that opens reaches the top).
 void update_surfaces(Sinter::State& s) {
   const double t_m = s.scene.phase_change.melting_point;
   TraceSurfaces& f = s.surfaces;
@@ -154,13 +154,17 @@ void update_surfaces(Sinter::State& s) {
   const SubstrateGeometry& g = s.g;
   const std::size_t plane = g.columns();
   for (std::size_t c = 0; c < plane; ++c) f.node_phase[c] = s.node_temperature[top_node(s, c)] >= t_m;
+  if (!s.top.empty()) {
+    f.rise.resize(plane);
+    for (std::size_t c = 0; c < plane; ++c) f.rise[c] = s.top[c] - g.z_top;
+  }
   if (!s.scene.has(kDepression)) return;
   for (std::size_t c = 0; c < plane; ++c) {
     const std::size_t top = top_node(s, c);
     const auto column = [&](std::size_t k) { return s.node_temperature[top - k * plane]; };
-    const double raised = g.dz * static_cast<double>(s.top_plane[c] - g.k_plate());
-    const double from_top = isotherm_depth(column, s.top_plane[c], g.dz, cavity_temperature(s));
-    f.depression[c] = std::max(0.0, from_top - raised);
+    const double from_node = isotherm_depth(column, s.top_plane[c], g.dz, cavity_temperature(s));
+    const double above_node = s.top.empty() ? 0.0 : s.top[c] - g.z(s.top_plane[c]);
+    f.depression[c] = from_node > 0 ? from_node + above_node : 0.0;
     s.depression_depth = std::max(s.depression_depth, f.depression[c]);
   }
 }

@@ -34,62 +34,85 @@ struct ChunkTally {
   double escaped = 0, outside = 0, dropped = 0, hits = 0, depression = 0;
 };
 
-// The depression under one trace: depth per top-face column, bilinear between the columns'
-// nodes, and the x-y box of the columns it holds (empty: flat everywhere).
-class Depression {
+// The substrate's surface under one trace: per column the solid's top (the plate's top face
+// raised by the part, TraceSurfaces::rise) less its depression (TraceSurfaces::depression),
+// bilinear between the columns' nodes. The tracer's reference plane is the highest point of that
+// surface, `top()`: a ray meets it from above as a flat face or enters the space under it,
+// marched through to the surface (the depression's cavity, or the lower solid beside a raised
+// one). `over` bounds the columns below the plane (none: flat at top()).
+class Surface {
  public:
-  Depression(const SubstrateGeometry& g, const std::vector<double>& depth) : g_(g), depth_(depth) {
-    for (std::size_t c = 0; c < depth.size(); ++c) {
-      if (depth[c] <= 0) continue;
+  Surface(const SubstrateGeometry& g, const TraceSurfaces& f) : g_(g), cavity_(f.depression) {
+    std::vector<double> height(g.columns(), g.z_top);
+    for (std::size_t c = 0; c < height.size(); ++c) {
+      if (!f.rise.empty()) height[c] += f.rise[c];
+      if (!f.depression.empty()) height[c] -= f.depression[c];
+    }
+    top_ = *std::max_element(height.begin(), height.end());
+    depth_.resize(height.size());
+    for (std::size_t c = 0; c < height.size(); ++c) {
+      depth_[c] = top_ - height[c];
+      if (depth_[c] <= 0) continue;
       const double x = g.x(c % g.nx), y = g.y(c / g.nx);
       lo_ = {std::min(lo_[0], x - g.dx), std::min(lo_[1], y - g.dy)};
       hi_ = {std::max(hi_[0], x + g.dx), std::max(hi_[1], y + g.dy)};
     }
   }
-  // Whether the top face at (x, y) may be depressed.
+  double top() const { return top_; }
+  // Whether the surface at (x, y) may lie below top().
   bool over(double x, double y) const {
     return x > lo_[0] && x < hi_[0] && y > lo_[1] && y < hi_[1];
   }
-  // Height of the surface at (x, y) below z_top is g.z_top - depth(x, y); the gradient of depth.
+  // How far the surface at (x, y) lies below top(); the gradient of that depth.
   double depth(double x, double y, double* ddx = nullptr, double* ddy = nullptr) const {
+    return bilinear(depth_, x, y, ddx, ddy);
+  }
+  // Whether (x, y) lies in the vapour depression (its wall is molten), not on the solid's top.
+  bool in_depression(double x, double y) const {
+    return !cavity_.empty() && bilinear(cavity_, x, y) > 0;
+  }
+  // Below the surface: the point lies inside the solid or melt.
+  bool inside(const Vec3& p) const { return p[2] < top_ - depth(p[0], p[1]); }
+
+ private:
+  double bilinear(const std::vector<double>& f, double x, double y, double* ddx = nullptr,
+                  double* ddy = nullptr) const {
     const double fx = std::clamp((x - g_.x0) / g_.dx, 0.0, static_cast<double>(g_.nx - 1) - 1e-9);
     const double fy = std::clamp((y - g_.y0) / g_.dy, 0.0, static_cast<double>(g_.ny - 1) - 1e-9);
     const auto i = static_cast<std::size_t>(fx), j = static_cast<std::size_t>(fy);
     const double u = fx - static_cast<double>(i), v = fy - static_cast<double>(j);
-    const double* d = depth_.data() + i + g_.nx * j;
+    const double* d = f.data() + i + g_.nx * j;
     const double d00 = d[0], d10 = d[1], d01 = d[g_.nx], d11 = d[g_.nx + 1];
     if (ddx) *ddx = ((1 - v) * (d10 - d00) + v * (d11 - d01)) / g_.dx;
     if (ddy) *ddy = ((1 - u) * (d01 - d00) + u * (d11 - d10)) / g_.dy;
     return (1 - v) * ((1 - u) * d00 + u * d10) + v * ((1 - u) * d01 + u * d11);
   }
-  // Below the surface: the point lies inside the solid or melt.
-  bool inside(const Vec3& p) const { return p[2] < g_.z_top - depth(p[0], p[1]); }
-
- private:
   const SubstrateGeometry& g_;
-  const std::vector<double>& depth_;
+  const std::vector<double>& cavity_;
+  std::vector<double> depth_;
+  double top_ = 0;
   std::array<double, 2> lo_{kInf, kInf}, hi_{-kInf, -kInf};
 };
 
-// Where a ray below the top face (inside the depression's cavity) next meets the surface:
-// marching along it from `o` in steps `h`, then bisecting the step that crossed it. nullopt: the
-// ray rose back through the top face first (at parameter `*t_exit`).
-std::optional<double> cavity_hit(const Depression& dep, double z_top, const Vec3& o,
-                                 const Vec3& d, double h, double* t_exit) {
+// Where a ray under the surface's top plane next meets the surface: marching along it from `o`
+// in steps `h`, then bisecting the step that crossed it. nullopt: the ray rose back through the
+// top plane first (at parameter `*t_exit`).
+std::optional<double> cavity_hit(const Surface& surface, const Vec3& o, const Vec3& d, double h,
+                                 double* t_exit) {
   const auto at = [&](double t) { return Vec3{o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]}; };
   double t0 = 0;
   for (;;) {
     const double t1 = t0 + h;
     const Vec3 p = at(t1);
-    if (p[2] >= z_top && d[2] > 0) {
-      *t_exit = (z_top - o[2]) / d[2];
+    if (p[2] >= surface.top() && d[2] > 0) {
+      *t_exit = (surface.top() - o[2]) / d[2];
       return std::nullopt;
     }
-    if (dep.inside(p)) {
+    if (surface.inside(p)) {
       double a = t0, b = t1;
       for (int k = 0; k < 30; ++k) {
         const double m = 0.5 * (a + b);
-        (dep.inside(at(m)) ? b : a) = m;
+        (surface.inside(at(m)) ? b : a) = m;
       }
       return a;
     }
@@ -121,7 +144,7 @@ struct BeamTracer::Impl {
   }
 
   // Follows one ray of power `power` from o downwards; books what it leaves where.
-  void follow(Vec3 o, double power, const TraceSurfaces& surfaces, const Depression& dep,
+  void follow(Vec3 o, double power, const TraceSurfaces& surfaces, const Surface& surface,
               bed::RandomStream& rng, ChunkTally& tally) const;
   // Books `absorbed` at the top face or wall point p on the columns around it.
   void book_top(const Vec3& p, double absorbed, ChunkTally& tally) const {
@@ -151,79 +174,80 @@ struct BeamTracer::Impl {
 };
 
 void BeamTracer::Impl::follow(Vec3 o, double power, const TraceSurfaces& surfaces,
-                              const Depression& dep, bed::RandomStream& rng,
+                              const Surface& surface, bed::RandomStream& rng,
                               ChunkTally& tally) const {
   const double floor_power = params.cutoff * power;
   const double x1 = g.x(g.nx - 1), y1 = g.y(g.ny - 1);
   const double march = 0.5 * std::min(g.dx, g.dy);
+  const auto off_grid = [&](const Vec3& p) { return p[0] < g.x0 || p[0] > x1 || p[1] < g.y0 || p[1] > y1; };
   Vec3 d = {0, 0, -1};
   std::uint32_t skip = bed::SphereGrid::kNoSphere;
-  bool below = false;  // in the depression's cavity, under the top face
+  bool below = false;  // under the surface's top plane: in a depression or beside a raised top
   for (int bounce = 0; bounce < params.max_bounces; ++bounce) {
-    Vec3 p, n;
-    double alpha, mirror;  // absorbed fraction; specular share of the rest
+    // The surface ahead: under the plane by marching to it (or back up through the plane), from
+    // above by meeting the plane; a sphere nearer than either is hit first.
+    double reach = kInf;
+    bool wall = false;  // the surface ahead lies under the plane
     if (below) {
       double t_exit = 0;
-      const auto t = cavity_hit(dep, g.z_top, o, d, march, &t_exit);
-      if (!t) {  // back up through the top face: on among the spheres
-        o = {o[0] + t_exit * d[0], o[1] + t_exit * d[1], g.z_top};
+      const auto t = cavity_hit(surface, o, d, march, &t_exit);
+      reach = t ? *t : t_exit;
+      wall = t.has_value();
+    } else if (d[2] < 0) {
+      reach = (surface.top() - o[2]) / d[2];
+    }
+    const auto [s, t] = grid->first_hit(o, d, skip, reach);
+    if (s == bed::SphereGrid::kNoSphere && !std::isfinite(reach)) {
+      tally.escaped += power;
+      return;
+    }
+    const double along = s == bed::SphereGrid::kNoSphere ? reach : t;
+    const Vec3 p = {o[0] + along * d[0], o[1] + along * d[1], o[2] + along * d[2]};
+    Vec3 n;
+    double alpha, mirror;  // absorbed fraction; specular share of the rest
+    if (s != bed::SphereGrid::kNoSphere) {
+      tally.hits += 1;
+      const Vec3 c = grid->centre(s);
+      n = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+      const double len = std::sqrt(bed::dot(n, n));
+      for (double& v : n) v /= len;  // normalised: a ray that starts inside a sphere hits at o
+      const std::uint32_t target = index[s];
+      alpha = optics.absorptance(surfaces.particle_phase[target], -bed::dot(d, n));
+      mirror = specular(false, surfaces.particle_phase[target], -bed::dot(d, n));
+      tally.particles.push_back({target, alpha * power});
+      skip = s;
+    } else {
+      skip = bed::SphereGrid::kNoSphere;
+      if (below && !wall) {  // back up through the plane: on among the spheres above it
+        o = {p[0], p[1], surface.top()};
         below = false;
         continue;
       }
-      p = {o[0] + *t * d[0], o[1] + *t * d[1], o[2] + *t * d[2]};
-      tally.hits += 1;
-      if (p[0] < g.x0 || p[0] > x1 || p[1] < g.y0 || p[1] > y1) {
+      const bool into = !below && surface.over(p[0], p[1]) && surface.depth(p[0], p[1]) > 0;
+      if (!into) tally.hits += 1;
+      if (off_grid(p)) {
         tally.outside += power;
         return;
       }
-      double ddx = 0, ddy = 0;
-      dep.depth(p[0], p[1], &ddx, &ddy);
-      n = {ddx, ddy, 1};
-      const double len = std::sqrt(bed::dot(n, n));
-      for (double& v : n) v /= len;
-      alpha = optics.absorptance(1, -bed::dot(d, n));  // the wall is molten
-      mirror = specular(false, 1, -bed::dot(d, n));
-      book_top(p, alpha * power, tally);
-      tally.depression += alpha * power;
-    } else {
-      const double t_plane = d[2] < 0 ? (g.z_top - o[2]) / d[2] : kInf;
-      const auto [s, t] = grid->first_hit(o, d, skip, t_plane);
-      if (s == bed::SphereGrid::kNoSphere && !std::isfinite(t_plane)) {
-        tally.escaped += power;
-        return;
+      if (into) {  // into the space under the plane
+        o = p;
+        below = true;
+        continue;
       }
-      const double reach = s == bed::SphereGrid::kNoSphere ? t_plane : t;
-      p = {o[0] + reach * d[0], o[1] + reach * d[1], o[2] + reach * d[2]};
-      const bool into_cavity = s == bed::SphereGrid::kNoSphere && dep.over(p[0], p[1]) &&
-                               dep.depth(p[0], p[1]) > 0;
-      if (!into_cavity) tally.hits += 1;
-      if (s != bed::SphereGrid::kNoSphere) {
-        const Vec3 c = grid->centre(s);
-        n = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+      n = {0, 0, 1};
+      if (wall) {
+        double ddx = 0, ddy = 0;
+        surface.depth(p[0], p[1], &ddx, &ddy);
+        n = {ddx, ddy, 1};
         const double len = std::sqrt(bed::dot(n, n));
-        for (double& v : n) v /= len;  // normalised: a ray that starts inside a sphere hits at o
-        const std::uint32_t target = index[s];
-        alpha = optics.absorptance(surfaces.particle_phase[target], -bed::dot(d, n));
-        mirror = specular(false, surfaces.particle_phase[target], -bed::dot(d, n));
-        tally.particles.push_back({target, alpha * power});
-        skip = s;
-      } else {
-        if (p[0] < g.x0 || p[0] > x1 || p[1] < g.y0 || p[1] > y1) {
-          tally.outside += power;
-          return;
-        }
-        skip = bed::SphereGrid::kNoSphere;
-        if (into_cavity) {
-          o = p;
-          below = true;
-          continue;
-        }
-        n = {0, 0, 1};
-        const unsigned phase = column_phase(p, surfaces);
-        alpha = optics.absorptance(phase, -d[2]);
-        mirror = specular(true, phase, -d[2]);
-        book_top(p, alpha * power, tally);
+        for (double& v : n) v /= len;
       }
+      const bool molten_wall = wall && surface.in_depression(p[0], p[1]);  // the depression's
+      const unsigned phase = molten_wall ? 1 : column_phase(p, surfaces);
+      alpha = optics.absorptance(phase, -bed::dot(d, n));
+      mirror = specular(!molten_wall, phase, -bed::dot(d, n));
+      book_top(p, alpha * power, tally);
+      if (molten_wall) tally.depression += alpha * power;
     }
     power *= 1 - alpha;
     if (power < floor_power) {
@@ -298,8 +322,9 @@ void BeamTracer::remove(const std::vector<std::uint32_t>& particles) {
 AbsorptionMap BeamTracer::trace(double x, double y, std::uint64_t trace,
                                 const TraceSurfaces& surfaces) const {
   const Impl& m = *impl_;
-  static const std::vector<double> kFlat;
-  const Depression dep(m.g, surfaces.depression.empty() ? kFlat : surfaces.depression);
+  const Surface surface(m.g, surfaces);
+  // Rays start above the highest particle and the highest point of the surface.
+  const double z_start = std::max(m.z_start, surface.top() + 1e-6 * m.spot_radius);
   const std::size_t rays = m.params.rays;
   bed::RandomStream jitter(m.params.seed, trace);
   const double xi = jitter.uniform(), zeta = jitter.uniform();
@@ -315,7 +340,7 @@ AbsorptionMap BeamTracer::trace(double x, double y, std::uint64_t trace,
       const double v = std::fmod(static_cast<double>(k) * golden + zeta, 1.0);
       const double r = m.spot_radius * std::sqrt(-0.5 * std::log1p(-u));
       const double phi = 2 * std::numbers::pi * v;
-      m.follow({x + r * std::cos(phi), y + r * std::sin(phi), m.z_start}, per_ray, surfaces, dep,
+      m.follow({x + r * std::cos(phi), y + r * std::sin(phi), z_start}, per_ray, surfaces, surface,
                rng, tally[c]);
     }
   }

@@ -2,14 +2,15 @@
 // Ray-traced laser absorption on the bed's own spheres (after Boley, King & Khairallah 2015,
 // Appl. Opt. 54:2477): rays drawn from the Gaussian beam profile (1/e^2 radius w) enter from
 // above, vertically; at every hit, on a sphere, on the substrate's top face or on the wall of
-// its vapour depression (vapour_depression.hpp), the surface absorbs the fraction A of what the
+// its vapour depression (vapour_depression.hpp) or on a part raised over the plate, the surface absorbs the fraction A of what the
 // ray carries (SurfaceOptics: a constant per phase, or Fresnel's A(θ) of the metal's complex
 // index at the angle of incidence) and the rest is reflected (Reflection: specularly, diffusely
 // with Lambert's law, or by the solid top face's roughness) until the ray leaves upward, falls
 // outside the substrate's extent, or carries
-// less than `cutoff` of its start power. The depression is a depth per top-face column,
-// bilinear between columns; a ray below the top face marches through it in steps of half a
-// grid spacing and the hit is refined by bisection. Every watt is booked: absorbed by
+// less than `cutoff` of its start power. The substrate's surface is a height per column (the
+// solid's top less the depression), bilinear between columns; a ray below its highest point
+// marches in steps of half a grid spacing, the hit refined by bisection, and meets the spheres
+// there as above. Every watt is booked: absorbed by
 // particles + absorbed by the substrate + escaped upward + outside + dropped = incident, to
 // round-off.
 //
@@ -51,12 +52,14 @@ struct SurfaceOptics {
   double absorptance(unsigned liquid, double cos_incidence) const;
 };
 
-// The surfaces as one trace sees them: each particle's and each top-face column's phase
-// (0 solid, 1 liquid; columns i + nx j) and the depth of the depression below the top face per
-// column (m; empty: flat).
+// The surfaces as one trace sees them: each particle's and each column's phase (0 solid, 1
+// liquid; columns i + nx j, their top nodes), and the substrate's surface per column: the
+// solid's top `rise` above the plate's top face (the part a build grew; empty: flat) less the
+// depression's depth below that top (empty: none). The tracer's top plane is the surface's
+// highest point; under it, rays march to the surface and still meet the spheres.
 struct TraceSurfaces {
   std::vector<std::uint8_t> particle_phase, node_phase;
-  std::vector<double> depression;
+  std::vector<double> rise, depression;
 };
 
 struct RayTraceParams {
