@@ -5,12 +5,14 @@
 // (dem::run_spread, thermal::Sinter, thermal::fuse, thermal::lack_of_fusion); this program
 // chains them in-process and writes each layer's files and the report.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -19,6 +21,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "build_map.hpp"
 #include "build_pictures.hpp"
 #include "common/app_main.hpp"
 #include "common/json_units.hpp"
@@ -36,6 +39,7 @@
 #include "powderbed/bed/temp_files.hpp"
 #include "powderbed/dem/recoater.hpp"
 #include "powderbed/dem/spread.hpp"
+#include "powderbed/thermal/explain.hpp"
 #include "powderbed/thermal/fusion.hpp"
 #include "powderbed/thermal/lack_of_fusion.hpp"
 #include "powderbed/thermal/part_porosity.hpp"
@@ -54,7 +58,8 @@ namespace th = thermal;
 const char* const kUsage =
     "build --config BUILD.ini | --spread SPREAD.ini --sinter SINTER.ini --seed S --out DIR "
     "[--layers N] [--in DIR/layer-NNN.h5] [--spread-args \"...\"] [--sinter-args \"...\"] "
-    "[--fuse.melt-fraction F] [--snapshots K] [--pictures false] [--spread-engine liggghts [--mpi N]] [--json]";
+    "[--fuse.melt-fraction F] [--snapshots K] [--pictures false] [--spread-engine liggghts [--mpi N]] "
+    "[--map.power P1,P2,... --map.speed V1,V2,... [--map.hatch H1,...]] [--json]";
 
 void add_options(po::options_description& desc) {
   app::add_common_options(desc);
@@ -84,6 +89,12 @@ void add_options(po::options_description& desc) {
        "default half the beam radius; 0: none; thermal/fusion.hpp)")
       ("snapshots", po::value<std::size_t>()->default_value(10),
        "snapshots in each layer's scan file (besides t = 0)")
+      ("map.power", po::value<std::string>(),
+       "process map: laser powers, W, comma-separated; with map.speed builds --layers layers at "
+       "each point and judges it (docs/build.md \"Process maps\")")
+      ("map.speed", po::value<std::string>(), "process map: scan speeds, m/s, comma-separated")
+      ("map.hatch", po::value<std::string>(),
+       "process map: hatch spacings, m, comma-separated (default: the scan scene's scan.hatch)")
       ("pictures", po::value<bool>()->default_value(true),
        "draw each layer's pictures as PNGs: the particles by state, the lack-of-fusion map, the "
        "solid's height (docs/build.md \"Pictures\"; without matplotlib: one warning, no pictures)");
@@ -261,6 +272,9 @@ void layer_json(bed::JsonWriter& j, const LayerReport& l) {
       .value("mean_track_width", width)
       .value("mean_track_depth", depth)
       .value("max_temperature", l.scan.max_temperature)
+      .value("absorptance", l.scan.absorptance)
+      .value("depression_depth", l.scan.depression_depth)
+      .value("evaporated_mass", l.scan.evaporated_mass)
       .value("energy_balance_error", l.scan.energy.relative_error())
       .value("scan_wall_time", l.scan_wall)
       .value("fused", static_cast<std::uint64_t>(l.fused))
@@ -297,6 +311,8 @@ struct Build {
   double level = -1;            // fuse.level, m (< 0: half the beam radius)
   std::size_t snapshots = 10;
   std::size_t scan_layer0 = 0;  // the sinter scene's scan.layer: the first layer's rotation step
+  std::string sinter_scene, sinter_args;  // the scan stage's scene and --sinter-args (a map's
+                                          // points parse them again with their power and speed)
   std::string command_line;
   std::optional<app::LiggghtsEngine> engine;  // --spread-engine liggghts; none: dem::run_spread
 };
@@ -411,6 +427,17 @@ struct OutFolderGuard {
   }
 };
 
+// The scan stage's options: its scene and --sinter-args, then `more` (a map point's power and
+// speed), parsed as sinter parses them into b.svm and b.scan_options.
+void parse_scan(Build& b, const std::string& more) {
+  b.scan_options = th::SinterScene{};
+  const auto scan_options = [&b](po::options_description& d) {
+    app::add_sinter_options(d, b.scan_options);
+  };
+  b.svm = parse_stage("sinter", "sinter", scan_options, b.sinter_scene, b.sinter_args + " " + more);
+  b.scan_layer0 = b.svm["scan.layer"].as<std::size_t>();
+}
+
 // The build's own options, the stage scenes parsed by their programs' options, the checks made
 // before anything is written.
 Build read_build(const po::variables_map& vm, int argc, char** argv) {
@@ -448,12 +475,9 @@ Build read_build(const po::variables_map& vm, int argc, char** argv) {
     throw InputError(fmt::format("--spread: {} names no recoater (accepted: a deposit scene with "
                                  "recoater.tool = blade or roller, docs/deposit-spread.md)",
                                  spread_scene));
-  const auto scan_options = [&b](po::options_description& d) {
-    app::add_sinter_options(d, b.scan_options);
-  };
-  b.svm = parse_stage("sinter", "sinter", scan_options, sinter_scene,
-                      vm["sinter-args"].as<std::string>());
-  b.scan_layer0 = b.svm["scan.layer"].as<std::size_t>();
+  b.sinter_scene = sinter_scene;
+  b.sinter_args = vm["sinter-args"].as<std::string>();
+  parse_scan(b, "");
   b.scene = app::deposit_scene(b.dvm, b.spread_options.scene);
   b.spread = app::spread_settings(b.dvm, b.spread_options.spread, seed);
   b.spread.layers = 1;
@@ -512,12 +536,20 @@ void remove_out_of_layer(const Build& b, bed::Bed& bed, dem::SpreadState& next, 
   dem::remove_particles(bed, next, keep);
 }
 
-// One layer: spread on the solid (the state's floor), scan, fuse, write the layer's files; the
-// state becomes the next layer's.
-LayerReport build_layer(const Build& b, bed::Bed& bed, std::optional<dem::SpreadState>& state,
-                        th::PartRecord& part, std::uint64_t layer, app::ProgressBar& bar, double done, double share,
-                        int argc, char** argv) {
+// A layer spread on the solid (the state's floor): the bed the scan meets and the spread's state
+// after it, with the report's spread part; written as layer-NNN-spread.h5. `bed` becomes the
+// spread bed (what ended out of the layer removed).
+struct SpreadLayer {
+  bed::Bed spread;        // with the spread's provenance
+  dem::SpreadState next;
   LayerReport rep;
+};
+
+SpreadLayer spread_layer(const Build& b, bed::Bed& bed, const std::optional<dem::SpreadState>& state,
+                         std::uint64_t layer, app::ProgressBar& bar, double done, double share,
+                         int argc, char** argv) {
+  SpreadLayer out;
+  LayerReport& rep = out.rep;
   rep.layer = layer;
   rep.tool_bottom = tool_bottom(b, bed, layer);
   const double solid_top = state && !state->floor.empty() ? state->floor.highest() : bed.domain.lower[2];
@@ -530,29 +562,47 @@ LayerReport build_layer(const Build& b, bed::Bed& bed, std::optional<dem::Spread
   s.progress = [&](double f, double) {
     bar.draw(done + share * f, fmt::format("layer {} spread", layer));
   };
+  std::optional<dem::SpreadState> start = state;
   const dem::SpreadSummary spread =
-      b.engine ? app::liggghts_spread_layer(*b.engine, bed, b.scene, s, state, layer,
+      b.engine ? app::liggghts_spread_layer(*b.engine, bed, b.scene, s, start, layer,
                                             (fs::path(b.out) / fmt::format("liggghts-{:03d}", layer)).string())
-               : dem::run_spread(bed, b.scene, s, state ? &*state : nullptr);
+               : dem::run_spread(bed, b.scene, s, start ? &*start : nullptr);
   rep.spread = spread.layers.back();
   rep.rebuilds = spread.neighbour_rebuilds;
-  dem::SpreadState next = spread.state;
-  remove_out_of_layer(b, bed, next, rep);
-  bed::Bed spread_bed = bed;
-  app::set_spread_provenance(spread_bed, b.dvm, b.scene, "build", argc, argv);
-  bed::write_bed_h5(spread_bed, layer_file(b.out, layer, "-spread"));
+  out.next = spread.state;
+  remove_out_of_layer(b, bed, out.next, rep);
+  out.spread = bed;
+  app::set_spread_provenance(out.spread, b.dvm, b.scene, "build", argc, argv);
+  bed::write_bed_h5(out.spread, layer_file(b.out, layer, "-spread"));
+  return out;
+}
 
-  // The fused solid becomes the floor of the next layer's spread; the rest stays powder.
+// The scan of a spread layer, its fusion and what stays: the fused solid becomes the floor of
+// the next layer's spread, the rest stays powder (`bed`, the spread bed); writes the layer's scan
+// file and its layer file (with the part's record); the state becomes the next layer's.
+LayerReport scan_layer(const Build& b, bed::Bed& bed, SpreadLayer spread,
+                       std::optional<dem::SpreadState>& state, th::PartRecord& part,
+                       std::uint64_t layer, app::ProgressBar& bar, double done, double share,
+                       int argc, char** argv) {
+  LayerReport rep = std::move(spread.rep);
+  dem::SpreadState next = std::move(spread.next);
   const std::vector<char> keep =
-      scan_and_fuse(b, spread_bed, next.floor, part, layer, bar, done + share, share, rep);
+      scan_and_fuse(b, spread.spread, next.floor, part, layer, bar, done, share, rep);
   dem::remove_particles(bed, next, keep);
   app::set_spread_provenance(bed, b.dvm, b.scene, "build", argc, argv);
   bed.provenance.stage = "build: powder after layer " + std::to_string(layer);
-  const std::string layer_path = layer_file(b.out, layer, "");
-  dem::write_spread_bed(layer_path, bed, next,
+  dem::write_spread_bed(layer_file(b.out, layer, ""), bed, next,
                         [&](bed::H5Output& out) { th::write_part_record(out, part); });
   state = next;
   return rep;
+}
+
+// One layer: spread, scan, fuse, write the layer's files.
+LayerReport build_layer(const Build& b, bed::Bed& bed, std::optional<dem::SpreadState>& state,
+                        th::PartRecord& part, std::uint64_t layer, app::ProgressBar& bar,
+                        double done, double share, int argc, char** argv) {
+  SpreadLayer spread = spread_layer(b, bed, state, layer, bar, done, share, argc, argv);
+  return scan_layer(b, bed, std::move(spread), state, part, layer, bar, done + share, share, argc, argv);
 }
 
 // The units of build.json's numbers (common/json_units).
@@ -562,16 +612,18 @@ constexpr app::UnitEntry kUnits[] = {
     {"tool_bottom", "m"}, {"recoater_clearance", "m"}, {"layer_density", "1"},
     {"spread_steps", "1"}, {"neighbour_rebuilds", "1"}, {"ejected", "1"}, {"behind_start", "1"},
     {"spread_wall_time", "s"}, {"tracks", "1"}, {"mean_track_width", "m"},
-    {"mean_track_depth", "m"}, {"max_temperature", "K"}, {"energy_balance_error", "1"},
+    {"mean_track_depth", "m"}, {"max_temperature", "K"}, {"absorptance", "1"},
+    {"depression_depth", "m"}, {"evaporated_mass", "kg"}, {"energy_balance_error", "1"},
     {"scan_wall_time", "s"}, {"fused", "1"}, {"vaporised", "1"}, {"powder_left", "1"},
     {"captured", "1"}, {"balled", "1"}, {"fused_fraction", "1"}, {"lack_of_fusion", "1"},
     {"remelt_depth_mean", "m"}, {"remelt_depth_min", "m"}, {"scanned_area", "m^2"},
     {"mass_error", "1"}, {"solid_top_min", "m"}, {"solid_top_max", "m"}, {"solid_mass", "kg"},
     {"part_porosity", "1"}, {"part_core_area", "m^2"}};
 
-// build.json, and the summary on stdout (the report itself with --json).
-void write_report(const po::variables_map& vm, const Build& b, const std::vector<LayerReport>& reports,
-                  const dem::SpreadState& state, std::uint64_t first, std::size_t particles, double wall) {
+// build.json in b.out: the layers' reports.
+std::string write_build_json(const Build& b, const std::vector<LayerReport>& reports,
+                             const dem::SpreadState& state, std::uint64_t first,
+                             std::size_t particles, double wall) {
   bed::JsonWriter j;
   j.begin_object()
       .value("layers_done", state.layers_done)
@@ -585,8 +637,15 @@ void write_report(const po::variables_map& vm, const Build& b, const std::vector
   app::write_units(j, kUnits);
   j.end_object();
   bed::write_text_file((fs::path(b.out) / "build.json").string(), j.str() + "\n");
+  return j.str();
+}
+
+// build.json, and the summary on stdout (the report itself with --json).
+void write_report(const po::variables_map& vm, const Build& b, const std::vector<LayerReport>& reports,
+                  const dem::SpreadState& state, std::uint64_t first, std::size_t particles, double wall) {
+  const std::string json = write_build_json(b, reports, state, first, particles, wall);
   if (vm.count("json")) {
-    std::cout << j.str() << '\n';
+    std::cout << json << '\n';
     return;
   }
   for (const auto& r : reports)
@@ -601,12 +660,167 @@ void write_report(const po::variables_map& vm, const Build& b, const std::vector
   std::printf("build: %zu layer(s) in %.0f s -> %s\n", reports.size(), wall, b.out.c_str());
 }
 
+// map.json and map.png in --out, and the summary on stdout (map.json itself with --json).
+void write_map(const po::variables_map& vm, const Build& b, const std::vector<app::MapPoint>& map,
+               double wall) {
+  bed::JsonWriter j;
+  app::write_map_json(j, map, wall);
+  const std::string json = (fs::path(b.out) / "map.json").string();
+  bed::write_text_file(json, j.str() + "\n");
+  const std::string png = (fs::path(b.out) / "map.png").string();
+  const std::string why = vm["pictures"].as<bool>() ? app::draw_map(json, png) : "";
+  if (!why.empty()) std::cerr << "build: warning: no map.png: " << why << '\n';
+  if (vm.count("json")) {
+    std::cout << j.str() << '\n';
+    return;
+  }
+  for (const app::MapPoint& p : map) {
+    std::string regions;
+    for (const auto& r : p.regions()) regions += (regions.empty() ? "" : ", ") + r;
+    std::printf("build: map %s: %g W, %g m/s, hatch %g um, layer %g um (E = %.0f J/mm^3): porosity "
+                "%.2f %%, pools %.0f / %.0f um wide / deep, dH/h_s %.1f (keyhole > %.1f): %s\n",
+                p.folder.c_str(), p.power, p.speed, p.hatch * 1e6, p.layer * 1e6,
+                p.energy_density() * 1e-9, 100 * p.porosity, p.width * 1e6, p.depth * 1e6,
+                p.normalised_enthalpy, p.keyhole_threshold, regions.c_str());
+  }
+  std::printf("build: map of %zu point(s) in %.0f s -> %s\n", map.size(), wall, b.out.c_str());
+}
+
+// The values of a map option: a comma-separated list of numbers > 0.
+std::vector<double> map_values(const po::variables_map& vm, const char* option, const char* what) {
+  const std::string text = vm[option].as<std::string>();
+  std::vector<double> out;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    item.erase(0, item.find_first_not_of(" \t"));
+    item.erase(item.find_last_not_of(" \t") + 1);
+    std::size_t used = 0;
+    double v = NAN;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (item.empty() || used != item.size() || !(v > 0) || !std::isfinite(v))
+      throw InputError(fmt::format("--{}: '{}' in '{}' (accepted: a comma-separated list of {} > 0)",
+                                   option, item, text, what));
+    out.push_back(v);
+  }
+  if (out.empty())
+    throw InputError(fmt::format("--{}: no values (accepted: a comma-separated list of {} > 0)",
+                                 option, what));
+  return out;
+}
+
+// A map's point: the build's options with the point's power, speed and hatch, its folder in
+// --out; its scan checked (on the empty box), its part's record returned.
+th::PartRecord map_point_build(Build& point, const bed::Bed& box, double power, double speed,
+                               double hatch, std::size_t index) {
+  parse_scan(point, fmt::format("--power {} --speed {} --scan.hatch {}", power, speed, hatch));
+  point.out = (fs::path(point.out) / fmt::format("point-{:03d}", index)).string();
+  return check_scan(point, box, std::nullopt, {});
+}
+
+// What the map judges a point by, from its last layer and its part.
+app::MapPoint map_point(const Build& point, const bed::Bed& box, const LayerReport& last,
+                        double power, double speed, double hatch) {
+  app::MapPoint p;
+  p.power = power;
+  p.speed = speed;
+  p.hatch = hatch;
+  p.layer = point.spread.layer_thickness;
+  p.folder = fs::path(point.out).filename().string();
+  p.porosity = last.part.fraction();
+  p.lack_of_fusion = last.lack_of_fusion;
+  p.remelt_mean = last.remelt_mean;
+  p.layer_density = last.density;
+  p.tracks = last.scan.tracks.size();
+  for (const auto& t : last.scan.tracks) {
+    p.width += t.pool.width / static_cast<double>(p.tracks);
+    p.depth += t.pool.depth / static_cast<double>(p.tracks);
+    p.balling_tracks += t.pool.depth == 0 && t.length > std::numbers::pi * t.pool.width ? 1 : 0;
+  }
+  bed::Bed empty;
+  empty.domain = box.domain;
+  const th::SinterScene scene = app::sinter_scene(point.svm, point.scan_options, empty, point.scan_layer0);
+  const th::Sinter probe(empty, scene, point.table);
+  const th::KingRegime king = th::king_regime(scene, probe.material());
+  p.normalised_enthalpy = king.normalised_enthalpy;
+  p.keyhole_threshold = king.keyhole_threshold;
+  return p;
+}
+
+// build --map.power ... --map.speed ...: the first layer is spread once (it does not depend on
+// the laser), and every point scans it and builds its further layers in its own folder; map.json
+// and map.png in --out.
+int run_map(const po::variables_map& vm, Build& b, int argc, char** argv) {
+  if (!vm.count("map.power") || !vm.count("map.speed"))
+    throw InputError("map.power / map.speed: one given without the other (accepted: both, "
+                     "comma-separated lists)");
+  if (vm.count("in"))
+    throw InputError("--in: not with a map (accepted: a map builds every point from the empty box)");
+  if (!app::hatch_requested(b.svm))
+    throw InputError("map.power: the scan scene scans no hatch (accepted: a sinter scene with "
+                     "scan.hatch: a point's energy density P / (v h t) needs h)");
+  const auto powers = map_values(vm, "map.power", "powers, W");
+  const auto speeds = map_values(vm, "map.speed", "speeds, m/s");
+  const auto hatches = vm.count("map.hatch") ? map_values(vm, "map.hatch", "hatch spacings, m")
+                                             : std::vector<double>{b.svm["scan.hatch"].as<double>()};
+  const auto layers = vm["layers"].as<std::uint64_t>();
+  std::optional<dem::SpreadState> none;
+  bed::Bed bed = build_input(vm, b, none);
+  check_scan(b, bed, none, {});
+  std::vector<Build> points;
+  std::vector<th::PartRecord> parts;
+  std::vector<std::array<double, 3>> settings;
+  for (const double h : hatches)
+    for (const double power : powers)
+      for (const double speed : speeds) {
+        points.push_back(b);
+        parts.push_back(map_point_build(points.back(), bed, power, speed, h, points.size()));
+        settings.push_back({power, speed, h});
+      }
+  check_layers(b, bed, 1, layers);
+  OutFolderGuard guard{b.out, make_out(b.out)};
+
+  app::ProgressBar bar("build", app::progress_interval(vm));
+  app::LayerPictures pictures(vm["pictures"].as<bool>());
+  const double share = 1.0 / static_cast<double>(1 + points.size() * (2 * layers - 1));
+  const auto started = std::chrono::steady_clock::now();
+  const SpreadLayer spread = spread_layer(b, bed, none, 1, bar, 0, share, argc, argv);
+  std::vector<app::MapPoint> map;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Build& point = points[k];
+    const auto point_started = std::chrono::steady_clock::now();
+    make_out(point.out);
+    bed::Bed powder = bed;
+    std::optional<dem::SpreadState> state;
+    double done = share * static_cast<double>(1 + k * (2 * layers - 1));
+    std::vector<LayerReport> reports{scan_layer(point, powder, spread, state, parts[k], 1, bar, done, share, argc, argv)};
+    done += share;
+    for (std::uint64_t layer = 2; layer <= layers; ++layer, done += 2 * share)
+      reports.push_back(build_layer(point, powder, state, parts[k], layer, bar, done, share, argc, argv));
+    for (std::uint64_t layer = 1; layer <= layers; ++layer)
+      reports[layer - 1].pictures = pictures.draw(layer_file(point.out, layer, "-scan"), point.out, layer);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - point_started).count();
+    write_build_json(point, reports, *state, 1, powder.n(), wall);
+    const auto [power, speed, hatch] = settings[k];
+    map.push_back(map_point(point, bed, reports.back(), power, speed, hatch));
+    map.back().wall_time = wall;
+  }
+  bar.finish();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  write_map(vm, b, map, wall);
+  return 0;
+}
+
 int run(int argc, char** argv) {
   po::options_description desc("build options (SI units)");
   add_options(desc);
   po::variables_map vm;
   if (!app::parse_options("build", kUsage, desc, {}, argc, argv, vm)) return 0;
   Build b = read_build(vm, argc, argv);
+  if (vm.count("map.power") || vm.count("map.speed")) return run_map(vm, b, argc, argv);
   const auto layers = vm["layers"].as<std::uint64_t>();
   std::optional<dem::SpreadState> state;
   bed::Bed bed = build_input(vm, b, state);

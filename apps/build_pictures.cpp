@@ -86,7 +86,7 @@ std::string failure(const Finished& done) {
 
 }  // namespace
 
-std::string find_layer_plotter(std::string& looked) {
+std::string find_plotter(const char* name, std::string& looked) {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (ec) {
@@ -95,18 +95,27 @@ std::string find_layer_plotter(std::string& looked) {
   }
   const fs::path root = exe.parent_path().parent_path();
   looked.clear();
-  for (const fs::path& candidate : {root / "scripts" / "plot_build_layer",
-                                    root / "libexec" / "powderbed" / "plot_build_layer"}) {
+  for (const fs::path& candidate : {root / "scripts" / name, root / "libexec" / "powderbed" / name}) {
     if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
     looked += (looked.empty() ? "" : " or ") + candidate.string();
   }
   return "";
 }
 
+std::string draw_map(const std::string& json, const std::string& png) {
+  std::string looked;
+  const std::string plotter = find_plotter("plot_build_map", looked);
+  if (plotter.empty())
+    return fmt::format("no plotter beside the program (looked for {}; configure with "
+                       "POWDERBED_BUILD_PYTHON=ON and python3-matplotlib)", looked);
+  const Finished done = run_captured({plotter, json, png});
+  return done.status == 0 ? "" : failure(done);
+}
+
 LayerPictures::LayerPictures(bool on) : on_(on) {
   if (!on_) return;
   std::string looked;
-  plotter_ = find_layer_plotter(looked);
+  plotter_ = find_plotter("plot_build_layer", looked);
   if (plotter_.empty())
     missing_ = fmt::format("no plotter beside the program (looked for {}; configure with "
                            "POWDERBED_BUILD_PYTHON=ON and python3-matplotlib)", looked);

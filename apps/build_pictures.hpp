@@ -1,6 +1,6 @@
 #pragma once
-// build's pictures of each layer (docs/build.md "Pictures"): scripts/plot_build_layer.py draws
-// them with matplotlib, run through the wrapper the build system writes beside the programs
+// build's pictures of each layer and of a map (docs/build.md "Pictures", "Process maps"):
+// scripts/plot_build_layer.py and plot_build_map.py draw them with matplotlib, run through the wrapper the build system writes beside the programs
 // (python/CMakeLists.txt), which pins the interpreter the build found. A picture is never worth
 // a failed build: when the plotter is missing or fails, one warning line says why and the build
 // goes on without pictures.
@@ -17,7 +17,7 @@ using LayerPictureFiles = std::vector<std::pair<std::string, std::string>>;
 
 class LayerPictures {
  public:
-  // `on`: --pictures; the plotter is looked for beside this program (find_layer_plotter).
+  // `on`: --pictures; the plotter is looked for beside this program (find_plotter).
   explicit LayerPictures(bool on);
   // Draws layer `layer`'s pictures from its scan file into `out` as layer-NNN-KIND.png; returns
   // the files written, none when pictures are off or could not be drawn (then, the first time,
@@ -31,9 +31,12 @@ class LayerPictures {
   std::string missing_;  // why there is no plotter (empty when there is one)
 };
 
-// The plotter beside the running program: ../scripts/plot_build_layer in a build tree
-// (build/apps/build), ../libexec/powderbed/plot_build_layer where cmake --install put it. Empty
-// when neither is there; `looked` gets the paths tried.
-std::string find_layer_plotter(std::string& looked);
+// The plotter `name` beside the running program: ../scripts/NAME in a build tree
+// (build/apps/build), ../libexec/powderbed/NAME where cmake --install put it. Empty when neither
+// is there; `looked` gets the paths tried.
+std::string find_plotter(const char* name, std::string& looked);
+
+// Draws a map's picture `png` from its `json` (build --map); empty when drawn, else why not.
+std::string draw_map(const std::string& json, const std::string& png);
 
 }  // namespace powderbed::app

@@ -234,3 +234,43 @@ TEST(BuildCli, SingleTrackBuildJudgesTheTracksStrip) {
   const double strip = bed.domain.length(0) * 2 * w;
   EXPECT_NEAR(area, strip + bed.domain.length(0) * grid, bed.domain.length(0) * grid) << r.out;
 }
+
+// build --map.power ... --map.speed ...: one spread of the first layer, a folder per point built
+// from it, map.json with each point's energy density P / (v h t), its part's porosity and its
+// regions; the points differ in the laser only, so a faster scan at the same power leaves pools
+// no wider. Bad grids exit 2 with one line and write nothing.
+TEST(BuildCli, MapBuildsEveryPointFromOneSpread) {
+  const std::string dir = test::scratch_dir("build_map");
+  const std::string base = "--config " + kConfig + " --layers 1 --pictures false --threads 1 ";
+  const auto r = test::run_app("build", base + "--map.power 100 --map.speed 0.5,1.5 --json --out " + dir + "/map");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/map/layer-001-spread.h5"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/map/map.json"));
+  for (const char* point : {"point-001", "point-002"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir + "/map/" + point + "/layer-001-scan.h5")) << point;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/map/" + point + "/build.json")) << point;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/map/" + point + "/layer-001-spread.h5")) << point;
+  }
+  EXPECT_EQ(test::json_number(r.out, "points"), 2);
+  const std::string second = r.out.substr(r.out.find("point-002"));
+  const double hatch = test::json_number(r.out, "hatch"), layer = test::json_number(r.out, "layer");
+  EXPECT_NEAR(test::json_number(r.out, "energy_density"), 100 / (0.5 * hatch * layer), 1e-6 * 100 / (0.5 * hatch * layer));
+  EXPECT_GE(test::json_number(r.out, "porosity"), 0);
+  EXPECT_GE(test::json_number(r.out, "mean_track_width"), test::json_number(second, "mean_track_width"));
+  EXPECT_NE(r.out.find("\"regions\":[\""), std::string::npos) << r.out;
+  const std::pair<std::string, std::string> cases[] = {
+      {"--map.power '' --map.speed 1", "--map.power: no values"},
+      {"--map.power 100,-5 --map.speed 1", "--map.power: '-5'"},
+      {"--map.power 100,abc --map.speed 1", "--map.power: 'abc'"},
+      {"--map.power 100", "one given without the other"},
+      {"--map.power 100 --map.speed 1 --map.hatch 0", "--map.hatch"},
+      {"--map.power 100 --map.speed 1 --sinter " + kScenes + "/scan-track.ini", "scans no hatch"},
+  };
+  for (const auto& [args, field] : cases) {
+    const auto bad = test::run_app("build", base + args + " --out " + dir + "/bad");
+    EXPECT_EQ(bad.status, 2) << args << ": " << bad.err;
+    EXPECT_EQ(bad.err_lines(), 1) << args << ": " << bad.err;
+    EXPECT_NE(bad.err.find(field), std::string::npos) << args << ": " << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/bad")) << args;
+  }
+}

@@ -88,17 +88,9 @@ void conduction_ratios(const bed::Bed& bed, const Sinter& sinter, double k, doub
 // The regime by King et al.'s normalised enthalpy, and evaporation at T_b over the laser.
 void regime_numbers(const SinterScene& scene, const Material& m, ExplainReport& r) {
   const PhaseChange& pc = m.phase_change();
-  const double t0 = scene.initial_temperature, t_m = pc.melting_point;
-  const double t_mid = 0.5 * (t0 + t_m);
-  const double rho_c = m.density(t_mid) * m.solid_specific_heat(t_mid);
-  const double diffusivity = m.solid_conductivity(t_mid) / rho_c;
-  const double flat = scene.absorption == LaserAbsorption::ray_trace && scene.optics == Optics::fresnel
-                          ? fresnel_absorptance({scene.index_n_solid, scene.index_k_solid}, 1.0)
-                          : scene.absorptivity;
-  const double w = scene.spot_radius;
-  r.normalised_enthalpy = flat * scene.power /
-                          (M_PI * rho_c * t_m * std::sqrt(diffusivity * scene.speed * w * w * w));
-  r.keyhole_threshold = M_PI * pc.boiling_point / t_m;
+  const KingRegime king = king_regime(scene, m);
+  r.normalised_enthalpy = king.normalised_enthalpy;
+  r.keyhole_threshold = king.keyhole_threshold;
   // The scene's L_v: the material's curve holds none when evaporation carries it.
   const double latent = scene.phase_change.latent_vapour;
   const EvaporationParams vapour{pc.boiling_point, latent, scene.molar_mass,
@@ -243,6 +235,20 @@ std::string report_text(const ExplainReport& r, const SinterScene& scene, const 
 }
 
 }  // namespace
+
+KingRegime king_regime(const SinterScene& scene, const Material& m) {
+  const PhaseChange& pc = m.phase_change();
+  const double t0 = scene.initial_temperature, t_m = pc.melting_point;
+  const double t_mid = 0.5 * (t0 + t_m);
+  const double rho_c = m.density(t_mid) * m.solid_specific_heat(t_mid);
+  const double diffusivity = m.solid_conductivity(t_mid) / rho_c;
+  const double flat = scene.absorption == LaserAbsorption::ray_trace && scene.optics == Optics::fresnel
+                          ? fresnel_absorptance({scene.index_n_solid, scene.index_k_solid}, 1.0)
+                          : scene.absorptivity;
+  const double w = scene.spot_radius;
+  return {flat * scene.power / (M_PI * rho_c * t_m * std::sqrt(diffusivity * scene.speed * w * w * w)),
+          M_PI * pc.boiling_point / t_m};
+}
 
 ExplainReport explain(const bed::Bed& bed, const SinterScene& scene, const Sinter& sinter) {
   ExplainReport r = scale_numbers(bed, scene, sinter);

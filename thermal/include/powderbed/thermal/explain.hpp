@@ -48,4 +48,11 @@ struct ExplainReport {
 
 ExplainReport explain(const bed::Bed& bed, const SinterScene& scene, const Sinter& sinter);
 
+// The regime of King et al. 2014 alone (ExplainReport::normalised_enthalpy, keyhole_threshold):
+// ΔH/h_s of the scene's power, speed and spot on material `m`, and π T_b / T_m.
+struct KingRegime {
+  double normalised_enthalpy = 0, keyhole_threshold = 0;
+};
+KingRegime king_regime(const SinterScene& scene, const Material& m);
+
 }  // namespace powderbed::thermal
