@@ -88,15 +88,27 @@ struct HeightMap {
     double offset[3];
     double distance;
   };
+  // cos and sin of the rings' 8 directions 2πk/8, computed once: the spread asks for the
+  // nearest point of every particle near the floor at every step.
+  static const std::array<std::array<double, 2>, 8>& ring_directions() {
+    static const std::array<std::array<double, 2>, 8> directions = [] {
+      std::array<std::array<double, 2>, 8> d{};
+      for (int k = 0; k < 8; ++k) {
+        const double a = 2 * std::numbers::pi * k / 8;
+        d[k] = {std::cos(a), std::sin(a)};
+      }
+      return d;
+    }();
+    return directions;
+  }
   Nearest nearest(double x, double y, double zc, double r) const {
     const double foot = at(x, y) - zc;
     Nearest best{{0, 0, foot}, std::abs(foot)};
     if (foot >= 0) return best;
-    constexpr int kRays = 8;
+    const auto& directions = ring_directions();
     for (const double ring : {0.35, 0.7, 1.0}) {
-      for (int k = 0; k < kRays; ++k) {
-        const double a = 2 * std::numbers::pi * k / kRays;
-        const double ex = ring * r * std::cos(a), ey = ring * r * std::sin(a);
+      for (const auto& [c, s] : directions) {
+        const double ex = ring * r * c, ey = ring * r * s;
         const double ez = at(x + ex, y + ey) - zc;
         const double d = std::sqrt(ex * ex + ey * ey + ez * ez);
         if (d < best.distance) best = {{ex, ey, ez}, d};
