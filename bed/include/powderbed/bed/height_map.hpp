@@ -107,6 +107,9 @@ struct HeightMap {
     if (foot >= 0) return best;
     const auto& directions = ring_directions();
     for (const double ring : {0.35, 0.7, 1.0}) {
+      // A point on this ring (and the larger ones) lies at least ring r from the centre: none
+      // can be nearer than the best found once that is no more than ring r.
+      if (ring * r >= best.distance) break;
       for (const auto& [c, s] : directions) {
         const double ex = ring * r * c, ey = ring * r * s;
         const double ez = at(x + ex, y + ey) - zc;
