@@ -5,7 +5,8 @@ degrees a layer) over a power x speed grid, and the measured 316L series of
 data/validation/part-density/ beside it, each point with its volumetric energy density
 E = P / (v h t).
 
-Writes docs/results/part-density.md and part-density.png. Run with /usr/bin/python3 after
+Writes docs/results/part-density.md, part-density.png and part-density-map.png (build's own
+map.png). Run with /usr/bin/python3 after
 building (POWDERBED_BUILD selects the build folder):
     POWDERBED_BUILD=build python3 bench/studies/part_density.py [--layers N]
         [--power 100,200,300] [--speed 1,2,4] [--from-json]
@@ -23,6 +24,7 @@ import argparse
 import csv
 import json
 import os
+import shutil
 import subprocess
 import time
 
@@ -129,7 +131,9 @@ def page(data, run, measured):
             f"{p['normalised_enthalpy']:.1f} ({p['keyhole_threshold']:.1f}) | "
             f"{p['tang'] if p['tang'] is not None else float('inf'):.2f} | {p['layer_density']:.3f} | "
             f"{', '.join(p['regions'])} | {p['wall_time']:.0f} |")
-    lines += ["", "![porosity against energy density](part-density.png)", "",
+    lines += ["", "The map as build draws it (map.png; dashed: the porosity's contours):", "",
+              "![the process map](part-density-map.png)", "",
+              "![porosity against energy density](part-density.png)", "",
               "Where the porosity crosses 1 % and 10 % going down in energy density (the highest "
               "E still above the level, and the lowest E below it):", "",
               "| series | 1 % | 10 % |", "|---|---|---|"]
@@ -195,6 +199,7 @@ def main():
     measured = read_measured()
     ours = [{"energy": p["energy_density"] * 1e-9, "porosity": p["porosity"]} for p in data["map"]]
     plot(ours, measured, os.path.join(ROOT, "docs", "results", "part-density.png"))
+    shutil.copyfile(os.path.join(OUT, "map.png"), os.path.join(ROOT, "docs", "results", "part-density-map.png"))
     write_page("part-density.md", page(data, run, measured))
 
 
