@@ -99,13 +99,13 @@ def page(report, wall, load):
         "on the first layer's 90 um gap and 1.95 on the 45 um layers after it, at a dosed bulk "
         "density of 0.5 (deposit's `supply.dosing`: d phi_b L W t; docs/deposit-spread.md).",
         "",
-        "Why lack of fusion grows: a layer adds about layer density x clearance of solid "
+        "Why lack of fusion stays: a layer adds about layer density x clearance of solid "
         f"({added} um here) "
         "while the plate goes down 45 um, so the clearance over the solid grows layer by layer "
-        "towards t / phi, the layer thickness over the layer density (docs/build.md); with a "
-        "spread layer as sparse as this scene's (docs/results/spread-density.md) that is several "
-        "hundred um of powder for the beam to melt through, and the melt reaches the solid under "
-        "it less and less.",
+        "towards t / phi, the layer thickness over the layer density; with a spread layer as "
+        "sparse as this scene's (docs/results/spread-density.md) that is several hundred um of "
+        "powder for the beam to melt through before it reaches the solid under it "
+        "(docs/results/part-density.md: the same at other powers and speeds).",
         "",
     ]
     return "\n".join(lines)
