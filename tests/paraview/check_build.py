@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """ctest paraview.build: ParaView opens a build's layer file (docs/build.md): one layer of the
 small build of tests/data/build-small, then pvpython's XDMF reader on layer-001-scan.xmf must
-find its four blocks (particles, top, section_y, solid_top) and the solid top's arrays height
-(>= 0, raised where the track fused powder) and lack_of_fusion (0 not scanned, 1 bonded, 2
-lack of fusion). Exits 77 (ctest: skipped) with a message when pvpython or xvfb-run is missing.
+find its five blocks (particles, top, section_y, solid_top, part) and the solid top's arrays
+height (>= 0, raised where the track fused powder) and lack_of_fusion (0 not scanned, 1 bonded,
+2 lack of fusion), and the part's cell arrays solid_fraction and never_molten_fraction (within
+[0, 1], some solid). Exits 77 (ctest: skipped) with a message when pvpython or xvfb-run is missing.
 Usage: check_build.py BUILD_PROGRAM"""
 import json
 import os
@@ -22,7 +23,8 @@ r = XDMFReader(FileNames=[sys.argv[1]])
 r.UpdatePipeline(r.TimestepValues[-1] if r.TimestepValues else 0)
 data = sm.Fetch(r)
 print(json.dumps({"blocks": data.GetNumberOfBlocks(),
-                  "arrays": {k: list(r.PointData[k].GetRange()) for k in r.PointData.keys()}}))
+                  "arrays": {k: list(r.PointData[k].GetRange()) for k in r.PointData.keys()},
+                  "cells": {k: list(r.CellData[k].GetRange()) for k in r.CellData.keys()}}))
 """
 
 
@@ -39,10 +41,13 @@ def main():
         run = pvrun.pvpython(script, os.path.join(out, "layer-001-scan.xmf"))
         info = json.loads(run.stdout.strip().splitlines()[-1])
     print(info)
-    assert info["blocks"] == 4, info
+    assert info["blocks"] == 5, info
     arrays = info["arrays"]
     assert arrays["height"][0] >= 0 and arrays["height"][1] > 0, arrays
     assert arrays["lack_of_fusion"][0] == 0 and arrays["lack_of_fusion"][1] in (1, 2), arrays
+    cells = info["cells"]
+    assert 0 <= cells["solid_fraction"][0] and 0 < cells["solid_fraction"][1] <= 1 + 1e-12, cells
+    assert 0 <= cells["never_molten_fraction"][0] <= cells["never_molten_fraction"][1] <= 1 + 1e-12, cells
     return 0
 
 

@@ -28,7 +28,7 @@ except ImportError as err:
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SCENE = os.path.join(ROOT, "tests", "data", "build-small", "build.ini")
-KINDS = ("top", "fusion", "height")
+KINDS = ("top", "fusion", "height", "section")
 SIGNATURE = b"\x89PNG\r\n\x1a\n"
 # The colours plot_build_layer.py draws fused particles and bonded columns in.
 FUSED, BONDED = (0xe6, 0x55, 0x0d), (0x31, 0xa3, 0x54)

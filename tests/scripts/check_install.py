@@ -37,10 +37,11 @@ with tempfile.TemporaryDirectory() as prefix:
     check(module.startswith(site), f"powderbed imported from {module}, not {site}")
     check(packgen == os.path.join(prefix, "bin", "packgen"), f"programs at {packgen}")
     check(program_version == version, f"installed packgen says {program_version}")
-    # build's picture plotter where the installed build looks for it (apps/build_pictures.cpp).
-    plotter = os.path.join(prefix, "libexec", "powderbed", "plot_build_layer")
-    out = subprocess.run([plotter, "--help"], capture_output=True, text=True)
-    check(out.returncode == 0 and "usage" in out.stdout, f"{plotter} --help: {out.stderr}")
+    # build's picture plotters where the installed build looks for them (apps/build_pictures.cpp).
+    for name in ("plot_build_layer", "plot_build_map"):
+        plotter = os.path.join(prefix, "libexec", "powderbed", name)
+        out = subprocess.run([plotter, "--help"], capture_output=True, text=True)
+        check(out.returncode == 0 and "usage" in out.stdout, f"{plotter} --help: {out.stderr}")
 
 # A python3 first on PATH that is not the build's (pyenv's without h5py): the wrapper still runs.
 with tempfile.TemporaryDirectory() as fake:
@@ -48,8 +49,8 @@ with tempfile.TemporaryDirectory() as fake:
         f.write("#!/bin/sh\necho 'not the build interpreter' >&2\nexit 1\n")
     os.chmod(os.path.join(fake, "python3"), 0o755)
     env = dict(os.environ, PATH=fake + os.pathsep + os.environ.get("PATH", ""))
-    for name in ("plot_bed", "plot_build_layer", "plot_sinter", "plot_keff_profile",
-                 "plot_height_map"):
+    for name in ("plot_bed", "plot_build_layer", "plot_build_map", "plot_sinter",
+                 "plot_keff_profile", "plot_height_map"):
         wrapper = os.path.join(build, "scripts", name)
         out = subprocess.run([wrapper, "--help"], env=env, capture_output=True, text=True)
         check(out.returncode == 0 and "usage" in out.stdout, f"{wrapper} --help: {out.stderr}")

@@ -143,10 +143,9 @@ void ray_traced_substrate(Sinter::State& s, double t, double dt) {
   s.ledger.boundary += into_boundary;
 }
 
-// The surfaces as the next trace sees them: phases (molten: T >= T_m), the solid's top over the
-// plate (the part a build grew, merged melt), and with the depression the depth of the T_d
-// isotherm below each column's top (found from its top node down; the top node sits δ below
-// the column's top, so a depression that opens reaches the top).
+// The surfaces as the next trace sees them: phases (molten: T >= T_m) and, with the depression,
+// its depth below the part's top the tracer sees (TraceSurfaces::rise, set once at the start):
+// the T_d isotherm is found from each column's top node down, its bottom at z(k) - depth.
 void update_surfaces(Sinter::State& s) {
   const double t_m = s.scene.phase_change.melting_point;
   TraceSurfaces& f = s.surfaces;
@@ -154,17 +153,13 @@ void update_surfaces(Sinter::State& s) {
   const SubstrateGeometry& g = s.g;
   const std::size_t plane = g.columns();
   for (std::size_t c = 0; c < plane; ++c) f.node_phase[c] = s.node_temperature[top_node(s, c)] >= t_m;
-  if (!s.top.empty()) {
-    f.rise.resize(plane);
-    for (std::size_t c = 0; c < plane; ++c) f.rise[c] = s.top[c] - g.z_top;
-  }
   if (!s.scene.has(kDepression)) return;
   for (std::size_t c = 0; c < plane; ++c) {
     const std::size_t top = top_node(s, c);
     const auto column = [&](std::size_t k) { return s.node_temperature[top - k * plane]; };
     const double from_node = isotherm_depth(column, s.top_plane[c], g.dz, cavity_temperature(s));
-    const double above_node = s.top.empty() ? 0.0 : s.top[c] - g.z(s.top_plane[c]);
-    f.depression[c] = from_node > 0 ? from_node + above_node : 0.0;
+    const double seen = g.z_top + (f.rise.empty() ? 0.0 : f.rise[c]);
+    f.depression[c] = from_node > 0 ? std::max(0.0, seen - (g.z(s.top_plane[c]) - from_node)) : 0.0;
     s.depression_depth = std::max(s.depression_depth, f.depression[c]);
   }
 }
@@ -225,6 +220,14 @@ void setup_laser(Sinter::State& s, const bed::Bed& bed) {
   s.surfaces.particle_phase.assign(s.x.size(), 0);
   s.surfaces.node_phase.assign(s.g.nx * s.g.ny, 0);
   if (s.scene.has(kDepression)) s.surfaces.depression.assign(s.g.nx * s.g.ny, 0.0);
+  // The optics see the part the run starts on (a build's earlier layers, levelled as fusion
+  // leaves them), not the melt that merges during the run: a merged particle raises its columns
+  // by its volume over its footprint at once, a spike whose steep sides would mirror the beam
+  // sideways; the melt levels it before it freezes (fusion.hpp), and the next layer sees that.
+  if (!s.top.empty()) {
+    s.surfaces.rise.resize(s.g.columns());
+    for (std::size_t c = 0; c < s.g.columns(); ++c) s.surfaces.rise[c] = s.top[c] - s.g.z_top;
+  }
 }
 
 SurfaceOptics surface_optics(const SinterScene& scene) {
