@@ -4,7 +4,7 @@ the layer density it leaves (issue 32, point 4).
 
 Writes docs/results/spread-density.md. Run with /usr/bin/python3 after building deposit and
 bedstat (POWDERBED_BUILD selects the build folder):
-    POWDERBED_BUILD=build python3 bench/studies/spread_density.py [--work DIR]
+    POWDERBED_BUILD=build python3 bench/studies/spread_density.py [--work DIR] [--only KEYS]
 
 Each variant is one blade layer, `deposit --config data/scenes/spread-blade.ini --seed S
 --threads 1 --out L.h5` with the variant's options, measured as bench/studies/spread_accuracy.py
@@ -12,55 +12,96 @@ measures it: `bedstat L.h5 --spread --window X0,X1 --json` (the solid fraction b
 and the gap the bed records, over the strip the blade leaves behind it less 10 % at each end).
 The variants change one thing from the scene (its header says where each value comes from):
 sliding and rolling friction, the blade's speed, the gas drag, the gap, the supply (twice the
-particles at the same number density, a dosing twice the scene's). Measured spread layers of
+particles at the same number density, a dosing twice the scene's), and the tool's shape: a thin
+blade (50 µm), a blade whose bottom is a half cylinder (edge radius = half its 200 µm thickness,
+no flat face to shear the gap's particles along), and a roller, which is
+data/scenes/spread-roller.ini itself (the blade scene with MercuryDPM's roller, its strip moved
+0.3-0.4 mm along x to make room for the roller's 0.5 mm radius). The blade rows are measured over
+the scene's window; the roller row over its own: from the roller's front at the start (where its
+supply begins) to its axis, the lowest point, at the end, less the same 10 % at each end. Measured spread layers of
 gas-atomised powders lie at 0.38-0.60 (the values Mahmoodkhani et al. 2019 collect); nothing here
 is fitted to that band: the page shows which parameters move the layer towards it and how far.
-With --work DIR the runs are kept and a later call reuses them.
+The runs are kept in --work (default out/studies/spread-density) and a later call reuses them;
+the study's rows (and the machine sentence of the call that ran them) are stored there in
+results.json. --only KEYS (comma-separated keys of VARIANTS, e.g. thin,round) runs those rows
+afresh and puts them into the stored study in place of theirs, the others as stored: the page
+still lists every row, with the load of each call. A results.json missing is made from the
+runs kept in --work and the page's Machine line (the study before it kept one).
 """
 import argparse
 import json
 import os
 import sys
-import tempfile
 
 from lib.apps import ROOT, app, bedstat, run_json
-from lib.report import load_average, machine, table_head, table_row, write_page
-from lib.spread_scene import Scene
+from lib.report import load_average, machine, read_page, table_head, table_row, write_page
+from lib.spread_scene import WINDOW_MARGIN, Scene, read_scene
 
 SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
-# (label, deposit options, seeds)
+ROLLER = os.path.join(ROOT, "data", "scenes", "spread-roller.ini")
+WORK = os.path.join(ROOT, "out", "studies", "spread-density")
+SUPPLY_TWICE = ["--supply.count", "5000", "--supply.x1", "1.2e-3"]
+# (key for --only, label, scene, deposit options, seeds)
 VARIANTS = [
-    ("the scene (μ 0.5, μ_r 0.1, 0.1 m/s, gap 90 µm, drag)", [], [1, 2]),
-    ("rolling friction 0.01", ["--material.rolling", "0.01"], [1]),
-    ("sliding friction 0.3", ["--material.friction", "0.3"], [1]),
-    ("μ 0.3 and μ_r 0.01", ["--material.friction", "0.3", "--material.rolling", "0.01"], [1]),
-    ("blade at 0.05 m/s", ["--recoater.speed", "0.05"], [1, 2]),
-    ("no gas drag", ["--effects.drag", "false"], [1]),
-    ("gap 135 µm (3 D90)", ["--recoater.gap", "135e-6"], [1]),
-    ("supply twice (5000 over 0.2-1.2 mm)",
-     ["--supply.count", "5000", "--supply.x1", "1.2e-3"], [1]),
-    ("supply twice, blade at 0.05 m/s",
-     ["--supply.count", "5000", "--supply.x1", "1.2e-3", "--recoater.speed", "0.05"], [1]),
-    ("supply twice, gap 180 µm (4 D90)",
-     ["--supply.count", "5000", "--supply.x1", "1.2e-3", "--recoater.gap", "180e-6"], [1]),
+    ("scene", "the scene (μ 0.5, μ_r 0.1, 0.1 m/s, gap 90 µm, drag)", SCENE, [], [1, 2]),
+    ("rolling", "rolling friction 0.01", SCENE, ["--material.rolling", "0.01"], [1]),
+    ("sliding", "sliding friction 0.3", SCENE, ["--material.friction", "0.3"], [1]),
+    ("friction", "μ 0.3 and μ_r 0.01", SCENE,
+     ["--material.friction", "0.3", "--material.rolling", "0.01"], [1]),
+    ("slow", "blade at 0.05 m/s", SCENE, ["--recoater.speed", "0.05"], [1, 2]),
+    ("nodrag", "no gas drag", SCENE, ["--effects.drag", "false"], [1]),
+    ("gap135", "gap 135 µm (3 D90)", SCENE, ["--recoater.gap", "135e-6"], [1]),
+    ("supply2", "supply twice (5000 over 0.2-1.2 mm)", SCENE, SUPPLY_TWICE, [1]),
+    ("supply2-slow", "supply twice, blade at 0.05 m/s", SCENE,
+     SUPPLY_TWICE + ["--recoater.speed", "0.05"], [1]),
+    ("supply2-gap180", "supply twice, gap 180 µm (4 D90)", SCENE,
+     SUPPLY_TWICE + ["--recoater.gap", "180e-6"], [1]),
+    ("thin", "blade 50 µm thick (sharp edges)", SCENE, ["--recoater.thickness", "50e-6"], [1]),
+    ("round", "blade edge radius 100 µm (200 µm thick: a half-cylinder bottom)", SCENE,
+     ["--recoater.edge-radius", "100e-6"], [1, 2]),
+    ("round-supply2", "supply twice, blade edge radius 100 µm", SCENE,
+     SUPPLY_TWICE + ["--recoater.edge-radius", "100e-6"], [1, 2]),
+    ("roller", "roller (spread-roller.ini: R 0.5 mm, ωR = 0.1 m/s counter-rotating)", ROLLER,
+     [], [1, 2]),
 ]
 
 
-def one_run(work, label, options, seed):
-    """{deposit: JSON, stats: bedstat spread JSON, load: [before, after]}, cached in work."""
-    tag = "".join(c if c.isalnum() else "-" for c in "-".join(options) or "scene") + f"-s{seed}"
+def window(scene):
+    """The x range bedstat measures: the blade scene's Scene.window(), or for a roller from its
+    front at the start to its axis (its lowest point) at the end, less the same margin."""
+    if scene == SCENE:
+        return Scene(SCENE, {}).window()
+    o = read_scene(scene)
+    lo, hi = float(o["recoater.start"]) + float(o["recoater.radius"]), float(o["recoater.end"])
+    margin = WINDOW_MARGIN * (hi - lo)
+    return lo + margin, hi - margin
+
+
+def run_tag(scene, options, seed):
+    """The name of a run's files in work (the blade scene's runs keep the names they had)."""
+    prefix = "" if scene == SCENE else os.path.splitext(os.path.basename(scene))[0] + "-"
+    return prefix + "".join(c if c.isalnum() else "-" for c in "-".join(options) or "scene") + \
+        f"-s{seed}"
+
+
+def one_run(work, key, label, scene, options, seed, fresh=False):
+    """{deposit: JSON, stats: bedstat spread JSON, load: [before, after]}, cached in work
+    (fresh: run again even when cached)."""
+    tag = run_tag(scene, options, seed)
     saved = os.path.join(work, tag + ".json")
-    if os.path.exists(saved):
+    if os.path.exists(saved) and not fresh:
         with open(saved) as f:
-            return json.load(f)
+            return dict(json.load(f), key=key, label=label)
     bed = os.path.join(work, tag + ".h5")
     before = load_average()
-    dep, wall = run_json([app("deposit"), "--config", SCENE, "--seed", str(seed), "--threads", "1",
+    dep, wall = run_json([app("deposit"), "--config", scene, "--seed", str(seed), "--threads", "1",
                           "--out", bed] + options)
-    x0, x1 = Scene(SCENE, {}).window()
+    x0, x1 = window(scene)
     stats = bedstat([bed, "--spread", "--window", f"{x0!r},{x1!r}"])["spread"]
     stats.pop("segregation", None)
-    out = {"label": label, "seed": seed, "n": dep["n"], "wall": wall, "stats": stats,
+    out = {"key": key, "label": label, "seed": seed, "n": dep["n"], "wall": wall, "stats": stats,
+           "max_overlap": dep.get("max_overlap"),
+           "max_tool_force": [l.get("max_tool_force") for l in dep.get("layers", [])],
            "load": [before, load_average()]}
     os.remove(bed)
     with open(saved, "w") as f:
@@ -69,28 +110,48 @@ def one_run(work, label, options, seed):
     return out
 
 
-def page(runs, load):
+def page(runs, batches):
     lines = [
         "# Spread layer density: what makes the blade's layer sparse",
         "",
         "`POWDERBED_BUILD=build python3 bench/studies/spread_density.py` (method in the script's "
         "docstring): one blade layer of `data/scenes/spread-blade.ini` (316L 15-45 µm, 2 mm strip, "
-        "gap 90 µm = 2 D90) per row, one parameter changed from the scene at a time.",
-        machine(load[0], load[1], program=app("deposit")),
+        "gap 90 µm = 2 D90) per row, one parameter changed from the scene at a time; the roller "
+        "row is `data/scenes/spread-roller.ini`, the same scene with a roller (its strip moved "
+        "along x to make room for the roller, measured over its own window). Run one at a time, "
+        "one thread each; the load column is the 1-min load average when each run started.",
+        *machine_lines(batches),
         "",
         "Layer density: bedstat's `--spread` measure, the solid fraction between the plate and the "
         "gap over the strip the blade leaves behind it (the build's `layer_density` is the same "
         "fraction over the scanned columns). Measured spread layers: 0.38-0.60.",
         "",
         *table_head("variant", "seed", "particles left", "layer density", "coverage", "Sa (µm)",
-                   "deposit wall (s)"),
+                   "deposit wall (s)", "load"),
     ]
     for r in runs:
         s = r["stats"]
         lines.append(table_row(r["label"], r["seed"], r["n"], f"{s['density']:.3f}",
-                               f"{s['coverage']:.3f}", f"{s['sa'] * 1e6:.1f}", f"{r['wall']:.0f}"))
-    scene = [r["stats"]["density"] for r in runs if r["label"] == VARIANTS[0][0]]
+                               f"{s['coverage']:.3f}", f"{s['sa'] * 1e6:.1f}", f"{r['wall']:.0f}",
+                               r["load"][0].split()[0]))
+    def of(key, what="density"):
+        return [r["stats"][what] for r in runs if r["key"] == key]
+
+    def seeds(key):
+        n = len(of(key))
+        return f"{n} seed{'s' if n > 1 else ''}"
+
+    def span(key, what="density"):
+        v = of(key, what)
+        return f"{min(v):.3f}-{max(v):.3f}" if len(v) > 1 else f"{v[0]:.3f}"
+
+    scene = of("scene")
+    spread = max(scene) - min(scene)
+    seed1 = {r["key"]: r["stats"]["density"] for r in runs if r["seed"] == 1}
     best = max(runs, key=lambda r: r["stats"]["density"])
+    thin = seed1["thin"] - seed1["scene"]
+    lift = {k: (min(of(k)) - max(scene), max(of(k)) - min(scene)) for k in ("round", "roller")}
+    overlap = max(r.get("max_overlap") or 0 for r in runs if r["key"] in ("round", "round-supply2"))
     lines += [
         "",
         f"The scene leaves {min(scene):.3f}-{max(scene):.3f} ({len(scene)} seeds); the densest "
@@ -101,25 +162,107 @@ def page(runs, load):
         "and the time a particle has to fall into the gap behind the blade's edge (a slower "
         "blade). Even where powder is left over at the strip's end, the blade leaves part of the "
         "plate bare (coverage, the share of the plate under the strip a particle covers, below "
-        "1). A flat plate under a gap of a few D90 is not the bed the measured values come "
+        "1).",
+        "",
+        "The tool's shape. A blade of 50 µm with the same sharp edges leaves "
+        f"{seed1['thin']:.3f} against the scene's {seed1['scene']:.3f} with the same seed "
+        + ("(the same to three digits, " if abs(thin) < 5e-4 else
+           f"({abs(thin):.3f} {'more' if thin > 0 else 'less'}, ")
+        + (f"within the seed spread of {spread:.3f}): the 200 µm flat bottom dragging the gap's "
+           "particles along is not what empties the layer. " if abs(thin) <= spread else
+           f"beyond the seed spread of {spread:.3f}). ")
+        + "Rounding the blade's bottom into a half cylinder (edge radius 100 µm, "
+        f"same thickness) leaves {span('round')} ({seeds('round')}, coverage "
+        f"{span('round', 'coverage')} against {span('scene', 'coverage')}), "
+        f"{lift['round'][0]:+.3f} to {lift['round'][1]:+.3f} over the scene's seeds; the roller "
+        f"of spread-roller.ini leaves {span('roller')} ({seeds('roller')}, coverage "
+        f"{span('roller', 'coverage')}; its own window), {lift['roller'][0]:+.3f} to "
+        f"{lift['roller'][1]:+.3f}: a tool whose face slopes down to the gap leaves more behind "
+        "it than a sharp edge (the slower blade alone leaves "
+        f"{span('slow')}, the larger supply alone {span('supply2')}); the rows measure that, not "
+        "why. No sphere is taller than the gap (53 µm at most under 90 µm), so the squeeze "
+        "under a rounded edge docs/deposit-spread.md warns of would need two stacked; the "
+        f"rounded blade's settled layers overlap by at most {overlap * 100:.1f} % of the smaller "
+        f"radius. With the supply twice the rounded blade leaves {span('round-supply2')} "
+        f"({seeds('round-supply2')}) against {span('supply2')} of the sharp blade (1 seed), more "
+        "than either change alone; every row stays below 0.38, the densest "
+        f"{0.38 - best['stats']['density']:.2f} short of it.",
+        "",
+        "A flat plate under a gap of a few D90 is not the bed the measured values come "
         "from: in a machine the blade spreads into a recess over earlier powder, which holds the "
-        "particles it drags in. data/scenes/spread-blade.ini and the build keep the scene's "
+        "particles it drags in (not measured here: deposit's spread has no rough plate). "
+        "data/scenes/spread-blade.ini and the build keep the scene's "
         "values; `build` reports the layer density it got, layer by layer.",
     ]
     return "\n".join(lines) + "\n"
 
 
+def machine_lines(batches):
+    """The Machine sentence of each call that ran rows of the page, the later ones naming them."""
+    lines = [batches[0]["machine"]]
+    for b in batches[1:]:
+        text = b["machine"][len("Machine: "):] if b["machine"].startswith("Machine: ") else b["machine"]
+        lines.append(f"Rows {', '.join(b['keys'])} run later, machine: {text}")
+    return [line + "  " if i < len(lines) - 1 else line for i, line in enumerate(lines)]
+
+
+def stored_study(work, path, skip):
+    """The stored study (results.json), or one made from the runs kept in work (all but the
+    keys in skip) and the page's Machine line, for a work folder from before results.json."""
+    if os.path.exists(path):
+        with open(path) as f:
+            return json.load(f)
+    runs = []
+    for key, label, scene, options, seeds in VARIANTS:
+        for seed in seeds:
+            if key not in skip and os.path.exists(os.path.join(work, run_tag(scene, options, seed)
+                                                               + ".json")):
+                runs.append(one_run(work, key, label, scene, options, seed))
+    line = [l for l in read_page("spread-density.md").splitlines() if l.startswith("Machine: ")]
+    keys = list(dict.fromkeys(r["key"] for r in runs))
+    return {"runs": runs, "batches": [{"keys": keys, "machine": line[0].rstrip() if line else
+                                       "Machine: not recorded."}] if runs else []}
+
+
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--work", help="keep the runs here (reused by a later call)")
+    parser.add_argument("--work", default=WORK,
+                        help="keep the runs and results.json here (reused by a later call; "
+                             "default out/studies/spread-density)")
+    parser.add_argument("--only", help="comma-separated keys of the rows to run afresh "
+                        f"({', '.join(v[0] for v in VARIANTS)})")
     args = parser.parse_args()
-    work = args.work or tempfile.mkdtemp(prefix="spread-density-")
+    work = args.work
     os.makedirs(work, exist_ok=True)
+    results = os.path.join(work, "results.json")
+    only = args.only.split(",") if args.only else None
+    unknown = [k for k in only or [] if k not in [v[0] for v in VARIANTS]]
+    if unknown:
+        sys.exit(f"spread_density: --only {','.join(unknown)}: no such row "
+                 f"(accepted: {', '.join(v[0] for v in VARIANTS)})")
+    stored = stored_study(work, results, only) if only else {"runs": [], "batches": []}
     load = [load_average(), None]
-    runs = [one_run(work, label, options, seed)
-            for label, options, seeds in VARIANTS for seed in seeds]
+    ran = [one_run(work, key, label, scene, options, seed, fresh=only is not None)
+           for key, label, scene, options, seeds in VARIANTS if only is None or key in only
+           for seed in seeds]
     load[1] = load_average()
-    print(write_page("spread-density.md", page(runs, load)))
+    batch = {"keys": list(dict.fromkeys(r["key"] for r in ran)),
+             "machine": machine(load[0], load[1], program=app("deposit"))}
+    # Every row of VARIANTS, in its order: the rows run now, the others as stored.
+    have = {(r["key"], r["seed"]): r for r in stored["runs"]}
+    have.update({(r["key"], r["seed"]): r for r in ran})
+    missing = [f"{key} seed {seed}" for key, _, _, _, seeds in VARIANTS for seed in seeds
+               if (key, seed) not in have]
+    if missing:
+        sys.exit(f"spread_density: no stored run for {', '.join(missing)} (run them: --only "
+                 f"{','.join(dict.fromkeys(m.split()[0] for m in missing))}, or the whole study)")
+    runs = [have[(key, seed)] for key, _, _, _, seeds in VARIANTS for seed in seeds]
+    batches = [dict(b, keys=[k for k in b["keys"] if k not in batch["keys"]])
+               for b in stored["batches"]]
+    batches = [b for b in batches if b["keys"]] + [batch]
+    with open(results, "w") as f:
+        json.dump({"runs": runs, "batches": batches}, f, indent=1)
+    print(write_page("spread-density.md", page(runs, batches)))
 
 
 if __name__ == "__main__":
