@@ -1,7 +1,7 @@
 // Scan paths and fusion (issue 17, points 1 and 2): the single track is the one-segment path;
 // hatches and CSV paths; per-track melt pools; fusion conserves mass, fuses a stripe as wide as
 // the melt and leaves powder between tracks hatched too far apart; the solver runs on the raised
-// top it leaves.
+// top it leaves; a layer scanned twice fuses to itself.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +11,7 @@
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/thermal/fusion.hpp"
+#include "powderbed/thermal/lack_of_fusion.hpp"
 #include "powderbed/thermal/scan_path.hpp"
 #include "powderbed/thermal/solver.hpp"
 #include "run_command.hpp"
@@ -517,4 +518,43 @@ TEST(Fusion, PeriodicSeamIsJoinedBeforeTheCapture) {
     if (fused.state[i] != 0) continue;
     EXPECT_LE(top.overlap(b.x[i], b.y[i], b.z[i], kR), 0.05 * kR) << i;
   }
+}
+
+// A layer scanned twice fuses to itself: the second pass, over the first one's fused top and the
+// powder it left, remelts that deposit, so the columns the first pass bonded to the plate are
+// bonded again, now to the first pass's solid (a melt reaching into the solid under it, at least
+// one cell deep where the first pass bonded), and mass is kept through both fusions.
+TEST(Fusion, LayerScannedTwiceFusesToItself) {
+  const bed::Bed b = monolayer(240e-6, 200e-6);
+  auto scene = scene_for(b);
+  scene.scan_path = thermal::hatch_segments(hatch_over(b, 16e-6, 4));
+  const double half_width = 8e-6, capture = 0.05, level = 10e-6;
+  thermal::Sinter first(b, scene, test::table_316l());
+  first.run(nullptr, 0, nullptr);
+  const double t_m = first.material().phase_change().melting_point;
+  const thermal::Fusion f1 = thermal::fuse(b, first, 0.5, capture, level);
+  const thermal::LackOfFusion lof1 = thermal::lack_of_fusion(first, half_width, t_m);
+  thermal::Sinter second(f1.powder, scene, test::table_316l(), f1.top);
+  second.run(nullptr, 0, nullptr);
+  const thermal::Fusion f2 = thermal::fuse(f1.powder, second, 0.5, capture, level);
+  const thermal::LackOfFusion lof2 = thermal::lack_of_fusion(second, half_width, t_m, f1.top);
+  EXPECT_LT(f1.mass_error(), 1e-12);
+  EXPECT_LT(f2.mass_error(), 1e-12);
+  ASSERT_GT(lof1.scanned, 0u);
+  ASSERT_EQ(lof1.map.size(), lof2.map.size());
+  std::size_t bonded = 0, again = 0, deep = 0, q = 0;
+  for (std::size_t c = 0; c < lof2.map.size(); ++c) {
+    if (lof2.map[c] == thermal::kNotScanned) continue;
+    const double remelt = lof2.remelt[q++];
+    if (lof1.map[c] != thermal::kBonded) continue;
+    ++bonded;
+    again += lof2.map[c] == thermal::kBonded ? 1 : 0;
+    deep += remelt >= kDx ? 1 : 0;
+  }
+  ASSERT_GT(bonded, 0u);
+  EXPECT_EQ(again, bonded) << "columns the first pass bonded that the second left unbonded";
+  EXPECT_EQ(deep, bonded) << "columns the second pass remelted less than a cell deep";
+  std::printf("  first pass: %zu of %zu scanned columns bonded, %zu fused; second: all %zu bonded "
+              "again, remelt %.1f um mean; %zu fused\n",
+              bonded, lof1.scanned, f1.fused, again, lof2.mean_remelt() * 1e6, f2.fused);
 }
