@@ -562,11 +562,10 @@ SpreadLayer spread_layer(const Build& b, bed::Bed& bed, const std::optional<dem:
   s.progress = [&](double f, double) {
     bar.draw(done + share * f, fmt::format("layer {} spread", layer));
   };
-  std::optional<dem::SpreadState> start = state;
   const dem::SpreadSummary spread =
-      b.engine ? app::liggghts_spread_layer(*b.engine, bed, b.scene, s, start, layer,
+      b.engine ? app::liggghts_spread_layer(*b.engine, bed, b.scene, s, state, layer,
                                             (fs::path(b.out) / fmt::format("liggghts-{:03d}", layer)).string())
-               : dem::run_spread(bed, b.scene, s, start ? &*start : nullptr);
+               : dem::run_spread(bed, b.scene, s, state ? &*state : nullptr);
   rep.spread = spread.layers.back();
   rep.rebuilds = spread.neighbour_rebuilds;
   out.next = spread.state;
