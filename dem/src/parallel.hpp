@@ -2,11 +2,14 @@
 // Loops over particles: OpenMP with a static schedule when threads > 1, a plain loop otherwise
 // (a team of one still pays libgomp's fork and barrier, microseconds per loop, which dominated
 // small beds). Each iteration writes only its own particle, so results do not depend on the
-// thread count; the reductions are max and min, which are exact in any order.
+// thread count; the reductions are max and min, which are exact in any order. Each region flushes
+// subnormals in each of its threads, as the run's own thread does (flush_subnormals.hpp).
 #include <algorithm>
 #include <cstddef>
 
 #include <omp.h>
+
+#include "flush_subnormals.hpp"
 
 namespace powderbed::dem::detail {
 
@@ -17,8 +20,12 @@ void for_each_particle(std::size_t n, int threads, F&& body) {
     return;
   }
   const long long count = static_cast<long long>(n);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (long long i = 0; i < count; ++i) body(static_cast<std::size_t>(i));
+#pragma omp parallel num_threads(threads)
+  {
+    const FlushSubnormals flush;
+#pragma omp for schedule(static)
+    for (long long i = 0; i < count; ++i) body(static_cast<std::size_t>(i));
+  }
 }
 
 // body(begin, end) over contiguous chunks of [0, n), one per thread (the whole range when
@@ -32,6 +39,7 @@ void for_each_chunk(std::size_t n, int threads, F&& body) {
   }
 #pragma omp parallel num_threads(threads)
   {
+    const FlushSubnormals flush;
     const auto team = static_cast<std::size_t>(omp_get_num_threads());
     const auto rank = static_cast<std::size_t>(omp_get_thread_num());
     body(n * rank / team, n * (rank + 1) / team);

@@ -14,6 +14,7 @@
 #include <optional>
 #include <utility>
 
+#include "flush_subnormals.hpp"
 #include "forces.hpp"
 #include "parallel.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -908,6 +909,7 @@ void check_run_settings(const RunSettings& s) {
 
 RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
   const auto started = std::chrono::steady_clock::now();
+  const detail::FlushSubnormals flush;  // a settled bed's speeds decay into subnormals
   check_run(bed, scene, settings);
   const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
   Run run(bed, scene, settings);

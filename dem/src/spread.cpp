@@ -12,6 +12,7 @@
 #include <unordered_set>
 
 #include "box.hpp"
+#include "flush_subnormals.hpp"
 #include "lane_tests.hpp"
 #include "neighbour_list.hpp"
 #include "powderbed/bed/critical_damping.hpp"
@@ -1333,6 +1334,7 @@ struct Spreader {
 SpreadSummary run_spread(bed::Bed& bed, const Scene& scene, const SpreadSettings& settings,
                          const SpreadState* restart) {
   const auto started = std::chrono::steady_clock::now();
+  const detail::FlushSubnormals flush;  // resting powder's speeds decay into subnormals
   scene.validate();
   Spreader spread(bed, scene, settings, restart);
   spread.run.box = Box::from(bed.domain);
