@@ -492,6 +492,28 @@ def fill(template, values):
     return re.sub(r"\{\{(\w+)\}\}", sub, template)
 
 
+SPOT_FACTORS = (0.6, 0.7, 0.8, 0.9, 1.0)
+
+
+def spot_table(result):
+    """Eagar–Tsai's width / depth of each row with a measured width and depth at fractions of
+    its stated spot: how much of a width error an uncertain spot convention can hold."""
+    head = report.table_head("track", "measured W/D (um)",
+                             *(f"ET at {f:g} w: W/D (um)" for f in SPOT_FACTORS))
+    lines = list(head)
+    for row in result["rows"]:
+        if row["width_m"] is None or row["depth_m"] is None:
+            continue
+        cells = []
+        for f in SPOT_FACTORS:
+            et = eagar_tsai(dict(row, spot_radius_m=f * row["spot_radius_m"]))
+            cells.append(f"{et['width'] * 1e6:.0f} / {et['depth'] * 1e6:.0f}")
+        lines.append(report.table_row(
+            f"{row['id']} (w = {row['spot_radius_m'] * 1e6:g} um, {row['speed_m_per_s']:g} m/s)",
+            f"{row['width_m'] * 1e6:.0f} / {row['depth_m'] * 1e6:.0f}", *cells))
+    return "\n".join(lines)
+
+
 def write_page(result):
     plot(result, os.path.join(report.RESULTS, "sinter-tracks.png"))
     rows = result["rows"]
@@ -518,6 +540,7 @@ def write_page(result):
         "et_absorptivity_316L": f"{et316['absorptivity']:.3f}" if et316 else "–",
         "track_table": track_table(result),
         "error_table": error_table(result),
+        "spot_table": spot_table(result),
         "run_table": run_table(result),
         "failures": "\n".join(f"- {f}" for f in failed) if failed else "None.",
     }
