@@ -24,6 +24,7 @@
 #include "powderbed/thermal/beer_lambert_laser.hpp"
 #include "powderbed/thermal/contact_conduction.hpp"
 #include "powderbed/thermal/surface_losses.hpp"
+#include "lit_particles.hpp"
 #include "solver_state.hpp"
 
 namespace powderbed::thermal {
@@ -150,13 +151,9 @@ void add_surface_losses(const Sinter::State& s, ImplicitSystem& sys) {
 
 void add_particle_laser(const Sinter::State& s, ImplicitSystem& sys, const LaserParams& laser,
                         const ScanSchedule::Beam& beam) {
-  const double w2 = s.laser.spot_radius * s.laser.spot_radius;
-  for (std::size_t i = 0; i < s.x.size(); ++i) {
-    if (s.gone[i]) continue;
-    const double dx = s.x[i] - beam.x, dy = s.y[i] - beam.y;
-    sys.rhs[static_cast<std::ptrdiff_t>(i)] +=
-        particle_laser_power(s.laser_factor[i], peak_intensity(laser), dx * dx + dy * dy, w2);
-  }
+  for_each_lit_particle(s, beam.x, beam.y, peak_intensity(laser), [&](std::size_t i, double f) {
+    sys.rhs[static_cast<std::ptrdiff_t>(i)] += f;
+  });
 }
 
 // The free nodes: capacities, the faces towards +x, +y, +z once each (and towards fixed nodes on

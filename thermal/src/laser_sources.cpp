@@ -11,6 +11,7 @@
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/thermal/beer_lambert_laser.hpp"
 #include "powderbed/thermal/vapour_depression.hpp"
+#include "lit_particles.hpp"
 #include "solver_state.hpp"
 
 namespace powderbed::thermal {
@@ -20,18 +21,12 @@ namespace {
 double beer_lambert_particles(Sinter::State& s, double t, std::vector<double>& q) {
   const ScanSchedule::Beam beam = beam_at(s, t);
   if (!beam.on) return 0;
-  const double xl = beam.x, yl = beam.y;
-  const double w2 = s.laser.spot_radius * s.laser.spot_radius;
-  const double i0 = peak_intensity(laser_with_power(s, beam.power));
   double absorbed = 0;
-  for (std::size_t i = 0; i < s.x.size(); ++i) {
-    const double dx = s.x[i] - xl, dy = s.y[i] - yl;
-    const double r2 = dx * dx + dy * dy;
-    if (r2 > kBeamCutoff2 * w2 || s.gone[i]) continue;
-    const double f = particle_laser_power(s.laser_factor[i], i0, r2, w2);
-    q[i] += f;
-    absorbed += f;
-  }
+  for_each_lit_particle(s, beam.x, beam.y, peak_intensity(laser_with_power(s, beam.power)),
+                        [&](std::size_t i, double f) {
+                          q[i] += f;
+                          absorbed += f;
+                        });
   return absorbed;
 }
 
@@ -295,12 +290,8 @@ double absorbed_fraction(const Sinter::State& s, double x, double y) {
     return map.absorptance() / (1 - map.outside);
   }
   // Beer–Lambert: the particles' share plus the substrate's, summed as the kernels deposit them.
-  const double w2 = s.laser.spot_radius * s.laser.spot_radius, i0 = peak_intensity(s.laser);
   double absorbed = 0;
-  for (std::size_t i = 0; i < s.x.size(); ++i) {
-    const double dx = s.x[i] - x, dy = s.y[i] - y;
-    absorbed += particle_laser_power(s.laser_factor[i], i0, dx * dx + dy * dy, w2);
-  }
+  for_each_lit_particle(s, x, y, peak_intensity(s.laser), [&](std::size_t, double f) { absorbed += f; });
   const SubstrateGeometry& g = s.g;
   for (std::size_t j = 1; j + 1 < g.ny; ++j)
     for (std::size_t i = 1; i + 1 < g.nx; ++i) {
