@@ -1,0 +1,106 @@
+#!/usr/bin/env python3
+"""Before and after: two deposit binaries run in alternation on the same scenes.
+
+    POWDERBED_BUILD=build python3 bench/studies/deposit_ab.py OLD_DEPOSIT NEW_DEPOSIT \
+        --old-label d29b46f --new-label c784a63 [--rounds 2] --page deposit-subnormals.md
+
+Cases (one thread each, seed 1): [GZ]'s own protocol at full stiffness (E = 193 GPa, dt = 2e-8 s,
+0.1 s; issue 37's "under 90 s" target) and one blade layer of data/scenes/spread-blade.ini. Per
+case and binary the page gives the median [min, max] of deposit's own `wall_time` over the rounds,
+the ratio new / old of the medians, the 1-min load average around each run, and whether the two
+beds are the same: positions and radii bit for bit, velocities to the largest difference.
+Alternating the two puts both under the same load (single runs on a shared 2-core machine move
+by ±10 %). Build the old binary in a worktree (`git worktree add /work/wt-old COMMIT`, then
+`cmake --build ... --target deposit_app`).
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+
+import h5py
+import numpy as np
+
+from lib import apps
+from lib.apps import scene
+from lib.report import load_average, machine, read_page, table_head, table_row, write_page
+
+MARKER = "<!-- discussion: kept when the script rewrites this page -->"
+
+WORK = os.path.join(apps.WORK, "deposit-ab")
+CASES = {
+    "[GZ] protocol, full stiffness": ["--config", scene("gz2016-deposit.ini"), "--young-scale", "1",
+                                      "--dt", "2e-8", "--unsafe-dt", "--t-end", "0.1"],
+    "spread-blade.ini, one layer": ["--config", scene("spread-blade.ini")],
+}
+
+
+def run(binary, case, out):
+    """deposit's JSON summary of `case`, with the 1-min load before the run."""
+    load = float(load_average().split()[0])
+    args = [binary, *CASES[case], "--seed", "1", "--threads", "1", "--out", out, "--json"]
+    summary = json.loads(subprocess.run(args, check=True, capture_output=True, text=True).stdout)
+    summary["load"] = load
+    return summary
+
+
+def compare(a, b):
+    """'same' / the largest velocity difference / 'positions differ' between two beds."""
+    with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
+        pa, pb = fa["particles"], fb["particles"]
+        if not all(np.array_equal(pa[k][...], pb[k][...]) for k in ("position", "radius")):
+            return "positions differ"
+        dv = np.max(np.abs(pa["velocity"][...] - pb["velocity"][...]))
+        return "same bit for bit" if dv == 0 else f"positions same; velocities within {dv:.1e} m/s"
+
+
+def spread(values):
+    return f"{statistics.median(values):.1f} [{min(values):.1f}, {max(values):.1f}]"
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("old")
+    p.add_argument("new")
+    p.add_argument("--old-label", required=True)
+    p.add_argument("--new-label", required=True)
+    p.add_argument("--rounds", type=int, default=2)
+    p.add_argument("--page", required=True)
+    a = p.parse_args()
+    os.makedirs(WORK, exist_ok=True)
+    before = load_average()
+    rows = []
+    for case in CASES:
+        times = {"old": [], "new": []}
+        loads = []
+        for k in range(a.rounds):
+            for tag, binary in (("old", a.old), ("new", a.new)):
+                s = run(binary, case, os.path.join(WORK, f"{tag}.h5"))
+                times[tag].append(s["wall_time"])
+                loads.append(s["load"])
+        ratio = statistics.median(times["new"]) / statistics.median(times["old"])
+        rows.append(table_row(case, spread(times["old"]), spread(times["new"]), f"{ratio:.2f}",
+                              f"{min(loads):.2f}-{max(loads):.2f}",
+                              compare(*(os.path.join(WORK, f"{t}.h5") for t in ("old", "new")))))
+    text = "\n".join([
+        "# deposit before and after: subnormal numbers flushed to zero",
+        "",
+        f"Written by `bench/studies/deposit_ab.py` ({a.rounds} rounds, the two binaries "
+        f"alternating, one thread each). {machine(before, load_average())} Old: {a.old_label}; "
+        f"new: {a.new_label}.",
+        "",
+        "Wall time is deposit's own `wall_time` (s): median [min, max] over the rounds.",
+        "",
+        *table_head("case", f"old {a.old_label} (s)", f"new {a.new_label} (s)", "new / old",
+                   "load (1 min)", "beds"),
+        *rows,
+        "",
+        MARKER,
+    ])
+    old = read_page(a.page)
+    write_page(a.page, text + (old[old.index(MARKER) + len(MARKER):] if MARKER in old else "\n"))
+
+
+if __name__ == "__main__":
+    main()
