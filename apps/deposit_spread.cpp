@@ -131,6 +131,7 @@ void write_json_layer(bed::JsonWriter& j, const dem::LayerSummary& l) {
       .value("lost", static_cast<std::uint64_t>(l.lost))
       .value("overflow", static_cast<std::uint64_t>(l.overflow))
       .value("frozen", static_cast<std::uint64_t>(l.frozen))
+      .value("frozen_tool_contacts", l.frozen_tool_contacts)
       .end_object();
 }
 
@@ -224,6 +225,10 @@ void add_spread_options(po::options_description& desc, dem::SpreadSettings& spre
        po::value<bool>(&spread.remove_overflow)->default_value(spread.remove_overflow),
        "after each layer remove the powder pushed past the tool's end (the machine's overflow "
        "slot; false keeps every particle)")
+      ("recoater.chamber", po::value<bool>(&spread.chamber)->default_value(spread.chamber),
+       "with recoater.overflow: remove only the powder past the tool's end above the tool's "
+       "bottom, so the bed reaches the box's far wall as a machine's stands against its "
+       "chamber wall (false: the bed ends in a free face at the tool's end)")
       ("recoater.layer-thickness",
        po::value<double>(&spread.layer_thickness)->default_value(spread.layer_thickness),
        "how far the plate goes down before each layer after the first (m)")
@@ -458,6 +463,10 @@ int export_spread_deck(const po::variables_map& vm, const DepositOptions& bound,
   bed::Bed bed = spread_input(vm, restart);
   const dem::Scene scene = deposit_scene(vm, bound.scene);
   const dem::SpreadSettings s = spread_settings(vm, bound.spread, seed);
+  if (s.chamber && s.remove_overflow) {  // the decks' overflow deletes everything past the end
+    throw InputError("recoater.chamber: true with --export-deck (accepted: false; the decks "
+                     "remove all the powder past the tool's end)");
+  }
   SpreadDeckRequest r;
   r.engine = bed::parse_deck_engine(engine, "--export-deck");
   r.first = (restart ? restart->layers_done : 0) + 1;
