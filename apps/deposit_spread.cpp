@@ -131,6 +131,7 @@ void write_json_layer(bed::JsonWriter& j, const dem::LayerSummary& l) {
       .value("lost", static_cast<std::uint64_t>(l.lost))
       .value("overflow", static_cast<std::uint64_t>(l.overflow))
       .value("frozen", static_cast<std::uint64_t>(l.frozen))
+      .value("frozen_tool_contacts", l.frozen_tool_contacts)
       .end_object();
 }
 
@@ -224,13 +225,19 @@ void add_spread_options(po::options_description& desc, dem::SpreadSettings& spre
        po::value<bool>(&spread.remove_overflow)->default_value(spread.remove_overflow),
        "after each layer remove the powder pushed past the tool's end (the machine's overflow "
        "slot; false keeps every particle)")
+      ("recoater.chamber", po::value<bool>(&spread.chamber)->default_value(spread.chamber),
+       "with recoater.overflow: remove only the powder past the tool's end above the tool's "
+       "bottom, so the bed reaches the box's far wall as a machine's stands against its "
+       "chamber wall (false: the bed ends in a free face at the tool's end)")
       ("recoater.layer-thickness",
        po::value<double>(&spread.layer_thickness)->default_value(spread.layer_thickness),
        "how far the plate goes down before each layer after the first (m)")
       ("recoater.freeze-depth",
        po::value<double>(&spread.freeze_depth)->default_value(spread.freeze_depth),
        "at each layer's start freeze the particles more than this below the tool's bottom (m; "
-       "0: off; docs/deposit-spread.md \"Many layers\")")
+       "0: off, the default: powder 4 D90 under a blade still moves under the supply's heap, "
+       "docs/deposit-spread.md \"Many layers\"; more than the largest diameter keeps the "
+       "frozen out of the tool's reach, layers[k].frozen_tool_contacts counts any it meets)")
       ("supply.x0", po::value<double>(&spread.supply_x0)->default_value(spread.supply_x0),
        "supply region: start along x (m)")
       ("supply.x1", po::value<double>(&spread.supply_x1)->default_value(spread.supply_x1),
@@ -458,6 +465,10 @@ int export_spread_deck(const po::variables_map& vm, const DepositOptions& bound,
   bed::Bed bed = spread_input(vm, restart);
   const dem::Scene scene = deposit_scene(vm, bound.scene);
   const dem::SpreadSettings s = spread_settings(vm, bound.spread, seed);
+  if (s.chamber && s.remove_overflow) {  // the decks' overflow deletes everything past the end
+    throw InputError("recoater.chamber: true with --export-deck (accepted: false; the decks "
+                     "remove all the powder past the tool's end)");
+  }
   SpreadDeckRequest r;
   r.engine = bed::parse_deck_engine(engine, "--export-deck");
   r.first = (restart ? restart->layers_done : 0) + 1;

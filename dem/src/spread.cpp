@@ -269,6 +269,12 @@ struct Run {
   // they keep their places, act on the moving ones' contacts as fixed spheres, and their own
   // force arrays collect those contacts' reactions, which nothing reads.
   std::size_t moving = 0;
+  // The frozen particles whose tops reach above the tool's lowest point (found at each layer's
+  // start: frozen particles do not move), and how many times, step by step, the tool overlapped
+  // one of them this layer. The tool's contacts are the moving particles' only, so it would
+  // pass through such a particle without a force: sound freezing counts none (LayerSummary).
+  std::vector<std::uint32_t> frozen_in_reach;
+  std::uint64_t frozen_tool_contacts = 0;
   std::vector<double> wall_history;   // kWallSlots * kHistory per particle
   // Per particle, bit `slot` set when that wall's history may be non-zero: a wall out of reach
   // (most walls, most steps) then costs a test, not the write of its six zeros.
@@ -355,6 +361,21 @@ struct Run {
       bed.vx[i] = bed.vy[i] = bed.vz[i] = wx[i] = wy[i] = wz[i] = 0;
     }
     return frozen;
+  }
+
+  void find_frozen_in_reach() {
+    frozen_in_reach.clear();
+    frozen_tool_contacts = 0;
+    const double lowest = profile.z_low - profile.rounding;
+    for (std::size_t i = moving; i < n(); ++i)
+      if (bed.z[i] + bed.radius[i] > lowest) frozen_in_reach.push_back(static_cast<std::uint32_t>(i));
+  }
+
+  void count_frozen_tool_contacts() {
+    for (const std::uint32_t i : frozen_in_reach) {
+      ToolContact t;
+      if (tool_contact(profile, bed.x[i] - tool_x, bed.z[i], bed.radius[i], t)) ++frozen_tool_contacts;
+    }
   }
 
   ActiveContacts active() const {
@@ -759,6 +780,7 @@ struct Run {
     const bool finite = kick(h, false) & start_step(h);
     if (!finite) throw_non_finite(step_number);
     contact_forces(true);
+    if (tool_on) count_frozen_tool_contacts();
     synced = false;
   }
 
@@ -869,10 +891,12 @@ SpreadState to_state(const Run& run, const ActiveContacts& a) {
 }
 
 // Removes the powder the tool pushed past its end — centres in front of its front face where it
-// stopped, the machine's overflow slot — from the bed and the state; returns how many.
-std::size_t remove_overflow(bed::Bed& bed, SpreadState& s, double front) {
+// stopped, the machine's overflow slot — from the bed and the state; returns how many. With
+// `chamber` only the centres above `level` (the tool's bottom, the chamber's edge) go: the
+// powder under it stays, so the bed reaches the box's far wall (SpreadSettings::chamber).
+std::size_t remove_overflow(bed::Bed& bed, SpreadState& s, double front, bool chamber, double level) {
   std::vector<char> keep(bed.n());
-  for (std::size_t i = 0; i < bed.n(); ++i) keep[i] = bed.x[i] <= front ? 1 : 0;
+  for (std::size_t i = 0; i < bed.n(); ++i) keep[i] = bed.x[i] <= front || (chamber && bed.z[i] < level) ? 1 : 0;
   return remove_particles(bed, s, keep);
 }
 
@@ -1241,7 +1265,7 @@ struct Spreader {
   // The overflow out of the bed and the state, and the per-particle arrays anew from the state,
   // as a continued run makes them.
   void drop_overflow(LayerSummary& out, double front) {
-    out.overflow = remove_overflow(bed, state, front);
+    out.overflow = remove_overflow(bed, state, front, settings.chamber, out.tool_bottom);
     out.n = bed.n();
     for (auto* v : {&run.mass, &run.wx, &run.wy, &run.wz}) v->clear();  // grow() redoes them
     run.wall.clear();
@@ -1278,6 +1302,7 @@ struct Spreader {
     run.grow();
     run.sort_by_cell(carried, run.freeze_below(bottom - settings.freeze_depth));
     out.frozen = run.n() - run.moving;
+    run.find_frozen_in_reach();
     run.bound_floor();
     check_tool_clear(run);
     if (run.dt == 0) set_time_step();
@@ -1304,6 +1329,7 @@ struct Spreader {
     particle_steps += static_cast<double>(run.n()) * static_cast<double>(out.steps);
     out.sim_time = static_cast<double>(step) * run.dt;
     out.max_tool_force = force_max;
+    out.frozen_tool_contacts = run.frozen_tool_contacts;
     out.mean_tool_force_x = moving > 0 ? force_x / static_cast<double>(moving) : 0.0;
     const double front = tool.end + tool_half_extent(run.profile);
     finish_layer(run, out, settings.supply_x1, tool.end - tool_half_extent(run.profile), bottom);

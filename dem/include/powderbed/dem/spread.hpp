@@ -74,6 +74,9 @@ struct LayerSummary {
   std::size_t lost = 0;           // centres below the plate or outside non-periodic faces
   std::size_t overflow = 0;       // removed past the tool's end (SpreadSettings::remove_overflow)
   std::size_t frozen = 0;         // particles frozen through the layer (SpreadSettings::freeze_depth)
+  // Steps x frozen particles the tool overlapped (it passes through them without a force): 0
+  // when what froze lay out of the tool's reach, as it must (docs/deposit-spread.md "Many layers").
+  std::uint64_t frozen_tool_contacts = 0;
 };
 
 struct SpreadSettings {
@@ -89,6 +92,11 @@ struct SpreadSettings {
   // front face where it stopped): the machine's overflow slot, so that the excess does not pile
   // up over many layers. false keeps every particle.
   bool remove_overflow = true;
+  // With remove_overflow: remove only the powder past the tool's end above the tool's bottom,
+  // the edge of a machine's build chamber, and keep what lies under it, so that the bed reaches
+  // the box's far wall as a machine's bed stands against its chamber's wall. false: everything
+  // past the end goes, and the bed ends in a free face there (docs/results/spread-layers.md).
+  bool chamber = false;
   double layer_thickness = 0;     // m, how far the plate goes down between layers
   // > 0: at each layer's start, the particles whose centres lie more than this (m) below the
   // tool's bottom are frozen for the rest of the run: they keep their places with no velocity,
