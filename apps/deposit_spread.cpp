@@ -469,6 +469,11 @@ int export_spread_deck(const po::variables_map& vm, const DepositOptions& bound,
     throw InputError("recoater.chamber: true with --export-deck (accepted: false; the decks "
                      "remove all the powder past the tool's end)");
   }
+  if (s.freeze_depth > 0) {  // the decks integrate every particle: the deck would not be this run
+    throw InputError(fmt::format("recoater.freeze-depth: {:g} m with --export-deck (accepted: 0; "
+                                 "the decks freeze nothing)",
+                                 s.freeze_depth));
+  }
   SpreadDeckRequest r;
   r.engine = bed::parse_deck_engine(engine, "--export-deck");
   r.first = (restart ? restart->layers_done : 0) + 1;

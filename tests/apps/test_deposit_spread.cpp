@@ -54,6 +54,9 @@ TEST(DepositSpread, BadToolAndSupplyExit2WithOneLine) {
       {"--supply.count 0 --supply.dosing 2 --supply.bulk-density 1", "supply.bulk-density"},
       {"--periodic x", "--periodic"},
       {"--export-deck yade", "--export-deck"},  // an engine no deck is written for
+      // What the decks do not do: keep powder past the end, freeze the deep powder.
+      {"--recoater.chamber true --export-deck liggghts", "recoater.chamber"},
+      {"--recoater.freeze-depth 100e-6 --export-deck liggghts", "recoater.freeze-depth"},
       // A tool that does not travel pushes the whole supply into the overflow: no layer. Found
       // after the run: --thermo 0 leaves the one line alone, without the run's thermo table.
       {"--recoater.end 0.100001e-3 --recoater.delay 0 --recoater.settle 0 --thermo 0",
