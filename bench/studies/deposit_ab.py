@@ -10,7 +10,7 @@ case and binary the page gives the median [min, max] of deposit's own `wall_time
 the ratio new / old of the medians, the 1-min load average around each run, and whether the two
 beds are the same: positions and radii bit for bit, velocities to the largest difference.
 Alternating the two puts both under the same load (single runs on a shared 2-core machine move
-by ±10 %). Build the old binary in a worktree (`git worktree add /work/wt-old COMMIT`, then
+by ±10 %). Build the old binary in a worktree (`git worktree add ../old COMMIT`, then
 `cmake --build ... --target deposit_app`).
 """
 import argparse

@@ -896,7 +896,10 @@ SpreadState to_state(const Run& run, const ActiveContacts& a) {
 // powder under it stays, so the bed reaches the box's far wall (SpreadSettings::chamber).
 std::size_t remove_overflow(bed::Bed& bed, SpreadState& s, double front, bool chamber, double level) {
   std::vector<char> keep(bed.n());
-  for (std::size_t i = 0; i < bed.n(); ++i) keep[i] = bed.x[i] <= front || (chamber && bed.z[i] < level) ? 1 : 0;
+  for (std::size_t i = 0; i < bed.n(); ++i) {
+    const bool under_the_edge = chamber && bed.z[i] < level;
+    keep[i] = bed.x[i] <= front || under_the_edge ? 1 : 0;
+  }
   return remove_particles(bed, s, keep);
 }
 
