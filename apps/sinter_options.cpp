@@ -43,10 +43,10 @@ void add_scan_options(po::options_description& desc, th::SinterScene& s) {
        "speed of the jumps between segments, laser off (m/s)");
 }
 
-// The scene's scan path from --scan-path or scan.hatch (empty: the single track); the hatch's
-// tracks run at --power and --speed.
-std::vector<th::ScanSegment> scan_path_of(const po::variables_map& vm, const th::SinterScene& s,
-                                          const bed::Bed& bed, std::optional<std::size_t> layer) {
+// The hatch of the options (none: --scan-path or the single track); its tracks run at --power
+// and --speed, at layer `layer` (none: scan.layer).
+std::optional<th::Hatch> hatch_of(const po::variables_map& vm, const th::SinterScene& s,
+                                  const bed::Bed& bed, std::optional<std::size_t> layer) {
   const bool csv = vm.count("scan-path") > 0, hatch = vm.count("scan.hatch") > 0;
   if (csv && hatch)
     throw InputError("--scan-path, --scan.hatch: both given (accepted: one of them)");
@@ -55,9 +55,8 @@ std::vector<th::ScanSegment> scan_path_of(const po::variables_map& vm, const th:
       if (vm.count(name) && !vm[name].defaulted())
         throw InputError(fmt::format(
             "--{}: given without --scan.hatch (accepted: --scan.hatch H with it)", name));
+    return std::nullopt;
   }
-  if (csv) return th::read_scan_csv(vm["scan-path"].as<std::string>());
-  if (!hatch) return {};
   th::Hatch h;
   h.spacing = vm["scan.hatch"].as<double>();
   h.tracks = vm["scan.tracks"].as<std::size_t>();
@@ -83,7 +82,15 @@ std::vector<th::ScanSegment> scan_path_of(const po::variables_map& vm, const th:
   }
   h.power = s.power;
   h.speed = s.speed;
-  return th::hatch_segments(h);
+  return h;
+}
+
+// The scene's scan path from --scan-path or scan.hatch (empty: the single track).
+std::vector<th::ScanSegment> scan_path_of(const po::variables_map& vm, const th::SinterScene& s,
+                                          const bed::Bed& bed, std::optional<std::size_t> layer) {
+  if (const auto h = hatch_of(vm, s, bed, layer)) return th::hatch_segments(*h);
+  if (vm.count("scan-path")) return th::read_scan_csv(vm["scan-path"].as<std::string>());
+  return {};
 }
 
 // The run: its files, --explain and --fuse, the laser's headline numbers, the grid spacing and
@@ -435,6 +442,9 @@ thermal::SinterScene sinter_scene(const po::variables_map& vm, const thermal::Si
   return scene;
 }
 
-bool hatch_requested(const po::variables_map& vm) { return vm.count("scan.hatch") > 0; }
+std::optional<thermal::Hatch> scan_hatch(const po::variables_map& vm, const thermal::SinterScene& scene,
+                                         const bed::Bed& bed, std::optional<std::size_t> layer) {
+  return hatch_of(vm, scene, bed, layer);
+}
 
 }  // namespace powderbed::app

@@ -6,6 +6,7 @@
 
 #include "common/options.hpp"
 #include "powderbed/bed/bed.hpp"
+#include "powderbed/thermal/scan_path.hpp"
 #include "powderbed/thermal/scene.hpp"
 
 namespace powderbed::app {
@@ -24,7 +25,10 @@ thermal::SinterScene sinter_scene(const po::variables_map& vm, const thermal::Si
                                   const bed::Bed& bed,
                                   std::optional<std::size_t> layer = std::nullopt);
 
-// Whether the options give a hatch (scan.hatch).
-bool hatch_requested(const po::variables_map& vm);
+// The hatch of the options at layer `layer` (none: scan.layer), checked as sinter_scene checks
+// it; none when they scan a --scan-path or the single track.
+std::optional<thermal::Hatch> scan_hatch(const po::variables_map& vm, const thermal::SinterScene& scene,
+                                         const bed::Bed& bed,
+                                         std::optional<std::size_t> layer = std::nullopt);
 
 }  // namespace powderbed::app
