@@ -31,8 +31,9 @@ def scene(name):
 
 
 def scene_value(path, section, key):
-    """A key of an INI scene as a number (section None: a key before the first [section]), so
-    that a study states the scene's value rather than a copy of it."""
+    """A key of an INI scene's text as a number (section None: a key before the first
+    [section]): what the scene file says (test_references checks the scenes against their
+    sources); resolved_options gives what a program runs with."""
     current = None
     for line in open(path):
         line = line.split("#")[0].strip()
