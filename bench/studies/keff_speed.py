@@ -27,7 +27,7 @@ SCENE = apps.scene("ke2016-steel-1mm.ini")
 REPEATS = 3
 THREADS = [1, 2]
 TEMPERATURE = 1000.0  # K: radiation carries ~half the heat of the 1 mm steel bed here
-RAYS = int(apps.scene_value(SCENE, None, "rays"))  # the default (keff-accuracy.md chose it)
+RAYS = int(apps.resolved_options("keff", ["--config", SCENE])["rays"])  # keff-accuracy.md chose it
 # packgen beds: label, particles, box width in diameters
 PACKGEN = [(1100, 10), (10000, 15), (100000, 46)]
 VALIDATION = "deposit (validation bed)"

@@ -79,10 +79,9 @@ def contacts(case, path):
     with h5py.File(path, "r") as f:
         lo, hi = np.array(f["domain"].attrs["lower"]), np.array(f["domain"].attrs["upper"])
     d = 2 * r.max()
-    bed_scene = apps.ke2016_bed_scene(case)
-    e = apps.scene_value(bed_scene, "material", "young")
-    nu = apps.scene_value(bed_scene, "material", "poisson")
-    k_n = apps.scene_value(bed_scene, "contact", "stiffness")
+    dem = apps.resolved_options("deposit", ["--config", apps.ke2016_bed_scene(case)])
+    e, nu = float(dem["material.young"]), float(dem["material.poisson"])
+    k_n = float(dem["contact.stiffness"])
     e_star = e / (2 * (1 - nu * nu))
     inside = np.all((x > lo + 2 * d) & (x < hi - 2 * d), axis=1)
     pairs = cKDTree(x).query_pairs(d * 1.02, output_type="ndarray")

@@ -281,7 +281,7 @@ def header(args, scene, rows, summaries, runs, load_before):
     if args.reference:
         cmd += f" --reference {args.reference}"
     total = sum(r.get("wall", r["wall_file"]) for r in rows)
-    depth = float(scene.options.get("recoater.freeze-depth", 0))
+    depth = float(scene.options["recoater.freeze-depth"])
     return [
         "# Spreading layer after layer (blade scene)",
         "",

@@ -25,8 +25,8 @@ Method, per seed (1, 2, 3; --seeds to choose):
    vertex on a periodic face) that stands for recoater.delay, moves to recoater.end at
    recoater.speed (fix move/mesh linear) and stands for recoater.settle; Hertz with the scene's
    E and nu (softened by young-scale, particles and walls), the restitution that matches the
-   scene's damping ratio, friction with the tangential history spring (no_history when the
-   scene's friction.model is sliding), rolling resistance (epsd) when the scene has
+   scene's damping ratio, friction with the tangential history spring (no_history when
+   deposit's friction.model is sliding, its default), rolling resistance (epsd) when the scene has
    material.rolling > 0; plate, lid and end walls as primitive walls, periodic in y. Loop time from LIGGGHTS's "Loop time" lines (all three runs).
 4. Both beds through `bedstat --spread` with the same gap, plate (the domain floor) and window
    (the layer the blade leaves behind it, [start + t/2, end - t/2] for a blade of thickness t
@@ -52,7 +52,7 @@ import subprocess
 import sys
 import tempfile
 
-from lib.apps import ROOT, app, run_json
+from lib.apps import ROOT, app, option_args, run_json
 from lib.spread_scene import Scene, read_scene, shown_path
 from lib.report import load_average, machine, write_page
 
@@ -83,19 +83,12 @@ def small_overrides(scene_path):
     the pipeline, not a result) and at most SMALL_SETTLE after."""
     o = read_scene(scene_path)
     start, end = float(o["recoater.start"]), float(o["recoater.end"])
-    thickness = float(o.get("recoater.thickness", "500e-6"))
-    delay = min(float(o.get("recoater.delay", "0")), SMALL_DELAY)
-    settle = min(float(o.get("recoater.settle", "0")), SMALL_SETTLE)
+    thickness = float(o["recoater.thickness"])
+    delay = min(float(o["recoater.delay"]), SMALL_DELAY)
+    settle = min(float(o["recoater.settle"]), SMALL_SETTLE)
     small_end = min(end, start + thickness + SMALL_TRAVEL * (end - start))
     return {"recoater.end": repr(small_end), "recoater.delay": repr(delay),
             "recoater.settle": repr(settle)}
-
-
-def option_args(overrides):
-    out = []
-    for key, value in overrides.items():
-        out += [f"--{key}", value]
-    return out
 
 
 def initial_particles(work, scene_path, seed, overrides):

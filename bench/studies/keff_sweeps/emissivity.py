@@ -13,8 +13,8 @@ def run():
     particles' emissivity, with the walls at the same emissivity and at the scene's 0.5 (the pair
     formula of docs/physics.md §6), and with both at ε in the radiosity model (the grey enclosure)."""
     bed = base_bed()
-    wall_scene = apps.scene_value(apps.ke2016_keff_scene("steel-1mm"), "radiation",
-                                  "wall-emissivity")
+    options = apps.resolved_options("keff", ["--config", apps.ke2016_keff_scene("steel-1mm")])
+    wall_scene = float(options["radiation.wall-emissivity"])
     rows = []
     for t in (1000, 1500):
         base = ["--temperature", f"{t}", "--gas.model", "air", "--rays", str(RAYS)]

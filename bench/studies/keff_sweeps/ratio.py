@@ -11,7 +11,8 @@ def run():
     """k_s = k_g / ratio on the seed-1 bed, contact + gas at 300 K (k_g 0.026 W/mK constant),
     against ZBS at the bed's core porosity."""
     bed = base_bed()
-    k_g = apps.scene_value(apps.ke2016_keff_scene("steel-1mm"), "gas", "conductivity")
+    options = apps.resolved_options("keff", ["--config", apps.ke2016_keff_scene("steel-1mm")])
+    k_g = float(options["gas.conductivity"])
     eps_core = 1 - bed["dep"]["core_density"]
     rows = []
     for ratio in RATIOS:

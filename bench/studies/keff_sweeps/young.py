@@ -18,9 +18,9 @@ def run(seeds):
     keff_softening.py, deposited at k_n = 1e3 ... 1e6 N/m (seed 1), read with the Hertz
     correction at their own k_n and with the geometric contact radius."""
     bed = base_bed()
-    bed_scene = apps.ke2016_bed_scene("steel-1mm")
-    e_nom = apps.scene_value(bed_scene, "material", "young") / 1e9
-    k_bed = apps.scene_value(bed_scene, "contact", "stiffness")
+    dem = apps.resolved_options("deposit", ["--config", apps.ke2016_bed_scene("steel-1mm")])
+    e_nom = float(dem["material.young"]) / 1e9
+    k_bed = float(dem["contact.stiffness"])
     same = [(e, keff(bed, "--contact.young", f"{e * 1e9:.6g}")) for e in YOUNG]
     beds = []
     for k_n in STIFFNESS:

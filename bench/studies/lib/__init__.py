@@ -1,7 +1,8 @@
 """What the study scripts of bench/studies/ share, so that no study imports another:
 
-- apps.py: where the build is, one program run with --json, and the wrappers of deposit,
-  bedstat, keff and sinter (with the beds and stored runs more than one study uses);
+- apps.py: where the build is, one program run with --json, the options a program resolves
+  (--print-config), and the wrappers of deposit, bedstat, keff and sinter (with the beds and
+  stored runs more than one study uses);
 - references.py: the reference models and published numbers the studies compare with, each
   with its source;
 - pce.py: the second-order polynomial chaos on a Smolyak sparse grid (keff-validation.md's

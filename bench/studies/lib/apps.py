@@ -1,4 +1,5 @@
 """Running the project's programs from a study: where the build is, one run with --json, the
+options a program resolves from a scene (its --print-config, defaults included), the
 bedstat, deposit, keff and sinter wrappers more than one study uses, reading the beds and run
 files the programs write, and the beds and stored runs one study takes from another (kept under
 out/studies/ and made there when missing, so that no study has to import another)."""
@@ -30,8 +31,9 @@ def scene(name):
 
 
 def scene_value(path, section, key):
-    """A key of an INI scene as a number (section None: a key before the first [section]), so
-    that a study states the scene's value rather than a copy of it."""
+    """A key of an INI scene's text as a number (section None: a key before the first
+    [section]): what the scene file says (test_references checks the scenes against their
+    sources); resolved_options gives what a program runs with."""
     current = None
     for line in open(path):
         line = line.split("#")[0].strip()
@@ -43,6 +45,49 @@ def scene_value(path, section, key):
             if k == key:
                 return float(v)
     raise KeyError(f"{key} in {path}")
+
+
+# --print-config's lines: "key = value", and "# key = value  (default)" for a default or a
+# --material file's value (commented out so that --config reads them back as not given); a
+# value "quoted" with escapes where its plain form would lose it.
+CONFIG_LINE = re.compile(r"([\w.-]+) = (.*)")
+COMMENTED = re.compile(r"# (.*)  \((?:default|from --material)\)")
+ESCAPES = {"\\": "\\", '"': '"', "n": "\n", "r": "\r", "t": "\t"}
+
+
+def parse_print_config(text):
+    """{dotted name: value text} of a program's --print-config output, the commented-out
+    defaults and material values included: what the program runs with."""
+    out = {}
+    for line in text.splitlines():
+        commented = COMMENTED.fullmatch(line)
+        m = CONFIG_LINE.fullmatch(commented.group(1) if commented else line)
+        if not m:
+            continue  # the header
+        key, value = m.groups()
+        if value.startswith('"'):
+            value = re.sub(r"\\(.)", lambda e: ESCAPES[e.group(1)], value[1:-1])
+        if key in out:  # a multi-valued option (bedstat's --bed) prints a line per value
+            raise ValueError(f"--print-config gives {key} more than once")
+        out[key] = value
+    return out
+
+
+def option_args(options):
+    """{dotted name: text} as command-line words --name text (the command line wins over the
+    scene file)."""
+    return [word for key, value in options.items() for word in (f"--{key}", value)]
+
+
+def resolved_options(program, args):
+    """The options program `program` of the build resolves from `args` (--config SCENE, options):
+    parse_print_config of its --print-config, so a study reads the program's defaults rather
+    than a copy of them."""
+    proc = subprocess.run([app(program), *args, "--print-config"], capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise RuntimeError(f"{program} {' '.join(args)} --print-config exited {proc.returncode}: "
+                           f"{proc.stderr.strip()}")
+    return parse_print_config(proc.stdout)
 
 
 def omp_env(threads):

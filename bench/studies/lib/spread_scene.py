@@ -1,77 +1,61 @@
 """A blade-spread scene as the spread studies read it (spread_peer, spread_layers, spread_accuracy):
-deposit's INI options as dotted names, the numbers a study needs with deposit's defaults, the
-LIGGGHTS restitution that matches the scene's damping ratio, and the window of the layer the blade
-leaves behind it."""
-import configparser
+deposit's resolved options as dotted names (its --print-config: the scene, the overrides and
+deposit's own defaults), the numbers a study needs, the LIGGGHTS restitution that matches the
+scene's damping ratio, and the window of the layer the blade leaves behind it."""
 import math
 import os
 import sys
 
-from lib.apps import ROOT
+from lib.apps import ROOT, option_args, resolved_options
 
 WINDOW_MARGIN = 0.1   # fraction of the travel left out at each end of the swept path
 
 
-def read_scene(path):
-    """The scene's options as {dotted name: text}, as deposit reads it (INI sections map to
-    dotted names; keys before any section are top-level)."""
-    parser = configparser.ConfigParser(interpolation=None, inline_comment_prefixes=("#", ";"),
-                                       strict=False)
-    parser.optionxform = str
-    with open(path) as f:
-        parser.read_string("[__top__]\n" + f.read())
-    out = {}
-    for section in parser.sections():
-        for key, value in parser.items(section):
-            out[key if section == "__top__" else f"{section}.{key}"] = value.strip()
-    return out
+def read_scene(path, overrides=None):
+    """The options deposit runs the scene with, `overrides` ({dotted name: text}) given on its
+    command line: {dotted name: text}, every option deposit has a default for included."""
+    return resolved_options("deposit", ["--config", path, *option_args(overrides or {})])
 
 
 class Scene:
-    """The numbers of a blade-spread scene the studies need, with deposit's defaults where it has them."""
+    """The numbers of a blade-spread scene the studies need, as deposit resolves them."""
 
     def __init__(self, path, overrides):
         self.path = path
-        self.options = read_scene(path)
-        self.options.update(overrides)
+        self.options = read_scene(path, overrides)
         o = self.options
-        if o.get("recoater.tool", "blade") != "blade":
+        if o["recoater.tool"] != "blade":
             sys.exit(f"spread scene: {path}: recoater.tool = {o['recoater.tool']} (accepted: blade)")
-        if o.get("periodic", "none").replace(" ", "") != "y":
-            sys.exit(f"spread scene: {path}: periodic = {o.get('periodic', 'none')} (accepted: y, "
+        if o["periodic"].replace(" ", "") != "y":
+            sys.exit(f"spread scene: {path}: periodic = {o['periodic']} (accepted: y, "
                      "what bench/liggghts/spread-blade.liggghts models)")
         self.lx, self.ly, self.lz = (float(v) for v in o["domain"].split(","))
-        self.young = self.num("material.young", 193e9)
-        self.poisson = self.num("material.poisson", 0.26)
-        self.density = self.num("material.density", 7952)
-        self.damping = self.num("material.damping", 0.1)
-        self.friction = self.num("material.friction", 0.1)
-        self.rolling = self.num("material.rolling", 0.0)
-        # A spread needs static friction for its heap to stand (issue 16): history unless the
-        # scene asks for the sliding law.
-        self.tangential = "no_history" if o.get("friction.model") == "sliding" else "history"
-        self.wall_young = self.num("wall.young", 193e9)
-        self.wall_poisson = self.num("wall.poisson", 0.26)
-        self.young_scale = self.num("young-scale", 1.0)
-        # deposit's effects.drag defaults off; the blade scene switches it on (argon)
-        self.drag = o.get("effects.drag", "false").lower() in ("true", "1", "yes", "on")
-        self.gravity = self.num("gravity", 9.81)
+        self.young = self.num("material.young")
+        self.poisson = self.num("material.poisson")
+        self.density = self.num("material.density")
+        self.damping = self.num("material.damping")
+        self.friction = self.num("material.friction")
+        self.rolling = self.num("material.rolling")
+        # LIGGGHTS's tangential law is deposit's: a spread's heap stands on the static friction
+        # of the history law (issue 16), so a spread scene asks for it.
+        self.tangential = "history" if o["friction.model"] == "history" else "no_history"
+        self.wall_young = self.num("wall.young")
+        self.wall_poisson = self.num("wall.poisson")
+        self.young_scale = self.num("young-scale")
+        self.drag = o["effects.drag"] == "true"  # --print-config writes a bool true or false
+        self.gravity = self.num("gravity")
         self.gap = self.num("recoater.gap")
         self.speed = self.num("recoater.speed")
         self.start = self.num("recoater.start")
         self.end = self.num("recoater.end")
-        self.thickness = self.num("recoater.thickness", 500e-6)
-        self.delay = self.num("recoater.delay", 0.0)
-        self.settle = self.num("recoater.settle", 0.0)
-        if self.num("recoater.edge-radius", 0.0) > 0:
+        self.thickness = self.num("recoater.thickness")
+        self.delay = self.num("recoater.delay")
+        self.settle = self.num("recoater.settle")
+        if self.num("recoater.edge-radius") > 0:
             print("spread scene: recoater.edge-radius > 0: the STL blade has sharp edges", file=sys.stderr)
 
-    def num(self, key, default=None):
-        if key in self.options:
-            return float(self.options[key])
-        if default is None:
-            sys.exit(f"spread scene: {self.path}: {key} missing (required)")
-        return default
+    def num(self, key):
+        return float(self.options[key])
 
     def restitution(self):
         """The restitution of LIGGGHTS's Hertz damping gamma_n = 2 sqrt(5/6) |beta| sqrt(m* k_n)
