@@ -60,7 +60,10 @@ def main():
         print(proc.stdout[-3000:], proc.stderr[-2000:])
         if proc.returncode != 0:
             sys.exit(1)
-        row = re.search(r"^\| 1 \| LIGGGHTS \| (\d+) \| \d+ \| [0-9.]+ \| [0-9.]+ \| ([0-9.]+) \|", proc.stdout, re.M)
+        # | seed | code | particles | steps | loop time | ns per particle-step | CPU ns per
+        # particle-step | layer density | ...: the density is the eighth column.
+        row = re.search(r"^\| 1 \| LIGGGHTS \| (\d+) \| \d+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| ([0-9.]+) \|",
+                        proc.stdout, re.M)
         window = re.search(r"over x in \[([0-9.]+), ([0-9.]+)\] mm", proc.stdout)
         folder = re.search(r"work folder (\S+)", proc.stdout)
         try:
