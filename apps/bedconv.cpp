@@ -15,7 +15,7 @@
 #include "common/deck_export.hpp"
 #include "deposit_options.hpp"
 #include "common/options.hpp"
-#include "common/json_units.hpp"
+#include "powderbed/bed/json_units.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
@@ -331,8 +331,8 @@ int convert(int argc, char** argv) {
     if (r.deck) json.value("deck", files.input);
   }
   // The units of bedconv's --json numbers (common/json_units).
-  static constexpr app::UnitEntry kUnits[] = {{"snapshots", "1"}, {"particles", "1"}, {"dimension", "1"}};
-  app::write_units(json, kUnits);
+  static constexpr bed::UnitEntry kUnits[] = {{"snapshots", "1"}, {"particles", "1"}, {"dimension", "1"}};
+  bed::write_units(json, kUnits);
   json.end_object();
   if (vm.count("json")) std::cout << json.str() << '\n';
   return 0;

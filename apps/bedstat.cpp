@@ -13,11 +13,11 @@
 #include <fmt/format.h>
 
 #include "common/app_main.hpp"
-#include "common/bed_report.hpp"
-#include "common/contact_report.hpp"
+#include "powderbed/bed/bed_report.hpp"
+#include "powderbed/bed/contact_report.hpp"
 #include "common/options.hpp"
-#include "common/spread_report.hpp"
-#include "common/json_units.hpp"
+#include "powderbed/bed/spread_report.hpp"
+#include "powderbed/bed/json_units.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
@@ -30,8 +30,8 @@ namespace {
 using namespace powderbed;
 namespace po = app::po;
 
-using Report = app::BedReport;
-using Request = app::BedRequest;
+using Report = bed::BedReport;
+using Request = bed::BedRequest;
 
 // The side-by-side table, gathered before it is printed so that every column is as wide as its
 // widest cell (a long bed name) plus two spaces: columns never run together.
@@ -77,7 +77,7 @@ void print_spread_table(Table& out, const std::vector<Report>& reports) {
   auto row = [&](const std::string& label, auto&& f) {
     table_row(out, label, cells(reports, [&](auto& s, const Report& r) { f(s, *r.spread); }));
   };
-  using Spread = app::SpreadReport;
+  using Spread = bed::SpreadReport;
   row("spread: plate z (m)", [](auto& s, const Spread& p) { s << p.layer.request.plate; });
   row("spread: gap (m)", [](auto& s, const Spread& p) { s << p.layer.request.gap; });
   row("spread: window x0 (m)", [](auto& s, const Spread& p) { s << p.layer.request.x0; });
@@ -116,13 +116,13 @@ void print_table(Table& out, const std::vector<Report>& reports, const Request& 
         fmt::format("density (layer {:g}..{:g})", req.layer->first, req.layer->second);
     table_row(out, label, cells(reports, [](auto& s, const Report& r) { s << *r.layer_density; }));
   }
-  for (std::size_t t = 0; t < std::size(app::kReportedTolerances); ++t) {
-    table_row(out, "coordination (tol " + app::tolerance_key(app::kReportedTolerances[t]) + ")",
+  for (std::size_t t = 0; t < std::size(bed::kReportedTolerances); ++t) {
+    table_row(out, "coordination (tol " + bed::tolerance_key(bed::kReportedTolerances[t]) + ")",
               cells(reports, [t](auto& s, const Report& r) { s << r.by_tol[t].coordination; }));
   }
-  const std::string at = " (tol " + app::tolerance_key(req.tolerance) + ")";
-  if (std::find(std::begin(app::kReportedTolerances), std::end(app::kReportedTolerances), req.tolerance) ==
-      std::end(app::kReportedTolerances)) {
+  const std::string at = " (tol " + bed::tolerance_key(req.tolerance) + ")";
+  if (std::find(std::begin(bed::kReportedTolerances), std::end(bed::kReportedTolerances), req.tolerance) ==
+      std::end(bed::kReportedTolerances)) {
     table_row(out, "coordination" + at,
               cells(reports, [](auto& s, const Report& r) { s << r.at_tol.coordination; }));
   }
@@ -143,7 +143,7 @@ void print_table(Table& out, const std::vector<Report>& reports, const Request& 
   table_row(out, "radius sd (m)", cells(reports, [](auto& s, const Report& r) { s << r.radius.sd; }));
   table_row(out, "radius min (m)", cells(reports, [](auto& s, const Report& r) { s << r.radius.min; }));
   table_row(out, "radius max (m)", cells(reports, [](auto& s, const Report& r) { s << r.radius.max; }));
-  using Quantiles = app::DiameterQuantiles;
+  using Quantiles = bed::DiameterQuantiles;
   for (const auto& [basis, q] : {std::pair{"number", &Report::by_number},
                                  std::pair{"volume", &Report::by_volume}}) {
     for (const auto& [label, d] :
@@ -156,7 +156,7 @@ void print_table(Table& out, const std::vector<Report>& reports, const Request& 
   if (req.psd) {
     table_row(out, "KS distance to --psd", cells(reports, [](auto& s, const Report& r) { s << *r.ks; }));
     table_row(out, "--psd basis",
-              std::vector<std::string>(reports.size(), app::psd_basis_text(*req.psd)));
+              std::vector<std::string>(reports.size(), bed::psd_basis_text(*req.psd)));
   }
   if (req.voronoi) {
     table_row(out, "Voronoi local fraction mean", cells(reports, [](auto& s, const Report& r) {
@@ -228,9 +228,9 @@ void check_spread_options(const po::variables_map& vm, std::size_t beds,
 }
 
 // --spread's options (docs/spread-layer.md); the gap and the feed may also come from each bed.
-app::SpreadRequest parse_spread_request(const po::variables_map& vm,
+bed::SpreadRequest parse_spread_request(const po::variables_map& vm,
                                         const std::optional<bed::Domain>& csv_domain) {
-  app::SpreadRequest sp;
+  bed::SpreadRequest sp;
   auto positive = [&](const char* name) {
     const double v = vm[name].as<double>();
     if (!(v > 0)) {
@@ -254,7 +254,7 @@ app::SpreadRequest parse_spread_request(const po::variables_map& vm,
   if (vm.count("feed")) {
     const std::string file = vm["feed"].as<std::string>();
     const bed::Bed feed = bed::read_bed_any(file, csv_domain ? &*csv_domain : nullptr);
-    app::SpreadFeed f;
+    bed::SpreadFeed f;
     f.source = file;
     for (const double r : feed.radius) f.diameters.push_back(2.0 * r);
     sp.feed = std::move(f);
@@ -308,7 +308,7 @@ std::vector<Report> analyse_beds(const std::vector<std::string>& files, const Re
     bed::Bed b = bed::read_bed_any(file, csv_domain ? &*csv_domain : nullptr);
     const std::string warning = bed::printed_precision_warning(b, req.tolerance);
     if (!warning.empty()) std::cerr << "bedstat: warning: " << file << ": " << warning << '\n';
-    reports.push_back(app::analyse_bed(std::move(b), file, req));
+    reports.push_back(bed::analyse_bed(std::move(b), file, req));
   }
   return reports;
 }
@@ -344,9 +344,9 @@ int run(int argc, char** argv) {
     // Always {"beds": [...]}, one entry per bed, however many beds: one shape to parse.
     bed::JsonWriter json;
     json.begin_object().begin_array("beds");
-    for (const auto& r : reports) app::write_bed_json(json, r, req);
+    for (const auto& r : reports) bed::write_bed_json(json, r, req);
     json.end_array();
-    app::write_units(json, app::bed_report_units());
+    bed::write_units(json, bed::bed_report_units());
     json.end_object();
     std::cout << json.str() << '\n';
   } else {

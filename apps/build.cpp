@@ -24,7 +24,7 @@
 #include "build_map.hpp"
 #include "build_pictures.hpp"
 #include "common/app_main.hpp"
-#include "common/json_units.hpp"
+#include "powderbed/bed/json_units.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
@@ -404,7 +404,7 @@ process::Progress progress_part(app::ProgressBar& bar, double done, double share
 }
 
 // The units of build.json's numbers (common/json_units).
-constexpr app::UnitEntry kUnits[] = {
+constexpr bed::UnitEntry kUnits[] = {
     {"layers_done", "1"}, {"first_layer", "1"}, {"particles", "1"}, {"wall_time", "s"},
     {"layer", "1"}, {"particles_spread", "1"}, {"supplied", "1"}, {"overflow", "1"},
     {"tool_bottom", "m"}, {"recoater_clearance", "m"}, {"layer_density", "1"},
@@ -432,7 +432,7 @@ std::string write_build_json(const Build& b, const std::vector<ReportedLayer>& r
   for (const auto& r : reports) layer_json(j, r.report, r.pictures);
   j.end_array();
   j.value("out", b.plan.out);
-  app::write_units(j, kUnits);
+  bed::write_units(j, kUnits);
   j.end_object();
   bed::write_text_file((fs::path(b.plan.out) / "build.json").string(), j.str() + "\n");
   return j.str();

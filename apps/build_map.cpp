@@ -4,7 +4,7 @@
 #include <limits>
 #include <numbers>
 
-#include "common/json_units.hpp"
+#include "powderbed/bed/json_units.hpp"
 
 namespace powderbed::app {
 
@@ -13,7 +13,7 @@ namespace {
 // Johnson et al. 2019: a pool no wider than 1.5 times its depth is a keyhole's.
 constexpr double kKeyholeWidthOverDepth = 1.5;
 
-constexpr UnitEntry kUnits[] = {
+constexpr bed::UnitEntry kUnits[] = {
     {"wall_time", "s"},          {"power", "W"},
     {"speed", "m/s"},            {"hatch", "m"},
     {"layer", "m"},              {"energy_density", "J/m^3"},
@@ -74,7 +74,7 @@ void write_map_json(bed::JsonWriter& j, const std::vector<MapPoint>& points, dou
     j.end_array().end_object();
   }
   j.end_array();
-  write_units(j, kUnits);
+  bed::write_units(j, kUnits);
   j.end_object();
 }
 

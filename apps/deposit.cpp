@@ -332,7 +332,7 @@ std::string json_text(const Report& p) {
   }
   if (r.lid_used) print_lid_json(j, r, p.settings.lid.release);
   j.value("out", p.out);
-  app::write_units(j, app::deposit_units());
+  bed::write_units(j, app::deposit_units());
   j.end_object();
   return j.str() + '\n';
 }

@@ -163,8 +163,8 @@ void add_deposit_options(po::options_description& desc, DepositOptions& bound) {
   }
 }
 
-std::span<const UnitEntry> deposit_units() {
-  static constexpr UnitEntry kUnits[] = {
+std::span<const bed::UnitEntry> deposit_units() {
+  static constexpr bed::UnitEntry kUnits[] = {
       // the run (write_run_head)
       {"n", "1"}, {"steps", "1"}, {"sim_time", "s"}, {"wall_time", "s"},
       {"particle_steps_per_s", "1/s"}, {"dt", "s"}, {"dt_stable", "s"}, {"young_scale", "1"},

@@ -2,7 +2,7 @@
 #include <span>
 // deposit's options (drop, spread, material, walls, effects) and the DEM scene they make: one
 // definition for deposit and for build's per-layer spreads.
-#include "common/json_units.hpp"
+#include "powderbed/bed/json_units.hpp"
 #include "common/options.hpp"
 #include "powderbed/bed/json.hpp"
 #include "powderbed/dem/scene.hpp"
@@ -29,7 +29,7 @@ void add_deposit_options(po::options_description& desc, DepositOptions& bound);
 dem::Scene deposit_scene(const po::variables_map& vm, const dem::Scene& bound);
 
 // The units of every number deposit's --json summaries hold, drop and spread (common/json_units).
-std::span<const UnitEntry> deposit_units();
+std::span<const bed::UnitEntry> deposit_units();
 
 // The head of deposit's --json summary, the same for a drop (dem::RunSummary) and a spread
 // (dem::SpreadSummary): the bed's size, the run's steps and times, and the contact laws.

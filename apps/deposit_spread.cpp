@@ -437,7 +437,7 @@ std::string spread_summary(const po::variables_map& vm, const dem::SpreadSummary
     for (const auto& l : r.layers) write_json_layer(j, l);
     j.end_array();
     j.value("out", out);
-    write_units(j, deposit_units());
+    bed::write_units(j, deposit_units());
     j.end_object();
     return j.str() + '\n';
   }

@@ -18,7 +18,7 @@
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
-#include "common/json_units.hpp"
+#include "powderbed/bed/json_units.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/h5_output.hpp"
@@ -336,7 +336,7 @@ struct RunReport {
 };
 
 // The units of keff's --json numbers (common/json_units).
-constexpr app::UnitEntry kUnits[] = {
+constexpr bed::UnitEntry kUnits[] = {
     {"k_eff", "W/(m K)"}, {"k_core", "W/(m K)"}, {"core_particles", "1"}, {"core_margin", "m"},
     {"profile_r_squared", "1"}, {"wall_drop_hot", "1"}, {"wall_drop_cold", "1"},
     {"heat_flow_hot", "W"}, {"heat_flow_cold", "W"},
@@ -392,7 +392,7 @@ std::string result_json(const RunReport& run) {
       .value("t_cold", scene.cold_temperature)
       .value("wall_time", run.wall);
   if (!run.profile_path.empty()) j.value("profile", run.profile_path);
-  app::write_units(j, kUnits);
+  bed::write_units(j, kUnits);
   j.end_object();
   return j.str() + '\n';
 }

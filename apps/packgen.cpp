@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 
 #include "common/app_main.hpp"
-#include "common/contact_report.hpp"
-#include "common/json_units.hpp"
+#include "powderbed/bed/contact_report.hpp"
+#include "powderbed/bed/json_units.hpp"
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -130,7 +130,7 @@ void warn_unreached(const packgen::PackOptions& o, const packgen::PackResult& re
                     double density) {
   const std::string target =
       o.count > 0 ? fmt::format("--count {}", o.count)
-                  : fmt::format("--target-density {}", app::tolerance_key(o.target_density));
+                  : fmt::format("--target-density {}", bed::tolerance_key(o.target_density));
   std::cerr << fmt::format("packgen: warning: {} not reached: stopped by the {} rule after {} "
                            "failed placements, {} in a row, with {} particles at density {:g}; "
                            "the bed was written\n",
@@ -139,7 +139,7 @@ void warn_unreached(const packgen::PackOptions& o, const packgen::PackResult& re
 }
 
 // The units of packgen's --json numbers (common/json_units).
-constexpr app::UnitEntry kUnits[] = {
+constexpr bed::UnitEntry kUnits[] = {
     {"n", "1"}, {"density", "1"}, {"coordination", "1"},
     // coordination_by_tol, keyed by the relative tolerance (contact_report.hpp)
     {"1e-06", "1"}, {"0.001", "1"}, {"0.01", "1"},
@@ -160,7 +160,7 @@ void print_json(const packgen::PackResult& result, const packgen::PackOptions& o
   j.value("coordination", by_tol[0].coordination);
   j.begin_object("coordination_by_tol");
   for (std::size_t t = 0; t < by_tol.size(); ++t) {
-    j.value(app::tolerance_key(app::kReportedTolerances[t]), by_tol[t].coordination);
+    j.value(bed::tolerance_key(bed::kReportedTolerances[t]), by_tol[t].coordination);
   }
   j.end_object();
   j.value("rattlers", std::uint64_t{by_tol[0].rattlers});
@@ -181,7 +181,7 @@ void print_json(const packgen::PackResult& result, const packgen::PackOptions& o
   j.value("size_sampling", packgen::size_sampling_name(o.size_sampling));
   j.value("sites", std::uint64_t{result.sites});
   j.value("seed", seed);
-  app::write_units(j, kUnits);
+  bed::write_units(j, kUnits);
   j.end_object();
   std::cout << j.str() << '\n';
 }
@@ -201,7 +201,7 @@ void report(packgen::PackResult& result, const packgen::PackOptions& o, std::uin
   const double density = bed::packing_density(b);
   if (!result.target_reached) warn_unreached(o, result, density);
   const std::vector<bed::ContactStats> by_tol = bed::contact_stats(
-      b, std::vector<double>(std::begin(app::kReportedTolerances), std::end(app::kReportedTolerances)));
+      b, std::vector<double>(std::begin(bed::kReportedTolerances), std::end(bed::kReportedTolerances)));
   if (vm.count("json")) {
     print_json(result, o, density, by_tol, seed);
     return;

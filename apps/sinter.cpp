@@ -20,7 +20,7 @@
 #include "common/options.hpp"
 #include "common/progress.hpp"
 #include "common/threads.hpp"
-#include "common/json_units.hpp"
+#include "powderbed/bed/json_units.hpp"
 #include "sinter_options.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
@@ -45,7 +45,7 @@ const char* const kUsage =
     "[--fuse [--fused-bed BED.h5]] [--json] [--explain]";
 
 // The units of sinter's --json numbers, the run's summary and --explain's (common/json_units).
-constexpr app::UnitEntry kUnits[] = {
+constexpr bed::UnitEntry kUnits[] = {
     // --explain
     {"laser_flux", "W/m^2"}, {"conduction_scale", "1"}, {"conduction_ratio", "1"},
     {"substrate_ratio", "1"}, {"convection_ratio", "1"}, {"radiation_ratio", "1"},
@@ -110,7 +110,7 @@ std::string explain_json(const th::ExplainReport& r) {
       .value("convection_cooling", r.convection_cooling)
       .value("radiation_cooling", r.radiation_cooling)
       .value("text", r.text);
-  app::write_units(j, kUnits);
+  bed::write_units(j, kUnits);
   j.end_object();
   return j.str() + '\n';
 }
@@ -260,7 +260,7 @@ std::string result_json(const po::variables_map& vm, const RunReport& run) {
       .value("layer_height", sinter.surface().layer_height)
       .value("wall_time", run.wall)
       .value("out", run.out);
-  app::write_units(j, kUnits);
+  bed::write_units(j, kUnits);
   j.end_object();
   return j.str() + '\n';
 }

@@ -10,7 +10,7 @@
 #include <utility>
 
 #include "bed_dict.hpp"
-#include "common/bed_report.hpp"
+#include "powderbed/bed/bed_report.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/psd.hpp"
@@ -49,12 +49,12 @@ py::array_t<double> sample_psd(const std::string& spec, std::size_t n, std::uint
   return out;
 }
 
-// bedstat's JSON entry of one bed (apps/common/bed_report.hpp), as text for json.loads.
+// bedstat's JSON entry of one bed (bed/include/powderbed/bed/bed_report.hpp), as text for json.loads.
 std::string stats_json(const py::dict& bed, double tol, std::optional<std::pair<double, double>> layer,
                        std::optional<std::string> psd, std::size_t profile, std::size_t rdf,
                        std::size_t histogram, bool voronoi, std::optional<double> order_margin,
                        const std::string& label) {
-  app::BedRequest req;
+  bed::BedRequest req;
   req.tolerance = tol;
   req.layer = layer;
   if (psd) req.psd = bed::Psd::parse(*psd, "psd");
@@ -66,7 +66,7 @@ std::string stats_json(const py::dict& bed, double tol, std::optional<std::pair<
   bed::Bed b = python::bed_from_dict(bed);
   b.validate(label);
   bed::JsonWriter json;
-  app::write_bed_json(json, app::analyse_bed(std::move(b), label, req), req);
+  bed::write_bed_json(json, bed::analyse_bed(std::move(b), label, req), req);
   return json.str();
 }
 

@@ -1,4 +1,4 @@
-// Every program's --json summary carries "units" (issue 34, common/json_units.hpp): each number of
+// Every program's --json summary carries "units" (issue 34, powderbed/bed/json_units.hpp): each number of
 // the summary (a number, null for a non-finite one, or an array of numbers) has its key in the
 // "units" object, with its SI unit. One test per program, with options that bring out the
 // summary's optional parts (the lid, insertion, fusion, ray tracing, bedstat's statistics).

@@ -1,4 +1,4 @@
-#include "common/spread_report.hpp"
+#include "powderbed/bed/spread_report.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -7,7 +7,7 @@
 
 #include "powderbed/bed/errors.hpp"
 
-namespace powderbed::app {
+namespace powderbed::bed {
 
 namespace {
 
@@ -148,4 +148,4 @@ void write_spread_json(bed::JsonWriter& json, const SpreadReport& s) {
   json.end_object();
 }
 
-}  // namespace powderbed::app
+}  // namespace powderbed::bed

@@ -11,7 +11,7 @@
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/stats_layer.hpp"
 
-namespace powderbed::app {
+namespace powderbed::bed {
 
 // The feed a layer's sizes are tested against: another bed's sizes or a PSD.
 struct SpreadFeed {
@@ -47,4 +47,4 @@ SpreadReport analyse_spread(const bed::Bed& bed, const std::string& file, const 
 // The report as the "spread" object of a bed's JSON entry.
 void write_spread_json(bed::JsonWriter& json, const SpreadReport& s);
 
-}  // namespace powderbed::app
+}  // namespace powderbed::bed

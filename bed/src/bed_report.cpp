@@ -1,4 +1,4 @@
-#include "common/bed_report.hpp"
+#include "powderbed/bed/bed_report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,10 +6,10 @@
 
 #include <fmt/format.h>
 
-#include "common/contact_report.hpp"
+#include "powderbed/bed/contact_report.hpp"
 #include "powderbed/bed/errors.hpp"
 
-namespace powderbed::app {
+namespace powderbed::bed {
 
 namespace {
 
@@ -208,4 +208,4 @@ std::span<const UnitEntry> bed_report_units() {
   return kUnits;
 }
 
-}  // namespace powderbed::app
+}  // namespace powderbed::bed

@@ -8,13 +8,13 @@
 #include <vector>
 
 #include "powderbed/bed/bed.hpp"
-#include "common/json_units.hpp"
+#include "powderbed/bed/json_units.hpp"
 #include "powderbed/bed/json.hpp"
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/stats.hpp"
-#include "common/spread_report.hpp"
+#include "powderbed/bed/spread_report.hpp"
 
-namespace powderbed::app {
+namespace powderbed::bed {
 
 struct BedRequest {
   double tolerance = 1e-6;
@@ -25,7 +25,7 @@ struct BedRequest {
   std::size_t histogram_bins = 0;
   bool voronoi = false;
   std::optional<double> order_margin;  // --order: bond order q6 at --tol, this margin (m)
-  std::optional<SpreadRequest> spread;  // --spread: the layer statistics (common/spread_report.hpp)
+  std::optional<SpreadRequest> spread;  // --spread: the layer statistics (spread_report.hpp)
 };
 
 struct RadiusSummary {
@@ -67,7 +67,7 @@ BedReport analyse_bed(bed::Bed bed, const std::string& file, const BedRequest& r
 void write_bed_json(bed::JsonWriter& json, const BedReport& r, const BedRequest& req);
 
 // The units of every number write_bed_json and write_spread_json write: bedstat's table
-// (common/json_units).
+// (json_units.hpp).
 std::span<const UnitEntry> bed_report_units();
 
-}  // namespace powderbed::app
+}  // namespace powderbed::bed

@@ -9,7 +9,7 @@
 
 #include "powderbed/bed/json.hpp"
 
-namespace powderbed::app {
+namespace powderbed::bed {
 
 struct UnitEntry {
   const char* key;
@@ -21,4 +21,4 @@ struct UnitEntry {
 // inside the summary's top-level object.
 void write_units(bed::JsonWriter& json, std::span<const UnitEntry> table);
 
-}  // namespace powderbed::app
+}  // namespace powderbed::bed

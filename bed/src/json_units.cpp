@@ -1,9 +1,9 @@
-#include "common/json_units.hpp"
+#include "powderbed/bed/json_units.hpp"
 
 #include <string>
 #include <vector>
 
-namespace powderbed::app {
+namespace powderbed::bed {
 
 void write_units(bed::JsonWriter& json, std::span<const UnitEntry> table) {
   const std::vector<std::string> keys = json.numeric_keys();  // a copy: the units add none
@@ -19,4 +19,4 @@ void write_units(bed::JsonWriter& json, std::span<const UnitEntry> table) {
   json.end_object();
 }
 
-}  // namespace powderbed::app
+}  // namespace powderbed::bed

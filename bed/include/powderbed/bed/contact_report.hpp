@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-namespace powderbed::app {
+namespace powderbed::bed {
 
 inline constexpr std::array<double, 3> kReportedTolerances = {1e-6, 1e-3, 1e-2};
 
@@ -15,4 +15,4 @@ inline std::string tolerance_key(double tol) {
   return buf;
 }
 
-}  // namespace powderbed::app
+}  // namespace powderbed::bed
