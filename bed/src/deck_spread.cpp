@@ -15,6 +15,7 @@
 #include "powderbed/bed/deck.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/h5_output.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/bed/temp_files.hpp"
 
 namespace powderbed::bed {
@@ -340,7 +341,7 @@ void lammps_supply(std::ostringstream& out, const Bed& bed, const DeckLaws& laws
   const Domain& d = bed.domain;
   double total = 0, mean_volume = 0;
   for (const auto& [r, w] : s.psd_bins) total += w;
-  for (const auto& [r, w] : s.psd_bins) mean_volume += w / total * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  for (const auto& [r, w] : s.psd_bins) mean_volume += w / total * sphere_volume(r);
   const auto count = s.supply_count > 0 ? s.supply_count
                                         : static_cast<std::size_t>(std::llround(s.supply_volume / mean_volume));
   const double base = d.lower[2] + s.tool.gap - s.layer_thickness;  // + (L - 1) t: RAISE

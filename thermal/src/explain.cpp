@@ -63,7 +63,7 @@ void contact_ratios(const bed::Bed& bed, const std::vector<double>& shape, doubl
   });
   cooling = mean_over_connected(bed, shape, [&](std::size_t i) {
     const double r = bed.radius[i];
-    return t_cool * k * shape[i] / (rho_c * 4.0 / 3.0 * M_PI * r * r * r);
+    return t_cool * k * shape[i] / (rho_c * bed::sphere_volume(r));
   });
 }
 
@@ -134,7 +134,7 @@ ExplainReport scale_numbers(const bed::Bed& bed, const SinterScene& scene, const
   r.absorptance = sinter.absorptance_at(grid.x0 + 0.5 * static_cast<double>(grid.nx - 1) * grid.dx);
   const SpreadCap cap = spherical_cap(bed::sphere_volume(r_mean),
                                       scene.contact_angle * M_PI / 180);
-  r.wetting_time = m.density(t0) * 4.0 / 3.0 * M_PI * r_mean * r_mean * r_mean * c_mean /
+  r.wetting_time = m.density(t0) * bed::sphere_volume(r_mean) * c_mean /
                    (k * conduction_shape_factor(cap.base_radius, cap.centroid_height));
   // Particles that melt with wetting on bridge their molten neighbours (wetting.hpp): after the
   // beam those pairs conduct through necks of the smaller radius, [GZ]'s full-section scale
@@ -142,7 +142,7 @@ ExplainReport scale_numbers(const bed::Bed& bed, const SinterScene& scene, const
   r.bridged = scene.has(kWetting) && n > 0 && r.heating_time < r.dwell_time;
   if (r.bridged) {
     const double neck_shape = M_PI * r_mean / 2;
-    const double held = rho_c * 4.0 / 3.0 * M_PI * r_mean * r_mean * r_mean;  // J/K
+    const double held = rho_c * bed::sphere_volume(r_mean);  // J/K
     r.conduction_cooling = std::max(r.conduction_cooling, r.cooling_time * k * neck_shape / held);
     // and those on the substrate spread into caps, whose time constant is the wetting time.
     if (!sinter.network().substrate.empty() && r.wetting_time > 0)

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/thermal/beer_lambert_laser.hpp"
 #include "powderbed/thermal/contact_conduction.hpp"
 #include "powderbed/thermal/melt_pool.hpp"
@@ -295,7 +296,7 @@ void setup_particles(Sinter::State& s, const bed::Bed& bed) {
   const double rho0 = s.material.density(t0);
   for (std::size_t i = 0; i < n; ++i) {
     const double r = bed.radius[i];
-    s.mass[i] = rho0 * 4.0 / 3.0 * M_PI * r * r * r;
+    s.mass[i] = rho0 * bed::sphere_volume(r);
     s.area[i] = M_PI * r * r;
     s.laser_factor[i] =
         particle_laser_factor(s.scene.absorptivity, s.area[i], s.beta, s.surface.depth[i]);
