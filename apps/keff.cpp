@@ -162,10 +162,8 @@ void set_walls(const po::variables_map& vm, const po::variables_map& command_lin
 kf::ContactCircle contact_circle(const po::variables_map& vm, bool hertz_correction) {
   if (!vm.count("contact.radius"))
     return hertz_correction ? kf::ContactCircle::hertz : kf::ContactCircle::geometric;
-  const std::string word = vm["contact.radius"].as<std::string>();
-  if (word == "hertz") return kf::ContactCircle::hertz;
-  if (word == "geometric") return kf::ContactCircle::geometric;
-  throw InputError(fmt::format("contact.radius: '{}' (accepted: hertz, geometric)", word));
+  return bed::parse_word(vm["contact.radius"].as<std::string>(), "contact.radius",
+                         kf::kContactCircleWords);
 }
 
 // The scene: `bound` (what add_options bound) with the axis, the walls and the models named by
@@ -175,21 +173,11 @@ kf::KeffScene make_scene(const po::variables_map& vm, const po::variables_map& c
   kf::KeffScene s = bound;
   s.axis = axis_index(vm["axis"].as<std::string>());
   set_walls(vm, command_line, s);
-  const std::string model = vm["gas.model"].as<std::string>();
-  if (model != "constant" && model != "air")
-    throw InputError(fmt::format("gas.model: '{}' (accepted: constant, air)", model));
-  s.gas_model = model == "air" ? kf::GasModel::air : kf::GasModel::constant;
-  const std::string region = vm["gas.lens-region"].as<std::string>();
-  if (region != "both-lenses" && region != "larger-lens")
-    throw InputError(
-        fmt::format("gas.lens-region: '{}' (accepted: both-lenses, larger-lens)", region));
-  s.lens.region =
-      region == "larger-lens" ? kf::LensRegion::larger_lens : kf::LensRegion::both_lenses;
-  const std::string radiation = vm["radiation.model"].as<std::string>();
-  if (radiation != "pair" && radiation != "radiosity")
-    throw InputError(fmt::format("radiation.model: '{}' (accepted: pair, radiosity)", radiation));
+  const auto word = [&vm](const char* option) { return vm[option].as<std::string>(); };
+  s.gas_model = bed::parse_word(word("gas.model"), "gas.model", kf::kGasModelWords);
+  s.lens.region = bed::parse_word(word("gas.lens-region"), "gas.lens-region", kf::kLensRegionWords);
   s.radiation_model =
-      radiation == "radiosity" ? kf::RadiationModel::radiosity : kf::RadiationModel::pair;
+      bed::parse_word(word("radiation.model"), "radiation.model", kf::kRadiationModelWords);
   s.contact.circle = contact_circle(vm, s.contact.hertz_correction);
   s.validate();
   return s;

@@ -60,11 +60,8 @@ std::optional<th::Hatch> hatch_of(const po::variables_map& vm, const th::SinterS
   th::Hatch h;
   h.spacing = vm["scan.hatch"].as<double>();
   h.tracks = vm["scan.tracks"].as<std::size_t>();
-  const std::string direction = vm["scan.direction"].as<std::string>();
-  if (direction != "one-way" && direction != "alternating")
-    throw InputError(
-        fmt::format("--scan.direction: '{}' (accepted: one-way, alternating)", direction));
-  h.direction = direction == "one-way" ? th::HatchDirection::one_way : th::HatchDirection::alternating;
+  h.direction = bed::parse_word(vm["scan.direction"].as<std::string>(), "--scan.direction",
+                                th::kHatchDirectionWords);
   h.rotation = vm["scan.rotation"].as<double>();
   if (!std::isfinite(h.rotation))
     throw InputError("--scan.rotation: not a finite number (accepted: degrees, e.g. 67)");
@@ -270,43 +267,20 @@ void set_material(const po::variables_map& vm, th::SinterScene& s) {
   // A name of the shipped materials, or a path (relative: to the scene file's folder too).
   s.material_table =
       material_file(vm["material.table"].as<std::string>(), vm, "material.table");
-  const std::string liquid = vm["material.liquid-conductivity"].as<std::string>();
-  if (liquid != "solid" && liquid != "table")
-    throw InputError(
-        fmt::format("material.liquid-conductivity: '{}' (accepted: solid, table)", liquid));
-  s.liquid_conductivity =
-      liquid == "solid" ? th::LiquidConductivity::solid : th::LiquidConductivity::table;
+  s.liquid_conductivity = bed::parse_word(vm["material.liquid-conductivity"].as<std::string>(),
+                                          "material.liquid-conductivity", th::kLiquidConductivityWords);
 }
 
 // The laser's models: the substrate's shading, the absorption, the rays' reflection (its numbers
 // are bound to the scene).
 void set_laser(const po::variables_map& vm, th::SinterScene& s) {
-  const std::string shading = vm["laser.substrate-shading"].as<std::string>();
-  if (shading != "layer" && shading != "column")
-    throw InputError(
-        fmt::format("laser.substrate-shading: '{}' (accepted: layer, column)", shading));
+  const auto word = [&vm](const char* option) { return vm[option].as<std::string>(); };
   s.substrate_shading =
-      shading == "layer" ? th::SubstrateShading::layer : th::SubstrateShading::column;
-  const std::string absorption = vm["laser.absorption"].as<std::string>();
-  if (absorption != "beer-lambert" && absorption != "ray-trace")
-    throw InputError(
-        fmt::format("laser.absorption: '{}' (accepted: beer-lambert, ray-trace)", absorption));
-  s.absorption = absorption == "ray-trace" ? th::LaserAbsorption::ray_trace
-                                           : th::LaserAbsorption::beer_lambert;
-  const std::string reflection = vm["laser.reflection"].as<std::string>();
-  if (reflection == "specular")
-    s.rays.reflection = th::Reflection::specular;
-  else if (reflection == "diffuse")
-    s.rays.reflection = th::Reflection::diffuse;
-  else if (reflection == "rough")
-    s.rays.reflection = th::Reflection::rough;
-  else
-    throw InputError(fmt::format(
-        "laser.reflection: '{}' (accepted: specular, diffuse, rough)", reflection));
-  const std::string optics = vm["laser.optics"].as<std::string>();
-  if (optics != "fresnel" && optics != "constant")
-    throw InputError(fmt::format("laser.optics: '{}' (accepted: fresnel, constant)", optics));
-  s.optics = optics == "fresnel" ? th::Optics::fresnel : th::Optics::constant;
+      bed::parse_word(word("laser.substrate-shading"), "laser.substrate-shading", th::kShadingWords);
+  s.absorption = bed::parse_word(word("laser.absorption"), "laser.absorption", th::kAbsorptionWords);
+  s.rays.reflection =
+      bed::parse_word(word("laser.reflection"), "laser.reflection", th::kReflectionWords);
+  s.optics = bed::parse_word(word("laser.optics"), "laser.optics", th::kOpticsWords);
 }
 
 // The substrate's nodes (--grid-spacing: from the bed's x-y extent lx, ly and its depth).
@@ -331,12 +305,8 @@ void set_grid(const po::variables_map& vm, double lx, double ly, th::SinterScene
 
 // The integrator, and --dt checked when given (the steps and the end of the run are bound).
 void set_time(const po::variables_map& vm, th::SinterScene& s) {
-  const std::string integrator = vm["integrator"].as<std::string>();
-  if (integrator != "explicit" && integrator != "implicit")
-    throw InputError(
-        fmt::format("--integrator: '{}' (accepted: explicit, implicit)", integrator));
-  s.integrator = integrator == "explicit" ? th::Integrator::explicit_euler
-                                          : th::Integrator::implicit_euler;
+  s.integrator = bed::parse_word(vm["integrator"].as<std::string>(), "--integrator",
+                                 th::kIntegratorWords);
   if (vm.count("dt") && !(s.dt > 0))
     throw InputError(fmt::format("--dt: {:f} (accepted: dt > 0 s)", s.dt));
 }

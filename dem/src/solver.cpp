@@ -31,9 +31,7 @@
 namespace powderbed::dem {
 
 Integrator parse_integrator(const std::string& text, const std::string& option) {
-  if (text == "verlet") return Integrator::verlet;
-  if (text == "rk4") return Integrator::rk4;
-  throw InputError(option + ": '" + text + "' is not an integrator (accepted: verlet, rk4)");
+  return bed::parse_word(text, option, kIntegratorWords, "an integrator");
 }
 
 std::size_t remove_lost_particles(bed::Bed& bed) {

@@ -31,9 +31,7 @@
 namespace powderbed::dem {
 
 ToolShape parse_tool_shape(const std::string& text, const std::string& option) {
-  if (text == "blade") return ToolShape::blade;
-  if (text == "roller") return ToolShape::roller;
-  throw InputError(option + ": '" + text + "' is not a recoater tool (accepted: blade, roller)");
+  return bed::parse_word(text, option, kToolShapeWords, "a recoater tool");
 }
 
 namespace {

@@ -10,10 +10,13 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include "powderbed/bed/option_words.hpp"
 
 namespace powderbed::dem {
 
 enum class ToolShape { blade, roller };
+inline constexpr bed::OptionWord<ToolShape> kToolShapeWords[] = {{"blade", ToolShape::blade},
+                                                              {"roller", ToolShape::roller}};
 // "blade" | "roller"; throws InputError naming `option` otherwise.
 ToolShape parse_tool_shape(const std::string& text, const std::string& option = "recoater.tool");
 

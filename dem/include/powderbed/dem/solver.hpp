@@ -7,10 +7,13 @@
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/scene.hpp"
+#include "powderbed/bed/option_words.hpp"
 
 namespace powderbed::dem {
 
 enum class Integrator { verlet, rk4 };
+inline constexpr bed::OptionWord<Integrator> kIntegratorWords[] = {{"verlet", Integrator::verlet},
+                                                                {"rk4", Integrator::rk4}};
 // "verlet" | "rk4"; throws InputError naming `option` otherwise.
 Integrator parse_integrator(const std::string& text, const std::string& option = "--integrator");
 

@@ -16,6 +16,8 @@
 // integrand du/dl is smooth and slowly varying (≈ 2R* near contact, where the original integrand
 // peaks like 1/l), so fixed Gauss–Legendre converges geometrically; kGasLensNodes points reach
 // round-off against a 2e6-point midpoint reference (tests/keff/test_gas.cpp).
+#include "powderbed/bed/option_words.hpp"
+
 namespace powderbed::keff {
 
 inline constexpr int kGasLensNodes = 32;
@@ -24,6 +26,8 @@ enum class LensRegion {
   both_lenses,  // out to the circle where the two lenses intersect
   larger_lens,  // out to where the larger particle's lens meets the smaller particle (MFiX)
 };
+inline constexpr bed::OptionWord<LensRegion> kLensRegionWords[] = {
+    {"both-lenses", LensRegion::both_lenses}, {"larger-lens", LensRegion::larger_lens}};
 
 struct GasLensParams {
   double lens = 0.2;       // lens thickness over the particle radius

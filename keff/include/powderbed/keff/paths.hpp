@@ -6,6 +6,7 @@
 
 #include "powderbed/bed/contact_geometry.hpp"
 #include "powderbed/bed/softening.hpp"
+#include "powderbed/bed/option_words.hpp"
 
 namespace powderbed::keff {
 
@@ -42,6 +43,8 @@ enum class BedContactLaw { hertz, linear };
 //   radius. This is what MFiX's DES conduction, which [KE] ran, takes (at its corrected
 //   overlap). A wall is the limit r_j → ∞ of both: √(r δ) and √(2 r δ − δ²).
 enum class ContactCircle { hertz, geometric };
+inline constexpr bed::OptionWord<ContactCircle> kContactCircleWords[] = {
+    {"hertz", ContactCircle::hertz}, {"geometric", ContactCircle::geometric}};
 
 // How a contact radius is taken from the bed's geometry.
 struct ContactRadiusParams {

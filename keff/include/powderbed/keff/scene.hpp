@@ -10,16 +10,21 @@
 
 #include "powderbed/keff/gas_lens.hpp"
 #include "powderbed/keff/paths.hpp"
+#include "powderbed/bed/option_words.hpp"
 
 namespace powderbed::keff {
 
 // constant: k_g as given; air: the [KE] polynomial of docs/physics.md §6, each gas link at the mean
 // temperature of its two ends (the network is then nonlinear and solved by Newton).
 enum class GasModel { constant, air };
+inline constexpr bed::OptionWord<GasModel> kGasModelWords[] = {{"constant", GasModel::constant},
+                                                              {"air", GasModel::air}};
 
 // pair: docs/physics.md §6's formula, one link per pair carrying both surface resistances; radiosity:
 // the grey enclosure's network, one radiosity node per surface (radiation.hpp).
 enum class RadiationModel { pair, radiosity };
+inline constexpr bed::OptionWord<RadiationModel> kRadiationModelWords[] = {
+    {"pair", RadiationModel::pair}, {"radiosity", RadiationModel::radiosity}};
 
 // What the command line or scene says about how the bed was made; each given value must agree
 // with the bed's provenance (bed::ContactProvenance). `young` is different: the particles'

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "powderbed/bed/option_words.hpp"
+
 namespace powderbed::thermal {
 
 // The property table of a material file (bed/material_file.hpp: columns temperature_K,
@@ -28,6 +30,8 @@ struct PhaseChange {
 };
 
 enum class LiquidConductivity { solid, table };  // [GZ] keep the solid value in the liquid
+inline constexpr bed::OptionWord<LiquidConductivity> kLiquidConductivityWords[] = {
+    {"solid", LiquidConductivity::solid}, {"table", LiquidConductivity::table}};
 
 // Properties as functions of temperature. Solid: the table interpolated linearly, held at the
 // first row below it, extrapolated linearly from the last two rows up to `hold_from`, constant

@@ -28,6 +28,7 @@
 #include <memory>
 #include <vector>
 
+#include "powderbed/bed/option_words.hpp"
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/thermal/substrate.hpp"
 
@@ -39,11 +40,15 @@ namespace powderbed::thermal {
 // (gas-atomised spheres, smooth to the beam as in Boley et al. 2015) and molten surfaces
 // (smoothed by surface tension) are mirrors.
 enum class Reflection { specular, diffuse, rough };
+inline constexpr bed::OptionWord<Reflection> kReflectionWords[] = {
+    {"specular", Reflection::specular}, {"diffuse", Reflection::diffuse}, {"rough", Reflection::rough}};
 
 // How a surface absorbs: `constant`, one absorptivity per phase; `fresnel`, the Fresnel
 // absorptance (fresnel_absorptance.hpp) of the phase's complex refractive index at the angle
 // of incidence.
 enum class Optics { constant, fresnel };
+inline constexpr bed::OptionWord<Optics> kOpticsWords[] = {{"fresnel", Optics::fresnel},
+                                                          {"constant", Optics::constant}};
 struct SurfaceOptics {
   Optics model = Optics::constant;
   double alpha[2] = {0.33, 0.33};  // constant: solid, liquid

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "powderbed/bed/option_words.hpp"
+
 namespace powderbed::thermal {
 
 struct ScanSegment {
@@ -23,6 +25,8 @@ struct ScanSegment {
 };
 
 enum class HatchDirection { one_way, alternating };
+inline constexpr bed::OptionWord<HatchDirection> kHatchDirectionWords[] = {
+    {"one-way", HatchDirection::one_way}, {"alternating", HatchDirection::alternating}};
 
 struct Hatch {
   double spacing = 0;          // h between track centre lines, m

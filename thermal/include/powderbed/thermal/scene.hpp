@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "powderbed/bed/option_words.hpp"
 #include "powderbed/thermal/material.hpp"
 #include "powderbed/thermal/ray_traced_laser.hpp"
 #include "powderbed/thermal/scan_path.hpp"
@@ -55,16 +56,22 @@ constexpr unsigned kAllSinterEffects = (1u << 9) - 1;
 constexpr unsigned kProcessEffects = kWetting | kEvaporation | kDepression;
 
 enum class Integrator { explicit_euler, implicit_euler };
+inline constexpr bed::OptionWord<Integrator> kIntegratorWords[] = {
+    {"explicit", Integrator::explicit_euler}, {"implicit", Integrator::implicit_euler}};
 
 // How the laser's power is split over the bed: `beer_lambert` (docs/physics.md §5: I0 exp(-beta z) on
 // each particle's projected area, Gusarov's beta, and what passes the powder onto the
 // substrate) or `ray_trace` (rays on the bed's own spheres, ray_traced_laser.hpp).
 enum class LaserAbsorption { beer_lambert, ray_trace };
+inline constexpr bed::OptionWord<LaserAbsorption> kAbsorptionWords[] = {
+    {"beer-lambert", LaserAbsorption::beer_lambert}, {"ray-trace", LaserAbsorption::ray_trace}};
 
 // What the laser crosses before it reaches the substrate (docs/physics.md §5 writes exp(-beta H_layer)):
 // `layer`: the bed's layer height everywhere; `column`: the height of the bed above each top
 // node from the height map (bare spots between particles get the full beam).
 enum class SubstrateShading { layer, column };
+inline constexpr bed::OptionWord<SubstrateShading> kShadingWords[] = {
+    {"layer", SubstrateShading::layer}, {"column", SubstrateShading::column}};
 
 struct SinterScene {
   // Material ([GZ] Tables 1–2).
