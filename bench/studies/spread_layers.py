@@ -63,6 +63,14 @@ SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
 MARKER = "<!-- discussion: kept when the script rewrites this page -->"
 
 
+def supply_text(scene):
+    """The supply of a layer as the scene gives it: a count of particles, or a dosed volume
+    (supply.volume > 0 replaces the count; docs/deposit-spread.md)."""
+    volume = float(scene.options["supply.volume"])
+    return (f"{volume:.3g} m^3 of powder" if volume > 0
+            else f"{scene.options['supply.count']} particles")
+
+
 def last_bed(work, layers):
     """The number of the last layer bed L-K.h5 in work (0 when there is none)."""
     k = 0
@@ -288,7 +296,7 @@ def header(args, scene, rows, summaries, runs, load_before):
         f"`{cmd}` (method in the script's docstring): `{shown_path(args.scene)}`, strip "
         f"{scene.lx * 1e3:g} x {scene.ly * 1e3:g} mm periodic in y, box {scene.lz * 1e3:g} mm tall, "
         f"gap {scene.gap * 1e6:.0f} um, {scene.speed * 1e3:.0f} mm/s, layer thickness {t * 1e6:.0f} um, "
-        f"supply {scene.options.get('supply.count', '?')} particles a layer, young-scale "
+        f"supply {supply_text(scene)} a layer, young-scale "
         f"{scene.young_scale:g}, powder more than {depth * 1e6:.0f} um below the tool frozen; "
         f"{len(rows)} of {args.layers} layers, seed {args.seed}, one thread; "
         f"{total:.0f} s of wall time in all"
