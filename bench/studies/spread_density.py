@@ -12,7 +12,8 @@ measures it: `bedstat L.h5 --spread --window X0,X1 --json` (the solid fraction b
 and the gap the bed records, over the strip the blade leaves behind it less 10 % at each end).
 The variants change one thing from the scene (its header says where each value comes from):
 sliding and rolling friction, the blade's speed, the gas drag, the gap, the softening of the
-contacts (Young's modulus 1e3 and 1e2 times softer instead of the scene's 1e4), the supply (twice the
+contacts (Young's modulus 1e3 and 1e2 times softer instead of the scene's 1e4), the contacts'
+damping ratio (0.3 and 0.6 instead of 0.1: restitution from ~0.7 down to ~0.1), the supply (twice the
 particles at the same number density, a dosing twice the scene's), and the tool's shape: a thin
 blade (50 µm), a blade whose bottom is a half cylinder (edge radius = half its 200 µm thickness,
 no flat face to shear the gap's particles along), and a roller, which is
@@ -64,6 +65,8 @@ VARIANTS = [
      SUPPLY_TWICE + ["--recoater.edge-radius", "100e-6"], [1, 2]),
     ("roller", "roller (spread-roller.ini: R 0.5 mm, ωR = 0.1 m/s counter-rotating)", ROLLER,
      [], [1, 2]),
+    ("damping0.3", "damping ratio 0.3 (the scene: 0.1)", SCENE, ["--material.damping", "0.3"], [1]),
+    ("damping0.6", "damping ratio 0.6 (the scene: 0.1)", SCENE, ["--material.damping", "0.6"], [1]),
     ("stiff1e3", "Young's modulus softened 1e3 times (the scene: 1e4)", SCENE,
      ["--young-scale", "1e3"], [1]),
     ("stiff1e2", "Young's modulus softened 1e2 times (the scene: 1e4)", SCENE,
@@ -196,7 +199,9 @@ def page(runs, batches):
         f"The softening. Young's modulus 1e3 and 1e2 times softer (the scene's: 1e4) leaves "
         f"{span('stiff1e3')} and {span('stiff1e2')} with seed 1, within the scene's seeds "
         f"({min(scene):.3f}-{max(scene):.3f}): the contacts' stiffness, and with it the time "
-        "step the softening buys, is not what empties the layer either.",
+        "step the softening buys, is not what empties the layer either. Nor is the restitution: "
+        f"a damping ratio of 0.3 or 0.6 (the scene's: 0.1) leaves {span('damping0.3')} and "
+        f"{span('damping0.6')}.",
         "",
         "A flat plate under a gap of a few D90 is not the bed the measured values come "
         "from: in a machine the blade spreads into a recess over earlier powder. A rough solid "
