@@ -24,11 +24,10 @@ struct OptionWord {
 template <class E, std::size_t N>
 E parse_word(std::string_view text, std::string_view option, const OptionWord<E> (&words)[N],
              std::string_view what = {}) {
-  std::string accepted;
-  for (const OptionWord<E>& w : words) {
+  for (const OptionWord<E>& w : words)
     if (w.text == text) return w.value;
-    accepted += (accepted.empty() ? "" : ", ") + std::string(w.text);
-  }
+  std::string accepted;
+  for (const OptionWord<E>& w : words) accepted += (accepted.empty() ? "" : ", ") + std::string(w.text);
   const std::string is_not = what.empty() ? "" : fmt::format(" is not {}", what);
   throw InputError(fmt::format("{}: '{}'{} (accepted: {})", option, text, is_not, accepted));
 }
