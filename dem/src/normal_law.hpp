@@ -6,6 +6,7 @@
 
 #include "powderbed/dem/hertz_normal.hpp"
 #include "powderbed/dem/linear_normal.hpp"
+#include "powderbed/dem/mindlin_tangential.hpp"
 
 namespace powderbed::dem::detail {
 
@@ -37,6 +38,16 @@ struct HertzLaw {
   }
   // |F_n| of the friction law: the Hertz force is clamped, never negative.
   static double normal_magnitude(double force) { return force; }
+  // The powers of the overlap that the tangential and rolling springs and dashpots carry
+  // (contact_model.hpp ContactConstants): delta^{1/2} and delta^{1/4}.
+  static double root(double delta) { return std::sqrt(delta); }
+  static double quarter(double root) { return std::sqrt(root); }
+  // Mindlin's k_t / delta^{1/2} = 8 G* sqrt(R*) (mindlin_tangential.hpp).
+  static double shear_constant(double g_star, double reduced_radius, double) {
+    return mindlin_stiffness_constant(g_star, reduced_radius);
+  }
+  // k_n / delta^{1/2} = 2 E* sqrt(R*), 3/2 of the constant a = 4/3 E* sqrt(R*).
+  static double stiffness_constant(const NormalConstants& c, double) { return 1.5 * c.elastic; }
 };
 
 struct LinearLaw {
@@ -52,6 +63,13 @@ struct LinearLaw {
   }
   // The unclamped dashpot may pull at the end of a contact; friction takes |F_n| (as MFiX).
   static double normal_magnitude(double force) { return std::abs(force); }
+  // Constant springs: the overlap's powers are 1.
+  static double root(double) { return 1.0; }
+  static double quarter(double) { return 1.0; }
+  // k_t = 2/7 k_n: the ratio that gives a sphere's tangential and normal oscillations one
+  // frequency (Schaefer, Dippel & Wolf 1996).
+  static double shear_constant(double, double, double stiffness) { return 2.0 / 7.0 * stiffness; }
+  static double stiffness_constant(const NormalConstants&, double stiffness) { return stiffness; }
 };
 
 }  // namespace powderbed::dem::detail

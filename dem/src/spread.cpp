@@ -12,20 +12,18 @@
 #include <unordered_set>
 
 #include "box.hpp"
+#include "contact_model.hpp"
 #include "flush_subnormals.hpp"
 #include "lane_tests.hpp"
 #include "neighbour_list.hpp"
-#include "powderbed/bed/critical_damping.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
+#include "powderbed/dem/fines_scaling.hpp"
 #include "powderbed/dem/hertz_normal.hpp"
-#include "powderbed/dem/linear_normal.hpp"
 #include "powderbed/dem/mindlin_tangential.hpp"
 #include "powderbed/dem/rolling_resistance.hpp"
-#include "powderbed/dem/sliding_friction.hpp"
 #include "powderbed/dem/stokes_drag.hpp"
-#include "powderbed/dem/tangential_history.hpp"
 #include "powderbed/dem/time_step.hpp"
 
 namespace powderbed::dem {
@@ -37,6 +35,10 @@ ToolShape parse_tool_shape(const std::string& text, const std::string& option) {
 namespace {
 
 using detail::Box;
+using detail::ContactConstants;
+using detail::ContactForce;
+using detail::ContactPartners;
+using detail::kContactHistory;
 using detail::BranchFreeWrap;
 using detail::NeighbourList;
 using detail::ParticleView;
@@ -51,131 +53,12 @@ double largest_radius(const bed::Bed& b) {
 
 // The walls a particle may touch, each with its own contact history.
 enum WallSlot { kPlate, kTool, kXLow, kXHigh, kYLow, kYHigh, kTop, kWallSlots };
-constexpr std::size_t kHistory = 6;  // F_s (3 values), then M_r (3)
-
-// The contact laws as the scene chose them, fixed for the run.
-struct Model {
-  bool linear = false;
-  bool damping = false;
-  bool friction = false;
-  bool history = false;  // friction.model = history (else sliding)
-  double mu = 0, mu_r = 0, zeta = 0, dt = 0;
-  SlidingFrictionParams sliding;
-};
-
-// One contact's constants (per neighbour pair at a list build; per particle for the walls), each
-// the factor that multiplies a power of the overlap: for Hertz, F_n = a delta^{3/2} +
-// b delta^{1/4} delta' (hertz_pair_constants), k_t = `shear` delta^{1/2} with shear =
-// 8 G* sqrt(R*) (Mindlin), gamma_t = 2 zeta sqrt(m* k_t) = `shear_damping` delta^{1/4}, k_r =
-// `rolling` delta^{1/2} (rolling_stiffness of k_n = 2 E* sqrt(R* delta)) and C_r =
-// 2 zeta sqrt(I_r k_r) = `rolling_damping` delta^{1/4}; for the linear law the same names hold
-// the constants themselves (k_n, c, k_t = 2/7 k_n: the ratio that gives a sphere's tangential
-// and normal oscillations one frequency, Schaefer, Dippel & Wolf 1996). Taken out once, so a
-// contact needs two roots of the overlap, not eight. Damping off: the damping factors are 0.
-struct Constants {
-  double reduced_radius = 0;
-  double elastic = 0, damping = 0;
-  double shear = 0, shear_damping = 0;
-  double rolling = 0, rolling_damping = 0;
-};
-
-// reduced_radius, reduced_mass and rolling_inertia (I_r of rolling_resistance.hpp) of the pair
-// or of a particle against a wall.
-Constants make_constants(const Model& m, double e_star, double g_star, double stiffness,
-                         double reduced_radius, double reduced_mass, double rolling_inertia) {
-  Constants c;
-  const double zeta = m.damping ? m.zeta : 0.0;
-  c.reduced_radius = reduced_radius;
-  double normal_stiffness;  // k_n (linear) or k_n / delta^{1/2} (Hertz)
-  if (m.linear) {
-    const LinearPairConstants l = linear_pair_constants({stiffness, zeta}, reduced_mass);
-    c.elastic = l.stiffness;
-    c.damping = l.damping;
-    c.shear = 2.0 / 7.0 * stiffness;
-    normal_stiffness = stiffness;
-  } else {
-    const HertzPairConstants h = hertz_pair_constants({e_star, zeta}, reduced_radius, reduced_mass);
-    c.elastic = h.elastic;
-    c.damping = h.damping;
-    c.shear = mindlin_stiffness_constant(g_star, reduced_radius);
-    normal_stiffness = 1.5 * h.elastic;  // 2 E* sqrt(R*)
-  }
-  c.shear_damping = bed::critical_damping(zeta, reduced_mass, c.shear);
-  c.rolling = rolling_stiffness(m.mu_r, reduced_radius, normal_stiffness);
-  c.rolling_damping = bed::critical_damping(zeta, rolling_inertia, c.rolling);
-  return c;
-}
-
-inline void cross(const double a[3], const double b[3], double out[3]) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-// What one contact gives: the force on i (the partner gets -f) and the torques on both.
-struct ContactForce {
-  double f[3], ti[3], tj[3];
-};
-
-// The contact of i with its partner (a particle or a wall) at overlap delta along the unit
-// normal n from i towards the partner: the normal law, friction at the contact point (arms
-// arm_i, arm_j from the centres) and rolling resistance. dv = v_i - v_partner (a wall: the
-// velocity of its surface at the contact point), w_i, w_j the angular velocities (a wall: 0).
-// `h` is the contact's history (F_s, M_r).
-void contact(const Model& m, const Constants& k, double delta, const double n[3],
-             const double dv[3], const double wi[3], const double wj[3], double arm_i,
-             double arm_j, double* h, bool update, ContactForce& out) {
-  const double rate = dv[0] * n[0] + dv[1] * n[1] + dv[2] * n[2];  // > 0 closing
-  // The normal law's kernels at the constants of the list build: Hertz never pulls, the linear
-  // dashpot may.
-  const double fn = m.linear ? linear_damped_force(LinearPairConstants{k.elastic, k.damping}, delta, rate)
-                             : hertz_damped_force(HertzPairConstants{k.elastic, k.damping}, delta, rate);
-  const double root = m.linear ? 1.0 : std::sqrt(delta);  // the powers of Constants, for k_t and k_r
-  const double quarter = m.linear ? 1.0 : std::sqrt(root);
-  const double load = std::abs(fn);  // friction takes |F_n|
-  for (int a = 0; a < 3; ++a) {
-    out.f[a] = -fn * n[a];
-    out.ti[a] = 0;
-    out.tj[a] = 0;
-  }
-  if (m.friction) {
-    double w[3], spin[3];
-    for (int a = 0; a < 3; ++a) w[a] = arm_i * wi[a] + arm_j * wj[a];
-    cross(w, n, spin);
-    double vt[3];
-    const double vn = rate + spin[0] * n[0] + spin[1] * n[1] + spin[2] * n[2];
-    for (int a = 0; a < 3; ++a) vt[a] = dv[a] + spin[a] - vn * n[a];
-    double ft[3];
-    if (m.history) {
-      rotate_onto_tangent_plane(h, n);
-      const TangentialSpring spring{k.shear * root, k.shear_damping * quarter};
-      tangential_history_force(spring, m.mu, load, vt, m.dt, update, h, ft);
-    } else {
-      sliding_friction_force(m.sliding, load, vt[0], vt[1], vt[2], ft);
-    }
-    double arm_n[3] = {arm_i * n[0], arm_i * n[1], arm_i * n[2]};
-    cross(arm_n, ft, out.ti);
-    for (int a = 0; a < 3; ++a) arm_n[a] = arm_j * n[a];
-    cross(arm_n, ft, out.tj);
-    for (int a = 0; a < 3; ++a) out.f[a] += ft[a];
-  }
-  if (m.mu_r > 0) {
-    const double wr[3] = {wi[0] - wj[0], wi[1] - wj[1], wi[2] - wj[2]};
-    double mr[3];
-    const RollingSpring spring{k.rolling * root, k.rolling_damping * quarter};
-    rolling_resistance_torque(spring, m.mu_r, k.reduced_radius, load, n, wr, m.dt, update, h + 3, mr);
-    for (int a = 0; a < 3; ++a) {
-      out.ti[a] += mr[a];
-      out.tj[a] -= mr[a];
-    }
-  }
-}
 
 // The contacts of the last force evaluation, in pair order (owner index ascending): what a
 // neighbour-list build, a new layer or a restart carries over.
 struct ActiveContacts {
   std::vector<std::uint32_t> i, j;
-  std::vector<double> h;  // kHistory per contact
+  std::vector<double> h;  // kContactHistory per contact
 };
 
 // The particles of `b` in the order of the cells of side `cell` they lie in (x fastest, then y,
@@ -224,7 +107,7 @@ struct DriftConstants {
 };
 
 // Run::start_step's first pass over particles [0, count): v += h F / m, x += dt v (wrapped),
-// F = m g - c v (gravity and Stokes drag, stokes_drag.hpp), T = 0. A free function because GCC 12
+// F = m_weight g - c v (gravity and Stokes drag, stokes_drag.hpp), T = 0. A free function because GCC 12
 // honours __restrict on parameters only: without it the loop over fifteen arrays needs more
 // aliasing checks than GCC makes and runs one particle at a time. Non-zero when a velocity is
 // not finite.
@@ -232,7 +115,7 @@ std::uint64_t kick_drift(std::size_t count, const DriftConstants k, double* __re
                          double* __restrict z, double* __restrict vx, double* __restrict vy, double* __restrict vz,
                          double* __restrict ax, double* __restrict ay, double* __restrict az, double* __restrict mx,
                          double* __restrict my, double* __restrict mz, const double* __restrict inv,
-                         const double* __restrict m, const double* __restrict c) {
+                         const double* __restrict weight, const double* __restrict c) {
   std::uint64_t bad = 0;
   for (std::size_t i = 0; i < count; ++i) {
     const double vxi = vx[i] + k.h * ax[i] * inv[i], vyi = vy[i] + k.h * ay[i] * inv[i],
@@ -244,9 +127,9 @@ std::uint64_t kick_drift(std::size_t count, const DriftConstants k, double* __re
     y[i] = k.wrap(1, y[i] + k.dt * vyi);
     z[i] += k.dt * vzi;
     bad |= non_finite_bit(std::abs(vxi) + std::abs(vyi) + std::abs(vzi));
-    ax[i] = m[i] * k.g[0] - c[i] * vxi;
-    ay[i] = m[i] * k.g[1] - c[i] * vyi;
-    az[i] = m[i] * k.g[2] - c[i] * vzi;
+    ax[i] = weight[i] * k.g[0] - c[i] * vxi;
+    ay[i] = weight[i] * k.g[1] - c[i] * vyi;
+    az[i] = weight[i] * k.g[2] - c[i] * vzi;
     mx[i] = my[i] = mz[i] = 0;
   }
   return bad;
@@ -257,12 +140,18 @@ struct Run {
   bed::Bed& bed;
   const Scene& scene;
   const SpreadSettings& settings;
-  Model model;
+  detail::ContactModel model;
   Box box;
   double dt = 0;
   double g[3] = {0, 0, 0};
-  double e_pair = 0, e_wall = 0, g_pair = 0, g_wall = 0;
-  std::vector<double> mass, inv_mass, inv_inertia, drag, wx, wy, wz, fx, fy, fz, tx, ty, tz;
+  ContactModuli moduli;  // the scene's, softened (contact_moduli.hpp)
+  // `weight` is the mass gravity acts on and the kinetic energy counts, `mass` the inertial one:
+  // they differ for the fines under mass scaling (fines_scaling.hpp, docs/physics.md §4
+  // "Fines"), which also scales the rotational inertia.
+  std::vector<double> weight, mass, inv_mass, inv_inertia, drag, wx, wy, wz, fx, fy, fz, tx, ty, tz;
+  // Per particle E under fines stiffness scaling, from which its contacts take E* and G*; empty
+  // without it (every contact has the scene's moduli).
+  std::vector<double> young;
   // Particles [0, moving) are integrated; the others are frozen (SpreadSettings::freeze_depth):
   // they keep their places, act on the moving ones' contacts as fixed spheres, and their own
   // force arrays collect those contacts' reactions, which nothing reads.
@@ -273,18 +162,18 @@ struct Run {
   // pass through such a particle without a force: sound freezing counts none (LayerSummary).
   std::vector<std::uint32_t> frozen_in_reach;
   std::uint64_t frozen_tool_contacts = 0;
-  std::vector<double> wall_history;   // kWallSlots * kHistory per particle
+  std::vector<double> wall_history;   // kWallSlots * kContactHistory per particle
   // Per particle, bit `slot` set when that wall's history may be non-zero: a wall out of reach
   // (most walls, most steps) then costs a test, not the write of its six zeros.
   std::vector<std::uint8_t> wall_touch;
-  std::vector<Constants> wall;        // per particle
+  std::vector<ContactConstants> wall;        // per particle
   std::vector<std::uint32_t> near_walls, near_tool;  // find_wall_candidates, at each prune
   NeighbourList list;
   double prune_margin = 0;            // NeighbourList::prune's, m (Spreader sets it with the skin)
-  std::vector<Constants> pair;        // per list entry, made when it comes into contact
+  std::vector<ContactConstants> pair;        // per list entry, made when it comes into contact
   std::vector<double> pair_reach;     // per list entry: r_i + r_j (apart from `pair`: every
                                       // entry's is read every step, the rest only in contact)
-  std::vector<double> pair_history;   // kHistory per list entry
+  std::vector<double> pair_history;   // kContactHistory per list entry
   std::vector<std::uint8_t> touching; // per list entry: in contact at the last evaluation
   bed::HeightMap floor;               // the solid under the powder (empty: the flat plate)
   // The floor's highest and lowest node within reach of a sphere's footprint around each node
@@ -327,23 +216,38 @@ struct Run {
   std::size_t n() const { return bed.n(); }
   ParticleView view() const { return {bed.x.data(), bed.y.data(), bed.z.data(), bed.radius.data(), n()}; }
 
+  // Particle i against a wall: R* = r, m* = m, I_r = 7/5 m r^2 (rolling_resistance.hpp), and the
+  // wall's E* and G* with the scene's E or, for stiffness-scaled fines, the particle's own.
+  ContactPartners wall_partners(std::size_t i) const {
+    const double r = bed.radius[i];
+    ContactPartners p{moduli.wall, moduli.wall_shear, scene.stiffness, r, mass[i], 1.4 * mass[i] * r * r};
+    if (!young.empty()) {
+      const double nu = scene.material.poisson, wall_nu = scene.wall.poisson;
+      p.e_star = effective_modulus(young[i], nu, moduli.wall_young, wall_nu);
+      p.g_star = effective_shear_modulus(young[i], nu, moduli.wall_young, wall_nu);
+    }
+    return p;
+  }
+
   // Per-particle arrays for particles appended since the last call (masses, zero rotation and
   // wall history, wall constants).
   void grow() {
     const std::size_t old = mass.size(), count = n();
-    for (auto* v : {&mass, &inv_mass, &inv_inertia, &drag, &fx, &fy, &fz, &tx, &ty, &tz}) v->resize(count);
+    for (auto* v : {&weight, &mass, &inv_mass, &inv_inertia, &drag, &fx, &fy, &fz, &tx, &ty, &tz}) v->resize(count);
+    if (scene.fines.scaling == FinesScaling::stiffness) young.resize(count);
     for (auto* v : {&wx, &wy, &wz}) v->resize(count, 0.0);
-    wall_history.resize(count * kWallSlots * kHistory, 0.0);
+    wall_history.resize(count * kWallSlots * kContactHistory, 0.0);
     wall_touch.resize(count, 0);
     wall.resize(count);
     for (std::size_t i = old; i < count; ++i) {
       const double r = bed.radius[i];
-      mass[i] = bed::sphere_volume(r) * scene.material.density;
+      weight[i] = bed::sphere_volume(r) * scene.material.density;
+      mass[i] = weight[i] * fines_mass_factor(scene.fines, r);
       inv_mass[i] = 1.0 / mass[i];
       inv_inertia[i] = 1.0 / (0.4 * mass[i] * r * r);  // solid sphere, 2/5 m r^2
       drag[i] = scene.has(kDrag) ? stokes_drag_coefficient({scene.fluid_viscosity}, r) : 0.0;
-      // Against a wall: R* = r, m* = m, I_r = 7/5 m r^2 (rolling_resistance.hpp).
-      wall[i] = make_constants(model, e_wall, g_wall, scene.stiffness, r, mass[i], 1.4 * mass[i] * r * r);
+      if (!young.empty()) young[i] = moduli.young * fines_stiffness_factor(scene.fines, r);
+      wall[i] = model.constants(model.coefficients, wall_partners(i));
     }
     moving = count;  // until the next layer's start freezes some (sort_by_cell)
   }
@@ -384,8 +288,8 @@ struct Run {
       if (!touching[k]) continue;
       a.i.push_back(owner[k]);
       a.j.push_back(partner[k]);
-      a.h.insert(a.h.end(), pair_history.begin() + static_cast<std::ptrdiff_t>(k * kHistory),
-                 pair_history.begin() + static_cast<std::ptrdiff_t>((k + 1) * kHistory));
+      a.h.insert(a.h.end(), pair_history.begin() + static_cast<std::ptrdiff_t>(k * kContactHistory),
+                 pair_history.begin() + static_cast<std::ptrdiff_t>((k + 1) * kContactHistory));
     }
     return a;
   }
@@ -409,7 +313,7 @@ struct Run {
                     values.begin() + static_cast<std::ptrdiff_t>(k * stride));
     };
     for (auto* v : {&bed.x, &bed.y, &bed.z, &bed.radius, &bed.vx, &bed.vy, &bed.vz, &bed.temperature,
-                    &mass, &inv_mass, &inv_inertia, &drag, &wx, &wy, &wz}) {
+                    &weight, &mass, &inv_mass, &inv_inertia, &drag, &young, &wx, &wy, &wz}) {
       permute(*v, 1);
     }
     permute(bed.id, 1);
@@ -417,7 +321,7 @@ struct Run {
     permute(bed.phase, 1);
     permute(wall, 1);
     permute(wall_touch, 1);
-    permute(wall_history, kWallSlots * kHistory);
+    permute(wall_history, kWallSlots * kContactHistory);
     std::vector<std::uint32_t> rank(order.size());
     for (std::size_t k = 0; k < order.size(); ++k) rank[order[k]] = static_cast<std::uint32_t>(k);
     ActiveContacts turned;
@@ -427,7 +331,7 @@ struct Run {
       carried.j[c] = rank[carried.j[c]];
       if (carried.i[c] > carried.j[c]) {
         std::swap(carried.i[c], carried.j[c]);
-        for (std::size_t q = 0; q < kHistory; ++q) carried.h[c * kHistory + q] = -carried.h[c * kHistory + q];
+        for (std::size_t q = 0; q < kContactHistory; ++q) carried.h[c * kContactHistory + q] = -carried.h[c * kContactHistory + q];
       }
       by_owner[c] = c;
     }
@@ -437,18 +341,24 @@ struct Run {
     for (const std::size_t c : by_owner) {
       turned.i.push_back(carried.i[c]);
       turned.j.push_back(carried.j[c]);
-      turned.h.insert(turned.h.end(), carried.h.begin() + static_cast<std::ptrdiff_t>(c * kHistory),
-                      carried.h.begin() + static_cast<std::ptrdiff_t>((c + 1) * kHistory));
+      turned.h.insert(turned.h.end(), carried.h.begin() + static_cast<std::ptrdiff_t>(c * kContactHistory),
+                      carried.h.begin() + static_cast<std::ptrdiff_t>((c + 1) * kContactHistory));
     }
     carried = std::move(turned);
   }
 
   // The constants of the pair (i, j), made when it comes into contact (most list entries never
   // do: the skin's margin).
-  Constants pair_constants(std::size_t i, std::size_t j) const {
+  ContactConstants pair_constants(std::size_t i, std::size_t j) const {
     const double ri = bed.radius[i], mi = mass[i], rj = bed.radius[j], mj = mass[j];
-    return make_constants(model, e_pair, g_pair, scene.stiffness, ri * rj / (ri + rj),
-                          mi * mj / (mi + mj), rolling_inertia(mi, ri, mj, rj));
+    ContactPartners p{moduli.pair, moduli.pair_shear, scene.stiffness, ri * rj / (ri + rj), mi * mj / (mi + mj),
+                      rolling_inertia(mi, ri, mj, rj)};
+    if (!young.empty()) {  // stiffness-scaled fines: the two particles' own moduli
+      const double nu = scene.material.poisson;
+      p.e_star = effective_modulus(young[i], nu, young[j], nu);
+      p.g_star = effective_shear_modulus(young[i], nu, young[j], nu);
+    }
+    return model.constants(model.coefficients, p);
   }
 
   void rebuild_with(const ActiveContacts& a) {
@@ -456,7 +366,7 @@ struct Run {
     const std::size_t entries = list.pair_entries();
     pair.resize(entries);
     pair_reach.resize(entries);
-    pair_history.assign(entries * kHistory, 0.0);
+    pair_history.assign(entries * kContactHistory, 0.0);
     touching.assign(entries, 0);
     std::size_t first = 0;  // a's contacts of owner i start here (a is in owner order)
     for (std::size_t i = 0; i < n(); ++i) {
@@ -469,8 +379,8 @@ struct Run {
         pair_reach[k] = bed.radius[i] + bed.radius[j];
         for (std::size_t c = first; c < last; ++c) {
           if (a.j[c] != j) continue;
-          std::copy_n(a.h.begin() + static_cast<std::ptrdiff_t>(c * kHistory), kHistory,
-                      pair_history.begin() + static_cast<std::ptrdiff_t>(k * kHistory));
+          std::copy_n(a.h.begin() + static_cast<std::ptrdiff_t>(c * kContactHistory), kContactHistory,
+                      pair_history.begin() + static_cast<std::ptrdiff_t>(k * kContactHistory));
           touching[k] = 1;
           pair[k] = pair_constants(i, j);
         }
@@ -493,7 +403,7 @@ struct Run {
       if (q < hot_entries && hot[q] == k) {
         ++q;
       } else if (touching[k]) {
-        std::fill_n(pair_history.begin() + static_cast<std::ptrdiff_t>(k * kHistory), kHistory, 0.0);
+        std::fill_n(pair_history.begin() + static_cast<std::ptrdiff_t>(k * kContactHistory), kContactHistory, 0.0);
         touching[k] = 0;
       }
     }
@@ -509,7 +419,7 @@ struct Run {
     const DriftConstants k{h, dt, {g[0], g[1], g[2]}, BranchFreeWrap(box)};
     const std::uint64_t bad = kick_drift(moving, k, bed.x.data(), bed.y.data(), bed.z.data(), bed.vx.data(),
                                          bed.vy.data(), bed.vz.data(), fx.data(), fy.data(), fz.data(), tx.data(),
-                                         ty.data(), tz.data(), inv_mass.data(), mass.data(), drag.data());
+                                         ty.data(), tz.data(), inv_mass.data(), weight.data(), drag.data());
     if (bad) return false;  // no list of non-finite positions: the caller stops the run
     ParticleView moved = view();
     moved.n = moving;
@@ -534,15 +444,15 @@ struct Run {
     wall_touch.assign(n(), 0);
     for (std::size_t i = 0; i < n(); ++i)
       for (int slot = 0; slot < kWallSlots; ++slot) {
-        const double* v = wall_history.data() + (i * kWallSlots + slot) * kHistory;
-        if (std::any_of(v, v + kHistory, [](double x) { return x != 0.0; }))
+        const double* v = wall_history.data() + (i * kWallSlots + slot) * kContactHistory;
+        if (std::any_of(v, v + kContactHistory, [](double x) { return x != 0.0; }))
           wall_touch[i] |= static_cast<std::uint8_t>(1u << slot);
       }
   }
 
   void leave_wall(std::size_t i, WallSlot slot) {
     if (!(wall_touch[i] & (1u << slot))) return;
-    std::fill_n(wall_history.data() + (i * kWallSlots + slot) * kHistory, kHistory, 0.0);
+    std::fill_n(wall_history.data() + (i * kWallSlots + slot) * kContactHistory, kContactHistory, 0.0);
     wall_touch[i] &= static_cast<std::uint8_t>(~(1u << slot));
   }
 
@@ -553,12 +463,12 @@ struct Run {
       return;
     }
     wall_touch[i] |= static_cast<std::uint8_t>(1u << slot);
-    double* h = wall_history.data() + (i * kWallSlots + slot) * kHistory;
+    double* h = wall_history.data() + (i * kWallSlots + slot) * kContactHistory;
     const double dv[3] = {bed.vx[i] - wall_velocity[0], bed.vy[i] - wall_velocity[1],
                           bed.vz[i] - wall_velocity[2]};
     const double wi[3] = {wx[i], wy[i], wz[i]}, still[3] = {0, 0, 0};
     ContactForce c;
-    contact(model, wall[i], delta, n, dv, wi, still, bed.radius[i] - delta, 0.0, h, update, c);
+    model.force(model.coefficients, wall[i], delta, n, dv, wi, still, bed.radius[i] - delta, 0.0, h, update, c);
     fx[i] += c.f[0];
     fy[i] += c.f[1];
     fz[i] += c.f[2];
@@ -671,8 +581,8 @@ struct Run {
     for (const std::uint32_t i : near_tool) tool_wall(i, update);
   }
 
-  // Local copies of the arrays' addresses: contact() is not inlined, and through a member the
-  // compiler would reload each address after every call.
+  // Local copies of the arrays' addresses: the contact model's force is a call through a
+  // pointer, and through a member the compiler would reload each address after every call.
   void pair_forces(bool update) {
     const std::uint32_t* owner = list.owners();
     const std::uint32_t* partner = list.partners();
@@ -682,7 +592,9 @@ struct Run {
     double *ax = fx.data(), *ay = fy.data(), *az = fz.data(), *mx = tx.data(), *my = ty.data(), *mz = tz.data();
     double* history = pair_history.data();
     std::uint8_t* touch = touching.data();
-    Constants* constants = pair.data();
+    ContactConstants* constants = pair.data();
+    const detail::ContactFn contact = model.force;
+    const detail::ContactCoefficients& coefficients = model.coefficients;
     const WrappedImage image(box);  // positions are wrapped at every drift
     const std::uint32_t* hot = list.hot();
     for (std::size_t q = 0, entries = list.hot_entries(); q < entries; ++q) {
@@ -690,10 +602,10 @@ struct Run {
       const std::uint32_t i = owner[k], j = partner[k];
       const double ex = image(0, x[j] - x[i]), ey = image(1, y[j] - y[i]), ez = image(2, z[j] - z[i]);
       const double d2 = ex * ex + ey * ey + ez * ez, reach = reach_of[k];
-      double* h = history + k * kHistory;
+      double* h = history + k * kContactHistory;
       if (d2 >= reach * reach) {
         if (touch[k]) {
-          std::fill_n(h, kHistory, 0.0);
+          std::fill_n(h, kContactHistory, 0.0);
           touch[k] = 0;
         }
         continue;
@@ -705,7 +617,7 @@ struct Run {
       const double dv[3] = {vx[i] - vx[j], vy[i] - vy[j], vz[i] - vz[j]};
       const double wi[3] = {ox[i], oy[i], oz[i]}, wj[3] = {ox[j], oy[j], oz[j]};
       ContactForce c;
-      contact(model, constants[k], delta, n, dv, wi, wj, r[i] - 0.5 * delta, r[j] - 0.5 * delta, h,
+      contact(coefficients, constants[k], delta, n, dv, wi, wj, r[i] - 0.5 * delta, r[j] - 0.5 * delta, h,
               update, c);
       ax[i] += c.f[0];
       ay[i] += c.f[1];
@@ -726,9 +638,9 @@ struct Run {
   // what start_step computes in its pass, for a layer's first evaluation.
   void body_forces() {
     for (std::size_t i = 0; i < moving; ++i) {
-      fx[i] = mass[i] * g[0] - drag[i] * bed.vx[i];
-      fy[i] = mass[i] * g[1] - drag[i] * bed.vy[i];
-      fz[i] = mass[i] * g[2] - drag[i] * bed.vz[i];
+      fx[i] = weight[i] * g[0] - drag[i] * bed.vx[i];
+      fy[i] = weight[i] * g[1] - drag[i] * bed.vy[i];
+      fz[i] = weight[i] * g[2] - drag[i] * bed.vz[i];
       tx[i] = ty[i] = tz[i] = 0;
     }
   }
@@ -759,8 +671,11 @@ struct Run {
       }
       return bad;
     };
-    std::uint64_t bad = axis(wx.data(), tx.data(), inv_inertia.data()) |
-                        axis(wy.data(), ty.data(), inv_inertia.data()) | axis(wz.data(), tz.data(), inv_inertia.data());
+    std::uint64_t bad = 0;
+    if (model.rotation) {  // else no torque ever acts and the particles never turn
+      bad = axis(wx.data(), tx.data(), inv_inertia.data()) | axis(wy.data(), ty.data(), inv_inertia.data()) |
+            axis(wz.data(), tz.data(), inv_inertia.data());
+    }
     if (translation) {
       bad |= axis(bed.vx.data(), fx.data(), inv_mass.data()) | axis(bed.vy.data(), fy.data(), inv_mass.data()) |
              axis(bed.vz.data(), fz.data(), inv_mass.data());
@@ -795,7 +710,7 @@ struct Run {
     for (std::size_t i = 0; i < moving; ++i) {
       const double a = h * inv_mass[i];
       const double vx = bed.vx[i] + a * fx[i], vy = bed.vy[i] + a * fy[i], vz = bed.vz[i] + a * fz[i];
-      energy += 0.5 * mass[i] * (vx * vx + vy * vy + vz * vz);
+      energy += 0.5 * weight[i] * (vx * vx + vy * vy + vz * vz);
     }
     return energy;
   }
@@ -972,15 +887,15 @@ std::size_t remove_particles(bed::Bed& bed, SpreadState& s, const std::vector<ch
   compact(bed.id, 1);
   compact(bed.material, 1);
   compact(bed.phase, 1);
-  compact(s.wall_history, kWallSlots * kHistory);
+  compact(s.wall_history, kWallSlots * kContactHistory);
   std::vector<std::uint64_t> ids;
   std::vector<double> history;
   for (std::size_t c = 0; c < s.pair_ids.size() / 2; ++c) {
     if (gone.count(s.pair_ids[2 * c]) || gone.count(s.pair_ids[2 * c + 1])) continue;
     ids.insert(ids.end(), s.pair_ids.begin() + static_cast<std::ptrdiff_t>(2 * c),
                s.pair_ids.begin() + static_cast<std::ptrdiff_t>(2 * c + 2));
-    history.insert(history.end(), s.pair_history.begin() + static_cast<std::ptrdiff_t>(kHistory * c),
-                   s.pair_history.begin() + static_cast<std::ptrdiff_t>(kHistory * (c + 1)));
+    history.insert(history.end(), s.pair_history.begin() + static_cast<std::ptrdiff_t>(kContactHistory * c),
+                   s.pair_history.begin() + static_cast<std::ptrdiff_t>(kContactHistory * (c + 1)));
   }
   s.pair_ids = std::move(ids);
   s.pair_history = std::move(history);
@@ -1011,7 +926,7 @@ void finish_layer(const Run& run, LayerSummary& out, double window_x0, double wi
   double solid = 0;
   for (std::size_t i = 0; i < run.n(); ++i) {
     const double r = bed.radius[i];
-    out.kinetic_energy += 0.5 * run.mass[i] *
+    out.kinetic_energy += 0.5 * run.weight[i] *
                           (bed.vx[i] * bed.vx[i] + bed.vy[i] * bed.vy[i] + bed.vz[i] * bed.vz[i]);
     out.max_speed = std::max(out.max_speed, std::sqrt(bed.vx[i] * bed.vx[i] +
                                                       bed.vy[i] * bed.vy[i] + bed.vz[i] * bed.vz[i]));
@@ -1076,14 +991,6 @@ void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSetting
     throw InputError("effects.walls: off in a spreading run (accepted: on; the plate and the tool "
                      "are walls)");
   }
-  // Its contacts and inertia (rotation, history springs, rolling) are set per particle in this
-  // solver's own tables; the fines' scaled masses and moduli are the drop solver's only.
-  if (scene.fines.scaling != FinesScaling::none) {
-    throw InputError(fmt::format("fines.scaling: '{}' in a spreading run or a drop with history "
-                                 "friction or rolling resistance (accepted: none; the fines are "
-                                 "scaled by the drop solver only)",
-                                 fines_scaling_name(scene.fines.scaling)));
-  }
   if (!(settings.layers >= 1)) throw InputError("--layers: 0 (accepted: N >= 1)");
   require_in_range(std::isfinite(settings.layer_thickness) && settings.layer_thickness >= 0,
                    "recoater.layer-thickness", settings.layer_thickness, "thickness >= 0 m");
@@ -1131,20 +1038,8 @@ struct Spreader {
 
   // The contact model, the (softened) moduli, gravity, and the restart's state.
   void set_up() {
-    Model& m = run.model;
-    m.linear = scene.law == ContactLaw::linear;
-    m.damping = scene.has(kDamping);
-    m.friction = scene.has(kFriction) && scene.material.friction > 0;
-    m.history = scene.friction_model == FrictionModel::history;
-    m.mu = scene.material.friction;
-    m.sliding.coefficient = m.mu;
-    m.mu_r = scene.material.rolling;
-    m.zeta = scene.material.damping;
-    const ContactModuli moduli = contact_moduli(scene, settings.young_scale);
-    run.e_pair = moduli.pair;
-    run.e_wall = moduli.wall;
-    run.g_pair = moduli.pair_shear;
-    run.g_wall = moduli.wall_shear;
+    run.model = detail::choose_contact_model(scene);
+    run.moduli = contact_moduli(scene, settings.young_scale);
     const double gravity = scene.has(kGravity) ? scene.gravity : 0.0;
     run.g[0] = gravity * std::sin(settings.gravity_tilt);
     run.g[2] = -gravity * std::cos(settings.gravity_tilt);
@@ -1158,7 +1053,7 @@ struct Spreader {
     check_floor(run.floor, run.box);
     if (!restart) return;
     if (restart->wx.size() != bed.n() ||
-        restart->wall_history.size() != bed.n() * kWallSlots * kHistory) {
+        restart->wall_history.size() != bed.n() * kWallSlots * kContactHistory) {
       throw InputError("--in: the bed's /restart group does not match its particles (accepted: "
                        "a bed written by a spreading run, unchanged)");
     }
@@ -1197,7 +1092,7 @@ struct Spreader {
     } else {
       run.dt = bound.recommended;
     }
-    run.model.dt = run.dt;
+    run.model.coefficients.dt = run.dt;
   }
 
   // The neighbour list for the bed as it is now, with the carried contacts' history.

@@ -868,9 +868,6 @@ std::vector<Case> all_cases() {
   add("deposit_fines_stiffness_linear", "deposit",
       dep + "--contact.law linear --contact.stiffness 100 --fines.scaling stiffness --fines.radius 1e-5 --out @out.h5",
       2, {"fines.scaling", "linear"});
-  add("deposit_fines_rotating", "deposit",
-      dep + "--friction.model history --fines.scaling mass --fines.radius 1e-5 --out @out.h5", 2,
-      {"fines.scaling", "mass"});
 
   // keff.
   const std::string kf = "--bed @good.h5 ";

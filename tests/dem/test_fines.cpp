@@ -2,7 +2,7 @@
 // bound it gives (the Rayleigh step and the drag relaxation of a particle of R_ref), gravity and
 // drag on the physical mass under mass scaling, the pair and wall E* of stiffness-scaled fines
 // against Hertz's closed forms, runs that scale nothing equal to runs without scaling bit for
-// bit, and the bad inputs.
+// bit (on the drop and on the spreading engine), and the bad inputs.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -28,6 +28,27 @@ dem::Scene fines_scene(unsigned effects, dem::FinesScaling scaling, double refer
   dem::Scene s = test::scene_with(effects);
   s.fines = {scaling, reference};
   return s;
+}
+
+// The two engines a scene runs on: the drop solver, and the spreading solver as a granular run
+// without a tool (what deposit's drops with history friction or rolling use).
+enum class Engine { drop, spread };
+constexpr Engine kEngines[] = {Engine::drop, Engine::spread};
+const char* engine_name(Engine e) { return e == Engine::drop ? "drop" : "spread"; }
+
+void run_on(Engine engine, bed::Bed& b, const dem::Scene& scene, double t_end, double young_scale = 1) {
+  if (engine == Engine::drop) {
+    dem::RunSettings run;
+    run.t_end = t_end;
+    run.young_scale = young_scale;
+    dem::run_deposition(b, scene, run);
+  } else {
+    dem::SpreadSettings spread;
+    spread.with_tool = false;
+    spread.t_end = t_end;
+    spread.young_scale = young_scale;
+    dem::run_spread(b, scene, spread);
+  }
 }
 
 bed::Bed three_sizes() {
@@ -146,54 +167,60 @@ TEST(Fines, StiffnessScaledPairTakesEStarOfBothModuli) {
 
 // A fine at rest on the floor: the Hertz overlap (3 m g / (4 E* sqrt(r)))^{2/3} with the wall's
 // E* of the fine's scaled E and the wall's E (stiffness), or of the scene's E* and the physical
-// weight (mass: the scaled inertia does not load the contact).
+// weight (mass: the scaled inertia does not load the contact). On both engines.
 TEST(Fines, FineAtRestOnTheFloorCarriesItsPhysicalWeight) {
   const unsigned effects = dem::kGravity | dem::kWalls | dem::kDamping;
-  for (const auto scaling : {dem::FinesScaling::mass, dem::FinesScaling::stiffness}) {
-    dem::Scene scene = fines_scene(effects, scaling, kReference);
-    scene.material.damping = 0.5;
-    bed::Bed b = test::box_bed(1e-4, 1e-4, 1e-4);
-    b.add(5e-5, 5e-5, kFine, kFine);
-    dem::RunSettings run;
-    run.t_end = 2e-5;
-    dem::run_deposition(b, scene, run);
-    const dem::Material& m = scene.material;
-    const double young = m.young * dem::fines_stiffness_factor(scene.fines, kFine);
-    const double e_star = dem::effective_modulus(young, m.poisson, scene.wall.young, scene.wall.poisson);
-    const double weight = test::sphere_mass(kFine, m.density) * scene.gravity;
-    const double expected = std::pow(3 * weight / (4 * e_star * std::sqrt(kFine)), 2.0 / 3.0);
-    EXPECT_NEAR(kFine - b.z[0], expected, 1e-4 * expected) << dem::fines_scaling_name(scaling);
-  }
+  for (const Engine engine : kEngines)
+    for (const auto scaling : {dem::FinesScaling::mass, dem::FinesScaling::stiffness}) {
+      dem::Scene scene = fines_scene(effects, scaling, kReference);
+      scene.material.damping = 0.5;
+      bed::Bed b = test::box_bed(1e-4, 1e-4, 1e-4);
+      b.add(5e-5, 5e-5, kFine, kFine);
+      run_on(engine, b, scene, 2e-5);
+      const dem::Material& m = scene.material;
+      const double young = m.young * dem::fines_stiffness_factor(scene.fines, kFine);
+      const double e_star = dem::effective_modulus(young, m.poisson, scene.wall.young, scene.wall.poisson);
+      const double weight = test::sphere_mass(kFine, m.density) * scene.gravity;
+      const double expected = std::pow(3 * weight / (4 * e_star * std::sqrt(kFine)), 2.0 / 3.0);
+      EXPECT_NEAR(kFine - b.z[0], expected, 1e-4 * expected)
+          << engine_name(engine) << " " << dem::fines_scaling_name(scaling);
+    }
 }
 
 // A drop of 60 particles of 2-10 um with every effect on, under a gravity of 1e4 m/s^2 that
-// brings them onto the floor and each other within the run's 2e-4 s.
-bed::Bed small_drop(dem::Scene scene) {
+// brings them onto the floor and each other within the run's 2e-4 s. On the spreading engine
+// with history friction and rolling resistance, which it alone has.
+bed::Bed small_drop(dem::Scene scene, Engine engine) {
   scene.gravity = 1e4;
+  if (engine == Engine::spread) {
+    scene.friction_model = dem::FrictionModel::history;
+    scene.material.rolling = 0.1;
+  }
   bed::Bed b = test::box_bed(1e-4, 1e-4, 1e-4);
   const double lo[3] = {0, 0, 0}, hi[3] = {1e-4, 1e-4, 1e-4};
   test::add_random(b, 60, kFine, kCoarse, lo, hi, 7);
-  dem::RunSettings run;
-  run.t_end = 2e-4;
-  run.young_scale = 1e3;
-  dem::run_deposition(b, scene, run);
+  run_on(engine, b, scene, 2e-4, 1e3);
   return b;
 }
 
 // With a reference below every radius nothing is scaled, and the scaled code paths (the
-// per-particle moduli of the tabulation, the separate weights) must give the run without
+// per-particle moduli of the contacts, the separate weights) must give the run without
 // scaling to the bit.
 TEST(Fines, ScalingNothingIsBitForBitNoScaling) {
-  const bed::Bed plain = small_drop(fines_scene(dem::kAllEffects, dem::FinesScaling::none, 0));
-  for (const auto scaling : {dem::FinesScaling::mass, dem::FinesScaling::stiffness}) {
-    const bed::Bed scaled = small_drop(fines_scene(dem::kAllEffects, scaling, 1e-6));
-    EXPECT_EQ(scaled.x, plain.x) << dem::fines_scaling_name(scaling);
-    EXPECT_EQ(scaled.z, plain.z) << dem::fines_scaling_name(scaling);
-    EXPECT_EQ(scaled.vz, plain.vz) << dem::fines_scaling_name(scaling);
+  for (const Engine engine : kEngines) {
+    const bed::Bed plain = small_drop(fines_scene(dem::kAllEffects, dem::FinesScaling::none, 0), engine);
+    for (const auto scaling : {dem::FinesScaling::mass, dem::FinesScaling::stiffness}) {
+      const bed::Bed scaled = small_drop(fines_scene(dem::kAllEffects, scaling, 1e-6), engine);
+      EXPECT_EQ(scaled.x, plain.x) << engine_name(engine) << " " << dem::fines_scaling_name(scaling);
+      EXPECT_EQ(scaled.z, plain.z) << engine_name(engine) << " " << dem::fines_scaling_name(scaling);
+      EXPECT_EQ(scaled.vz, plain.vz) << engine_name(engine) << " " << dem::fines_scaling_name(scaling);
+    }
+    // ... and scaling that does act changes the run (the comparison above can fail).
+    for (const auto scaling : {dem::FinesScaling::mass, dem::FinesScaling::stiffness}) {
+      const bed::Bed scaled = small_drop(fines_scene(dem::kAllEffects, scaling, kReference), engine);
+      EXPECT_NE(scaled.z, plain.z) << engine_name(engine) << " " << dem::fines_scaling_name(scaling);
+    }
   }
-  // ... and scaling that does act changes the run (the comparison above can fail).
-  const bed::Bed scaled = small_drop(fines_scene(dem::kAllEffects, dem::FinesScaling::mass, kReference));
-  EXPECT_NE(scaled.z, plain.z);
 }
 
 TEST(Fines, BadInputsNameTheOption) {
@@ -213,14 +240,6 @@ TEST(Fines, BadInputsNameTheOption) {
   EXPECT_THROW(linear.validate(), InputError);
   linear.fines.scaling = dem::FinesScaling::mass;
   EXPECT_NO_THROW(linear.validate());
-  // The spreading solver (and deposit's rotating drop through it) refuses the scaling.
-  bed::Bed b = three_sizes();
-  dem::SpreadSettings spread;
-  spread.with_tool = false;
-  spread.t_end = 1e-6;
-  EXPECT_THROW(dem::run_spread(b, fines_scene(dem::kAllEffects, dem::FinesScaling::mass, kReference),
-                               spread),
-               InputError);
 }
 
 }  // namespace

@@ -2,10 +2,10 @@
 // Spreading a powder layer with a recoater, layer after layer (docs/deposit-spread.md): the
 // granular loop with particle rotation, static (history) or sliding friction, rolling
 // resistance, the plate (the box's floor), the box's top and the side faces that are not
-// periodic, and the moving tool of recoater.hpp. A run of its own beside run_deposition: its effects are chosen by
-// runtime switches once per contact (the loop is not instantiated per effect set, so the drop
-// solver's template table does not double), and it runs on one thread, in one fixed order, so
-// that a run is reproducible bit for bit and a continued run equals the uninterrupted one.
+// periodic, and the moving tool of recoater.hpp. A run of its own beside run_deposition: its
+// contact is composed of sub-models chosen once per run (dem/src/contact_model.hpp), and it
+// runs on one thread, in one fixed order, so that a run is reproducible bit for bit and a
+// continued run equals the uninterrupted one.
 #include <cstdint>
 #include <functional>
 #include <string>
