@@ -382,10 +382,7 @@ int run(int argc, char** argv) {
 
   // The trajectory, out.h5 and the deck replace the old ones together or not at all.
   bed::CommitTogether together;
-  // History friction and rolling resistance need particle rotation: the spreading run's loop
-  // without a tool (deposit_spread.cpp); every other drop runs the drop solver.
-  const dem::RunSummary r = app::rotating(scene) ? app::run_rotating_drop(bed, scene, s)
-                                                 : dem::run_deposition(bed, scene, s);
+  const dem::RunSummary r = dem::run_deposition(bed, scene, s);
   bar.finish();
   const std::size_t removed = remove_lost(vm, bed);
   if (vm["crop-top"].as<bool>()) crop_top(bed);

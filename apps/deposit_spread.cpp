@@ -265,66 +265,6 @@ void add_spread_options(po::options_description& desc, dem::SpreadSettings& spre
        "steps between two rows of --tool-forces");
 }
 
-bool rotating(const dem::Scene& scene) {
-  return scene.friction_model == dem::FrictionModel::history || scene.material.rolling > 0;
-}
-
-dem::RunSummary run_rotating_drop(bed::Bed& bed, const dem::Scene& scene,
-                                  const dem::RunSettings& settings) {
-  dem::check_run_settings(settings);  // run_spread reads a negative dt as "the recommended one"
-  if (settings.until_rest || settings.lid.enabled || settings.insertion.enabled ||
-      settings.integrator != dem::Integrator::verlet || !settings.trajectory.empty()) {
-    throw InputError(std::string(scene.material.rolling > 0 ? "material.rolling"
-                                                             : "friction.model = history") +
-                     ": with --until-rest, the lid, insertion, --integrator rk4 or a trajectory "
-                     "(accepted: a --t-end drop with velocity Verlet; those need the drop solver, "
-                     "which has no particle rotation)");
-  }
-  dem::SpreadSettings s;
-  s.with_tool = false;
-  s.t_end = settings.t_end;
-  s.young_scale = settings.young_scale;
-  s.dt = settings.dt;
-  s.unsafe_dt = settings.unsafe_dt;
-  s.skin = settings.skin;
-  s.thermo = settings.thermo;  // the drop's table: no layer, no tool
-  s.thermo_every = settings.thermo_every;
-  if (settings.progress) {
-    s.progress = [&settings](double fraction, double kinetic_energy) {
-      dem::Progress p;
-      p.time = fraction * settings.t_end;
-      p.t_end = settings.t_end;
-      p.kinetic_energy = kinetic_energy;
-      settings.progress(p);
-    };
-  }
-  const dem::SpreadSummary g = dem::run_spread(bed, scene, s);
-  dem::RunSummary r;
-  r.n = bed.n();
-  r.steps = g.steps;
-  r.sim_time = g.sim_time;
-  r.wall_time = g.wall_time;
-  r.particle_steps_per_s = g.particle_steps_per_s;
-  r.dt = g.dt;
-  r.dt_stable = g.dt_stable;
-  r.dt_limited_by = g.dt_limited_by;
-  r.dt_limiting_radius = g.dt_limiting_radius;
-  const dem::Overlap overlap = dem::max_overlap(bed, scene);  // pairs and walls, as a drop's
-  r.max_overlap = overlap.relative;
-  r.max_overlap_m = overlap.absolute;
-  if (scene.law == dem::ContactLaw::hertz) {
-    r.max_overlap_full_stiffness = bed::hertz_overlap_of_softened(overlap.relative, settings.young_scale);
-  }
-  r.neighbour_rebuilds = g.neighbour_rebuilds;
-  for (std::size_t i = 0; i < bed.n(); ++i) {
-    const double v2 = bed.vx[i] * bed.vx[i] + bed.vy[i] * bed.vy[i] + bed.vz[i] * bed.vz[i];
-    const double mass = 4.0 / 3.0 * std::numbers::pi * std::pow(bed.radius[i], 3) * scene.material.density;
-    r.kinetic_energy += 0.5 * mass * v2;
-    r.max_speed = std::max(r.max_speed, std::sqrt(v2));
-  }
-  return r;
-}
-
 bool spread_requested(const po::variables_map& vm) {
   return vm.count("recoater.tool") && !vm["recoater.tool"].as<std::string>().empty();
 }

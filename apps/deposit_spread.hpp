@@ -55,14 +55,4 @@ void set_spread_provenance(bed::Bed& b, const po::variables_map& vm, const dem::
 // returns the exit status.
 int run_spread(const po::variables_map& vm, const DepositOptions& bound, int argc, char** argv);
 
-// Whether a drop needs particle rotation (friction.model = history or material.rolling > 0),
-// which only the spreading run's loop has.
-bool rotating(const dem::Scene& scene);
-// A drop of `settings.t_end` in that loop, without a tool (spread.hpp, SpreadSettings::with_tool
-// false), summarised as the drop solver's run. Throws InputError for settings out of range
-// (dem::check_run_settings) and for what only the drop solver has: --until-rest, the lid,
-// insertion, RK4, a trajectory.
-dem::RunSummary run_rotating_drop(bed::Bed& bed, const dem::Scene& scene,
-                                  const dem::RunSettings& settings);
-
 }  // namespace powderbed::app

@@ -17,6 +17,7 @@
 #include "flush_subnormals.hpp"
 #include "forces.hpp"
 #include "parallel.hpp"
+#include "rotating_drop.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/random.hpp"
 #include "powderbed/bed/softening.hpp"
@@ -368,12 +369,6 @@ void check_run(const bed::Bed& bed, const Scene& scene, const RunSettings& setti
   check_run_settings(settings);
   check_lid(settings.lid, scene);
   check_insertion(settings.insertion, settings, scene);
-  if (scene.friction_model != FrictionModel::sliding || scene.material.rolling > 0) {
-    throw InputError(std::string(scene.material.rolling > 0 ? "material.rolling" : "friction.model = history") +
-                     ": needs particle rotation, which only the spreading run has (accepted: "
-                     "friction.model = sliding and material.rolling = 0 for a drop, or a "
-                     "recoater scene, recoater.tool)");
-  }
   if (scene.law == ContactLaw::linear && settings.young_scale != 1) {
     throw InputError(fmt::format(
         "--young-scale: {:g} with contact.law = linear (accepted: 1; the linear law's stiffness "
@@ -906,6 +901,7 @@ void check_run_settings(const RunSettings& s) {
 }
 
 RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
+  if (detail::needs_rotation(scene)) return detail::run_rotating_drop(bed, scene, settings);
   const auto started = std::chrono::steady_clock::now();
   const detail::FlushSubnormals flush;  // a settled bed's speeds decay into subnormals
   check_run(bed, scene, settings);

@@ -173,7 +173,10 @@ void check_run_settings(const RunSettings& settings);
 // domain, a 2D bed, a periodic axis shorter than 3 neighbour cells, a lid without
 // effects.walls, with neither pressure nor travel or a non-positive speed) and NumericalError
 // naming the particle id and step when the state goes non-finite. Deterministic: the same
-// input gives bit-identical output for any thread count.
+// input gives bit-identical output for any thread count. A scene whose laws need particle
+// rotation (friction.model = history, material.rolling > 0) runs on the spreading engine
+// without a tool (spread.hpp), which refuses --until-rest, the lid, insertion, RK4 and a
+// trajectory.
 RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& settings);
 
 // Removes particles whose centre lies outside the domain on a non-periodic axis; returns how
