@@ -22,6 +22,7 @@
 #include "powderbed/dem/recoater.hpp"
 #include "powderbed/dem/rolling_resistance.hpp"
 #include "powderbed/dem/sliding_friction.hpp"
+#include "powderbed/dem/solver.hpp"
 #include "powderbed/dem/spread.hpp"
 #include "powderbed/dem/tangential_history.hpp"
 #include "powderbed/dem/time_step.hpp"
@@ -124,6 +125,33 @@ TEST(StaticFriction, SphereAboveTheFrictionAngleSlidesAtGTimesSinMinusMuCos) {
     const double expected = kG * (std::sin(tilt) - mu * std::cos(tilt));
     const double t1 = std::ceil(1e-3 / r.dt) * r.dt, t2 = r.sim_time;
     EXPECT_NEAR((v2 - v1) / (t2 - t1), expected, 1e-3 * expected) << dem::friction_model_name(model);
+  }
+}
+
+// run_deposition runs a drop whose laws need rotation on the spreading engine without a tool:
+// the same bed to the bit as run_spread's; what only the drop solver has is refused.
+TEST(SpreadRun, DropThatNeedsRotationIsTheSpreadingRunWithoutATool) {
+  const dem::Scene s = granular_scene(0.5, 0.1, dem::FrictionModel::history);
+  bed::Bed spread = test::box_bed(1e-3, 1e-3, 1e-3);
+  const double lo[3] = {0, 0, 0}, hi[3] = {1e-3, 1e-3, 1e-3};
+  test::add_random(spread, 30, 20e-6, 40e-6, lo, hi, 5);
+  const bed::Bed start = spread;
+  bed::Bed drop = spread;
+  dem::run_spread(spread, s, granular_run(2e-3, 0));
+  dem::RunSettings run;
+  run.t_end = 2e-3;
+  run.young_scale = kYoungScale;
+  dem::run_deposition(drop, s, run);
+  EXPECT_EQ(drop.x, spread.x);
+  EXPECT_EQ(drop.z, spread.z);
+  EXPECT_EQ(drop.vz, spread.vz);
+  EXPECT_NE(drop.z, start.z);  // it ran
+  run.until_rest = true;
+  try {
+    dem::run_deposition(drop, s, run);
+    ADD_FAILURE() << "--until-rest accepted for a rotating drop";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("material.rolling"), std::string::npos) << e.what();
   }
 }
 
