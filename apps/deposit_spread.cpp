@@ -20,6 +20,7 @@
 #include "common/deck_export.hpp"
 #include "common/progress.hpp"
 #include "common/thermo_table.hpp"
+#include "common/threads.hpp"
 #include "deposit_options.hpp"
 #include "spread_deck.hpp"
 #include "powderbed/bed/errors.hpp"
@@ -461,6 +462,7 @@ int run_spread(const po::variables_map& vm, const DepositOptions& bound, int arg
   const dem::Scene scene = deposit_scene(vm, bound.scene);
   std::shared_ptr<ThermoTable> table;
   dem::SpreadSettings s = spread_settings(vm, bound.spread, seed, &table);
+  s.threads = apply_thread_team(vm).size;
   std::ostringstream forces;
   forces << std::setprecision(17) << "layer,time,x,fx,fy,fz\n";
   if (forces_path) {

@@ -6,6 +6,7 @@
 // subnormals in each of its threads, as the run's own thread does (flush_subnormals.hpp).
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 
 #include <omp.h>
 
@@ -44,6 +45,22 @@ void for_each_chunk(std::size_t n, int threads, F&& body) {
     const auto rank = static_cast<std::size_t>(omp_get_thread_num());
     body(n * rank / team, n * (rank + 1) / team);
   }
+}
+
+// for_each_chunk for a body that returns bits (a test for non-finite values): their OR over
+// the chunks, which is exact in any order.
+template <class F>
+std::uint64_t or_over_chunks(std::size_t n, int threads, F&& body) {
+  if (threads <= 1) return body(std::size_t{0}, n);
+  std::uint64_t bits = 0;
+#pragma omp parallel num_threads(threads) reduction(| : bits)
+  {
+    const FlushSubnormals flush;
+    const auto team = static_cast<std::size_t>(omp_get_num_threads());
+    const auto rank = static_cast<std::size_t>(omp_get_thread_num());
+    bits |= body(n * rank / team, n * (rank + 1) / team);
+  }
+  return bits;
 }
 
 }  // namespace powderbed::dem::detail

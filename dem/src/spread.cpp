@@ -16,6 +16,7 @@
 #include "flush_subnormals.hpp"
 #include "lane_tests.hpp"
 #include "neighbour_list.hpp"
+#include "parallel.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
@@ -50,6 +51,10 @@ double largest_radius(const bed::Bed& b) {
   for (const double r : b.radius) r_max = std::max(r_max, r);
   return r_max;
 }
+
+// A pair's force on its owner and the torques on both, stored per list entry by the parallel
+// pair loop (Run::parallel_pair_forces).
+constexpr std::size_t kPairLoad = 9;
 
 // The walls a particle may touch, each with its own contact history.
 enum WallSlot { kPlate, kTool, kXLow, kXHigh, kYLow, kYHigh, kTop, kWallSlots };
@@ -175,6 +180,11 @@ struct Run {
                                       // entry's is read every step, the rest only in contact)
   std::vector<double> pair_history;   // kContactHistory per list entry
   std::vector<std::uint8_t> touching; // per list entry: in contact at the last evaluation
+  // Threads of the particle and pair loops (SpreadSettings::threads, fixed at each layer's list
+  // build): with more than one the list carries the incident pairs, and pair_load
+  // (kPairLoad per entry) holds each touching pair's force and torques for the gather.
+  int threads = 1;
+  std::vector<double> pair_load;
   bed::HeightMap floor;               // the solid under the powder (empty: the flat plate)
   // The floor's highest and lowest node within reach of a sphere's footprint around each node
   // (floor_reach: the largest radius they were made for): bounds that let a sphere high above
@@ -362,8 +372,9 @@ struct Run {
   }
 
   void rebuild_with(const ActiveContacts& a) {
-    list.build(view(), 1, false, moving);
+    list.build(view(), threads, threads > 1, moving);
     const std::size_t entries = list.pair_entries();
+    if (threads > 1) pair_load.resize(entries * kPairLoad);
     pair.resize(entries);
     pair_reach.resize(entries);
     pair_history.assign(entries * kContactHistory, 0.0);
@@ -417,9 +428,12 @@ struct Run {
   // velocity is no longer finite.
   bool start_step(double h) {
     const DriftConstants k{h, dt, {g[0], g[1], g[2]}, BranchFreeWrap(box)};
-    const std::uint64_t bad = kick_drift(moving, k, bed.x.data(), bed.y.data(), bed.z.data(), bed.vx.data(),
-                                         bed.vy.data(), bed.vz.data(), fx.data(), fy.data(), fz.data(), tx.data(),
-                                         ty.data(), tz.data(), inv_mass.data(), weight.data(), drag.data());
+    const std::uint64_t bad = detail::or_over_chunks(moving, threads, [&](std::size_t b, std::size_t e) {
+      return kick_drift(e - b, k, bed.x.data() + b, bed.y.data() + b, bed.z.data() + b, bed.vx.data() + b,
+                        bed.vy.data() + b, bed.vz.data() + b, fx.data() + b, fy.data() + b, fz.data() + b,
+                        tx.data() + b, ty.data() + b, tz.data() + b, inv_mass.data() + b, weight.data() + b,
+                        drag.data() + b);
+    });
     if (bad) return false;  // no list of non-finite positions: the caller stops the run
     ParticleView moved = view();
     moved.n = moving;
@@ -576,29 +590,30 @@ struct Run {
 
   // The candidates' walls, then their tool contacts: each particle still adds its walls in the
   // order plate, top, sides, tool, and the tool's force sums its contacts by index.
+  // The static walls touch only their particle's arrays, so they run on the threads; the tool
+  // sums its force over its candidates, in index order, on one.
   void wall_forces(bool update) {
-    for (const std::uint32_t i : near_walls) static_walls(i, update);
+    detail::for_each_particle(near_walls.size(), threads, [&](std::size_t q) { static_walls(near_walls[q], update); });
     for (const std::uint32_t i : near_tool) tool_wall(i, update);
   }
 
-  // Local copies of the arrays' addresses: the contact model's force is a call through a
-  // pointer, and through a member the compiler would reload each address after every call.
-  void pair_forces(bool update) {
-    const std::uint32_t* owner = list.owners();
-    const std::uint32_t* partner = list.partners();
-    const double *x = bed.x.data(), *y = bed.y.data(), *z = bed.z.data(), *r = bed.radius.data();
-    const double *vx = bed.vx.data(), *vy = bed.vy.data(), *vz = bed.vz.data();
-    const double *ox = wx.data(), *oy = wy.data(), *oz = wz.data(), *reach_of = pair_reach.data();
-    double *ax = fx.data(), *ay = fy.data(), *az = fz.data(), *mx = tx.data(), *my = ty.data(), *mz = tz.data();
-    double* history = pair_history.data();
-    std::uint8_t* touch = touching.data();
-    ContactConstants* constants = pair.data();
-    const detail::ContactFn contact = model.force;
-    const detail::ContactCoefficients& coefficients = model.coefficients;
-    const WrappedImage image(box);  // positions are wrapped at every drift
-    const std::uint32_t* hot = list.hot();
-    for (std::size_t q = 0, entries = list.hot_entries(); q < entries; ++q) {
-      const std::size_t k = hot[q];
+  // The pair loop's view of the run: local copies of the arrays' addresses (the contact model's
+  // force is a call through a pointer, and through a member the compiler would reload each
+  // address after every call). contact(k) evaluates list entry k: false when the pair does not
+  // touch (a contact it had ends), else its force and torques in `c`.
+  struct PairPass {
+    const std::uint32_t *owner, *partner;
+    const double *x, *y, *z, *r, *vx, *vy, *vz, *ox, *oy, *oz, *reach_of;
+    double* history;
+    std::uint8_t* touch;
+    ContactConstants* constants;
+    detail::ContactFn force;
+    const detail::ContactCoefficients* coefficients;
+    WrappedImage image;  // positions are wrapped at every drift
+    const Run* run;
+    bool update;
+
+    bool contact(std::size_t k, ContactForce& c) const {
       const std::uint32_t i = owner[k], j = partner[k];
       const double ex = image(0, x[j] - x[i]), ey = image(1, y[j] - y[i]), ez = image(2, z[j] - z[i]);
       const double d2 = ex * ex + ey * ey + ez * ez, reach = reach_of[k];
@@ -608,17 +623,41 @@ struct Run {
           std::fill_n(h, kContactHistory, 0.0);
           touch[k] = 0;
         }
-        continue;
+        return false;
       }
-      if (!touch[k]) constants[k] = pair_constants(i, j);
+      if (!touch[k]) constants[k] = run->pair_constants(i, j);
       touch[k] = 1;
       const double d = std::sqrt(d2), delta = reach - d, inv_d = 1.0 / d;
       const double n[3] = {ex * inv_d, ey * inv_d, ez * inv_d};
       const double dv[3] = {vx[i] - vx[j], vy[i] - vy[j], vz[i] - vz[j]};
       const double wi[3] = {ox[i], oy[i], oz[i]}, wj[3] = {ox[j], oy[j], oz[j]};
+      force(*coefficients, constants[k], delta, n, dv, wi, wj, r[i] - 0.5 * delta, r[j] - 0.5 * delta, h, update, c);
+      return true;
+    }
+  };
+
+  PairPass pair_pass(bool update) {
+    return {list.owners(), list.partners(), bed.x.data(), bed.y.data(), bed.z.data(), bed.radius.data(),
+            bed.vx.data(), bed.vy.data(), bed.vz.data(), wx.data(), wy.data(), wz.data(), pair_reach.data(),
+            pair_history.data(), touching.data(), pair.data(), model.force, &model.coefficients,
+            WrappedImage(box), this, update};
+  }
+
+  // The pair forces and torques added to the particles', in one fixed order: each particle's
+  // contributions in increasing list entry (what the serial loop's F on i, -F on j gives).
+  void pair_forces(bool update) {
+    if (threads > 1) {
+      parallel_pair_forces(update);
+      return;
+    }
+    const PairPass pass = pair_pass(update);
+    double *ax = fx.data(), *ay = fy.data(), *az = fz.data(), *mx = tx.data(), *my = ty.data(), *mz = tz.data();
+    const std::uint32_t* hot = list.hot();
+    for (std::size_t q = 0, entries = list.hot_entries(); q < entries; ++q) {
+      const std::size_t k = hot[q];
       ContactForce c;
-      contact(coefficients, constants[k], delta, n, dv, wi, wj, r[i] - 0.5 * delta, r[j] - 0.5 * delta, h,
-              update, c);
+      if (!pass.contact(k, c)) continue;
+      const std::uint32_t i = pass.owner[k], j = pass.partner[k];
       ax[i] += c.f[0];
       ay[i] += c.f[1];
       az[i] += c.f[2];
@@ -632,6 +671,48 @@ struct Run {
       my[j] += c.tj[1];
       mz[j] += c.tj[2];
     }
+  }
+
+  // The same on `threads` threads: the hot entries' contacts into pair_load (each entry is one
+  // thread's), then each moving particle gathers its touching entries in NeighbourList's
+  // incident order, which is increasing entry: the serial loop's sums, bit for bit. (The frozen
+  // particles' sums, which nothing reads, are not made.)
+  void parallel_pair_forces(bool update) {
+    const PairPass pass = pair_pass(update);
+    const std::uint32_t* hot = list.hot();
+    double* load = pair_load.data();
+    detail::for_each_chunk(list.hot_entries(), threads, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t q = begin; q < end; ++q) {
+        ContactForce c;
+        if (!pass.contact(hot[q], c)) continue;
+        double* out = load + hot[q] * kPairLoad;
+        std::copy_n(c.f, 3, out);
+        std::copy_n(c.ti, 3, out + 3);
+        std::copy_n(c.tj, 3, out + 6);
+      }
+    });
+    const std::uint8_t* touch = touching.data();
+    detail::for_each_particle(moving, threads, [&](std::size_t p) {
+      double f[3] = {fx[p], fy[p], fz[p]}, t[3] = {tx[p], ty[p], tz[p]};
+      for (const std::uint32_t* e = list.incident_begin(p); e != list.incident_end(p); ++e) {
+        const std::uint32_t k = *e >> 1;
+        if (!touch[k]) continue;
+        const double* c = load + std::size_t{k} * kPairLoad;  // f, t_owner, t_partner
+        const bool owner = (*e & 1u) != 0;
+        const double sign = owner ? 1.0 : -1.0;
+        const double* torque = owner ? c + 3 : c + 6;
+        for (int a = 0; a < 3; ++a) {
+          f[a] += sign * c[a];
+          t[a] += torque[a];
+        }
+      }
+      fx[p] = f[0];
+      fy[p] = f[1];
+      fz[p] = f[2];
+      tx[p] = t[0];
+      ty[p] = t[1];
+      tz[p] = t[2];
+    });
   }
 
   // Gravity and Stokes drag (stokes_drag.hpp) at the velocities as they are, torques zeroed:
@@ -662,25 +743,26 @@ struct Run {
   // v += h F / m and omega += h T / I (or omega only); whether every velocity is still finite
   // (a NaN fails the comparison, as Inf does), tested with no branch so the loops vectorise.
   bool kick(double h, bool translation = true) {
-    const std::size_t count = moving;
-    const auto axis = [&](double* __restrict v, const double* __restrict f, const double* __restrict inv) {
+    return detail::or_over_chunks(moving, threads, [&](std::size_t begin, std::size_t end) {
+      const auto axis = [&](double* __restrict v, const double* __restrict f, const double* __restrict inv) {
+        std::uint64_t bad = 0;
+        for (std::size_t i = begin; i < end; ++i) {
+          v[i] += h * f[i] * inv[i];
+          bad |= non_finite_bit(v[i]);
+        }
+        return bad;
+      };
       std::uint64_t bad = 0;
-      for (std::size_t i = 0; i < count; ++i) {
-        v[i] += h * f[i] * inv[i];
-        bad |= non_finite_bit(v[i]);
+      if (model.rotation) {  // else no torque ever acts and the particles never turn
+        bad = axis(wx.data(), tx.data(), inv_inertia.data()) | axis(wy.data(), ty.data(), inv_inertia.data()) |
+              axis(wz.data(), tz.data(), inv_inertia.data());
+      }
+      if (translation) {
+        bad |= axis(bed.vx.data(), fx.data(), inv_mass.data()) | axis(bed.vy.data(), fy.data(), inv_mass.data()) |
+               axis(bed.vz.data(), fz.data(), inv_mass.data());
       }
       return bad;
-    };
-    std::uint64_t bad = 0;
-    if (model.rotation) {  // else no torque ever acts and the particles never turn
-      bad = axis(wx.data(), tx.data(), inv_inertia.data()) | axis(wy.data(), ty.data(), inv_inertia.data()) |
-            axis(wz.data(), tz.data(), inv_inertia.data());
-    }
-    if (translation) {
-      bad |= axis(bed.vx.data(), fx.data(), inv_mass.data()) | axis(bed.vy.data(), fy.data(), inv_mass.data()) |
-             axis(bed.vz.data(), fz.data(), inv_mass.data());
-    }
-    return bad == 0;
+    }) == 0;
   }
 
   // Velocity Verlet with each step's second half kick deferred and taken with the next step's
@@ -1101,6 +1183,9 @@ struct Spreader {
     const double skin = settings.skin > 0 ? settings.skin : default_skin(run.box, r_max);
     run.list.configure(run.box, r_max, skin, bed.n());
     run.prune_margin = std::min(kPruneMargin * r_max, 0.5 * skin);
+    run.threads = bed.n() < settings.parallel_min_particles ? 1
+                  : settings.threads > 0                    ? settings.threads
+                                                            : omp_get_max_threads();
     run.rebuild_with(carried);
   }
 

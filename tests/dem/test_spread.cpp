@@ -365,6 +365,33 @@ TEST(Recoater, SpreadKeepsEveryParticle) {
   for (std::size_t i = 0; i < c.n(); ++i) EXPECT_LE(c.x[i], front);
 }
 
+// Every particle's forces are summed in one order on any number of threads: a layer gives the
+// same bed, state and tool force bit for bit on 1 and 2 threads. parallel_min_particles 0 puts
+// this small bed on the threads (two: more than the machine's cores would make each barrier
+// wait for a descheduled thread).
+TEST(Recoater, SameBedBitForBitOnAnyNumberOfThreads) {
+  const dem::Scene s = granular_scene(0.5, 0.05, dem::FrictionModel::history);
+  const auto spread = [&](int threads) {
+    dem::SpreadSettings st = small_spread();
+    st.threads = threads;
+    st.parallel_min_particles = 0;
+    st.tool.end = 0.5e-3;  // the blade through the heap: contacts with the tool, walls and pairs
+    bed::Bed b = strip();
+    const dem::SpreadSummary r = dem::run_spread(b, s, st);
+    return std::pair{b, r};
+  };
+  const auto [one, r1] = spread(1);
+  ASSERT_GT(one.n(), 100u);
+  const auto [two, r2] = spread(2);
+  EXPECT_EQ(two.x, one.x);
+  EXPECT_EQ(two.z, one.z);
+  EXPECT_EQ(two.vx, one.vx);
+  EXPECT_EQ(r2.state.wy, r1.state.wy);
+  EXPECT_EQ(r2.state.pair_history, r1.state.pair_history);
+  EXPECT_EQ(r2.state.wall_history, r1.state.wall_history);
+  EXPECT_EQ(r2.layers[0].max_tool_force, r1.layers[0].max_tool_force);
+}
+
 TEST(Recoater, ContinuedRunEqualsTheUninterruptedOneBitForBit) {
   // The excess kept (no overflow removal), so that the heap's pair contacts carry history
   // across the restart (deposit's test, DepositSpread.*, runs it with the removal).

@@ -4,8 +4,8 @@
 // resistance, the plate (the box's floor), the box's top and the side faces that are not
 // periodic, and the moving tool of recoater.hpp. A run of its own beside run_deposition: its
 // contact is composed of sub-models chosen once per run (dem/src/contact_model.hpp), and it
-// runs on one thread, in one fixed order, so that a run is reproducible bit for bit and a
-// continued run equals the uninterrupted one.
+// sums every particle's forces in one fixed order on any number of threads, so that a run is
+// reproducible bit for bit and a continued run equals the uninterrupted one.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -114,6 +114,12 @@ struct SpreadSettings {
   double young_scale = 1;
   double dt = 0;                  // s; 0: 0.2 x the Rayleigh step (time_step.hpp)
   bool unsafe_dt = false;
+  // OpenMP threads of the particle and pair loops; 0: OpenMP's default. The bed is the same bit
+  // for bit for any count (each particle's forces are summed in one fixed order). Beds with
+  // fewer particles than parallel_min_particles at a layer's start run on one thread: a fork
+  // and barrier cost microseconds, and a step makes several (RunSettings's threshold).
+  int threads = 0;
+  std::size_t parallel_min_particles = 4096;
   double skin = 0;                // m; 0: 0.5 x the largest radius (less on a narrow periodic axis)
   double t_end = 0;               // without tool: simulated time, s
   // Gravity tilted by this angle about +y (rad): g = g (sin a, 0, -cos a), a plate inclined
