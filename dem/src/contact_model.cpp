@@ -34,21 +34,31 @@ struct Load {
 };
 
 struct NoFriction {
-  static constexpr bool rotation = false, history = false;
+  static constexpr bool friction = false, rotation = false, history = false;
 };
 
 // Regularised Coulomb sliding at the contact point's tangential velocity.
 struct SlidingFriction {
-  static constexpr bool rotation = true, history = false;
+  static constexpr bool friction = true, rotation = true, history = false;
   static void force(const ContactCoefficients& m, const ContactConstants&, const Load& load,
                     const double[3], const double vt[3], double*, bool, double ft[3]) {
     sliding_friction_force(m.sliding, load.normal, vt[0], vt[1], vt[2], ft);
   }
 };
 
+// The same at the centres' relative tangential velocity, for particles that do not turn: the
+// drop solver's friction ([GZ]'s model, dem/src/forces.hpp).
+struct CentreSliding {
+  static constexpr bool friction = true, rotation = false, history = false;
+  static void force(const ContactCoefficients& m, const ContactConstants& k, const Load& load,
+                    const double n[3], const double vt[3], double* h, bool update, double ft[3]) {
+    SlidingFriction::force(m, k, load, n, vt, h, update, ft);
+  }
+};
+
 // A Mindlin spring and dashpot capped at mu F_n, its elongation kept (F_s, h[0..2]).
 struct HistoryFriction {
-  static constexpr bool rotation = true, history = true;
+  static constexpr bool friction = true, rotation = true, history = true;
   static void force(const ContactCoefficients& m, const ContactConstants& k, const Load& load,
                     const double n[3], const double vt[3], double* h, bool update, double ft[3]) {
     rotate_onto_tangent_plane(h, n);
@@ -84,7 +94,7 @@ void contact(const ContactCoefficients& m, const ContactConstants& k, double del
     out.ti[a] = 0;
     out.tj[a] = 0;
   }
-  if constexpr (!T::rotation && !R::rotation) return;
+  if constexpr (!T::friction && !R::rotation) return;
   const double root = N::Law::root(delta);
   const Load load{root, N::Law::quarter(root), N::Law::normal_magnitude(fn)};
   if constexpr (T::rotation) {
@@ -100,6 +110,11 @@ void contact(const ContactCoefficients& m, const ContactConstants& k, double del
     cross(arm_n, ft, out.ti);
     for (int a = 0; a < 3; ++a) arm_n[a] = arm_j * n[a];
     cross(arm_n, ft, out.tj);
+    for (int a = 0; a < 3; ++a) out.f[a] += ft[a];
+  } else if constexpr (T::friction) {
+    double vt[3], ft[3];
+    for (int a = 0; a < 3; ++a) vt[a] = dv[a] - rate * n[a];
+    T::force(m, k, load, n, vt, h, update, ft);
     for (int a = 0; a < 3; ++a) out.f[a] += ft[a];
   }
   if constexpr (R::rotation) {
@@ -133,7 +148,7 @@ ContactConstants make_constants(const ContactCoefficients& m, const ContactPartn
 
 // The choice, one role at a time, down to the instantiation.
 struct Choice {
-  bool linear, damped, friction, history, rolling;
+  bool linear, damped, friction, history, rolling, rotating;
 };
 
 template <class N, class T, class R>
@@ -153,6 +168,7 @@ ContactModel with_rolling(const Choice& c) {
 template <class N>
 ContactModel with_tangential(const Choice& c) {
   if (!c.friction) return with_rolling<N, NoFriction>(c);
+  if (!c.rotating) return with_rolling<N, CentreSliding>(c);
   return c.history ? with_rolling<N, HistoryFriction>(c) : with_rolling<N, SlidingFriction>(c);
 }
 
@@ -163,10 +179,10 @@ ContactModel with_damping(const Choice& c) {
 
 }  // namespace
 
-ContactModel choose_contact_model(const Scene& scene) {
+ContactModel choose_contact_model(const Scene& scene, bool rotating) {
   const Choice c{scene.law == ContactLaw::linear, scene.has(kDamping),
                  scene.has(kFriction) && scene.material.friction > 0,
-                 scene.friction_model == FrictionModel::history, scene.material.rolling > 0};
+                 scene.friction_model == FrictionModel::history, scene.material.rolling > 0, rotating};
   ContactModel model = c.linear ? with_damping<LinearLaw>(c) : with_damping<HertzLaw>(c);
   ContactCoefficients& k = model.coefficients;
   k.mu = scene.material.friction;

@@ -5,10 +5,12 @@
 //   normal       HertzLaw | LinearLaw (normal_law.hpp), damped (effects.damping) or elastic
 //   tangential   NoFriction | SlidingFriction (sliding_friction.hpp) | HistoryFriction
 //                (tangential_history.hpp, Mindlin's k_t)      effects.friction, friction.model
+//                | CentreSliding (sliding at the centres' velocity, particles that do not turn)
 //   rolling      NoRolling | EpsdRolling (rolling_resistance.hpp)   material.rolling > 0
 //
 // Each sub-model's traits say what it needs: `rotation` (it reads the angular velocities or
-// gives torques) and `history` (values it keeps per contact between steps). A contact's history
+// gives torques) and `history` (values it keeps per contact between steps); a tangential one
+// also says whether it gives a force (`friction`). A contact's history
 // is kContactHistory values, F_s then M_r, whichever sub-models use them: the layout of a
 // spread's /restart group. choose_contact_model picks the instantiation for a scene.
 #include <cstddef>
@@ -79,8 +81,10 @@ struct ContactModel {
   bool history = false;   // a sub-model keeps history between steps
 };
 
-// The model of `scene` (its law, damping, friction and friction model, rolling); the run sets
-// coefficients.dt once it has chosen its step.
-ContactModel choose_contact_model(const Scene& scene);
+// The model of `scene` (its law, damping, friction and friction model, rolling) for particles
+// that turn (`rotating`) or not (friction then slides at the centres' velocity; the caller
+// refuses history friction and rolling); the run sets coefficients.dt once it has chosen its
+// step.
+ContactModel choose_contact_model(const Scene& scene, bool rotating);
 
 }  // namespace powderbed::dem::detail

@@ -1073,6 +1073,11 @@ void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSetting
     throw InputError("effects.walls: off in a spreading run (accepted: on; the plate and the tool "
                      "are walls)");
   }
+  if (!settings.rotation && (scene.friction_model == FrictionModel::history || scene.material.rolling > 0)) {
+    throw InputError(std::string(scene.material.rolling > 0 ? "material.rolling" : "friction.model = history") +
+                     ": needs particles that turn (accepted: friction.model = sliding and "
+                     "material.rolling = 0 when the particles do not rotate)");
+  }
   if (!(settings.layers >= 1)) throw InputError("--layers: 0 (accepted: N >= 1)");
   require_in_range(std::isfinite(settings.layer_thickness) && settings.layer_thickness >= 0,
                    "recoater.layer-thickness", settings.layer_thickness, "thickness >= 0 m");
@@ -1120,7 +1125,7 @@ struct Spreader {
 
   // The contact model, the (softened) moduli, gravity, and the restart's state.
   void set_up() {
-    run.model = detail::choose_contact_model(scene);
+    run.model = detail::choose_contact_model(scene, settings.rotation);
     run.moduli = contact_moduli(scene, settings.young_scale);
     const double gravity = scene.has(kGravity) ? scene.gravity : 0.0;
     run.g[0] = gravity * std::sin(settings.gravity_tilt);

@@ -82,6 +82,9 @@ struct LayerSummary {
 struct SpreadSettings {
   Recoater tool;
   bool with_tool = true;          // false: a granular run of t_end without tool or supply
+  // false: the particles do not turn, and friction slides at their centres' relative velocity,
+  // as in the drop solver's model ([GZ]); then friction.model = history and rolling are refused.
+  bool rotation = true;
   // Supply region along x (its y extent is the box's, its z starts on the plate or on the
   // powder there and is `supply_height` tall); the maker fills it. No maker: no supply (the
   // bed holds the powder).
