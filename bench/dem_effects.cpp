@@ -6,7 +6,10 @@
 //   BM_StepZeroed/<effect>: all bits on but that effect's coefficient set to 0 (mu_d = 0,
 //     zeta = 0, g = 0): the effect's code runs and adds nothing, which is what a run-time switch
 //     in the inner loop would cost. Bit off vs zeroed is the saving of compiling the effect out;
-//     bit off vs all on is the effect's cost.
+//     bit off vs all on is the effect's cost;
+//   BM_Engine/<engine>/<bed>: every effect on, the whole run (set-up included) on the drop
+//     solver (0) or on the spreading engine with particles that do not turn (1, the same model:
+//     tests/dem/test_engines.cpp): what moving the drops onto the one engine (issue 33) costs.
 // Beds: FCC stacks of spheres of radius 13.5 um (the [GZ] mean) compressed by 0.1 % so every
 // neighbour touches (12 contacts per interior sphere), resting on the floor and touching the
 // side walls: 600 (5 x 5 x 6 cells) and 19,652 (17^3 cells) particles. The timer runs from the
@@ -21,6 +24,7 @@
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/dem/scene.hpp"
 #include "powderbed/dem/solver.hpp"
+#include "powderbed/dem/spread.hpp"
 #include "powderbed/dem/time_step.hpp"
 
 namespace pb = powderbed::bed;
@@ -117,6 +121,42 @@ void BM_StepZeroed(benchmark::State& state) {
   run_steps(state, large ? large_bed() : small_bed(), scene, large ? 100 : 2000);
 }
 
+// range(0): 0 drop solver, 1 spreading engine; range(1) as BM_Step. Times the runs' own wall
+// clocks (set-up and list build included, the same work on both).
+void BM_Engine(benchmark::State& state) {
+  const dem::Scene scene;
+  const bool large = state.range(1) != 0;
+  const pb::Bed& bed = large ? large_bed() : small_bed();
+  const int steps = large ? 100 : 2000;
+  const double dt = dem::time_step_bound(bed, scene, 1.0).recommended;
+  double total = 0;
+  for (auto _ : state) {
+    pb::Bed copy = bed;
+    double seconds = 0;
+    if (state.range(0) == 0) {
+      dem::RunSettings settings;
+      settings.dt = dt;
+      settings.t_end = steps * dt;
+      settings.threads = 1;
+      seconds = dem::run_deposition(copy, scene, settings).wall_time;
+    } else {
+      dem::SpreadSettings settings;
+      settings.with_tool = false;
+      settings.rotation = false;
+      settings.dt = dt;
+      settings.t_end = steps * dt;
+      settings.threads = 1;
+      seconds = dem::run_spread(copy, scene, settings).wall_time;
+    }
+    benchmark::DoNotOptimize(copy.z.data());
+    state.SetIterationTime(seconds);
+    total += seconds;
+  }
+  state.counters["n"] = static_cast<double>(bed.n());
+  state.counters["ns_per_particle_step"] =
+      total * 1e9 / (static_cast<double>(bed.n()) * steps * static_cast<double>(state.iterations()));
+}
+
 void step_masks(benchmark::internal::Benchmark* b) {
   for (const int bed : {0, 1}) {
     b->Args({dem::kAllEffects, bed});
@@ -135,6 +175,11 @@ void zeroed_effects(benchmark::internal::Benchmark* b) {
 }
 
 BENCHMARK(BM_Step)->Apply(step_masks)->UseManualTime()->Unit(benchmark::kMicrosecond)->MinTime(0.2);
+BENCHMARK(BM_Engine)
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(0.5);
 BENCHMARK(BM_StepZeroed)
     ->Apply(zeroed_effects)
     ->UseManualTime()
