@@ -16,22 +16,27 @@ namespace powderbed::dem::detail {
 void NeighbourList::configure(const Box& box, double r_max, double skin, std::size_t n) {
   box_ = box;
   skin_ = skin;
-  double width = 2.0 * r_max + skin;
+  const double least = 2.0 * r_max + skin;  // what finding every partner needs
+  double width = least;
   // At most ~8 cells per particle (and 4096 per axis): a tall, sparse box would otherwise
-  // spend each rebuild clearing millions of empty cells. Wider cells stay correct.
+  // spend each rebuild clearing millions of empty cells. Wider cells stay correct, but only
+  // as wide as lets a periodic axis keep its 3 cells: a few particles left in a narrow periodic
+  // box (a spread's layer after its overflow went) were refused as if the box were too narrow.
   const double cap = 8.0 * static_cast<double>(n) + 64.0;
   const double cells_at_width =
       (box.length[0] / width) * (box.length[1] / width) * (box.length[2] / width);
   if (cells_at_width > cap) width *= std::cbrt(cells_at_width / cap);
   for (int a = 0; a < 3; ++a) {
-    const double cells = std::floor(box.length[a] / width);
+    const double axis_width =
+        box.periodic[a] ? std::max(least, std::min(width, box.length[a] / 3.0 * (1.0 - 1e-9))) : width;
+    const double cells = std::floor(box.length[a] / axis_width);
     cells_[a] = static_cast<int>(std::clamp(cells, 1.0, 4096.0));
     cell_size_[a] = box.length[a] / cells_[a];
     if (box.periodic[a] && cells_[a] < 3) {
       throw InputError(fmt::format(
           "--periodic: axis {} is {:g} m long, shorter than 3 neighbour cells of {:g} m "
           "(accepted: length >= 3 (largest diameter + skin))",
-          "xyz"[a], box.length[a], width));
+          "xyz"[a], box.length[a], least));
     }
   }
 }

@@ -122,3 +122,30 @@ TEST(NeighbourList, HotEntriesHoldEveryContactBetweenBuildsAndPrunes) {
   EXPECT_GT(prunes, 3 * builds);  // most intervals end in a prune, not a build
   EXPECT_GT(contacts, 1000u);     // the comparison saw contacts at every step on average
 }
+
+// A few particles in a box narrow along a periodic axis (a spread's strip after its overflow
+// went): the cells widened for a sparse box stay narrow enough for 3 along that axis, and the
+// list still finds every contact. The box refused is one narrower than 3 least widths.
+TEST(NeighbourList, FewParticlesInANarrowPeriodicBoxKeepThreeCells) {
+  Box box;
+  const double length[3] = {1500, 300, 600};
+  for (int a = 0; a < 3; ++a) {
+    box.upper[a] = box.length[a] = length[a];
+    box.periodic[a] = a == 1;
+  }
+  Gas g;
+  for (int k = 0; k < 10; ++k) {  // touching pairs across the periodic y boundary
+    g.x.push_back(200.0 * (k / 2) + 50);
+    g.y.push_back(k % 2 == 0 ? 10.0 : 290.0);
+    g.z.push_back(100.0);
+    g.r.push_back(15.0);
+  }
+  NeighbourList list;
+  ASSERT_NO_THROW(list.configure(box, 15.0, 7.5, g.x.size()));
+  list.build(g.view(), 1);
+  list.prune(g.view(), 1.0);
+  EXPECT_EQ(contacts_in_hot_entries(box, g, list), contacts_by_brute_force(box, g));
+  EXPECT_EQ(contacts_by_brute_force(box, g).size(), 5u);
+  box.upper[1] = box.length[1] = 3 * 37.5 * 0.99;
+  EXPECT_ANY_THROW(list.configure(box, 15.0, 7.5, g.x.size()));
+}
