@@ -360,7 +360,7 @@ int run(int argc, char** argv) {
   po::variables_map vm;
   if (!app::parse_options("deposit", kUsage, desc, {}, argc, argv, vm)) return 0;
   if (app::spread_requested(vm))
-    return app::run_spread(vm, bound, argc, argv);  // deposit_spread.cpp
+    return app::spread_command(vm, bound, argc, argv);  // deposit_spread.cpp
 
   const std::string out = app::required<std::string>(vm, "out");
   const auto seed = app::required<std::uint64_t>(vm, "seed");

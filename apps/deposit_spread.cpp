@@ -447,7 +447,7 @@ int export_spread_deck(const po::variables_map& vm, const DepositOptions& bound,
 
 }  // namespace
 
-int run_spread(const po::variables_map& vm, const DepositOptions& bound, int argc, char** argv) {
+int spread_command(const po::variables_map& vm, const DepositOptions& bound, int argc, char** argv) {
   const std::string out = required<std::string>(vm, "out");
   const auto seed = required<std::uint64_t>(vm, "seed");
   refuse_drop_options(vm);

@@ -53,6 +53,6 @@ void set_spread_provenance(bed::Bed& b, const po::variables_map& vm, const dem::
                            const char* program, int argc, char** argv);
 // Runs the spread of the options (`bound`: what add_deposit_options bound) and writes its beds;
 // returns the exit status.
-int run_spread(const po::variables_map& vm, const DepositOptions& bound, int argc, char** argv);
+int spread_command(const po::variables_map& vm, const DepositOptions& bound, int argc, char** argv);
 
 }  // namespace powderbed::app

@@ -12,11 +12,11 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <numbers>
 #include <vector>
 
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/random.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/packgen/cell_grid.hpp"
 #include "powderbed/packgen/kdtree_index.hpp"
 #include "powderbed/packgen/pack.hpp"
@@ -31,7 +31,7 @@ constexpr double kRadius = 0.5;
 
 // The cube that holds N spheres at φ = 0.6 with 25 % head room (packgen_speed.py).
 pb::Domain cube_for(std::size_t n) {
-  const double volume = double(n) * 4.0 / 3.0 * std::numbers::pi * std::pow(kRadius, 3);
+  const double volume = double(n) * pb::sphere_volume(kRadius);
   const double side = std::ceil(std::cbrt(volume / 0.6 * 1.25));
   pb::Domain d;
   d.dimension = 3;

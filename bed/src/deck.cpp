@@ -11,6 +11,7 @@
 #include "deck_detail.hpp"
 #include "io_detail.hpp"
 #include "powderbed/bed/critical_damping.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/bed/deck_damping.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
@@ -254,7 +255,7 @@ MeanParticle mean_particle(const Bed& bed, const DeckLaws& laws) {
   for (std::size_t i = 0; i < bed.n(); ++i) {
     const std::size_t t = bed.material.empty() ? 0 : bed.material[i];
     const double rho = laws.density.size() == 1 ? laws.density[0] : laws.density[t];
-    mass += rho * 4.0 / 3.0 * std::numbers::pi * std::pow(bed.radius[i], 3);
+    mass += rho * sphere_volume(bed.radius[i]);
     radius += bed.radius[i];
   }
   const double n = static_cast<double>(bed.n());

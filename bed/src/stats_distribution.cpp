@@ -7,6 +7,7 @@
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/neighbours.hpp"
+#include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/bed/stats.hpp"
 
 namespace powderbed::bed {
@@ -104,7 +105,7 @@ Series radial_distribution(const Bed& bed, double r_max, std::size_t bins) {
   for (std::size_t k = 0; k < bins; ++k) {
     const double r0 = static_cast<double>(k) * step, r1 = k == bins - 1 ? r_max : r0 + step;
     const double shell = d.dimension == 3
-                             ? 4.0 / 3.0 * std::numbers::pi * (r1 * r1 * r1 - r0 * r0 * r0)
+                             ? sphere_volume(r1) - sphere_volume(r0)
                              : std::numbers::pi * (r1 * r1 - r0 * r0);
     g.x[k] = 0.5 * (r0 + r1);
     g.y[k] = count[k] / (static_cast<double>(centres) * density * shell);

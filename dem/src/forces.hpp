@@ -67,14 +67,14 @@ struct ForceArrays {
 // SSE2); (3) the sums (serial or gathered, see compute_forces).
 struct ContactBuffer {
   std::vector<std::uint32_t> i, j, k;
-  std::vector<double> dx, dy, dz, reach, elastic, damping, wx, wy, wz, fx, fy, fz;
+  std::vector<double> dx, dy, dz, reach, elastic, damping, dvx, dvy, dvz, fx, fy, fz;
   std::size_t count = 0;
 
   void reserve(std::size_t entries) {
     const std::size_t size = entries + 1;  // pass 1 writes slot m even for the last entry
     if (i.size() >= size) return;
     for (auto* v : {&i, &j, &k}) v->resize(size);
-    for (auto* v : {&dx, &dy, &dz, &reach, &elastic, &damping, &wx, &wy, &wz, &fx, &fy, &fz}) {
+    for (auto* v : {&dx, &dy, &dz, &reach, &elastic, &damping, &dvx, &dvy, &dvz, &fx, &fy, &fz}) {
       v->resize(size);
     }
   }
@@ -266,9 +266,9 @@ void collect_contacts(const ForceArrays& a, const Box& box, const ContactTables&
     b.elastic[c] = t.pair[k].elastic;
     if constexpr ((E & kDamping) != 0) b.damping[c] = t.pair[k].damping;
     if constexpr ((E & (kDamping | kFriction)) != 0) {
-      b.wx[c] = a.vx[i] - a.vx[j];
-      b.wy[c] = a.vy[i] - a.vy[j];
-      b.wz[c] = a.vz[i] - a.vz[j];
+      b.dvx[c] = a.vx[i] - a.vx[j];
+      b.dvy[c] = a.vy[i] - a.vy[j];
+      b.dvz[c] = a.vz[i] - a.vz[j];
     }
   }
 }
@@ -292,8 +292,8 @@ template <unsigned E, class Law>
 void contact_kernel(std::size_t m, SlidingFrictionParams friction, const double* __restrict dx,
                     const double* __restrict dy, const double* __restrict dz,
                     const double* __restrict reach, const double* __restrict elastic,
-                    const double* __restrict damping, const double* __restrict wx,
-                    const double* __restrict wy, const double* __restrict wz,
+                    const double* __restrict damping, const double* __restrict dvx,
+                    const double* __restrict dvy, const double* __restrict dvz,
                     double* __restrict fx, double* __restrict fy, double* __restrict fz) {
   for (std::size_t c = 0; c < m; ++c) {
     const double d = std::sqrt(dx[c] * dx[c] + dy[c] * dy[c] + dz[c] * dz[c]);
@@ -301,7 +301,7 @@ void contact_kernel(std::size_t m, SlidingFrictionParams friction, const double*
     const double inv_d = 1.0 / d;
     const double nx = dx[c] * inv_d, ny = dy[c] * inv_d, nz = dz[c] * inv_d;  // from i to j
     [[maybe_unused]] double rate = 0;  // approach rate, (v_i - v_j) . n
-    if constexpr ((E & (kDamping | kFriction)) != 0) rate = wx[c] * nx + wy[c] * ny + wz[c] * nz;
+    if constexpr ((E & (kDamping | kFriction)) != 0) rate = dvx[c] * nx + dvy[c] * ny + dvz[c] * nz;
     double fn;
     if constexpr ((E & kDamping) != 0) {
       fn = Law::damped(elastic[c], damping[c], delta, rate);
@@ -311,8 +311,8 @@ void contact_kernel(std::size_t m, SlidingFrictionParams friction, const double*
     double f[3] = {-fn * nx, -fn * ny, -fn * nz};
     if constexpr ((E & kFriction) != 0) {
       double ft[3];
-      sliding_friction_force(friction, Law::normal_magnitude(fn), wx[c] - rate * nx, wy[c] - rate * ny,
-                             wz[c] - rate * nz, ft);
+      sliding_friction_force(friction, Law::normal_magnitude(fn), dvx[c] - rate * nx, dvy[c] - rate * ny,
+                             dvz[c] - rate * nz, ft);
       f[0] += ft[0];
       f[1] += ft[1];
       f[2] += ft[2];
@@ -326,7 +326,7 @@ void contact_kernel(std::size_t m, SlidingFrictionParams friction, const double*
 template <unsigned E, class Law>
 void contact_forces(const ForceParams& p, ContactBuffer& b) {
   contact_kernel<E, Law>(b.count, p.friction, b.dx.data(), b.dy.data(), b.dz.data(), b.reach.data(),
-                    b.elastic.data(), b.damping.data(), b.wx.data(), b.wy.data(), b.wz.data(),
+                    b.elastic.data(), b.damping.data(), b.dvx.data(), b.dvy.data(), b.dvz.data(),
                     b.fx.data(), b.fy.data(), b.fz.data());
 }
 

@@ -470,8 +470,8 @@ constexpr std::uint64_t kNotQuiet = ~std::uint64_t{0};
 
 // What the phases of a run (settle, lid) share: the state, the step count, the snapshots and the
 // rest test.
-struct Run {
-  Run(bed::Bed& b, const Scene& sc, const RunSettings& s) : scene(sc), settings(s), c(b, s) {}
+struct DropRun {
+  DropRun(bed::Bed& b, const Scene& sc, const RunSettings& s) : scene(sc), settings(s), c(b, s) {}
   const Scene& scene;
   const RunSettings& settings;
   Context c;
@@ -554,7 +554,7 @@ const auto never = [] { return false; };
 // per-particle tables, made for the whole pool, stay indexed as they are.
 class Insertion {
  public:
-  Insertion(Run& run, double r_max)
+  Insertion(DropRun& run, double r_max)
       : run_(run), ins_(run.settings.insertion), pool_(run.c.n), r_max_(r_max), rng_(ins_.seed) {
     // Time a new particle needs to fall one largest diameter (from `speed`, under gravity), twice.
     const double g = run.scene.has(kGravity) ? run.scene.gravity : 0.0;
@@ -657,7 +657,7 @@ class Insertion {
     return false;
   }
 
-  Run& run_;
+  DropRun& run_;
   const InsertionSettings& ins_;
   std::size_t pool_;
   double r_max_;
@@ -670,7 +670,7 @@ class Insertion {
 // bed, held, then released (the bed relaxes) or kept as the bed's top face.
 class LidPhase {
  public:
-  LidPhase(Run& run, double (*force)(const Context&, bool))
+  LidPhase(DropRun& run, double (*force)(const Context&, bool))
       : run_(run), c_(run.c), lid_(run.settings.lid), out_(run.summary.lid), box_(c_.params.box),
         force_(force), damping_(run.scene.has(kDamping)), top_(box_.upper[2]) {}
 
@@ -807,7 +807,7 @@ class LidPhase {
     box_.upper[2] = top_;
   }
 
-  // `steps` more steps of the run (Run::advance), the progress bar's end at their end.
+  // `steps` more steps of the run (DropRun::advance), the progress bar's end at their end.
   template <class Before, class After>
   bool advance(std::uint64_t steps, bool until_rest, Before&& before, After&& after) {
     const std::uint64_t last = run_.step + steps;
@@ -834,7 +834,7 @@ class LidPhase {
     return force;
   }
 
-  Run& run_;
+  DropRun& run_;
   Context& c_;
   const LidSettings& lid_;
   LidSummary& out_;
@@ -848,7 +848,7 @@ class LidPhase {
 };
 
 // The summary of the end state: steps, energies, overlaps, lost particles.
-void summarise(Run& run, const TimeStepBound& bound) {
+void summarise(DropRun& run, const TimeStepBound& bound) {
   const Context& c = run.c;
   RunSummary& summary = run.summary;
   summary.n = c.n;
@@ -906,7 +906,7 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   const detail::FlushSubnormals flush;  // a settled bed's speeds decay into subnormals
   check_run(bed, scene, settings);
   const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
-  Run run(bed, scene, settings);
+  DropRun run(bed, scene, settings);
   Context& c = run.c;
   c.n = bed.n();
   c.threads = bed.n() < settings.parallel_min_particles ? 1

@@ -53,7 +53,7 @@ double largest_radius(const bed::Bed& b) {
 }
 
 // A pair's force on its owner and the torques on both, stored per list entry by the parallel
-// pair loop (Run::parallel_pair_forces).
+// pair loop (SpreadLoop::parallel_pair_forces).
 constexpr std::size_t kPairLoad = 9;
 
 // The walls a particle may touch, each with its own contact history.
@@ -69,7 +69,7 @@ struct ActiveContacts {
 // The particles of `b` in the order of the cells of side `cell` they lie in (x fastest, then y,
 // then z; ties by index), the frozen ones (`frozen` set) after all the others: particles that
 // touch lie close together in memory, so the contact loop finds its partners in the nearest
-// caches, and the moving ones are the first indices (Run::moving).
+// caches, and the moving ones are the first indices (SpreadLoop::moving).
 std::vector<std::size_t> spatial_order(const bed::Bed& b, double cell, const std::vector<std::uint8_t>& frozen) {
   if (b.n() == 0) return {};
   const auto at = [&](int a, double v) {
@@ -88,7 +88,7 @@ std::vector<std::size_t> spatial_order(const bed::Bed& b, double cell, const std
 
 // The spread's Verlet skin when SpreadSettings::skin is 0: 0.5 r_max, narrowed where a periodic
 // axis would otherwise hold fewer than 3 cells of 2 r_max + skin (NeighbourList::configure), down
-// to the drop's 0.2 r_max. The pair loop scans the pruned list (Run::prune), so a wide skin costs
+// to the drop's 0.2 r_max. The pair loop scans the pruned list (SpreadLoop::prune), so a wide skin costs
 // only at builds and prunes, and makes builds rarer: on the blade scene 0.5 r_max spread the
 // layer 6 % faster than 0.3 and as fast as 0.8 (docs/deposit-spread.md "Speed").
 double default_skin(const Box& box, double r_max) {
@@ -111,7 +111,7 @@ struct DriftConstants {
   BranchFreeWrap wrap;
 };
 
-// Run::start_step's first pass over particles [0, count): v += h F / m, x += dt v (wrapped),
+// SpreadLoop::start_step's first pass over particles [0, count): v += h F / m, x += dt v (wrapped),
 // F = m_weight g - c v (gravity and Stokes drag, stokes_drag.hpp), T = 0. A free function because GCC 12
 // honours __restrict on parameters only: without it the loop over fifteen arrays needs more
 // aliasing checks than GCC makes and runs one particle at a time. Non-zero when a velocity is
@@ -140,8 +140,8 @@ std::uint64_t kick_drift(std::size_t count, const DriftConstants k, double* __re
   return bad;
 }
 
-struct Run {
-  Run(bed::Bed& b, const Scene& sc, const SpreadSettings& st) : bed(b), scene(sc), settings(st) {}
+struct SpreadLoop {
+  SpreadLoop(bed::Bed& b, const Scene& sc, const SpreadSettings& st) : bed(b), scene(sc), settings(st) {}
   bed::Bed& bed;
   const Scene& scene;
   const SpreadSettings& settings;
@@ -610,7 +610,7 @@ struct Run {
     detail::ContactFn force;
     const detail::ContactCoefficients* coefficients;
     WrappedImage image;  // positions are wrapped at every drift
-    const Run* run;
+    const SpreadLoop* run;
     bool update;
 
     bool contact(std::size_t k, ContactForce& c) const {
@@ -840,11 +840,11 @@ void check_tool(const Recoater& t, const Box& box) {
 }
 
 // The layer's supply through the public add_layer_supply (spread.hpp), with the run's floor.
-std::size_t add_supply(Run& run, std::uint64_t layer) {
+std::size_t add_supply(SpreadLoop& run, std::uint64_t layer) {
   return add_layer_supply(run.bed, run.settings, run.floor, layer);
 }
 
-void check_tool_clear(const Run& run) {
+void check_tool_clear(const SpreadLoop& run) {
   for (std::size_t i = 0; i < run.n(); ++i) {
     ToolContact t;
     if (!tool_contact(run.profile, run.bed.x[i] - run.tool_x, run.bed.z[i], run.bed.radius[i], t))
@@ -869,7 +869,7 @@ ActiveContacts from_state(const SpreadState& s, const bed::Bed& bed) {
   return a;
 }
 
-SpreadState to_state(const Run& run, const ActiveContacts& a) {
+SpreadState to_state(const SpreadLoop& run, const ActiveContacts& a) {
   SpreadState s;
   s.dt = run.dt;
   s.tool_x = run.tool_x;
@@ -986,7 +986,7 @@ std::size_t remove_particles(bed::Bed& bed, SpreadState& s, const std::vector<ch
 
 namespace {
 
-double largest_overlap(const Run& run) {
+double largest_overlap(const SpreadLoop& run) {
   double worst = 0;
   const std::uint32_t* owner = run.list.owners();
   const std::uint32_t* partner = run.list.partners();
@@ -1001,7 +1001,7 @@ double largest_overlap(const Run& run) {
   return worst;
 }
 
-void finish_layer(const Run& run, LayerSummary& out, double window_x0, double window_x1,
+void finish_layer(const SpreadLoop& run, LayerSummary& out, double window_x0, double window_x1,
                   double bottom) {
   const bed::Bed& bed = run.bed;
   const Box& box = run.box;
@@ -1095,7 +1095,7 @@ struct Spreader {
   const Scene& scene;
   const SpreadSettings& settings;
   const SpreadState* restart;
-  Run run;
+  SpreadLoop run;
   SpreadSummary summary;
   SpreadState state;
   ActiveContacts carried;
