@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <optional>
 #include <string>
 
 #include "powderbed/bed/errors.hpp"
@@ -10,24 +12,94 @@
 #include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/spread.hpp"
+#include "powderbed/dem/time_step.hpp"
+#include "powderbed/dem/trajectory.hpp"
 
 namespace powderbed::dem::detail {
 namespace {
 
 void refuse_drop_only(const Scene& scene, const RunSettings& settings) {
-  if (settings.until_rest || settings.lid.enabled || settings.insertion.enabled ||
-      settings.integrator != Integrator::verlet || !settings.trajectory.empty()) {
+  if (settings.lid.enabled || settings.insertion.enabled || settings.integrator != Integrator::verlet) {
     throw InputError(std::string(scene.material.rolling > 0 ? "material.rolling" : "friction.model = history") +
-                     ": with --until-rest, the lid, insertion, --integrator rk4 or a trajectory "
-                     "(accepted: a --t-end drop with velocity Verlet; those need the drop solver, "
+                     ": with the lid, insertion or --integrator rk4 (accepted: a drop with velocity "
+                     "Verlet, --t-end or --until-rest, and a trajectory; those need the drop solver, "
                      "which has no particle rotation)");
   }
 }
 
+// The drop's rest test (RestCriteria, as the drop solver's: about ten checks a window, at most
+// every 100 steps) and its trajectory, on the spreading engine's frames.
+class DropFrames {
+ public:
+  DropFrames(const bed::Bed& bed, const Scene& scene, const RunSettings& settings, double dt)
+      : scene_(scene), settings_(settings) {
+    const RestCriteria& rest = settings.rest;
+    double mass = 0;
+    for (const double r : bed.radius) mass += bed::sphere_volume(r) * scene.material.density;
+    rest_energy_ = rest.kinetic_energy > 0 ? rest.kinetic_energy
+                                           : 1e-2 * 0.5 * mass * rest.max_speed * rest.max_speed;
+    rest_every_ = static_cast<std::uint64_t>(std::clamp(std::floor(rest.window / dt / 10.0), 1.0, 100.0));
+    window_steps_ = static_cast<std::uint64_t>(std::ceil(rest.window / dt));
+    if (!settings.trajectory.empty()) trajectory_.emplace(settings.trajectory, bed);
+  }
+
+  // SpreadSettings::frame_every: every step that a test or a snapshot falls on.
+  std::uint64_t every() const {
+    const std::uint64_t rest = settings_.until_rest ? rest_every_ : 0;
+    const std::uint64_t frames = trajectory_ ? settings_.trajectory_every : 0;
+    return std::gcd(rest, frames);
+  }
+
+  // SpreadSettings::frame: true once the bed has been quiet for the window.
+  bool operator()(std::uint64_t step, double time, const bed::Bed& bed) {
+    if (trajectory_ && step % settings_.trajectory_every == 0) {
+      trajectory_->write(step, time, bed);
+      written_ = step;
+    }
+    if (!settings_.until_rest || step % rest_every_ != 0) return false;
+    if (quiet(bed)) {
+      if (quiet_since_ == kNotQuiet) quiet_since_ = step;
+      at_rest_ = step - quiet_since_ >= window_steps_;
+    } else {
+      quiet_since_ = kNotQuiet;
+    }
+    return at_rest_;
+  }
+
+  // The last snapshot (unless the last step had one) and the file into place.
+  void finish(std::uint64_t step, double time, const bed::Bed& bed) {
+    if (!trajectory_) return;
+    if (written_ != step) trajectory_->write(step, time, bed);
+    trajectory_->close();
+  }
+
+  bool at_rest() const { return at_rest_; }
+
+ private:
+  static constexpr std::uint64_t kNotQuiet = ~std::uint64_t{0};
+
+  bool quiet(const bed::Bed& bed) const {
+    double energy = 0, fastest = 0;
+    for (std::size_t i = 0; i < bed.n(); ++i) {
+      const double v2 = bed.vx[i] * bed.vx[i] + bed.vy[i] * bed.vy[i] + bed.vz[i] * bed.vz[i];
+      energy += 0.5 * bed::sphere_volume(bed.radius[i]) * scene_.material.density * v2;
+      fastest = std::max(fastest, v2);
+    }
+    return energy < rest_energy_ && std::sqrt(fastest) < settings_.rest.max_speed;
+  }
+
+  const Scene& scene_;
+  const RunSettings& settings_;
+  double rest_energy_ = 0;
+  std::uint64_t rest_every_ = 1, window_steps_ = 0, quiet_since_ = kNotQuiet, written_ = kNotQuiet;
+  bool at_rest_ = false;
+  std::optional<TrajectoryWriter> trajectory_;
+};
+
 SpreadSettings spread_settings(const RunSettings& settings) {
   SpreadSettings s;
   s.with_tool = false;
-  s.t_end = settings.t_end;
+  s.t_end = settings.t_end > 0 ? settings.t_end : 1.0;  // the drop's cap with until_rest
   s.young_scale = settings.young_scale;
   s.dt = settings.dt;
   s.unsafe_dt = settings.unsafe_dt;
@@ -55,8 +127,18 @@ bool needs_rotation(const Scene& scene) {
 RunSummary run_rotating_drop(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
   check_run_settings(settings);  // run_spread reads a negative dt as "the recommended one"
   refuse_drop_only(scene, settings);
-  const SpreadSummary g = run_spread(bed, scene, spread_settings(settings));
+  SpreadSettings spread = spread_settings(settings);
+  // The frames need the step: the one run_spread will take (the user's or the recommended).
+  const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
+  DropFrames frames(bed, scene, settings, settings.dt > 0 ? settings.dt : bound.recommended);
+  spread.frame_every = frames.every();
+  if (spread.frame_every > 0) {
+    spread.frame = [&frames](std::uint64_t step, double time, const bed::Bed& b) { return frames(step, time, b); };
+  }
+  const SpreadSummary g = run_spread(bed, scene, spread);
+  frames.finish(g.steps, g.sim_time, bed);
   RunSummary r;
+  r.at_rest = frames.at_rest();
   r.n = bed.n();
   r.steps = g.steps;
   r.sim_time = g.sim_time;

@@ -11,10 +11,10 @@ namespace powderbed::dem::detail {
 // material.rolling > 0), which the drop solver does not carry.
 bool needs_rotation(const Scene& scene);
 
-// A drop of settings.t_end on the spreading engine (spread.hpp, SpreadSettings::with_tool
-// false), summarised as the drop solver's run. Throws InputError for settings out of range
-// (check_run_settings) and for what only the drop solver has: --until-rest, the lid,
-// insertion, RK4, a trajectory.
+// A drop on the spreading engine (spread.hpp, SpreadSettings::with_tool false) for
+// settings.t_end or until rest, with its trajectory, summarised as the drop solver's run.
+// Throws InputError for settings out of range (check_run_settings) and for what only the drop
+// solver has: the lid, insertion, RK4.
 RunSummary run_rotating_drop(bed::Bed& bed, const Scene& scene, const RunSettings& settings);
 
 }  // namespace powderbed::dem::detail

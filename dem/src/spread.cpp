@@ -785,6 +785,20 @@ struct SpreadLoop {
     synced = true;
   }
 
+  // The bed at the last whole step: a copy with the pending half kick's velocities.
+  bed::Bed whole_step_bed() const {
+    bed::Bed copy = bed;
+    if (synced) return copy;
+    const double h = 0.5 * dt;
+    for (std::size_t i = 0; i < moving; ++i) {
+      const double a = h * inv_mass[i];
+      copy.vx[i] += a * fx[i];
+      copy.vy[i] += a * fy[i];
+      copy.vz[i] += a * fz[i];
+    }
+    return copy;
+  }
+
   // The kinetic energy at the last whole step, whether or not its second half kick is pending.
   double kinetic_energy() const {
     const double h = synced ? 0.0 : 0.5 * dt;
@@ -1214,6 +1228,11 @@ struct Spreader {
         settings.progress(static_cast<double>(s) / static_cast<double>(steps), run.kinetic_energy());
       }
       if (settings.thermo && step % thermo_every == 0) thermo();
+      if (settings.frame && settings.frame_every > 0 && step % settings.frame_every == 0 &&
+          settings.frame(step, static_cast<double>(step) * run.dt, run.whole_step_bed())) {
+        run.sync(step);
+        return false;
+      }
       if (settings.observer) {  // it reads whole-step velocities: no kick stays pending
         run.sync(step);
         if (settings.observer(step, static_cast<double>(step) * run.dt, bed, run.wy)) return false;
@@ -1243,8 +1262,10 @@ struct Spreader {
     run.forces();
     const auto steps = static_cast<std::uint64_t>(std::ceil(settings.t_end / run.dt - 1e-9));
     resolve_thermo(steps);
-    advance(steps, [](std::uint64_t) {});
-    particle_steps = static_cast<double>(bed.n()) * static_cast<double>(steps);
+    const std::uint64_t first = step;
+    const bool stopped = settings.frame && settings.frame(step, static_cast<double>(step) * run.dt, bed);
+    if (!stopped) advance(steps, [](std::uint64_t) {});
+    particle_steps = static_cast<double>(bed.n()) * static_cast<double>(step - first);
     save_state(state.layers_done);
   }
 

@@ -134,6 +134,11 @@ struct SpreadSettings {
   std::function<bool(std::uint64_t step, double time, const bed::Bed& bed,
                      const std::vector<double>& wy)>
       observer;
+  // Every frame_every steps (and, without a tool, at the run's first step) when set: the bed with the
+  // whole step's velocities, in a copy, so that the run's bits are the same with or without it
+  // (unlike the observer's); true stops the run. What a drop's rest test and trajectory read.
+  std::function<bool(std::uint64_t step, double time, const bed::Bed& bed)> frame;
+  std::uint64_t frame_every = 0;
   std::uint64_t tool_force_every = 0;  // steps between samples (0: none)
   std::function<void(const ToolForceSample&)> tool_force;
   // After each layer, with the bed and the state a restart needs.
