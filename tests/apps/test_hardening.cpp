@@ -868,6 +868,8 @@ std::vector<Case> all_cases() {
   add("deposit_fines_stiffness_linear", "deposit",
       dep + "--contact.law linear --contact.stiffness 100 --fines.scaling stiffness --fines.radius 1e-5 --out @out.h5",
       2, {"fines.scaling", "linear"});
+  add("deposit_rotating_rk4", "deposit", dep + "--friction.model history --integrator rk4 --out @out.h5", 2,
+      {"friction.model", "rk4"});
 
   // keff.
   const std::string kf = "--bed @good.h5 ";
