@@ -45,7 +45,7 @@ def test_binary_material_file_gives_one_printable_line(tmp_path, packed):
     path, _ = packed
     (tmp_path / "bin.csv").write_bytes(b"\x7fELF\x02\x01\x00\x00\x1b[31m,\xff\xfe\n\x01\n")
     with pytest.raises(powderbed.ProgramError, match=r"bin\.csv:1") as error:
-        powderbed.keff(bed=path, material=tmp_path / "bin.csv", out=tmp_path / "k.h5")
+        powderbed.run("keff", bed=path, material=tmp_path / "bin.csv", out=tmp_path / "k.h5")
     assert error.value.message.isprintable() and "\\x7fELF" in error.value.message
 
 

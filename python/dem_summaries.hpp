@@ -1,0 +1,14 @@
+#pragma once
+// dem's run summaries as Python dicts, with the keys of deposit's --json summary where it has
+// the same number (apps/deposit.cpp, deposit_spread.cpp).
+#include <pybind11/pybind11.h>
+
+#include "powderbed/dem/solver.hpp"
+#include "powderbed/dem/spread.hpp"
+
+namespace powderbed::python {
+
+pybind11::dict run_summary_dict(const dem::RunSummary& r);
+pybind11::dict spread_summary_dict(const dem::SpreadSummary& s);
+
+}  // namespace powderbed::python

@@ -1,0 +1,104 @@
+"""The stages in-process: deposit, spread, keff and sinter run the C++ libraries on a Bed and
+the libraries' own structs (Scene, RunSettings, SpreadSettings, KeffScene, SinterScene), with no
+file and no program in between. Keyword arguments set the structs' fields by name; what is not
+given keeps the struct's default, which is the library's (the programs' defaults are the same
+structs'). The GIL is released while a stage runs; `progress` is called with a dict as it goes,
+and an exception it raises stops the run and comes out of the call. Bad input raises InputError
+(a ValueError) with the library's one-line message, a run that goes non-finite NumericalError
+(an ArithmeticError); what the programs print as a warning is a RuntimeWarning."""
+from . import _checks, _core, _structs
+from ._bed import Bed, bed_of
+
+Scene, RunSettings, SpreadSettings = _core.Scene, _core.RunSettings, _core.SpreadSettings
+KeffScene, SinterScene = _core.KeffScene, _core.SinterScene
+
+
+def _callable_or_none(value, what):
+    if value is not None and not callable(value):
+        _checks.refuse(what, value, "a callable or None")
+    return value
+
+
+def deposit(bed, scene=None, settings=None, *, progress=None, **fields):
+    """Drops and settles `bed` (dem::run_deposition, as the program deposit) and returns
+    (settled Bed, summary dict). The input Bed is not changed.
+
+    scene: a powderbed.Scene (the powder, walls, contact law, effects); settings: a
+    powderbed.RunSettings (t_end or until_rest, dt, young_scale, lid, insertion, ...). Keyword
+    arguments set fields of either by name, e.g. deposit(bed, t_end=2e-3, young_scale=1e3,
+    material={"density": 4430}, effects=["gravity", "hertz", "walls"]).
+    progress(p) is called every settings.progress_every steps and at the end with p = {"step",
+    "time", "t_end", "fraction", "kinetic_energy", "max_speed"}.
+    The summary has deposit --json's run keys (n, steps, sim_time, dt, dt_stable, kinetic_energy,
+    max_speed, max_overlap, lost, at_rest, ...; insertion and lid when used). Particles that left
+    the box stay in the bed (summary["lost"] counts them; the program refuses such a run). The
+    bed's provenance records the contact law, as the program's, for keff's Hertz correction.
+    History friction and rolling resistance need spread() (with_tool=False) in-process."""
+    scene, settings = _structs.structs("deposit", fields, (scene, Scene), (settings, RunSettings))
+    out, summary = _core.deposit(bed_of(bed, "deposit: bed").as_dict(), scene, settings,
+                                 _callable_or_none(progress, "deposit: progress"))
+    return Bed(out), summary
+
+
+def spread(bed, scene=None, settings=None, *, state=None, supply=None, progress=None, **fields):
+    """Spreads settings.layers layers on `bed` with the recoater (dem::run_spread, as deposit
+    with a recoater scene) and returns (Bed, summary dict, SpreadState). The input Bed is not
+    changed; it may be empty (no particles) when a supply brings the powder.
+
+    scene: a powderbed.Scene; settings: a powderbed.SpreadSettings (tool: a Recoater, the
+    supply region supply_x0, supply_x1, supply_height, layers, layer_thickness, ...); keyword
+    arguments set fields of either by name, e.g. spread(bed, tool={"gap": 60e-6, "end": 2e-3}).
+    state: the SpreadState a previous spread returned, to continue it on the Bed it returned.
+    supply(region, layer) -> Bed fills a layer's supply region (region: a domain dict as
+    Bed.domain; layer from 1); None: no supply (the bed holds the powder).
+    progress(p) is called every settings.progress_every steps with p = {"fraction" (of the
+    current layer, or of t_end), "kinetic_energy"}.
+    The summary: one dict per layer under "layers" (n, supplied, tool_bottom, max_tool_force,
+    density_under_gap, overflow, ...), and the run's steps, dt, dt_stable, wall_time."""
+    scene, settings = _structs.structs("spread", fields, (scene, Scene), (settings, SpreadSettings))
+    if state is not None and not isinstance(state, _core.SpreadState):
+        _checks.refuse("spread: state", state, "a powderbed.SpreadState from spread, or None")
+    maker = None
+    if _callable_or_none(supply, "spread: supply") is not None:
+        def maker(region, layer):
+            return bed_of(supply(region, layer), "spread: what supply returned").as_dict()
+    out, summary, end = _core.spread(bed_of(bed, "spread: bed").as_dict(), scene, settings, state,
+                                     maker, _callable_or_none(progress, "spread: progress"))
+    return Bed(out), summary, end
+
+
+def keff(bed, scene=None, *, progress=None, **fields):
+    """The effective conductivity of `bed` between two isothermal walls (keff's network and
+    solve, as the program keff) as a dict: k_eff, k_core, heat_flow_hot, heat_flow_cold, the
+    shares of the contact, gas and radiation paths, drop_hot, drop_cold, temperature (K, per
+    particle), rattlers (indices), link counts, newton_iterations, residual.
+
+    scene: a powderbed.KeffScene (axis, hot_temperature, cold_temperature, solid_conductivity,
+    gas_model, radiation_path, contact, lens, ...); keyword arguments set its fields by name,
+    e.g. keff(bed, hot_temperature=1005, cold_temperature=995, radiation_path=True).
+    With contact={"hertz_correction": True} the DEM law is read from the bed's provenance (a
+    bed from deposit or spread has it); contact.circle stays as given (the program keff
+    switches it to hertz with the correction unless told). progress(fraction) hears the
+    view factors' tracing (radiation only). Raises NumericalError when no heat path joins the
+    walls."""
+    (scene,) = _structs.structs("keff", fields, (scene, KeffScene))
+    return _core.keff(bed_of(bed, "keff: bed").as_dict(), scene,
+                      _callable_or_none(progress, "keff: progress"))
+
+
+def sinter(bed, scene=None, *, progress=None, **fields):
+    """Runs the laser over `bed` (thermal::Sinter, as the program sinter without its run file)
+    and returns (Bed with each particle's final temperature and phase, summary dict).
+
+    scene: a powderbed.SinterScene (power, speed, spot_radius, nodes, substrate_depth, t_end,
+    scan_path, material_table, effects, ...); keyword arguments set its fields by name, e.g.
+    sinter(bed, power=150, nodes=[21, 11, 11], substrate_depth=1e-4).
+    progress(p) is called about once a second of wall time with p = {"step", "time", "t_end",
+    "fraction", "max_temperature_particles", "max_temperature_substrate"}.
+    The summary has sinter --json's keys: melt_pool {height, width, depth}, melt_pool_along,
+    max_temperature, particles_molten, energy_balance_error, energy (the ledger, J), absorptance,
+    tracks, steps, dt, t_end, ..."""
+    (scene,) = _structs.structs("sinter", fields, (scene, SinterScene))
+    out, summary = _core.sinter(bed_of(bed, "sinter: bed").as_dict(), scene,
+                                _callable_or_none(progress, "sinter: progress"))
+    return Bed(out), summary
