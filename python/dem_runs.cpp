@@ -12,9 +12,11 @@
 
 #include "bed_dict.hpp"
 #include "bindings.hpp"
+#include "contact_provenance.hpp"
 #include "dem_summaries.hpp"
 #include "gil_callback.hpp"
 #include "python_warning.hpp"
+#include "supply_maker.hpp"
 #include "powderbed/dem/solver.hpp"
 #include "powderbed/dem/spread.hpp"
 #include "powderbed/dem/time_step.hpp"
@@ -34,23 +36,6 @@ void warn_unsafe_dt(const bed::Bed& bed, const dem::Scene& scene, double dt, boo
   const double stable = dem::time_step_bound(bed, scene, young_scale).stable;
   if (dt > stable)
     warn(fmt::format("{}: dt {:g} s is above the stable bound {:g} s (unsafe_dt)", what, dt, stable));
-}
-
-// The contact law the bed was made with, as deposit records it (apps/deposit.cpp
-// record_provenance): keff's Hertz correction reads it from the bed.
-void record_contact(bed::Bed& bed, const dem::Scene& scene, double young_scale, const char* stage) {
-  bed.provenance.stage = stage;
-  bed::ContactProvenance& made = bed.provenance.contact;
-  made = {};
-  made.law = dem::contact_law_name(scene.law);
-  made.young = scene.material.young;
-  made.poisson = scene.material.poisson;
-  made.wall_young = scene.wall.young;
-  made.wall_poisson = scene.wall.poisson;
-  made.young_scale = young_scale;
-  made.stiffness = scene.stiffness;
-  if (scene.fines.scaling == dem::FinesScaling::stiffness)
-    made.fines_stiffness_radius = scene.fines.radius;
 }
 
 py::tuple deposit(const py::dict& bed_fields, const dem::Scene& scene, dem::RunSettings settings,
@@ -76,20 +61,15 @@ py::tuple deposit(const py::dict& bed_fields, const dem::Scene& scene, dem::RunS
     py::gil_scoped_release release;
     summary = dem::run_deposition(bed, scene, settings);
   }
-  record_contact(bed, scene, settings.young_scale, "deposit");
+  bed.provenance.stage = "deposit";
+  record_contact(bed.provenance, scene, settings.young_scale);
   return py::make_tuple(bed_to_dict(bed), run_summary_dict(summary));
 }
 
 py::tuple spread(const py::dict& bed_fields, const dem::Scene& scene, dem::SpreadSettings settings,
                  const py::object& state, const py::object& supply, const py::object& progress) {
   bed::Bed bed = bed_from_dict(bed_fields);
-  if (given(supply)) {
-    // The callable (powderbed/_runs.py) returns the supply's bed dict.
-    settings.supply = [fn = py::handle(supply)](const bed::Domain& region, std::uint64_t layer) {
-      py::gil_scoped_acquire gil;
-      return bed_from_dict(fn(domain_to_dict(region), layer).cast<py::dict>());
-    };
-  }
+  if (given(supply)) settings.supply = supply_maker(supply);
   if (given(progress)) {
     settings.progress = [fn = py::handle(progress)](double fraction, double kinetic_energy) {
       call_with_gil(fn, [=] {
@@ -108,7 +88,8 @@ py::tuple spread(const py::dict& bed_fields, const dem::Scene& scene, dem::Sprea
     py::gil_scoped_release release;
     summary = dem::run_spread(bed, scene, settings, restart ? &*restart : nullptr);
   }
-  record_contact(bed, scene, settings.young_scale, "spread");
+  bed.provenance.stage = "spread";
+  record_contact(bed.provenance, scene, settings.young_scale);
   return py::make_tuple(bed_to_dict(bed), spread_summary_dict(summary), py::cast(std::move(summary.state)));
 }
 

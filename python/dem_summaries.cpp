@@ -27,7 +27,9 @@ py::dict lid_dict(const dem::LidSummary& l) {
   return d;
 }
 
-py::dict layer_dict(const dem::LayerSummary& l) {
+}  // namespace
+
+py::dict layer_summary_dict(const dem::LayerSummary& l) {
   py::dict d;
   d["layer"] = l.layer;
   d["n"] = l.n;
@@ -47,8 +49,6 @@ py::dict layer_dict(const dem::LayerSummary& l) {
   d["frozen_tool_contacts"] = l.frozen_tool_contacts;
   return d;
 }
-
-}  // namespace
 
 py::dict run_summary_dict(const dem::RunSummary& r) {
   py::dict d;
@@ -83,7 +83,7 @@ py::dict run_summary_dict(const dem::RunSummary& r) {
 py::dict spread_summary_dict(const dem::SpreadSummary& s) {
   py::dict d;
   py::list layers;
-  for (const dem::LayerSummary& l : s.layers) layers.append(layer_dict(l));
+  for (const dem::LayerSummary& l : s.layers) layers.append(layer_summary_dict(l));
   d["layers"] = layers;
   d["steps"] = s.steps;
   d["sim_time"] = s.sim_time;

@@ -10,5 +10,7 @@ namespace powderbed::python {
 
 pybind11::dict run_summary_dict(const dem::RunSummary& r);
 pybind11::dict spread_summary_dict(const dem::SpreadSummary& s);
+// One layer of a spread (a spread's and a build layer's).
+pybind11::dict layer_summary_dict(const dem::LayerSummary& l);
 
 }  // namespace powderbed::python

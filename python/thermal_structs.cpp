@@ -34,6 +34,17 @@ void bind_parts(py::module_& m) {
       .field("seed", &R::seed, "random seed of the rays")
       .field("max_bounces", &R::max_bounces, "a ray bouncing longer is dropped")
       .done();
+  using H = th::Hatch;
+  StructBinding<H>(m, "Hatch", "Parallel tracks across a region, turned per layer (scan_path.hpp).")
+      .field("spacing", &H::spacing, "h between track centre lines, m")
+      .field("tracks", &H::tracks, "0: as many as the region holds")
+      .word("direction", &H::direction, th::kHatchDirectionWords, "one-way | alternating")
+      .field("rotation", &H::rotation, "degrees per layer")
+      .field("layer", &H::layer, "k: the tracks run at k x rotation from +x")
+      .field("region", &H::region, "x0, x1, y0, y1, m")
+      .field("power", &H::power, "W, of every track")
+      .field("speed", &H::speed, "m/s, of every track")
+      .done();
   // A segment has no defaults (an aggregate of six numbers): it is made whole.
   py::class_<th::ScanSegment>(m, "ScanSegment", "One straight segment of a scan path (SI).")
       .def(py::init([](double x0, double y0, double x1, double y1, double power, double speed) {

@@ -1,6 +1,6 @@
 """powderbed from Python: beds as numpy arrays, PSD sampling, bedstat's statistics, the stages
-deposit, spread, keff and sinter run in-process on a Bed, and every program's --json summary
-as a dict (README "Python", docs/python.md).
+deposit, spread, keff, sinter and build run in-process on a Bed, and every program's --json
+summary as a dict (README "Python", docs/python.md).
 
     import powderbed
     b = powderbed.read_bed("out/deposit.h5")      # b.x, b.y, b.z, b.r, b.id, b.domain, ...
@@ -24,25 +24,26 @@ from . import _checks, _core
 from ._version import __version__
 from ._programs import PROGRAMS, ProgramError, run
 from ._bed import Bed, bed_of as _bed_of
-from ._runs import deposit, spread, keff, sinter
+from ._runs import deposit, spread, keff, sinter, build
 from ._core import (Scene, Material, WallMaterial, Fines, RunSettings, RestCriteria, LidSettings,
                     InsertionSettings, Recoater, SpreadSettings, SpreadState, KeffScene, ContactRadius,
-                    GasLens, SinterScene, PhaseChange, RayTrace, ScanSegment)
+                    GasLens, SinterScene, PhaseChange, RayTrace, ScanSegment, Hatch, FusionPolicy,
+                    BuildPlan, PartRecord)
 
 InputError = _core.InputError
 NumericalError = _core.NumericalError
 
 # The programs whose stage runs in-process above are reached through run(name, ...); the others
 # are functions of their own name that run the program.
-_IN_PROCESS = ("deposit", "keff", "sinter")
+_IN_PROCESS = ("deposit", "keff", "sinter", "build")
 _PROGRAM_FUNCTIONS = tuple(name for name in PROGRAMS if name not in _IN_PROCESS)
 
 __all__ = ["__version__", "Bed", "InputError", "NumericalError", "ProgramError", "PROGRAMS",
            "read_bed", "write_bed", "sample_psd", "stats", "run", "deposit", "spread", "keff",
-           "sinter", "Scene", "Material", "WallMaterial", "Fines", "RunSettings", "RestCriteria",
+           "sinter", "build", "Scene", "Material", "WallMaterial", "Fines", "RunSettings", "RestCriteria",
            "LidSettings", "InsertionSettings", "Recoater", "SpreadSettings", "SpreadState",
            "KeffScene", "ContactRadius", "GasLens", "SinterScene", "PhaseChange", "RayTrace",
-           "ScanSegment", *_PROGRAM_FUNCTIONS]
+           "ScanSegment", "Hatch", "FusionPolicy", "BuildPlan", "PartRecord", *_PROGRAM_FUNCTIONS]
 
 
 def read_bed(path, domain=None):

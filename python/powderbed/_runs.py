@@ -1,6 +1,7 @@
-"""The stages in-process: deposit, spread, keff and sinter run the C++ libraries on a Bed and
-the libraries' own structs (Scene, RunSettings, SpreadSettings, KeffScene, SinterScene), with no
-file and no program in between. Keyword arguments set the structs' fields by name; what is not
+"""The stages in-process: deposit, spread, keff, sinter and build run the C++ libraries on a Bed
+and the libraries' own structs (Scene, RunSettings, SpreadSettings, KeffScene, SinterScene,
+BuildPlan), with no file and no program in between (a build writes its layers' files, as the
+program build does). Keyword arguments set the structs' fields by name; what is not
 given keeps the struct's default, which is the library's (the programs' defaults are the same
 structs'). The GIL is released while a stage runs; `progress` is called with a dict as it goes,
 and an exception it raises stops the run and comes out of the call. Bad input raises InputError
@@ -10,13 +11,23 @@ from . import _checks, _core, _structs
 from ._bed import Bed, bed_of
 
 Scene, RunSettings, SpreadSettings = _core.Scene, _core.RunSettings, _core.SpreadSettings
-KeffScene, SinterScene = _core.KeffScene, _core.SinterScene
+KeffScene, SinterScene, BuildPlan = _core.KeffScene, _core.SinterScene, _core.BuildPlan
 
 
 def _callable_or_none(value, what):
     if value is not None and not callable(value):
         _checks.refuse(what, value, "a callable or None")
     return value
+
+
+def _supply_maker(supply, what):
+    """The user's supply(region, layer) -> Bed as the C++ half calls it: returning a bed dict."""
+    if _callable_or_none(supply, f"{what}: supply") is None:
+        return None
+
+    def maker(region, layer):
+        return bed_of(supply(region, layer), f"{what}: what supply returned").as_dict()
+    return maker
 
 
 def deposit(bed, scene=None, settings=None, *, progress=None, **fields):
@@ -58,12 +69,9 @@ def spread(bed, scene=None, settings=None, *, state=None, supply=None, progress=
     scene, settings = _structs.structs("spread", fields, (scene, Scene), (settings, SpreadSettings))
     if state is not None and not isinstance(state, _core.SpreadState):
         _checks.refuse("spread: state", state, "a powderbed.SpreadState from spread, or None")
-    maker = None
-    if _callable_or_none(supply, "spread: supply") is not None:
-        def maker(region, layer):
-            return bed_of(supply(region, layer), "spread: what supply returned").as_dict()
     out, summary, end = _core.spread(bed_of(bed, "spread: bed").as_dict(), scene, settings, state,
-                                     maker, _callable_or_none(progress, "spread: progress"))
+                                     _supply_maker(supply, "spread"),
+                                     _callable_or_none(progress, "spread: progress"))
     return Bed(out), summary, end
 
 
@@ -102,3 +110,31 @@ def sinter(bed, scene=None, *, progress=None, **fields):
     out, summary = _core.sinter(bed_of(bed, "sinter: bed").as_dict(), scene,
                                 _callable_or_none(progress, "sinter: progress"))
     return Bed(out), summary
+
+
+def build(bed, plan=None, *, layers=1, state=None, part=None, supply=None, progress=None, **fields):
+    """Builds `layers` layers on `bed` (process::build_layer, as the program build): each layer
+    the recoater spreads the supply on the solid of the layers before, the laser scans it, what
+    melted fuses into the solid's top; each layer's files (layer-NNN-spread.h5, -scan.h5, .h5)
+    go to plan.out. Returns (the powder left as a Bed, a report dict per layer, SpreadState,
+    PartRecord); pass the last three's Bed, state and part back to build more layers.
+
+    plan: a powderbed.BuildPlan (scene: the powder's Scene; spread: SpreadSettings with the tool
+    and the supply region; scan: SinterScene; hatch: a Hatch turned by its rotation per layer,
+    or None; fusion: FusionPolicy; out: the folder; finest_diameter; snapshots); keyword
+    arguments set its fields by name, nested structs by dict, e.g. build(box, out="part",
+    spread={"tool": {"gap": 60e-6}}, scan={"power": 150}). `bed` is the empty box (its domain)
+    for a new build. supply(region, layer) -> Bed fills each layer's supply region, as in
+    spread(). progress(p) hears each stage with p = {"layer", "stage" ("spread" or "scan"),
+    "fraction"}. Each report has build.json's layer keys (layer_density, fused_fraction,
+    lack_of_fusion, part_porosity, ...) and the stages' own summaries under "spread" and "scan".
+    The build's warning (the solid's top above the recoater's bottom) is a RuntimeWarning."""
+    (plan,) = _structs.structs("build", fields, (plan, BuildPlan))
+    if state is not None and not isinstance(state, _core.SpreadState):
+        _checks.refuse("build: state", state, "a powderbed.SpreadState from build, or None")
+    if part is not None and not isinstance(part, _core.PartRecord):
+        _checks.refuse("build: part", part, "a powderbed.PartRecord from build, or None")
+    out, reports, end, record = _core.build(
+        bed_of(bed, "build: bed").as_dict(), plan, _checks.whole(layers, "build: layers"), state,
+        part, _supply_maker(supply, "build"), _callable_or_none(progress, "build: progress"))
+    return Bed(out), reports, end, record

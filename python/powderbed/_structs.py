@@ -3,6 +3,7 @@ each name must be a field, each value of the field's type; a nested struct's fie
 of its own fields. A wrong name or type raises InputError (a ValueError) naming it, not a
 TypeError from pybind11."""
 import copy
+import os
 
 from . import _checks
 
@@ -13,14 +14,19 @@ def _is_struct(value):
 
 def _set(obj, key, value):
     current = getattr(obj, key)
+    if isinstance(current, str) and isinstance(value, os.PathLike):  # a path field (BuildPlan.out)
+        value = _checks.path(value, f"{type(obj).__name__}.{key}")
     if isinstance(value, dict) and _is_struct(current):
         configure(current, **value)  # the nested struct, in place (pybind11 hands a reference)
         return
     try:
         setattr(obj, key, value)
     except TypeError:
-        accepted = f"a {type(current).__name__}" + (f" or a dict of {', '.join(type(current)._fields)}"
-                                                     if _is_struct(current) else "")
+        if current is None:  # an optional struct (BuildPlan.hatch): its type is in help()
+            accepted = f"what help(powderbed.{type(obj).__name__}) says {key} takes"
+        else:
+            accepted = f"a {type(current).__name__}" + (f" or a dict of {', '.join(type(current)._fields)}"
+                                                         if _is_struct(current) else "")
         _checks.refuse(f"{type(obj).__name__}.{key}", value, accepted)
 
 
