@@ -76,8 +76,10 @@ std::string stats_json(const py::dict& bed, double tol, std::optional<std::pair<
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "powderbed's C++ libraries (use the package powderbed, not this module)";
-  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
-  py::register_exception<NumericalError>(m, "NumericalError", PyExc_ArithmeticError);
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError).attr("__doc__") =
+      "Bad input (a value, a file, a keyword): the one line the programs print before exit 2.";
+  py::register_exception<NumericalError>(m, "NumericalError", PyExc_ArithmeticError).attr("__doc__") =
+      "A run that went non-finite (naming the particle or node and the step): the programs' exit 3.";
   m.def("read_bed", &read_bed, py::arg("path"), py::arg("domain") = py::none());
   m.def("write_bed", &write_bed, py::arg("bed"), py::arg("path"));
   m.def("sample_psd", &sample_psd, py::arg("spec"), py::arg("n"), py::arg("seed"));

@@ -40,6 +40,9 @@ def test_sinter_in_process_is_the_programs(sinter_bed, tmp_path):
     assert mine["melt_pool"]["width"] == theirs["melt_pool"]["width"]
     assert heated.temperature.max() > 363 and heated.phase is not None
     assert bed.temperature is None  # the input Bed is untouched
+    dt = 2 * mine["dt_stable_grid"]  # three steps beyond the bound: told, not refused
+    with pytest.warns(RuntimeWarning, match=r"^sinter: dt .* s is above the stable bound .* s \(unsafe_dt\)$"):
+        powderbed.sinter(bed, dt=dt, unsafe_dt=True, t_end=3 * dt, **SMALL_GRID)
 
 
 def test_sinter_scene_is_a_class_with_the_librarys_defaults():
