@@ -21,7 +21,7 @@ void bind_scene(py::module_& m) {
       .field("density", &dem::Material::density, "rho, kg/m^3")
       .field("damping", &dem::Material::damping, "zeta in [0, 1], pairs and walls")
       .field("friction", &dem::Material::friction, "mu_d, pairs and walls")
-      .field("rolling", &dem::Material::rolling, "mu_r, rolling resistance (spreads only; 0: off)")
+      .field("rolling", &dem::Material::rolling, "mu_r, rolling resistance (0: off)")
       .done();
   StructBinding<dem::WallMaterial>(m, "WallMaterial", "The walls' elastic constants.")
       .field("young", &dem::WallMaterial::young, "E, Pa")
@@ -40,7 +40,7 @@ void bind_scene(py::module_& m) {
       .word("law", &dem::Scene::law, &dem::parse_contact_law, &dem::contact_law_name,
             "contact law: hertz | linear")
       .word("friction_model", &dem::Scene::friction_model, &dem::parse_friction_model,
-            &dem::friction_model_name, "sliding | history (history: spreads only)")
+            &dem::friction_model_name, "sliding | history")
       .field("stiffness", &dem::Scene::stiffness, "k_n of the linear law, N/m")
       .field("fluid_viscosity", &dem::Scene::fluid_viscosity, "mu_f, Pa s")
       .field("gravity", &dem::Scene::gravity, "g, m/s^2")
@@ -130,6 +130,9 @@ void bind_spread_settings(py::module_& m) {
       .field("skin", &S::skin, "m; 0: 0.5 x the largest radius")
       .field("t_end", &S::t_end, "without tool: simulated time, s")
       .field("gravity_tilt", &S::gravity_tilt, "gravity tilted about +y, rad")
+      .field("threads", &S::threads, "OpenMP threads; 0: OpenMP's default")
+      .field("parallel_min_particles", &S::parallel_min_particles,
+             "beds with fewer particles run on one thread")
       .field("progress_every", &S::progress_every, "steps between progress calls")
       .done();
   // What a spread leaves for the next call (spread(..., state=...)): opaque but for its counts.

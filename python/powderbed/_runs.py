@@ -44,7 +44,8 @@ def deposit(bed, scene=None, settings=None, *, progress=None, **fields):
     max_speed, max_overlap, lost, at_rest, ...; insertion and lid when used). Particles that left
     the box stay in the bed (summary["lost"] counts them; the program refuses such a run). The
     bed's provenance records the contact law, as the program's, for keff's Hertz correction.
-    History friction and rolling resistance need spread() (with_tool=False) in-process."""
+    A scene with history friction or rolling resistance drops on the spreading engine without a
+    tool, as the program's (no until_rest, lid, insertion, rk4 or trajectory there)."""
     scene, settings = _structs.structs("deposit", fields, (scene, Scene), (settings, RunSettings))
     out, summary = _core.deposit(bed_of(bed, "deposit: bed").as_dict(), scene, settings,
                                  _callable_or_none(progress, "deposit: progress"))

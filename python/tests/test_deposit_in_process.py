@@ -12,12 +12,20 @@ import powderbed
 RUN = {"young_scale": 1e3, "t_end": 2e-4}
 
 
-def test_in_process_deposit_gives_the_programs_bed_bit_for_bit(packed, tmp_path):
+# The drop solver, and (history friction, rolling resistance) the spreading engine without a
+# tool that run_deposition picks for a scene that needs particle rotation.
+SCENES = [({}, {}),
+          ({"friction_model": "history", "material": {"rolling": 0.05}},
+           {"friction.model": "history", "material.rolling": 0.05})]
+
+
+@pytest.mark.parametrize("mine, theirs", SCENES, ids=["drop", "rotating"])
+def test_in_process_deposit_gives_the_programs_bed_bit_for_bit(packed, tmp_path, mine, theirs):
     path, _ = packed
     bed = powderbed.read_bed(path)
-    settled, summary = powderbed.deposit(bed, **RUN)
+    settled, summary = powderbed.deposit(bed, **mine, **RUN)
     program = powderbed.run("deposit", **{"in": path}, young_scale=RUN["young_scale"],
-                            t_end=RUN["t_end"], seed=1, out=tmp_path / "d.h5", progress=0)
+                            t_end=RUN["t_end"], seed=1, out=tmp_path / "d.h5", progress=0, **theirs)
     theirs = powderbed.read_bed(tmp_path / "d.h5")
     for key in ("x", "y", "z", "r", "id", "vx", "vy", "vz"):
         assert np.array_equal(getattr(settled, key), getattr(theirs, key)), key
