@@ -116,6 +116,8 @@ void bind_spread_settings(py::module_& m) {
   StructBinding<S>(m, "SpreadSettings", "How a spread runs (dem::SpreadSettings).")
       .field("tool", &S::tool, "Recoater (or a dict of its fields)")
       .field("with_tool", &S::with_tool, "false: a granular run of t_end without tool or supply")
+      .field("rotation", &S::rotation,
+             "false: particles do not turn (no history friction or rolling then)")
       .field("supply_x0", &S::supply_x0, "supply region's start along x, m")
       .field("supply_x1", &S::supply_x1, "supply region's end along x, m")
       .field("supply_height", &S::supply_height, "supply region's height, m")
