@@ -36,15 +36,6 @@ std::vector<T> vector_of(const py::dict& d, const char* key, std::size_t n, bool
   return std::vector<T>(a.data(), a.data() + a.size());
 }
 
-py::dict domain_to_dict(const bed::Domain& d) {
-  py::dict out;
-  out["dimension"] = d.dimension;
-  out["lower"] = py::array_t<double>(3, d.lower.data());
-  out["upper"] = py::array_t<double>(3, d.upper.data());
-  out["periodic"] = std::vector<bool>(d.periodic.begin(), d.periodic.end());
-  return out;
-}
-
 bed::Domain domain_from_dict(const py::dict& d) {
   bed::Domain out;
   out.dimension = d["dimension"].cast<int>();
@@ -103,6 +94,15 @@ bed::Provenance provenance_from_dict(const py::dict& d) {
 }
 
 }  // namespace
+
+py::dict domain_to_dict(const bed::Domain& d) {
+  py::dict out;
+  out["dimension"] = d.dimension;
+  out["lower"] = py::array_t<double>(3, d.lower.data());
+  out["upper"] = py::array_t<double>(3, d.upper.data());
+  out["periodic"] = std::vector<bool>(d.periodic.begin(), d.periodic.end());
+  return out;
+}
 
 py::dict bed_to_dict(const bed::Bed& b) {
   py::dict d;

@@ -11,7 +11,9 @@ namespace powderbed::python {
 // domain {dimension, lower, upper, periodic}; provenance {created_by, command_line, rng_seed,
 // stage, scene, contact_*}.
 pybind11::dict bed_to_dict(const bed::Bed& bed);
-// The inverse; throws InputError naming the key when an array's length differs from x's.
+// A domain as the dict a Bed holds: {dimension, lower, upper, periodic}.
+pybind11::dict domain_to_dict(const bed::Domain& d);
+// The inverse of bed_to_dict; throws InputError naming the key when an array's length differs from x's.
 bed::Bed bed_from_dict(const pybind11::dict& d);
 
 }  // namespace powderbed::python

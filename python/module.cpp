@@ -1,6 +1,7 @@
 // The C++ half of the Python module `powderbed` (python/powderbed/__init__.py is the other):
 // the bed library's readers and writers, PSD sampling and bedstat's statistics, so a script
-// gets the same numbers as the programs without parsing their output.
+// gets the same numbers as the programs without parsing their output; and the stages run
+// in-process on the libraries' structs (bindings.hpp: deposit, spread, keff, sinter, build).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -10,6 +11,7 @@
 #include <utility>
 
 #include "bed_dict.hpp"
+#include "bindings.hpp"
 #include "powderbed/bed/bed_report.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
@@ -73,13 +75,21 @@ std::string stats_json(const py::dict& bed, double tol, std::optional<std::pair<
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
-  m.doc() = "powderbed's C++ bed library (use the package powderbed, not this module)";
-  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
-  py::register_exception<NumericalError>(m, "NumericalError", PyExc_ArithmeticError);
+  m.doc() = "powderbed's C++ libraries (use the package powderbed, not this module)";
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError).attr("__doc__") =
+      "Bad input (a value, a file, a keyword): the one line the programs print before exit 2.";
+  py::register_exception<NumericalError>(m, "NumericalError", PyExc_ArithmeticError).attr("__doc__") =
+      "A run that went non-finite (naming the particle or node and the step): the programs' exit 3.";
   m.def("read_bed", &read_bed, py::arg("path"), py::arg("domain") = py::none());
   m.def("write_bed", &write_bed, py::arg("bed"), py::arg("path"));
   m.def("sample_psd", &sample_psd, py::arg("spec"), py::arg("n"), py::arg("seed"));
   m.def("stats_json", &stats_json, py::arg("bed"), py::arg("tol"), py::arg("layer"),
         py::arg("psd"), py::arg("profile"), py::arg("rdf"), py::arg("histogram"),
         py::arg("voronoi"), py::arg("order_margin"), py::arg("label"));
+  python::bind_dem_structs(m);
+  python::bind_dem_runs(m);
+  python::bind_keff(m);
+  python::bind_thermal_structs(m);
+  python::bind_sinter(m);
+  python::bind_build(m);
 }

@@ -7,7 +7,7 @@
 
 namespace powderbed::bed {
 
-void write_height_map_csv(const HeightMap& map, const std::string& path) {
+void write_height_map_csv(const LayerHeightMap& map, const std::string& path) {
   detail::AtomicFile file(path);
   std::string text = "x,y,height,covered\n";
   text.reserve(text.size() + map.height.size() * 64);

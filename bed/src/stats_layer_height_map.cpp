@@ -35,9 +35,9 @@ std::pair<long, long> cell_span(double c, double r, double lo, double step, std:
 
 }  // namespace
 
-HeightMap height_map(const Bed& bed, const LayerRequest& q) {
+LayerHeightMap height_map(const Bed& bed, const LayerRequest& q) {
   const Domain& d = bed.domain;
-  HeightMap m;
+  LayerHeightMap m;
   m.x0 = q.x0;
   m.y0 = d.lower[1];
   m.nx = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround((q.x1 - q.x0) / q.raster)));

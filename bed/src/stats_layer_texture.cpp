@@ -8,7 +8,7 @@
 
 namespace powderbed::bed {
 
-SurfaceTexture surface_texture(const HeightMap& map) {
+SurfaceTexture surface_texture(const LayerHeightMap& map) {
   SurfaceTexture t;
   const std::size_t n = map.height.size();
   if (n == 0) return t;

@@ -123,10 +123,13 @@ SpreadLayer spread_layer(const BuildPlan& plan, bed::Bed& bed,
   rep.tool_bottom = tool_bottom(plan, bed.domain, layer);
   const bool on_solid = state && !state->floor.empty();
   rep.clearance = rep.tool_bottom - (on_solid ? state->floor.highest() : bed.domain.lower[2]);
-  if (on_solid && rep.clearance <= 0)
-    std::cerr << fmt::format("build: warning: layer {}: the solid's top stands {:g} um above the "
-                             "recoater's bottom (the tool strikes the part)\n",
-                             layer, -rep.clearance * 1e6);
+  if (on_solid && rep.clearance <= 0) {
+    const std::string message = fmt::format("layer {}: the solid's top stands {:g} um above the "
+                                            "recoater's bottom (the tool strikes the part)",
+                                            layer, -rep.clearance * 1e6);
+    if (plan.warning) plan.warning(message);
+    else std::cerr << "build: warning: " << message << '\n';
+  }
   dem::SpreadSettings s = plan.spread;
   const std::string what = fmt::format("layer {} spread", layer);
   s.progress = [&](double f, double) { progress(f, what); };

@@ -1,11 +1,13 @@
-"""powderbed from Python: beds as numpy arrays, PSD sampling, bedstat's statistics and every
-program's --json summary as a dict (README "Python").
+"""powderbed from Python: beds as numpy arrays, PSD sampling, bedstat's statistics, the stages
+deposit, spread, keff, sinter and build run in-process on a Bed, and every program's --json
+summary as a dict (README "Python", docs/python.md).
 
     import powderbed
     b = powderbed.read_bed("out/deposit.h5")      # b.x, b.y, b.z, b.r, b.id, b.domain, ...
     print(powderbed.stats(b)["coordination"])     # the entry bedstat --json prints for it
     radii = powderbed.sample_psd("gauss:mean=27e-6,sd=4.25e-6,min=10e-6,max=50e-6", 600, seed=1)
-    summary = powderbed.deposit(config="data/scenes/gz2016-deposit.ini", out="gz.h5", seed=1)
+    settled, summary = powderbed.deposit(b, t_end=1e-3, young_scale=1e3)   # in-process
+    summary = powderbed.run("deposit", config="data/scenes/gz2016-deposit.ini", out="gz.h5", seed=1)
 
 Lengths in metres, velocities in m/s, temperatures in K (SI, as the bed files).
 """
@@ -21,12 +23,27 @@ import json as _json
 from . import _checks, _core
 from ._version import __version__
 from ._programs import PROGRAMS, ProgramError, run
-from ._bed import Bed
+from ._bed import Bed, bed_of as _bed_of
+from ._runs import deposit, spread, keff, sinter, build
+from ._core import (Scene, Material, WallMaterial, Fines, RunSettings, RestCriteria, LidSettings,
+                    InsertionSettings, Recoater, SpreadSettings, SpreadState, KeffScene, ContactRadius,
+                    GasLens, SinterScene, PhaseChange, RayTrace, ScanSegment, Hatch, FusionPolicy,
+                    BuildPlan, PartRecord)
 
 InputError = _core.InputError
+NumericalError = _core.NumericalError
 
-__all__ = ["__version__", "Bed", "InputError", "ProgramError", "PROGRAMS", "read_bed", "write_bed", "sample_psd",
-           "stats", "run", *PROGRAMS]
+# The programs whose stage runs in-process above are reached through run(name, ...); the others
+# are functions of their own name that run the program.
+_IN_PROCESS = ("deposit", "keff", "sinter", "build")
+_PROGRAM_FUNCTIONS = tuple(name for name in PROGRAMS if name not in _IN_PROCESS)
+
+__all__ = ["__version__", "Bed", "InputError", "NumericalError", "ProgramError", "PROGRAMS",
+           "read_bed", "write_bed", "sample_psd", "stats", "run", "deposit", "spread", "keff",
+           "sinter", "build", "Scene", "Material", "WallMaterial", "Fines", "RunSettings", "RestCriteria",
+           "LidSettings", "InsertionSettings", "Recoater", "SpreadSettings", "SpreadState",
+           "KeffScene", "ContactRadius", "GasLens", "SinterScene", "PhaseChange", "RayTrace",
+           "ScanSegment", "Hatch", "FusionPolicy", "BuildPlan", "PartRecord", *_PROGRAM_FUNCTIONS]
 
 
 def read_bed(path, domain=None):
@@ -71,12 +88,6 @@ def stats(bed, tol=1e-6, layer=None, psd=None, profile=0, rdf=0, histogram=0, vo
     return _json.loads(text)
 
 
-def _bed_of(value, what):
-    if not isinstance(value, Bed):
-        _checks.refuse(what, value, "a powderbed.Bed, e.g. from read_bed")
-    return value
-
-
 def _program(name):
     def call(*args, **options):
         return run(name, *args, **options)
@@ -85,5 +96,5 @@ def _program(name):
     return call
 
 
-for _name in PROGRAMS:
+for _name in _PROGRAM_FUNCTIONS:
     globals()[_name] = _program(_name)

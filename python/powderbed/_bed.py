@@ -34,3 +34,11 @@ class Bed:
 
     def __repr__(self):
         return f"Bed({len(self)} particles, {self.domain['dimension']}D)"
+
+
+def bed_of(value, what):
+    """`value` if it is a Bed; InputError naming `what` otherwise."""
+    if not isinstance(value, Bed):
+        from ._checks import refuse
+        refuse(what, value, "a powderbed.Bed, e.g. from read_bed")
+    return value

@@ -60,8 +60,8 @@ def test_bed_file(packed):
 def test_trajectory(packed, tmp_path):
     path, _ = packed
     traj = tmp_path / "t.h5"
-    powderbed.deposit(**{"in": path}, young_scale=1e3, t_end=2e-6, seed=1, out=tmp_path / "d.h5",
-                      trajectory=traj, every=1)
+    powderbed.run("deposit", **{"in": path}, young_scale=1e3, t_end=2e-6, seed=1,
+                  out=tmp_path / "d.h5", trajectory=traj, every=1)
     check_units(traj)
     check_time_order(traj)
     check_polyvertex(traj, 40)
@@ -69,8 +69,8 @@ def test_trajectory(packed, tmp_path):
 
 def test_sinter_run(sinter_bed, tmp_path):
     run = tmp_path / "run.h5"
-    powderbed.sinter(config=scene("gz2016-sinter.ini"), bed=sinter_bed, out=run, snapshots=12,
-                     full_fields=True, **SMALL_GRID)
+    powderbed.run("sinter", config=scene("gz2016-sinter.ini"), bed=sinter_bed, out=run, snapshots=12,
+                  full_fields=True, **SMALL_GRID)
     check_units(run)
     check_time_order(run)
     text = check_polyvertex(run, 12)

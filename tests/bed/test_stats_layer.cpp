@@ -84,7 +84,7 @@ TEST(SpreadLayer, HeightMapIsTheTopOfTheHighestSphere) {
   pb::Bed bed = square_monolayer(2, r);
   bed.add(2 * r, 2 * r, r + std::sqrt(2.0) * r, r);  // in the hollow of the four
   pb::LayerRequest q = request(bed, 3 * r, r / 10);
-  const pb::HeightMap m = pb::height_map(bed, q);
+  const pb::LayerHeightMap m = pb::height_map(bed, q);
   // The cell centres nearest (2r, 2r) are (r/20, r/20) off it: h = zc + sqrt(r^2 - r^2/200).
   const std::size_t k = 19 * m.nx + 19;
   EXPECT_NEAR(m.height[k], r + std::sqrt(2.0) * r + std::sqrt(r * r - r * r / 200), 1e-12 * r);

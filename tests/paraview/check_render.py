@@ -101,9 +101,9 @@ def check_sinter_series(work):
                                     "upper": [0.2e-3, 0.1e-3, 0.1e-3], "periodic": [False] * 3}})
     powderbed.write_bed(bed, os.path.join(work, "bed.h5"))
     run = os.path.join(work, "run.h5")
-    powderbed.sinter(config=os.path.join(SOURCE, "data", "scenes", "gz2016-sinter.ini"),
-                               bed=os.path.join(work, "bed.h5"), out=run, snapshots=5,
-                               **{"substrate.nodes": "21,11,11", "substrate.depth": 0.1e-3})
+    powderbed.run("sinter", config=os.path.join(SOURCE, "data", "scenes", "gz2016-sinter.ini"),
+                  bed=os.path.join(work, "bed.h5"), out=run, snapshots=5,
+                  **{"substrate.nodes": "21,11,11", "substrate.depth": 0.1e-3})
     png = os.path.join(work, "run.png")
     info = render(os.path.join(work, "run.xmf"), png)
     assert info["blocks"] == ["particles", "top", "section_y"], info

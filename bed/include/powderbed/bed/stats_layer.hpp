@@ -21,8 +21,10 @@ struct LayerRequest {
 };
 
 // The top view: the surface height above the plate at each cell centre, row-major with x
-// fastest (height[iy * nx + ix]), 0 over bare plate (covered[...] == 0 there).
-struct HeightMap {
+// fastest (height[iy * nx + ix]), 0 over bare plate (covered[...] == 0 there). Not named
+// HeightMap: height_map.hpp's (the solid's top) has that name, and a program linking both (the
+// Python module: bedstat's statistics and the spread) had two types of one name (-Wodr).
+struct LayerHeightMap {
   double x0 = 0, y0 = 0;  // lower corner of the raster (m)
   double dx = 0, dy = 0;  // cell sides (m)
   std::size_t nx = 0, ny = 0;
@@ -44,7 +46,7 @@ struct LayerStats {
   double coverage = 0;        // fraction of the window's plate area under powder (raster)
   double mean_height = 0;     // mean surface height above the plate over the raster (m)
   double sa = 0, sq = 0;      // mean absolute and RMS deviation of the heights from that mean (m)
-  HeightMap map;
+  LayerHeightMap map;
   Segregation segregation;
   std::vector<double> diameters;  // of the layer particles (m), for the PSD against the feed
 };
@@ -61,14 +63,14 @@ double solid_volume_in_box(const Bed& bed, const std::array<double, 3>& lo,
 // Top-view raster of the spheres that reach into [plate, top] over the window, as a height
 // field: h(x, y) = max_i z_i + sqrt(r_i^2 - |(x, y) - (x_i, y_i)|^2) - plate. The request as
 // layer_stats checks it (the pieces below do not check again).
-HeightMap height_map(const Bed& bed, const LayerRequest& request);
+LayerHeightMap height_map(const Bed& bed, const LayerRequest& request);
 
 // Surface texture of a height map (ISO 25178): mean height, Sa = mean |h - mean|,
 // Sq = sqrt(mean (h - mean)^2), and the covered fraction.
 struct SurfaceTexture {
   double mean = 0, sa = 0, sq = 0, coverage = 0;
 };
-SurfaceTexture surface_texture(const HeightMap& map);
+SurfaceTexture surface_texture(const LayerHeightMap& map);
 
 // Mean diameter in `bins` equal x bins of [x0, x1] and the least-squares slope of diameter
 // against x over the particles themselves (centres `x`, diameters `d`).
@@ -88,6 +90,6 @@ KsTest ks_against_psd(const std::vector<double>& diameters, const Psd& psd);
 double kolmogorov_tail(double lambda);
 
 // The height map as CSV "x,y,height,covered" (cell centres, m; covered 0/1), written atomically.
-void write_height_map_csv(const HeightMap& map, const std::string& path);
+void write_height_map_csv(const LayerHeightMap& map, const std::string& path);
 
 }  // namespace powderbed::bed

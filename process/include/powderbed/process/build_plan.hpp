@@ -49,6 +49,10 @@ struct BuildPlan {
   // text), for the files.
   bed::Provenance spread_provenance;
   std::string scan_scene_text;
+  // Where a layer's warnings go (one line each, without the "build: warning: " the program
+  // prints before them): empty, to stderr as the program prints them; the Python module turns
+  // them into Python warnings.
+  std::function<void(const std::string&)> warning;
 };
 
 // The scan scene of layer k: the plan's, with the hatch turned by (k - 1) rotation steps

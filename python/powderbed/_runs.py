@@ -1,0 +1,141 @@
+"""The stages in-process: deposit, spread, keff, sinter and build run the C++ libraries on a Bed
+and the libraries' own structs (Scene, RunSettings, SpreadSettings, KeffScene, SinterScene,
+BuildPlan), with no file and no program in between (a build writes its layers' files, as the
+program build does). Keyword arguments set the structs' fields by name; what is not
+given keeps the struct's default, which is the library's (the programs' defaults are the same
+structs'). The GIL is released while a stage runs; `progress` is called with a dict as it goes,
+and an exception it raises stops the run and comes out of the call. Bad input raises InputError
+(a ValueError) with the library's one-line message, a run that goes non-finite NumericalError
+(an ArithmeticError); what the programs print as a warning is a RuntimeWarning."""
+from . import _checks, _core, _structs
+from ._bed import Bed, bed_of
+
+Scene, RunSettings, SpreadSettings = _core.Scene, _core.RunSettings, _core.SpreadSettings
+KeffScene, SinterScene, BuildPlan = _core.KeffScene, _core.SinterScene, _core.BuildPlan
+
+
+def _callable_or_none(value, what):
+    if value is not None and not callable(value):
+        _checks.refuse(what, value, "a callable or None")
+    return value
+
+
+def _supply_maker(supply, what):
+    """The user's supply(region, layer) -> Bed as the C++ half calls it: returning a bed dict."""
+    if _callable_or_none(supply, f"{what}: supply") is None:
+        return None
+
+    def maker(region, layer):
+        return bed_of(supply(region, layer), f"{what}: what supply returned").as_dict()
+    return maker
+
+
+def deposit(bed, scene=None, settings=None, *, progress=None, **fields):
+    """Drops and settles `bed` (dem::run_deposition, as the program deposit) and returns
+    (settled Bed, summary dict). The input Bed is not changed.
+
+    scene: a powderbed.Scene (the powder, walls, contact law, effects); settings: a
+    powderbed.RunSettings (t_end or until_rest, dt, young_scale, lid, insertion, ...). Keyword
+    arguments set fields of either by name, e.g. deposit(bed, t_end=2e-3, young_scale=1e3,
+    material={"density": 4430}, effects=["gravity", "hertz", "walls"]).
+    progress(p) is called every settings.progress_every steps and at the end with p = {"step",
+    "time", "t_end", "fraction", "kinetic_energy", "max_speed"}.
+    The summary has deposit --json's run keys (n, steps, sim_time, dt, dt_stable, kinetic_energy,
+    max_speed, max_overlap, lost, at_rest, ...; insertion and lid when used). Particles that left
+    the box stay in the bed (summary["lost"] counts them; the program refuses such a run). The
+    bed's provenance records the contact law, as the program's, for keff's Hertz correction.
+    A scene with history friction or rolling resistance drops on the spreading engine without a
+    tool, as the program's (no until_rest, lid, insertion, rk4 or trajectory there)."""
+    scene, settings = _structs.structs("deposit", fields, (scene, Scene), (settings, RunSettings))
+    out, summary = _core.deposit(bed_of(bed, "deposit: bed").as_dict(), scene, settings,
+                                 _callable_or_none(progress, "deposit: progress"))
+    return Bed(out), summary
+
+
+def spread(bed, scene=None, settings=None, *, state=None, supply=None, progress=None, **fields):
+    """Spreads settings.layers layers on `bed` with the recoater (dem::run_spread, as deposit
+    with a recoater scene) and returns (Bed, summary dict, SpreadState). The input Bed is not
+    changed; it may be empty (no particles) when a supply brings the powder.
+
+    scene: a powderbed.Scene; settings: a powderbed.SpreadSettings (tool: a Recoater, the
+    supply region supply_x0, supply_x1, supply_height, layers, layer_thickness, ...); keyword
+    arguments set fields of either by name, e.g. spread(bed, tool={"gap": 60e-6, "end": 2e-3}).
+    state: the SpreadState a previous spread returned, to continue it on the Bed it returned.
+    supply(region, layer) -> Bed fills a layer's supply region (region: a domain dict as
+    Bed.domain; layer from 1); None: no supply (the bed holds the powder).
+    progress(p) is called every settings.progress_every steps with p = {"fraction" (of the
+    current layer, or of t_end), "kinetic_energy"}.
+    The summary: one dict per layer under "layers" (n, supplied, tool_bottom, max_tool_force,
+    density_under_gap, overflow, ...), and the run's steps, dt, dt_stable, wall_time."""
+    scene, settings = _structs.structs("spread", fields, (scene, Scene), (settings, SpreadSettings))
+    if state is not None and not isinstance(state, _core.SpreadState):
+        _checks.refuse("spread: state", state, "a powderbed.SpreadState from spread, or None")
+    out, summary, end = _core.spread(bed_of(bed, "spread: bed").as_dict(), scene, settings, state,
+                                     _supply_maker(supply, "spread"),
+                                     _callable_or_none(progress, "spread: progress"))
+    return Bed(out), summary, end
+
+
+def keff(bed, scene=None, *, progress=None, **fields):
+    """The effective conductivity of `bed` between two isothermal walls (keff's network and
+    solve, as the program keff) as a dict: k_eff, k_core, heat_flow_hot, heat_flow_cold, the
+    shares of the contact, gas and radiation paths, drop_hot, drop_cold, temperature (K, per
+    particle), rattlers (indices), link counts, newton_iterations, residual.
+
+    scene: a powderbed.KeffScene (axis, hot_temperature, cold_temperature, solid_conductivity,
+    gas_model, radiation_path, contact, lens, ...); keyword arguments set its fields by name,
+    e.g. keff(bed, hot_temperature=1005, cold_temperature=995, radiation_path=True).
+    With contact={"hertz_correction": True} the DEM law is read from the bed's provenance (a
+    bed from deposit or spread has it); contact.circle stays as given (the program keff
+    switches it to hertz with the correction unless told). progress(fraction) hears the
+    view factors' tracing (radiation only). Raises NumericalError when no heat path joins the
+    walls."""
+    (scene,) = _structs.structs("keff", fields, (scene, KeffScene))
+    return _core.keff(bed_of(bed, "keff: bed").as_dict(), scene,
+                      _callable_or_none(progress, "keff: progress"))
+
+
+def sinter(bed, scene=None, *, progress=None, **fields):
+    """Runs the laser over `bed` (thermal::Sinter, as the program sinter without its run file)
+    and returns (Bed with each particle's final temperature and phase, summary dict).
+
+    scene: a powderbed.SinterScene (power, speed, spot_radius, nodes, substrate_depth, t_end,
+    scan_path, material_table, effects, ...); keyword arguments set its fields by name, e.g.
+    sinter(bed, power=150, nodes=[21, 11, 11], substrate_depth=1e-4).
+    progress(p) is called about once a second of wall time with p = {"step", "time", "t_end",
+    "fraction", "max_temperature_particles", "max_temperature_substrate"}.
+    The summary has sinter --json's keys: melt_pool {height, width, depth}, melt_pool_along,
+    max_temperature, particles_molten, energy_balance_error, energy (the ledger, J), absorptance,
+    tracks, steps, dt, t_end, ..."""
+    (scene,) = _structs.structs("sinter", fields, (scene, SinterScene))
+    out, summary = _core.sinter(bed_of(bed, "sinter: bed").as_dict(), scene,
+                                _callable_or_none(progress, "sinter: progress"))
+    return Bed(out), summary
+
+
+def build(bed, plan=None, *, layers=1, state=None, part=None, supply=None, progress=None, **fields):
+    """Builds `layers` layers on `bed` (process::build_layer, as the program build): each layer
+    the recoater spreads the supply on the solid of the layers before, the laser scans it, what
+    melted fuses into the solid's top; each layer's files (layer-NNN-spread.h5, -scan.h5, .h5)
+    go to plan.out. Returns (the powder left as a Bed, a report dict per layer, SpreadState,
+    PartRecord); pass the last three's Bed, state and part back to build more layers.
+
+    plan: a powderbed.BuildPlan (scene: the powder's Scene; spread: SpreadSettings with the tool
+    and the supply region; scan: SinterScene; hatch: a Hatch turned by its rotation per layer,
+    or None; fusion: FusionPolicy; out: the folder; finest_diameter; snapshots); keyword
+    arguments set its fields by name, nested structs by dict, e.g. build(box, out="part",
+    spread={"tool": {"gap": 60e-6}}, scan={"power": 150}). `bed` is the empty box (its domain)
+    for a new build. supply(region, layer) -> Bed fills each layer's supply region, as in
+    spread(). progress(p) hears each stage with p = {"layer", "stage" ("spread" or "scan"),
+    "fraction"}. Each report has build.json's layer keys (layer_density, fused_fraction,
+    lack_of_fusion, part_porosity, ...) and the stages' own summaries under "spread" and "scan".
+    The build's warning (the solid's top above the recoater's bottom) is a RuntimeWarning."""
+    (plan,) = _structs.structs("build", fields, (plan, BuildPlan))
+    if state is not None and not isinstance(state, _core.SpreadState):
+        _checks.refuse("build: state", state, "a powderbed.SpreadState from build, or None")
+    if part is not None and not isinstance(part, _core.PartRecord):
+        _checks.refuse("build: part", part, "a powderbed.PartRecord from build, or None")
+    out, reports, end, record = _core.build(
+        bed_of(bed, "build: bed").as_dict(), plan, _checks.whole(layers, "build: layers"), state,
+        part, _supply_maker(supply, "build"), _callable_or_none(progress, "build: progress"))
+    return Bed(out), reports, end, record
