@@ -80,9 +80,9 @@ th::PartRecord part_to_continue(const process::BuildPlan& plan, const bed::Domai
 }
 
 // A stage's progress as the Python callable hears it: {"layer", "stage", "fraction"}; without
-// one, nothing (build_layer calls its progress whether or not anyone listens).
+// one, none.
 process::Progress stage_progress(const py::object& progress, std::uint64_t layer, const char* stage) {
-  if (!given(progress)) return [](double, const std::string&) {};
+  if (!given(progress)) return {};
   return [fn = py::handle(progress), layer, stage](double fraction, const std::string&) {
     call_with_gil(fn, [=] {
       py::dict d;

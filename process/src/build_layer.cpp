@@ -84,7 +84,9 @@ std::vector<char> scan_and_fuse(const BuildPlan& plan, const bed::Bed& bed, bed:
   const std::string what = fmt::format("layer {} scan", layer);
   const auto start = std::chrono::steady_clock::now();
   rep.scan = sinter.run([&](const th::Sinter& s) { writer.snapshot(s); }, every,
-                        [&](const th::SinterProgress& p) { progress(p.time / p.t_end, what); });
+                        [&](const th::SinterProgress& p) {
+                          if (progress) progress(p.time / p.t_end, what);
+                        });
   rep.scan_wall = seconds_since(start);
   const FusionPolicy& f = plan.fusion;
   const th::Fusion fused = th::fuse(bed, sinter, f.melt_fraction, f.capture,
@@ -132,7 +134,7 @@ SpreadLayer spread_layer(const BuildPlan& plan, bed::Bed& bed,
   }
   dem::SpreadSettings s = plan.spread;
   const std::string what = fmt::format("layer {} spread", layer);
-  s.progress = [&](double f, double) { progress(f, what); };
+  if (progress) s.progress = [&](double f, double) { progress(f, what); };
   const dem::SpreadSummary spread =
       plan.engine ? plan.engine(bed, plan.scene, s, state, layer, plan.out)
                   : dem::run_spread(bed, plan.scene, s, state ? &*state : nullptr);

@@ -39,7 +39,7 @@ struct LayerReport {
 };
 
 // Progress through one stage of a layer (its spread or its scan): the fraction done, 0 to 1, and
-// what is running ("layer 3 spread").
+// what is running ("layer 3 spread"). May be empty (no progress).
 using Progress = std::function<void(double fraction, const std::string& what)>;
 
 // A layer's file in `out`: layer-NNN<suffix>.h5.
