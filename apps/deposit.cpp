@@ -28,6 +28,7 @@
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/random.hpp"
 #include "powderbed/bed/temp_files.hpp"
+#include "powderbed/dem/contact_provenance.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/scene.hpp"
 #include "powderbed/dem/solver.hpp"
@@ -247,16 +248,7 @@ void record_provenance(bed::Bed& bed, const po::variables_map& vm, int argc, cha
   bed.provenance.rng_seed = seed;
   bed.provenance.stage = "deposit";
   bed.provenance.scene = app::scene_text(vm);
-  bed::ContactProvenance& made = bed.provenance.contact;
-  made.law = dem::contact_law_name(scene.law);
-  made.young = scene.material.young;
-  made.poisson = scene.material.poisson;
-  made.wall_young = scene.wall.young;
-  made.wall_poisson = scene.wall.poisson;
-  made.young_scale = young_scale;
-  made.stiffness = scene.stiffness;
-  if (scene.fines.scaling == dem::FinesScaling::stiffness)
-    made.fines_stiffness_radius = scene.fines.radius;
+  bed.provenance.contact = dem::contact_provenance(scene, young_scale);
 }
 
 // The core density, or why there is none: a bed less than two margins thick (a monolayer) has

@@ -31,6 +31,7 @@
 #include "powderbed/bed/softening.hpp"
 #include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/bed/temp_files.hpp"
+#include "powderbed/dem/contact_provenance.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/spread.hpp"
 #include "powderbed/packgen/pack.hpp"
@@ -180,14 +181,7 @@ void set_spread_provenance(bed::Bed& b, const po::variables_map& vm, const dem::
   b.provenance.rng_seed = vm["seed"].as<std::uint64_t>();
   b.provenance.stage = "deposit";
   b.provenance.scene = scene_text(vm);
-  bed::ContactProvenance& made = b.provenance.contact;
-  made.law = dem::contact_law_name(scene.law);
-  made.young = scene.material.young;
-  made.poisson = scene.material.poisson;
-  made.wall_young = scene.wall.young;
-  made.wall_poisson = scene.wall.poisson;
-  made.young_scale = vm["young-scale"].as<double>();
-  made.stiffness = scene.stiffness;
+  b.provenance.contact = dem::contact_provenance(scene, vm["young-scale"].as<double>());
 }
 
 void add_spread_options(po::options_description& desc, dem::SpreadSettings& spread,

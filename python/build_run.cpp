@@ -18,7 +18,7 @@
 #include "bed_dict.hpp"
 #include "bindings.hpp"
 #include "build_report.hpp"
-#include "contact_provenance.hpp"
+#include "powderbed/dem/contact_provenance.hpp"
 #include "gil_callback.hpp"
 #include "python_warning.hpp"
 #include "struct_binding.hpp"
@@ -113,7 +113,7 @@ py::tuple build(const py::dict& bed_fields, process::BuildPlan plan, std::uint64
   plan.spread.layers = 1;  // one layer a call (build_plan.hpp)
   if (given(supply)) plan.spread.supply = supply_maker(supply);
   plan.spread_provenance.stage = "build";
-  record_contact(plan.spread_provenance, plan.scene, plan.spread.young_scale);
+  plan.spread_provenance.contact = dem::contact_provenance(plan.scene, plan.spread.young_scale);
   std::vector<std::string> warnings;
   plan.warning = [&warnings](const std::string& message) { warnings.push_back(message); };
   const std::uint64_t first = (spread_state ? spread_state->layers_done : 0) + 1;

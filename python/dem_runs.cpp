@@ -12,7 +12,7 @@
 
 #include "bed_dict.hpp"
 #include "bindings.hpp"
-#include "contact_provenance.hpp"
+#include "powderbed/dem/contact_provenance.hpp"
 #include "dem_summaries.hpp"
 #include "gil_callback.hpp"
 #include "python_warning.hpp"
@@ -62,7 +62,7 @@ py::tuple deposit(const py::dict& bed_fields, const dem::Scene& scene, dem::RunS
     summary = dem::run_deposition(bed, scene, settings);
   }
   bed.provenance.stage = "deposit";
-  record_contact(bed.provenance, scene, settings.young_scale);
+  bed.provenance.contact = dem::contact_provenance(scene, settings.young_scale);
   return py::make_tuple(bed_to_dict(bed), run_summary_dict(summary));
 }
 
@@ -89,7 +89,7 @@ py::tuple spread(const py::dict& bed_fields, const dem::Scene& scene, dem::Sprea
     summary = dem::run_spread(bed, scene, settings, restart ? &*restart : nullptr);
   }
   bed.provenance.stage = "spread";
-  record_contact(bed.provenance, scene, settings.young_scale);
+  bed.provenance.contact = dem::contact_provenance(scene, settings.young_scale);
   return py::make_tuple(bed_to_dict(bed), spread_summary_dict(summary), py::cast(std::move(summary.state)));
 }
 
