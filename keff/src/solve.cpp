@@ -194,7 +194,7 @@ Eigen::VectorXd conjugate_gradients(const Matrix& matrix, const Eigen::VectorXd&
 std::vector<double> linear_solve(const State& s, std::ptrdiff_t count, std::size_t nodes,
                                  double tolerance, std::size_t& iterations) {
   const double th = s.t_hot, tc = s.t_cold;
-  const double secant = kStefanBoltzmann * (th * th + tc * tc) * (th + tc);
+  const double secant = bed::radiative_secant(1.0, th, tc);  // per m^2 of link conductance
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(s.net.links.size() * 4);
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(count);

@@ -20,4 +20,11 @@ inline double radiative_conductance(double factor, double t_a) {
   return 4 * kStefanBoltzmann * factor * t_a * t_a * t_a;
 }
 
+// radiative_exchange / (T_a - T_b) = sigma G (T_a^2 + T_b^2)(T_a + T_b): the secant
+// conductance between two temperatures, which makes the exchange a linear link (keff's first,
+// linear solve between the walls' temperatures).
+inline double radiative_secant(double factor, double t_a, double t_b) {
+  return kStefanBoltzmann * factor * (t_a * t_a + t_b * t_b) * (t_a + t_b);
+}
+
 }  // namespace powderbed::bed
