@@ -104,6 +104,8 @@ SpreadSettings spread_settings(const RunSettings& settings) {
   s.dt = settings.dt;
   s.unsafe_dt = settings.unsafe_dt;
   s.skin = settings.skin;
+  s.threads = settings.threads;
+  s.parallel_min_particles = settings.parallel_min_particles;
   s.thermo = settings.thermo;  // the drop's table: no layer, no tool
   s.thermo_every = settings.thermo_every;
   if (settings.progress) {

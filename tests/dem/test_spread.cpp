@@ -131,7 +131,8 @@ TEST(StaticFriction, SphereAboveTheFrictionAngleSlidesAtGTimesSinMinusMuCos) {
 }
 
 // run_deposition runs a drop whose laws need rotation on the spreading engine without a tool:
-// the same bed to the bit as run_spread's; what only the drop solver has (RK4) is refused.
+// the same bed to the bit as run_spread's, on one thread or two; what only the drop solver has
+// (RK4) is refused.
 TEST(SpreadRun, DropThatNeedsRotationIsTheSpreadingRunWithoutATool) {
   const dem::Scene s = granular_scene(0.5, 0.1, dem::FrictionModel::history);
   bed::Bed spread = test::box_bed(1e-3, 1e-3, 1e-3);
@@ -148,6 +149,12 @@ TEST(SpreadRun, DropThatNeedsRotationIsTheSpreadingRunWithoutATool) {
   EXPECT_EQ(drop.z, spread.z);
   EXPECT_EQ(drop.vz, spread.vz);
   EXPECT_NE(drop.z, start.z);  // it ran
+  bed::Bed parallel = start;  // ... on two threads, to the bit
+  run.threads = 2;
+  run.parallel_min_particles = 0;
+  dem::run_deposition(parallel, s, run);
+  EXPECT_EQ(parallel.x, drop.x);
+  EXPECT_EQ(parallel.vz, drop.vz);
   run.integrator = dem::Integrator::rk4;
   try {
     dem::run_deposition(drop, s, run);
