@@ -593,7 +593,11 @@ struct SpreadLoop {
   // The static walls touch only their particle's arrays, so they run on the threads; the tool
   // sums its force over its candidates, in index order, on one.
   void wall_forces(bool update) {
-    detail::for_each_particle(near_walls.size(), threads, [&](std::size_t q) { static_walls(near_walls[q], update); });
+    if (threads > 1) {
+      detail::for_each_particle(near_walls.size(), threads, [&](std::size_t q) { static_walls(near_walls[q], update); });
+    } else {
+      for (const std::uint32_t i : near_walls) static_walls(i, update);
+    }
     for (const std::uint32_t i : near_tool) tool_wall(i, update);
   }
 
