@@ -1,5 +1,8 @@
 // The deposition run of docs/physics.md §4: set-up, the once-only dispatch to a loop specialised for the
 // scene's effects, velocity Verlet and classic RK4 steps, rest detection, snapshots.
+// Over 600 lines because the drop's engine and its drivers (insertion, the lid) share this file
+// until they become the one engine's drivers (issue 33; tests/dem/test_engines.cpp holds the
+// two engines to one another meanwhile).
 #include "powderbed/dem/solver.hpp"
 
 #include <omp.h>

@@ -1,6 +1,10 @@
 // The spreading run of spread.hpp: velocity Verlet on positions and rotations, contact history
 // per neighbour pair (kept across neighbour-list builds) and per particle and wall, the tool's
 // prescribed motion, the supply and the layers (docs/deposit-spread.md).
+// Over 600 lines because the engine (SpreadLoop: particles, lists, contacts, steps) and its
+// spreading driver (Spreader: supply, tool, layers, restart) still share this file; they part
+// when the drop solver (solver.cpp) and this engine become the one engine of issue 33, the
+// drivers on top of it.
 #include "powderbed/dem/spread.hpp"
 
 #include <algorithm>
