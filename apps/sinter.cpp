@@ -28,6 +28,7 @@
 #include "powderbed/bed/temp_files.hpp"
 #include "powderbed/thermal/explain.hpp"
 #include "powderbed/thermal/fusion.hpp"
+#include "powderbed/thermal/result_json.hpp"
 #include "powderbed/thermal/run_output.hpp"
 #include "powderbed/thermal/solver.hpp"
 
@@ -115,26 +116,6 @@ std::string explain_json(const th::ExplainReport& r) {
   return j.str() + '\n';
 }
 
-// --json "tracks": per scan segment, its melt pool and what it leaves for the next (SI).
-void tracks_json(bed::JsonWriter& j, const std::vector<th::TrackStats>& tracks) {
-  j.begin_array("tracks");
-  for (const auto& t : tracks) {
-    j.begin_object()
-        .value("width", t.pool.width)
-        .value("depth", t.pool.depth)
-        .value("height", t.pool.height)
-        .value("length", t.length)
-        .value("peak_temperature", t.peak_temperature)
-        .value("particles_molten", static_cast<std::uint64_t>(t.particles_molten))
-        .value("start_temperature", t.start_temperature)
-        .value("stored_energy", t.stored_energy)
-        .value("t_start", t.t_start)
-        .value("t_end", t.t_end)
-        .end_object();
-  }
-  j.end_array();
-}
-
 // --json "fusion": what fusion moved, in kg, and the solid's top above the plate, m.
 void fusion_json(bed::JsonWriter& j, const th::Fusion& f, const th::SubstrateGeometry& g) {
   const auto [low, high] = std::minmax_element(f.top.begin(), f.top.end());
@@ -166,36 +147,6 @@ void print_tracks(const std::vector<th::TrackStats>& tracks) {
   }
 }
 
-// --json "ray_trace": how the traced beam positions split the power, fractions of the beam.
-void ray_trace_json(bed::JsonWriter& j, const th::TraceSummary& t) {
-  const double n = static_cast<double>(t.traces);
-  j.begin_object("ray_trace")
-      .value("traces", static_cast<std::uint64_t>(t.traces))
-      .value("bed_absorptance", t.bed_absorptance())
-      .value("particles", t.absorbed_particles / n)
-      .value("substrate", (t.absorbed - t.absorbed_particles) / n)
-      .value("escaped", t.escaped / n)
-      .value("outside", t.outside / n)
-      .value("dropped", t.dropped / n)
-      .value("hits_per_ray", t.hits / n)
-      .value("depression", t.absorbed_depression / n)
-      .end_object();
-}
-
-// --json "energy": the run's ledger, J.
-void energy_json(bed::JsonWriter& j, const th::EnergyLedger& e) {
-  j.begin_object("energy")
-      .value("laser_particles", e.laser_particles)
-      .value("laser_substrate", e.laser_substrate)
-      .value("convection", e.convection)
-      .value("radiation", e.radiation)
-      .value("evaporation", e.evaporation)
-      .value("boundary", e.boundary)
-      .value("internal_particles", e.internal_particles)
-      .value("internal_substrate", e.internal_substrate)
-      .end_object();
-}
-
 // What a run made, for the report: the result, the fusion (--fuse), the wall time in seconds.
 struct RunReport {
   const bed::Bed& bed;
@@ -206,54 +157,20 @@ struct RunReport {
   std::string out;
 };
 
-// --json: the melt pool, the tracks, the ledger and the run's steps (SI).
+// --json: the run's result (thermal's result_json.hpp) and what the program adds: the bed's
+// particles, the options, the fusion, the stable steps, the grid and the surface (SI).
 std::string result_json(const po::variables_map& vm, const RunReport& run) {
-  const th::SinterResult& r = run.result;
   const th::Sinter& sinter = run.sinter;
   bed::JsonWriter j;
-  j.begin_object()
-      .begin_object("melt_pool")
-      .value("height", r.melt_pool.height)
-      .value("width", r.melt_pool.width)
-      .value("depth", r.melt_pool.depth)
-      .end_object()
-      .begin_object("melt_pool_along")
-      .value("sections", static_cast<std::uint64_t>(r.along.sections))
-      .value("width_mean", r.along.width_mean)
-      .value("width_sd", r.along.width_sd)
-      .value("depth_mean", r.along.depth_mean)
-      .value("depth_sd", r.along.depth_sd)
-      .end_object()
-      .value("max_temperature", r.max_temperature)
-      .value("max_temperature_particles", r.peaks.particles)
-      .value("max_temperature_substrate", r.peaks.substrate)
-      .value("evaporated_mass", r.evaporated_mass)
-      .value("evaporated_mass_particles", r.evaporated_mass_particles)
-      .value("peak_recoil_pressure", r.peak_recoil_pressure)
-      .value("depression_temperature", r.depression_temperature)
-      .value("depression_depth", r.depression_depth)
-      .value("particles", static_cast<std::uint64_t>(run.bed.n()))
-      .value("particles_molten", static_cast<std::uint64_t>(r.particles_molten))
-      .value("particles_vaporised", static_cast<std::uint64_t>(r.particles_vaporised))
-      .value("energy_balance_error", r.energy.relative_error())
-      .value("laser_absorption", vm["laser.absorption"].as<std::string>())
-      .value("absorptance", r.absorptance);
-  tracks_json(j, r.tracks);
-  if (r.traces.traces > 0) ray_trace_json(j, r.traces);
-  j.value("substrate_wetted", static_cast<std::uint64_t>(r.substrate_wetted))
-      .value("particles_merged", static_cast<std::uint64_t>(r.particles_merged))
-      .value("bridges", static_cast<std::uint64_t>(r.bridges));
+  j.begin_object();
+  th::write_melt_pool_json(j, run.result);
+  j.value("particles", static_cast<std::uint64_t>(run.bed.n()))
+      .value("laser_absorption", vm["laser.absorption"].as<std::string>());
+  th::write_run_json(j, run.result);
   if (run.fused) fusion_json(j, *run.fused, sinter.grid());
-  energy_json(j, r.energy);
-  j.value("steps", r.steps)
-      .value("particle_steps", r.particle_steps)
-      .value("dt", r.dt_grid)
-      .value("dt_particle", r.dt_particle)
-      .value("dt_stable_grid", sinter.stable_steps().grid)
+  j.value("dt_stable_grid", sinter.stable_steps().grid)
       .value("dt_stable_particle", sinter.stable_steps().particle)
-      .value("t_end", r.t_end)
       .value("integrator", vm["integrator"].as<std::string>())
-      .value("implicit_iterations", static_cast<std::uint64_t>(r.implicit_iterations))
       .value("nodes", static_cast<std::uint64_t>(sinter.grid().size()))
       .value("extinction", sinter.extinction())
       .value("porosity", sinter.surface().porosity)
