@@ -6,7 +6,8 @@ given keeps the struct's default, which is the library's (the programs' defaults
 structs'). The GIL is released while a stage runs; `progress` is called with a dict as it goes,
 and an exception it raises stops the run and comes out of the call. Bad input raises InputError
 (a ValueError) with the library's one-line message, a run that goes non-finite NumericalError
-(an ArithmeticError); what the programs print as a warning is a RuntimeWarning."""
+(an ArithmeticError); what the programs print as a warning is a RuntimeWarning. build_scene
+builds from a build scene file, read by the program build's own option code."""
 from . import _checks, _core, _programs, _structs
 from ._bed import Bed, bed_of
 
