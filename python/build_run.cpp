@@ -174,13 +174,17 @@ constexpr const char* kProgramOnly[] = {"help", "version", "print-config", "json
 }
 
 // Refused by name before the options are parsed, so that nothing is printed; `args` are the
-// words of the command line.
+// words of the command line, "--name value" or "--name=value" (a value such as spread_args'
+// "--thermo 0" is not an option of the build's).
 void refuse_program_words(const std::vector<std::string>& args) {
-  for (const std::string& word : args) {
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    const std::string& word = args[k];
     if (word.rfind("--", 0) != 0) continue;
-    const std::string name = word.substr(2, word.find('=') - 2);  // --name or --name=value
+    const std::size_t equals = word.find('=');
+    const std::string name = word.substr(2, equals - 2);
     for (const char* only : kProgramOnly)
       if (name == only) refuse_program_only(name);
+    if (equals == std::string::npos) ++k;  // its value
   }
 }
 
