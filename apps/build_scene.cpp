@@ -11,7 +11,6 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include "common/progress.hpp"
 #include "common/threads.hpp"
 #include "deposit_spread.hpp"
 #include "powderbed/bed/errors.hpp"
