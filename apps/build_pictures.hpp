@@ -6,14 +6,13 @@
 // goes on without pictures.
 #include <cstdint>
 #include <string>
-#include <utility>
-#include <vector>
+
+#include "powderbed/process/build_report.hpp"
 
 namespace powderbed::app {
 
-// The picture files of a layer: (kind, file name in the build's folder), kind top, fusion, height,
-// section.
-using LayerPictureFiles = std::vector<std::pair<std::string, std::string>>;
+// The picture files of a layer as build.json lists them: kind top, fusion, height, section.
+using LayerPictureFiles = process::LayerPictureFiles;
 
 class LayerPictures {
  public:

@@ -24,7 +24,7 @@ from . import _checks, _core
 from ._version import __version__
 from ._programs import PROGRAMS, ProgramError, run
 from ._bed import Bed, bed_of as _bed_of
-from ._runs import deposit, spread, keff, sinter, build
+from ._runs import deposit, spread, keff, sinter, build, build_scene
 from ._core import (Scene, Material, WallMaterial, Fines, RunSettings, RestCriteria, LidSettings,
                     InsertionSettings, Recoater, SpreadSettings, SpreadState, KeffScene, ContactRadius,
                     GasLens, SinterScene, PhaseChange, RayTrace, ScanSegment, Hatch, FusionPolicy,
@@ -40,7 +40,7 @@ _PROGRAM_FUNCTIONS = tuple(name for name in PROGRAMS if name not in _IN_PROCESS)
 
 __all__ = ["__version__", "Bed", "InputError", "NumericalError", "ProgramError", "PROGRAMS",
            "read_bed", "write_bed", "sample_psd", "stats", "run", "deposit", "spread", "keff",
-           "sinter", "build", "Scene", "Material", "WallMaterial", "Fines", "RunSettings", "RestCriteria",
+           "sinter", "build", "build_scene", "Scene", "Material", "WallMaterial", "Fines", "RunSettings", "RestCriteria",
            "LidSettings", "InsertionSettings", "Recoater", "SpreadSettings", "SpreadState",
            "KeffScene", "ContactRadius", "GasLens", "SinterScene", "PhaseChange", "RayTrace",
            "ScanSegment", "Hatch", "FusionPolicy", "BuildPlan", "PartRecord", *_PROGRAM_FUNCTIONS]

@@ -43,11 +43,11 @@ def _switches(program):
     return _SWITCHES[program]
 
 
-def _text(value, what):
+def option_text(value, what):
     """A value as the programs parse it: floats to full precision, lists comma-joined; anything
     else (a dict, None inside a list, bytes) raises InputError naming the option."""
     if isinstance(value, (list, tuple)):
-        return ",".join(_text(v, what) for v in value)
+        return ",".join(option_text(v, what) for v in value)
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, numbers.Real) and not isinstance(value, numbers.Integral):
@@ -60,7 +60,7 @@ def _text(value, what):
 
 
 def _arguments(program, args, options):
-    argv = [_text(a, f"{program}: argument {k + 1}") for k, a in enumerate(args)]
+    argv = [option_text(a, f"{program}: argument {k + 1}") for k, a in enumerate(args)]
     for key, value in options.items():
         name = key.replace("_", "-")
         if value is None:
@@ -68,7 +68,7 @@ def _arguments(program, args, options):
         if isinstance(value, bool) and name in _switches(program):
             argv += ["--" + name] if value else []
         else:
-            argv += ["--" + name, _text(value, f"{program}: {name}")]
+            argv += ["--" + name, option_text(value, f"{program}: {name}")]
     return argv
 
 

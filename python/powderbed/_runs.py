@@ -6,8 +6,9 @@ given keeps the struct's default, which is the library's (the programs' defaults
 structs'). The GIL is released while a stage runs; `progress` is called with a dict as it goes,
 and an exception it raises stops the run and comes out of the call. Bad input raises InputError
 (a ValueError) with the library's one-line message, a run that goes non-finite NumericalError
-(an ArithmeticError); what the programs print as a warning is a RuntimeWarning."""
-from . import _checks, _core, _structs
+(an ArithmeticError); what the programs print as a warning is a RuntimeWarning. build_scene
+builds from a build scene file, read by the program build's own option code."""
+from . import _checks, _core, _programs, _structs
 from ._bed import Bed, bed_of
 
 Scene, RunSettings, SpreadSettings = _core.Scene, _core.RunSettings, _core.SpreadSettings
@@ -139,3 +140,35 @@ def build(bed, plan=None, *, layers=1, state=None, part=None, supply=None, progr
         bed_of(bed, "build: bed").as_dict(), plan, _checks.whole(layers, "build: layers"), state,
         part, _supply_maker(supply, "build"), _callable_or_none(progress, "build: progress"))
     return Bed(out), reports, end, record
+
+
+def build_scene(scene, out, *, layers=None, progress=None, **options):
+    """Builds the part of the build scene file `scene` (what the program build reads with
+    --config, e.g. data/scenes/build-316L.ini) in-process, as `build --config scene --out out`
+    builds it: the same options, defaults and refusals (the program's option code reads them),
+    the same layers' files in the new or empty folder `out` and the same build.json.
+    Returns (the powder left as a Bed, the report dict, SpreadState, PartRecord, BuildPlan): the
+    report is build.json, which `build --json` prints (layers_done, first_layer, particles,
+    wall_time, layers: one dict per layer with layer_density, fused_fraction, lack_of_fusion,
+    part_porosity, ..., out, units); the last four continue it in-process through
+    build(bed, plan, state=state, part=part).
+
+    layers: how many (None: the scene's, or 1). Options are the program's (key=value ->
+    --key value; '_' in a key becomes '-'; dotted options as **{"fuse.melt-fraction": 0.6}),
+    e.g. spread_args="--supply.count 80", sinter_args="--power 150", seed=2, **{"in":
+    "run/layer-002.h5"}. progress(p) hears each stage with p = {"layer", "stage" ("spread" or
+    "scan"), "fraction"}. Bad input raises InputError with the line the program prints before
+    exit 2 (less its "build: "); the build's warning is a RuntimeWarning. What the program does
+    besides building is refused: json, help, version, print_config, map.* (powderbed.run("build",
+    ...) runs the program), and pictures (none are drawn here, as with --pictures false). As the
+    program, the spreads print deposit's thermo table on stderr (spread_args="--thermo 0": none)."""
+    args = ["--config", _checks.path(scene, "build_scene: scene"), "--out", _checks.path(out, "build_scene: out")]
+    if layers is not None:
+        args += ["--layers", str(_checks.whole(layers, "build_scene: layers"))]
+    for key, value in options.items():
+        name = key.replace("_", "-")
+        if value is not None:  # as run(): None leaves the option to the scene
+            args += ["--" + name, _programs.option_text(value, f"build_scene: {name}")]
+    bed, report, state, part, plan = _core.build_scene(
+        args, _callable_or_none(progress, "build_scene: progress"))
+    return Bed(bed), report, state, part, plan
