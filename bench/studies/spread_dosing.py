@@ -40,6 +40,7 @@ one thread each (a spread of the dosed-slow rows takes ~5 min of one core).
 import argparse
 import json
 import os
+import statistics
 import sys
 
 from lib.apps import ROOT, app, bedstat, read_bed, run_json
@@ -50,6 +51,8 @@ SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
 WORK = os.path.join(ROOT, "out", "studies", "spread-dosing")
 PAGE = "spread-dosing.md"
 BAND = (0.38, 0.60)           # measured spread layers (spread-density.md)
+# the psd's number-mean diameter (its truncated lognormal; the supplies drawn: 24.1-24.3 um)
+MEAN_D = 24.2e-6
 SLOW = "0.025"                # m/s, a quarter of the scene's blade speed
 DOSED = ["--supply.count", "0", "--supply.dosing", "1", "--supply.x1", "1.2e-3"]
 # (key, label, deposit options, seeds); seed 1 of every row runs first
@@ -106,10 +109,10 @@ def page(runs, scene, batches):
     def rows(key):
         return [r for r in runs if r["key"] == key]
 
-    def span(values, fmt="{:.3f}"):
+    def span(values, fmt="{:.3f}", sep="-"):
         values = list(values)
         lo, hi = fmt.format(min(values)), fmt.format(max(values))
-        return lo if lo == hi else f"{lo}-{hi}"
+        return lo if lo == hi else f"{lo}{sep}{hi}"
 
     def dens(key):
         return span(r["stats"]["density"] for r in rows(key))
@@ -119,8 +122,6 @@ def page(runs, scene, batches):
         return f"{n} seed{'s' if n > 1 else ''}"
 
     best = max(runs, key=lambda r: r["stats"]["density"])
-    tops = [top_density(r) for r in runs]
-    heights = [r["stats"]["mean_height"] * 1e6 for r in runs]
     lines = [
         "# A dosed blade layer: more supply and a slower blade",
         "",
@@ -135,10 +136,10 @@ def page(runs, scene, batches):
         "**The supply by volume.** The scene's psd gives D10/D50/D90 = 19/30/45 µm by volume "
         "(bed/include/powderbed/bed/psd.hpp: a d10/d50/d90 lognormal is volume-based unless "
         "`basis=number`), so the particles' number median is ~23 µm and the scene's 2500 "
-        f"particles hold {span((r['supply_solid'] for r in rows('scene')), '{:.3g}')} m³ of "
+        f"particles hold {span((r['supply_solid'] for r in rows('scene')), '{:.2e}', ' to ')} m³ of "
         f"solid ({seeds('scene')}). The layer's nominal powder (deposit's `supply.dosing`: "
         f"φ_b (end − start) L_y t at φ_b = {scene.num('supply.bulk-density'):g}, t the "
-        f"{scene.gap * 1e6:.0f} µm gap) is {nominal:.3g} m³, so the scene doses "
+        f"{scene.gap * 1e6:.0f} µm gap) is {nominal:.2e} m³, so the scene doses "
         f"{span((r['supply_solid'] / nominal for r in rows('scene')), '{:.2f}')} on its gap "
         f"(twice that on the build's {scene.num('recoater.layer-thickness') * 1e6:.0f} µm "
         "layers), where machines dose 1.5-2.",
@@ -150,7 +151,7 @@ def page(runs, scene, batches):
     for r in runs:
         s = r["stats"]
         lines.append(table_row(
-            r["label"], r["seed"], r["supplied"], f"{r['supply_solid']:.3g}",
+            r["label"], r["seed"], r["supplied"], f"{r['supply_solid']:.2e}",
             f"{r['supply_solid'] / nominal:.2f}", r["overflow"], f"{s['density']:.3f}",
             f"{s['coverage']:.3f}", f"{s['mean_height'] * 1e6:.1f}", f"{top_density(r):.2f}",
             f"{s['sa'] * 1e6:.1f}", f"{r['wall']:.0f}", r["load"][0].split()[0]))
@@ -163,33 +164,55 @@ def page(runs, scene, batches):
         "over the window, bare plate counted as 0. Powder-top density: the same solid over the "
         "window's area times the mean top, layer density × gap / mean top.",
         "",
-        f"**The band.** The scene leaves {dens('scene')} ({seeds('scene')}); the scene's supply at "
-        f"{SLOW} m/s {dens('slow')} ({seeds('slow')}, overflow "
-        f"{span((r['overflow'] for r in rows('slow')), '{:d}')}); dosing "
+        f"**The band.** The scene leaves {dens('scene')} ({seeds('scene')}). At {SLOW} m/s its "
+        f"supply leaves {dens('slow')} ({seeds('slow')}) and runs out: overflow "
+        f"{span((r['overflow'] for r in rows('slow')), '{:d}')}, coverage "
+        f"{span(r['stats']['coverage'] for r in rows('slow'))}. With supply.dosing 1 (a dosing of "
         f"{span((r['supply_solid'] / nominal for r in rows('dosed-slow')), '{:.2f}')} on the gap "
-        f"at {SLOW} m/s {dens('dosed-slow')} ({seeds('dosed-slow')}, coverage "
-        f"{span(r['stats']['coverage'] for r in rows('dosed-slow'))}). The densest layer, "
+        f"as measured, 2 on a 45 µm layer) at {SLOW} m/s the blade leaves {dens('dosed-slow')} ({seeds('dosed-slow')}, coverage "
+        f"{span(r['stats']['coverage'] for r in rows('dosed-slow'))}) and still pushes "
+        f"{span((r['overflow_solid'] / r['supply_solid'] for r in rows('dosed-slow')), '{:.0%}')} "
+        "of the supply's solid past the strip's end (the scene at 0.1 m/s: "
+        f"{span((r['overflow_solid'] / r['supply_solid'] for r in rows('scene')), '{:.0%}')}), so "
+        "the powder in front of the blade is not what is short. "
+        "docs/results/spread-density.md has the steps between: 0.05 m/s alone, and twice the "
+        "supply at 0.05 m/s. The densest layer here, "
         f"{best['stats']['density']:.3f}, is "
         + (f"inside the measured {BAND[0]:.2f}-{BAND[1]:.2f} band."
            if best["stats"]["density"] >= BAND[0] else
            f"{BAND[0] - best['stats']['density']:.2f} short of the measured "
-           f"{BAND[0]:.2f}-{BAND[1]:.2f} band: twice the scene's supply at a quarter of its "
-           "speed does not bring the blade's layer on a flat plate into it."),
+           f"{BAND[0]:.2f}-{BAND[1]:.2f} band: a dose of twice the scene's at a quarter of its "
+           "speed does not bring the blade's first layer on a flat plate into it."),
         "",
-        f"**Why, measured.** Over the gap the layer is sparse because it does not fill the gap: "
-        f"its powder's top lies {span(heights, '{:.0f}')} µm above the plate on average (bare "
-        f"plate as 0) inside a {scene.gap * 1e6:.0f} µm gap, a partial monolayer (no particle is "
-        "taller than 53 µm). Under its own top surface the same powder is "
-        f"{span(tops, '{:.2f}')} dense (powder-top density), "
-        + ("inside or above" if min(tops) >= BAND[0] else "against")
-        + f" the measured {BAND[0]:.2f}-{BAND[1]:.2f}, and near the 0.80 of a square monolayer "
-        "of equal spheres by the same measure. The gap-based density divides the powder by a "
-        "height the powder does not reach: it is low because the layer is thin, not because its "
-        "particles lie far apart. A measured layer's density is taken over the powder's own "
-        "thickness on a bed of powder and solid (an effective layer thickness), which a single "
-        "layer on a flat plate under a gap of 2 D90 does not have; the build's later layers, "
-        "spread over the powder and the solid before them (docs/results/build-layers.md), are "
-        "where the gap-based and the powder-top measures could meet.",
+        "**Why, measured.** Over the gap the layer is sparse because its powder does not reach "
+        "the gap's height: the mean height of its top surface is "
+        f"{span((r['stats']['mean_height'] * 1e6 for r in rows('scene')), '{:.0f}')} µm for the "
+        f"scene (the particles' mean diameter is {MEAN_D * 1e6:.0f} µm by number; "
+        f"{span((1 - r['stats']['coverage'] for r in rows('scene')), '{:.0%}')} of the plate "
+        f"bare), {span((r['stats']['mean_height'] * 1e6 for r in rows('slow')), '{:.0f}')} µm "
+        f"for the scene's supply at {SLOW} m/s and "
+        f"{span((r['stats']['mean_height'] * 1e6 for r in rows('dosed-slow')), '{:.0f}')} µm "
+        f"dosed at {SLOW} m/s, inside a {scene.gap * 1e6:.0f} µm gap "
+        f"({scene.gap / MEAN_D:.1f} mean diameters). Under "
+        f"its own top surface the same powder is {span(top_density(r) for r in rows('scene'))} "
+        f"dense for the scene, {span(top_density(r) for r in rows('slow'))} and "
+        f"{span(top_density(r) for r in rows('dosed-slow'))} for the slow rows (powder-top "
+        + ("density): above" if min(map(top_density, runs)) > BAND[1] else "density): against")
+        + " the band, but not the band's measure either. It says how the "
+        "powder is stacked, not how much of the plate it covers: a lone sphere on the plate "
+        "reads 0.80 (the volume under its top surface is 5/3 π r³) whatever the bare plate "
+        "around it, so does the square monolayer, and only a layer many particles thick tends "
+        "to its bulk packing (random close packing ~0.64). So the gap-based density is low "
+        "because the layer is thin: its mean top is "
+        f"{span((r['stats']['mean_height'] / MEAN_D for r in runs), '{:.1f}', ' to ')} mean "
+        f"diameters against a gap of {scene.gap / MEAN_D:.1f}, with part of the plate bare; at "
+        "the dosed rows' powder-top density a "
+        f"gap-based {BAND[0]:.2f} would need a mean top of ~"
+        f"{BAND[0] * scene.gap / statistics.mean(top_density(r) for r in rows('dosed-slow')) * 1e6:.0f}"
+        " µm. The measured band is of layers a blade spreads into a recess over earlier powder "
+        "and solid (docs/results/spread-density.md, its last paragraph), not of one layer on a "
+        "flat plate under 2 D90; the build's later layers, spread over the powder and the solid "
+        "before them (docs/results/build-layers.md), are where the two could meet.",
     ]
     return "\n".join(lines) + "\n"
 
