@@ -89,7 +89,9 @@ def layer_run(work, key, label, options, seed, scene, fresh):
            "supply_solid": solid_volume(radii), "overflow": len(over),
            "overflow_solid": solid_volume(over), "wall": wall, "stats": stats,
            "load": [before, load_average()]}
-    os.remove(bed)
+    for path in (bed, os.path.splitext(bed)[0] + ".xmf"):  # the bed and its ParaView sidecar
+        if os.path.exists(path):
+            os.remove(path)
     with open(saved, "w") as f:
         json.dump(out, f)
     print(f"{label}, seed {seed}: density {stats['density']:.3f}", file=sys.stderr, flush=True)
