@@ -11,7 +11,7 @@ rewrites the page). Run with /usr/bin/python3 after building deposit and bedstat
 
 spread-shear.md found that only a small heap (~150 µm thick, ~300 µm tall) moves with the
 scene's blade: the scene supplies 2500 particles (x 0.2-0.7 mm, 0.5 mm across, 0.7 mm tall,
-placed without overlap at a solid fraction of ~0.26) and lets them fall for 10 ms. In a
+placed without overlap at a solid fraction of ~0.13) and lets them fall for 10 ms. In a
 machine the dose in front of the blade is a heap millimetres tall. The TALL supply here keeps
 the scene's x range, its 0.5 mm periodic width and its number density, and is TALL_FACTOR
 times taller (so TALL_FACTOR times the particles); the box is raised to hold it and the blade

@@ -67,6 +67,14 @@ class Scene:
                      "(accepted: < sqrt(5/6))")
         return math.exp(-math.pi * b / math.sqrt(1 - b * b))
 
+    def nominal_layer(self, thickness=None):
+        """The solid of a layer's nominal powder as deposit's supply.dosing counts it (m^3):
+        phi_b (recoater.end - recoater.start) L_y t, phi_b the supply's bulk density
+        (supply.bulk-density), t the gap unless given (docs/deposit-spread.md "Dosing"). A supply
+        of d times this solid is a dosing factor d, whatever the particles' sizes."""
+        t = self.gap if thickness is None else thickness
+        return self.num("supply.bulk-density") * (self.end - self.start) * self.ly * t
+
     def window(self):
         """The layer the blade leaves behind it: from its front face at the start (where the
         supply begins) to its back face at the end, less WINDOW_MARGIN of that at each end."""
@@ -84,3 +92,6 @@ def shown_path(path):
     return os.path.relpath(full, ROOT) if full.startswith(ROOT + os.sep) else os.path.basename(full)
 
 
+def solid_volume(radii):
+    """The solid volume of spheres of these radii (m^3): sum of 4/3 pi r^3."""
+    return sum(4.0 / 3.0 * math.pi * float(r) ** 3 for r in radii)

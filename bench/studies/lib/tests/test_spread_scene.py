@@ -1,13 +1,14 @@
 """lib/spread_scene.py's Scene holds what deposit resolves (its --print-config), defaults and
 overrides included. Needs the build's deposit (POWDERBED_BUILD, default build/). Run from
 bench/studies: python3 -m pytest lib/tests"""
+import math
 import re
 import subprocess
 
 import pytest
 
 from lib import apps
-from lib.spread_scene import Scene, read_scene
+from lib.spread_scene import Scene, read_scene, solid_volume
 
 BLADE = apps.scene("spread-blade.ini")
 # Scene's attributes and the deposit options they hold
@@ -69,3 +70,20 @@ def test_a_refused_scene_names_deposit(tmp_path):
     path.write_text("no-such-option = 1\n")
     with pytest.raises(RuntimeError, match="no-such-option"):
         read_scene(str(path))
+
+
+def test_nominal_layer_is_deposit_dosing_by_volume(tmp_path):
+    # deposit's supply.dosing d supplies d times Scene.nominal_layer() of solid: the blade
+    # scene's psd (D10/D50/D90 by volume) on a 0.2 mm travel (crossed in 0.2 ms), the overflow
+    # kept. Within one largest particle (53 um: 7.8e-14 m^3): packgen stops at the first that
+    # reaches the target. A dosing that counted particles of the D50 would miss by a third.
+    overrides = {"recoater.end": "0.3e-3", "recoater.delay": "1e-5", "recoater.speed": "1",
+                 "recoater.settle": "0", "recoater.overflow": "false", "supply.count": "0",
+                 "supply.dosing": "1.5"}
+    bed = str(tmp_path / "supply.h5")
+    out, _ = apps.run_json([apps.app("deposit"), "--config", BLADE, "--seed", "1", "--threads", "1",
+                            "--out", bed, *apps.option_args(overrides)])
+    assert out["lost"] == 0
+    _, radii = apps.read_bed(bed)
+    largest = 4.0 / 3.0 * math.pi * (53e-6 / 2) ** 3
+    assert abs(solid_volume(radii) - 1.5 * Scene(BLADE, overrides).nominal_layer()) <= largest
