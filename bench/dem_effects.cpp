@@ -121,10 +121,20 @@ void BM_StepZeroed(benchmark::State& state) {
   run_steps(state, large ? large_bed() : small_bed(), scene, large ? 100 : 2000);
 }
 
-// range(0): 0 drop solver, 1 spreading engine; range(1) as BM_Step. Times the runs' own wall
+// The spread's own contact model on the default scene: history friction and rolling
+// resistance (data/scenes/spread-blade.ini's), particles that turn.
+dem::Scene rotating_scene() {
+  dem::Scene scene;
+  scene.friction_model = dem::FrictionModel::history;
+  scene.material.rolling = 0.1;
+  return scene;
+}
+
+// range(0): 0 drop solver, 1 spreading engine with the drop's model, 2 spreading engine with
+// history friction and rolling (rotating_scene); range(1) as BM_Step. Times the runs' own wall
 // clocks (set-up and list build included, the same work on both).
 void BM_Engine(benchmark::State& state) {
-  const dem::Scene scene;
+  const dem::Scene scene = state.range(0) == 2 ? rotating_scene() : dem::Scene{};
   const bool large = state.range(1) != 0;
   const pb::Bed& bed = large ? large_bed() : small_bed();
   const int steps = large ? 100 : 2000;
@@ -142,7 +152,7 @@ void BM_Engine(benchmark::State& state) {
     } else {
       dem::SpreadSettings settings;
       settings.with_tool = false;
-      settings.rotation = false;
+      settings.rotation = state.range(0) == 2;
       settings.dt = dt;
       settings.t_end = steps * dt;
       settings.threads = 1;
@@ -176,7 +186,7 @@ void zeroed_effects(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_Step)->Apply(step_masks)->UseManualTime()->Unit(benchmark::kMicrosecond)->MinTime(0.2);
 BENCHMARK(BM_Engine)
-    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->ArgsProduct({{0, 1, 2}, {0, 1}})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(0.5);
