@@ -25,6 +25,7 @@
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
+#include "powderbed/dem/summary_json.hpp"
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/random.hpp"
 #include "powderbed/bed/temp_files.hpp"
@@ -275,55 +276,20 @@ struct Report {
   std::string out;
 };
 
-void print_lid_json(bed::JsonWriter& j, const dem::RunSummary& r, bool released) {
-  j.begin_object("lid")
-      .value("start_z", r.lid.start_z)
-      .value("stop_z", r.lid.stop_z)
-      .value("surface_z", r.lid.surface_z)
-      .value("travel", r.lid.start_z - r.lid.stop_z)
-      .value("target_force", r.lid.target_force)
-      .value("stop_force", r.lid.stop_force)
-      .value("max_force", r.lid.max_force)
-      .value("hold_end_force", r.lid.hold_end_force)
-      .value("hold_end_z", r.lid.hold_end_z)
-      .value("hold_late_force", r.lid.hold_late_force)
-      .value("stopped_by", r.lid.stopped_by)
-      .value("released", released)
-      .value("release_time", r.lid.release_time)
-      .end_object();
-}
-
 std::string json_text(const Report& p) {
-  const dem::RunSummary& r = p.run;
   bed::JsonWriter j;
-  j.begin_object();
-  app::write_run_head(j, p.bed.n(), r, p.settings.young_scale, p.scene);
+  j.begin_object().value("n", static_cast<std::uint64_t>(p.bed.n()));
+  dem::write_run_json(j, p.run);
+  app::write_contact_laws(j, p.settings.young_scale, p.scene);
   j.value("integrator", p.integrator)
-      .value("dt_limited_by", r.dt_limited_by)
-      .value("dt_limiting_radius", r.dt_limiting_radius)
       .value("fines_scaling", dem::fines_scaling_name(p.scene.fines.scaling))
       .value("fines_radius", p.scene.fines.radius)
       .value("stiffness", p.scene.stiffness)
-      .value("kinetic_energy", r.kinetic_energy)
-      .value("max_speed", r.max_speed)
-      .value("max_overlap", r.max_overlap)
-      .value("max_overlap_m", r.max_overlap_m)
-      .value("max_overlap_full_stiffness", r.max_overlap_full_stiffness)
       .value("lost", static_cast<std::uint64_t>(p.removed))
-      .value("at_rest", r.at_rest)
-      .value("neighbour_rebuilds", r.neighbour_rebuilds)
       .value("core_density", p.core.density)
       .value("core_margin", p.margin)
-      .value("domain_top", p.bed.domain.upper[2]);
-  if (p.settings.insertion.enabled) {
-    j.begin_object("insertion")
-        .value("inserted", static_cast<std::uint64_t>(r.inserted))
-        .value("end_time", r.insertion_end)
-        .value("stopped_by", r.insertion_stopped_by)
-        .end_object();
-  }
-  if (r.lid_used) print_lid_json(j, r, p.settings.lid.release);
-  j.value("out", p.out);
+      .value("domain_top", p.bed.domain.upper[2])
+      .value("out", p.out);
   bed::write_units(j, app::deposit_units());
   j.end_object();
   return j.str() + '\n';

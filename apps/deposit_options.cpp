@@ -165,7 +165,7 @@ void add_deposit_options(po::options_description& desc, DepositOptions& bound) {
 
 std::span<const bed::UnitEntry> deposit_units() {
   static constexpr bed::UnitEntry kUnits[] = {
-      // the run (write_run_head)
+      // the run (dem::write_run_json, write_spread_json; write_contact_laws)
       {"n", "1"}, {"steps", "1"}, {"sim_time", "s"}, {"wall_time", "s"},
       {"particle_steps_per_s", "1/s"}, {"dt", "s"}, {"dt_stable", "s"}, {"young_scale", "1"},
       // a drop
@@ -184,6 +184,12 @@ std::span<const bed::UnitEntry> deposit_units() {
       {"density_under_gap", "1"}, {"overflow", "1"}, {"frozen", "1"}, {"frozen_tool_contacts", "1"},
   };
   return kUnits;
+}
+
+void write_contact_laws(bed::JsonWriter& j, double young_scale, const dem::Scene& scene) {
+  j.value("young_scale", young_scale)
+      .value("contact_law", dem::contact_law_name(scene.law))
+      .value("friction_model", dem::friction_model_name(scene.friction_model));
 }
 
 dem::Scene deposit_scene(const po::variables_map& vm, const dem::Scene& bound) {

@@ -31,21 +31,8 @@ dem::Scene deposit_scene(const po::variables_map& vm, const dem::Scene& bound);
 // The units of every number deposit's --json summaries hold, drop and spread (common/json_units).
 std::span<const bed::UnitEntry> deposit_units();
 
-// The head of deposit's --json summary, the same for a drop (dem::RunSummary) and a spread
-// (dem::SpreadSummary): the bed's size, the run's steps and times, and the contact laws.
-template <class Summary>
-void write_run_head(bed::JsonWriter& j, std::size_t n, const Summary& r, double young_scale,
-                    const dem::Scene& scene) {
-  j.value("n", static_cast<std::uint64_t>(n))
-      .value("steps", r.steps)
-      .value("sim_time", r.sim_time)
-      .value("wall_time", r.wall_time)
-      .value("particle_steps_per_s", r.particle_steps_per_s)
-      .value("dt", r.dt)
-      .value("dt_stable", r.dt_stable)
-      .value("young_scale", young_scale)
-      .value("contact_law", dem::contact_law_name(scene.law))
-      .value("friction_model", dem::friction_model_name(scene.friction_model));
-}
+// The contact laws of deposit's --json summary, the same for a drop and a spread (after
+// dem's run or spread fields, summary_json.hpp): the softening and the laws' names.
+void write_contact_laws(bed::JsonWriter& j, double young_scale, const dem::Scene& scene);
 
 }  // namespace powderbed::app

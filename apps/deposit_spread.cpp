@@ -27,6 +27,7 @@
 #include "powderbed/bed/h5_output.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/json.hpp"
+#include "powderbed/dem/summary_json.hpp"
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/softening.hpp"
 #include "powderbed/bed/sphere_volume.hpp"
@@ -114,27 +115,6 @@ std::string layer_path(const std::string& out, std::uint64_t layer) {
   char suffix[32];
   std::snprintf(suffix, sizeof suffix, "-%03llu.h5", static_cast<unsigned long long>(layer));
   return out.substr(0, out.size() - 3) + suffix;
-}
-
-void write_json_layer(bed::JsonWriter& j, const dem::LayerSummary& l) {
-  j.begin_object()
-      .value("layer", l.layer)
-      .value("n", static_cast<std::uint64_t>(l.n))
-      .value("supplied", static_cast<std::uint64_t>(l.supplied))
-      .value("steps", l.steps)
-      .value("sim_time", l.sim_time)
-      .value("wall_time", l.wall_time)
-      .value("tool_bottom", l.tool_bottom)
-      .value("max_tool_force", l.max_tool_force)
-      .value("mean_tool_force_x", l.mean_tool_force_x)
-      .value("density_under_gap", l.density_under_gap)
-      .value("kinetic_energy", l.kinetic_energy)
-      .value("max_speed", l.max_speed)
-      .value("lost", static_cast<std::uint64_t>(l.lost))
-      .value("overflow", static_cast<std::uint64_t>(l.overflow))
-      .value("frozen", static_cast<std::uint64_t>(l.frozen))
-      .value("frozen_tool_contacts", l.frozen_tool_contacts)
-      .end_object();
 }
 
 }  // namespace
@@ -360,18 +340,13 @@ std::string spread_summary(const po::variables_map& vm, const dem::SpreadSummary
                            const bed::Bed& bed, std::size_t lost, const std::string& out) {
   if (vm.count("json")) {
     bed::JsonWriter j;
-    j.begin_object();
-    write_run_head(j, bed.n(), r, s.young_scale, scene);
+    j.begin_object().value("n", static_cast<std::uint64_t>(bed.n()));
+    dem::write_spread_json(j, r);
+    write_contact_laws(j, s.young_scale, scene);
     j.value("rolling", scene.material.rolling)
         .value("tool", vm["recoater.tool"].as<std::string>())
-        .value("max_overlap", r.max_overlap)
-        .value("neighbour_rebuilds", r.neighbour_rebuilds)
         .value("lost", static_cast<std::uint64_t>(lost))
-        .value("layers_done", r.state.layers_done);
-    j.begin_array("layers");
-    for (const auto& l : r.layers) write_json_layer(j, l);
-    j.end_array();
-    j.value("out", out);
+        .value("out", out);
     bed::write_units(j, deposit_units());
     j.end_object();
     return j.str() + '\n';

@@ -1,6 +1,6 @@
 #pragma once
-// dem's run summaries as Python dicts, with the keys of deposit's --json summary where it has
-// the same number (apps/deposit.cpp, deposit_spread.cpp).
+// dem's run summaries as Python dicts: json.loads of dem's summary writer (summary_json.hpp),
+// the fields deposit's --json summary holds, plus a drop's bed count and lost particles.
 #include <pybind11/pybind11.h>
 
 #include "powderbed/dem/solver.hpp"

@@ -679,6 +679,7 @@ class LidPhase {
 
   void run() {
     run_.summary.lid_used = true;
+    out_.released = lid_.release;
     lower();
     if (!run_.stopped) hold();
     if (!lid_.release) {  // the lid stays: it is the bed's top face from now on

@@ -129,6 +129,7 @@ struct LidSummary {
   // How the lowering ended: "force" (target reached), "travel", "depth", or "floor" (the lid came within
   // one smallest diameter of the floor with neither reached).
   std::string stopped_by;
+  bool released = false;       // raised at the end (LidSettings::release), else kept as the top face
   double release_time = 0;     // s: simulated time the raise began
 };
 
