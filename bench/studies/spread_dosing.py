@@ -44,7 +44,7 @@ import statistics
 import sys
 
 from lib.apps import ROOT, app, bedstat, read_bed, run_json
-from lib.report import load_average, machine, table_head, table_row, write_page
+from lib.report import batch_lines, load_average, record_batches, table_head, table_row, write_page
 from lib.spread_scene import Scene, solid_volume
 
 SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
@@ -133,7 +133,7 @@ def page(runs, scene, batches):
         f"{x0 * 1e3:.2f}-{x1 * 1e3:.2f} mm as docs/results/spread-density.md measures its rows. "
         "Run one at a time, one thread each, on a 2-core machine shared with other work; the load "
         "column is the 1-min load average when each run started.",
-        *machine_lines(batches),
+        *batch_lines(batches),
         "",
         "**The supply by volume.** The scene's psd gives D10/D50/D90 = 19/30/45 µm by volume "
         "(bed/include/powderbed/bed/psd.hpp: a d10/d50/d90 lognormal is volume-based unless "
@@ -219,17 +219,6 @@ def page(runs, scene, batches):
     return "\n".join(lines) + "\n"
 
 
-def machine_lines(batches):
-    """The Machine sentence of each call that ran rows of the page, the later ones naming them."""
-    lines = []
-    for i, b in enumerate(batches):
-        text = b["machine"]
-        if len(batches) > 1:
-            text = f"Rows {', '.join(b['keys'])}: " + text
-        lines.append(text + ("  " if i < len(batches) - 1 else ""))
-    return lines
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--work", default=WORK)
@@ -248,7 +237,6 @@ def main():
         if Scene(SCENE, {k[2:]: v for k, v in zip(options[::2], options[1::2])}).window() != window:
             sys.exit(f"spread_dosing: row {key} moves the scene's window")
     path = os.path.join(args.work, "results.json")
-    stored = json.load(open(path)) if os.path.exists(path) else {"batches": []}
     ran = [key for key, _, _, seeds in ROWS
            if key in only or any(not os.path.exists(os.path.join(args.work, tag(key, s) + ".json"))
                                  for s in seeds)]
@@ -260,14 +248,7 @@ def main():
                 done[key, seed] = layer_run(args.work, key, label, options, seed, scene,
                                             key in only)
     runs = [done[key, seed] for key, _, _, seeds in ROWS for seed in seeds]
-    batches = stored["batches"] + ([{"keys": ran, "machine": machine(
-        before, load_average(), program=app("deposit"))}] if ran else [])
-    batches = [dict(b, keys=[k for k in b["keys"]
-                             if not any(k in later["keys"] for later in batches[i + 1:])])
-               for i, b in enumerate(batches)]
-    batches = [b for b in batches if b["keys"]]
-    with open(path, "w") as f:
-        json.dump({"batches": batches}, f, indent=1)
+    batches = record_batches(path, ran, before, app("deposit"))
     print(write_page(PAGE, page(runs, scene, batches)))
 
 

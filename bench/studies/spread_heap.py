@@ -48,8 +48,8 @@ import h5py
 import numpy as np
 
 from lib.apps import ROOT, app, bedstat, run_json
-from lib.report import (load_average, machine, read_page, splice, section_markers, table_head,
-                        table_row, write_page)
+from lib.report import (batch_lines, load_average, read_page, record_batches, splice,
+                        section_markers, table_head, table_row, write_page)
 from lib.spread_scene import Scene
 
 SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
@@ -264,7 +264,7 @@ def section(scene, runs, heap, batches, above):
         "0.15 m/s\" for a high packing quality; what speed machines' recoaters run at was not "
         "found in what could be read. The "
         "width stays the scene's 0.5 mm (each run under 20 min on one thread).",
-        *machine_lines(batches),
+        *batch_lines(batches),
         "",
         f"The heap as posed (the same run stopped as the blade starts, seed 1, "
         f"{heap['n']} particles, {heap['wall']:.0f} s at load {heap['load'][0].split()[0]}): "
@@ -292,12 +292,6 @@ def section(scene, runs, heap, batches, above):
                   *[table_row(*row) for row in LITERATURE]]
     lines += ["", *reading(runs, tall, slow, above, heap), end]
     return "\n".join(lines)
-
-
-def machine_lines(batches):
-    """Each call's machine sentence, naming the rows it ran (Markdown line breaks between)."""
-    lines = [f"Rows {', '.join(b['keys'])}: {b['machine']}" for b in batches]
-    return [line + "  " if i < len(lines) - 1 else line for i, line in enumerate(lines)]
 
 
 def reading(runs, tall, slow, above, heap):
@@ -412,7 +406,6 @@ def main():
     window = scene.window()
     rows = variants(scene)
     path = os.path.join(args.work, "results.json")
-    stored = json.load(open(path)) if os.path.exists(path) else {"batches": []}
     before = load_average()
     ran = [k for k in ["heap"] + [r[0] for r in rows]
            if k in only or not os.path.exists(os.path.join(args.work, tag(k, 1) + ".json"))]
@@ -428,16 +421,7 @@ def main():
                                             key in only)
     runs = [done[key, seed] for key, _, _, seeds in rows for seed in seeds]
     heap = heap_run(args.work, tall_options(scene), scene, "heap" in only)
-    # The machine sentence of each call that ran rows (a call that reran none adds none).
-    batches = stored["batches"] + ([{"keys": ran, "machine": machine(
-        before, load_average(), program=app("deposit"))}] if ran else [])
-    # A row belongs to the last call that ran it.
-    batches = [dict(b, keys=[k for k in b["keys"]
-                             if not any(k in later["keys"] for later in batches[i + 1:])])
-               for i, b in enumerate(batches)]
-    batches = [b for b in batches if b["keys"]]
-    with open(path, "w") as f:
-        json.dump({"batches": batches}, f, indent=1)
+    batches = record_batches(path, ran, before, app("deposit"))
     text = read_page(PAGE)
     block = section(scene, runs, heap, batches, page_rows(text))
     print(write_page(PAGE, splice(text, SECTION, block)))

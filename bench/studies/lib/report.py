@@ -2,6 +2,7 @@
 cells, a section one study keeps in another study's page, and the sentence on the machine a
 study ran on, which every page records: on a shared machine the load is what makes two wall
 times comparable or not, and the commit says which code made the numbers."""
+import json
 import os
 import platform
 import statistics
@@ -135,3 +136,25 @@ def machine(load_before, load_after=None, program=None, source_text=None):
     return (f"Machine: {_host()}, {os.cpu_count()} cores, {platform.platform()}; load average "
             f"(1, 5, 15 min) {load_before} before the runs, {load_after} after; source at "
             f"{source_text or source(program)}.")
+
+
+def record_batches(path, ran, load_before, program):
+    """The calls of a study that ran rows, kept in `path` (its results.json: {"batches": [{"keys",
+    "machine"}]}): the stored ones and this call's, when it ran rows (`ran`, their keys), with
+    machine(load_before, program=program); a row belongs to the last call that ran it, and a
+    call left with none is dropped. Writes them back and returns them."""
+    stored = json.load(open(path))["batches"] if os.path.exists(path) else []
+    batches = stored + ([{"keys": ran, "machine": machine(load_before, program=program)}] if ran else [])
+    batches = [dict(b, keys=[k for k in b["keys"] if not any(k in later["keys"] for later in batches[i + 1:])])
+               for i, b in enumerate(batches)]
+    batches = [b for b in batches if b["keys"]]
+    with open(path, "w") as f:
+        json.dump({"batches": batches}, f, indent=1)
+    return batches
+
+
+def batch_lines(batches):
+    """The Machine sentence of each call that ran rows of a page (record_batches), naming its rows
+    when there are several, with Markdown line breaks between them."""
+    lines = [(f"Rows {', '.join(b['keys'])}: " if len(batches) > 1 else "") + b["machine"] for b in batches]
+    return [line + "  " if i < len(lines) - 1 else line for i, line in enumerate(lines)]

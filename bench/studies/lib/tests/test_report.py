@@ -52,3 +52,24 @@ def test_machine_names_cores_loads_and_source():
     assert "9.00 8.00 7.00 before the runs, 1.00 2.00 3.00 after" in text
     assert "source at commit " in text
     assert len(report.load_average().split()) == 3
+
+
+def test_record_batches_keeps_each_row_under_the_last_call_that_ran_it(tmp_path):
+    path = str(tmp_path / "results.json")
+    first = report.record_batches(path, ["a", "b"], "1.00 1.00 1.00", None)
+    assert [b["keys"] for b in first] == [["a", "b"]]
+    assert report.record_batches(path, [], "1.00 1.00 1.00", None) == first  # ran nothing: no call
+    later = report.record_batches(path, ["b"], "2.00 2.00 2.00", None)
+    assert [b["keys"] for b in later] == [["a"], ["b"]]
+    assert "2.00 2.00 2.00 before the runs" in later[1]["machine"]
+    # Rerunning every row leaves one call; the file holds what was returned.
+    again = report.record_batches(path, ["a", "b"], "3.00 3.00 3.00", None)
+    assert [b["keys"] for b in again] == [["a", "b"]]
+    assert report.record_batches(path, [], "0 0 0", None) == again
+
+
+def test_batch_lines_name_the_rows_only_when_calls_differ():
+    one = [{"keys": ["a"], "machine": "Machine: x."}]
+    assert report.batch_lines(one) == ["Machine: x."]
+    two = one + [{"keys": ["b", "c"], "machine": "Machine: y."}]
+    assert report.batch_lines(two) == ["Rows a: Machine: x.  ", "Rows b, c: Machine: y."]
