@@ -410,18 +410,21 @@ struct SpreadLoop {
   // they are more than the margin apart, and the pair loop, which no longer sees them, would
   // have ended them this step.
   void prune() {
-    list.prune(view(), prune_margin);
+    list.prune(view(), prune_margin, threads);
     find_wall_candidates();
     const std::uint32_t* hot = list.hot();
-    const std::size_t hot_entries = list.hot_entries();
-    for (std::size_t k = 0, q = 0; k < touching.size(); ++k) {
-      if (q < hot_entries && hot[q] == k) {
-        ++q;
-      } else if (touching[k]) {
-        std::fill_n(pair_history.begin() + static_cast<std::ptrdiff_t>(k * kContactHistory), kContactHistory, 0.0);
-        touching[k] = 0;
+    const std::uint32_t* hot_end = hot + list.hot_entries();
+    detail::for_each_chunk(touching.size(), threads, [&](std::size_t begin, std::size_t end) {
+      const std::uint32_t* q = std::lower_bound(hot, hot_end, begin);  // hot is in entry order
+      for (std::size_t k = begin; k < end; ++k) {
+        if (q != hot_end && *q == k) {
+          ++q;
+        } else if (touching[k]) {
+          std::fill_n(pair_history.begin() + static_cast<std::ptrdiff_t>(k * kContactHistory), kContactHistory, 0.0);
+          touching[k] = 0;
+        }
       }
-    }
+    });
   }
 
   // The start of a step in two passes over the moving particles: (1) kick_drift, the kick v += h F / m
@@ -441,7 +444,7 @@ struct SpreadLoop {
     if (bad) return false;  // no list of non-finite positions: the caller stops the run
     ParticleView moved = view();
     moved.n = moving;
-    switch (list.stale(moved)) {
+    switch (list.stale(moved, threads)) {
       case NeighbourList::Stale::build:
         rebuild_with(active());
         ++rebuilds;
