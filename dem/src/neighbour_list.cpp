@@ -153,6 +153,7 @@ void NeighbourList::build(const ParticleView& p, int threads, bool with_incident
   } else {
     fill_in_parallel(p, threads, owners);
   }
+  with_incident_ = with_incident;
   if (with_incident) {
     // Serial fill in increasing i: a particle's pairs under lower indices arrive first, in the
     // order of those indices, then its own pairs are appended.
@@ -226,9 +227,30 @@ void NeighbourList::prune(const ParticleView& p, double margin, int threads) {
     });
     for (const std::vector<std::uint32_t>& part : hot_parts_) hot_.insert(hot_.end(), part.begin(), part.end());
   }
+  if (with_incident_) hot_incident(threads);
   xp_.assign(p.x, p.x + p.n);
   yp_.assign(p.y, p.y + p.n);
   zp_.assign(p.z, p.z + p.n);
+}
+
+// Each particle's incident entries that are hot, in incident order: count, prefix-sum, fill.
+void NeighbourList::hot_incident(int threads) {
+  is_hot_.assign(partners_.size(), 0);
+  for (const std::uint32_t k : hot_) is_hot_[k] = 1;
+  const std::size_t n = incident_offset_.size() - 1;
+  hot_incident_offset_.assign(n + 1, 0);
+  for_each_particle(n, threads, [&](std::size_t i) {
+    std::uint32_t count = 0;
+    for (const std::uint32_t* e = incident_begin(i); e != incident_end(i); ++e) count += is_hot_[*e >> 1];
+    hot_incident_offset_[i + 1] = count;
+  });
+  for (std::size_t i = 0; i < n; ++i) hot_incident_offset_[i + 1] += hot_incident_offset_[i];
+  hot_incident_.resize(hot_incident_offset_[n]);
+  for_each_particle(n, threads, [&](std::size_t i) {
+    std::uint32_t* out = hot_incident_.data() + hot_incident_offset_[i];
+    for (const std::uint32_t* e = incident_begin(i); e != incident_end(i); ++e)
+      if (is_hot_[*e >> 1]) *out++ = *e;
+  });
 }
 
 bool NeighbourList::moved_from(const ParticleView& p, double limit, const std::vector<double>& x0,

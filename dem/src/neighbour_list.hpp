@@ -66,11 +66,21 @@ class NeighbourList {
   // 2 k when it is the upper one (-F_k).
   const std::uint32_t* incident_begin(std::size_t i) const { return incident_.data() + incident_offset_[i]; }
   const std::uint32_t* incident_end(std::size_t i) const { return incident_.data() + incident_offset_[i + 1]; }
+  // The hot ones among them (after a prune of a list built with_incident), in the same order:
+  // what a parallel force gather reads at every step, where the whole incident list (every
+  // entry within the skin) would cost more than the contacts themselves.
+  const std::uint32_t* hot_incident_begin(std::size_t i) const {
+    return hot_incident_.data() + hot_incident_offset_[i];
+  }
+  const std::uint32_t* hot_incident_end(std::size_t i) const {
+    return hot_incident_.data() + hot_incident_offset_[i + 1];
+  }
 
  private:
   template <class F>
   void for_each_candidate(const ParticleView& p, std::size_t i, F&& f) const;
   int cell_coordinate(int axis, double v) const;
+  void hot_incident(int threads);
   void hot_in(const ParticleView& p, std::size_t begin, std::size_t end, std::vector<std::uint32_t>& hot) const;
   bool moved_from(const ParticleView& p, double limit, const std::vector<double>& x0,
                   const std::vector<double>& y0, const std::vector<double>& z0, int threads) const;
@@ -94,6 +104,9 @@ class NeighbourList {
   std::vector<double> x0_, y0_, z0_;          // positions at the last build
   std::vector<std::uint32_t> hot_;            // prune: the entries within reach + margin_
   std::vector<std::vector<std::uint32_t>> hot_parts_;  // prune on threads: each one's entries
+  bool with_incident_ = false;                // the last build made the incident lists
+  std::vector<std::uint8_t> is_hot_;          // per entry, at the last prune (with_incident_)
+  std::vector<std::uint32_t> hot_incident_offset_, hot_incident_;
   double margin_ = 0;
   std::vector<double> xp_, yp_, zp_;          // positions at the last prune
 };

@@ -686,7 +686,8 @@ struct SpreadLoop {
 
   // The same on `threads` threads: the hot entries' contacts into pair_load (each entry is one
   // thread's), then each moving particle gathers its touching entries in NeighbourList's
-  // incident order, which is increasing entry: the serial loop's sums, bit for bit. (The frozen
+  // incident order (of the hot entries: no other can touch), which is increasing entry: the
+  // serial loop's sums, bit for bit. (The frozen
   // particles' sums, which nothing reads, are not made.)
   void parallel_pair_forces(bool update) {
     const PairPass pass = pair_pass(update);
@@ -705,7 +706,7 @@ struct SpreadLoop {
     const std::uint8_t* touch = touching.data();
     detail::for_each_particle(moving, threads, [&](std::size_t p) {
       double f[3] = {fx[p], fy[p], fz[p]}, t[3] = {tx[p], ty[p], tz[p]};
-      for (const std::uint32_t* e = list.incident_begin(p); e != list.incident_end(p); ++e) {
+      for (const std::uint32_t* e = list.hot_incident_begin(p); e != list.hot_incident_end(p); ++e) {
         const std::uint32_t k = *e >> 1;
         if (!touch[k]) continue;
         const double* c = load + std::size_t{k} * kPairLoad;  // f, t_owner, t_partner
