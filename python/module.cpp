@@ -1,7 +1,7 @@
 // The C++ half of the Python module `powderbed` (python/powderbed/__init__.py is the other):
 // the bed library's readers and writers, PSD sampling and bedstat's statistics, so a script
 // gets the same numbers as the programs without parsing their output; and the stages run
-// in-process on the libraries' structs (bindings.hpp: deposit, spread, keff, sinter, build).
+// in-process on the libraries' structs (bindings.hpp: packgen, deposit, spread, keff, sinter, build).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -92,4 +92,5 @@ PYBIND11_MODULE(_core, m) {
   python::bind_thermal_structs(m);
   python::bind_sinter(m);
   python::bind_build(m);
+  python::bind_packgen(m);
 }

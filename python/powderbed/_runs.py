@@ -1,5 +1,5 @@
-"""The stages in-process: deposit, spread, keff, sinter and build run the C++ libraries on a Bed
-and the libraries' own structs (Scene, RunSettings, SpreadSettings, KeffScene, SinterScene,
+"""The stages in-process: pack, deposit, spread, keff, sinter and build run the C++ libraries on a Bed
+and the libraries' own structs (PackOptions, Scene, RunSettings, SpreadSettings, KeffScene, SinterScene,
 BuildPlan), with no file and no program in between (a build writes its layers' files, as the
 program build does). Keyword arguments set the structs' fields by name; what is not
 given keeps the struct's default, which is the library's (the programs' defaults are the same
@@ -13,6 +13,7 @@ from ._bed import Bed, bed_of
 
 Scene, RunSettings, SpreadSettings = _core.Scene, _core.RunSettings, _core.SpreadSettings
 KeffScene, SinterScene, BuildPlan = _core.KeffScene, _core.SinterScene, _core.BuildPlan
+PackOptions = _core.PackOptions
 
 
 def _callable_or_none(value, what):
@@ -29,6 +30,41 @@ def _supply_maker(supply, what):
     def maker(region, layer):
         return bed_of(supply(region, layer), f"{what}: what supply returned").as_dict()
     return maker
+
+
+def _pack_domain(value):
+    """pack's domain as the C++ half takes it: a domain dict, or the 2 or 3 lengths of the box."""
+    if isinstance(value, dict):
+        return value
+    try:
+        count = len(value)
+    except TypeError:
+        count = 0
+    if count not in (2, 3) or isinstance(value, (str, bytes)):
+        _checks.refuse("pack: domain", value, "LX, LY[, LZ] in m, or a domain dict as Bed.domain")
+    return _checks.numbers_of(value, count, "pack: domain")
+
+
+def pack(domain, psd, seed, options=None, *, progress=None, **fields):
+    """Packs the box `domain` with particles of the PSD string `psd` one at a time by contact
+    rules (packgen::pack, as the program packgen) and returns (Bed, summary dict): for the same
+    options and seed the bed packgen writes, bit for bit.
+
+    domain: (LX, LY) for disks or (LX, LY, LZ) for spheres, in m, the box [0, L] as packgen's
+    --domain; or a domain dict as Bed.domain. seed: the random seed (packgen's --seed).
+    options: a powderbed.PackOptions (approach or phases, collision, count or target_density,
+    tries, directions, site_order, size_sampling, ...); keyword arguments set its fields by name,
+    e.g. pack((2e-4, 2e-4, 1e-4), "mono:d=20e-6", 1, approach=3, count=40).
+    progress(p) is called about every 0.25 s with p = {"n", "density", "fraction"}.
+    The summary has packgen --json's keys: n, density, coordination, coordination_by_tol,
+    rattlers, wall_contacts, max_relative_overlap, attempts, tries, failed_placements,
+    target_reached, stop_reason, ... A count or target density not reached is a RuntimeWarning
+    (the bed is returned all the same, as the program writes it)."""
+    (options,) = _structs.structs("pack", fields, (options, PackOptions))
+    out, summary = _core.pack(_pack_domain(domain), _checks.text(psd, "pack: psd"),
+                              _checks.whole(seed, "pack: seed"), options,
+                              _callable_or_none(progress, "pack: progress"))
+    return Bed(out), summary
 
 
 def deposit(bed, scene=None, settings=None, *, progress=None, **fields):
