@@ -96,7 +96,8 @@ py::list material_fills(const std::string& name, const std::string& program,
     if (program != fill.program || field_given(fill.field, given)) continue;
     const auto value = bed::material_value(file, fill, temperature);
     if (!value && fill.required) bed::refuse_missing_fill(file, fill);
-    if (value) out.append(py::make_tuple(fill.field, std::visit([](const auto& v) { return py::cast(v); }, *value)));
+    if (!value) continue;
+    out.append(py::make_tuple(fill.field, std::visit([](const auto& v) { return py::cast(v); }, *value)));
   }
   return out;
 }

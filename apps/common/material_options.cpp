@@ -85,8 +85,8 @@ std::vector<std::string> apply_material(const char* app, po::variables_map& vm,
                                         const std::set<std::string>& typed) {
   std::vector<std::string> stored;
   if (!vm.count("material")) return stored;
-  const bed::MaterialFile file =
-      bed::read_named_material(material_file(vm["material"].as<std::string>(), vm, "--material"), "--material");
+  const std::string path = material_file(vm["material"].as<std::string>(), vm, "--material");
+  const bed::MaterialFile file = bed::read_named_material(path, "--material");
   // Given beside it, an option wins: at the command line always, in the scene file unless
   // --material itself was typed at the command line (then the scene's values give way).
   const bool material_typed = typed.count("material") > 0;
@@ -97,7 +97,8 @@ std::vector<std::string> apply_material(const char* app, po::variables_map& vm,
     const bool conductivity = m.key == std::string("conductivity");  // keff's: it has walls
     const auto value = bed::material_value(file, m, conductivity ? keff_temperature(vm) : 0);
     // The file itself is stored as sinter's table even over a scene's table: it must hold one.
-    if (m.required && !value && (!in_scene || m.key == std::string("file"))) bed::refuse_missing_fill(file, m);
+    if (m.required && !value && (!in_scene || m.key == std::string("file")))
+      bed::refuse_missing_fill(file, m);
     if (!value) continue;
     if (const auto* number = std::get_if<double>(&*value)) {
       store(vm, m.option, *number);

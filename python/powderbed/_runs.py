@@ -75,6 +75,8 @@ def deposit(bed, scene=None, settings=None, *, progress=None, **fields):
     powderbed.RunSettings (t_end or until_rest, dt, young_scale, lid, insertion, ...). Keyword
     arguments set fields of either by name, e.g. deposit(bed, t_end=2e-3, young_scale=1e3,
     material={"density": 4430}, effects=["gravity", "hertz", "walls"]).
+    material="NAME" (a name of data/materials such as "316L", or a path to a material CSV) fills
+    what the program's --material NAME fills; keywords beside it win.
     progress(p) is called every settings.progress_every steps and at the end with p = {"step",
     "time", "t_end", "fraction", "kinetic_energy", "max_speed"}.
     The summary has deposit --json's run keys (n, steps, sim_time, dt, dt_stable, kinetic_energy,
@@ -97,6 +99,8 @@ def spread(bed, scene=None, settings=None, *, state=None, supply=None, progress=
     scene: a powderbed.Scene; settings: a powderbed.SpreadSettings (tool: a Recoater, the
     supply region supply_x0, supply_x1, supply_height, layers, layer_thickness, ...); keyword
     arguments set fields of either by name, e.g. spread(bed, tool={"gap": 60e-6, "end": 2e-3}).
+    material="NAME" (a name of data/materials such as "316L", or a path to a material CSV) fills
+    what the program's --material NAME fills; keywords beside it win.
     state: the SpreadState a previous spread returned, to continue it on the Bed it returned.
     supply(region, layer) -> Bed fills a layer's supply region (region: a domain dict as
     Bed.domain; layer from 1); None: no supply (the bed holds the powder).
@@ -122,6 +126,9 @@ def keff(bed, scene=None, *, progress=None, **fields):
     scene: a powderbed.KeffScene (axis, hot_temperature, cold_temperature, solid_conductivity,
     gas_model, radiation_path, contact, lens, ...); keyword arguments set its fields by name,
     e.g. keff(bed, hot_temperature=1005, cold_temperature=995, radiation_path=True).
+    material="NAME" (a name of data/materials such as "316L", or a path to a material CSV) fills
+    what the program's --material NAME fills (k_s at the mean of the walls); keywords beside
+    it win.
     With contact={"hertz_correction": True} the DEM law is read from the bed's provenance (a
     bed from deposit or spread has it); contact.circle stays as given (the program keff
     switches it to hertz with the correction unless told). progress(fraction) hears the
@@ -139,6 +146,8 @@ def sinter(bed, scene=None, *, progress=None, **fields):
     scene: a powderbed.SinterScene (power, speed, spot_radius, nodes, substrate_depth, t_end,
     scan_path, material_table, effects, ...); keyword arguments set its fields by name, e.g.
     sinter(bed, power=150, nodes=[21, 11, 11], substrate_depth=1e-4).
+    material="NAME" (a name of data/materials such as "316L", or a path to a material CSV) fills
+    what the program's --material NAME fills; keywords beside it win.
     progress(p) is called about once a second of wall time with p = {"step", "time", "t_end",
     "fraction", "max_temperature_particles", "max_temperature_substrate"}.
     The summary has sinter --json's keys: melt_pool {height, width, depth}, melt_pool_along,
