@@ -2,7 +2,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -19,6 +18,7 @@
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/stats.hpp"
 #include "powderbed/packgen/pack.hpp"
+#include "powderbed/packgen/summary_json.hpp"
 
 namespace {
 
@@ -125,19 +125,6 @@ packgen::PackOptions pack_options(const po::variables_map& vm, const packgen::Pa
   return o;
 }
 
-// A stop rule that was not reached: the bed is written all the same, with a warning.
-void warn_unreached(const packgen::PackOptions& o, const packgen::PackResult& result,
-                    double density) {
-  const std::string target =
-      o.count > 0 ? fmt::format("--count {}", o.count)
-                  : fmt::format("--target-density {}", bed::tolerance_key(o.target_density));
-  std::cerr << fmt::format("packgen: warning: {} not reached: stopped by the {} rule after {} "
-                           "failed placements, {} in a row, with {} particles at density {:g}; "
-                           "the bed was written\n",
-                           target, result.stop_reason, result.failed_placements,
-                           result.failures_in_a_row, result.bed.n(), density);
-}
-
 // The units of packgen's --json numbers (common/json_units).
 constexpr bed::UnitEntry kUnits[] = {
     {"n", "1"}, {"density", "1"}, {"coordination", "1"},
@@ -149,38 +136,11 @@ constexpr bed::UnitEntry kUnits[] = {
     {"seed", "1"},
 };
 
-// What --json prints: the bed's density and contacts, the run's counters and settings.
-void print_json(const packgen::PackResult& result, const packgen::PackOptions& o,
-                double density, const std::vector<bed::ContactStats>& by_tol, std::uint64_t seed) {
-  const bed::Bed& b = result.bed;
+// What --json prints: the library's summary (summary_json.hpp) with its units.
+void print_json(const packgen::PackResult& result, const packgen::PackOptions& o, std::uint64_t seed) {
   bed::JsonWriter j;
   j.begin_object();
-  j.value("n", std::uint64_t{b.n()});
-  j.value("density", density);
-  j.value("coordination", by_tol[0].coordination);
-  j.begin_object("coordination_by_tol");
-  for (std::size_t t = 0; t < by_tol.size(); ++t) {
-    j.value(bed::tolerance_key(bed::kReportedTolerances[t]), by_tol[t].coordination);
-  }
-  j.end_object();
-  j.value("rattlers", std::uint64_t{by_tol[0].rattlers});
-  j.value("wall_contacts", std::uint64_t{by_tol[0].wall_contacts});
-  j.value("max_relative_overlap", bed::max_relative_overlap(b));
-  j.value("wall_time", result.wall_time);
-  j.value("attempts", std::uint64_t{result.attempts});
-  j.value("tries", std::uint64_t{result.tries});
-  j.value("failed_placements", std::uint64_t{result.failed_placements});
-  j.value("retired", std::uint64_t{result.retired});
-  j.value("refused_valid", std::uint64_t{result.refused_valid});
-  j.value("accepted_overlapping", std::uint64_t{result.accepted_overlapping});
-  j.value("target_reached", result.target_reached);
-  j.value("stop_reason", result.stop_reason);
-  j.value("collision", packgen::collision_name(o.collision));
-  j.value("approach", o.phases.back().approach);
-  j.value("site_order", packgen::site_order_name(o.site_order));
-  j.value("size_sampling", packgen::size_sampling_name(o.size_sampling));
-  j.value("sites", std::uint64_t{result.sites});
-  j.value("seed", seed);
+  packgen::write_pack_json(j, result, o, seed);
   bed::write_units(j, kUnits);
   j.end_object();
   std::cout << j.str() << '\n';
@@ -198,16 +158,16 @@ void report(packgen::PackResult& result, const packgen::PackOptions& o, std::uin
   b.provenance.scene = app::scene_text(vm);
   bed::write_bed_h5(b, vm["out"].as<std::string>());
 
-  const double density = bed::packing_density(b);
-  if (!result.target_reached) warn_unreached(o, result, density);
-  const std::vector<bed::ContactStats> by_tol = bed::contact_stats(
-      b, std::vector<double>(std::begin(bed::kReportedTolerances), std::end(bed::kReportedTolerances)));
+  if (!result.target_reached)
+    std::cerr << "packgen: warning: " << packgen::unreached_warning(result, o) << '\n';
   if (vm.count("json")) {
-    print_json(result, o, density, by_tol, seed);
+    print_json(result, o, seed);
     return;
   }
+  const double density = bed::packing_density(b);
+  const bed::ContactStats contacts = bed::contact_stats(b, bed::kReportedTolerances[0]);
   std::cout << "packgen: " << b.n() << " particles, density " << density << ", coordination "
-            << by_tol[0].coordination << " (tol 1e-6), " << result.wall_time << " s, "
+            << contacts.coordination << " (tol 1e-6), " << result.wall_time << " s, "
             << result.attempts << " attempts, stopped by " << result.stop_reason << " ("
             << packgen::collision_name(o.collision) << ", approach " << o.phases.back().approach
             << ") -> " << vm["out"].as<std::string>() << '\n';

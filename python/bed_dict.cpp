@@ -36,23 +36,6 @@ std::vector<T> vector_of(const py::dict& d, const char* key, std::size_t n, bool
   return std::vector<T>(a.data(), a.data() + a.size());
 }
 
-bed::Domain domain_from_dict(const py::dict& d) {
-  bed::Domain out;
-  out.dimension = d["dimension"].cast<int>();
-  const auto lower = d["lower"].cast<std::vector<double>>();
-  const auto upper = d["upper"].cast<std::vector<double>>();
-  const auto periodic = d["periodic"].cast<std::vector<bool>>();
-  if (lower.size() != 3 || upper.size() != 3 || periodic.size() != 3)
-    throw InputError("bed: domain lower, upper and periodic need 3 values each");
-  for (int a = 0; a < 3; ++a) {
-    out.lower[a] = lower[a];
-    out.upper[a] = upper[a];
-    out.periodic[a] = periodic[a];
-  }
-  out.validate("bed: domain");
-  return out;
-}
-
 py::dict provenance_to_dict(const bed::Provenance& p) {
   py::dict out;
   out["created_by"] = p.created_by;
@@ -94,6 +77,23 @@ bed::Provenance provenance_from_dict(const py::dict& d) {
 }
 
 }  // namespace
+
+bed::Domain domain_from_dict(const py::dict& d) {
+  bed::Domain out;
+  out.dimension = d["dimension"].cast<int>();
+  const auto lower = d["lower"].cast<std::vector<double>>();
+  const auto upper = d["upper"].cast<std::vector<double>>();
+  const auto periodic = d["periodic"].cast<std::vector<bool>>();
+  if (lower.size() != 3 || upper.size() != 3 || periodic.size() != 3)
+    throw InputError("bed: domain lower, upper and periodic need 3 values each");
+  for (int a = 0; a < 3; ++a) {
+    out.lower[a] = lower[a];
+    out.upper[a] = upper[a];
+    out.periodic[a] = periodic[a];
+  }
+  out.validate("bed: domain");
+  return out;
+}
 
 py::dict domain_to_dict(const bed::Domain& d) {
   py::dict out;

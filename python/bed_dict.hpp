@@ -13,6 +13,8 @@ namespace powderbed::python {
 pybind11::dict bed_to_dict(const bed::Bed& bed);
 // A domain as the dict a Bed holds: {dimension, lower, upper, periodic}.
 pybind11::dict domain_to_dict(const bed::Domain& d);
+// The inverse of domain_to_dict, validated; throws InputError on a bad domain.
+bed::Domain domain_from_dict(const pybind11::dict& d);
 // The inverse of bed_to_dict; throws InputError naming the key when an array's length differs from x's.
 bed::Bed bed_from_dict(const pybind11::dict& d);
 

@@ -11,5 +11,6 @@ void bind_keff(pybind11::module_& m);           // keff_binding.cpp
 void bind_thermal_structs(pybind11::module_& m);  // thermal_structs.cpp
 void bind_sinter(pybind11::module_& m);         // sinter_run.cpp
 void bind_build(pybind11::module_& m);          // build_run.cpp
+void bind_packgen(pybind11::module_& m);        // packgen_run.cpp: PackOptions, pack
 
 }  // namespace powderbed::python

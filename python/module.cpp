@@ -1,20 +1,23 @@
 // The C++ half of the Python module `powderbed` (python/powderbed/__init__.py is the other):
 // the bed library's readers and writers, PSD sampling and bedstat's statistics, so a script
 // gets the same numbers as the programs without parsing their output; and the stages run
-// in-process on the libraries' structs (bindings.hpp: deposit, spread, keff, sinter, build).
+// in-process on the libraries' structs (bindings.hpp: packgen, deposit, spread, keff, sinter, build).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
+#include <variant>
 
 #include "bed_dict.hpp"
 #include "bindings.hpp"
 #include "powderbed/bed/bed_report.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
+#include "powderbed/bed/material_fills.hpp"
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/random.hpp"
 
@@ -72,6 +75,33 @@ std::string stats_json(const py::dict& bed, double tol, std::optional<std::pair<
   return json.str();
 }
 
+// Whether `field` or a struct holding it ("phase_change" for "phase_change.melting_point") is in
+// `given`.
+bool field_given(const std::string& field, const std::set<std::string>& given) {
+  for (auto dot = field.find('.'); dot != std::string::npos; dot = field.find('.', dot + 1))
+    if (given.count(field.substr(0, dot))) return true;
+  return given.count(field) > 0;
+}
+
+// material="NAME" of a run function: the (field, value) pairs the file `name` (a name of
+// data/materials or a path, as --material takes it) gives `program`'s scene struct
+// (bed/material_fills.hpp, the programs' own table), less the fields `given` beside it, which win
+// as options given beside --material do; a required one neither gives is refused as the program
+// refuses it. `temperature`: keff's bed temperature, where k_s is read.
+py::list material_fills(const std::string& name, const std::string& program,
+                        const std::set<std::string>& given, double temperature) {
+  const bed::MaterialFile file = bed::read_named_material(name, "--material");
+  py::list out;
+  for (const bed::MaterialFill& fill : bed::kMaterialFills) {
+    if (program != fill.program || field_given(fill.field, given)) continue;
+    const auto value = bed::material_value(file, fill, temperature);
+    if (!value && fill.required) bed::refuse_missing_fill(file, fill);
+    if (!value) continue;
+    out.append(py::make_tuple(fill.field, std::visit([](const auto& v) { return py::cast(v); }, *value)));
+  }
+  return out;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -83,6 +113,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("read_bed", &read_bed, py::arg("path"), py::arg("domain") = py::none());
   m.def("write_bed", &write_bed, py::arg("bed"), py::arg("path"));
   m.def("sample_psd", &sample_psd, py::arg("spec"), py::arg("n"), py::arg("seed"));
+  m.def("material_fills", &material_fills, py::arg("name"), py::arg("program"), py::arg("given"),
+        py::arg("temperature"));
   m.def("stats_json", &stats_json, py::arg("bed"), py::arg("tol"), py::arg("layer"),
         py::arg("psd"), py::arg("profile"), py::arg("rdf"), py::arg("histogram"),
         py::arg("voronoi"), py::arg("order_margin"), py::arg("label"));
@@ -92,4 +124,5 @@ PYBIND11_MODULE(_core, m) {
   python::bind_thermal_structs(m);
   python::bind_sinter(m);
   python::bind_build(m);
+  python::bind_packgen(m);
 }

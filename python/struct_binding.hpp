@@ -72,6 +72,15 @@ class StructBinding {
     return *this;
   }
 
+  // A field written in another form than the struct holds it (packgen's phases as their text),
+  // through the getter and setter given.
+  template <class Get, class Set>
+  StructBinding& property(const char* name, Get get, Set set, const char* doc) {
+    cls_.def_property(name, get, set, doc);
+    names_.push_back(name);
+    return *this;
+  }
+
   // A bit mask of effects as the list of the names of its bits, from the library's effect
   // table (rows of {bit, name}); an unknown name raises InputError listing the table's names.
   template <class Row, std::size_t N>

@@ -4,57 +4,20 @@
 #include <iostream>
 #include <map>
 #include <string>
+#include <variant>
 
 #include <fmt/format.h>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/json.hpp"
 #include "powderbed/bed/material_file.hpp"
+#include "powderbed/bed/material_fills.hpp"
 
 namespace powderbed::app {
 
 namespace {
 
 namespace po = boost::program_options;
-
-// What a material file fills, program by program: the option and the file's key. Two keys are
-// not scalars: "file" is the material file itself (sinter reads its table), "conductivity" the
-// table's solid conductivity at the bed's temperature (keff: the mean of the walls, or
-// --temperature). A required key is one the program's models always read: a file without it is
-// refused unless the option is given beside it, since the option's default is 316L's (wrong for
-// any other metal). The keys only some models read (optics, evaporation) are checked by the
-// program that knows its models (sinter: require_material_keys).
-struct MaterialOption {
-  const char* app;
-  const char* option;
-  const char* key;
-  bool required;
-};
-constexpr MaterialOption kMaterialOptions[] = {
-    {"deposit", "material.density", "density", true},
-    {"deposit", "material.young", "young_modulus", true},
-    {"deposit", "material.poisson", "poisson_ratio", true},
-    {"sinter", "material.table", "file", true},
-    {"sinter", "material.melting-point", "melting_point", true},
-    {"sinter", "material.boiling-point", "boiling_point", false},
-    {"sinter", "material.latent-melt", "latent_melt", true},
-    {"sinter", "material.latent-vapour", "latent_vapour", false},
-    {"sinter", "material.hold-from", "hold_from", true},
-    {"sinter", "laser.absorptivity", "absorptivity", false},
-    {"sinter", "laser.index-n-solid", "index_n_solid", false},
-    {"sinter", "laser.index-k-solid", "index_k_solid", false},
-    {"sinter", "laser.index-n-liquid", "index_n_liquid", false},
-    {"sinter", "laser.index-k-liquid", "index_k_liquid", false},
-    {"sinter", "material.molar-mass", "molar_mass", false},
-    {"sinter", "material.surface-tension", "surface_tension", false},
-    {"keff", "solid.conductivity", "conductivity", true},
-};
-
-// Whether `file` gives what `key` needs: the table for "file" and "conductivity", else the key.
-bool file_gives(const bed::MaterialFile& file, const std::string& key) {
-  if (key == "file" || key == "conductivity") return !file.solid.empty();
-  return file.get(key).has_value();
-}
 
 // The bed temperature keff's k_s is read at: --temperature, else the mean of the two walls.
 double keff_temperature(const po::variables_map& vm) {
@@ -72,8 +35,8 @@ void store(po::variables_map& vm, const std::string& name, boost::any value) {
 
 void add_material_options(po::options_description& desc, const char* app) {
   std::string filled;
-  for (const auto& m : kMaterialOptions) {
-    if (std::string(m.app) != app) continue;
+  for (const auto& m : bed::kMaterialFills) {
+    if (std::string(m.program) != app) continue;
     filled += fmt::format("{}{}", filled.empty() ? "" : ", ", m.option);
   }
   const std::string help = fmt::format(
@@ -123,37 +86,24 @@ std::vector<std::string> apply_material(const char* app, po::variables_map& vm,
   std::vector<std::string> stored;
   if (!vm.count("material")) return stored;
   const std::string path = material_file(vm["material"].as<std::string>(), vm, "--material");
-  bed::MaterialFile file;
-  try {
-    file = bed::read_material_file(path);
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("--material: {}", e.what()));
-  }
+  const bed::MaterialFile file = bed::read_named_material(path, "--material");
   // Given beside it, an option wins: at the command line always, in the scene file unless
   // --material itself was typed at the command line (then the scene's values give way).
   const bool material_typed = typed.count("material") > 0;
-  for (const auto& m : kMaterialOptions) {
-    if (std::string(m.app) != app) continue;
+  for (const auto& m : bed::kMaterialFills) {
+    if (std::string(m.program) != app) continue;
     const bool in_scene = vm.count(m.option) && !vm[m.option].defaulted();
     if (typed.count(m.option) || (in_scene && !material_typed)) continue;
-    const std::string key = m.key;
+    const bool conductivity = m.key == std::string("conductivity");  // keff's: it has walls
+    const auto value = bed::material_value(file, m, conductivity ? keff_temperature(vm) : 0);
     // The file itself is stored as sinter's table even over a scene's table: it must hold one.
-    if (m.required && !file_gives(file, key) && (!in_scene || key == "file")) {
-      const bool table = key == "file" || key == "conductivity";
-      throw InputError(fmt::format(
-          "--material: '{}' gives no {} for {} (accepted: a material file with {}, or --{} "
-          "given beside it)",
-          path, table ? "property table" : key, m.option,
-          table ? "the table temperature_K,...,phase" : "the key " + key, m.option));
-    }
-    if (key == "file") {
-      store(vm, m.option, path);
-    } else if (key == "conductivity") {
-      store(vm, m.option, file.solid_conductivity(keff_temperature(vm)));
-    } else if (const auto v = file.get(key)) {
-      store(vm, m.option, *v);
+    if (m.required && !value && (!in_scene || m.key == std::string("file")))
+      bed::refuse_missing_fill(file, m);
+    if (!value) continue;
+    if (const auto* number = std::get_if<double>(&*value)) {
+      store(vm, m.option, *number);
     } else {
-      continue;
+      store(vm, m.option, std::get<std::string>(*value));
     }
     stored.push_back(m.option);
   }

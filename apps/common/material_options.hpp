@@ -1,9 +1,10 @@
 #pragma once
 // --material NAME|CSV and --list-materials (bed/material_file.hpp): one material file fills the
-// options of every program that needs material data (the list is in material_options.cpp), so a
-// powder's numbers are typed once. An option given beside --material wins over the file's value:
-// on the command line always, in the scene file when --material is in the scene file too (a
-// scene's 316L values give way to --material copper typed at the command line).
+// options of every program that needs material data (the list: bed/material_fills.hpp, which the
+// Python module's material="NAME" reads too), so a powder's numbers are typed once. An option
+// given beside --material wins over the file's value: on the command line always, in the scene
+// file when --material is in the scene file too (a scene's 316L values give way to --material
+// copper typed at the command line).
 #include <boost/program_options.hpp>
 #include <set>
 #include <string>

@@ -315,12 +315,7 @@ std::vector<double> parse_number_list(const std::string& text, std::size_t min_c
 }
 
 bed::Domain parse_domain_lengths(const std::string& text, const std::string& option) {
-  const auto lengths = parse_number_list(text, 2, 3, option);
-  bed::Domain d;
-  d.dimension = static_cast<int>(lengths.size());
-  d.upper = {lengths[0], lengths[1], d.dimension == 3 ? lengths[2] : 0.0};
-  d.validate(option.c_str());
-  return d;
+  return bed::box_of_lengths(parse_number_list(text, 2, 3, option), option.c_str());
 }
 
 bed::Domain parse_domain_bounds(const std::string& text, const std::string& option) {

@@ -20,4 +20,14 @@ void Domain::validate(const char* what) const {
   }
 }
 
+Domain box_of_lengths(const std::vector<double>& lengths, const char* what) {
+  if (lengths.size() != 2 && lengths.size() != 3)
+    throw InputError(fmt::format("{}: {} lengths (accepted: LX,LY or LX,LY,LZ in m)", what, lengths.size()));
+  Domain d;
+  d.dimension = static_cast<int>(lengths.size());
+  d.upper = {lengths[0], lengths[1], d.dimension == 3 ? lengths[2] : 0.0};
+  d.validate(what);
+  return d;
+}
+
 }  // namespace powderbed::bed

@@ -1,5 +1,5 @@
 """powderbed from Python: beds as numpy arrays, PSD sampling, bedstat's statistics, the stages
-deposit, spread, keff, sinter and build run in-process on a Bed, and every program's --json
+pack (packgen), deposit, spread, keff, sinter and build run in-process on a Bed, and every program's --json
 summary as a dict (README "Python", docs/python.md).
 
     import powderbed
@@ -7,6 +7,7 @@ summary as a dict (README "Python", docs/python.md).
     print(powderbed.stats(b)["coordination"])     # the entry bedstat --json prints for it
     radii = powderbed.sample_psd("gauss:mean=27e-6,sd=4.25e-6,min=10e-6,max=50e-6", 600, seed=1)
     settled, summary = powderbed.deposit(b, t_end=1e-3, young_scale=1e3)   # in-process
+    packed, summary = powderbed.pack((2e-4, 2e-4, 1e-4), "mono:d=20e-6", 1, approach=3)
     summary = powderbed.run("deposit", config="data/scenes/gz2016-deposit.ini", out="gz.h5", seed=1)
 
 Lengths in metres, velocities in m/s, temperatures in K (SI, as the bed files).
@@ -24,8 +25,8 @@ from . import _checks, _core
 from ._version import __version__
 from ._programs import PROGRAMS, ProgramError, run
 from ._bed import Bed, bed_of as _bed_of
-from ._runs import deposit, spread, keff, sinter, build, build_scene
-from ._core import (Scene, Material, WallMaterial, Fines, RunSettings, RestCriteria, LidSettings,
+from ._runs import pack, deposit, spread, keff, sinter, build, build_scene
+from ._core import (PackOptions, Scene, Material, WallMaterial, Fines, RunSettings, RestCriteria, LidSettings,
                     InsertionSettings, Recoater, SpreadSettings, SpreadState, KeffScene, ContactRadius,
                     GasLens, SinterScene, PhaseChange, RayTrace, ScanSegment, Hatch, FusionPolicy,
                     BuildPlan, PartRecord)
@@ -39,8 +40,8 @@ _IN_PROCESS = ("deposit", "keff", "sinter", "build")
 _PROGRAM_FUNCTIONS = tuple(name for name in PROGRAMS if name not in _IN_PROCESS)
 
 __all__ = ["__version__", "Bed", "InputError", "NumericalError", "ProgramError", "PROGRAMS",
-           "read_bed", "write_bed", "sample_psd", "stats", "run", "deposit", "spread", "keff",
-           "sinter", "build", "build_scene", "Scene", "Material", "WallMaterial", "Fines", "RunSettings", "RestCriteria",
+           "read_bed", "write_bed", "sample_psd", "stats", "run", "pack", "deposit", "spread", "keff",
+           "sinter", "build", "build_scene", "PackOptions", "Scene", "Material", "WallMaterial", "Fines", "RunSettings", "RestCriteria",
            "LidSettings", "InsertionSettings", "Recoater", "SpreadSettings", "SpreadState",
            "KeffScene", "ContactRadius", "GasLens", "SinterScene", "PhaseChange", "RayTrace",
            "ScanSegment", "Hatch", "FusionPolicy", "BuildPlan", "PartRecord", *_PROGRAM_FUNCTIONS]

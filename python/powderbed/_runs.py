@@ -1,5 +1,5 @@
-"""The stages in-process: deposit, spread, keff, sinter and build run the C++ libraries on a Bed
-and the libraries' own structs (Scene, RunSettings, SpreadSettings, KeffScene, SinterScene,
+"""The stages in-process: pack, deposit, spread, keff, sinter and build run the C++ libraries on a Bed
+and the libraries' own structs (PackOptions, Scene, RunSettings, SpreadSettings, KeffScene, SinterScene,
 BuildPlan), with no file and no program in between (a build writes its layers' files, as the
 program build does). Keyword arguments set the structs' fields by name; what is not
 given keeps the struct's default, which is the library's (the programs' defaults are the same
@@ -13,6 +13,7 @@ from ._bed import Bed, bed_of
 
 Scene, RunSettings, SpreadSettings = _core.Scene, _core.RunSettings, _core.SpreadSettings
 KeffScene, SinterScene, BuildPlan = _core.KeffScene, _core.SinterScene, _core.BuildPlan
+PackOptions = _core.PackOptions
 
 
 def _callable_or_none(value, what):
@@ -31,6 +32,41 @@ def _supply_maker(supply, what):
     return maker
 
 
+def _pack_domain(value):
+    """pack's domain as the C++ half takes it: a domain dict, or the 2 or 3 lengths of the box."""
+    if isinstance(value, dict):
+        return value
+    try:
+        count = len(value)
+    except TypeError:
+        count = 0
+    if count not in (2, 3) or isinstance(value, (str, bytes)):
+        _checks.refuse("pack: domain", value, "LX, LY[, LZ] in m, or a domain dict as Bed.domain")
+    return _checks.numbers_of(value, count, "pack: domain")
+
+
+def pack(domain, psd, seed, options=None, *, progress=None, **fields):
+    """Packs the box `domain` with particles of the PSD string `psd` one at a time by contact
+    rules (packgen::pack, as the program packgen) and returns (Bed, summary dict): for the same
+    options and seed the bed packgen writes, bit for bit.
+
+    domain: (LX, LY) for disks or (LX, LY, LZ) for spheres, in m, the box [0, L] as packgen's
+    --domain; or a domain dict as Bed.domain. seed: the random seed (packgen's --seed).
+    options: a powderbed.PackOptions (approach or phases, collision, count or target_density,
+    tries, directions, site_order, size_sampling, ...); keyword arguments set its fields by name,
+    e.g. pack((2e-4, 2e-4, 1e-4), "mono:d=20e-6", 1, approach=3, count=40).
+    progress(p) is called about every 0.25 s with p = {"n", "density", "fraction"}.
+    The summary has packgen --json's keys: n, density, coordination, coordination_by_tol,
+    rattlers, wall_contacts, max_relative_overlap, attempts, tries, failed_placements,
+    target_reached, stop_reason, ... A count or target density not reached is a RuntimeWarning
+    (the bed is returned all the same, as the program writes it)."""
+    (options,) = _structs.structs("pack", fields, (options, PackOptions))
+    out, summary = _core.pack(_pack_domain(domain), _checks.text(psd, "pack: psd"),
+                              _checks.whole(seed, "pack: seed"), options,
+                              _callable_or_none(progress, "pack: progress"))
+    return Bed(out), summary
+
+
 def deposit(bed, scene=None, settings=None, *, progress=None, **fields):
     """Drops and settles `bed` (dem::run_deposition, as the program deposit) and returns
     (settled Bed, summary dict). The input Bed is not changed.
@@ -39,6 +75,8 @@ def deposit(bed, scene=None, settings=None, *, progress=None, **fields):
     powderbed.RunSettings (t_end or until_rest, dt, young_scale, lid, insertion, ...). Keyword
     arguments set fields of either by name, e.g. deposit(bed, t_end=2e-3, young_scale=1e3,
     material={"density": 4430}, effects=["gravity", "hertz", "walls"]).
+    material="NAME" (a name of data/materials such as "316L", or a path to a material CSV) fills
+    what the program's --material NAME fills; keywords beside it win.
     progress(p) is called every settings.progress_every steps and at the end with p = {"step",
     "time", "t_end", "fraction", "kinetic_energy", "max_speed"}.
     The summary has deposit --json's run keys (n, steps, sim_time, dt, dt_stable, kinetic_energy,
@@ -61,6 +99,8 @@ def spread(bed, scene=None, settings=None, *, state=None, supply=None, progress=
     scene: a powderbed.Scene; settings: a powderbed.SpreadSettings (tool: a Recoater, the
     supply region supply_x0, supply_x1, supply_height, layers, layer_thickness, ...); keyword
     arguments set fields of either by name, e.g. spread(bed, tool={"gap": 60e-6, "end": 2e-3}).
+    material="NAME" (a name of data/materials such as "316L", or a path to a material CSV) fills
+    what the program's --material NAME fills; keywords beside it win.
     state: the SpreadState a previous spread returned, to continue it on the Bed it returned.
     supply(region, layer) -> Bed fills a layer's supply region (region: a domain dict as
     Bed.domain; layer from 1); None: no supply (the bed holds the powder).
@@ -86,6 +126,9 @@ def keff(bed, scene=None, *, progress=None, **fields):
     scene: a powderbed.KeffScene (axis, hot_temperature, cold_temperature, solid_conductivity,
     gas_model, radiation_path, contact, lens, ...); keyword arguments set its fields by name,
     e.g. keff(bed, hot_temperature=1005, cold_temperature=995, radiation_path=True).
+    material="NAME" (a name of data/materials such as "316L", or a path to a material CSV) fills
+    what the program's --material NAME fills (k_s at the mean of the walls); keywords beside
+    it win.
     With contact={"hertz_correction": True} the DEM law is read from the bed's provenance (a
     bed from deposit or spread has it); contact.circle stays as given (the program keff
     switches it to hertz with the correction unless told). progress(fraction) hears the
@@ -103,6 +146,8 @@ def sinter(bed, scene=None, *, progress=None, **fields):
     scene: a powderbed.SinterScene (power, speed, spot_radius, nodes, substrate_depth, t_end,
     scan_path, material_table, effects, ...); keyword arguments set its fields by name, e.g.
     sinter(bed, power=150, nodes=[21, 11, 11], substrate_depth=1e-4).
+    material="NAME" (a name of data/materials such as "316L", or a path to a material CSV) fills
+    what the program's --material NAME fills; keywords beside it win.
     progress(p) is called about once a second of wall time with p = {"step", "time", "t_end",
     "fraction", "max_temperature_particles", "max_temperature_substrate"}.
     The summary has sinter --json's keys: melt_pool {height, width, depth}, melt_pool_along,

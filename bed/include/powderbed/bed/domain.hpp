@@ -1,6 +1,7 @@
 #pragma once
 // The simulation box shared by every stage (docs/bed-format.md, /domain).
 #include <array>
+#include <vector>
 
 namespace powderbed::bed {
 
@@ -19,5 +20,10 @@ struct Domain {
   // Throws InputError (naming `what`) unless lower < upper on every used axis and dimension is 2/3.
   void validate(const char* what = "domain") const;
 };
+
+// The box [0, L] of 2 or 3 lengths (packgen's and deposit's --domain LX,LY[,LZ], Python's
+// pack(domain=...)), its dimension their count; throws InputError naming `what` for another
+// count or a length that is not > 0.
+Domain box_of_lengths(const std::vector<double>& lengths, const char* what);
 
 }  // namespace powderbed::bed

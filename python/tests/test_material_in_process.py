@@ -1,0 +1,62 @@
+"""material="NAME" of the run functions: what the programs' --material NAME fills (the one table,
+bed/material_fills.hpp), a keyword beside it winning, and the program's line for a bad name."""
+import numpy as np
+import pytest
+
+import powderbed
+
+RUN = {"young_scale": 1e3, "t_end": 1e-4}
+
+
+@pytest.mark.parametrize("name", ["316L", "copper"])
+def test_deposit_with_a_material_is_the_programs(packed, tmp_path, name):
+    path, _ = packed
+    settled, summary = powderbed.deposit(powderbed.read_bed(path), material=name, **RUN)
+    program = powderbed.run("deposit", **{"in": path}, material=name, seed=1, out=tmp_path / "d.h5",
+                            progress=0, **RUN)
+    theirs = powderbed.read_bed(tmp_path / "d.h5")
+    for key in ("x", "y", "z", "vx", "vy", "vz"):
+        assert np.array_equal(getattr(settled, key), getattr(theirs, key)), key
+    assert summary["dt"] == program["dt"] and summary["kinetic_energy"] == program["kinetic_energy"]
+    assert settled.provenance["contact_young"] == theirs.provenance["contact_young"]
+
+
+def test_copper_fills_the_scene_and_a_keyword_beside_it_wins(packed):
+    bed = powderbed.read_bed(packed[0])
+    _, copper = powderbed.deposit(bed, material="copper", **RUN)
+    _, steel = powderbed.deposit(bed, **RUN)
+    assert copper["dt"] != steel["dt"]  # another density and modulus
+    _, dense = powderbed.deposit(bed, material="copper", scene=powderbed.Scene(material={"density": 1e4}), **RUN)
+    _, kept = powderbed.deposit(bed, material={"density": 1e4}, **RUN)
+    assert dense["dt"] != kept["dt"]  # the struct passed in gives way, as a scene file does
+
+
+def test_keff_with_a_material_is_the_programs(column):
+    mine = powderbed.keff(powderbed.read_bed(column), material="IN718")
+    theirs = powderbed.run("keff", bed=column, material="IN718")
+    assert mine["k_eff"] == theirs["k_eff"]
+    assert mine["k_eff"] != powderbed.keff(powderbed.read_bed(column))["k_eff"]
+    given = powderbed.keff(powderbed.read_bed(column), material="IN718", solid_conductivity=16.2)
+    assert given["k_eff"] == powderbed.keff(powderbed.read_bed(column), solid_conductivity=16.2)["k_eff"]
+
+
+def test_an_unknown_material_is_the_programs_line(packed, tmp_path):
+    bed = powderbed.read_bed(packed[0])
+    with pytest.raises(powderbed.ProgramError) as program:
+        powderbed.run("deposit", **{"in": packed[0]}, material="unobtainium", out=tmp_path / "d.h5")
+    line = str(program.value).splitlines()[-1]
+    with pytest.raises(powderbed.InputError) as mine:
+        powderbed.deposit(bed, material="unobtainium", **RUN)
+    assert str(mine.value).startswith("--material: 'unobtainium' is not a material (accepted: 316L")
+    assert str(mine.value) in line
+    with pytest.raises(powderbed.InputError, match=r"^--material: 'unobtainium' is not a material"):
+        powderbed.sinter(bed, material="unobtainium")
+
+
+def test_sinter_with_a_material_is_the_programs(sinter_bed, tmp_path):
+    grid = {"nodes": [21, 11, 11], "substrate_depth": 0.1e-3}
+    _, mine = powderbed.sinter(powderbed.read_bed(sinter_bed), material="Ti-6Al-4V", **grid)
+    theirs = powderbed.run("sinter", bed=sinter_bed, out=tmp_path / "run.h5", material="Ti-6Al-4V",
+                           **{"substrate.nodes": "21,11,11", "substrate.depth": 0.1e-3})
+    for key in ("max_temperature", "particles_molten", "steps", "dt", "absorptance"):
+        assert mine[key] == theirs[key], key
