@@ -38,12 +38,11 @@ machine sentence of the call that ran it. --only KEYS runs those rows afresh. Ru
 one thread each (a spread of the dosed-slow rows takes ~5 min of one core).
 """
 import argparse
-import json
 import os
 import statistics
 import sys
 
-from lib.apps import ROOT, app, bedstat, read_bed, run_json
+from lib.apps import ROOT, app, memo_json, read_bed, remove_bed, spread_layer
 from lib.report import batch_lines, load_average, record_batches, table_head, table_row, write_page
 from lib.spread_scene import Scene, solid_volume
 
@@ -70,32 +69,22 @@ def tag(key, seed):
 
 def layer_run(work, key, label, options, seed, scene, fresh):
     """One row's run and its measures, cached in work as TAG.json (fresh: run again)."""
-    saved = os.path.join(work, tag(key, seed) + ".json")
-    if os.path.exists(saved) and not fresh:
-        with open(saved) as f:
-            return dict(json.load(f), key=key, label=label)
-    bed = os.path.join(work, tag(key, seed) + ".h5")
-    before = load_average()
-    dep, wall = run_json([app("deposit"), "--config", SCENE, "--seed", str(seed), "--threads", "1",
-                          "--recoater.overflow", "false", "--out", bed] + options)
-    x0, x1 = scene.window()
-    stats = bedstat([bed, "--spread", "--window", f"{x0!r},{x1!r}"])["spread"]
-    stats.pop("segregation", None)
-    centres, radii = read_bed(bed)
-    front = scene.end + scene.thickness / 2  # the blade's front face where it stopped
-    over = [r for c, r in zip(centres, radii) if c[0] > front]
-    out = {"key": key, "label": label, "seed": seed, "options": options, "n": dep["n"],
-           "lost": dep["lost"], "supplied": dep["layers"][0]["supplied"],
-           "supply_solid": solid_volume(radii), "overflow": len(over),
-           "overflow_solid": solid_volume(over), "wall": wall, "stats": stats,
-           "load": [before, load_average()]}
-    for path in (bed, os.path.splitext(bed)[0] + ".xmf"):  # the bed and its ParaView sidecar
-        if os.path.exists(path):
-            os.remove(path)
-    with open(saved, "w") as f:
-        json.dump(out, f)
-    print(f"{label}, seed {seed}: density {stats['density']:.3f}", file=sys.stderr, flush=True)
-    return out
+    def make():
+        bed = os.path.join(work, tag(key, seed) + ".h5")
+        before = load_average()
+        dep, wall, stats = spread_layer(SCENE, seed, ["--recoater.overflow", "false"] + options, bed,
+                                        scene.window())
+        centres, radii = read_bed(bed)
+        remove_bed(bed)
+        front = scene.end + scene.thickness / 2  # the blade's front face where it stopped
+        over = [r for c, r in zip(centres, radii) if c[0] > front]
+        print(f"{label}, seed {seed}: density {stats['density']:.3f}", file=sys.stderr, flush=True)
+        return {"seed": seed, "options": options, "n": dep["n"], "lost": dep["lost"],
+                "supplied": dep["layers"][0]["supplied"], "supply_solid": solid_volume(radii),
+                "overflow": len(over), "overflow_solid": solid_volume(over), "wall": wall,
+                "stats": stats, "load": [before, load_average()]}
+    out = memo_json(os.path.join(work, tag(key, seed) + ".json"), fresh, make)
+    return dict(out, key=key, label=label)
 
 
 def top_density(r):

@@ -47,7 +47,7 @@ import sys
 import h5py
 import numpy as np
 
-from lib.apps import ROOT, app, bedstat, run_json
+from lib.apps import ROOT, app, memo_json, remove_bed, run_json, spread_layer
 from lib.report import (batch_lines, load_average, read_page, record_batches, splice,
                         section_markers, table_head, table_row, write_page)
 from lib.spread_scene import Scene
@@ -86,38 +86,23 @@ def tag(key, seed):
     return f"{key}-s{seed}"
 
 
-def remove_bed(path):
-    """Removes a bed file and its XDMF sidecar (the runs keep only their JSON)."""
-    for p in (path, os.path.splitext(path)[0] + ".xmf"):
-        if os.path.exists(p):
-            os.remove(p)
-
-
 def layer_run(work, key, label, options, seed, window, fresh):
     """{key, label, seed, n, supplied, wall, stats, load}: one layer and its bedstat --spread,
     cached in work."""
-    saved = os.path.join(work, tag(key, seed) + ".json")
-    if os.path.exists(saved) and not fresh:
-        with open(saved) as f:
-            return dict(json.load(f), key=key, label=label)
-    bed = os.path.join(work, tag(key, seed) + ".h5")
-    before = load_average()
-    dep, wall = run_json([app("deposit"), "--config", SCENE, "--seed", str(seed), "--threads", "1",
-                          "--out", bed] + options)
-    stats = bedstat([bed, "--spread", "--window", f"{window[0]!r},{window[1]!r}"])["spread"]
-    stats.pop("segregation", None)
-    layer = dep["layers"][0]
-    out = {"key": key, "label": label, "seed": seed, "n": dep["n"], "wall": wall,
-           "supplied": layer.get("supplied"), "steps": layer.get("steps"),
-           "overflow": layer.get("overflow"), "lost": layer.get("lost"),
-           "max_tool_force": layer.get("max_tool_force"),
-           "stats": stats, "load": [before, load_average()]}
-    remove_bed(bed)
-    with open(saved, "w") as f:
-        json.dump(out, f)
-    print(f"{label}, seed {seed}: density {stats['density']:.3f} ({wall:.0f} s)", file=sys.stderr,
-          flush=True)
-    return out
+    def make():
+        bed = os.path.join(work, tag(key, seed) + ".h5")
+        before = load_average()
+        dep, wall, stats = spread_layer(SCENE, seed, options, bed, window)
+        remove_bed(bed)
+        layer = dep["layers"][0]
+        print(f"{label}, seed {seed}: density {stats['density']:.3f} ({wall:.0f} s)", file=sys.stderr,
+              flush=True)
+        return {"seed": seed, "n": dep["n"], "wall": wall, "supplied": layer.get("supplied"),
+                "steps": layer.get("steps"), "overflow": layer.get("overflow"), "lost": layer.get("lost"),
+                "max_tool_force": layer.get("max_tool_force"), "stats": stats,
+                "load": [before, load_average()]}
+    out = memo_json(os.path.join(work, tag(key, seed) + ".json"), fresh, make)
+    return dict(out, key=key, label=label)
 
 
 def heap_shape(path, scene):

@@ -160,6 +160,36 @@ def cached_json(path, args, env=None):
     return s, wall
 
 
+def memo_json(path, fresh, make):
+    """make()'s record (a dict), kept in `path`: read from there unless `fresh` or missing, else
+    made and written. A study's rows are measured once and a rerun rewrites its page from them."""
+    if os.path.exists(path) and not fresh:
+        with open(path) as f:
+            return json.load(f)
+    out = make()
+    with open(path, "w") as f:
+        json.dump(out, f)
+    return out
+
+
+def spread_layer(scene_path, seed, options, bed, window):
+    """One layer of a spread scene at `seed` with `options` (deposit, one thread) into `bed`, and
+    bedstat --spread over `window` (x0, x1): (deposit's --json summary, its wall seconds, the
+    layer's statistics without the segregation table), the bed file and its sidecar removed."""
+    dep, wall = run_json([app("deposit"), "--config", scene_path, "--seed", str(seed), "--threads", "1",
+                          "--out", bed] + list(options))
+    stats = bedstat([bed, "--spread", "--window", f"{window[0]!r},{window[1]!r}"])["spread"]
+    stats.pop("segregation", None)
+    return dep, wall, stats
+
+
+def remove_bed(path):
+    """Removes a bed file and its XDMF sidecar (a study that keeps only its JSON)."""
+    for p in (path, os.path.splitext(path)[0] + ".xmf"):
+        if os.path.exists(p):
+            os.remove(p)
+
+
 def bedstat(args, env=None):
     """bedstat's --json entry of the one bed in `args` (its path and options): the element of
     the "beds" array bedstat always prints."""
