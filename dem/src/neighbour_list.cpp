@@ -153,7 +153,6 @@ void NeighbourList::build(const ParticleView& p, int threads, bool with_incident
   } else {
     fill_in_parallel(p, threads, owners);
   }
-  with_incident_ = with_incident;
   if (with_incident) {
     // Serial fill in increasing i: a particle's pairs under lower indices arrive first, in the
     // order of those indices, then its own pairs are appended.
@@ -196,79 +195,47 @@ bool any_moved(std::size_t begin, std::size_t end, double limit2, const WrappedI
 
 }  // namespace
 
-// The entries [begin, end) within r_i + r_j + margin of each other appended to `hot` in order:
-// a store and an add per entry, not a branch (whether an entry is hot is close to random).
-void NeighbourList::hot_in(const ParticleView& p, std::size_t begin, std::size_t end,
-                           std::vector<std::uint32_t>& hot) const {
+void NeighbourList::prune(const ParticleView& p, double margin) {
+  margin_ = margin;
   const WrappedImage image(box_);
-  std::size_t m = hot.size();
-  hot.resize(m + (end - begin));
-  std::uint32_t* out = hot.data();
-  for (std::size_t k = begin; k < end; ++k) {
+  hot_.clear();
+  for (std::size_t k = 0; k < partners_.size(); ++k) {
     const std::uint32_t i = owners_[k], j = partners_[k];
     const double ex = image(0, p.x[j] - p.x[i]), ey = image(1, p.y[j] - p.y[i]), ez = image(2, p.z[j] - p.z[i]);
-    const double reach = p.radius[i] + p.radius[j] + margin_;
-    out[m] = static_cast<std::uint32_t>(k);
-    m += static_cast<std::size_t>(ex * ex + ey * ey + ez * ez < reach * reach);
+    const double reach = p.radius[i] + p.radius[j] + margin;
+    if (ex * ex + ey * ey + ez * ez < reach * reach) hot_.push_back(static_cast<std::uint32_t>(k));
   }
-  hot.resize(m);
-}
-
-void NeighbourList::prune(const ParticleView& p, double margin, int threads) {
-  margin_ = margin;
-  hot_.clear();
-  if (threads <= 1) {
-    hot_in(p, 0, partners_.size(), hot_);
-  } else {  // each thread's contiguous range of entries, then the ranges in order: the same list
-    hot_parts_.resize(static_cast<std::size_t>(threads));
-    for (std::vector<std::uint32_t>& part : hot_parts_) part.clear();
-    for_each_chunk(partners_.size(), threads, [&](std::size_t begin, std::size_t end) {
-      hot_in(p, begin, end, hot_parts_[static_cast<std::size_t>(omp_get_thread_num())]);
-    });
-    for (const std::vector<std::uint32_t>& part : hot_parts_) hot_.insert(hot_.end(), part.begin(), part.end());
-  }
-  if (with_incident_) hot_incident(threads);
   xp_.assign(p.x, p.x + p.n);
   yp_.assign(p.y, p.y + p.n);
   zp_.assign(p.z, p.z + p.n);
 }
 
-// Each particle's incident entries that are hot, in incident order: count, prefix-sum, fill.
-void NeighbourList::hot_incident(int threads) {
-  is_hot_.assign(partners_.size(), 0);
-  for (const std::uint32_t k : hot_) is_hot_[k] = 1;
-  const std::size_t n = incident_offset_.size() - 1;
-  hot_incident_offset_.assign(n + 1, 0);
-  for_each_particle(n, threads, [&](std::size_t i) {
-    std::uint32_t count = 0;
-    for (const std::uint32_t* e = incident_begin(i); e != incident_end(i); ++e) count += is_hot_[*e >> 1];
-    hot_incident_offset_[i + 1] = count;
-  });
-  for (std::size_t i = 0; i < n; ++i) hot_incident_offset_[i + 1] += hot_incident_offset_[i];
-  hot_incident_.resize(hot_incident_offset_[n]);
-  for_each_particle(n, threads, [&](std::size_t i) {
-    std::uint32_t* out = hot_incident_.data() + hot_incident_offset_[i];
-    for (const std::uint32_t* e = incident_begin(i); e != incident_end(i); ++e)
-      if (is_hot_[*e >> 1]) *out++ = *e;
-  });
-}
-
-bool NeighbourList::moved_from(const ParticleView& p, double limit, const std::vector<double>& x0,
-                               const std::vector<double>& y0, const std::vector<double>& z0,
-                               int threads) const {
-  const double limit2 = limit * limit;
-  return or_over_chunks(p.n, threads, [&](std::size_t begin, std::size_t end) -> std::uint64_t {
-    return any_moved(begin, end, limit2, WrappedImage(box_), p.x, p.y, p.z, x0.data(), y0.data(), z0.data());
-  }) != 0;
-}
-
-NeighbourList::Stale NeighbourList::stale(const ParticleView& p, int threads) const {
-  if (!moved_from(p, 0.5 * margin_, xp_, yp_, zp_, threads)) return Stale::no;
-  return moved_from(p, 0.5 * (skin_ - margin_), x0_, y0_, z0_, threads) ? Stale::build : Stale::prune;
+NeighbourList::Stale NeighbourList::stale(const ParticleView& p) const {
+  const WrappedImage image(box_);
+  const double half_margin = 0.5 * margin_;
+  if (!any_moved(0, p.n, half_margin * half_margin, image, p.x, p.y, p.z, xp_.data(), yp_.data(), zp_.data())) {
+    return Stale::no;
+  }
+  const double limit = 0.5 * (skin_ - margin_);
+  return any_moved(0, p.n, limit * limit, image, p.x, p.y, p.z, x0_.data(), y0_.data(), z0_.data())
+             ? Stale::build
+             : Stale::prune;
 }
 
 bool NeighbourList::moved_more_than(const ParticleView& p, double limit, int threads) const {
-  return moved_from(p, limit, x0_, y0_, z0_, threads);
+  const double limit2 = limit * limit;
+  if (threads <= 1) {
+    return any_moved(0, p.n, limit2, WrappedImage(box_), p.x, p.y, p.z, x0_.data(), y0_.data(), z0_.data());
+  }
+  bool moved = false;
+#pragma omp parallel num_threads(threads) reduction(|| : moved)
+  {
+    const auto team = static_cast<std::size_t>(omp_get_num_threads());
+    const auto rank = static_cast<std::size_t>(omp_get_thread_num());
+    moved = any_moved(p.n * rank / team, p.n * (rank + 1) / team, limit2, WrappedImage(box_), p.x, p.y, p.z,
+                      x0_.data(), y0_.data(), z0_.data());
+  }
+  return moved;
 }
 
 }  // namespace powderbed::dem::detail

@@ -41,9 +41,9 @@ class NeighbourList {
   // Pall et al. 2020, J. Chem. Phys. 153, 134110), but on a measured displacement where GROMACS
   // prunes at a fixed interval: the entries whose separation is within r_i + r_j + margin
   // ("hot", in entry order), for a force loop to scan instead of them all. No other entry can
-  // touch while no particle has moved more than margin / 2 since the prune. Wrapped positions;
-  // the same list on any number of threads.
-  void prune(const ParticleView& p, double margin, int threads);
+  // touch while no particle has moved more than margin / 2 since the prune. Serial; wrapped
+  // positions.
+  void prune(const ParticleView& p, double margin);
   const std::uint32_t* hot() const { return hot_.data(); }
   std::size_t hot_entries() const { return hot_.size(); }
   // What the particles' motion asks for: nothing while none has moved more than margin / 2
@@ -51,7 +51,7 @@ class NeighbourList {
   // than (skin - margin) / 2 since the last build, so that the list holds until the next
   // prune (a second pass), else a prune.
   enum class Stale { no, prune, build };
-  Stale stale(const ParticleView& p, int threads) const;
+  Stale stale(const ParticleView& p) const;
 
   const std::uint32_t* begin(std::size_t i) const { return partners_.data() + offset_[i]; }
   const std::uint32_t* end(std::size_t i) const { return partners_.data() + offset_[i + 1]; }
@@ -66,24 +66,11 @@ class NeighbourList {
   // 2 k when it is the upper one (-F_k).
   const std::uint32_t* incident_begin(std::size_t i) const { return incident_.data() + incident_offset_[i]; }
   const std::uint32_t* incident_end(std::size_t i) const { return incident_.data() + incident_offset_[i + 1]; }
-  // The hot ones among them (after a prune of a list built with_incident), in the same order:
-  // what a parallel force gather reads at every step, where the whole incident list (every
-  // entry within the skin) would cost more than the contacts themselves.
-  const std::uint32_t* hot_incident_begin(std::size_t i) const {
-    return hot_incident_.data() + hot_incident_offset_[i];
-  }
-  const std::uint32_t* hot_incident_end(std::size_t i) const {
-    return hot_incident_.data() + hot_incident_offset_[i + 1];
-  }
 
  private:
   template <class F>
   void for_each_candidate(const ParticleView& p, std::size_t i, F&& f) const;
   int cell_coordinate(int axis, double v) const;
-  void hot_incident(int threads);
-  void hot_in(const ParticleView& p, std::size_t begin, std::size_t end, std::vector<std::uint32_t>& hot) const;
-  bool moved_from(const ParticleView& p, double limit, const std::vector<double>& x0,
-                  const std::vector<double>& y0, const std::vector<double>& z0, int threads) const;
   void fill_in_parallel(const ParticleView& p, int threads, std::size_t owners);
 
   Box box_;
@@ -103,10 +90,6 @@ class NeighbourList {
   std::vector<std::uint32_t> incident_;
   std::vector<double> x0_, y0_, z0_;          // positions at the last build
   std::vector<std::uint32_t> hot_;            // prune: the entries within reach + margin_
-  std::vector<std::vector<std::uint32_t>> hot_parts_;  // prune on threads: each one's entries
-  bool with_incident_ = false;                // the last build made the incident lists
-  std::vector<std::uint8_t> is_hot_;          // per entry, at the last prune (with_incident_)
-  std::vector<std::uint32_t> hot_incident_offset_, hot_incident_;
   double margin_ = 0;
   std::vector<double> xp_, yp_, zp_;          // positions at the last prune
 };

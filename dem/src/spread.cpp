@@ -410,21 +410,18 @@ struct SpreadLoop {
   // they are more than the margin apart, and the pair loop, which no longer sees them, would
   // have ended them this step.
   void prune() {
-    list.prune(view(), prune_margin, threads);
+    list.prune(view(), prune_margin);
     find_wall_candidates();
     const std::uint32_t* hot = list.hot();
-    const std::uint32_t* hot_end = hot + list.hot_entries();
-    detail::for_each_chunk(touching.size(), threads, [&](std::size_t begin, std::size_t end) {
-      const std::uint32_t* q = std::lower_bound(hot, hot_end, begin);  // hot is in entry order
-      for (std::size_t k = begin; k < end; ++k) {
-        if (q != hot_end && *q == k) {
-          ++q;
-        } else if (touching[k]) {
-          std::fill_n(pair_history.begin() + static_cast<std::ptrdiff_t>(k * kContactHistory), kContactHistory, 0.0);
-          touching[k] = 0;
-        }
+    const std::size_t hot_entries = list.hot_entries();
+    for (std::size_t k = 0, q = 0; k < touching.size(); ++k) {
+      if (q < hot_entries && hot[q] == k) {
+        ++q;
+      } else if (touching[k]) {
+        std::fill_n(pair_history.begin() + static_cast<std::ptrdiff_t>(k * kContactHistory), kContactHistory, 0.0);
+        touching[k] = 0;
       }
-    });
+    }
   }
 
   // The start of a step in two passes over the moving particles: (1) kick_drift, the kick v += h F / m
@@ -444,7 +441,7 @@ struct SpreadLoop {
     if (bad) return false;  // no list of non-finite positions: the caller stops the run
     ParticleView moved = view();
     moved.n = moving;
-    switch (list.stale(moved, threads)) {
+    switch (list.stale(moved)) {
       case NeighbourList::Stale::build:
         rebuild_with(active());
         ++rebuilds;
@@ -686,8 +683,7 @@ struct SpreadLoop {
 
   // The same on `threads` threads: the hot entries' contacts into pair_load (each entry is one
   // thread's), then each moving particle gathers its touching entries in NeighbourList's
-  // incident order (of the hot entries: no other can touch), which is increasing entry: the
-  // serial loop's sums, bit for bit. (The frozen
+  // incident order, which is increasing entry: the serial loop's sums, bit for bit. (The frozen
   // particles' sums, which nothing reads, are not made.)
   void parallel_pair_forces(bool update) {
     const PairPass pass = pair_pass(update);
@@ -706,7 +702,7 @@ struct SpreadLoop {
     const std::uint8_t* touch = touching.data();
     detail::for_each_particle(moving, threads, [&](std::size_t p) {
       double f[3] = {fx[p], fy[p], fz[p]}, t[3] = {tx[p], ty[p], tz[p]};
-      for (const std::uint32_t* e = list.hot_incident_begin(p); e != list.hot_incident_end(p); ++e) {
+      for (const std::uint32_t* e = list.incident_begin(p); e != list.incident_end(p); ++e) {
         const std::uint32_t k = *e >> 1;
         if (!touch[k]) continue;
         const double* c = load + std::size_t{k} * kPairLoad;  // f, t_owner, t_partner
