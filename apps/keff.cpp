@@ -25,6 +25,7 @@
 #include "powderbed/bed/json.hpp"
 #include "powderbed/bed/temp_files.hpp"
 #include "powderbed/keff/core_conductivity.hpp"
+#include "powderbed/keff/hot_wall.hpp"
 #include "powderbed/keff/profile.hpp"
 #include "powderbed/keff/solve.hpp"
 
@@ -217,34 +218,16 @@ void check_units(const po::variables_map& vm, const kf::KeffScene& scene) {
                                scene.lens.min_gap));
 }
 
-// With --material the bed must still be solid at the hot wall (below the file's solidus, else its
-// melting point): beyond it k_s is the table's last solid row held, and the number a solid bed's
-// k_eff at a temperature where the powder has melted. Without one, no metal's powder is solid
-// above tungsten's melting point. (gas.model = air bounds the walls to its
-// fit's 175-1900 K in the scene's own checks.)
+// The hot wall below the powder's solidus (keff/hot_wall.hpp), the material's when --material
+// names one.
 void check_wall_temperatures(const po::variables_map& vm, const kf::KeffScene& scene) {
-  const double hot = scene.hot_temperature;
   if (!vm.count("material")) {
-    // No melting point to hold the walls to: the highest of any metal, tungsten's 3695 K, bounds
-    // a powder bed; beyond it a wall is a slip (of units, or of a digit).
-    constexpr double kTungstenMelts = 3695;
-    if (hot > kTungstenMelts && !vm["trust-units"].as<bool>())
-      throw InputError(fmt::format("--t-hot: the hot wall at {:g} K is above any metal's melting "
-                                   "point (tungsten: 3695 K) (accepted: a solid bed; --material "
-                                   "bounds it by the material's solidus; --trust-units if meant)",
-                                   hot));
+    kf::check_hot_wall(scene.hot_temperature, nullptr, vm["trust-units"].as<bool>());
     return;
   }
   const bed::MaterialFile file =
       bed::read_material_file(app::material_file(vm["material"].as<std::string>(), vm, "--material"));
-  const bool solidus = file.get("solidus").has_value();
-  const auto solid_until = solidus ? file.get("solidus") : file.get("melting_point");
-  if (solid_until && !(hot < *solid_until)) {
-    throw InputError(fmt::format("--t-hot: the hot wall at {:g} K is not below {}'s {} {:g} K (accepted: a solid "
-                                 "bed, T_hot < {:g} K)",
-                                 hot, file.name, solidus ? "solidus" : "melting point",
-                                 *solid_until, *solid_until));
-  }
+  kf::check_hot_wall(scene.hot_temperature, &file, vm["trust-units"].as<bool>());
 }
 
 // Inputs and outputs checked before the work: a folder where the profile goes, or --out = the

@@ -18,6 +18,7 @@
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/material_fills.hpp"
+#include "powderbed/keff/hot_wall.hpp"
 #include "powderbed/bed/psd.hpp"
 #include "powderbed/bed/random.hpp"
 
@@ -102,6 +103,13 @@ py::list material_fills(const std::string& name, const std::string& program,
   return out;
 }
 
+// keff's material="NAME": the hot wall below that material's solidus, as the program keff's
+// --material holds it (keff/hot_wall.hpp).
+void check_keff_hot_wall(const std::string& name, double hot_temperature) {
+  const bed::MaterialFile file = bed::read_named_material(name, "--material");
+  keff::check_hot_wall(hot_temperature, &file, false);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -115,6 +123,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("sample_psd", &sample_psd, py::arg("spec"), py::arg("n"), py::arg("seed"));
   m.def("material_fills", &material_fills, py::arg("name"), py::arg("program"), py::arg("given"),
         py::arg("temperature"));
+  m.def("check_keff_hot_wall", &check_keff_hot_wall, py::arg("name"), py::arg("hot_temperature"));
   m.def("stats_json", &stats_json, py::arg("bed"), py::arg("tol"), py::arg("layer"),
         py::arg("psd"), py::arg("profile"), py::arg("rdf"), py::arg("histogram"),
         py::arg("voronoi"), py::arg("order_margin"), py::arg("label"));

@@ -8,6 +8,8 @@ and an exception it raises stops the run and comes out of the call. Bad input ra
 (a ValueError) with the library's one-line message, a run that goes non-finite NumericalError
 (an ArithmeticError); what the programs print as a warning is a RuntimeWarning. build_scene
 builds from a build scene file, read by the program build's own option code."""
+import os
+
 from . import _checks, _core, _programs, _structs
 from ._bed import Bed, bed_of
 
@@ -134,7 +136,10 @@ def keff(bed, scene=None, *, progress=None, **fields):
     switches it to hertz with the correction unless told). progress(fraction) hears the
     view factors' tracing (radiation only). Raises NumericalError when no heat path joins the
     walls."""
+    material = fields.get("material")
     (scene,) = _structs.structs("keff", fields, (scene, KeffScene))
+    if isinstance(material, (str, os.PathLike)):  # the program's --material holds the hot wall under its solidus
+        _core.check_keff_hot_wall(_checks.path(material, "keff: material"), scene.hot_temperature)
     return _core.keff(bed_of(bed, "keff: bed").as_dict(), scene,
                       _callable_or_none(progress, "keff: progress"))
 

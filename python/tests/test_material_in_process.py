@@ -40,6 +40,19 @@ def test_keff_with_a_material_is_the_programs(column):
     assert given["k_eff"] == powderbed.keff(powderbed.read_bed(column), solid_conductivity=16.2)["k_eff"]
 
 
+def test_keff_holds_the_hot_wall_under_the_materials_solidus_as_the_program_does(column):
+    # IN718's solidus is 1533 K (data/materials/IN718.csv): a hot wall there asks for k_eff of a
+    # bed that has melted; the program refuses it with --material and so must the function.
+    with pytest.raises(powderbed.ProgramError) as program:
+        powderbed.run("keff", bed=column, material="IN718", t_hot=1540, t_cold=1500)
+    line = str(program.value).splitlines()[-1]
+    with pytest.raises(powderbed.InputError) as mine:
+        powderbed.keff(powderbed.read_bed(column), material="IN718", hot_temperature=1540,
+                       cold_temperature=1500)
+    assert str(mine.value).startswith("--t-hot: the hot wall at 1540 K is not below IN718's solidus 1533 K")
+    assert str(mine.value) in line
+
+
 def test_an_unknown_material_is_the_programs_line(packed, tmp_path):
     bed = powderbed.read_bed(packed[0])
     with pytest.raises(powderbed.ProgramError) as program:
