@@ -7,8 +7,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <fmt/format.h>
+
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "powderbed/bed/errors.hpp"
@@ -127,13 +130,13 @@ class StructBinding {
 
   template <class Row, std::size_t N>
   static unsigned bit_named(const Row (&rows)[N], const std::string& text, const char* option) {
-    std::string accepted;
+    std::vector<std::string_view> accepted;
     for (const Row& row : rows) {
       if (text == row.name) return static_cast<unsigned>(row_bit(row));
-      accepted += (accepted.empty() ? "" : ", ") + std::string(row.name);
+      accepted.emplace_back(row.name);
     }
-    throw InputError(std::string(option) + ": '" + text + "' is not an effect (accepted: a list of " +
-                     accepted + ")");
+    throw InputError(fmt::format("{}: '{}' is not an effect (accepted: a list of {})", option, text,
+                                 fmt::join(accepted, ", ")));
   }
 
   // A T at its defaults with `fields` set through a Python view of it (the view borrows the
