@@ -44,7 +44,7 @@ import sys
 
 from lib.apps import ROOT, app, memo_json, read_bed, remove_bed, spread_layer
 from lib.report import batch_lines, load_average, record_batches, table_head, table_row, write_page
-from lib.spread_scene import Scene, solid_volume
+from lib.spread_scene import Scene, check_rows_keep_window, run_rows, solid_volume
 
 SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
 WORK = os.path.join(ROOT, "out", "studies", "spread-dosing")
@@ -221,22 +221,14 @@ def main():
                  f"(accepted: {', '.join(r[0] for r in ROWS)})")
     os.makedirs(args.work, exist_ok=True)
     scene = Scene(SCENE, {})
-    window = scene.window()
-    for key, _, options, _ in ROWS:
-        if Scene(SCENE, {k[2:]: v for k, v in zip(options[::2], options[1::2])}).window() != window:
-            sys.exit(f"spread_dosing: row {key} moves the scene's window")
+    check_rows_keep_window("spread_dosing", SCENE, ROWS)
     path = os.path.join(args.work, "results.json")
     ran = [key for key, _, _, seeds in ROWS
            if key in only or any(not os.path.exists(os.path.join(args.work, tag(key, s) + ".json"))
                                  for s in seeds)]
     before = load_average()
-    done = {}
-    for seed in sorted({s for row in ROWS for s in row[3]}):
-        for key, label, options, seeds in ROWS:
-            if seed in seeds:
-                done[key, seed] = layer_run(args.work, key, label, options, seed, scene,
-                                            key in only)
-    runs = [done[key, seed] for key, _, _, seeds in ROWS for seed in seeds]
+    runs = run_rows(ROWS, lambda key, label, options, seed:
+                    layer_run(args.work, key, label, options, seed, scene, key in only))
     batches = record_batches(path, ran, before, app("deposit"))
     print(write_page(PAGE, page(runs, scene, batches)))
 

@@ -50,7 +50,7 @@ import numpy as np
 from lib.apps import ROOT, app, memo_json, remove_bed, run_json, spread_layer
 from lib.report import (batch_lines, load_average, read_page, record_batches, splice,
                         section_markers, table_head, table_row, write_page)
-from lib.spread_scene import Scene
+from lib.spread_scene import Scene, check_rows_keep_window, run_rows
 
 SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
 WORK = os.path.join(ROOT, "out", "studies", "spread-heap")
@@ -394,17 +394,9 @@ def main():
     before = load_average()
     ran = [k for k in ["heap"] + [r[0] for r in rows]
            if k in only or not os.path.exists(os.path.join(args.work, tag(k, 1) + ".json"))]
-    for key, _, options, _ in rows:
-        if Scene(SCENE, {k[2:]: v for k, v in zip(options[::2], options[1::2])}).window() != window:
-            sys.exit(f"spread_heap: row {key} moves the scene's window")
-    # Seed 1 of every row first, so that a study cut short has each row once.
-    done = {}
-    for seed in sorted({s for row in rows for s in row[3]}):
-        for key, label, options, seeds in rows:
-            if seed in seeds:
-                done[key, seed] = layer_run(args.work, key, label, options, seed, window,
-                                            key in only)
-    runs = [done[key, seed] for key, _, _, seeds in rows for seed in seeds]
+    check_rows_keep_window("spread_heap", SCENE, rows)
+    runs = run_rows(rows, lambda key, label, options, seed:
+                    layer_run(args.work, key, label, options, seed, window, key in only))
     heap = heap_run(args.work, tall_options(scene), scene, "heap" in only)
     batches = record_batches(path, ran, before, app("deposit"))
     text = read_page(PAGE)

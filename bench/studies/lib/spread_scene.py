@@ -95,3 +95,24 @@ def shown_path(path):
 def solid_volume(radii):
     """The solid volume of spheres of these radii (m^3): sum of 4/3 pi r^3."""
     return sum(4.0 / 3.0 * math.pi * float(r) ** 3 for r in radii)
+
+
+def check_rows_keep_window(study, scene_path, rows):
+    """Exits naming the first row (key, label, options, seeds) whose options move the scene's
+    measuring window: its rows must be measured over the same strip to be compared."""
+    window = Scene(scene_path, {}).window()
+    for key, _, options, _ in rows:
+        if Scene(scene_path, {k[2:]: v for k, v in zip(options[::2], options[1::2])}).window() != window:
+            sys.exit(f"{study}: row {key} moves the scene's window")
+
+
+def run_rows(rows, run):
+    """run(key, label, options, seed) for every seed of every row (key, label, options, seeds),
+    seed 1 of every row first, so that a study cut short has each row once: the results in row
+    order, a row's seeds together."""
+    done = {}
+    for seed in sorted({s for row in rows for s in row[3]}):
+        for key, label, options, seeds in rows:
+            if seed in seeds:
+                done[key, seed] = run(key, label, options, seed)
+    return [done[key, seed] for key, _, _, seeds in rows for seed in seeds]

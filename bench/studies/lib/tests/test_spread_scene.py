@@ -8,6 +8,7 @@ import subprocess
 import pytest
 
 from lib import apps
+from lib import spread_scene
 from lib.spread_scene import Scene, read_scene, solid_volume
 
 BLADE = apps.scene("spread-blade.ini")
@@ -87,3 +88,15 @@ def test_nominal_layer_is_deposit_dosing_by_volume(tmp_path):
     _, radii = apps.read_bed(bed)
     largest = 4.0 / 3.0 * math.pi * (53e-6 / 2) ** 3
     assert abs(solid_volume(radii) - 1.5 * Scene(BLADE, overrides).nominal_layer()) <= largest
+
+
+def test_run_rows_runs_seed_1_of_every_row_first_and_returns_row_order():
+    rows = [("a", "A", [], [1, 2]), ("b", "B", [], [1])]
+    calls = []
+
+    def run(key, label, options, seed):
+        calls.append((key, seed))
+        return f"{key}{seed}"
+
+    assert spread_scene.run_rows(rows, run) == ["a1", "a2", "b1"]
+    assert calls == [("a", 1), ("b", 1), ("a", 2)]
