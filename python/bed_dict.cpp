@@ -3,6 +3,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <fmt/format.h>
+
 #include <string>
 #include <vector>
 
@@ -76,9 +78,8 @@ bed::Provenance provenance_from_dict(const py::dict& d) {
   return p;
 }
 
-}  // namespace
-
-bed::Domain domain_from_dict(const py::dict& d) {
+// The domain of a dict as domain_to_dict gives it (pybind11 and Python errors as they come).
+bed::Domain domain_fields(const py::dict& d) {
   bed::Domain out;
   out.dimension = d["dimension"].cast<int>();
   const auto lower = d["lower"].cast<std::vector<double>>();
@@ -94,6 +95,8 @@ bed::Domain domain_from_dict(const py::dict& d) {
   out.validate("bed: domain");
   return out;
 }
+
+}  // namespace
 
 py::dict domain_to_dict(const bed::Domain& d) {
   py::dict out;
@@ -138,25 +141,46 @@ bed::Bed bed_fields(const py::dict& d) {
   b.vz = vector_of<double>(d, "vz", n, false);
   b.temperature = vector_of<double>(d, "temperature", n, false);
   b.phase = vector_of<std::uint8_t>(d, "phase", n, false);
-  b.domain = domain_from_dict(d["domain"].cast<py::dict>());
+  b.domain = domain_fields(d["domain"].cast<py::dict>());
   if (d.contains("provenance")) b.provenance = provenance_from_dict(d["provenance"].cast<py::dict>());
   return b;
 }
 
 }  // namespace
 
-// A missing domain key or a value of the wrong type (pybind11's cast_error, Python's KeyError)
-// is bad input like any other: InputError, the documented ValueError, not a RuntimeError.
-bed::Bed bed_from_dict(const py::dict& d) {
+namespace {
+
+// read() of a Python value, with a missing key or a value of the wrong type (pybind11's
+// cast_error, Python's KeyError) turned into what it is, bad input like any other: InputError,
+// the documented ValueError, not a RuntimeError. `what` names the value, `accepted` what is.
+template <class Read>
+auto read_python(const char* what, const char* accepted, Read&& read) -> decltype(read()) {
   try {
-    return bed_fields(d);
+    return read();
   } catch (const py::cast_error& e) {
-    throw InputError(std::string("bed: a domain or provenance value of the wrong type (accepted: "
-                                 "the dict Bed.as_dict() gives): ") + e.what());
+    throw InputError(fmt::format("{} of the wrong type (accepted: {}): {}", what, accepted, e.what()));
   } catch (const py::error_already_set& e) {
-    throw InputError(std::string("bed: a domain or provenance value is missing or wrong (accepted: "
-                                 "the dict Bed.as_dict() gives): ") + e.what());
+    throw InputError(fmt::format("{} is missing or wrong (accepted: {}): {}", what, accepted, e.what()));
   }
+}
+
+constexpr const char* kAsDict = "the dict Bed.as_dict() gives";
+
+}  // namespace
+
+bed::Domain domain_from_dict(const py::dict& d) {
+  return read_python("bed: a domain value", kAsDict, [&] { return domain_fields(d); });
+}
+
+bed::Domain domain_from_python(const py::object& domain, const char* what) {
+  return read_python(what, "a dict as Bed.domain, or 2 or 3 lengths in m", [&] {
+    return py::isinstance<py::dict>(domain) ? domain_fields(domain.cast<py::dict>())
+                                            : bed::box_of_lengths(domain.cast<std::vector<double>>(), what);
+  });
+}
+
+bed::Bed bed_from_dict(const py::dict& d) {
+  return read_python("bed: a domain or provenance value", kAsDict, [&] { return bed_fields(d); });
 }
 
 }  // namespace powderbed::python

@@ -15,6 +15,9 @@ pybind11::dict bed_to_dict(const bed::Bed& bed);
 pybind11::dict domain_to_dict(const bed::Domain& d);
 // The inverse of domain_to_dict, validated; throws InputError on a bad domain.
 bed::Domain domain_from_dict(const pybind11::dict& d);
+// A box as a function's `domain` argument gives it: a dict as domain_to_dict's, or 2 or 3
+// lengths (the box [0, L], as the programs' --domain); InputError naming `what` otherwise.
+bed::Domain domain_from_python(const pybind11::object& domain, const char* what);
 // The inverse of bed_to_dict; throws InputError naming the key when an array's length differs from x's.
 bed::Bed bed_from_dict(const pybind11::dict& d);
 

@@ -73,9 +73,7 @@ void bind_pack_options(py::module_& m) {
 
 py::tuple pack(const py::object& domain, const std::string& psd_text, std::uint64_t seed,
                packgen::PackOptions options, const py::object& progress) {
-  const bed::Domain box = py::isinstance<py::dict>(domain)
-                              ? domain_from_dict(domain.cast<py::dict>())
-                              : bed::box_of_lengths(domain.cast<std::vector<double>>(), "domain");
+  const bed::Domain box = domain_from_python(domain, "domain");
   const bed::Psd psd = bed::Psd::parse(psd_text, "psd");
   // As the program for any --count given: refused when it cannot fit at any size (the library
   // checks only counts whose reservation matters).

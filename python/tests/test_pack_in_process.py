@@ -73,6 +73,11 @@ def test_progress_hears_a_longer_pack():
     (lambda: powderbed.pack((2e-4, 2e-4, 1e-4), "mono:d=20e-6", 1, count=10**7),
      r"^--count: 10000000 particles cannot fit"),
     (lambda: powderbed.pack((2e-4,), "mono:d=20e-6", 1), r"^pack: domain: "),
+    (lambda: powderbed.pack({"dimension": 3, "lower": [0, 0, 0], "upper": "wide", "periodic": [False] * 3},
+                            "mono:d=20e-6", 1),
+     r"^domain of the wrong type \(accepted: a dict as Bed.domain, or 2 or 3 lengths in m\)"),
+    (lambda: powderbed.pack({"dimension": 3, "lower": [0, 0, 0]}, "mono:d=20e-6", 1),
+     r"^domain is missing or wrong \(accepted: a dict as Bed.domain, or 2 or 3 lengths in m\)"),
     (lambda: powderbed.pack((2e-4, 2e-4, 1e-4), "mono:d=-1", 1), r"^psd: "),
     (lambda: powderbed.pack((2e-4, 2e-4, 1e-4), "mono:d=20e-6", 1, approch=3), r"^pack: keyword: 'approch'"),
 ])
