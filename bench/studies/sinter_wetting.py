@@ -22,6 +22,7 @@ def run(tag, options):
                           f"sinter-wetting/{tag}.h5", *options)
     h, w, d = apps.pool_um(s)
     return {"tag": tag, "height": h, "width": w, "depth": d, "wetted": s["substrate_wetted"],
+            "arrested": s["substrate_arrested"],
             "bridges": s["bridges"], "merged": s.get("particles_merged", 0),
             "absorptance": s["absorptance"],
             "evaporated": s["evaporated_mass"], "wall": wall}
@@ -29,12 +30,12 @@ def run(tag, options):
 
 def table(rows, label):
     lines = report.table_head(label, "height (um)", "width (um)", "depth (um)",
-                              "caps on the plate", "bridges", "merged", "absorptance",
+                              "caps on the plate", "of them arrested", "bridges", "merged", "absorptance",
                               "evaporated (ng)",
                               "wall (s)")
     for r in rows:
         lines.append(report.table_row(r["tag"], f"{r['height']:.1f}", f"{r['width']:.1f}",
-                                      f"{r['depth']:.1f}", r["wetted"], r["bridges"], r["merged"],
+                                      f"{r['depth']:.1f}", r["wetted"], r["arrested"], r["bridges"], r["merged"],
                                       f"{r['absorptance']:.3f}", f"{r['evaporated'] * 1e12:.3g}",
                                       f"{r['wall']:.1f}"))
     return "\n".join(lines)
@@ -57,9 +58,11 @@ Regenerate: `POWDERBED_BUILD=build python3 bench/studies/sinter_wetting.py`.
 
 The [GZ] scene (`data/scenes/gz2016-sinter.ini`: 200 W, 2 m/s, w = 54 um, Fresnel optics,
 evaporation, the depression) on its deposited bed, with wetting swept. A molten particle spreads
-into a cap at the contact angle only where the plate under it has remelted; elsewhere its contact
-arrests and conducts through the interfacial conductance h_c in series (docs/sinter.md). Each
-plate column is wetted once. Melt pool on x = Lx/2 ([GZ]: model 30 / 85 / 20 um, experiment
+into a cap at the contact angle only where its melt remelts the plate under it (the contact
+temperature of the two, (e_l T_p + e_s T_s)/(e_l + e_s) with e = √(kρc), at or above T_m);
+elsewhere its contact arrests and conducts through the interfacial conductance h_c in series
+until that interface reaches T_m (docs/sinter.md). Each plate column is wetted once; "of them
+arrested" counts the caps still arrested when the run ends. Melt pool on x = Lx/2 ([GZ]: model 30 / 85 / 20 um, experiment
 26 / 75 / 30 um).
 
 Wetting off: height {off['height']:.1f}, width {off['width']:.1f}, depth {off['depth']:.1f} um.
@@ -79,8 +82,9 @@ remelted plate pass their heat on and merge into the pool at all, not the cap's 
 
 {table(conductances, "h_c")}
 
-h_c matters only while the plate under a molten particle is still solid: once it remelts, the cap
-spreads and h_c drops out. Splat studies fit 1e5-1e6 W/m²K while the splat is liquid (Liu, Wang &
+h_c matters only while the interface under a molten particle is below T_m: once the particle
+has superheated enough (past ≈ 2500 K on a 363 K plate) or the plate under it has heated, the
+cap spreads and h_c drops out. Splat studies fit 1e5-1e6 W/m²K while the splat is liquid (Liu, Wang &
 Matthys 1995, Int. J. Heat Mass Transfer 38:1387); the default is 1e6.
 """
     print(report.write_page("sinter-wetting.md", page))

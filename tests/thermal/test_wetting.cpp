@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/thermal/contact_temperature.hpp"
 #include "powderbed/thermal/solver.hpp"
 #include "powderbed/thermal/wetting.hpp"
 #include "sinter_beds.hpp"
@@ -215,6 +216,46 @@ TEST(WettingExchange, NeverOvershootsTheCommonTemperature) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// The contact temperature (contact_temperature.hpp)
+
+// Two slabs suddenly in contact, solved by explicit finite volumes: liquid 316L at 2600 K (k 32.4,
+// ρ c = 7300 × 815) against a cold, less conductive solid at 363 K (k 14, ρ c = 7900 × 480:
+// effusivity 0.52 of the liquid's). The interface (the face value that carries the same flux
+// from both sides) must sit at T_c for all t > 0, not at the arithmetic mean (1481 K) nor at
+// the conductivity-weighted one. Discretisation: the face value converges as dx / √(κ t);
+// at the end the diffusion length spans 40 cells, and 0.5 % of the 2237 K jump (11 K) is
+// several times that error while the arithmetic mean is 420 K off.
+TEST(ContactTemperature, HoldsTheInterfaceOfTwoSlabsSuddenlyInContact) {
+  const double k1 = 32.4, c1 = 7300 * 815.0, t1 = 2600;  // liquid
+  const double k2 = 14.0, c2 = 7900 * 480.0, t2 = 363;   // cold solid
+  const double tc = thermal::contact_temperature(thermal::effusivity(k1, 7300, 815), t1,
+                                                 thermal::effusivity(k2, 7900, 480), t2);
+  const int n = 400;  // cells a side
+  const double dx = 1e-7;
+  const double dt = 0.4 * dx * dx * std::min(c1 / k1, c2 / k2);
+  std::vector<double> t(2 * n);
+  for (int q = 0; q < 2 * n; ++q) t[q] = q < n ? t1 : t2;
+  const auto face = [&] { return (k1 * t[n - 1] + k2 * t[n]) / (k1 + k2); };
+  const double kappa = std::max(k1 / c1, k2 / c2);
+  const int steps = static_cast<int>(std::ceil(1600 * dx * dx / kappa / dt));  // √(κ t) = 40 dx
+  std::vector<double> flux(2 * n + 1, 0.0);
+  for (int step = 0; step < steps; ++step) {
+    for (int q = 1; q < 2 * n; ++q) {
+      const double ka = q - 1 < n ? k1 : k2, kb = q < n ? k1 : k2;
+      flux[q] = 2 * ka * kb / (ka + kb) * (t[q - 1] - t[q]) / dx;  // series faces
+    }
+    for (int q = 0; q < 2 * n; ++q) t[q] += dt * (flux[q] - flux[q + 1]) / dx / (q < n ? c1 : c2);
+  }
+  std::printf("  T_c %.1f K, finite volumes %.1f K after %d steps (arithmetic mean %.1f K)\n", tc,
+              face(), steps, 0.5 * (t1 + t2));
+  EXPECT_NEAR(face(), tc, 0.005 * (t1 - t2));
+  EXPECT_GT(std::abs(tc - 0.5 * (t1 + t2)), 0.1 * (t1 - t2));  // the test tells the two apart
+  // Symmetric in the bodies, and each body's own temperature where the other has no effusivity.
+  EXPECT_DOUBLE_EQ(thermal::contact_temperature(2, 1000, 2, 2000), 1500);
+  EXPECT_DOUBLE_EQ(thermal::contact_temperature(1, 500, 0, 2000), 500);
+}
+
+// ---------------------------------------------------------------------------------------------
 // Whole passes
 
 namespace {
@@ -408,4 +449,41 @@ TEST(WettingSinter, RefusesContactAnglesOutsideZeroToPi) {
   auto scene = wetting_scene(thermal::LaserAbsorption::beer_lambert, true);
   scene.integrator = thermal::Integrator::implicit_euler;
   EXPECT_THROW(thermal::Sinter(bed, scene, test::table_316l()), InputError);
+}
+
+// Whether a molten fine spreads on a plate that has not remelted is the contact temperature's
+// call, not the plate's: the 2 µm fine of StiffWettedContactDoesNotOvershoot, its plate heated
+// through it alone (it stays under 700 K, far below T_m). At 200 W the fine superheats to
+// ~2700 K, past the ≈ 2450 K at which its melt puts the interface with that plate at T_m: the
+// contact spreads. At 60 W it melts but stays far below that: the contact stays arrested.
+TEST(WettingSinter, MeltSpreadsWhereItsInterfaceWithTheSolidReachesTm) {
+  bed::Bed bed = test::empty_bed(120e-6, 120e-6, 40e-6);
+  const double radius = 2e-6;
+  bed.add(60e-6, 60e-6, test::resting_z(radius), radius);
+  for (const double power : {60.0, 200.0}) {
+    auto scene = test::small_scene((thermal::kAllSinterEffects & ~thermal::kLaserSubstrate) |
+                                       thermal::kWetting,
+                                   {13, 13, 7}, 60e-6);
+    scene.power = power;
+    thermal::Sinter sinter(bed, scene, test::table_316l());
+    const std::size_t under = sinter.grid().index(6, 6, sinter.grid().k_plate());
+    double node_peak = 0;
+    const auto r = sinter.run(
+        [&](const thermal::Sinter& s) { node_peak = std::max(node_peak, s.substrate_temperature()[under]); },
+        1, nullptr);
+    const double particle_peak = sinter.particle_max_temperature()[0];
+    std::printf("  %.0f W: particle peak %.0f K, node under it peak %.0f K, wetted %zu, arrested "
+                "%zu\n", power, particle_peak, node_peak, r.substrate_wetted, r.substrate_arrested);
+    const auto& pc = scene.phase_change;
+    ASSERT_EQ(r.substrate_wetted, 1u);
+    ASSERT_GT(particle_peak, pc.melting_point);
+    ASSERT_LT(node_peak, pc.melting_point - 500);  // the plate's own temperature never decides
+    if (power > 100) {
+      EXPECT_GT(particle_peak, 2600.0);
+      EXPECT_EQ(r.substrate_arrested, 0u);
+    } else {
+      EXPECT_LT(particle_peak, 2300.0);
+      EXPECT_EQ(r.substrate_arrested, 1u);
+    }
+  }
 }

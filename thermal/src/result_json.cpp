@@ -90,6 +90,7 @@ void write_run_json(bed::JsonWriter& j, const SinterResult& r) {
   tracks_json(j, r.tracks);
   if (r.traces.traces > 0) ray_trace_json(j, r.traces);
   j.value("substrate_wetted", static_cast<std::uint64_t>(r.substrate_wetted))
+      .value("substrate_arrested", static_cast<std::uint64_t>(r.substrate_arrested))
       .value("particles_merged", static_cast<std::uint64_t>(r.particles_merged))
       .value("bridges", static_cast<std::uint64_t>(r.bridges));
   energy_json(j, r.energy);

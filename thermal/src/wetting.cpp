@@ -12,6 +12,7 @@
 
 #include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/thermal/contact_conduction.hpp"
+#include "powderbed/thermal/contact_temperature.hpp"
 #include "powderbed/thermal/wetting.hpp"
 #include "solver_state.hpp"
 
@@ -19,12 +20,24 @@ namespace powderbed::thermal {
 
 namespace {
 
-// Whether the solid under particle i's contact has remelted: the mean of the top nodes its cap
-// would cover is at or above T_m.
-bool substrate_molten(const Sinter::State& s, const std::vector<std::pair<std::size_t, double>>& footprint) {
-  double t = 0;
-  for (const auto& [column, weight] : footprint) t += weight * s.node_temperature[top_node(s, column)];
-  return t >= s.scene.phase_change.melting_point;
+// Whether the melt of particle i remelts the solid under its contact: the interface between the
+// liquid particle (its temperature) and the solid under it (the mean of the top nodes its cap
+// would cover) sits at the contact temperature of the two (contact_temperature.hpp), and the
+// solid melts where that is at or above T_m. On 316L a particle just molten on a 363 K plate
+// meets it at T_c ≈ 1200 K and arrests; past ≈ 2500 K (≈ 2300 K on solid at 1000 K) its melt
+// remelts the solid under it, and any melt does on solid already at T_m.
+bool interface_remelts(const Sinter::State& s, std::size_t i,
+                       const std::vector<std::pair<std::size_t, double>>& footprint) {
+  const double t_m = s.scene.phase_change.melting_point;
+  double t_solid = 0;
+  for (const auto& [column, weight] : footprint) t_solid += weight * s.node_temperature[top_node(s, column)];
+  if (t_solid >= t_m) return true;
+  const Material& m = s.material;
+  const double t_melt = s.temperature[i];
+  const double liquid = effusivity(m.conductivity(t_melt), m.density(t_melt), m.liquid_specific_heat());
+  const double solid = effusivity(m.solid_conductivity(t_solid), m.solid_density(t_solid),
+                                  m.solid_specific_heat(t_solid));
+  return contact_temperature(liquid, t_melt, solid, t_solid) >= t_m;
 }
 
 // The area of the cap's base left on the plate: each column is wetted once at most, so a cap
@@ -41,11 +54,11 @@ double claim_area(Sinter::State& s, const std::vector<std::pair<std::size_t, dou
   return got;
 }
 
-// A molten particle on the substrate: where the solid under it has remelted the melt spreads into
-// a spherical cap at the contact angle (Young); on solid that has not remelted, the contact line
+// A molten particle on the substrate: where its melt remelts the solid under it (interface_remelts)
+// the melt spreads into a spherical cap at the contact angle (Young); elsewhere the contact line
 // arrests (splat physics: the interface sits below T_m) and the particle meets the plate over the
 // same base through the interfacial conductance h_c in series. Arrested contacts spread once
-// the solid under them remelts (spread_molten).
+// the interface under them reaches T_m (spread_molten), as the particle heats or the solid does.
 void spread_on_substrate(Sinter::State& s, std::size_t i) {
   const std::int64_t c = s.substrate_of[i];
   if (c < 0) return;
@@ -54,7 +67,7 @@ void spread_on_substrate(Sinter::State& s, std::size_t i) {
   const SpreadCap cap = spherical_cap(bed::sphere_volume(r),
                                       s.scene.contact_angle * std::numbers::pi / 180);
   auto footprint = top_footprint(s.g, s.x[i], s.y[i], cap.base_radius);
-  const bool remelted = substrate_molten(s, footprint);
+  const bool remelted = interface_remelts(s, i, footprint);
   if (contact.shape == 0) {  // wetted before: an arrested contact spreads once remelted
     if (!remelted) return;
     for (auto& w : s.wetted) {

@@ -117,6 +117,7 @@ struct SinterResult {
   double absorptance = 0;  // laser energy absorbed over the beam's energy P t_end
   TraceSummary traces;     // ray tracing only
   std::size_t substrate_wetted = 0, bridges = 0;  // wetting: spread caps and liquid bridges
+  std::size_t substrate_arrested = 0;  // wetting: caps of particles still there and arrested at t_end
   std::size_t particles_merged = 0;  // wetting: wholly molten on remelted solid, into the pool
   std::vector<TrackStats> tracks;  // one per scan segment begun by t_end
 };

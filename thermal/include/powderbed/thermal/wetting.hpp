@@ -6,15 +6,16 @@
 // inertial regime, on τ ≈ √(ρ r³ / γ) ≈ 3 µs (Eggers, Lister & Stone, J. Fluid Mech. 401:293,
 // 1999; Biance, Clanet & Quéré, Phys. Rev. E 69:016301, 2004), shorter than the tens of
 // microseconds a particle under the beam stays molten: the contact takes its end state at once.
-// - on remelted substrate (the top nodes under it at or above T_m): a spherical cap of the
+// - where its melt remelts the solid under it (the contact temperature of the liquid particle
+//   and the solid, contact_temperature.hpp, at or above T_m): a spherical cap of the
 //   particle's volume V meeting the melt at the contact angle θ (Young's equilibrium); its base
 //   is the contact area and the conduction length is the cap centroid's height above the base;
-// - on solid that has not remelted: the liquid–solid interface sits below T_m and the contact
+// - where that interface is below T_m: the liquid–solid interface freezes and the contact
 //   line arrests on touch (splat solidification: Pasandideh-Fard et al., Int. J. Heat Mass
 //   Transfer 41:2929, 1998); the particle meets the plate through an interfacial conductance
 //   h_c (of order 1e5–1e6 W/m²K while the splat is liquid: Liu, Wang & Matthys, Int. J. Heat
-//   Mass Transfer 38:1387, 1995) in series with the cap's conduction, until the solid under it
-//   remelts and the cap spreads;
+//   Mass Transfer 38:1387, 1995) in series with the cap's conduction, until the interface
+//   reaches T_m (the particle or the solid under it heats) and the cap spreads;
 // - each top-face column is wetted once: a cap takes only the plate area earlier caps left;
 // - with a molten neighbour: a liquid bridge whose neck has grown to the smaller sphere's
 //   radius (coalescence drives the neck to the smaller drop's section before the pair merges).
