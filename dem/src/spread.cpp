@@ -195,8 +195,11 @@ struct SpreadLoop {
   // the solid, or over a flat stretch of it, skip the sampled contact.
   bed::HeightMap floor_high, floor_low;
   double floor_reach = -1;
+  // The floor's highest node (bound_floor; until then +inf, every particle a candidate).
+  double floor_top = std::numeric_limits<double>::infinity();
 
   void bound_floor() {
+    floor_top = floor.highest();
     const double r_max = largest_radius(bed);
     if (floor.empty() || r_max <= floor_reach) return;
     floor_reach = r_max;
@@ -536,7 +539,8 @@ struct SpreadLoop {
   // the tool's bottom or behind it by more than its reach plus the margin (tool), cannot touch
   // them before the next prune. A particle whose history with a wall may be non-zero is kept
   // with that wall: it touched it at the last evaluation. With a floor (the solid of earlier
-  // layers) every moving particle is a wall candidate.
+  // layers) the plate's test is against the floor's highest point (a heap's upper particles
+  // never reach the solid; the bilinear surface and its samples never rise above a node).
   void find_wall_candidates() {
     const double margin = 0.5 * prune_margin;
     constexpr std::uint8_t tool_bit = 1u << kTool;
@@ -544,7 +548,8 @@ struct SpreadLoop {
     near_tool.clear();
     for (std::size_t i = 0; i < moving; ++i) {
       const double r = bed.radius[i], x = bed.x[i], y = bed.y[i], z = bed.z[i];
-      bool walls = !floor.empty() || z - box.lower[2] < r + margin || box.upper[2] - z < r + margin ||
+      const double plate = floor.empty() ? box.lower[2] : std::max(box.lower[2], floor_top);
+      bool walls = z - plate < r + margin || box.upper[2] - z < r + margin ||
                    (wall_touch[i] & ~tool_bit) != 0;
       for (int axis = 0; axis < 2; ++axis) {
         const double p = axis == 0 ? x : y;
