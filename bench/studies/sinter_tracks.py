@@ -34,6 +34,7 @@ import math
 import os
 import re
 import subprocess
+import sys
 import time
 
 from lib import apps, references, report
@@ -572,6 +573,9 @@ def main():
     if args.quick:
         rows = [r for r in rows if r["id"] in QUICK]
     if args.only:
+        # The rerun rows replace theirs in the stored study; without it the page would hold them alone.
+        if not os.path.exists(RESULTS_JSON):
+            sys.exit(f"--only: no stored study at {RESULTS_JSON} to put the rows into (run the whole study first)")
         rows = [r for r in rows if r["id"] in args.only.split(",")]
     costs = []
     for row in rows:
@@ -591,7 +595,7 @@ def main():
     result = {"rows": rows, "variants": variants, "quick": args.quick, "budget": args.budget,
               "study_wall": time.perf_counter() - start,
               "machine": report.machine(load, program=apps.app("sinter"))}
-    if args.only and os.path.exists(RESULTS_JSON):  # rerun rows replace theirs in the stored study
+    if args.only:  # rerun rows replace theirs in the stored study
         with open(RESULTS_JSON) as f:
             stored = json.load(f)
         rerun = {r["id"]: r for r in rows}
