@@ -103,11 +103,13 @@ py::list material_fills(const std::string& name, const std::string& program,
   return out;
 }
 
-// keff's material="NAME": the hot wall below that material's solidus, as the program keff's
-// --material holds it (keff/hot_wall.hpp).
-void check_keff_hot_wall(const std::string& name, double hot_temperature) {
-  const bed::MaterialFile file = bed::read_named_material(name, "--material");
-  keff::check_hot_wall(hot_temperature, &file, false);
+// keff's hot wall as the program keff holds it (keff/hot_wall.hpp): below the solidus of
+// material="NAME" when one is named, else below tungsten's melting point unless trust_units.
+void check_keff_hot_wall(const std::optional<std::string>& name, double hot_temperature,
+                         bool trust_units) {
+  if (!name) return keff::check_hot_wall(hot_temperature, nullptr, trust_units);
+  const bed::MaterialFile file = bed::read_named_material(*name, "--material");
+  keff::check_hot_wall(hot_temperature, &file, trust_units);
 }
 
 }  // namespace
@@ -123,7 +125,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("sample_psd", &sample_psd, py::arg("spec"), py::arg("n"), py::arg("seed"));
   m.def("material_fills", &material_fills, py::arg("name"), py::arg("program"), py::arg("given"),
         py::arg("temperature"));
-  m.def("check_keff_hot_wall", &check_keff_hot_wall, py::arg("name"), py::arg("hot_temperature"));
+  m.def("check_keff_hot_wall", &check_keff_hot_wall, py::arg("name"), py::arg("hot_temperature"),
+        py::arg("trust_units"));
   m.def("stats_json", &stats_json, py::arg("bed"), py::arg("tol"), py::arg("layer"),
         py::arg("psd"), py::arg("profile"), py::arg("rdf"), py::arg("histogram"),
         py::arg("voronoi"), py::arg("order_margin"), py::arg("label"));

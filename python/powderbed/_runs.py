@@ -130,16 +130,22 @@ def keff(bed, scene=None, *, progress=None, **fields):
     e.g. keff(bed, hot_temperature=1005, cold_temperature=995, radiation_path=True).
     material="NAME" (a name of data/materials such as "316L", or a path to a material CSV) fills
     what the program's --material NAME fills (k_s at the mean of the walls); keywords beside
-    it win.
+    it win. The hot wall is held where the program holds it: under that material's solidus, or
+    without one under tungsten's melting point (3695 K) unless trust_units=True.
     With contact={"hertz_correction": True} the DEM law is read from the bed's provenance (a
     bed from deposit or spread has it); contact.circle stays as given (the program keff
     switches it to hertz with the correction unless told). progress(fraction) hears the
     view factors' tracing (radiation only). Raises NumericalError when no heat path joins the
     walls."""
     material = fields.get("material")
+    trust_units = fields.pop("trust_units", False)
+    if not isinstance(trust_units, bool):
+        _checks.refuse("keff: trust_units", trust_units, "True or False")
     (scene,) = _structs.structs("keff", fields, (scene, KeffScene))
-    if isinstance(material, (str, os.PathLike)):  # the program's --material holds the hot wall under its solidus
-        _core.check_keff_hot_wall(_checks.path(material, "keff: material"), scene.hot_temperature)
+    # The program's hot-wall check: under the solidus of --material, else under tungsten's
+    # melting point unless --trust-units.
+    named = _checks.path(material, "keff: material") if isinstance(material, (str, os.PathLike)) else None
+    _core.check_keff_hot_wall(named, scene.hot_temperature, trust_units)
     return _core.keff(bed_of(bed, "keff: bed").as_dict(), scene,
                       _callable_or_none(progress, "keff: progress"))
 

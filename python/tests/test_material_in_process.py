@@ -53,6 +53,23 @@ def test_keff_holds_the_hot_wall_under_the_materials_solidus_as_the_program_does
     assert str(mine.value) in line
 
 
+def test_keff_without_a_material_holds_the_hot_wall_under_tungstens_melting_point(column):
+    # No metal is solid at 4000 K (tungsten melts at 3695 K): the program refuses the wall
+    # unless --trust-units, and so must the function unless trust_units=True.
+    with pytest.raises(powderbed.ProgramError) as program:
+        powderbed.run("keff", bed=column, t_hot=4000, t_cold=3900)
+    line = str(program.value).splitlines()[-1]
+    bed = powderbed.read_bed(column)
+    with pytest.raises(powderbed.InputError) as mine:
+        powderbed.keff(bed, hot_temperature=4000, cold_temperature=3900)
+    assert str(mine.value) in line
+    trusted = powderbed.keff(bed, hot_temperature=4000, cold_temperature=3900, trust_units=True)
+    theirs = powderbed.run("keff", bed=column, t_hot=4000, t_cold=3900, trust_units=True)
+    assert trusted["k_eff"] == theirs["k_eff"]
+    with pytest.raises(powderbed.InputError, match="trust_units"):
+        powderbed.keff(bed, trust_units="yes")
+
+
 def test_an_unknown_material_is_the_programs_line(packed, tmp_path):
     bed = powderbed.read_bed(packed[0])
     with pytest.raises(powderbed.ProgramError) as program:
