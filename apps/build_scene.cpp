@@ -117,9 +117,9 @@ const OwnedOptions kSpreadOwned{
     "build's own --in, --out, --seed, --layers, --threads and --progress"};
 const OwnedOptions kSinterOwned{
     "sinter-args",
-    {"bed", "out", "explain", "fuse", "fuse.melt-fraction", "fused-bed", "snapshots", "scan.layer",
+    {"bed", "out", "explain", "fuse", "fuse.melt-fraction", "fuse.level", "fused-bed", "snapshots", "scan.layer",
      "json", "threads", "progress", "config", "print-config"},
-    "build's own --out, --fuse.melt-fraction, --snapshots, --threads and --progress"};
+    "build's own --out, --fuse.melt-fraction, --fuse.level, --snapshots, --threads and --progress"};
 
 void refuse_owned(const OwnedOptions& owned, const std::string& extra) {
   std::istringstream words(extra);

@@ -77,7 +77,8 @@ constexpr bed::UnitEntry kUnits[] = {
     {"threshold", "K"}, {"fused", "1"}, {"vaporised", "1"}, {"balled", "1"}, {"powder_left", "1"},
     {"powder_mass_before", "kg"}, {"powder_mass_after", "kg"}, {"solid_mass_before", "kg"},
     {"solid_mass_after", "kg"}, {"vaporised_mass", "kg"}, {"mass_error", "1"},
-    {"top_min", "m"}, {"top_max", "m"},
+    {"bead_height", "m"}, {"bead_sections", "1"}, {"bead_height_mean", "m"},
+    {"bead_height_sd", "m"}, {"top_min", "m"}, {"top_max", "m"},
     // energy: the ledger
     {"laser_particles", "J"}, {"laser_substrate", "J"}, {"convection", "J"}, {"radiation", "J"},
     {"evaporation", "J"}, {"boundary", "J"}, {"internal_particles", "J"},
@@ -131,6 +132,10 @@ void fusion_json(bed::JsonWriter& j, const th::Fusion& f, const th::SubstrateGeo
       .value("solid_mass_after", f.solid_mass_after)
       .value("vaporised_mass", f.vaporised_mass)
       .value("mass_error", f.mass_error())
+      .value("bead_height", f.bead.height)
+      .value("bead_sections", static_cast<std::uint64_t>(f.bead.sections))
+      .value("bead_height_mean", f.bead.height_mean)
+      .value("bead_height_sd", f.bead.height_sd)
       .value("top_min", *low - g.z_top)
       .value("top_max", *high - g.z_top)
       .end_object();
@@ -206,9 +211,11 @@ void print_result(const th::SinterScene& scene, const RunReport& run) {
     const auto [low, high] = std::minmax_element(fused.top.begin(), fused.top.end());
     std::printf("sinter: fused %zu particles (%zu vaporised, %zu left in the bed, %zu of them "
                 "balls that melted on solid that did not); solid top %.1f to %.1f um above the "
-                "plate; mass conserved to %.1e\n",
+                "plate; bead %.1f um high on x = Lx/2, %.1f +- %.1f um over %zu sections; mass "
+                "conserved to %.1e\n",
                 fused.fused, fused.vaporised, fused.powder.n(), fused.balled, (*low - z_top) * 1e6,
-                (*high - z_top) * 1e6, fused.mass_error());
+                (*high - z_top) * 1e6, fused.bead.height * 1e6, fused.bead.height_mean * 1e6,
+                fused.bead.height_sd * 1e6, fused.bead.sections, fused.mass_error());
   }
 }
 
@@ -225,6 +232,11 @@ void check_files(const po::variables_map& vm, const std::string& bed_path,
   const double melt_fraction = vm["fuse.melt-fraction"].as<double>();
   if (!fuse && !vm["fuse.melt-fraction"].defaulted())
     throw InputError("--fuse.melt-fraction: given without --fuse (accepted: --fuse --fuse.melt-fraction F)");
+  const double level = vm["fuse.level"].as<double>();
+  if (!fuse && !vm["fuse.level"].defaulted())
+    throw InputError("--fuse.level: given without --fuse (accepted: --fuse --fuse.level L)");
+  if (fuse && !(level >= 0 && std::isfinite(level)))
+    throw InputError(fmt::format("--fuse.level: {:g} (accepted: a length >= 0 m)", level));
   if (fuse && !(melt_fraction > 0 && melt_fraction <= 1))
     throw InputError(fmt::format("--fuse.melt-fraction: {:f} (accepted: 0 < f <= 1; 0.5 fuses what "
                                  "reached T_m, 1 what was wholly liquid)",
@@ -282,7 +294,8 @@ std::vector<std::pair<std::string, double>> summary_of(const th::SinterResult& r
 std::optional<th::Fusion> fuse_if_asked(const po::variables_map& vm, const bed::Bed& bed,
                                         const th::Sinter& sinter, th::RunWriter& writer) {
   if (!vm["fuse"].as<bool>()) return std::nullopt;
-  th::Fusion fused = th::fuse(bed, sinter, vm["fuse.melt-fraction"].as<double>());
+  th::Fusion fused = th::fuse(bed, sinter, vm["fuse.melt-fraction"].as<double>(), 0.0,
+                              vm["fuse.level"].as<double>());
   writer.fusion(fused);
   if (vm.count("fused-bed")) {
     fused.powder.provenance.stage = "sinter --fuse";

@@ -101,6 +101,9 @@ void add_run_options(po::options_description& desc, th::SinterScene& s) {
        "after the scan, fuse the particles that melted into the solid: /fusion in the run file")
       ("fuse.melt-fraction", po::value<double>()->default_value(0.5),
        "--fuse: the melt fraction a particle must have reached (0.5: T_m; 1: wholly liquid)")
+      ("fuse.level", po::value<double>()->default_value(0.0),
+       "--fuse: level the fused deposit by a Gaussian of this standard deviation (m), as the melt "
+       "levels before it freezes (build levels by half the beam radius); 0 leaves it where it fell")
       ("fused-bed", po::value<std::string>(), "--fuse: write the powder left as this bed (.h5)")
       ("power", po::value<double>(&s.power)->default_value(s.power), "laser power P (W)")
       ("speed", po::value<double>(&s.speed)->default_value(s.speed), "scan speed v (m/s)")

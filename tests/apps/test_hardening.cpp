@@ -660,6 +660,8 @@ std::vector<Case> all_cases() {
       2, {"--scan-path", "segment 1", "1e+09 W"});
   add("sinter_melt_fraction_without_fuse", "sinter", sinter + "--bed @wide.h5 --fuse.melt-fraction 0.7 --out @out.h5",
       2, {"--fuse.melt-fraction", "without --fuse"});
+  add("build_sinter_args_level", "build", bld + "--out @run --sinter-args --fuse.level=1e-5", 2,
+      {"--sinter-args", "'--fuse.level'"});
   add("sinter_region_off_plate", "sinter",
       sinter + "--bed @wide.h5 --scan.hatch 30e-6 --scan.region 0,1e-3,0,0.4e-3 --out @out.h5", 2,
       {"--scan.region", "leaves the plate"});

@@ -439,4 +439,6 @@ TEST(SinterCli, BadScanPathsExit2) {
   refused("--scan.rotation 67", {"scan.rotation", "without --scan.hatch"});
   refused("--fused-bed " + dir + "/out.fused.h5", {"--fused-bed", "--fuse"});
   refused("--fuse --fuse.melt-fraction 0", {"fuse.melt-fraction"});
+  refused("--fuse.level 27e-6", {"--fuse.level", "without --fuse"});
+  refused("--fuse --fuse.level -1e-6", {"--fuse.level", ">= 0"});
 }

@@ -558,3 +558,35 @@ TEST(Fusion, LayerScannedTwiceFusesToItself) {
               "again, remelt %.1f um mean; %zu fused\n",
               bonded, lof1.scanned, f1.fused, again, lof2.mean_remelt() * 1e6, f2.fused);
 }
+
+// The bead on the track's sections (bead.hpp): a ridge along x whose crest rises linearly from
+// h0 to h1 over the grid's length, with a lower shoulder beside it. Each section's height is
+// its crest (not the shoulder, not a mean across y), the plane x = Lx/2 the middle one, and
+// over the steady part's sections (x_i for i in [nx/4, 3(nx-1)/4]) the mean and sd of n
+// equally spaced values: the ends' mean and the discrete uniform's step √((n² − 1)/12).
+// Nothing fused: a bead of height 0.
+TEST(Bead, HeightIsEachSectionsCrestOverThePlate) {
+  thermal::SubstrateGeometry g;
+  g.nx = 41;
+  g.ny = 9;
+  g.nz = 5;
+  g.dx = g.dy = g.dz = 5e-6;
+  g.z_top = 1e-4;
+  const double h0 = 10e-6, h1 = 30e-6;
+  thermal::TopHeight top(g.columns(), g.z_top);
+  const double span = static_cast<double>(g.nx - 1);
+  const auto crest = [&](std::size_t i) { return h0 + (h1 - h0) * static_cast<double>(i) / span; };
+  for (std::size_t i = 0; i < g.nx; ++i) {
+    top[i + g.nx * 4] = g.z_top + crest(i);
+    top[i + g.nx * 3] = top[i + g.nx * 5] = g.z_top + 0.5 * crest(i);
+  }
+  const thermal::Bead b = thermal::measure_bead(g, top);
+  EXPECT_EQ(b.sections, 21u);  // i = 10 ... 30
+  EXPECT_NEAR(b.height, crest(20), 1e-15);
+  EXPECT_NEAR(b.height_mean, 0.5 * (crest(10) + crest(30)), 1e-15);
+  const double n = 21, step = (h1 - h0) / span;
+  EXPECT_NEAR(b.height_sd, step * std::sqrt((n * n - 1) / 12), 1e-12);
+  const thermal::Bead none = thermal::measure_bead(g, {});
+  EXPECT_EQ(none.height, 0.0);
+  EXPECT_EQ(none.sections, 0u);
+}

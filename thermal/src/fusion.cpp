@@ -198,6 +198,7 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
   if (capture > 0) capture_buried(bed, g, mass, rho0, capture, level, before, f, keep);
   f.solid_mass_after = solid_mass(g, f.top, rho0);
   f.powder = keep_particles(bed, keep);
+  f.bead = measure_bead(g, f.top);
   return f;
 }
 

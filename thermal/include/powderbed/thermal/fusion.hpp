@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "powderbed/bed/bed.hpp"
+#include "powderbed/thermal/bead.hpp"
 #include "powderbed/thermal/solver.hpp"
 
 namespace powderbed::thermal {
@@ -46,6 +47,7 @@ struct Fusion {
   // kg: particles that merged into the pool during the scan (wetting): in the solid already, so
   // in solid_mass_before and not in powder_mass_before.
   double merged_mass = 0;
+  Bead bead;  // how high `top` stands over the plate on the track's sections (bead.hpp)
   // Of the powder's mass the scan met (merged particles included), the share that joined the
   // solid: vapour and balls did not.
   double fused_fraction() const;

@@ -1,0 +1,35 @@
+#include "powderbed/thermal/bead.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace powderbed::thermal {
+
+namespace {
+
+// The section's height: its highest column above the plate's top face.
+double section_height(const SubstrateGeometry& g, const TopHeight& top, std::size_t i) {
+  double high = 0;
+  for (std::size_t j = 0; j < g.ny; ++j) high = std::max(high, top[i + g.nx * j] - g.z_top);
+  return high;
+}
+
+}  // namespace
+
+Bead measure_bead(const SubstrateGeometry& g, const TopHeight& top) {
+  Bead b;
+  if (top.empty()) return b;
+  b.height = section_height(g, top, static_cast<std::size_t>(std::lround(0.5 * static_cast<double>(g.nx - 1))));
+  double sum = 0, squares = 0;
+  for (std::size_t i = g.nx / 4; i <= 3 * (g.nx - 1) / 4; ++i) {
+    const double h = section_height(g, top, i);
+    sum += h;
+    squares += h * h;
+    ++b.sections;
+  }
+  b.height_mean = sum / static_cast<double>(b.sections);
+  b.height_sd = std::sqrt(std::max(0.0, squares / static_cast<double>(b.sections) - b.height_mean * b.height_mean));
+  return b;
+}
+
+}  // namespace powderbed::thermal
