@@ -21,7 +21,8 @@ Bead measure_bead(const SubstrateGeometry& g, const TopHeight& top) {
   if (top.empty()) return b;
   b.height = section_height(g, top, static_cast<std::size_t>(std::lround(0.5 * static_cast<double>(g.nx - 1))));
   double sum = 0, squares = 0;
-  for (std::size_t i = g.nx / 4; i <= 3 * (g.nx - 1) / 4; ++i) {
+  const auto [first, last] = steady_columns(g);
+  for (std::size_t i = first; i <= last; ++i) {
     const double h = section_height(g, top, i);
     sum += h;
     squares += h * h;

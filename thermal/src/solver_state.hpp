@@ -227,6 +227,11 @@ void watch_tracks(Sinter::State& s);
 void close_tracks(Sinter::State& s);
 // Internal energy of the particles and of the free substrate nodes, J, from T0.
 std::pair<double, double> internal_energy(const Sinter::State& s);
+// The highest temperatures so far, of the particles and of the substrate (summarise.cpp).
+PeakTemperatures peak_temperatures(const Sinter::State& s);
+// The run's result from its end state, its energies measured against those at its start
+// (summarise.cpp); throws NumericalError if the energy balance is broken.
+SinterResult summarise(Sinter::State& s, double particles_start, double substrate_start);
 
 // Evaporation (evaporation.cpp) over dt: from the exposed particles (mass, energy), and from
 // the substrate's surface nodes (from their enthalpies, before the grid step).

@@ -61,6 +61,13 @@ TopStencil top_stencil(const SubstrateGeometry& g, double x, double y);
 std::vector<std::pair<std::size_t, double>> top_footprint(const SubstrateGeometry& g, double x,
                                                           double y, double a);
 
+// The columns x_i of a single track's steady part, where sections are measured (MeltPoolAlong,
+// Bead): i from nx/4 to 3(nx - 1)/4, the grid's middle half, away from the beam's switching on
+// and off.
+inline std::pair<std::size_t, std::size_t> steady_columns(const SubstrateGeometry& g) {
+  return {g.nx / 4, 3 * (g.nx - 1) / 4};
+}
+
 // The solid's top surface over the grid: per column i + nx j the height z of the solid there, at
 // or above the plate's top face z_top (fusion raises it); empty: flat at z_top. The column's
 // nodes up to the height are solid (SubstrateGeometry; docs/sinter.md "Fusion").
