@@ -126,13 +126,18 @@ VARIANTS = [
 DEFAULT = ("ray-traced, rough plate", True)  # the scene's default: why in docs/sinter.md
 
 
+# Each variant's run fuses what melted, levelled as build levels a layer (w/2; docs/sinter.md
+# "Fusion"): the bead's height is what a section of the track shows.
+FUSE = ["--fuse", "--fuse.level", "27e-6"]
+
+
 def variant_runs(bed):
     runs = []
     for label, options in VARIANTS:
         for wetting in (False, True):
             tag = label.split(",")[0].split()[0].lower() + "-" + options[-1] + ("-wet" if wetting else "")
             s, wall = apps.sinter(SCENE, bed, f"gz2016-{tag}.h5", *options, "--effects.wetting",
-                                  "true" if wetting else "false")
+                                  "true" if wetting else "false", *FUSE)
             s["track"] = track_means(s["out_path"])
             runs.append((label, wetting, s, wall))
     return runs
@@ -223,6 +228,13 @@ def roughness_table(runs):
     return out
 
 
+def bead(summary):
+    """The fused bead's height (sinter --fuse's `bead_*`): on x = Lx/2 / mean ± sd over the track."""
+    f = summary["fusion"]
+    return (f"{f['bead_height'] * 1e6:.1f} / {f['bead_height_mean'] * 1e6:.1f} ± "
+            f"{f['bead_height_sd'] * 1e6:.1f}")
+
+
 def fmt_track(track, key):
     mean, sd = track[key]
     return f"{mean:.1f} ± {sd:.1f}"
@@ -252,16 +264,22 @@ def validation(bed, machine):
         "bench/studies/sinter_gz2016.py `track_means`). Absorptance: laser energy absorbed over "
         "the beam's P t_end (the beam starts and ends one spot radius beyond the bed, so part of "
         "it falls outside the substrate); for ray tracing also the traced maps' absorbed over "
-        "what reached the substrate's extent (`bed`).",
+        "what reached the substrate's extent (`bed`). Bead: each run fuses what melted "
+        "(`--fuse --fuse.level 27e-6`, levelled by w/2 as build levels a layer) and reports how "
+        "high the consolidated track stands over the plate, on x = Lx/2 and as mean ± sd over "
+        "the sections of the steady part (docs/sinter.md \"Fusion\"): what a section of the "
+        "track shows, where the pool's height is the top of the highest molten particle the "
+        "plane cuts.",
         "",
         "| run | wetting | height / width / depth on x = Lx/2 (um) | track height (um) | "
-        "track width (um) | track depth (um) | T_max (K) | absorptance (run / bed) | "
-        "molten / vaporised | wetted caps / bridges | energy balance | wall (s) |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "track width (um) | track depth (um) | bead on x = Lx/2 / over the track (um) | T_max (K) | "
+        "absorptance (run / bed) | molten / vaporised | wetted caps / bridges | energy balance | "
+        "wall (s) |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
         f"| [GZ] 2016 model (dt = 5e-9 s) | - | {PAPER_MODEL[0]:.0f} / {PAPER_MODEL[1]:.0f} / "
-        f"{PAPER_MODEL[2]:.0f} | - | - | - | - | - | - | - | - | ~3 CPU hours |",
+        f"{PAPER_MODEL[2]:.0f} | - | - | - | {PAPER_MODEL[0]:.0f} | - | - | - | - | - | ~3 CPU hours |",
         f"| [GZ] 2016 experiment | - | {PAPER_EXPERIMENT[0]:.0f} / {PAPER_EXPERIMENT[1]:.0f} / "
-        f"{PAPER_EXPERIMENT[2]:.0f} | - | - | - | - | - | - | - | - | - |",
+        f"{PAPER_EXPERIMENT[2]:.0f} | - | - | - | {PAPER_EXPERIMENT[0]:.0f} | - | - | - | - | - | - |",
     ]
     for label, wetting, s, wall in runs:
         h, w, d = pool_um(s)
@@ -271,7 +289,7 @@ def validation(bed, machine):
         lines.append(
             f"| {bold}{label}{bold} | {'on' if wetting else 'off'} | {bold}{h:.1f} / {w:.1f} / "
             f"{d:.1f}{bold} | {fmt_track(s['track'], 'height')} | {fmt_track(s['track'], 'width')} | "
-            f"{fmt_track(s['track'], 'depth')} | {s['max_temperature']:.0f} | {absorb} | "
+            f"{fmt_track(s['track'], 'depth')} | {bead(s)} | {s['max_temperature']:.0f} | {absorb} | "
             f"{s['particles_molten']} / {s['particles_vaporised']} | "
             f"{s['substrate_wetted']} / {s['bridges']} | {s['energy_balance_error']:.1e} | "
             f"{wall:.1f} |")
