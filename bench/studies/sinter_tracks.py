@@ -42,8 +42,6 @@ from lib.materials import constant_properties, material
 
 WORK = os.path.join(apps.WORK, "sinter-tracks")
 DATA = os.path.join(apps.ROOT, "data", "validation")
-TEMPLATE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "templates",
-                        "sinter-tracks.md.in")
 RESULTS_JSON = os.path.join(WORK, "results.json")
 
 # The CMU IN625 rows carry no spot (data/validation/cmu-in625-eos-m270.csv): the 1/e^2 radius
@@ -449,15 +447,6 @@ def plot(result, path):
     fig.savefig(path, dpi=120)
 
 
-def fill(template, values):
-    """The template with each {{name}} replaced; a name without a value is an error."""
-    def sub(m):
-        if m.group(1) not in values:
-            raise KeyError(f"{TEMPLATE}: no value for {{{{{m.group(1)}}}}}")
-        return str(values[m.group(1)])
-    return re.sub(r"\{\{(\w+)\}\}", sub, template)
-
-
 SPOT_FACTORS = (0.6, 0.7, 0.8, 0.9, 1.0)
 
 
@@ -510,9 +499,7 @@ def write_page(result):
         "run_table": run_table(result),
         "failures": "\n".join(f"- {f}" for f in failed) if failed else "None.",
     }
-    with open(TEMPLATE) as f:
-        text = fill(f.read(), values)
-    report.write_page("sinter-tracks.md", text)
+    report.write_page("sinter-tracks.md", report.fill_template("sinter-tracks.md.in", values))
 
 
 # ------------------------------------------------------------------------------------------------

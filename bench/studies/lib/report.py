@@ -5,6 +5,7 @@ times comparable or not, and the commit says which code made the numbers."""
 import json
 import os
 import platform
+import re
 import statistics
 import subprocess
 import time
@@ -23,6 +24,24 @@ def write_page(name, text):
         f.write(text)
     os.replace(path + ".tmp", path)
     return path
+
+
+TEMPLATES = os.path.join(ROOT, "bench", "studies", "templates")
+
+
+def fill_template(name, values):
+    """bench/studies/templates/`name` with each {{key}} replaced by str(values[key]): a study's
+    prose lives in its template, the study fills in what it measured. A key without a value is
+    a KeyError naming the template."""
+    path = os.path.join(TEMPLATES, name)
+    with open(path) as f:
+        template = f.read()
+
+    def sub(m):
+        if m.group(1) not in values:
+            raise KeyError(f"{path}: no value for {{{{{m.group(1)}}}}}")
+        return str(values[m.group(1)])
+    return re.sub(r"\{\{(\w+)\}\}", sub, template)
 
 
 def read_page(name):

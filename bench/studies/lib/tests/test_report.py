@@ -73,3 +73,13 @@ def test_batch_lines_name_the_rows_only_when_calls_differ():
     assert report.batch_lines(one) == ["Machine: x."]
     two = one + [{"keys": ["b", "c"], "machine": "Machine: y."}]
     assert report.batch_lines(two) == ["Rows a: Machine: x.  ", "Rows b, c: Machine: y."]
+
+
+def test_fill_template(tmp_path, monkeypatch):
+    monkeypatch.setattr(report, "TEMPLATES", str(tmp_path))
+    (tmp_path / "page.md.in").write_text("# {{title}}\n\n{{table}} and {{title}} again; {single} kept\n")
+    assert report.fill_template("page.md.in", {"title": "T", "table": 1.5}) == \
+        "# T\n\n1.5 and T again; {single} kept\n"
+    with pytest.raises(KeyError, match="page.md.in: no value for {{table}}"):
+        report.fill_template("page.md.in", {"title": "T"})
+
