@@ -19,7 +19,8 @@ double section_height(const SubstrateGeometry& g, const TopHeight& top, std::siz
 Bead measure_bead(const SubstrateGeometry& g, const TopHeight& top) {
   Bead b;
   if (top.empty()) return b;
-  b.height = section_height(g, top, static_cast<std::size_t>(std::lround(0.5 * static_cast<double>(g.nx - 1))));
+  const double middle = 0.5 * static_cast<double>(g.nx - 1);  // the column of x = Lx/2
+  b.height = section_height(g, top, static_cast<std::size_t>(std::lround(middle)));
   double sum = 0, squares = 0;
   const auto [first, last] = steady_columns(g);
   for (std::size_t i = first; i <= last; ++i) {
@@ -28,8 +29,9 @@ Bead measure_bead(const SubstrateGeometry& g, const TopHeight& top) {
     squares += h * h;
     ++b.sections;
   }
-  b.height_mean = sum / static_cast<double>(b.sections);
-  b.height_sd = std::sqrt(std::max(0.0, squares / static_cast<double>(b.sections) - b.height_mean * b.height_mean));
+  const double n = static_cast<double>(b.sections);
+  b.height_mean = sum / n;
+  b.height_sd = std::sqrt(std::max(0.0, squares / n - b.height_mean * b.height_mean));
   return b;
 }
 

@@ -105,8 +105,9 @@ SinterResult summarise(Sinter::State& s, double particles_start, double substrat
   close_tracks(s);
   r.tracks = s.tracks;
   r.substrate_wetted = s.wetted.size();
-  r.substrate_arrested = static_cast<std::size_t>(std::count_if(
-      s.wetted.begin(), s.wetted.end(), [&](const auto& w) { return w.interface > 0 && !s.gone[w.particle]; }));
+  r.substrate_arrested = static_cast<std::size_t>(
+      std::count_if(s.wetted.begin(), s.wetted.end(),
+                    [&](const auto& w) { return w.interface > 0 && !s.gone[w.particle]; }));
   r.particles_merged = s.merged_count;
   r.bridges = s.bridges;
   return r;

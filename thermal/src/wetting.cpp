@@ -30,11 +30,13 @@ bool interface_remelts(const Sinter::State& s, std::size_t i,
                        const std::vector<std::pair<std::size_t, double>>& footprint) {
   const double t_m = s.scene.phase_change.melting_point;
   double t_solid = 0;
-  for (const auto& [column, weight] : footprint) t_solid += weight * s.node_temperature[top_node(s, column)];
+  for (const auto& [column, weight] : footprint)
+    t_solid += weight * s.node_temperature[top_node(s, column)];
   if (t_solid >= t_m) return true;
   const Material& m = s.material;
   const double t_melt = s.temperature[i];
-  const double liquid = effusivity(m.conductivity(t_melt), m.density(t_melt), m.liquid_specific_heat());
+  const double liquid =
+      effusivity(m.conductivity(t_melt), m.density(t_melt), m.liquid_specific_heat());
   const double solid = effusivity(m.solid_conductivity(t_solid), m.solid_density(t_solid),
                                   m.solid_specific_heat(t_solid));
   return contact_temperature(liquid, t_melt, solid, t_solid) >= t_m;
@@ -118,11 +120,11 @@ void setup_wetting(Sinter::State& s) {
 
 namespace {
 
-// A wholly molten particle whose cap has spread on remelted solid is part of the pool: its
-// mass and enthalpy go into the free top nodes under the cap, whose columns rise by its volume
-// (raise_column), it leaves the network and the beam (the maps are traced anew without it: the
-// pool's surface is the substrate's), its mass stays booked for fusion (docs/sinter.md
-// "Fusion").
+// A wholly molten particle whose cap has spread (its melt remelted the solid) is part of the
+// pool: its mass and enthalpy go into the free top nodes under the cap, whose columns rise by
+// its volume (raise_column), it leaves the network and the beam (the maps are traced anew
+// without it: the pool's surface is the substrate's), its mass stays booked for fusion
+// (docs/sinter.md "Fusion").
 void merge_into_pool(Sinter::State& s, const Sinter::State::WettedContact& w) {
   const SubstrateGeometry& g = s.g;
   // The free nodes under the cap take it all (a Dirichlet column holds no melt); a cap on
