@@ -8,6 +8,7 @@
 
 #include "powderbed/bed/contact_report.hpp"
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/moments.hpp"
 
 namespace powderbed::bed {
 
@@ -16,17 +17,15 @@ namespace {
 RadiusSummary radius_summary(const std::vector<double>& radius) {
   RadiusSummary s;
   if (radius.empty()) return s;
-  double sum = 0, sum2 = 0;
+  Moments moments;
   s.min = s.max = radius[0];
   for (double r : radius) {
-    sum += r;
-    sum2 += r * r;
+    moments.add(r);
     s.min = std::min(s.min, r);
     s.max = std::max(s.max, r);
   }
-  const double n = static_cast<double>(radius.size());
-  s.mean = sum / n;
-  s.sd = std::sqrt(std::max(0.0, sum2 / n - s.mean * s.mean));
+  s.mean = moments.mean();
+  s.sd = moments.sd();
   return s;
 }
 

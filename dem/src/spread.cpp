@@ -546,9 +546,9 @@ struct SpreadLoop {
     constexpr std::uint8_t tool_bit = 1u << kTool;
     near_walls.clear();
     near_tool.clear();
+    const double plate = floor.empty() ? box.lower[2] : std::max(box.lower[2], floor_top);
     for (std::size_t i = 0; i < moving; ++i) {
       const double r = bed.radius[i], x = bed.x[i], y = bed.y[i], z = bed.z[i];
-      const double plate = floor.empty() ? box.lower[2] : std::max(box.lower[2], floor_top);
       bool walls = z - plate < r + margin || box.upper[2] - z < r + margin ||
                    (wall_touch[i] & ~tool_bit) != 0;
       for (int axis = 0; axis < 2; ++axis) {

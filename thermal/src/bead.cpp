@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "powderbed/bed/moments.hpp"
+
 namespace powderbed::thermal {
 
 namespace {
@@ -21,17 +23,12 @@ Bead measure_bead(const SubstrateGeometry& g, const TopHeight& top) {
   if (top.empty()) return b;
   const double middle = 0.5 * static_cast<double>(g.nx - 1);  // the column of x = Lx/2
   b.height = section_height(g, top, static_cast<std::size_t>(std::lround(middle)));
-  double sum = 0, squares = 0;
+  bed::Moments heights;
   const auto [first, last] = steady_columns(g);
-  for (std::size_t i = first; i <= last; ++i) {
-    const double h = section_height(g, top, i);
-    sum += h;
-    squares += h * h;
-    ++b.sections;
-  }
-  const double n = static_cast<double>(b.sections);
-  b.height_mean = sum / n;
-  b.height_sd = std::sqrt(std::max(0.0, squares / n - b.height_mean * b.height_mean));
+  for (std::size_t i = first; i <= last; ++i) heights.add(section_height(g, top, i));
+  b.sections = heights.n;
+  b.height_mean = heights.mean();
+  b.height_sd = heights.sd();
   return b;
 }
 

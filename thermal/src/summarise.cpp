@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/moments.hpp"
 #include "powderbed/thermal/melt_pool.hpp"
 #include "solver_state.hpp"
 
@@ -20,23 +21,19 @@ MeltPoolAlong measure_along(const Sinter::State& s, MeltPoolInput in) {
   if (!s.scene.scan_path.empty() || segments.size() != 1 ||
       std::abs(segments.front().y0 - g.y(g.ny / 2)) > 0.5 * g.dy)
     return a;
-  double sw = 0, sw2 = 0, sd = 0, sd2 = 0;
+  bed::Moments width, depth;
   const auto [first, last] = steady_columns(g);
   for (std::size_t i = first; i <= last; ++i) {
     in.x_plane = g.x(i);
     const MeltPool p = measure_melt_pool(in);
-    ++a.sections;
-    sw += p.width;
-    sw2 += p.width * p.width;
-    sd += p.depth;
-    sd2 += p.depth * p.depth;
+    width.add(p.width);
+    depth.add(p.depth);
   }
-  const double n = static_cast<double>(a.sections);
-  if (n == 0) return a;
-  a.width_mean = sw / n;
-  a.depth_mean = sd / n;
-  a.width_sd = std::sqrt(std::max(0.0, sw2 / n - a.width_mean * a.width_mean));
-  a.depth_sd = std::sqrt(std::max(0.0, sd2 / n - a.depth_mean * a.depth_mean));
+  a.sections = width.n;
+  a.width_mean = width.mean();
+  a.width_sd = width.sd();
+  a.depth_mean = depth.mean();
+  a.depth_sd = depth.sd();
   return a;
 }
 
