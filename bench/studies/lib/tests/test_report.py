@@ -82,4 +82,3 @@ def test_fill_template(tmp_path, monkeypatch):
         "# T\n\n1.5 and T again; {single} kept\n"
     with pytest.raises(KeyError, match="page.md.in: no value for {{table}}"):
         report.fill_template("page.md.in", {"title": "T"})
-
