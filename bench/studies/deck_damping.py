@@ -7,7 +7,8 @@ deposit's law itself (tests/data/hertz_restitution.csv, an independent RK4 solut
 dimensionless Hertz + zeta ODE). Also run: LAMMPS's damping tsuji fed the restitution that
 deposit's zeta gives, the naive mapping a user writes by hand.
 
-Writes docs/results/deck-damping.md. Needs the build's deposit and bedconv, lmp and liggghts.
+Writes docs/results/deck-damping.md (its prose: bench/studies/templates/deck-damping.md.in).
+Needs the build's deposit and bedconv, lmp and liggghts.
 usage: python3 bench/studies/deck_damping.py"""
 import argparse
 import csv
@@ -166,95 +167,86 @@ def reference():
         return {round(float(z), 2): float(e) for z, e, _ in rows}
 
 
+def impacts(work, ref):
+    """Per zeta: the law's e (`ref`), deposit's and each engine's e on both impacts, the inputs
+    the decks carry, and LAMMPS fed the law's own e (the naive mapping; none at zeta = 0, where
+    the deck writes no tsuji)."""
+    rows = []
+    for zeta in ZETAS:
+        row = {"zeta": zeta, "ref": ref[round(zeta, 2)]}
+        for kind in ("pair", "wall"):
+            row[f"ours_{kind}"] = ours(work, kind, zeta)
+            row[f"lmp_{kind}"] = engine(work, kind, zeta, "lammps")
+            row["lmp_in"] = deck_input(work, "lammps")
+            row[f"lig_{kind}"] = engine(work, kind, zeta, "liggghts")
+            row["lig_in"] = deck_input(work, "liggghts")
+        row["naive"] = engine(work, "pair", zeta, "lammps", tsuji_input=row["ref"]) if zeta > 0 else float("nan")
+        rows.append(row)
+        print(row, flush=True)
+    return rows
+
+
+def beds(work):
+    """Each BED_CASES scene on the settled bed: (label, {engine: largest centre difference from
+    deposit}, deposit's largest motion)."""
+    settled_bed(work)
+    bed_rows = []
+    for label, scene, args in BED_CASES:
+        gaps, moved = bed_case(work, label, scene, args)
+        bed_rows.append((label, gaps, moved))
+        print(label, gaps, moved, flush=True)
+    return bed_rows
+
+
+def impact_table(rows):
+    """Per zeta: the law's e, each code's on both impacts and the decks' inputs."""
+    def tsuji(value):
+        return "velocity 0" if value != value else f"{value:.5f}"  # nan: zeta = 0
+
+    lines = report.table_head("zeta", "e of the law (RK4)", "deposit pair", "deposit wall",
+                              "LAMMPS tsuji input", "LAMMPS pair", "LAMMPS wall",
+                              "LIGGGHTS coefficientRestitution", "LIGGGHTS pair", "LIGGGHTS wall",
+                              "LAMMPS fed e of the law")
+    for r in rows:
+        lines.append(report.table_row(
+            f"{r['zeta']:.2f}", f"{r['ref']:.5f}", f"{r['ours_pair']:.5f}", f"{r['ours_wall']:.5f}",
+            tsuji(r["lmp_in"]), f"{r['lmp_pair']:.5f}", f"{r['lmp_wall']:.5f}", f"{r['lig_in']:.5f}",
+            f"{r['lig_pair']:.5f}", f"{r['lig_wall']:.5f}",
+            "-" if r["naive"] != r["naive"] else format(r["naive"], ".5f")))
+    return "\n".join(lines)
+
+
+def bed_table(bed_rows):
+    """Per scene: deposit's largest motion and each engine's largest difference from it."""
+    lines = report.table_head("scene", "motion (m)", "LAMMPS - deposit (m)", "LIGGGHTS - deposit (m)")
+    lines += [report.table_row(label, f"{moved:.2e}", f"{gaps['lammps']:.2e}", f"{gaps['liggghts']:.2e}")
+              for label, gaps, moved in bed_rows]
+    return "\n".join(lines)
+
+
+def page(rows, bed_rows, machine):
+    """The page: templates/deck-damping.md.in filled with the impacts' and the beds' results."""
+    worst = max(abs(r[k] - r["ref"]) for r in rows for k in ("ours_pair", "ours_wall", "lmp_pair", "lmp_wall",
+                                                             "lig_pair", "lig_wall"))
+    engines = max(abs(r[f"{e}_{k}"] - r[f"ours_{k}"]) for r in rows for e in ("lmp", "lig") for k in ("pair", "wall"))
+    tenth = next(r for r in rows if r["zeta"] == 0.1)
+    return report.fill_template("deck-damping.md.in", {
+        "machine": machine, "radius": f"{R * 1e6:g}", "speed": f"{V:g}", "dt": f"{DT:g}",
+        "impact_table": impact_table(rows), "engines": f"{engines:.1e}", "worst": f"{worst:.1e}",
+        "naive_e": f"{tenth['naive']:.3f}", "law_e": f"{tenth['ref']:.3f}",
+        "liggghts_in": f"{tenth['lig_in']:.3f}", "liggghts_out": f"{tenth['lig_pair']:.3f}",
+        "bed_steps": BED_STEPS, "bed_table": bed_table(bed_rows)})
+
+
 def main():
     argparse.ArgumentParser(description=__doc__,
                             formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     load = report.load_average()
     ref = reference()
-    rows = []
     with tempfile.TemporaryDirectory(prefix="powderbed_deck_damping_") as work:
-        for zeta in ZETAS:
-            row = {"zeta": zeta, "ref": ref[round(zeta, 2)]}
-            for kind in ("pair", "wall"):
-                row[f"ours_{kind}"] = ours(work, kind, zeta)
-                row[f"lmp_{kind}"] = engine(work, kind, zeta, "lammps")
-                row["lmp_in"] = deck_input(work, "lammps")
-                row[f"lig_{kind}"] = engine(work, kind, zeta, "liggghts")
-                row["lig_in"] = deck_input(work, "liggghts")
-            row["naive"] = engine(work, "pair", zeta, "lammps", tsuji_input=row["ref"]) if zeta > 0 else float("nan")
-            rows.append(row)
-            print(row, flush=True)
-        settled_bed(work)
-        bed_rows = []
-        for label, scene, args in BED_CASES:
-            gaps, moved = bed_case(work, label, scene, args)
-            bed_rows.append((label, gaps, moved))
-            print(label, gaps, moved, flush=True)
-    worst = max(abs(r[k] - r["ref"]) for r in rows for k in ("ours_pair", "ours_wall", "lmp_pair", "lmp_wall",
-                                                             "lig_pair", "lig_wall"))
-    engines = max(abs(r[f"{e}_{k}"] - r[f"ours_{k}"]) for r in rows for e in ("lmp", "lig") for k in ("pair", "wall"))
-    lines = [
-        "# Deck damping: zeta to each engine's input, measured",
-        "",
-        "Regenerate: `python3 bench/studies/deck_damping.py` (needs the build's deposit and bedconv, "
-        "`lmp` from Debian's lammps 20220106 (LAMMPS 29 Sep 2021 update 2), `liggghts` 3.8.0).",
-        "",
-        report.machine(load),
-        "",
-        f"Head-on impacts of two 316L spheres (r = {R * 1e6:g} um, E = 193 GPa, nu = 0.26, "
-        f"{V:g} m/s each) and a sphere's impact on the floor ({V:g} m/s), Hertz law, no gravity, drag or "
-        f"friction, dt = {DT:g} s (~1100 steps per contact). Each engine runs the deck `bedconv --deck` "
-        "writes for the scene `material.damping = zeta`; e = separation / approach speed.",
-        "",
-        "| zeta | e of the law (RK4) | deposit pair | deposit wall | LAMMPS tsuji input | LAMMPS pair | LAMMPS wall "
-        "| LIGGGHTS coefficientRestitution | LIGGGHTS pair | LIGGGHTS wall | LAMMPS fed e of the law |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
-    ]
-    def tsuji(value):
-        return "velocity 0" if value != value else f"{value:.5f}"  # nan: zeta = 0
-
-    for r in rows:
-        lines.append(
-            f"| {r['zeta']:.2f} | {r['ref']:.5f} | {r['ours_pair']:.5f} | {r['ours_wall']:.5f} | {tsuji(r['lmp_in'])} "
-            f"| {r['lmp_pair']:.5f} | {r['lmp_wall']:.5f} | {r['lig_in']:.5f} | {r['lig_pair']:.5f} "
-            f"| {r['lig_wall']:.5f} | {'-' if r['naive'] != r['naive'] else format(r['naive'], '.5f')} |")
-    tenth = next(r for r in rows if r["zeta"] == 0.1)
-    lines += [
-        "",
-        f"Largest difference between an engine and deposit on the same impact: {engines:.1e} (the same "
-        "dashpot and the same velocity Verlet step). Largest difference from the law's e (RK4 of the "
-        f"continuous ODE) over deposit and both engines: {worst:.1e}, the time step's error.",
-        "",
-        "- LAMMPS `damping tsuji` takes an e and builds eta = alpha(e) sqrt(m* K) from Tsuji's polynomial "
-        "alpha, K = 4/3 E* a; deposit's dashpot is 2 zeta sqrt(m* 2 E* a), so the deck gives the e whose "
-        "alpha is zeta sqrt(6). That input is not the restitution the contact then has: the last column "
-        f"feeds LAMMPS the law's own e and gets a livelier contact (e {tenth['naive']:.3f} for "
-        f"{tenth['ref']:.3f} at zeta = 0.1).",
-        "- LIGGGHTS's Hertz model takes the restitution through beta = ln e / sqrt(ln^2 e + pi^2) and "
-        "builds gamma_n = 2 sqrt(5/6) |beta| sqrt(m* S_n), S_n = 2 E* a: deposit's dashpot for "
-        "|beta| = zeta / sqrt(5/6). Its input too differs from the e it gives "
-        f"({tenth['lig_in']:.3f} in, {tenth['lig_pair']:.3f} out at zeta = 0.1): both engines' inputs "
-        "are the dashpot's parameters, not measured restitutions.",
-        "- zeta = 0 writes `damping velocity` with 0 for LAMMPS (Tsuji's alpha(1) is 3e-4, not 0); LAMMPS "
-        "cannot take zeta above 0.5196 (alpha(0) = 1.2728), LIGGGHTS above 0.9129.",
-        "",
-        "## A settled bed in each engine",
-        "",
-        f"The settled bed of 150 particles (deposit until rest, periodic in x and y) runs {BED_STEPS} steps "
-        "through each exported deck and in deposit; the largest difference of a centre after them, against "
-        "the largest motion in deposit:",
-        "",
-        "| scene | motion (m) | LAMMPS - deposit (m) | LIGGGHTS - deposit (m) |",
-        "|---|---|---|---|",
-    ] + [f"| {label} | {moved:.2e} | {gaps['lammps']:.2e} | {gaps['liggghts']:.2e} |" for label, gaps, moved in bed_rows] + [
-        "",
-        "Without friction the Hertz decks are deposit to rounding; the linear law is too in LAMMPS, while "
-        "LIGGGHTS's hooke/stiffness takes one dashpot for the mean pair (docs/decks.md). With friction a bed "
-        "at rest moves differently: deposit's regularised sliding is a viscous force of rate mu_d F_n / v_reg "
-        "below v_reg = 1e-5 m/s, the engines' no-history laws a viscous force of the normal dashpot's rate; "
-        "both are Coulomb while sliding.",
-    ]
-    print(report.write_page("deck-damping.md", "\n".join(lines) + "\n"))
+        rows = impacts(work, ref)
+        bed_rows = beds(work)
+    print(report.write_page("deck-damping.md", page(rows, bed_rows, report.machine(load))))
 
 
 if __name__ == "__main__":

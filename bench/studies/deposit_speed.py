@@ -19,6 +19,7 @@ What is measured (all on this machine, in this one run, one after the other):
    particles; walls only around the whole tiling), SCALING_STEPS steps at E = 193 GPa, 1 thread.
 4. The paper's full settle: the scene as it is (t-end 0.1 s) with --young-scale 1e3 (the
    softening used for the [GZ] results, docs/results/deposit-gz2016.md) and --threads 2.
+The page's prose is bench/studies/templates/deposit-speed.md.in.
 """
 import argparse
 import os
@@ -90,11 +91,10 @@ def tile_bed(work, src, nx, ny):
     return h5
 
 
-def main():
-    argparse.ArgumentParser(description=__doc__,
-                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
-    work = tempfile.mkdtemp(prefix="deposit-speed-")
-    load_before = report.load_average()
+def settled_bed(work):
+    """The benchmark's starting bed: the [GZ] scene dropped and settled at SETTLE_SCALE, as HDF5
+    and, for LIGGGHTS, as a LAMMPS data file; with deposit's summary of the settle and that of a
+    probe run from the bed (its automatic step at full stiffness and its particle count)."""
     settled = os.path.join(work, "settled.h5")
     settle, _ = run_json([app("deposit"), "--config", SCENE, "--seed", "1", "--young-scale",
                           repr(SETTLE_SCALE), "--until-rest", "--t-end", "0.1", "--threads", "1",
@@ -103,20 +103,25 @@ def main():
     subprocess.run([app("bedconv"), settled, data], check=True, capture_output=True)
     probe, _ = run_json([app("deposit"), "--config", PHYSICS, "--in", settled, "--seed", "1",
                          "--t-end", "1e-12", "--threads", "1", "--out", os.path.join(work, "p.h5")])
-    dt = probe["dt"]
+    return settled, data, settle, probe
 
+
+def head_to_head(work, settled, data, dt):
+    """REPEATS runs of STEPS steps in deposit and in LIGGGHTS (no_history, history), the codes
+    interleaved so that all see the same load: per repeat, deposit's (wall, KE, rebuilds) and
+    LIGGGHTS's (loop s, atoms, KE)."""
     ours, lig_nh, lig_h = [], [], []
     for _ in range(REPEATS):
         s = deposit_run(settled, STEPS, dt, 1, os.path.join(work, "ours.h5"))
         ours.append((s["wall_time"], s["kinetic_energy"], s["neighbour_rebuilds"]))
         lig_nh.append(run_liggghts(work, data, dt, STEPS, "no_history"))
         lig_h.append(run_liggghts(work, data, dt, STEPS, "history"))
-    n = probe["n"]
-    t_ours = statistics.median(r[0] for r in ours)
-    t_nh = statistics.median(r[0] for r in lig_nh)
-    t_h = statistics.median(r[0] for r in lig_h)
-    rate = lambda t: n * STEPS / t  # noqa: E731
+    return ours, lig_nh, lig_h
 
+
+def scaling_runs(work, settled, dt):
+    """Per tiling (particles, median wall of REPEATS, rebuilds) on one thread, and the largest
+    tiling's walls on two threads."""
     scaling = []
     for nx, ny in TILES:
         bed = tile_bed(work, settled, nx, ny)
@@ -124,106 +129,95 @@ def main():
         for _ in range(REPEATS):
             s = deposit_run(bed, SCALING_STEPS, dt, 1, os.path.join(work, "scaled.h5"))
             times.append(s["wall_time"])
-        count = s["n"]
-        scaling.append((count, statistics.median(times), s["neighbour_rebuilds"]))
+        scaling.append((s["n"], statistics.median(times), s["neighbour_rebuilds"]))
     big = tile_bed(work, settled, *TILES[-1])
     two = [deposit_run(big, SCALING_STEPS, dt, 2, os.path.join(work, "scaled2.h5"))["wall_time"]
            for _ in range(REPEATS)]
+    return scaling, two
 
+
+def speed_table(n, runs):
+    """The head-to-head table of `runs` (head_to_head's three lists): each code's median loop
+    time, rates, ratio to deposit and the last run's kinetic energy."""
+    ours, lig_nh, lig_h = runs
+    t_ours = statistics.median(r[0] for r in ours)
+    lines = report.table_head("code", "loop time (s)", "particle-steps/s", "ns per particle-step",
+                              "ratio deposit / code", "final KE (J)")
+    for label, code_runs, ke in (
+            ("deposit (Verlet, Hertz + damping + sliding friction + drag + walls)", ours, 1),
+            ("LIGGGHTS 3.8, tangential no_history", lig_nh, 2),
+            ("LIGGGHTS 3.8, tangential history (the peer deck's)", lig_h, 2)):
+        t = statistics.median(r[0] for r in code_runs)
+        lines.append(report.table_row(
+            label, f"{t:.3f}", f"{n * STEPS / t:.3g}", f"{t / (n * STEPS) * 1e9:.1f}",
+            "1" if code_runs is ours else f"{t / t_ours:.2f}", f"{code_runs[-1][ke]:.3g}"))
+    return "\n".join(lines)
+
+
+def scaling_table(scaling):
+    """Per tiling: the loop time, the rates and the cost against the untiled bed's."""
+    ns = [t / (c * SCALING_STEPS) * 1e9 for c, t, _ in scaling]
+    lines = report.table_head("particles", "loop time (s)", "particle-steps/s",
+                              "ns per particle-step", "/ 600-particle cost", "rebuilds")
+    for (count, t, rebuilds), cost in zip(scaling, ns):
+        lines.append(report.table_row(count, f"{t:.3f}", f"{count * SCALING_STEPS / t:.3g}",
+                                      f"{cost:.1f}", f"{cost / ns[0]:.2f}", rebuilds))
+    return "\n".join(lines)
+
+
+def page(m):
+    """The page: templates/deposit-speed.md.in filled with main()'s measurements `m`."""
+    ours, lig_nh, lig_h = m["runs"]
+    t_ours, t_nh, t_h = (statistics.median(r[0] for r in runs) for runs in m["runs"])
+    scaling, two = m["scaling"], m["two"]
+    ns = [t / (c * SCALING_STEPS) * 1e9 for c, t, _ in scaling]
+    t2 = statistics.median(two)
+    # more runnable jobs than cores: each OpenMP barrier waits for a descheduled thread
+    busy = max(float(load.split()[0]) for load in m["loads"]) > os.cpu_count()
+    settle, full = m["settle"], m["full"]
+    return report.fill_template("deposit-speed.md.in", {
+        "machine": report.machine(*m["loads"]),
+        "settle_scale": f"{SETTLE_SCALE:g}", "settle_steps": settle["steps"],
+        "settle_wall": f"{settle['wall_time']:.1f}", "settle_lost": settle["lost"],
+        "steps": STEPS, "dt": f"{m['probe']['dt']:.4g}", "repeats": REPEATS,
+        "speed_table": speed_table(m["probe"]["n"], m["runs"]),
+        "runs_ours": ", ".join(f"{r[0]:.3f}" for r in ours),
+        "runs_no_history": ", ".join(f"{r[0]:.3f}" for r in lig_nh),
+        "runs_history": ", ".join(f"{r[0]:.3f}" for r in lig_h),
+        "rebuilds": ours[-1][2],
+        "best_no_history": f"{min(r[0] for r in lig_nh) / min(r[0] for r in ours):.2f}",
+        "best_history": f"{min(r[0] for r in lig_h) / min(r[0] for r in ours):.2f}",
+        "target": "met" if t_nh / t_ours >= 2 and t_h / t_ours >= 2 else "NOT met",
+        "ratio_no_history": f"{t_nh / t_ours:.2f}", "ratio_history": f"{t_h / t_ours:.2f}",
+        "scaling_steps": SCALING_STEPS, "scaling_table": scaling_table(scaling),
+        "cost_spread": f"{max(ns) / min(ns):.2f}", "largest": scaling[-1][0],
+        "two_threads": f"{t2:.3f}", "speed_up": f"{scaling[-1][1] / t2:.2f}",
+        "load_note": (" (with more runnable jobs than cores, each OpenMP barrier waits for a "
+                      "descheduled thread, so this figure measures the load more than the code)."
+                      if busy else "."),
+        "default_scale": f"{DEFAULT_SCALE:g}", "full_steps": full["steps"],
+        "full_dt": f"{full['dt']:.4g}", "full_time": f"{full['sim_time']:.3g}",
+        "full_wall": f"{full['wall_time']:.1f}", "full_process": f"{m['full_process']:.1f}",
+        "full_rate": f"{full['particle_steps_per_s']:.3g}", "full_lost": full["lost"],
+        "full_rebuilds": full["neighbour_rebuilds"]})
+
+
+def main():
+    argparse.ArgumentParser(description=__doc__,
+                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
+    work = tempfile.mkdtemp(prefix="deposit-speed-")
+    load_before = report.load_average()
+    settled, data, settle, probe = settled_bed(work)
+    runs = head_to_head(work, settled, data, probe["dt"])
+    scaling, two = scaling_runs(work, settled, probe["dt"])
     full, full_process = run_json([app("deposit"), "--config", SCENE, "--seed", "1",
                                    "--young-scale", repr(DEFAULT_SCALE), "--threads", "2",
                                    "--out", os.path.join(work, "full.h5")])
-    load_after = report.load_average()
-    # more runnable jobs than cores: each OpenMP barrier waits for a descheduled thread
-    busy = max(float(load.split()[0]) for load in (load_before, load_after)) > os.cpu_count()
-
-    ns = [t / (c * SCALING_STEPS) * 1e9 for c, t, _ in scaling]
-    lines = [
-        "# deposit speed beside LIGGGHTS (issue 4 \"Speed\")",
-        "",
-        "Generated by `bench/studies/deposit_speed.py` (one run; method in its docstring). "
-        + report.machine(load_before, load_after) + " On a machine shared with other jobs the "
-        "absolute rates are those of its load; the ratios come from interleaved runs under the "
-        "same load.",
-        "",
-        "## Same bed, same steps: particle-steps per second per core",
-        "",
-        f"The [GZ] bed (600 particles of data/scenes/gz2016-deposit.ini, seed 1, dropped and settled "
-        f"with --young-scale {SETTLE_SCALE:g}: {settle['steps']} steps, {settle['wall_time']:.1f} s, "
-        f"{settle['lost']} lost), then {STEPS} steps at E = 193 GPa, dt = {dt:.4g} s "
-        "(0.2 x the Rayleigh step of the smallest particle) from the same particles in both codes, "
-        f"1 thread each, median of {REPEATS}.",
-        "",
-        "| code | loop time (s) | particle-steps/s | ns per particle-step | ratio deposit / code | final KE (J) |",
-        "|---|---|---|---|---|---|",
-        f"| deposit (Verlet, Hertz + damping + sliding friction + drag + walls) | {t_ours:.3f} | "
-        f"{rate(t_ours):.3g} | {t_ours / (n * STEPS) * 1e9:.1f} | 1 | {ours[-1][1]:.3g} |",
-        f"| LIGGGHTS 3.8, tangential no_history | {t_nh:.3f} | {rate(t_nh):.3g} | "
-        f"{t_nh / (n * STEPS) * 1e9:.1f} | {t_nh / t_ours:.2f} | {lig_nh[-1][2]:.3g} |",
-        f"| LIGGGHTS 3.8, tangential history (the peer deck's) | {t_h:.3f} | {rate(t_h):.3g} | "
-        f"{t_h / (n * STEPS) * 1e9:.1f} | {t_h / t_ours:.2f} | {lig_h[-1][2]:.3g} |",
-        "",
-        "All runs: deposit " + ", ".join(f"{r[0]:.3f}" for r in ours) + " s; LIGGGHTS no_history "
-        + ", ".join(f"{r[0]:.3f}" for r in lig_nh) + " s; history "
-        + ", ".join(f"{r[0]:.3f}" for r in lig_h) + f" s. Neighbour rebuilds in deposit: {ours[-1][2]}.",
-        "",
-        "Best of each (the least disturbed run on a shared machine): ratio "
-        f"{min(r[0] for r in lig_nh) / min(r[0] for r in ours):.2f} (no_history) and "
-        f"{min(r[0] for r in lig_h) / min(r[0] for r in ours):.2f} (history).",
-        "",
-        f"Issue 4 asks for at least 2x LIGGGHTS's throughput: "
-        f"{'met' if t_nh / t_ours >= 2 and t_h / t_ours >= 2 else 'NOT met'} here "
-        f"({t_nh / t_ours:.2f}x and {t_h / t_ours:.2f}x). The final kinetic energies agree to a few "
-        "per cent, a check that both codes integrate the same physics on the same bed.",
-        "",
-        "What deposit's step does (dem/src/forces.hpp, neighbour_list.cpp, solver.cpp): a half "
-        "neighbour list (each pair once) with the pair constants a = 4/3 E* sqrt(R*) and "
-        "b = 2 zeta sqrt(2 E* m* sqrt(R*)) tabulated at each list build; the pair forces in three "
-        "passes over blocks of 256 particles: a flat, branch-free reject pass over the list "
-        "entries that compacts the pairs in contact (most entries of a settled bed are not, and a "
-        "branch on that, or a loop per particle with its varying trip count, is what the branch "
-        "predictor misses), the contact law over the compacted contacts as a straight loop the "
-        "compiler vectorises, then the sums, serially by adding F to i and subtracting it from j, "
-        "or in parallel by storing each pair's F and gathering in the same order (bit-identical "
-        "for any thread count); gravity and drag as vectorised loops; wall contacts face by face, "
-        "only for the particles that could reach that face before the next build; kick, drift, "
-        "the rebuild test and the finiteness test as restrict-qualified loops that the compiler "
-        "vectorises. bench/dem_effects.cpp times a step per effect mask (an effect switched off "
-        "is compiled out of the loop).",
-        "",
-        "## Scaling (deposit, 1 thread)",
-        "",
-        f"The settled bed tiled in x and y; {SCALING_STEPS} steps at E = 193 GPa, median of {REPEATS}.",
-        "",
-        "| particles | loop time (s) | particle-steps/s | ns per particle-step | / 600-particle cost | rebuilds |",
-        "|---|---|---|---|---|---|",
-    ]
-    for (count, t, rebuilds), cost in zip(scaling, ns):
-        lines.append(f"| {count} | {t:.3f} | {count * SCALING_STEPS / t:.3g} | {cost:.1f} | "
-                     f"{cost / ns[0]:.2f} | {rebuilds} |")
-    t2 = statistics.median(two)
-    lines += [
-        "",
-        f"Largest / smallest cost per particle-step: {max(ns) / min(ns):.2f} (target: within 1.5). "
-        f"{scaling[-1][0]} particles on 2 threads: {t2:.3f} s, speed-up {scaling[-1][1] / t2:.2f} "
-        "over 1 thread on this shared 2-core machine"
-        + (" (with more runnable jobs than cores, each OpenMP barrier waits for a descheduled "
-           "thread, so this figure measures the load more than the code)."
-           if busy else "."),
-        "",
-        "## The paper's full settle",
-        "",
-        f"`deposit --config data/scenes/gz2016-deposit.ini --seed 1 --young-scale {DEFAULT_SCALE:g} "
-        f"--threads 2`: {full['steps']} steps of dt = {full['dt']:.4g} s to t = {full['sim_time']:.3g} s "
-        f"in **{full['wall_time']:.1f} s** of loop time ({full_process:.1f} s for the whole process; "
-        f"target < 60 s), {full['particle_steps_per_s']:.3g} particle-steps/s, {full['lost']} lost, "
-        f"{full['neighbour_rebuilds']} neighbour rebuilds. A 600-particle bed is below "
-        "RunSettings::parallel_min_particles (4096), so it runs on one thread whatever --threads "
-        "says: on this machine an OpenMP team costs more than the ~20 us of work in a step.",
-        "",
-    ]
+    measured = {"settle": settle, "probe": probe, "runs": runs, "scaling": scaling, "two": two,
+                "full": full, "full_process": full_process,
+                "loads": (load_before, report.load_average())}
     # speed_targets.py's section stays (it regenerates it on its own).
-    report.write_page_keeping("deposit-speed.md", "\n".join(lines), ["paper-protocol"])
+    report.write_page_keeping("deposit-speed.md", page(measured), ["paper-protocol"])
     shutil.rmtree(work)
 
 

@@ -3,7 +3,8 @@
 against the change in k_eff and the seed-to-seed spread (the view-factor error as k_eff sees it),
 and the Newton tolerance 1e-4 … 1e-12 against the change in k_eff and the wall-flow mismatch,
 each with its wall time; which are the cheapest settings within 1 % of the most accurate.
-Writes docs/results/keff-accuracy.md and keff-accuracy.png. Run with python3:
+Writes docs/results/keff-accuracy.md (its prose: bench/studies/templates/keff-accuracy.md.in)
+and keff-accuracy.png. Run with python3:
     POWDERBED_BUILD=build python3 bench/studies/keff_accuracy.py
 
 Bed: the 1,100-particle steel 1 mm validation bed of keff_speed.py (deposit, seed 1, lid held;
@@ -217,103 +218,54 @@ def stored_machine(saved):
         f"{saved.get('build', 'keff binary build time not recorded')}.")
 
 
-def page(rays_tables, tol_tables, rays_best, tol_best, machine):
+def rays_block(label, rows, k_ref):
+    """One case's ray table under its heading."""
     lines = [
-        "# keff: accuracy against time",
+        f"### {label}",
         "",
-        "Regenerate: `POWDERBED_BUILD=build python3 bench/studies/keff_accuracy.py` "
-        "(a Release build; the bed is keff_speed.py's, made once in out/studies/keff-speed/; "
-        "`--report` rewrites this page from the last run's measurements, accuracy-runs.json "
-        "there). "
-        "Issue 6: *rays per particle 1e2 … 1e5 against the change in k_eff and view-factor "
-        "error, and the Newton tolerance, each with wall time; the default is the cheapest "
-        "setting within 1 % of the most accurate*; and the hot and cold wall flows agree to "
-        "1e-8.",
+        f"k_ref = {k_ref:.5f} W/mK (its own standard error "
+        f"{rows[-1]['sd'] / np.sqrt(len(SEEDS)) / k_ref * 100:.3f} %).",
         "",
-        "Bed: the steel 1 mm validation bed (1,100 spheres, `deposit --config "
-        "data/scenes/ke2016-steel-1mm-held-lid-bed.ini --seed 1`, lid held). keff: "
-        "data/scenes/ke2016-steel-1mm.ini with `--effects.radiation true` (ε = 0.5 spheres and "
-        "walls unless the case says ε = 1) and `--gas.model air` (k_g of each gas link at its "
-        "temperature), one thread. "
-        "Times: keff's own `wall_time` (after reading the bed) and the whole process, "
-        "medians. " + machine,
-        "",
-        "## Rays per particle",
-        "",
-        f"Three view-factor seeds (`--radiation.seed` {', '.join(map(str, SEEDS))}) per ray "
-        "count; the reference k_ref is the mean of the three seeds at 1e5 rays. *max dev*: "
-        "the largest |k_eff − k_ref| / k_ref of the three seeds (what one run risks); *seed sd*: "
-        "their standard deviation over the mean: the Monte-Carlo error of the view factors as "
-        "k_eff feels it.",
-        "",
+        "| rays | k_eff (W/mK), mean ± sd of seeds | seed sd / k | max dev | |mean − k_ref| "
+        "/ k_ref | view-factor error | radiation share, mean ± sd | Newton steps | "
+        "wall-flow mismatch | keff wall_time (s) | process (s) |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
-    for label, (rows, k_ref) in rays_tables.items():
-        lines += [
-            f"### {label}",
-            "",
-            f"k_ref = {k_ref:.5f} W/mK (its own standard error "
-            f"{rows[-1]['sd'] / np.sqrt(len(SEEDS)) / k_ref * 100:.3f} %).",
-            "",
-            "| rays | k_eff (W/mK), mean ± sd of seeds | seed sd / k | max dev | |mean − k_ref| "
-            "/ k_ref | view-factor error | radiation share, mean ± sd | Newton steps | "
-            "wall-flow mismatch | keff wall_time (s) | process (s) |",
-            "|---|---|---|---|---|---|---|---|---|---|---|",
-        ]
-        for r in rows:
-            ref = r["rays"] == RAYS[-1]
-            max_dev = "(reference)" if ref else f"{r['max_dev'] * 100:.3f} %"
-            mean_dev = "—" if ref else f"{r['mean_dev'] * 100:.3f} %"
-            lines.append(
-                f"| {r['rays']:g} | {r['mean']:.5f} ± {r['sd']:.5f} | "
-                f"{r['sd'] / r['mean'] * 100:.3f} % | {max_dev} | {mean_dev} | "
-                f"{r['vf_error']:.2e} | {r['share']:.4f} ± {r['share_sd']:.4f} | {r['newton']} | "
-                f"{r['mismatch']:.1e} | {r['own']:.3f} | {r['wall']:.3f} |")
-        lines.append("")
-    partners = next(iter(rays_tables.values()))[0][RAYS.index(DEFAULT_RAYS)]["partners"]
-    lines += [
-        "**View factors themselves.** *view-factor error* is keff's `view_factor_error`: the "
-        "reciprocity mismatch √Σ(A_i F_ij − A_j F_ji)² / √Σ S_ij² over the pairs (exact view "
-        "factors give 0; mean of the seeds). One F_ij from N rays has the binomial standard error "
-        "√(F(1−F)/N): ≈ 3/√N relative for the typical F_ij ≈ 0.1 of a sphere's ~10 neighbours "
-        "(9 % at 1e3 rays, 1 % at 1e5); but each sphere exchanges with some "
-        f"{partners:.0f} others (radiation links at {DEFAULT_RAYS:g} rays) and k_eff sums them over 1,100 "
-        "spheres, so these errors mostly average out: the seed spread of k_eff is far below "
-        "that of a single F_ij, as the view-factor error column (1/√N) against the k_eff "
-        "columns shows.",
-        "",
-        "## Newton tolerance",
-        "",
-        "`--newton-tolerance` (stop at ‖net flows‖ / ‖Σ |link flows|‖ below it), default "
-        f"{DEFAULT_RAYS:g} "
-        f"rays, seed 1, {REPEATS} runs each (the answer is the same; times are medians). "
-        "|Δk|/k: against the tightest tolerance that converged. Mismatch: |Q_hot − Q_cold| / "
-        "Q_hot. The wide case (walls 1300 / 700 K) is where T⁴ is far from linear over the bed.",
-        "",
-    ]
-    for label, rows in tol_tables.items():
-        lines += [
-            f"### {label}",
-            "",
-            "| tolerance | k_eff (W/mK) | |Δk|/k | Newton steps | final residual | CG/BiCGSTAB "
-            "iterations | wall-flow mismatch | keff wall_time (s) | process (s) |",
-            "|---|---|---|---|---|---|---|---|---|",
-        ]
-        for r in rows:
-            if "error" in r:
-                lines.append(f"| {r['tol']:g} | {r['error']} | | | | | | | |")
-                continue
-            lines.append(
-                f"| {r['tol']:g} | {r['k']:.10f} | {r['dev']:.1e} | {r['newton']} | "
-                f"{r['residual']:.1e} | {r['solver']} | {r['mismatch']:.1e} | {r['own']:.3f} | "
-                f"{r['wall']:.3f} |")
-        lines.append("")
-    lines += ["![rays and Newton tolerance](keff-accuracy.png)", ""]
-    lines += findings(rays_tables, tol_tables, rays_best, tol_best)
+    for r in rows:
+        ref = r["rays"] == RAYS[-1]
+        max_dev = "(reference)" if ref else f"{r['max_dev'] * 100:.3f} %"
+        mean_dev = "—" if ref else f"{r['mean_dev'] * 100:.3f} %"
+        lines.append(
+            f"| {r['rays']:g} | {r['mean']:.5f} ± {r['sd']:.5f} | "
+            f"{r['sd'] / r['mean'] * 100:.3f} % | {max_dev} | {mean_dev} | "
+            f"{r['vf_error']:.2e} | {r['share']:.4f} ± {r['share_sd']:.4f} | {r['newton']} | "
+            f"{r['mismatch']:.1e} | {r['own']:.3f} | {r['wall']:.3f} |")
     return "\n".join(lines)
 
 
-def findings(rays_tables, tol_tables, rays_best, tol_best):
-    out = ["## What the numbers say", ""]
+def tolerance_block(label, rows):
+    """One case's tolerance table under its heading."""
+    lines = [
+        f"### {label}",
+        "",
+        "| tolerance | k_eff (W/mK) | |Δk|/k | Newton steps | final residual | CG/BiCGSTAB "
+        "iterations | wall-flow mismatch | keff wall_time (s) | process (s) |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        if "error" in r:
+            lines.append(f"| {r['tol']:g} | {r['error']} | | | | | | | |")
+            continue
+        lines.append(
+            f"| {r['tol']:g} | {r['k']:.10f} | {r['dev']:.1e} | {r['newton']} | "
+            f"{r['residual']:.1e} | {r['solver']} | {r['mismatch']:.1e} | {r['own']:.3f} | "
+            f"{r['wall']:.3f} |")
+    return "\n".join(lines)
+
+
+def ray_cases(rays_tables):
+    """A finding per case: the default ray count against the reference and the seeds' sd."""
+    out = []
     i_def = RAYS.index(DEFAULT_RAYS)
     for label, (rows, _) in rays_tables.items():
         d, top = rows[i_def], rows[-1]
@@ -326,41 +278,54 @@ def findings(rays_tables, tol_tables, rays_best, tol_best):
             f"{rows[-2]['sd'] / rows[-2]['mean'] * 100:.3f} % at 3e4 (an sd of three seeds is "
             "itself uncertain by about ±50 %); below 1e3 rays the deviation is mostly bias "
             "(next point), not spread.")
+    return "\n".join(out)
+
+
+def rays_verdict(rays_best):
+    """The finding on the cheapest ray count (cheapest_rays) against the default."""
+    if not rays_best:
+        return "- **Rays: no count below 1e5 keeps every seed within 1 %**"
+    text = (f"- **Rays: the cheapest count with every seed within 1 % of 1e5 rays, in every "
+            f"case, is {rays_best:g}**")
+    if rays_best == DEFAULT_RAYS:
+        return text + f": the default ({DEFAULT_RAYS:g}, data/scenes/ke2016-*.ini and keff's own) is it."
+    return text + f": the default ({DEFAULT_RAYS:g}) should become {rays_best:g}."
+
+
+def rays_advice(worst, rays_best):
+    """The finding that a cheaper count than the default passes, on a line of its own ("" when
+    none does): `worst` is [(rays, worst seed deviation over the cases)]."""
+    if not (rays_best and rays_best < DEFAULT_RAYS):
+        return ""
+    nxt = next((r, d) for r, d in worst if r > rays_best)
+    return (
+        f"\n- By the issue's rule the default becomes {rays_best:g} rays (worst case "
+        f"{dict(worst)[rays_best] * 100:.2f} %, {0.01 / dict(worst)[rays_best]:.1f}× inside "
+        f"1 %); {nxt[0]:g} rays keep a {0.01 / nxt[1]:.0f}× margin ({nxt[1] * 100:.2f} %) "
+        f"for a little more time, the default {DEFAULT_RAYS:g} "
+        f"{0.01 / dict(worst)[DEFAULT_RAYS]:.0f}× (times: tables above).")
+
+
+def ray_findings(rays_tables, rays_best):
+    """The template's values of the findings on the rays."""
     bias = [(label, rows[0]["mean"] / k_ref - 1, rows[0]["sd"] / rows[0]["mean"] / np.sqrt(3))
             for label, (rows, k_ref) in rays_tables.items()]
-    out.append(
-        "- Bias at 1e2 rays (mean of the seeds against k_ref, ± the standard error of that "
-        "mean): " + "; ".join(f"{label} {b * 100:+.2f} ± {e * 100:.2f} %" for label, b, e in bias)
-        + ". Few rays lean low: a pair's conductance 1/(surface terms + 1/(A F)) is concave in "
-        "F, and a network's effective conductance is concave in its link conductances, so "
-        "zero-mean noise in F lowers k_eff on average (Jensen).")
-    out.append(
-        f"- **Rays: the cheapest count with every seed within 1 % of 1e5 rays, in every "
-        f"case, is {rays_best:g}**" if rays_best else
-        "- **Rays: no count below 1e5 keeps every seed within 1 %**")
-    if rays_best:
-        if rays_best == DEFAULT_RAYS:
-            out[-1] += f": the default ({DEFAULT_RAYS:g}, data/scenes/ke2016-*.ini and keff's own) is it."
-        else:
-            out[-1] += f": the default ({DEFAULT_RAYS:g}) should become {rays_best:g}."
     worst = [(rays, max(rows[i]["max_dev"] for rows, _ in rays_tables.values()))
              for i, rays in enumerate(RAYS[:-1])]
-    out.append(
-        "- Worst single-seed deviation over the cases, by ray count: "
-        + ", ".join(f"{rays:g}: {dev * 100:.2f} %" for rays, dev in worst)
-        + ". It is mostly the low bias above. At ε = 0.5 it grew with the radiation share "
-        "(300 → 1000 → 1500 K); with ε = 1 it was smaller at a larger share, the pair "
-        f"conductance A F being linear in F there (what is left, {bias[-1][1] * 100:+.2f} %, "
-        "is the network's own concavity, previous point). A bed hotter or of larger particles than these would move the cheapest "
-        "passing count up.")
-    if rays_best and rays_best < DEFAULT_RAYS:
-        nxt = next((r, d) for r, d in worst if r > rays_best)
-        out.append(
-            f"- By the issue's rule the default becomes {rays_best:g} rays (worst case "
-            f"{dict(worst)[rays_best] * 100:.2f} %, {0.01 / dict(worst)[rays_best]:.1f}× inside "
-            f"1 %); {nxt[0]:g} rays keep a {0.01 / nxt[1]:.0f}× margin ({nxt[1] * 100:.2f} %) "
-            f"for a little more time, the default {DEFAULT_RAYS:g} "
-            f"{0.01 / dict(worst)[DEFAULT_RAYS]:.0f}× (times: tables above).")
+    return {
+        "ray_cases": ray_cases(rays_tables),
+        "bias": "; ".join(f"{label} {b * 100:+.2f} ± {e * 100:.2f} %" for label, b, e in bias),
+        "rays_verdict": rays_verdict(rays_best),
+        "worst": ", ".join(f"{rays:g}: {dev * 100:.2f} %" for rays, dev in worst),
+        # the last case is the black one (ε = 1)
+        "black_bias": f"{bias[-1][1] * 100:+.2f} %",
+        "rays_advice": rays_advice(worst, rays_best),
+    }
+
+
+def tolerance_cases(tol_tables):
+    """A finding per case: the loosest, the default and the tightest tolerance."""
+    out = []
     i_tol = TOLERANCES.index(DEFAULT_TOLERANCE)
     for label, rows in tol_tables.items():
         d = rows[i_tol]
@@ -375,33 +340,61 @@ def findings(rays_tables, tol_tables, rays_best, tol_best):
             f"default 1e-10 → {d['newton']} steps, mismatch {d['mismatch']:.1e}, "
             f"{d['own']:.3f} s; {tight['tol']:g} → {tight['newton']} steps, {tight['own']:.3f} s. "
             "The rays, not Newton, set the time.")
+    return "\n".join(out)
+
+
+def tolerance_verdict(tol_tables, tol_best):
+    """The finding on the loosest tolerance within 1 % and with the wall flows to 1e-8."""
     within_1pc = loosest_within(tol_tables, "dev", 0.01)
     flows = loosest_within(tol_tables, "mismatch", MISMATCH_LIMIT)
-    out.append(f"- **Newton tolerance**: k_eff is within 1 % of the tightest from {within_1pc:g} on"
-               if within_1pc else "- **Newton tolerance**: no tolerance is within 1 %")
-    out[-1] += (f"; the wall flows agree to 1e-8 from {flows:g} on" if flows else
-                "; no tolerance makes the wall flows agree to 1e-8")
-    out[-1] += (f". The loosest setting meeting both on this bed is {tol_best:g}"
-                if tol_best else "")
+    text = (f"- **Newton tolerance**: k_eff is within 1 % of the tightest from {within_1pc:g} on"
+            if within_1pc else "- **Newton tolerance**: no tolerance is within 1 %")
+    text += (f"; the wall flows agree to 1e-8 from {flows:g} on" if flows else
+             "; no tolerance makes the wall flows agree to 1e-8")
+    text += (f". The loosest setting meeting both on this bed is {tol_best:g}"
+             if tol_best else "")
     if tol_best and tol_best < DEFAULT_TOLERANCE:
-        out[-1] += f": the default 1e-10 is not enough; it should become {tol_best:g}."
+        text += f": the default 1e-10 is not enough; it should become {tol_best:g}."
     elif tol_best:
-        out[-1] += " (next point for why the default should stay tighter)."
+        text += " (next point for why the default should stay tighter)."
+    return text
+
+
+def tolerance_findings(tol_tables, tol_best):
+    """The template's values of the findings on the Newton tolerance: the cases, the verdict,
+    and the tolerance that holds the wall flows to 1e-8 by its bound (the mismatch is up to
+    `ratio` times the residual the tolerance bounds)."""
     ratios = [r["mismatch"] / r["residual"] for rows in tol_tables.values() for r in rows
               if "error" not in r and r["residual"] >= 1e-12]  # above round-off
     big = big_bed_ratio()
     worst = max(ratios + ([big[0]] if big else []))
-    bound = max(t for t in TOLERANCES if t <= MISMATCH_LIMIT / worst)
-    out.append(
-        f"- The wall-flow mismatch is up to {max(ratios):.0f}× the final relative residual on "
-        "this bed (it is the sum of the particles' net flows, the residual their norm)"
-        + (f", {big[0]:.0f}× on the 100,000-particle bed of keff-speed.md (mismatch "
-           f"{big[1]:.1e} at residual {big[2]:.1e})" if big else "")
-        + f". To hold the issue's 1e-8 by the tolerance's bound and not by luck, the tolerance "
-        f"must be ≤ 1e-8 / {worst:.0f} ≈ {1e-8 / worst:.0e}: of the values studied, "
-        f"**{bound:g}**. Looser tolerances passed above only because a Newton step lands far "
-        "below its target; tightening costs at most one Newton step (the time columns).")
-    return out + [""]
+    return {
+        "tolerance_cases": tolerance_cases(tol_tables),
+        "tolerance_verdict": tolerance_verdict(tol_tables, tol_best),
+        "ratio": f"{max(ratios):.0f}",
+        "big_bed": (f", {big[0]:.0f}× on the 100,000-particle bed of keff-speed.md (mismatch "
+                    f"{big[1]:.1e} at residual {big[2]:.1e})" if big else ""),
+        "worst_ratio": f"{worst:.0f}",
+        "bound_exact": f"{MISMATCH_LIMIT / worst:.0e}",
+        "bound": f"{max(t for t in TOLERANCES if t <= MISMATCH_LIMIT / worst):g}",
+    }
+
+
+def page(rays_tables, tol_tables, rays_best, tol_best, machine):
+    """The page: templates/keff-accuracy.md.in with the tables of both studies and what they
+    say."""
+    partners = next(iter(rays_tables.values()))[0][RAYS.index(DEFAULT_RAYS)]["partners"]
+    values = {
+        "machine": machine, "seeds": ", ".join(map(str, SEEDS)),
+        "default_rays": f"{DEFAULT_RAYS:g}", "repeats": REPEATS, "partners": f"{partners:.0f}",
+        "rays_tables": "\n\n".join(rays_block(label, rows, k_ref)
+                                   for label, (rows, k_ref) in rays_tables.items()),
+        "tolerance_tables": "\n\n".join(tolerance_block(label, rows)
+                                        for label, rows in tol_tables.items()),
+        **ray_findings(rays_tables, rays_best),
+        **tolerance_findings(tol_tables, tol_best),
+    }
+    return report.fill_template("keff-accuracy.md.in", values)
 
 
 def main():

@@ -3,7 +3,8 @@
 with radiation at the default ray count (the scene's, 100 per particle) in under 5 s, a 100,000-particle bed in under
 2 minutes. Whole-process wall time, keff's own `wall_time` and peak memory (/usr/bin/time -v) at
 1 and 2 OpenMP threads, radiation off and on, medians of 3 runs; beds of 1.1e3, 1e4 and 1e5
-particles for the scaling. Writes docs/results/keff-speed.md. Run with python3:
+particles for the scaling. Writes docs/results/keff-speed.md (its prose:
+bench/studies/templates/keff-speed.md.in). Run with python3:
     POWDERBED_BUILD=build python3 bench/studies/keff_speed.py
 
 Beds (kept in out/studies/keff-speed/):
@@ -67,58 +68,24 @@ def fmt_s(t):
     return f"{t:.3f}" if t < 1 else f"{t:.2f}" if t < 10 else f"{t:.1f}"
 
 
-def page(beds, rows, loads, prof, machine):
-    lines = [
-        "# keff speed",
-        "",
-        "Regenerate: `POWDERBED_BUILD=build python3 bench/studies/keff_speed.py` (a "
-        "Release build; beds are made once and kept in out/studies/keff-speed/; `--report` "
-        "rewrites this page from the last run's measurements, speed-runs.json there). Issue 6's "
-        "targets: the 1,100-particle validation bed **with radiation at the default ray count "
-        f"({RAYS} per particle) in under 5 s**, a **100,000-particle bed in under 2 minutes**.",
-        "",
-        f"keff with data/scenes/ke2016-steel-1mm.ini (contact with the Hertz reading, gas lens "
-        f"larger-lens, k_g constant), `--temperature {TEMPERATURE:g}` (walls ±0.5 K), radiation "
-        f"off or on (ε = 0.5, `--rays {RAYS}`, the default). Times are medians of "
-        f"{REPEATS} runs: *process* = the whole keff process (reading the bed, building the "
-        "network, view factors, solve, output), *keff* = its own `wall_time` (from after "
-        "reading the bed to the answer), *CPU* = user + system seconds of the process (less "
-        "sensitive to the other jobs on the machine than wall time; with 2 threads it includes "
-        "the OpenMP threads' waiting). Peak memory: maximum resident set of the process "
-        "(/usr/bin/time -v). Threads: OMP_NUM_THREADS (the view-factor rays run in parallel; "
-        "the answer is the same bit for bit). " + machine,
-        "",
-        "## Beds",
-        "",
-        "| bed | particles | made by | box width (D) | program wall_time to make it (s) | "
-        "contact links | gas links | radiation links |",
-        "|---|---|---|---|---|---|---|---|",
-    ]
+def beds_table(beds):
+    """Every bed: how it was made and the links keff found in it."""
+    lines = report.table_head("bed", "particles", "made by", "box width (D)",
+                              "program wall_time to make it (s)", "contact links", "gas links",
+                              "radiation links")
     for b in beds:
         lines.append(f"| {b['label']} | {b['n']:,} | {b['how']} | {b['box']} | "
                      f"{fmt_s(b['make'])} | {b['links'][0]:,} | {b['links'][1]:,} | "
                      f"{b['links'][2]:,} |")
-    contact_share = max(m["summary"]["share"]["contact"] for b, _, _, m in rows
-                        if b["how"].startswith("packgen") and not b["label"].endswith("%"))
-    lines += [
-        "",
-        "packgen's spheres touch exactly (overlap ≤ 1e-12 relative): keff still lists the "
-        "pairs whose round-off overlap is positive as contact links, but their contact radius "
-        f"is below 1e-6 r and they carry {contact_share:.0e} of the heat at most (share, "
-        "table below): gas and radiation carry it all. The *+0.1 %* beds are the same centres "
-        "with every radius grown by 0.1 % (the top wall moved with them), which turns every "
-        "touching pair into a contact: the harder case for the solver, and closer to a real "
-        "bed. packgen fills from the floor (approach 3, lowest site first); keff's hot wall is "
-        "put at the highest sphere top (41.8 D for 100,000 spheres in 46 × 46 D). The deposit "
-        "beds are DEM beds with the lid held on (the validation bed is the 1,100 one).",
-        "",
-        "## Times",
-        "",
-        "| bed | particles | radiation | threads | process (s) | keff wall_time (s) | process CPU "
-        "(s) | peak memory (MiB) | Newton steps | CG/BiCGSTAB iterations | k_eff (W/mK) | "
-        "contact / gas / radiation share | wall-flow mismatch | target |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
-    ]
+    return "\n".join(lines)
+
+
+def times_table(rows):
+    """Every run, with the issue's target where one applies to its bed."""
+    lines = report.table_head("bed", "particles", "radiation", "threads", "process (s)",
+                              "keff wall_time (s)", "process CPU (s)", "peak memory (MiB)",
+                              "Newton steps", "CG/BiCGSTAB iterations", "k_eff (W/mK)",
+                              "contact / gas / radiation share", "wall-flow mismatch", "target")
     for b, radiation, threads, m in rows:
         s = m["summary"]
         target = ""
@@ -134,20 +101,31 @@ def page(beds, rows, loads, prof, machine):
             f"{s['share']['radiation']:.3f} | "
             f"{abs(s['heat_flow_hot'] - s['heat_flow_cold']) / s['heat_flow_hot']:.1e} | "
             f"{target} |")
-    if prof:
-        lines += [
-            "",
-            f"## Where the time goes ({PROFILED}, radiation on, one thread)",
-            "",
-            "`perf record` (199 Hz) of one run, `perf report --sort symbol`, functions over 1 % "
-            "of the samples (inlined callees count in their caller):",
-            "",
-            "| samples | function |",
-            "|---|---|",
-        ]
-        lines += [f"| {pct:.1f} % | `{name}` |" for pct, name in prof]
-    lines += ["", *findings(beds, rows, prof, loads), ""]
     return "\n".join(lines)
+
+
+def profile_section(prof):
+    """The section on where the time goes, after the times table; "" without a profile (no
+    perf on the machine)."""
+    if not prof:
+        return ""
+    lines = ["", "", f"## Where the time goes ({PROFILED}, radiation on, one thread)", "",
+             "`perf record` (199 Hz) of one run, `perf report --sort symbol`, functions over 1 % "
+             "of the samples (inlined callees count in their caller):", "",
+             *report.table_head("samples", "function")]
+    lines += [f"| {pct:.1f} % | `{name}` |" for pct, name in prof]
+    return "\n".join(lines)
+
+
+def page(beds, rows, loads, prof, machine):
+    """The page: templates/keff-speed.md.in with the beds, the runs and what they say."""
+    contact_share = max(m["summary"]["share"]["contact"] for b, _, _, m in rows
+                        if b["how"].startswith("packgen") and not b["label"].endswith("%"))
+    return report.fill_template("keff-speed.md.in", {
+        "rays": RAYS, "temperature": f"{TEMPERATURE:g}", "repeats": REPEATS, "machine": machine,
+        "beds_table": beds_table(beds), "contact_share": f"{contact_share:.0e}",
+        "times_table": times_table(rows), "profile": profile_section(prof),
+        "findings": "\n".join(findings(beds, rows, prof, loads))})
 
 
 def pick(rows, label, radiation, threads):
@@ -155,9 +133,10 @@ def pick(rows, label, radiation, threads):
 
 
 def findings(beds, rows, prof, loads):
+    """The lines of the page's findings (a list under its heading)."""
     v_on, v_off = pick(rows, VALIDATION, True, 1), pick(rows, VALIDATION, False, 1)
     v_on2 = pick(rows, VALIDATION, True, 2)
-    out = ["## What the numbers say", ""]
+    out = []
     out.append(
         f"- **Validation bed (1,100, radiation, {RAYS} rays): {fmt_s(v_on['wall'])} s** for the "
         f"whole process on one thread (CPU {fmt_s(v_on['cpu'])} s; {fmt_s(v_on2['wall'])} s on "

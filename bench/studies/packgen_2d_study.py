@@ -6,7 +6,8 @@ lib/references.py LP_2D).
 collision grid of spacing h = 0.015 um and packgen's 2D defaults; the diameter reading of the Gauss
 window with --alt-samples; then one-at-a-time sensitivity runs (--sens-samples seeds each) over
 tries, directions, max-failures and retire-after. Coordination is counted on the written beds at
-absolute surface gaps of order h (docs/physics.md §3). Writes docs/results/packgen-2d-study.md and .png.
+absolute surface gaps of order h (docs/physics.md §3). Writes docs/results/packgen-2d-study.md (its
+prose: bench/studies/templates/packgen-2d-study.md.in) and .png.
 Usage: POWDERBED_BUILD=build bench/studies/packgen_2d_study.py [--samples N] [--alt-samples N]
        [--sens-samples N]
 """
@@ -151,30 +152,15 @@ def main():
             sens.append((index, extra, run_case(case[1], case[2], seeds or args.sens_samples,
                                                 workdir, extra)))
     plot(results, os.path.join(report.RESULTS, "packgen-2d-study.png"))
+    path = report.write_page("packgen-2d-study.md", page(results, sens, args, report.machine(load)))
+    print(path)
 
-    lines = [
-        "# packgen: the 2D study of Luberto & de Payrebrune",
-        "",
-        f"Regenerate: `POWDERBED_BUILD=build bench/studies/packgen_2d_study.py --samples "
-        f"{args.samples} --alt-samples {args.alt_samples} --sens-samples {args.sens_samples}` "
-        "(Release build; needs python3 with h5py, scipy, matplotlib).",
-        "",
-        report.machine(load),
-        "",
-        "Settings of the paper: 4.0 × 4.0 µm square, raster collision grid h = 0.015 µm "
-        f"(`--collision raster --raster-spacing 1.5e-08`), {args.samples} samples per case "
-        f"(seeds 1..{args.samples}; the diameter reading of the Gauss window: {args.alt_samples}). "
-        "Everything else is packgen's 2D default: `--tries 1000` (n_T), `--directions 10` (K, "
-        "evenly spaced angles with a random offset, shuffled), `--max-failures 100` (stop after "
-        "100 consecutive sizes given up), `--retire-after 32` (a particle leaves the partner list "
-        "after 32 consecutive failed tries around it).",
-        "Each cell: mean (min–max, sd) over the samples; ✗ marks a mean outside the paper's range. "
-        "Z counts particle–particle contacts (walls apart) at a surface gap ≤ g.",
-        "",
-        "| case | particles | paper | density | paper | Z gap ≤ h | Z gap ≤ √2 h | Z gap ≤ 2 h "
-        "| Z strict (tol 1e-6) | paper Z | gap g/h giving paper Z | wall time s |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|",
-    ]
+
+def case_table(results):
+    """Per paper case: our samples' particles, density and Z against the paper's ranges."""
+    lines = report.table_head("case", "particles", "paper", "density", "paper", "Z gap ≤ h",
+                              "Z gap ≤ √2 h", "Z gap ≤ 2 h", "Z strict (tol 1e-6)", "paper Z",
+                              "gap g/h giving paper Z", "wall time s")
     for case, rows in results:
         pn, pd, pz = PAPER[case[3]]
         zs = " | ".join(fmt(z_at(rows, g), 2) + mark(z_at(rows, g), pz) for _, g in GAPS)
@@ -183,32 +169,36 @@ def main():
             f"| {fmt(col(rows, 'density'), 3)}{mark(col(rows, 'density'), pd)} | {pd[0]}–{pd[1]} "
             f"| {zs} | {fmt(col(rows, 'z_strict'), 2)} | {pz[0]}–{pz[1]} "
             f"| {gap_window(rows, pz)} | {mean(col(rows, 'wall')):.3f} |")
-    lines += ["", "![histograms](packgen-2d-study.png)", ""]
+    return "\n".join(lines)
 
-    lines += [
-        "## Sensitivity to the rule parameters",
-        "",
-        f"One change at a time from the 2D defaults, {args.sens_samples} seeds each (fewer where "
-        "stated); mean over the seeds.",
-        "",
-        "| case | change | seeds | particles | density | Z gap ≤ h | Z gap ≤ 2 h | wall time s |",
-        "|---|---|---|---|---|---|---|---|",
-    ]
+
+def sensitivity_table(results, sens, sens_samples):
+    """Per case of the paper's settings: its defaults (the first `sens_samples` seeds) and each
+    one-at-a-time change, mean over the seeds."""
+    lines = report.table_head("case", "change", "seeds", "particles", "density", "Z gap ≤ h",
+                              "Z gap ≤ 2 h", "wall time s")
 
     def sens_line(label, change, rows):
         return (f"| {label} | {change} | {len(rows)} | {mean(col(rows, 'n')):.0f} "
                 f"| {mean(col(rows, 'density')):.3f} | {mean(z_at(rows, 1.0)):.2f} "
                 f"| {mean(z_at(rows, 2.0)):.2f} | {mean(col(rows, 'wall')):.3f} |")
     for index in range(4):
-        base = results[index][1][:args.sens_samples]
+        base = results[index][1][:sens_samples]
         lines.append(sens_line(CASES[index][0], "defaults", base))
         for i, extra, rows in sens:
             if i == index:
                 lines.append(sens_line(CASES[index][0], "`" + " ".join(extra) + "`", rows))
-    lines.append("")
-    lines += why_section(results, sens)
-    path = report.write_page("packgen-2d-study.md", "\n".join(lines) + "\n")
-    print(path)
+    return "\n".join(lines)
+
+
+def page(results, sens, args, machine):
+    """The page: templates/packgen-2d-study.md.in with the tables and the findings."""
+    return report.fill_template("packgen-2d-study.md.in", {
+        "samples": args.samples, "alt_samples": args.alt_samples,
+        "sens_samples": args.sens_samples, "machine": machine,
+        "case_table": case_table(results),
+        "sensitivity_table": sensitivity_table(results, sens, args.sens_samples),
+        **why_values(results, sens)})
 
 
 def where(value, rng):
@@ -233,90 +223,45 @@ def find(sens, index, extra):
     raise KeyError(extra)
 
 
-def why_section(results, sens):
-    """The findings, with every number taken from this run."""
+def why_values(results, sens):
+    """The numbers of the findings (the page's "Why the numbers differ"), all from this run."""
     rows = [r for _, r in results]
-    d = lambda rs: mean(col(rs, "density"))  # noqa: E731
-    n = lambda rs: mean(col(rs, "n"))  # noqa: E731
-    k_scan = [(k, d(find(sens, 1, ["--directions", str(k)]))) for k in (6, 8, 12, 16, 32)]
-    k_scan.insert(2, (10, d(rows[1])))
-    m1_never = find(sens, 1, ["--retire-after", "0"])
-    m1_never16 = find(sens, 1, ["--directions", "16", "--retire-after", "0"])
-    m1_r8 = find(sens, 1, ["--retire-after", "8"])
-    m0_mf = [(m, d(find(sens, 0, ["--max-failures", str(m)]))) for m in (1, 10)]
-    m0_mf.append((100, d(rows[0])))
-    m0_mf.append((1000, d(find(sens, 0, ["--max-failures", "1000"]))))
+
+    def d(rs):  # the samples' mean density
+        return f"{mean(col(rs, 'density')):.3f}"
+
+    def n(rs):  # the samples' mean particle count
+        return f"{mean(col(rs, 'n')):.0f}"
+    k_scan = [(k, mean(col(find(sens, 1, ["--directions", str(k)]), "density")))
+              for k in (6, 8, 12, 16, 32)]
+    k_scan.insert(2, (10, mean(col(rows[1], "density"))))
+    m0_mf = [(m, find(sens, 0, ["--max-failures", str(m)])) for m in (1, 10)]
+    m0_mf += [(100, rows[0]), (1000, find(sens, 0, ["--max-failures", "1000"]))]
     g0_first = find(sens, 2, ["--max-failures", "1"])
     g0_early = find(sens, 2, ["--tries", "10", "--max-failures", "10"])
     g1_never = find(sens, 3, ["--retire-after", "0"])
-    return [
-        "## Why the numbers differ",
-        "",
-        "**What the paper fixes and what it leaves open.** [LP] give the square, h, the PSD, "
-        "the three approaches, n_T (a new size after n_T failed tries) and a random choice of "
-        "the 1-contact partner with a set of directions tried in random order. They give neither "
-        "K (how many directions), nor n_T's value, nor when a run stops. packgen's raster "
-        "back-end is the paper's status grid, so what remains open is exactly K, n_T and the "
-        "stop rule; the sensitivity table shows what each moves.",
-        "",
-        "**Monodisperse 1-contact: K sets the density.** At saturation the density grows with the "
-        "number of directions: " + ", ".join(f"K = {k}: φ = {v:.3f}" for k, v in k_scan) +
-        f". The paper's 0.62–0.64 is met at K = {', '.join(str(k) for k, v in k_scan if 0.62 <= v <= 0.64) or 'none'}; "
-        f"the partner rule moves it less (never retiring, the paper's pure random choice, gives "
-        f"{d(m1_never16):.3f} at K = 16 and {d(m1_never):.3f} at K = 10; retiring after 8 "
-        f"failed tries gives {d(m1_r8):.3f} at K = 10). packgen's 2D default K = 10 is therefore "
-        f"inferred from the paper's "
-        "density, not stated by the paper; the 3D default stays 16 (random directions on the "
-        "sphere, a different rule). n_T and the stop rule move the monodisperse 1-contact "
-        "density much less than K (see the table).",
-        "",
-        "**Monodisperse 0-contact: the stop rule is the only knob.** With one size, n_T tries "
-        "per size and M consecutive failed sizes make n_T·M consecutive failed random positions; "
-        "the density creeps towards the random-sequential-addition limit (0.547, plus the raster's "
-        "small overlaps): " + ", ".join(f"M = {m}: φ = {v:.3f}" for m, v in m0_mf) +
-        " (n_T = 1000). The paper's 0.55–0.57 needs n_T·M ≈ 1e5 or more, i.e. a run that stops "
-        "only near saturation.",
-        "",
-        f"**Gauss 0-contact: the paper stopped early.** With the consecutive-failure rule small "
-        f"particles keep fitting into the pores, each success resets the count, and the bed "
-        f"fills to φ = {d(rows[2]):.3f} with {n(rows[2]):.0f} particles, mostly small ones. The "
-        f"paper's 325–425 particles at φ = 0.42–0.52 are below its own monodisperse density: its "
-        f"run must have ended when the large sizes started to fail, before the pores were "
-        f"filled. Stopping at the first failed size (`--max-failures 1`) gives "
-        f"{n(g0_first):.0f} particles at φ = {d(g0_first):.3f}; n_T = 10 with M = 10 gives "
-        f"{n(g0_early):.0f} at φ = {d(g0_early):.3f} ({where(d(g0_early), (0.42, 0.52))} the paper's range). No "
-        f"consecutive-failure setting matches the monodisperse and the Gauss 0-contact case "
-        f"together: the monodisperse case needs the late stop, the Gauss case an early one. "
-        f"The miss is the stop rule, reported here, not tuned away.",
-        "",
-        f"**Gauss 1-contact: retiring partners acts as the stop.** With the default "
-        f"retire-after 32 the front of placed particles closes and the run ends with "
-        f"{n(rows[3]):.0f} particles at φ = {d(rows[3]):.3f} (paper: 525–575, 0.68–0.72). Never "
-        f"retiring (the pure random partner choice) keeps every particle a partner until small "
-        f"sizes have filled the pores: {n(g1_never):.0f} particles at φ = {d(g1_never):.3f} "
-        f"({len(g1_never)} seeds, {mean(col(g1_never, 'wall')):.0f} s each). The paper's "
-        "polydisperse numbers, like the 0-contact ones, describe a bed that stopped before the "
-        "small sizes filled it.",
-        "",
-        f"**The truncation window is on the radius.** Read as a diameter window (radii "
-        f"0.0075–0.075 µm) the beds hold {n(rows[4]):.0f} (0-contact) and {n(rows[5]):.0f} "
-        f"(1-contact) particles (paper: 325–425 and 525–575); the radius reading gives "
-        f"{n(rows[2]):.0f} and {n(rows[3]):.0f}. The 1-contact count is"
-        f" {n(rows[5]) / 575:.1f} times the paper's upper bound with the diameter "
-        f"reading and {n(rows[3]) / 525:.2f} times its lower bound with the radius reading. The "
-        f"study uses the radius reading.",
-        "",
-        "**Which contact tolerance reproduces the paper's coordination.** At the strict tolerance "
-        f"a 1-contact bed has Z = {mean(col(rows[1], 'z_strict')):.2f} (each particle touches "
-        "its partner exactly; further contacts are raster gaps of up to about h), far below the "
-        "paper's; its Z values mean a gap tolerance of order h. The last column of the first "
-        "table gives, per case, the gaps g/h at which our mean Z lies in the paper's range: "
-        + "; ".join(f"{case[0]}: {gap_window(r, PAPER[case[3]][2])}"
-                    for (case, r) in results[:4]) +
-        f". {common_gap(results[:4])} The paper's counting rule on the raster is not given; "
-        "we report Z at h, √2 h (the diagonal of a grid cell) and 2 h side by side.",
-        "",
-    ]
+    return {
+        "k_scan": ", ".join(f"K = {k}: φ = {v:.3f}" for k, v in k_scan),
+        "k_met": ", ".join(str(k) for k, v in k_scan if 0.62 <= v <= 0.64) or "none",
+        "phi_mono_never16": d(find(sens, 1, ["--directions", "16", "--retire-after", "0"])),
+        "phi_mono_never": d(find(sens, 1, ["--retire-after", "0"])),
+        "phi_mono_retire8": d(find(sens, 1, ["--retire-after", "8"])),
+        "stop_scan": ", ".join(f"M = {m}: φ = {d(rs)}" for m, rs in m0_mf),
+        "phi_gauss0": d(rows[2]), "n_gauss0": n(rows[2]),
+        "n_gauss_first": n(g0_first), "phi_gauss_first": d(g0_first),
+        "n_gauss_early": n(g0_early), "phi_gauss_early": d(g0_early),
+        "gauss_early_where": where(mean(col(g0_early, "density")), (0.42, 0.52)),
+        "n_gauss1": n(rows[3]), "phi_gauss1": d(rows[3]),
+        "n_gauss_never": n(g1_never), "phi_gauss_never": d(g1_never),
+        "seeds_gauss_never": len(g1_never), "wall_gauss_never": f"{mean(col(g1_never, 'wall')):.0f}",
+        "n_diameter0": n(rows[4]), "n_diameter1": n(rows[5]),
+        "diameter_over_upper": f"{mean(col(rows[5], 'n')) / 575:.1f}",
+        "radius_over_lower": f"{mean(col(rows[3], 'n')) / 525:.2f}",
+        "z_strict": f"{mean(col(rows[1], 'z_strict')):.2f}",
+        "gap_windows": "; ".join(f"{case[0]}: {gap_window(r, PAPER[case[3]][2])}"
+                                 for (case, r) in results[:4]),
+        "common_gap": common_gap(results[:4]),
+    }
 
 
 if __name__ == "__main__":

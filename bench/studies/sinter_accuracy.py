@@ -16,6 +16,10 @@ steps) and the implicit solves affordable. The ray-tracing rows run on that grid
 the rays decide where the power goes, the grid how it spreads. The implicit integrator has no ray
 tracing or wetting yet, so its rows (and their explicit reference) use Beer-Lambert without
 wetting. Runs use one thread: they compare settings.
+
+The page's prose is bench/studies/templates/sinter-accuracy.md.in; its "documented defaults"
+section is read off the tables by hand, so a regeneration that moves them asks for it to be
+rewritten.
 """
 import argparse
 import os
@@ -25,29 +29,9 @@ from lib.apps import pool_um
 
 SCENE = apps.GZ2016_SINTER_SCENE
 T_CUT = "3.6e-4"
-# Why the defaults are what they are, read off the tables of the last regeneration.
-DEFAULTS = """## The documented defaults
-
-- **Time step**: 0.9 x the forward-Euler bound (computed from the grid, the particles' lumped
-  capacitance and the laser's heating rate; docs/sinter.md). The paper's 5e-9 s moves the pool
-  by 0.62 um (depth 18.37 against 18.99 um) at 380x the steps.
-- **Phase-change window**: 20 K. Between 1 and 100 K the depth moves by 0.3 um; the width by up
-  to 1.6 um, without a trend: it is set by which particles at the pool's edge pass T_m.
-- **Integrator**: explicit. Backward Euler is stable at any step but its conjugate-gradient
-  solves cost more than the explicit steps they replace on this scene; it is there for stiffer
-  beds (tiny particles with large contacts), not for speed. It has no ray tracing or wetting
-  yet, hence the Beer-Lambert rows.
-- **Grid**: the validation scene keeps the paper's 5 um (201 x 101 x 61 nodes): within 0.5 um
-  of the 2.5 um run's depth and 1.4 um of its width at 1/40 of its time. The 10 um grid is
-  within 1.6 um of the depth and 6.3 um of the width at a tenth of the 5 um run's time: good for
-  sweeps of trends (`--grid-spacing 10e-6`), not for the numbers.
-- **Rays**: 4,000 per traced position. The bed's absorptance is converged to 2e-4 from 500 rays
-  on and the depth to 0.2 um; the width moves by up to 1.7 um between ray counts without a
-  trend (one particle at the pool's edge melting or not), as it does between windows.
-- **Re-trace interval**: 0.1 w. From 0.4 w to 0.025 w the absorptance changes by under 1e-3 and
-  the depth by under 0.2 um; the 0.1 w run takes 0.9 s against 0.5 s at 0.4 w (a quarter of
-  the traces) on this 10 um grid.
-"""
+# The time-step, integrator, ray and re-trace runs: the 10 um grid, stopped at T_CUT (why: the
+# module's doc).
+COARSE = ("--grid-spacing", "10e-6", "--t-end", T_CUT)
 
 
 def change(pool, ref):
@@ -62,7 +46,7 @@ def rows_table(title, rows, ref_label):
         pool = pool_um(s)
         out.append(f"| {label} | {pool[0]:.2f} | {pool[1]:.2f} | {pool[2]:.2f} | "
                    f"{change(pool, ref):.2f} | {s['steps']} | {wall:.1f} |")
-    return out
+    return "\n".join(out)
 
 
 def rays_table(title, rows, ref_label):
@@ -76,81 +60,88 @@ def rays_table(title, rows, ref_label):
         pool, absorptance = pool_um(s), s["ray_trace"]["bed_absorptance"]
         out.append(f"| {label} | {absorptance:.4f} | {absorptance - ref_abs:+.1e} | {pool[0]:.2f} | "
                    f"{pool[1]:.2f} | {pool[2]:.2f} | {change(pool, ref_pool):.2f} | {wall:.1f} |")
-    return out
+    return "\n".join(out)
 
 
-def main():
-    argparse.ArgumentParser(description=__doc__,
-                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
-    load = report.load_average()
-    bed = apps.gz2016_bed()
-    sections = []
+# Each knob's runs are [(label, sinter summary, wall s)], one table of the page each.
 
-    # Is the pool on x = Lx/2 complete at t = 3.6e-4 s?
+def cut_runs(bed):
+    """The whole track and the track stopped at T_CUT: is the pool on x = Lx/2 complete?"""
     full, wall_full = apps.sinter(SCENE, bed, "acc-full.h5")
     cut, wall_cut = apps.sinter(SCENE, bed, "acc-cut.h5", "--t-end", T_CUT)
-    sections += ["## Stopping at t = 3.6e-4 s does not change the pool on x = Lx/2", "",
-                 *rows_table("run", [("whole track", full, wall_full),
-                                     ("t_end = 3.6e-4 s", cut, wall_cut)], "whole track"), ""]
+    return [("whole track", full, wall_full), ("t_end = 3.6e-4 s", cut, wall_cut)]
 
+
+def grid_runs(bed):
     grid = []
     for h in ("10e-6", "5e-6", "2.5e-6"):
         s, wall = apps.sinter(SCENE, bed, f"acc-grid-{h}.h5", "--grid-spacing", h)
         grid.append((f"{float(h) * 1e6:g} um ({s['nodes']:,} nodes)", s, wall))
-    sections += ["## Substrate grid spacing (default time step: 0.9 x its stable bound)", "",
-                 *rows_table("spacing", grid, grid[-1][0]), ""]
+    return grid
 
-    coarse = ("--grid-spacing", "10e-6", "--t-end", T_CUT)
-    bound = grid[0][1]["dt_stable_grid"]
+
+def step_runs(bed, bound):
+    """Time steps from 0.9 x the 10 um grid's stable bound `bound` down to the paper's."""
     steps = []
     for label, dt in (("stable bound x 0.9 (default)", 0.9 * bound), ("bound x 0.5", 0.5 * bound),
                       ("bound x 0.25", 0.25 * bound), ("bound x 0.1", 0.1 * bound),
                       ("5e-9 s ([GZ])", 5e-9)):
-        s, wall = apps.sinter(SCENE, bed, "acc-dt.h5", "--dt", repr(dt), *coarse)
+        s, wall = apps.sinter(SCENE, bed, "acc-dt.h5", "--dt", repr(dt), *COARSE)
         steps.append((f"{label}: {dt:.3g} s", s, wall))
-    sections += ["## Time step (explicit, 10 um grid; t_end = 3.6e-4 s)", "",
-                 *rows_table("dt", steps, steps[-1][0]), ""]
+    return steps
 
+
+def window_runs(bed):
     windows = []
     for dT in ("1", "5", "20", "50", "100"):
         s, wall = apps.sinter(SCENE, bed, "acc-window.h5", "--material.window", dT)
         windows.append((f"{dT} K" + (" (default)" if dT == "20" else ""), s, wall))
-    sections += ["## Phase-change window dT (apparent heat capacity)", "",
-                 *rows_table("dT", windows, windows[0][0]), ""]
+    return windows
 
+
+def integrator_runs(bed):
+    """Explicit and implicit on Beer-Lambert without wetting (the implicit integrator has
+    neither ray tracing nor wetting)."""
     beer = ("--laser.absorption", "beer-lambert", "--effects.wetting", "false")
-    s, wall = apps.sinter(SCENE, bed, "acc-explicit.h5", *beer, *coarse)
+    s, wall = apps.sinter(SCENE, bed, "acc-explicit.h5", *beer, *COARSE)
     integrators = [(f"explicit, dt = {s['dt']:.3g} s", s, wall)]
     for dt in ("1.35e-6", "5e-6"):
         s, wall = apps.sinter(SCENE, bed, "acc-implicit.h5", "--integrator", "implicit",
-                              "--dt", dt, *beer, *coarse)
+                              "--dt", dt, *beer, *COARSE)
         integrators.append((f"implicit, dt = {dt} s ({s['implicit_iterations']} CG iterations)",
                             s, wall))
-    sections += ["## Explicit vs implicit (Beer-Lambert, no wetting; 10 um grid; t_end = 3.6e-4 s)",
-                 "", *rows_table("integrator", integrators, integrators[0][0]), ""]
+    return integrators
 
+
+def ray_runs(bed):
     rays = []
     for n in ("500", "1000", "2000", "4000", "16000", "64000"):
-        s, wall = apps.sinter(SCENE, bed, "acc-rays.h5", "--laser.rays", n, *coarse)
+        s, wall = apps.sinter(SCENE, bed, "acc-rays.h5", "--laser.rays", n, *COARSE)
         rays.append((f"{n} rays" + (" (default)" if n == "4000" else ""), s, wall))
-    sections += ["## Rays per traced beam position (ray-traced laser; 10 um grid; t_end = 3.6e-4 s)",
-                 "", *rays_table("rays", rays, rays[-1][0]), ""]
+    return rays
 
+
+def retrace_runs(bed):
     retrace = []
     for f in ("0.4", "0.2", "0.1", "0.05", "0.025"):
         s, wall = apps.sinter(SCENE, bed, "acc-retrace.h5", "--laser.retrace-interval", f,
-                              *coarse)
+                              *COARSE)
         retrace.append((f"{f} w" + (" (default)" if f == "0.1" else ""), s, wall))
-    sections += ["## Re-trace interval (ray-traced laser; 10 um grid; t_end = 3.6e-4 s)", "",
-                 *rays_table("interval", retrace, retrace[-1][0]), ""]
+    return retrace
 
+
+def plot(knobs):
+    """Each knob's largest melt-pool change against its reference over its wall time."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    for name, rows, marker in (("grid spacing", grid, "o"), ("time step", steps, "s"),
-                               ("window dT", windows, "^"), ("integrator", integrators, "D"),
-                               ("rays", rays, "v"), ("re-trace interval", retrace, "P")):
+    for name, rows, marker in (("grid spacing", knobs["grid"], "o"),
+                               ("time step", knobs["step"], "s"),
+                               ("window dT", knobs["window"], "^"),
+                               ("integrator", knobs["integrator"], "D"),
+                               ("rays", knobs["rays"], "v"),
+                               ("re-trace interval", knobs["retrace"], "P")):
         ref = pool_um(rows[0][1] if name in ("window dT", "integrator") else rows[-1][1])
         ax.plot([w for _, _, w in rows], [max(change(pool_um(s), ref), 1e-3) for _, s, _ in rows],
                 marker, label=name, linestyle="-")
@@ -165,15 +156,38 @@ def main():
     fig.tight_layout()
     fig.savefig(os.path.join(report.RESULTS, "sinter-accuracy.png"), dpi=120)
 
-    text = ["# sinter: what accuracy costs in time", "",
-            "Generated by `bench/studies/sinter_accuracy.py` on the [GZ] scene "
-            "(`data/scenes/gz2016-sinter.ini`) and the deposit scene's bed (seed 1), one thread. "
-            "Each table changes one knob; 'largest change' is the largest of the height, width and "
-            "depth differences against the finest run of that table. The melt pool is resolved "
-            "to the grid for the depth (linear interpolation of the peak temperature between "
-            "nodes) and to the particles for height and width.", "", report.machine(load), "",
-            *sections, DEFAULTS, "![accuracy vs time](sinter-accuracy.png)"]
-    print(report.write_page("sinter-accuracy.md", "\n".join(text) + "\n"))
+
+def page(knobs, machine):
+    """The page: templates/sinter-accuracy.md.in with each knob's table, against the finest
+    run of the knob (the window's and the integrator's: their first)."""
+    def last(key):
+        return knobs[key][-1][0]
+    return report.fill_template("sinter-accuracy.md.in", {
+        "machine": machine,
+        "cut_table": rows_table("run", knobs["cut"], "whole track"),
+        "grid_table": rows_table("spacing", knobs["grid"], last("grid")),
+        "step_table": rows_table("dt", knobs["step"], last("step")),
+        "window_table": rows_table("dT", knobs["window"], knobs["window"][0][0]),
+        "integrator_table": rows_table("integrator", knobs["integrator"],
+                                       knobs["integrator"][0][0]),
+        "rays_table": rays_table("rays", knobs["rays"], last("rays")),
+        "retrace_table": rays_table("interval", knobs["retrace"], last("retrace"))})
+
+
+def main():
+    argparse.ArgumentParser(description=__doc__,
+                            formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
+    load = report.load_average()
+    bed = apps.gz2016_bed()
+    knobs = {"cut": cut_runs(bed)}
+    knobs["grid"] = grid_runs(bed)
+    knobs["step"] = step_runs(bed, knobs["grid"][0][1]["dt_stable_grid"])
+    knobs["window"] = window_runs(bed)
+    knobs["integrator"] = integrator_runs(bed)
+    knobs["rays"] = ray_runs(bed)
+    knobs["retrace"] = retrace_runs(bed)
+    plot(knobs)
+    print(report.write_page("sinter-accuracy.md", page(knobs, report.machine(load))))
 
 
 if __name__ == "__main__":

@@ -2,8 +2,9 @@
 """Why the blade's layer is sparse: one parameter of data/scenes/spread-blade.ini at a time against
 the layer density it leaves (issue 32, point 4).
 
-Writes docs/results/spread-density.md. Run with /usr/bin/python3 after building deposit and
-bedstat (POWDERBED_BUILD selects the build folder):
+Writes docs/results/spread-density.md (its prose: bench/studies/templates/spread-density.md.in).
+Run with /usr/bin/python3 after building deposit and bedstat (POWDERBED_BUILD selects the build
+folder):
     POWDERBED_BUILD=build python3 bench/studies/spread_density.py [--work DIR] [--only KEYS]
 
 Each variant is one blade layer, `deposit --config data/scenes/spread-blade.ini --seed S
@@ -33,10 +34,11 @@ runs kept in --work and the page's Machine line (the study before it kept one).
 import argparse
 import json
 import os
+import re
 import sys
 
 from lib.apps import ROOT, app, bedstat, run_json
-from lib.report import (load_average, machine, read_page, table_head, table_row,
+from lib.report import (fill_template, load_average, machine, read_page, table_head, table_row,
                         write_page_keeping)
 from lib.spread_scene import WINDOW_MARGIN, Scene, read_scene
 
@@ -119,99 +121,71 @@ def one_run(work, key, label, scene, options, seed, fresh=False):
     return out
 
 
-def page(runs, batches):
-    lines = [
-        "# Spread layer density: what makes the blade's layer sparse",
-        "",
-        "`POWDERBED_BUILD=build python3 bench/studies/spread_density.py` (method in the script's "
-        "docstring): one blade layer of `data/scenes/spread-blade.ini` (316L 15-45 µm, 2 mm strip, "
-        "gap 90 µm = 2 D90) per row, one parameter changed from the scene at a time; the roller "
-        "row is `data/scenes/spread-roller.ini`, the same scene with a roller (its strip moved "
-        "along x to make room for the roller, measured over its own window). Run one at a time, "
-        "one thread each; the load column is the 1-min load average when each run started.",
-        *machine_lines(batches),
-        "",
-        "Layer density: bedstat's `--spread` measure, the solid fraction between the plate and the "
-        "gap over the strip the blade leaves behind it (the build's `layer_density` is the same "
-        "fraction over the scanned columns). Measured spread layers: 0.38-0.60.",
-        "",
-        *table_head("variant", "seed", "particles left", "layer density", "coverage", "Sa (µm)",
-                   "deposit wall (s)", "load"),
-    ]
+def run_table(runs):
+    """One line per run: the layer it left and what it cost."""
+    lines = table_head("variant", "seed", "particles left", "layer density", "coverage", "Sa (µm)",
+                       "deposit wall (s)", "load")
     for r in runs:
         s = r["stats"]
         lines.append(table_row(r["label"], r["seed"], r["n"], f"{s['density']:.3f}",
                                f"{s['coverage']:.3f}", f"{s['sa'] * 1e6:.1f}", f"{r['wall']:.0f}",
                                r["load"][0].split()[0]))
-    def of(key, what="density"):
-        return [r["stats"][what] for r in runs if r["key"] == key]
+    return "\n".join(lines)
 
-    def seeds(key):
-        n = len(of(key))
-        return f"{n} seed{'s' if n > 1 else ''}"
 
-    def span(key, what="density"):
-        v = of(key, what)
-        return f"{min(v):.3f}-{max(v):.3f}" if len(v) > 1 else f"{v[0]:.3f}"
+def span(values):
+    """The range of a row's values ("0.149-0.166"), the value itself for one seed."""
+    return f"{min(values):.3f}-{max(values):.3f}" if len(values) > 1 else f"{values[0]:.3f}"
 
-    scene = of("scene")
-    spread = max(scene) - min(scene)
+
+def variant_values(runs):
+    """Each variant's layer density, coverage and seed count, named after its key (not a word
+    character: "_"), for the template to quote."""
+    out = {}
+    for key, *_ in VARIANTS:
+        rows = [r["stats"] for r in runs if r["key"] == key]
+        name = re.sub(r"\W", "_", key)
+        out[name] = span([s["density"] for s in rows])
+        out[f"{name}_coverage"] = span([s["coverage"] for s in rows])
+        out[f"{name}_seeds"] = f"{len(rows)} seed{'s' if len(rows) > 1 else ''}"
+    return out
+
+
+def thin_against_scene(thin, spread):
+    """How the thin blade's layer differs from the scene's with the same seed (`thin`), against
+    the spread of the scene's seeds."""
+    text = ("(the same to three digits, " if abs(thin) < 5e-4 else
+            f"({abs(thin):.3f} {'more' if thin > 0 else 'less'}, ")
+    if abs(thin) <= spread:
+        return text + (f"within the seed spread of {spread:.3f}): the 200 µm flat bottom "
+                       "dragging the gap's particles along is not what empties the layer. ")
+    return text + f"beyond the seed spread of {spread:.3f}). "
+
+
+def page(runs, batches):
+    """The page: templates/spread-density.md.in filled with every row's runs."""
+    scene = [r["stats"]["density"] for r in runs if r["key"] == "scene"]
     seed1 = {r["key"]: r["stats"]["density"] for r in runs if r["seed"] == 1}
     best = max(runs, key=lambda r: r["stats"]["density"])
-    thin = seed1["thin"] - seed1["scene"]
-    lift = {k: (min(of(k)) - max(scene), max(of(k)) - min(scene)) for k in ("round", "roller")}
+    density = best["stats"]["density"]
+
+    def lift(key):  # a row's density less the scene's, its seeds against the scene's
+        rows = [r["stats"]["density"] for r in runs if r["key"] == key]
+        return f"{min(rows) - max(scene):+.3f} to {max(rows) - min(scene):+.3f}"
     overlap = max(r.get("max_overlap") or 0 for r in runs if r["key"] in ("round", "round-supply2"))
-    lines += [
-        "",
-        f"The scene leaves {min(scene):.3f}-{max(scene):.3f} ({len(scene)} seeds); the densest "
-        f"layer here is {best['stats']['density']:.3f} ({best['label']}), "
-        f"{'inside' if best['stats']['density'] >= 0.38 else 'below'} the measured band. "
-        "Friction (sliding or rolling), the gas drag and a wider gap alone move the layer by no "
-        "more than the seed does; what moves it is the heap the blade pushes (a larger supply) "
-        "and the time a particle has to fall into the gap behind the blade's edge (a slower "
-        "blade). Even where powder is left over at the strip's end, the blade leaves part of the "
-        "plate bare (coverage, the share of the plate under the strip a particle covers, below "
-        "1).",
-        "",
-        "The tool's shape. A blade of 50 µm with the same sharp edges leaves "
-        f"{seed1['thin']:.3f} against the scene's {seed1['scene']:.3f} with the same seed "
-        + ("(the same to three digits, " if abs(thin) < 5e-4 else
-           f"({abs(thin):.3f} {'more' if thin > 0 else 'less'}, ")
-        + (f"within the seed spread of {spread:.3f}): the 200 µm flat bottom dragging the gap's "
-           "particles along is not what empties the layer. " if abs(thin) <= spread else
-           f"beyond the seed spread of {spread:.3f}). ")
-        + "Rounding the blade's bottom into a half cylinder (edge radius 100 µm, "
-        f"same thickness) leaves {span('round')} ({seeds('round')}, coverage "
-        f"{span('round', 'coverage')} against {span('scene', 'coverage')}), "
-        f"{lift['round'][0]:+.3f} to {lift['round'][1]:+.3f} over the scene's seeds; the roller "
-        f"of spread-roller.ini leaves {span('roller')} ({seeds('roller')}, coverage "
-        f"{span('roller', 'coverage')}; its own window), {lift['roller'][0]:+.3f} to "
-        f"{lift['roller'][1]:+.3f}: a tool whose face slopes down to the gap leaves more behind "
-        "it than a sharp edge (the slower blade alone leaves "
-        f"{span('slow')}, the larger supply alone {span('supply2')}); the rows measure that, not "
-        "why. No sphere is taller than the gap (53 µm at most under 90 µm), so the squeeze "
-        "under a rounded edge docs/deposit-spread.md warns of would need two stacked; the "
-        f"rounded blade's settled layers overlap by at most {overlap * 100:.1f} % of the smaller "
-        f"radius. With the supply twice the rounded blade leaves {span('round-supply2')} "
-        f"({seeds('round-supply2')}) against {span('supply2')} of the sharp blade (1 seed), more "
-        "than either change alone; every row stays below 0.38, the densest "
-        f"{0.38 - best['stats']['density']:.2f} short of it.",
-        "",
-        f"The softening. Young's modulus 1e3 and 1e2 times softer (the scene's: 1e4) leaves "
-        f"{span('stiff1e3')} and {span('stiff1e2')} with seed 1, within the scene's seeds "
-        f"({min(scene):.3f}-{max(scene):.3f}): the contacts' stiffness, and with it the time "
-        "step the softening buys, is not what empties the layer either. Nor is the restitution: "
-        f"a damping ratio of 0.3 or 0.6 (the scene's: 0.1) leaves {span('damping0.3')} and "
-        f"{span('damping0.6')}.",
-        "",
-        "A flat plate under a gap of a few D90 is not the bed the measured values come "
-        "from: in a machine the blade spreads into a recess over earlier powder. A rough solid "
-        "under the layer does not hold more of it: docs/results/build-rough-floor.md adds a "
-        "random top of Sa 5 µm to the solid of a build's first layer and the next layer's "
-        "density stays within the seed spread. data/scenes/spread-blade.ini and the build keep "
-        "the scene's values; `build` reports the layer density it got, layer by layer.",
-    ]
-    return "\n".join(lines) + "\n"
+    return fill_template("spread-density.md.in", {
+        **variant_values(runs),
+        "machine": "\n".join(machine_lines(batches)),
+        "table": run_table(runs),
+        "scene_range": f"{min(scene):.3f}-{max(scene):.3f}", "scene_count": len(scene),
+        "best": f"{density:.3f}", "best_label": best["label"],
+        "best_against_band": "inside" if density >= 0.38 else "below",
+        "best_short": f"{0.38 - density:.2f}",
+        "thin_seed1": f"{seed1['thin']:.3f}", "scene_seed1": f"{seed1['scene']:.3f}",
+        "thin_against_scene": thin_against_scene(seed1["thin"] - seed1["scene"],
+                                                 max(scene) - min(scene)),
+        "round_lift": lift("round"), "roller_lift": lift("roller"),
+        "overlap": f"{overlap * 100:.1f}"})
 
 
 def machine_lines(batches):

@@ -3,8 +3,9 @@
 data/scenes/spread-blade.ini into the measured 0.38-0.60 band, and what the layer's density is
 over its own powder rather than over the gap.
 
-Writes docs/results/spread-dosing.md. Run with /usr/bin/python3 after building deposit and
-bedstat (POWDERBED_BUILD selects the build folder):
+Writes docs/results/spread-dosing.md (its prose: bench/studies/templates/spread-dosing.md.in).
+Run with /usr/bin/python3 after building deposit and bedstat (POWDERBED_BUILD selects the build
+folder):
     POWDERBED_BUILD=build python3 bench/studies/spread_dosing.py [--work DIR] [--only KEYS]
 
 The supply. The scene's psd gives D10/D50/D90 = 19/30/45 um by volume (psd.hpp: the default
@@ -43,7 +44,8 @@ import statistics
 import sys
 
 from lib.apps import ROOT, app, memo_json, read_bed, remove_bed, spread_layer
-from lib.report import batch_lines, load_average, record_batches, table_head, table_row, write_page
+from lib.report import (batch_lines, fill_template, load_average, record_batches, table_head,
+                        table_row, write_page)
 from lib.spread_scene import Scene, check_rows_keep_window, run_rows, solid_volume
 
 SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
@@ -93,52 +95,35 @@ def top_density(r):
     return s["density"] * s["gap"] / s["mean_height"]
 
 
-def page(runs, scene, batches):
-    nominal = scene.nominal_layer()
-    x0, x1 = scene.window()
+def span(values, fmt="{:.3f}", sep="-"):
+    """The range of `values` as text in `fmt`, one number when both ends read the same."""
+    values = list(values)
+    lo, hi = fmt.format(min(values)), fmt.format(max(values))
+    return lo if lo == hi else f"{lo}{sep}{hi}"
 
-    def rows(key):
-        return [r for r in runs if r["key"] == key]
 
-    def span(values, fmt="{:.3f}", sep="-"):
-        values = list(values)
-        lo, hi = fmt.format(min(values)), fmt.format(max(values))
-        return lo if lo == hi else f"{lo}{sep}{hi}"
+def row_values(name, rows, nominal):
+    """The template's numbers of one row's runs, each named `name`_what (the template quotes
+    some of them for each row)."""
+    n = len(rows)
+    return {f"{name}_seeds": f"{n} seed{'s' if n > 1 else ''}",
+            f"{name}_density": span(r["stats"]["density"] for r in rows),
+            f"{name}_coverage": span(r["stats"]["coverage"] for r in rows),
+            f"{name}_bare": span((1 - r["stats"]["coverage"] for r in rows), "{:.0%}"),
+            f"{name}_solid": span((r["supply_solid"] for r in rows), "{:.2e}", " to "),
+            f"{name}_dosing": span((r["supply_solid"] / nominal for r in rows), "{:.2f}"),
+            f"{name}_overflow": span((r["overflow"] for r in rows), "{:d}"),
+            f"{name}_overflow_share": span((r["overflow_solid"] / r["supply_solid"] for r in rows),
+                                           "{:.0%}"),
+            f"{name}_top": span((r["stats"]["mean_height"] * 1e6 for r in rows), "{:.0f}"),
+            f"{name}_top_density": span(top_density(r) for r in rows)}
 
-    def dens(key):
-        return span(r["stats"]["density"] for r in rows(key))
 
-    def seeds(key):
-        n = len(rows(key))
-        return f"{n} seed{'s' if n > 1 else ''}"
-
-    best = max(runs, key=lambda r: r["stats"]["density"])
-    lines = [
-        "# A dosed blade layer: more supply and a slower blade",
-        "",
-        f"`POWDERBED_BUILD=build python3 bench/studies/spread_dosing.py` (method in the script's "
-        "docstring): one blade layer of `data/scenes/spread-blade.ini` (316L 15-45 µm, 2 mm strip "
-        f"0.5 mm across, gap {scene.gap * 1e6:.0f} µm) per row, measured over x "
-        f"{x0 * 1e3:.2f}-{x1 * 1e3:.2f} mm as docs/results/spread-density.md measures its rows. "
-        "Run one at a time, one thread each, on a 2-core machine shared with other work; the load "
-        "column is the 1-min load average when each run started.",
-        *batch_lines(batches),
-        "",
-        "**The supply by volume.** The scene's psd gives D10/D50/D90 = 19/30/45 µm by volume "
-        "(bed/include/powderbed/bed/psd.hpp: a d10/d50/d90 lognormal is volume-based unless "
-        "`basis=number`), so the particles' number median is ~23 µm and the scene's 2500 "
-        f"particles hold {span((r['supply_solid'] for r in rows('scene')), '{:.2e}', ' to ')} m³ of "
-        f"solid ({seeds('scene')}). The layer's nominal powder (deposit's `supply.dosing`: "
-        f"φ_b (end − start) L_y t at φ_b = {scene.num('supply.bulk-density'):g}, t the "
-        f"{scene.gap * 1e6:.0f} µm gap) is {nominal:.2e} m³, so the scene doses "
-        f"{span((r['supply_solid'] / nominal for r in rows('scene')), '{:.2f}')} on its gap "
-        f"(twice that on the build's {scene.num('recoater.layer-thickness') * 1e6:.0f} µm "
-        "layers), where machines dose 1.5-2.",
-        "",
-        *table_head("row", "seed", "supplied", "supply solid (m³)", "dosing on the gap",
-                    "overflow", "layer density", "coverage", "mean top (µm)",
-                    "powder-top density", "Sa (µm)", "deposit wall (s)", "load"),
-    ]
+def run_table(runs, nominal):
+    """One line per run: its supply, its overflow and the layer it left."""
+    lines = table_head("row", "seed", "supplied", "supply solid (m³)", "dosing on the gap",
+                       "overflow", "layer density", "coverage", "mean top (µm)",
+                       "powder-top density", "Sa (µm)", "deposit wall (s)", "load")
     for r in runs:
         s = r["stats"]
         lines.append(table_row(
@@ -146,66 +131,42 @@ def page(runs, scene, batches):
             f"{r['supply_solid'] / nominal:.2f}", r["overflow"], f"{s['density']:.3f}",
             f"{s['coverage']:.3f}", f"{s['mean_height'] * 1e6:.1f}", f"{top_density(r):.2f}",
             f"{s['sa'] * 1e6:.1f}", f"{r['wall']:.0f}", r["load"][0].split()[0]))
-    lines += [
-        "",
-        "Overflow: the particles the blade pushed past its end (centres in front of its front "
-        "face where it stopped), as deposit's overflow counts them; 0 means the supply ran out "
-        "before the end of the travel. Layer density: the solid between the plate and the gap over "
-        "the window (bedstat `--spread`). Mean top: the mean height of the powder's top surface "
-        "over the window, bare plate counted as 0. Powder-top density: the same solid over the "
-        "window's area times the mean top, layer density × gap / mean top.",
-        "",
-        f"**The band.** The scene leaves {dens('scene')} ({seeds('scene')}). At {SLOW} m/s its "
-        f"supply leaves {dens('slow')} ({seeds('slow')}) and runs out: overflow "
-        f"{span((r['overflow'] for r in rows('slow')), '{:d}')}, coverage "
-        f"{span(r['stats']['coverage'] for r in rows('slow'))}. With supply.dosing 1 (a dosing of "
-        f"{span((r['supply_solid'] / nominal for r in rows('dosed-slow')), '{:.2f}')} on the gap "
-        f"as measured, 2 on a 45 µm layer) at {SLOW} m/s the blade leaves {dens('dosed-slow')} ({seeds('dosed-slow')}, coverage "
-        f"{span(r['stats']['coverage'] for r in rows('dosed-slow'))}) and still pushes "
-        f"{span((r['overflow_solid'] / r['supply_solid'] for r in rows('dosed-slow')), '{:.0%}')} "
-        "of the supply's solid past the strip's end (the scene at 0.1 m/s: "
-        f"{span((r['overflow_solid'] / r['supply_solid'] for r in rows('scene')), '{:.0%}')}), so "
-        "the powder in front of the blade is not what is short. "
-        "docs/results/spread-density.md has the steps between: 0.05 m/s alone, and twice the "
-        "supply at 0.05 m/s. The densest layer here, "
-        f"{best['stats']['density']:.3f}, is "
-        + (f"inside the measured {BAND[0]:.2f}-{BAND[1]:.2f} band."
-           if best["stats"]["density"] >= BAND[0] else
-           f"{BAND[0] - best['stats']['density']:.2f} short of the measured "
-           f"{BAND[0]:.2f}-{BAND[1]:.2f} band: a dose of twice the scene's at a quarter of its "
-           "speed does not bring the blade's first layer on a flat plate into it."),
-        "",
-        "**Why, measured.** Over the gap the layer is sparse because its powder does not reach "
-        "the gap's height: the mean height of its top surface is "
-        f"{span((r['stats']['mean_height'] * 1e6 for r in rows('scene')), '{:.0f}')} µm for the "
-        f"scene (the particles' mean diameter is {MEAN_D * 1e6:.0f} µm by number; "
-        f"{span((1 - r['stats']['coverage'] for r in rows('scene')), '{:.0%}')} of the plate "
-        f"bare), {span((r['stats']['mean_height'] * 1e6 for r in rows('slow')), '{:.0f}')} µm "
-        f"for the scene's supply at {SLOW} m/s and "
-        f"{span((r['stats']['mean_height'] * 1e6 for r in rows('dosed-slow')), '{:.0f}')} µm "
-        f"dosed at {SLOW} m/s, inside a {scene.gap * 1e6:.0f} µm gap "
-        f"({scene.gap / MEAN_D:.1f} mean diameters). Under "
-        f"its own top surface the same powder is {span(top_density(r) for r in rows('scene'))} "
-        f"dense for the scene, {span(top_density(r) for r in rows('slow'))} and "
-        f"{span(top_density(r) for r in rows('dosed-slow'))} for the slow rows (powder-top "
-        + ("density): above" if min(map(top_density, runs)) > BAND[1] else "density): against")
-        + " the band, but not the band's measure either. It says how the "
-        "powder is stacked, not how much of the plate it covers: a lone sphere on the plate "
-        "reads 0.80 (the volume under its top surface is 5/3 π r³) whatever the bare plate "
-        "around it, so does the square monolayer, and only a layer many particles thick tends "
-        "to its bulk packing (random close packing ~0.64). So the gap-based density is low "
-        "because the layer is thin: its mean top is "
-        f"{span((r['stats']['mean_height'] / MEAN_D for r in runs), '{:.1f}', ' to ')} mean "
-        f"diameters against a gap of {scene.gap / MEAN_D:.1f}, with part of the plate bare; at "
-        "the dosed rows' powder-top density a "
-        f"gap-based {BAND[0]:.2f} would need a mean top of ~"
-        f"{BAND[0] * scene.gap / statistics.mean(top_density(r) for r in rows('dosed-slow')) * 1e6:.0f}"
-        " µm. The measured band is of layers a blade spreads into a recess over earlier powder "
-        "and solid (docs/results/spread-density.md, its last paragraph), not of one layer on a "
-        "flat plate under 2 D90; the build's later layers, spread over the powder and the solid "
-        "before them (docs/results/build-layers.md), are where the two could meet.",
-    ]
-    return "\n".join(lines) + "\n"
+    return "\n".join(lines)
+
+
+def against_band(best):
+    """Where the densest layer's density `best` lies against the measured band."""
+    if best >= BAND[0]:
+        return f"inside the measured {BAND[0]:.2f}-{BAND[1]:.2f} band."
+    return (f"{BAND[0] - best:.2f} short of the measured {BAND[0]:.2f}-{BAND[1]:.2f} band: a "
+            "dose of twice the scene's at a quarter of its speed does not bring the blade's "
+            "first layer on a flat plate into it.")
+
+
+def page(runs, scene, batches):
+    """The page: templates/spread-dosing.md.in filled with the runs of every row."""
+    nominal = scene.nominal_layer()
+    x0, x1 = scene.window()
+    best = max(r["stats"]["density"] for r in runs)
+    dosed = [r for r in runs if r["key"] == "dosed-slow"]
+    values = {
+        "machine": "\n".join(batch_lines(batches)),
+        "gap": f"{scene.gap * 1e6:.0f}", "x0": f"{x0 * 1e3:.2f}", "x1": f"{x1 * 1e3:.2f}",
+        "bulk_density": f"{scene.num('supply.bulk-density'):g}", "nominal": f"{nominal:.2e}",
+        "layer": f"{scene.num('recoater.layer-thickness') * 1e6:.0f}", "slow": SLOW,
+        "table": run_table(runs, nominal),
+        "best": f"{best:.3f}", "against_band": against_band(best),
+        "mean_d": f"{MEAN_D * 1e6:.0f}", "gap_diameters": f"{scene.gap / MEAN_D:.1f}",
+        "top_against_band": "above" if min(map(top_density, runs)) > BAND[1] else "against",
+        "top_diameters": span((r["stats"]["mean_height"] / MEAN_D for r in runs), "{:.1f}",
+                              " to "),
+        "band_low": f"{BAND[0]:.2f}",
+        # the mean top that would give the band's low end at the dosed rows' powder-top density
+        "top_needed": f"{BAND[0] * scene.gap / statistics.mean(map(top_density, dosed)) * 1e6:.0f}",
+    }
+    for name, key in (("scene", "scene"), ("slow", "slow"), ("dosed", "dosed-slow")):
+        values.update(row_values(name, [r for r in runs if r["key"] == key], nominal))
+    return fill_template("spread-dosing.md.in", values)
 
 
 def main():
