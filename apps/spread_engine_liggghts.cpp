@@ -105,7 +105,7 @@ void take_back(bed::Bed& bed, const bed::Bed& dump) {
   none.wx.assign(bed.n(), 0.0);
   none.wy.assign(bed.n(), 0.0);
   none.wz.assign(bed.n(), 0.0);
-  none.wall_history.assign(bed.n() * 42, 0.0);
+  none.wall_history.assign(bed.n() * dem::kWallHistoryValues, 0.0);
   dem::remove_particles(bed, none, keep);
 }
 
@@ -212,7 +212,7 @@ dem::SpreadSummary liggghts_spread_layer(const LiggghtsEngine& engine, bed::Bed&
   summary.state.wx.assign(bed.n(), 0.0);
   summary.state.wy.assign(bed.n(), 0.0);
   summary.state.wz.assign(bed.n(), 0.0);
-  summary.state.wall_history.assign(bed.n() * 42, 0.0);
+  summary.state.wall_history.assign(bed.n() * dem::kWallHistoryValues, 0.0);
   summary.state.floor = r.floor;
   summary.steps = out.steps;
   out.wall_time = summary.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -23,6 +23,7 @@
 #include "parallel.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/sphere_volume.hpp"
+#include "powderbed/bed/surface_contacts.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
 #include "powderbed/dem/fines_scaling.hpp"
 #include "powderbed/dem/hertz_normal.hpp"
@@ -62,6 +63,15 @@ constexpr std::size_t kPairLoad = 9;
 
 // The walls a particle may touch, each with its own contact history.
 enum WallSlot { kPlate, kTool, kXLow, kXHigh, kYLow, kYHigh, kTop, kWallSlots };
+
+// The floor's contacts (SpreadSettings::floor; bed/surface_contacts.hpp) follow the walls' slots
+// in a particle's row of wall_history: per slot the facet it touches plus one (0: free; a
+// triangle index is exact in a double), then its history. The flat plate uses kPlate's slot.
+constexpr std::size_t kFloorSlots = bed::kMaxSurfaceContacts;
+constexpr std::size_t kFloorSlotValues = 1 + kContactHistory;
+constexpr std::size_t kFloorValuesAt = kWallSlots * kContactHistory;
+constexpr std::size_t kWallValues = kFloorValuesAt + kFloorSlots * kFloorSlotValues;
+static_assert(kWallValues == kWallHistoryValues, "spread.hpp's count of a particle's wall values");
 
 // The contacts of the last force evaluation, in pair order (owner index ascending): what a
 // neighbour-list build, a new layer or a restart carries over.
@@ -171,9 +181,10 @@ struct SpreadLoop {
   // pass through such a particle without a force: sound freezing counts none (LayerSummary).
   std::vector<std::uint32_t> frozen_in_reach;
   std::uint64_t frozen_tool_contacts = 0;
-  std::vector<double> wall_history;   // kWallSlots * kContactHistory per particle
-  // Per particle, bit `slot` set when that wall's history may be non-zero: a wall out of reach
-  // (most walls, most steps) then costs a test, not the write of its six zeros.
+  std::vector<double> wall_history;   // kWallValues per particle
+  // Per particle, bit `slot` set when that wall's history may be non-zero (kPlate's: or a floor
+  // slot is taken): a wall out of reach (most walls, most steps) then costs a test, not the
+  // write of its six zeros.
   std::vector<std::uint8_t> wall_touch;
   std::vector<ContactConstants> wall;        // per particle
   std::vector<std::uint32_t> near_walls, near_tool;  // find_wall_candidates, at each prune
@@ -253,7 +264,7 @@ struct SpreadLoop {
     for (auto* v : {&weight, &mass, &inv_mass, &inv_inertia, &drag, &fx, &fy, &fz, &tx, &ty, &tz}) v->resize(count);
     if (scene.fines.scaling == FinesScaling::stiffness) young.resize(count);
     for (auto* v : {&wx, &wy, &wz}) v->resize(count, 0.0);
-    wall_history.resize(count * kWallSlots * kContactHistory, 0.0);
+    wall_history.resize(count * kWallValues, 0.0);
     wall_touch.resize(count, 0);
     wall.resize(count);
     for (std::size_t i = old; i < count; ++i) {
@@ -338,7 +349,7 @@ struct SpreadLoop {
     permute(bed.phase, 1);
     permute(wall, 1);
     permute(wall_touch, 1);
-    permute(wall_history, kWallSlots * kContactHistory);
+    permute(wall_history, kWallValues);
     std::vector<std::uint32_t> rank(order.size());
     for (std::size_t k = 0; k < order.size(); ++k) rank[order[k]] = static_cast<std::uint32_t>(k);
     ActiveContacts turned;
@@ -465,16 +476,24 @@ struct SpreadLoop {
     wall_touch.assign(n(), 0);
     for (std::size_t i = 0; i < n(); ++i)
       for (int slot = 0; slot < kWallSlots; ++slot) {
-        const double* v = wall_history.data() + (i * kWallSlots + slot) * kContactHistory;
+        const double* v = wall_history.data() + i * kWallValues + slot * kContactHistory;
         if (std::any_of(v, v + kContactHistory, [](double x) { return x != 0.0; }))
           wall_touch[i] |= static_cast<std::uint8_t>(1u << slot);
       }
+    for (std::size_t i = 0; i < n(); ++i)
+      for (std::size_t k = 0; k < kFloorSlots; ++k)
+        if (*floor_slot(i, k) != 0) wall_touch[i] |= static_cast<std::uint8_t>(1u << kPlate);
   }
 
   void leave_wall(std::size_t i, WallSlot slot) {
     if (!(wall_touch[i] & (1u << slot))) return;
-    std::fill_n(wall_history.data() + (i * kWallSlots + slot) * kContactHistory, kContactHistory, 0.0);
+    std::fill_n(wall_history.data() + i * kWallValues + slot * kContactHistory, kContactHistory, 0.0);
+    if (slot == kPlate) std::fill_n(floor_slot(i, 0), kFloorSlots * kFloorSlotValues, 0.0);
     wall_touch[i] &= static_cast<std::uint8_t>(~(1u << slot));
+  }
+
+  double* floor_slot(std::size_t i, std::size_t k) {
+    return wall_history.data() + i * kWallValues + kFloorValuesAt + k * kFloorSlotValues;
   }
 
   void wall_contact(std::size_t i, WallSlot slot, double delta, const double n[3],
@@ -484,7 +503,14 @@ struct SpreadLoop {
       return;
     }
     wall_touch[i] |= static_cast<std::uint8_t>(1u << slot);
-    double* h = wall_history.data() + (i * kWallSlots + slot) * kContactHistory;
+    surface_force(i, slot, wall_history.data() + i * kWallValues + slot * kContactHistory, delta, n, wall_velocity,
+                  update);
+  }
+
+  // The force of a wall or the floor at overlap delta along n (from the centre into the
+  // surface), with the contact's history h, added to particle i's (and to the tool's).
+  void surface_force(std::size_t i, int slot, double* h, double delta, const double n[3],
+                     const double wall_velocity[3], bool update) {
     const double dv[3] = {bed.vx[i] - wall_velocity[0], bed.vy[i] - wall_velocity[1],
                           bed.vz[i] - wall_velocity[2]};
     const double wi[3] = {wx[i], wy[i], wz[i]}, still[3] = {0, 0, 0};
@@ -501,35 +527,78 @@ struct SpreadLoop {
     }
   }
 
-  // The plate, or the solid on it (SpreadSettings::floor): the contact is with the surface
-  // point nearest the centre among the points under the sphere's footprint that
-  // HeightMap::nearest samples, along the line from the centre to it.
+  // The plate, or the solid on it (SpreadSettings::floor): a contact at each local minimum of the
+  // distance from the centre to the floor's triangles within the radius (bed/surface_contacts.hpp),
+  // along the line from the centre to it; straight up when the centre is below the surface.
   void plate_contact(std::size_t i, bool update) {
     const double still[3] = {0, 0, 0};
-    const double r = bed.radius[i];
+    const double r = bed.radius[i], x = bed.x[i], y = bed.y[i], z = bed.z[i];
     if (floor.empty()) {
       const double n[3] = {0, 0, -1};
-      wall_contact(i, kPlate, r - (bed.z[i] - box.lower[2]), n, still, update);
+      wall_contact(i, kPlate, r - (z - box.lower[2]), n, still, update);
       return;
     }
-    const double high = floor_high.at(bed.x[i], bed.y[i]);
-    if (bed.z[i] - r > high) {  // above the solid's highest point within its reach: no contact
-      wall_contact(i, kPlate, -1.0, still, still, update);
-      return;
+    std::array<bed::SurfaceContact, kFloorSlots> c;
+    std::size_t count = 0;
+    const double high = floor_high.at(x, y);
+    if (z - r > high) {  // above the solid's highest point within its reach: no contact
+      count = 0;
+    } else if (high - floor_low.at(x, y) <= 1e-9 || floor.surface(x, y) >= z) {
+      // Flat under the whole footprint, or the centre at or below the surface: straight up.
+      const double depth = (high - floor_low.at(x, y) <= 1e-9 ? high : floor.surface(x, y)) - z;
+      c[0] = {floor.triangle_at(x, y), {0, 0, depth}, std::abs(depth)};
+      count = depth + r > 0 ? 1 : 0;
+    } else {
+      count = bed::surface_contacts(floor, x, y, z, r, c);
     }
-    if (high - floor_low.at(bed.x[i], bed.y[i]) <= 1e-9) {  // flat under the whole footprint
-      const double n[3] = {0, 0, -1};
-      wall_contact(i, kPlate, r - (bed.z[i] - high), n, still, update);
-      return;
+    floor_contacts(i, c, count, update);
+  }
+
+  // The floor's contacts of particle i, each with the history of the slot that touched the same
+  // facet at the last evaluation, else of a slot whose facet none touches now (a sphere rolling
+  // across an edge keeps its spring, as LIGGGHTS hands a mesh contact's history to the next
+  // triangle), else a fresh one. Slots left over are freed.
+  void floor_contacts(std::size_t i, const std::array<bed::SurfaceContact, kFloorSlots>& c, std::size_t count,
+                      bool update) {
+    if (count == 0 && !(wall_touch[i] & (1u << kPlate))) return;
+    std::array<std::size_t, kFloorSlots> slot;
+    std::array<bool, kFloorSlots> taken{};
+    const auto facet = [&](std::size_t k) { return *floor_slot(i, k); };
+    const auto claim = [&](std::size_t m, auto&& fits) {
+      for (std::size_t k = 0; k < kFloorSlots; ++k)
+        if (!taken[k] && fits(k)) {
+          taken[k] = true;
+          slot[m] = k;
+          return true;
+        }
+      return false;
+    };
+    const auto touched_now = [&](double f) {
+      for (std::size_t m = 0; m < count; ++m)
+        if (f == static_cast<double>(c[m].facet + 1)) return true;
+      return false;
+    };
+    std::array<bool, kFloorSlots> matched{};
+    for (std::size_t m = 0; m < count; ++m)
+      matched[m] = claim(m, [&](std::size_t k) { return facet(k) == static_cast<double>(c[m].facet + 1); });
+    for (std::size_t m = 0; m < count; ++m)
+      if (!matched[m] && !claim(m, [&](std::size_t k) { return facet(k) != 0 && !touched_now(facet(k)); }))
+        claim(m, [&](std::size_t k) { return facet(k) == 0; });
+    for (std::size_t k = 0; k < kFloorSlots; ++k)
+      if (!taken[k]) std::fill_n(floor_slot(i, k), kFloorSlotValues, 0.0);
+    constexpr std::uint8_t plate_bit = 1u << kPlate;
+    wall_touch[i] = count > 0 ? static_cast<std::uint8_t>(wall_touch[i] | plate_bit)
+                              : static_cast<std::uint8_t>(wall_touch[i] & ~plate_bit);
+    const double still[3] = {0, 0, 0};
+    for (std::size_t m = 0; m < count; ++m) {
+      double* s = floor_slot(i, slot[m]);
+      s[0] = static_cast<double>(c[m].facet + 1);
+      const double d = c[m].distance;
+      const bool below = c[m].offset[2] >= 0;  // the centre at or below the surface: straight up
+      const double n[3] = {below ? 0 : c[m].offset[0] / d, below ? 0 : c[m].offset[1] / d,
+                           below ? -1 : c[m].offset[2] / d};
+      surface_force(i, kPlate, s + 1, below ? bed.radius[i] + c[m].offset[2] : bed.radius[i] - d, n, still, update);
     }
-    const bed::HeightMap::Nearest p = floor.nearest(bed.x[i], bed.y[i], bed.z[i], r);
-    if (p.offset[2] >= 0) {  // the centre at or below the surface: push straight up
-      const double n[3] = {0, 0, -1};
-      wall_contact(i, kPlate, r + p.offset[2], n, still, update);
-      return;
-    }
-    const double n[3] = {p.offset[0] / p.distance, p.offset[1] / p.distance, p.offset[2] / p.distance};
-    wall_contact(i, kPlate, r - p.distance, n, still, update);
   }
 
   // The moving particles that may touch a wall before the next prune, found at each prune:
@@ -996,7 +1065,7 @@ std::size_t remove_particles(bed::Bed& bed, SpreadState& s, const std::vector<ch
   compact(bed.id, 1);
   compact(bed.material, 1);
   compact(bed.phase, 1);
-  compact(s.wall_history, kWallSlots * kContactHistory);
+  compact(s.wall_history, kWallValues);
   std::vector<std::uint64_t> ids;
   std::vector<double> history;
   for (std::size_t c = 0; c < s.pair_ids.size() / 2; ++c) {
@@ -1167,7 +1236,7 @@ struct Spreader {
     check_floor(run.floor, run.box);
     if (!restart) return;
     if (restart->wx.size() != bed.n() ||
-        restart->wall_history.size() != bed.n() * kWallSlots * kContactHistory) {
+        restart->wall_history.size() != bed.n() * kWallValues) {
       throw InputError("--in: the bed's /restart group does not match its particles (accepted: "
                        "a bed written by a spreading run, unchanged)");
     }

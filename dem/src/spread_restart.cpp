@@ -3,6 +3,7 @@
 // and per-contact state, all float64 or uint64 so that a continued run reads back every bit.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -20,7 +21,8 @@ namespace powderbed::dem {
 namespace {
 
 constexpr const char* kGroup = "/restart";
-constexpr std::size_t kWallValues = 42;  // 7 walls x (F_s, M_r)
+constexpr std::size_t kWallValues = kWallHistoryValues;  // spread.hpp SpreadState::wall_history
+constexpr std::size_t kWallsOnly = 42;  // before the floor's contacts: 7 walls x (F_s, M_r)
 
 void fail(const std::string& path, const std::string& what) {
   throw InputError(path + ": /restart: " + what);
@@ -69,6 +71,23 @@ void write_state(const std::string& temp, const std::string& path, const SpreadS
   out.commit();
 }
 
+// wall_history, from a bed written before the floor had its contacts too (kWallsOnly values a
+// particle) with those contacts free: a spread continued from it starts them afresh.
+std::vector<double> read_wall_history(const bed::H5Input& in) {
+  const std::string name = in_group("wall_history");
+  try {
+    return in.read_doubles(name, kWallValues);
+  } catch (const InputError&) {
+    // Not of kWallValues columns: try the earlier layout, whose own error names what is wrong.
+  }
+  const std::vector<double> walls = in.read_doubles(name, kWallsOnly);
+  std::vector<double> all((walls.size() / kWallsOnly) * kWallValues, 0.0);
+  for (std::size_t i = 0; i < walls.size() / kWallsOnly; ++i)
+    std::copy_n(walls.begin() + static_cast<std::ptrdiff_t>(i * kWallsOnly), kWallsOnly,
+                all.begin() + static_cast<std::ptrdiff_t>(i * kWallValues));
+  return all;
+}
+
 }  // namespace
 
 void write_spread_bed(const std::string& path, const bed::Bed& bed, const SpreadState& state,
@@ -101,7 +120,7 @@ SpreadState read_spread_state(const std::string& path, const bed::Bed& bed) {
   const auto omega = in.read_doubles(in_group("angular_velocity"), 3);
   s.pair_ids = in.read_uint64s(in_group("pair_ids"), 2);
   s.pair_history = in.read_doubles(in_group("pair_history"), 6);
-  s.wall_history = in.read_doubles(in_group("wall_history"), kWallValues);
+  s.wall_history = read_wall_history(in);
   if (!(s.dt > 0) || !std::isfinite(s.dt))
     fail(path, fmt::format("dt is {} (accepted: the time step of the run that wrote it, > 0 s)", s.dt));
   if (!std::isfinite(s.time) || !std::isfinite(s.tool_x) || !std::isfinite(s.plate_offset))

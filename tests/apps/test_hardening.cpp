@@ -1139,3 +1139,34 @@ TEST(HardeningKill, SigintDuringDepositTrajectoryLeavesNoTemporaries) {
 }
 
 }  // namespace
+
+// A bed written before the floor's contacts had slots (42 wall values a particle: 7 walls x 6)
+// still continues: its walls' histories read back unchanged and its floor slots free.
+TEST(HardeningRestart, WallHistoryOfTheEarlierLayoutReadsWithTheFloorSlotsFree) {
+  namespace dem = powderbed::dem;
+  powderbed::bed::Bed bed;
+  bed.domain.dimension = 3;
+  bed.domain.upper = {1e-3, 1e-3, 1e-3};
+  bed.add(2e-4, 2e-4, 1e-4, 2e-5);
+  bed.add(6e-4, 2e-4, 1e-4, 2e-5);
+  bed.vx.assign(2, 0.0);
+  bed.vy.assign(2, 0.0);
+  bed.vz.assign(2, 0.0);
+  dem::SpreadState state;
+  state.dt = 1e-8;
+  state.wx = state.wy = state.wz = {0.0, 0.0};
+  state.wall_history.assign(2 * dem::kWallHistoryValues, 0.0);
+  std::vector<double> earlier;
+  for (std::size_t i = 0; i < 2; ++i)
+    for (std::size_t v = 0; v < 42; ++v) {
+      state.wall_history[i * dem::kWallHistoryValues + v] = 1.0 + static_cast<double>(100 * i + v);
+      earlier.push_back(1.0 + static_cast<double>(100 * i + v));
+    }
+  const std::string path = (fs::temp_directory_path() / ("earlier-walls-" + std::to_string(getpid()) + ".h5")).string();
+  dem::write_spread_bed(path, bed, state);
+  H5(path).doubles("/restart/wall_history", earlier, 42);
+  const dem::SpreadState read = dem::read_spread_state(path, bed);
+  fs::remove(path);
+  fs::remove(path.substr(0, path.size() - 3) + ".xmf");
+  EXPECT_EQ(read.wall_history, state.wall_history);
+}

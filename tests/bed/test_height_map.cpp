@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "powderbed/bed/height_map.hpp"
+#include "powderbed/bed/surface_contacts.hpp"
 
 using namespace powderbed;
 
@@ -54,4 +55,64 @@ TEST(HeightMap, PeriodicSeamKeepsTheVolume) {
   m.join_periodic_edges(false, true);
   for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(m.node(i, 0), m.node(i, 2));
   EXPECT_NEAR(std::accumulate(m.z.begin(), m.z.end(), 0.0), before, 1e-20);
+}
+
+// Ericson's regions: a point over the face projects onto it; beyond an edge it meets the edge at
+// the foot of its perpendicular; beyond a corner, the corner.
+TEST(ClosestPointOnTriangle, FaceEdgeAndCorner) {
+  const bed::Point3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  const auto face = bed::closest_point_on_triangle({0.25, 0.25, 2}, a, b, c);
+  EXPECT_EQ(face.feature, bed::TriangleFeature::face);
+  EXPECT_DOUBLE_EQ(face.point[0], 0.25);
+  EXPECT_DOUBLE_EQ(face.point[2], 0.0);
+  const auto edge = bed::closest_point_on_triangle({0.7, 0.7, 1}, a, b, c);  // beyond bc
+  EXPECT_EQ(edge.feature, bed::TriangleFeature::edge_bc);
+  EXPECT_DOUBLE_EQ(edge.point[0], 0.5);
+  EXPECT_DOUBLE_EQ(edge.point[1], 0.5);
+  const auto corner = bed::closest_point_on_triangle({-1, -2, 0.5}, a, b, c);
+  EXPECT_EQ(corner.feature, bed::TriangleFeature::vertex_a);
+}
+
+// On a plane the triangles are the plane: the nearest point of a centre h above it lies
+// h / sqrt(1 + |grad h|^2) away along its normal, wherever the centre is over the grid.
+TEST(HeightMap, NearestPointOnAPlaneLiesAlongItsNormal) {
+  const bed::HeightMap m = plane();  // grad h = (0.1, 0.2)
+  const double norm = std::sqrt(1 + 0.01 + 0.04);
+  for (const auto& [x, y] : {std::pair{5e-6, 15e-6}, std::pair{12.5e-6, 7.5e-6}, std::pair{10e-6, 10e-6}}) {
+    EXPECT_NEAR(m.surface(x, y), m.at(x, y), 1e-18);
+    const auto p = m.nearest(x, y, m.at(x, y) + 3e-6, 5e-6);
+    EXPECT_NEAR(p.distance, 3e-6 / norm, 1e-15);
+    EXPECT_NEAR(p.offset[0] / p.distance, 0.1 / norm, 1e-9);
+    EXPECT_NEAR(p.offset[1] / p.distance, 0.2 / norm, 1e-9);
+  }
+}
+
+// A sphere in a V-shaped valley touches both slopes at the same distance; one on the ridge of
+// the inverted valley touches the ridge's edge once; one over a plane of many triangles touches
+// it once (the edges it is near are not contacts of their own).
+TEST(SurfaceContacts, ValleyTwiceRidgeOncePlaneOnce) {
+  const auto groove = [](double sign) {
+    bed::HeightMap m;
+    m.nx = m.ny = 21;
+    m.dx = m.dy = 10e-6;
+    for (std::size_t j = 0; j < m.ny; ++j)
+      for (std::size_t i = 0; i < m.nx; ++i) m.z.push_back(50e-6 + sign * 0.3 * std::abs(10e-6 * static_cast<double>(i) - 100e-6));
+    return m;
+  };
+  std::array<bed::SurfaceContact, bed::kMaxSurfaceContacts> c;
+  const double r = 15e-6, slope_distance = r - 0.1e-6;
+  // Over the valley's floor line at the height where each slope lies r - 0.1 um away.
+  const double z = 50e-6 + slope_distance * std::sqrt(1 + 0.09) / 1.0;
+  ASSERT_EQ(bed::surface_contacts(groove(1), 100e-6, 97e-6, z, r, c), 2u);
+  EXPECT_NEAR(c[0].distance, slope_distance, 1e-12);
+  EXPECT_NEAR(c[1].distance, slope_distance, 1e-12);
+  EXPECT_NEAR(c[0].offset[0], -c[1].offset[0], 1e-15);
+  // Over the ridge: its edge, once, straight down.
+  ASSERT_EQ(bed::surface_contacts(groove(-1), 100e-6, 97e-6, 50e-6 + slope_distance, r, c), 1u);
+  EXPECT_NEAR(c[0].distance, slope_distance, 1e-15);
+  EXPECT_NEAR(c[0].offset[0], 0.0, 1e-18);
+  // Over a slope of the valley, away from its floor line and across the cells' edges and
+  // diagonals: one contact.
+  for (const double x : {130e-6, 135e-6, 140e-6})
+    EXPECT_EQ(bed::surface_contacts(groove(1), x, 95e-6, groove(1).at(x, 95e-6) + 14e-6, r, c), 1u) << x;
 }

@@ -1,14 +1,16 @@
 #pragma once
 // A surface z = h(x, y) given at the nodes of a regular grid (x0 + i dx, y0 + j dy), bilinear
 // between them and held at the edge value beyond the grid: the fused solid's top, which sinter
-// raises (thermal/fusion.hpp) and the next layer's powder is spread on (dem/spread.hpp). One
-// interpolation for both, so the powder rests on the surface the thermal grid conducts through.
+// raises (thermal/fusion.hpp) and the next layer's powder is spread on (dem/spread.hpp). The
+// thermal grid conducts through the bilinear surface; spheres touch the same nodes cut into
+// triangles (surface()), on which the nearest point is exact.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <numbers>
 #include <vector>
+
+#include "powderbed/bed/closest_point_triangle.hpp"
 
 namespace powderbed::bed {
 
@@ -79,44 +81,78 @@ struct HeightMap {
   }
   double highest() const { return empty() ? 0.0 : *std::max_element(z.begin(), z.end()); }
 
-  // The surface point nearest a sphere's centre (x, y, z) of radius r, sampled at the centre's
-  // foot and on rings of 0.35 r, 0.7 r and r around it (8 points each): a fused top is steep
-  // (a particle's volume raised over its footprint), so the surface right under the centre can
-  // be far lower than a step beside it that the sphere already touches. `offset` points from the
-  // centre to that point; offset[2] >= 0 when the centre is at or below the surface.
+  // The surface a sphere touches (the spread's floor, fusion's capture): each cell cut into two
+  // triangles along its diagonal from node (i, j) to (i + 1, j + 1), held beyond the grid as at().
+  // Triangles make the nearest point exact (closest_point_triangle.hpp), so a contact along the
+  // line to it is the gradient of a potential (surface_contacts.hpp). Within a cell they depart
+  // from the bilinear at() by at most |z(i, j) + z(i + 1, j + 1) - z(i + 1, j) - z(i, j + 1)| / 4,
+  // at its centre. Triangle t of cell (i, j) is 2 (i + (nx - 1) j) + (0: corners (i, j),
+  // (i + 1, j), (i + 1, j + 1); 1: (i, j), (i + 1, j + 1), (i, j + 1)).
+  double surface(double x, double y) const {
+    const GridCell c = cell(x, y);
+    const double a = node(c.i, c.j), diagonal = node(c.i + 1, c.j + 1);
+    if (c.fx >= c.fy) return a + c.fx * (node(c.i + 1, c.j) - a) + c.fy * (diagonal - node(c.i + 1, c.j));
+    return a + c.fy * (node(c.i, c.j + 1) - a) + c.fx * (diagonal - node(c.i, c.j + 1));
+  }
+  std::size_t triangle_at(double x, double y) const {
+    const GridCell c = cell(x, y);
+    return 2 * (c.i + (nx - 1) * c.j) + (c.fx >= c.fy ? 0 : 1);
+  }
+  std::array<Point3, 3> triangle(std::size_t t) const {
+    const std::size_t i = (t / 2) % (nx - 1), j = (t / 2) / (nx - 1);
+    const double xa = x0 + dx * static_cast<double>(i), ya = y0 + dy * static_cast<double>(j);
+    const Point3 a{xa, ya, node(i, j)}, c{xa + dx, ya + dy, node(i + 1, j + 1)};
+    if (t % 2 == 0) return {a, Point3{xa + dx, ya, node(i + 1, j)}, c};
+    return {a, c, Point3{xa, ya + dy, node(i, j + 1)}};
+  }
+  // (x, y) clamped onto the grid: where the surface held beyond it is measured from.
+  std::array<double, 2> clamp(double x, double y) const {
+    return {std::clamp(x, x0, x0 + dx * static_cast<double>(nx - 1)),
+            std::clamp(y, y0, y0 + dy * static_cast<double>(ny - 1))};
+  }
+  // f(t) for each triangle t that may hold a point within `reach` of (x, y, zc): those of the
+  // cells whose box (the cell up to its highest node) comes within `reach`. A sphere resting on
+  // the surface has most of its footprint's cells just under its lowest point, and the box's
+  // horizontal distance rules them out: only the cells near where it touches remain.
+  template <class F>
+  void for_each_triangle_near(double x, double y, double zc, double reach, F&& f) const {
+    const GridCell low = cell(x - reach, y - reach), high = cell(x + reach, y + reach);
+    for (std::size_t j = low.j; j <= high.j; ++j) {
+      const double ya = y0 + dy * static_cast<double>(j);
+      const double beside_y = std::max({0.0, ya - y, y - ya - dy});
+      for (std::size_t i = low.i; i <= high.i; ++i) {
+        const double xa = x0 + dx * static_cast<double>(i);
+        const double beside_x = std::max({0.0, xa - x, x - xa - dx});
+        const double top = std::max({node(i, j), node(i + 1, j), node(i, j + 1), node(i + 1, j + 1)});
+        const double above = std::max(0.0, zc - top);
+        if (beside_x * beside_x + beside_y * beside_y + above * above >= reach * reach) continue;
+        f(2 * (i + (nx - 1) * j));
+        f(2 * (i + (nx - 1) * j) + 1);
+      }
+    }
+  }
+
+  // The point of surface() nearest a sphere's centre (x, y, zc) of radius r, when one lies within
+  // r of it. `offset` points from the centre (its x and y clamped onto the grid) to that point;
+  // offset[2] >= 0 when the centre is at or below the surface under it, and then the point is
+  // the foot. With none within r the distance is r or more.
   struct Nearest {
     double offset[3];
     double distance;
   };
-  // cos and sin of the rings' 8 directions 2πk/8, computed once: the spread asks for the
-  // nearest point of every particle near the floor at every step.
-  static const std::array<std::array<double, 2>, 8>& ring_directions() {
-    static const std::array<std::array<double, 2>, 8> directions = [] {
-      std::array<std::array<double, 2>, 8> d{};
-      for (int k = 0; k < 8; ++k) {
-        const double a = 2 * std::numbers::pi * k / 8;
-        d[k] = {std::cos(a), std::sin(a)};
-      }
-      return d;
-    }();
-    return directions;
-  }
   Nearest nearest(double x, double y, double zc, double r) const {
-    const double foot = at(x, y) - zc;
+    const auto [xc, yc] = clamp(x, y);
+    const double foot = surface(xc, yc) - zc;
     Nearest best{{0, 0, foot}, std::abs(foot)};
     if (foot >= 0) return best;
-    const auto& directions = ring_directions();
-    for (const double ring : {0.35, 0.7, 1.0}) {
-      // A point on this ring (and the larger ones) lies at least ring r from the centre: none
-      // can be nearer than the best found once that is no more than ring r.
-      if (ring * r >= best.distance) break;
-      for (const auto& [c, s] : directions) {
-        const double ex = ring * r * c, ey = ring * r * s;
-        const double ez = at(x + ex, y + ey) - zc;
-        const double d = std::sqrt(ex * ex + ey * ey + ez * ez);
-        if (d < best.distance) best = {{ex, ey, ez}, d};
-      }
-    }
+    const Point3 centre{xc, yc, zc};
+    for_each_triangle_near(xc, yc, zc, std::min(r, best.distance), [&](std::size_t t) {
+      const auto [a, b, c] = triangle(t);
+      const Point3 q = closest_point_on_triangle(centre, a, b, c).point;
+      const double ex = q[0] - xc, ey = q[1] - yc, ez = q[2] - zc;
+      const double distance = std::sqrt(ex * ex + ey * ey + ez * ez);
+      if (distance < best.distance) best = {{ex, ey, ez}, distance};
+    });
     return best;
   }
   // How deep a sphere reaches into the surface: r less its distance to the nearest point, or r

@@ -6,6 +6,7 @@
 // contact is composed of sub-models chosen once per run (dem/src/contact_model.hpp), and it
 // sums every particle's forces in one fixed order on any number of threads, so that a run is
 // reproducible bit for bit and a continued run equals the uninterrupted one.
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -38,6 +39,9 @@ struct ToolForceSample {
 // Everything a layer's end leaves for the next (the bed file's /restart group): with the bed's
 // positions and velocities this is the whole state, so a run continued from it equals the
 // uninterrupted one bit for bit.
+// Values of SpreadState::wall_history per particle (above).
+inline constexpr std::size_t kWallHistoryValues = 7 * 6 + 4 * 7;
+
 struct SpreadState {
   std::uint64_t layers_done = 0;
   std::uint64_t step = 0;         // steps since the first layer began
@@ -49,7 +53,8 @@ struct SpreadState {
   // Contacts with history, by particle id: ids (i < j in index order), F_s and M_r, 3 each.
   std::vector<std::uint64_t> pair_ids;   // 2 per contact
   std::vector<double> pair_history;      // 6 per contact
-  // Wall contacts (plate, tool, x low, x high, y low, y high, top) per particle: 7 x 6 values.
+  // Wall contacts per particle, kWallHistoryValues values: the plate, tool, x low, x high, y low,
+  // y high and top, 6 values each; then the floor's contacts, 4 x (the facet touched + 1, 6).
   std::vector<double> wall_history;
   // The solid the powder rests on (SpreadSettings::floor; empty: the flat plate). A continued
   // run spreads on it when its settings give none.
@@ -109,8 +114,9 @@ struct SpreadSettings {
   // blade, and without freezing every earlier layer is integrated every step, so N layers cost
   // ~N^2 (docs/deposit-spread.md "Many layers"). 0: off, every particle moves.
   double freeze_depth = 0;
-  // The solid the powder is spread on (the fused top of earlier layers, build): a wall at
-  // z = floor.at(x, y) in the bed's frame, touched along its local normal; empty: the flat plate
+  // The solid the powder is spread on (the fused top of earlier layers, build): a wall of
+  // triangles on the nodes (HeightMap::surface), touched at each local minimum of the distance
+  // (bed/surface_contacts.hpp), each contact with its own history; empty: the flat plate
   // at the box's floor (or the restart's floor, when it has one). Heights at or above the box's
   // floor.
   bed::HeightMap floor;

@@ -1,0 +1,101 @@
+// surface_contacts.hpp: the local minima of the distance from a sphere's centre to a HeightMap's
+// triangles.
+#include "powderbed/bed/surface_contacts.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <tuple>
+#include <vector>
+
+namespace powderbed::bed {
+
+namespace {
+
+// A feature of the triangulated grid, named once whichever triangle finds it: a node, an edge
+// (its lower node and its direction: 0 along x, 1 along y, 2 the cell's diagonal) or a face.
+enum FeatureKind : std::uint64_t { kNode, kEdge, kFace };
+constexpr std::uint64_t feature_key(FeatureKind kind, std::uint64_t value) { return 3 * value + kind; }
+
+std::uint64_t feature_of(const HeightMap& m, std::size_t t, TriangleFeature f) {
+  const std::size_t i = (t / 2) % (m.nx - 1), j = (t / 2) / (m.nx - 1);
+  const auto node = [&](std::size_t a, std::size_t b) { return feature_key(kNode, a + m.nx * b); };
+  const auto edge = [&](std::size_t a, std::size_t b, int direction) {
+    return feature_key(kEdge, 3 * (a + m.nx * b) + static_cast<std::uint64_t>(direction));
+  };
+  using F = TriangleFeature;
+  const bool lower = t % 2 == 0;  // corners (i, j), (i + 1, j), (i + 1, j + 1); else (i, j), (i + 1, j + 1), (i, j + 1)
+  switch (f) {
+    case F::vertex_a: return node(i, j);
+    case F::vertex_b: return lower ? node(i + 1, j) : node(i + 1, j + 1);
+    case F::vertex_c: return lower ? node(i + 1, j + 1) : node(i, j + 1);
+    case F::edge_ab: return lower ? edge(i, j, 0) : edge(i, j, 2);
+    case F::edge_ac: return lower ? edge(i, j, 2) : edge(i, j, 1);
+    case F::edge_bc: return lower ? edge(i + 1, j, 1) : edge(i, j + 1, 0);
+    case F::face: break;
+  }
+  return feature_key(kFace, t);
+}
+
+// How many triangles of the grid hold a node or an edge.
+std::size_t triangles_holding(const HeightMap& m, std::uint64_t key) {
+  const std::uint64_t value = key / 3;
+  const auto inner = [](std::size_t k, std::size_t n) { return std::size_t{k > 0} + std::size_t{k + 1 < n}; };
+  if (key % 3 == kNode) {
+    const std::size_t i = value % m.nx, j = value / m.nx;
+    const bool left = i > 0, right = i + 1 < m.nx, below = j > 0, above = j + 1 < m.ny;
+    return 2 * (right && above) + (left && above) + 2 * (left && below) + (right && below);
+  }
+  const std::size_t n = value / 3, i = n % m.nx, j = n / m.nx;
+  switch (value % 3) {
+    case 0: return inner(j, m.ny);  // along x: the cells above and below
+    case 1: return inner(i, m.nx);  // along y: the cells left and right
+    default: return 2;             // a cell's diagonal
+  }
+}
+
+struct Candidate {
+  std::uint64_t feature;
+  std::size_t facet;
+  Point3 point;
+  double distance;
+};
+
+}  // namespace
+
+std::size_t surface_contacts(const HeightMap& m, double x, double y, double zc, double r,
+                             std::array<SurfaceContact, kMaxSurfaceContacts>& out) {
+  thread_local std::vector<Candidate> found;  // reused: the spread asks every step
+  found.clear();
+  const auto [xc, yc] = m.clamp(x, y);
+  const Point3 centre{xc, yc, zc};
+  m.for_each_triangle_near(xc, yc, zc, r, [&](std::size_t t) {
+    const auto [a, b, c] = m.triangle(t);
+    const TrianglePoint q = closest_point_on_triangle(centre, a, b, c);
+    const double ex = q.point[0] - xc, ey = q.point[1] - yc, ez = q.point[2] - zc;
+    const double distance = std::sqrt(ex * ex + ey * ey + ez * ez);
+    if (distance < r) found.push_back({feature_of(m, t, q.feature), t, q.point, distance});
+  });
+  std::sort(found.begin(), found.end(), [](const Candidate& p, const Candidate& q) {
+    return std::tie(p.feature, p.facet) < std::tie(q.feature, q.facet);
+  });
+  std::vector<Candidate>::iterator kept = found.begin();
+  for (auto group = found.begin(); group != found.end();) {
+    auto end = group;
+    while (end != found.end() && end->feature == group->feature) ++end;
+    const bool face = group->feature % 3 == kFace;
+    if (face || static_cast<std::size_t>(end - group) == triangles_holding(m, group->feature)) *kept++ = *group;
+    group = end;
+  }
+  std::sort(found.begin(), kept, [](const Candidate& p, const Candidate& q) {
+    return std::tie(p.distance, p.facet) < std::tie(q.distance, q.facet);
+  });
+  const std::size_t count = std::min<std::size_t>(static_cast<std::size_t>(kept - found.begin()), kMaxSurfaceContacts);
+  for (std::size_t k = 0; k < count; ++k) {
+    const Candidate& c = found[k];
+    out[k] = {c.facet, {c.point[0] - xc, c.point[1] - yc, c.point[2] - zc}, c.distance};
+  }
+  return count;
+}
+
+}  // namespace powderbed::bed
