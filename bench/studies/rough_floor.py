@@ -267,8 +267,8 @@ def page(base_report, base_run, infos, rows):
         "",
         machine(base_run["load_before"], max((run for *_, run, _ in rows), key=lambda r: r["end"],
                                              default=base_run)["load_after"], program=app("build"))
-        + " The load is the 1-min average before each build (the column below); the machine is "
-        "shared with another engineer's work.",
+        + " The load is the 1-min average before each build (the column below): other jobs "
+        "may share the machine.",
         "",
         f"Layer 1 (the base): layer density {base_report['layer_density']:.3f}, lack of fusion "
         f"{base_report['lack_of_fusion']:.3f}, {base_run['wall']:.0f} s.",
@@ -319,39 +319,60 @@ def page(base_report, base_run, infos, rows):
     return "\n".join(lines)
 
 
-def conclusion(infos, rows):
-    """The page's conclusion: the numbers from the runs, the reading of them as of this study."""
-    dens = {}
+def by_variant(rows, key):
+    """{variant: [the layer-2 report's `key` for each seed]}."""
+    out = {}
     for name, _, r, _, _ in rows:
-        dens.setdefault(name, []).append(r["layer_density"])
+        out.setdefault(name, []).append(r[key])
+    return out
+
+
+def conclusion(infos, rows):
+    """The page's conclusion, read off the runs."""
+    dens = by_variant(rows, "layer_density")
     mean = {k: float(np.mean(v)) for k, v in dens.items()}
-    spread = {k: (min(v), max(v)) for k, v in dens.items()}
-    c, s5, s12 = spread["control"], spread.get("sa5", (0, 0)), spread.get("sa12", (0, 0))
+    span = {k: (min(v), max(v)) for k, v in dens.items()}
+    rebuilds = {k: float(np.mean(v)) for k, v in by_variant(rows, "neighbour_rebuilds").items()}
+    ejected = {k: float(np.mean(v)) for k, v in by_variant(rows, "ejected").items()}
+    porosity = by_variant(rows, "part_porosity")
+    c, s5, s12 = span["control"], span["sa5"], span["sa12"]
+    change, seeds = mean["sa5"] - mean["control"], c[1] - c[0]
     i12 = infos["sa12"]
+    blade = min(r["tool_bottom"] for name, _, r, _, _ in rows if name == "sa12")
     return [
         "## Conclusion",
         "",
-        f"**Roughness at the particle scale does not raise the layer density.** With Sa 5 µm "
-        f"added the layer spread on the layer-1 solid has a density of {s5[0]:.3f}–{s5[1]:.3f} "
-        f"(mean {mean.get('sa5', 0):.3f}) against the control's {c[0]:.3f}–{c[1]:.3f} (mean "
-        f"{mean['control']:.3f}) over the two seeds: the change "
-        f"({mean.get('sa5', 0) - mean['control']:+.3f}) is within the seed spread "
-        f"({c[1] - c[0]:.3f} for the control), and nowhere near the 0.38–0.60 of measured spread "
-        "layers. The rougher floor spreads fewer particles over the strip, ejects more and costs "
-        "about three times the neighbour-list rebuilds (particles knocked about by the bumps).",
+        f"**Roughness at the particle scale barely moves the layer density.** With Sa 5 µm added "
+        f"the layer spread on the layer-1 solid has a density of {s5[0]:.3f}–{s5[1]:.3f} (mean "
+        f"{mean['sa5']:.3f}) against the control's {c[0]:.3f}–{c[1]:.3f} (mean "
+        f"{mean['control']:.3f}) over the two seeds: a change of {change:+.3f}, "
+        f"{'within' if abs(change) <= seeds else 'beyond'} the control's seed spread "
+        f"({seeds:.3f}; two seeds only), and nowhere near the 0.38–0.60 of measured spread "
+        f"layers. The rough floor costs {rebuilds['sa5'] / rebuilds['control']:.1f}× the "
+        f"control's neighbour-list rebuilds and ejects {ejected['sa5']:.0f} particles a layer "
+        f"against {ejected['control']:.0f}.",
         "",
         f"Sa 12 µm could not be posed as asked on this part. The layer-1 solid is only "
         f"{i12['mean_height'] * 1e6:.1f} µm thick on average over the roughened columns, so a "
         f"zero-mean field of Sa 12 µm that never goes below the plate puts "
         f"{i12['clipped'] / i12['columns']:.0%} of them at the plate and the rest into islands up "
         f"to {i12['top_max_after'] * 1e6:.0f} µm high (Sq {i12['sq'] * 1e6:.1f} µm: skewed), "
-        "24 µm under the blade. The spread then collapses (density "
-        f"{s12[0]:.3f}–{s12[1]:.3f}; about 250 particles ejected, over ten times the control's "
-        "rebuilds, the launches docs/build.md describes on spiky floors), and the laser, meeting "
-        "almost no powder, remelts the bare solid (lack of fusion ~0.02, porosity under 0.1 %). That "
-        "row measures a blade striking spikes, not a rough top; a fair Sa 12 µm test needs a "
-        "part several layers thick (or roughness that adds material).",
+        f"{(blade - i12['top_max_after']) * 1e6:.0f} µm under the blade. The layer spread over "
+        f"them has a density of {s12[0]:.3f}–{s12[1]:.3f} ({rebuilds['sa12'] / rebuilds['control']:.1f}× "
+        f"the control's rebuilds, {ejected['sa12']:.0f} ejected) and a part porosity of "
+        f"{min(porosity['sa12']):.1%}–{max(porosity['sa12']):.1%}. Until the floor touched a "
+        "sphere at each local minimum of the distance (docs/build.md \"The floor\", commit cb76db9) "
+        "this row collapsed: density 0.005–0.006, ~250 particles ejected and 10× the control's "
+        "rebuilds, the powder fired off the spikes. A fair Sa 12 µm test still needs a part "
+        "several layers thick (or roughness that adds material).",
         "",
+        *measure_note(),
+    ]
+
+
+def measure_note():
+    """What the build's layer density is, against the measured layers of issue 32."""
+    return [
         "So the smooth floor is not why the build's layers are sparse; the spread on the solid "
         "behaves like a spread on the bare plate at a gap of ~125 µm (docs/results/"
         "spread-density.md: 0.15 at 135 µm). Note that the numbers compared in issue 32 are not "
@@ -368,10 +389,7 @@ def conclusion(infos, rows):
         "the raised floor would have overlapped was lifted by the overlap's growth (table above), "
         "so no particle started inside the solid; build accepted every edited file (its checks: "
         "/restart sizes, floor within the box, no centre below the floor, /part's grid the "
-        "scan's) and continued each with --seed 2 as well as 1. The build binary dates from "
-        "2026-12-06 04:10 UTC; the uncommitted changes in the checkout (bed/src/deck_spread.cpp, "
-        "thermal/src/explain.cpp, thermal/src/solver.cpp) are another engineer's, made at 04:30 "
-        "UTC, and are not in it.",
+        "scan's) and continued each with --seed 2 as well as 1.",
     ]
 
 if __name__ == "__main__":
