@@ -541,15 +541,15 @@ struct SpreadLoop {
     std::array<bed::SurfaceContact, kFloorSlots> c;
     std::size_t count = 0;
     const double high = floor_high.at(x, y);
-    if (z - r > high) {  // above the solid's highest point within its reach: no contact
-      count = 0;
-    } else if (high - floor_low.at(x, y) <= 1e-9 || floor.surface(x, y) >= z) {
-      // Flat under the whole footprint, or the centre at or below the surface: straight up.
-      const double depth = (high - floor_low.at(x, y) <= 1e-9 ? high : floor.surface(x, y)) - z;
-      c[0] = {floor.triangle_at(x, y), {0, 0, depth}, std::abs(depth)};
-      count = depth + r > 0 ? 1 : 0;
-    } else {
-      count = bed::surface_contacts(floor, x, y, z, r, c);
+    if (z - r <= high) {  // else above the solid's highest point within its reach: no contact
+      const bool flat = high - floor_low.at(x, y) <= 1e-9;  // under the whole footprint
+      const double foot = flat ? high : floor.surface(x, y);
+      if (flat || foot >= z) {  // the plane's contact, or the centre below the surface: straight up
+        c[0] = {floor.triangle_at(x, y), {0, 0, foot - z}, std::abs(foot - z)};
+        count = foot - z + r > 0 ? 1 : 0;
+      } else {
+        count = bed::surface_contacts(floor, x, y, z, r, c);
+      }
     }
     floor_contacts(i, c, count, update);
   }
