@@ -742,9 +742,9 @@ bed::Bed sphere_over_groove() {
 
 // In a groove a sphere touches both slopes (bed/surface_contacts.hpp) and comes to rest at its
 // bottom: with the build scenes' friction and rolling resistance its speed is under 1e-9 m/s
-// after 15 ms (measured: 5e-12 m/s at 12 ms). The single contact at the nearest point that this
-// replaced held it by one slope at a time, and it rocked at 3e-4 to 1.5e-3 m/s for as long as
-// it ran (docs/build.md "Limits").
+// after 15 ms (measured: 5e-12 m/s at 12 ms). The single contact at the nearest of 25 sampled
+// points that this replaced held it by one slope at a time: it chattered at 2e-6 to 6e-6 m/s
+// from 12 ms to 20 ms (docs/build.md "Limits").
 TEST(SpreadFloor, SphereInAGrooveTouchesBothSlopesAndComesToRest) {
   const dem::Scene s = granular_scene(0.5, 0.1, dem::FrictionModel::history);
   bed::Bed b = sphere_over_groove();
