@@ -98,4 +98,12 @@ std::size_t surface_contacts(const HeightMap& m, double x, double y, double zc, 
   return count;
 }
 
+double surface_overlap(const HeightMap& m, double x, double y, double zc, double r) {
+  const auto [xc, yc] = m.clamp(x, y);
+  const double foot = m.surface(xc, yc) - zc;
+  if (foot >= 0) return r + foot;
+  std::array<SurfaceContact, kMaxSurfaceContacts> c;
+  return surface_contacts(m, x, y, zc, r, c) > 0 ? r - c[0].distance : 0.0;
+}
+
 }  // namespace powderbed::bed

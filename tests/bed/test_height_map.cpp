@@ -39,14 +39,14 @@ TEST(HeightMap, NearestPointAndOverlapOfASphere) {
   bed::HeightMap flat = plane();
   std::fill(flat.z.begin(), flat.z.end(), 0.0);
   // On a flat surface the nearest point is the foot: overlap r - z.
-  EXPECT_NEAR(flat.overlap(10e-6, 10e-6, 4e-6, 5e-6), 1e-6, 1e-18);
-  EXPECT_LE(flat.overlap(10e-6, 10e-6, 6e-6, 5e-6), 0.0);
+  EXPECT_NEAR(bed::surface_overlap(flat, 10e-6, 10e-6, 4e-6, 5e-6), 1e-6, 1e-18);
+  EXPECT_LE(bed::surface_overlap(flat, 10e-6, 10e-6, 6e-6, 5e-6), 0.0);
   // A centre below the surface reaches r plus its depth into it.
-  EXPECT_NEAR(flat.overlap(10e-6, 10e-6, -1e-6, 5e-6), 6e-6, 1e-18);
+  EXPECT_NEAR(bed::surface_overlap(flat, 10e-6, 10e-6, -1e-6, 5e-6), 6e-6, 1e-18);
   // A step beside the foot is found: node (2, 1) raised 8 um, a sphere of 5 um at x = 15 um
   // resting 5.5 um above the floor touches the step's flank though the floor under it is clear.
   flat.z[2 + 3 * 1] = 8e-6;
-  EXPECT_GT(flat.overlap(13e-6, 10e-6, 5.5e-6, 5e-6), 0.0);
+  EXPECT_GT(bed::surface_overlap(flat, 13e-6, 10e-6, 5.5e-6, 5e-6), 0.0);
 }
 
 TEST(HeightMap, PeriodicSeamKeepsTheVolume) {
@@ -80,7 +80,9 @@ TEST(HeightMap, NearestPointOnAPlaneLiesAlongItsNormal) {
   const double norm = std::sqrt(1 + 0.01 + 0.04);
   for (const auto& [x, y] : {std::pair{5e-6, 15e-6}, std::pair{12.5e-6, 7.5e-6}, std::pair{10e-6, 10e-6}}) {
     EXPECT_NEAR(m.surface(x, y), m.at(x, y), 1e-18);
-    const auto p = m.nearest(x, y, m.at(x, y) + 3e-6, 5e-6);
+    std::array<bed::SurfaceContact, bed::kMaxSurfaceContacts> c;
+    ASSERT_EQ(bed::surface_contacts(m, x, y, m.at(x, y) + 3e-6, 5e-6, c), 1u);
+    const bed::SurfaceContact& p = c[0];
     EXPECT_NEAR(p.distance, 3e-6 / norm, 1e-15);
     EXPECT_NEAR(p.offset[0] / p.distance, 0.1 / norm, 1e-9);
     EXPECT_NEAR(p.offset[1] / p.distance, 0.2 / norm, 1e-9);

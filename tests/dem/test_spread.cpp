@@ -20,6 +20,7 @@
 #include "beds.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
+#include "powderbed/bed/surface_contacts.hpp"
 #include "powderbed/dem/hertz_normal.hpp"
 #include "powderbed/dem/recoater.hpp"
 #include "powderbed/dem/rolling_resistance.hpp"
@@ -771,7 +772,7 @@ TEST(SpreadFloor, ElasticSphereBouncingInAGrooveKeepsItsEnergy) {
   double worst = 0;
   const bed::HeightMap floor = groove();
   st.observer = [&](std::uint64_t, double, const bed::Bed& bed, const std::vector<double>&) {
-    if (floor.overlap(bed.x[0], bed.y[0], bed.z[0], kRadius) > 0) return false;  // in contact
+    if (bed::surface_overlap(floor, bed.x[0], bed.y[0], bed.z[0], kRadius) > 0) return false;  // in contact
     const double v2 = bed.vx[0] * bed.vx[0] + bed.vy[0] * bed.vy[0] + bed.vz[0] * bed.vz[0];
     worst = std::max(worst, std::abs(0.5 * v2 + kG * bed.z[0] - start));
     return false;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/surface_contacts.hpp"
 #include "powderbed/thermal/fusion.hpp"
 #include "powderbed/thermal/lack_of_fusion.hpp"
 #include "powderbed/thermal/scan_path.hpp"
@@ -431,7 +432,7 @@ TEST(Fusion, CaptureLeavesNoPowderBuriedInTheGrownSolid) {
     const bed::HeightMap top = thermal::top_surface(sinter.grid(), f.top);
     double worst = 0;
     for (std::size_t i = 0; i < b.n(); ++i)
-      if (f.state[i] == 0) worst = std::max(worst, top.overlap(b.x[i], b.y[i], b.z[i], kR) / kR);
+      if (f.state[i] == 0) worst = std::max(worst, bed::surface_overlap(top, b.x[i], b.y[i], b.z[i], kR) / kR);
     return worst;
   };
   // The same depth found by brute force, the surface sampled at 61 x 61 points over the
@@ -516,7 +517,7 @@ TEST(Fusion, PeriodicSeamIsJoinedBeforeTheCapture) {
   const bed::HeightMap top = thermal::top_surface(g, fused.top);
   for (std::size_t i = 0; i < b.n(); ++i) {
     if (fused.state[i] != 0) continue;
-    EXPECT_LE(top.overlap(b.x[i], b.y[i], b.z[i], kR), 0.05 * kR) << i;
+    EXPECT_LE(bed::surface_overlap(top, b.x[i], b.y[i], b.z[i], kR), 0.05 * kR) << i;
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/bed/surface_contacts.hpp"
 #include "powderbed/thermal/bonding.hpp"
 
 namespace powderbed::thermal {
@@ -123,7 +124,7 @@ void capture_buried(const bed::Bed& bed, const SubstrateGeometry& g, const std::
     const bed::HeightMap top = top_surface(g, f.top);
     std::vector<std::size_t> taken;
     for (std::size_t i = 0; i < bed.n(); ++i)
-      if (stays_in_bed(f.state[i]) && top.overlap(bed.x[i], bed.y[i], bed.z[i], bed.radius[i]) > capture * bed.radius[i])
+      if (stays_in_bed(f.state[i]) && bed::surface_overlap(top, bed.x[i], bed.y[i], bed.z[i], bed.radius[i]) > capture * bed.radius[i])
         taken.push_back(i);
     if (taken.empty()) return;
     const TopHeight before = f.top;

@@ -84,7 +84,8 @@ struct HeightMap {
   // The surface a sphere touches (the spread's floor, fusion's capture): each cell cut into two
   // triangles along its diagonal from node (i, j) to (i + 1, j + 1), held beyond the grid as at().
   // Triangles make the nearest point exact (closest_point_triangle.hpp), so a contact along the
-  // line to it is the gradient of a potential (surface_contacts.hpp). Within a cell they depart
+  // line to it is the gradient of a potential (surface_contacts.hpp, which also measures a
+  // sphere's overlap with it). Within a cell they depart
   // from the bilinear at() by at most |z(i, j) + z(i + 1, j + 1) - z(i + 1, j) - z(i, j + 1)| / 4,
   // at its centre. Triangle t of cell (i, j) is 2 (i + (nx - 1) j) + (0: corners (i, j),
   // (i + 1, j), (i + 1, j + 1); 1: (i, j), (i + 1, j + 1), (i, j + 1)).
@@ -130,36 +131,6 @@ struct HeightMap {
         f(2 * (i + (nx - 1) * j) + 1);
       }
     }
-  }
-
-  // The point of surface() nearest a sphere's centre (x, y, zc) of radius r, when one lies within
-  // r of it. `offset` points from the centre (its x and y clamped onto the grid) to that point;
-  // offset[2] >= 0 when the centre is at or below the surface under it, and then the point is
-  // the foot. With none within r the distance is r or more.
-  struct Nearest {
-    double offset[3];
-    double distance;
-  };
-  Nearest nearest(double x, double y, double zc, double r) const {
-    const auto [xc, yc] = clamp(x, y);
-    const double foot = surface(xc, yc) - zc;
-    Nearest best{{0, 0, foot}, std::abs(foot)};
-    if (foot >= 0) return best;
-    const Point3 centre{xc, yc, zc};
-    for_each_triangle_near(xc, yc, zc, std::min(r, best.distance), [&](std::size_t t) {
-      const auto [a, b, c] = triangle(t);
-      const Point3 q = closest_point_on_triangle(centre, a, b, c).point;
-      const double ex = q[0] - xc, ey = q[1] - yc, ez = q[2] - zc;
-      const double distance = std::sqrt(ex * ex + ey * ey + ez * ez);
-      if (distance < best.distance) best = {{ex, ey, ez}, distance};
-    });
-    return best;
-  }
-  // How deep a sphere reaches into the surface: r less its distance to the nearest point, or r
-  // plus the depth of its centre below the surface (<= 0: clear of it).
-  double overlap(double x, double y, double zc, double r) const {
-    const Nearest p = nearest(x, y, zc, r);
-    return p.offset[2] >= 0 ? r + p.offset[2] : r - p.distance;
   }
 };
 

@@ -29,4 +29,9 @@ struct SurfaceContact {
 std::size_t surface_contacts(const HeightMap& surface, double x, double y, double zc, double r,
                              std::array<SurfaceContact, kMaxSurfaceContacts>& out);
 
+// How deep a sphere reaches into the surface: r less its distance to the nearest point (its
+// deepest contact), or r plus the depth of its centre when that lies at or below the surface
+// under it; 0 when it touches nothing (fusion's capture, thermal/fusion.cpp).
+double surface_overlap(const HeightMap& surface, double x, double y, double zc, double r);
+
 }  // namespace powderbed::bed

@@ -59,8 +59,8 @@ struct Fusion {
 // (0, 1] (InputError naming fuse.melt-fraction otherwise).
 //
 // capture c > 0 (build: the next layer is spread on what stays): a powder particle that the
-// grown solid overlaps by more than c r (bed::HeightMap::overlap, the spread's floor contact)
-// joins it too, its volume raised over its footprint as a fused one's (and levelled over L as the
+// grown solid overlaps by more than c r (bed::surface_overlap, on the surface the spread's
+// floor touches) joins it too, its volume raised over its footprint as a fused one's (and levelled over L as the
 // scan's deposit, below), until none is left so deep. A fused particle's volume spreads under its unfused neighbours as well; left where it
 // is, such a neighbour would start the next spread deep inside a wall, and a softened contact
 // fires it off at metres per second. Physically the melt pool draws in powder it touches (the
