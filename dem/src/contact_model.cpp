@@ -1,6 +1,7 @@
 // The sub-models of contact_model.hpp and the one kernel that composes them.
 #include "contact_model.hpp"
 
+#include "contact_kernel.hpp"
 #include "powderbed/bed/critical_damping.hpp"
 #include "powderbed/dem/rolling_resistance.hpp"
 #include "powderbed/dem/tangential_history.hpp"
@@ -18,6 +19,7 @@ inline void cross(const double a[3], const double b[3], double out[3]) {
 template <class LawT, bool Damped>
 struct Normal {
   using Law = LawT;
+  static constexpr bool damped = Damped;
   static double force(const ContactConstants& k, double delta, double rate) {
     if constexpr (Damped) {
       return Law::damped(k.elastic, k.damping, delta, rate);
@@ -157,6 +159,11 @@ ContactModel instantiate() {
   model.force = &contact<N, T, R>;
   model.constants = &make_constants<typename N::Law>;
   model.rotation = T::rotation || R::rotation;
+  model.history = T::history || R::history;
+  if constexpr (!(T::rotation || R::rotation || T::history || R::history)) {
+    constexpr unsigned effects = (N::damped ? kDamping : 0u) | (T::friction ? kFriction : 0u);
+    model.batch = &contact_kernel<effects, typename N::Law>;
+  }
   return model;
 }
 

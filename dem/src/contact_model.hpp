@@ -71,11 +71,19 @@ using ContactFn = void (*)(const ContactCoefficients& m, const ContactConstants&
                            const double wj[3], double arm_i, double arm_j, double* h, bool update,
                            ContactForce& out);
 using ConstantsFn = ContactConstants (*)(const ContactCoefficients& m, const ContactPartners& p);
+// The pair force over m contacts in contiguous arrays (contact_kernel.hpp), for a model whose
+// contacts neither turn the particles nor keep a history: its pair pass is a batch that the
+// compiler vectorises, not a call per contact.
+using BatchFn = void (*)(std::size_t m, SlidingFrictionParams friction, const double* dx,
+                         const double* dy, const double* dz, const double* reach,
+                         const double* elastic, const double* damping, const double* dvx,
+                         const double* dvy, const double* dvz, double* fx, double* fy, double* fz);
 
 // The scene's contact model, instantiated once: its force and the maker of its constants.
 struct ContactModel {
   ContactFn force = nullptr;
   ConstantsFn constants = nullptr;
+  BatchFn batch = nullptr;  // set when the model can run batched (no rotation, no history)
   ContactCoefficients coefficients;
   bool rotation = false;  // a sub-model reads or changes the particles' rotation
   bool history = false;   // a sub-model keeps history between steps

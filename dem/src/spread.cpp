@@ -16,6 +16,7 @@
 #include <unordered_set>
 
 #include "box.hpp"
+#include "contact_kernel.hpp"
 #include "contact_model.hpp"
 #include "flush_subnormals.hpp"
 #include "lane_tests.hpp"
@@ -60,6 +61,10 @@ double largest_radius(const bed::Bed& b) {
 // A pair's force on its owner and the torques on both, stored per list entry by the parallel
 // pair loop (SpreadLoop::parallel_pair_forces).
 constexpr std::size_t kPairLoad = 9;
+
+// Hot list entries per batch of the batched pair pass (SpreadLoop::batched_pair_forces): its
+// buffer (~100 bytes a contact) stays in the L2 cache between the batch's passes.
+constexpr std::size_t kBatchEntries = 1024;
 
 // The walls a particle may touch, each with its own contact history.
 enum WallSlot { kPlate, kTool, kXLow, kXHigh, kYLow, kYHigh, kTop, kWallSlots };
@@ -200,6 +205,8 @@ struct SpreadLoop {
   // (kPairLoad per entry) holds each touching pair's force and torques for the gather.
   int threads = 1;
   std::vector<double> pair_load;
+  // Per thread, the batch of a model that batches (ContactModel::batch; contact_kernel.hpp).
+  std::vector<detail::ContactBuffer> buffers = std::vector<detail::ContactBuffer>(1);
   bed::HeightMap floor;               // the solid under the powder (empty: the flat plate)
   // The floor's highest and lowest node within reach of a sphere's footprint around each node
   // (floor_reach: the largest radius they were made for): bounds that let a sphere high above
@@ -393,6 +400,7 @@ struct SpreadLoop {
     list.build(view(), threads, threads > 1, moving);
     const std::size_t entries = list.pair_entries();
     if (threads > 1) pair_load.resize(entries * kPairLoad);
+    buffers.resize(static_cast<std::size_t>(threads));
     pair.resize(entries);
     pair_reach.resize(entries);
     pair_history.assign(entries * kContactHistory, 0.0);
@@ -406,6 +414,7 @@ struct SpreadLoop {
       for (const std::uint32_t* it = list.begin(i); it != list.end(i); ++it, ++k) {
         const std::uint32_t j = *it;
         pair_reach[k] = bed.radius[i] + bed.radius[j];
+        if (model.batch) pair[k] = pair_constants(i, j);  // the batch reads every entry's
         for (std::size_t c = first; c < last; ++c) {
           if (a.j[c] != j) continue;
           std::copy_n(a.h.begin() + static_cast<std::ptrdiff_t>(c * kContactHistory), kContactHistory,
@@ -725,9 +734,81 @@ struct SpreadLoop {
             WrappedImage(box), this, update};
   }
 
+  // Pass 1 of a batch (contact_kernel.hpp) over hot entries [q0, q1): each entry's touch bit,
+  // and the touching ones' pairs, separations, velocity differences and constants gathered
+  // into b. The compaction has no branch (the count advances by the test's 0 or 1).
+  void collect_batch(std::size_t q0, std::size_t q1, detail::ContactBuffer& b) {
+    b.reserve(q1 - q0);
+    const std::uint32_t* __restrict hot = list.hot();
+    const std::uint32_t* __restrict owner = list.owners();
+    const std::uint32_t* __restrict partner = list.partners();
+    const double* __restrict x = bed.x.data();
+    const double* __restrict y = bed.y.data();
+    const double* __restrict z = bed.z.data();
+    const double* __restrict reach = pair_reach.data();
+    std::uint8_t* __restrict touch = touching.data();
+    std::uint32_t* __restrict bk = b.k.data();
+    const WrappedImage image(box);
+    std::size_t m = 0;
+    for (std::size_t q = q0; q < q1; ++q) {
+      const std::uint32_t k = hot[q], i = owner[k], j = partner[k];
+      const double ex = image(0, x[j] - x[i]), ey = image(1, y[j] - y[i]), ez = image(2, z[j] - z[i]);
+      const bool in = ex * ex + ey * ey + ez * ez < reach[k] * reach[k];
+      touch[k] = static_cast<std::uint8_t>(in);
+      bk[m] = k;
+      m += static_cast<std::size_t>(in);
+    }
+    b.count = m;
+    for (std::size_t c = 0; c < m; ++c) {
+      const std::uint32_t k = bk[c], i = owner[k], j = partner[k];
+      b.i[c] = i;
+      b.j[c] = j;
+      b.dx[c] = image(0, x[j] - x[i]);
+      b.dy[c] = image(1, y[j] - y[i]);
+      b.dz[c] = image(2, z[j] - z[i]);
+      b.reach[c] = reach[k];
+      b.elastic[c] = pair[k].elastic;
+      b.damping[c] = pair[k].damping;
+      b.dvx[c] = bed.vx[i] - bed.vx[j];
+      b.dvy[c] = bed.vy[i] - bed.vy[j];
+      b.dvz[c] = bed.vz[i] - bed.vz[j];
+    }
+  }
+
+  // Passes 1 and 2 of a batch: the forces of the touching entries among hot [q0, q1) in b.
+  void batch_forces(std::size_t q0, std::size_t q1, detail::ContactBuffer& b) {
+    collect_batch(q0, q1, b);
+    model.batch(b.count, model.coefficients.sliding, b.dx.data(), b.dy.data(), b.dz.data(), b.reach.data(),
+                b.elastic.data(), b.damping.data(), b.dvx.data(), b.dvy.data(), b.dvz.data(), b.fx.data(),
+                b.fy.data(), b.fz.data());
+  }
+
+  // The pair forces of a model that batches (ContactModel::batch: no torques, no history), in
+  // the serial loop's order: F on i, -F on j, contact by contact in increasing hot entry.
+  void batched_pair_forces() {
+    detail::ContactBuffer& b = buffers[0];
+    double *ax = fx.data(), *ay = fy.data(), *az = fz.data();
+    for (std::size_t q0 = 0, entries = list.hot_entries(); q0 < entries; q0 += kBatchEntries) {
+      batch_forces(q0, std::min(entries, q0 + kBatchEntries), b);
+      for (std::size_t c = 0; c < b.count; ++c) {
+        const std::uint32_t i = b.i[c], j = b.j[c];
+        ax[i] += b.fx[c];
+        ay[i] += b.fy[c];
+        az[i] += b.fz[c];
+        ax[j] -= b.fx[c];
+        ay[j] -= b.fy[c];
+        az[j] -= b.fz[c];
+      }
+    }
+  }
+
   // The pair forces and torques added to the particles', in one fixed order: each particle's
   // contributions in increasing list entry (what the serial loop's F on i, -F on j gives).
   void pair_forces(bool update) {
+    if (model.batch && threads <= 1) {
+      batched_pair_forces();
+      return;
+    }
     if (threads > 1) {
       parallel_pair_forces(update);
       return;
@@ -764,6 +845,20 @@ struct SpreadLoop {
     const std::uint32_t* hot = list.hot();
     double* load = pair_load.data();
     detail::for_each_chunk(list.hot_entries(), threads, [&](std::size_t begin, std::size_t end) {
+      if (model.batch) {
+        detail::ContactBuffer& b = buffers[static_cast<std::size_t>(omp_get_thread_num())];
+        for (std::size_t q0 = begin; q0 < end; q0 += kBatchEntries) {
+          batch_forces(q0, std::min(end, q0 + kBatchEntries), b);
+          for (std::size_t c = 0; c < b.count; ++c) {
+            double* out = load + std::size_t{b.k[c]} * kPairLoad;
+            out[0] = b.fx[c];
+            out[1] = b.fy[c];
+            out[2] = b.fz[c];
+            std::fill_n(out + 3, 6, 0.0);  // no torques
+          }
+        }
+        return;
+      }
       for (std::size_t q = begin; q < end; ++q) {
         ContactForce c;
         if (!pass.contact(hot[q], c)) continue;
