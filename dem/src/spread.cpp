@@ -8,6 +8,7 @@
 #include "powderbed/dem/spread.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
@@ -68,6 +69,10 @@ constexpr std::size_t kBatchEntries = 1024;
 
 // The walls a particle may touch, each with its own contact history.
 enum WallSlot { kPlate, kTool, kXLow, kXHigh, kYLow, kYHigh, kTop, kWallSlots };
+
+// The box's faces in the order a particle meets them: the plate (z low), the top, x low, x high,
+// y low, y high (SpreadLoop::near_face).
+constexpr std::size_t kFaces = 6;
 
 // The floor's contacts (SpreadSettings::floor; bed/surface_contacts.hpp) follow the walls' slots
 // in a particle's row of wall_history: per slot the facet it touches plus one (0: free; a
@@ -159,6 +164,13 @@ std::uint64_t kick_drift(std::size_t count, const DriftConstants k, double* __re
   return bad;
 }
 
+// The entries of an index-ascending list of particles that lie in [p0, p1).
+std::pair<const std::uint32_t*, const std::uint32_t*> candidates(const std::vector<std::uint32_t>& list, std::size_t p0,
+                                                                 std::size_t p1) {
+  const std::uint32_t* first = std::lower_bound(list.data(), list.data() + list.size(), p0);
+  return {first, std::lower_bound(first, list.data() + list.size(), p1)};
+}
+
 struct SpreadLoop {
   SpreadLoop(bed::Bed& b, const Scene& sc, const SpreadSettings& st) : bed(b), scene(sc), settings(st) {}
   bed::Bed& bed;
@@ -193,6 +205,8 @@ struct SpreadLoop {
   std::vector<std::uint8_t> wall_touch;
   std::vector<ContactConstants> wall;        // per particle
   std::vector<std::uint32_t> near_walls, near_tool;  // find_wall_candidates, at each prune
+  // With a model that batches, per face instead of near_walls (find_wall_candidates).
+  std::array<std::vector<std::uint32_t>, kFaces> near_face;
   NeighbourList list;
   double prune_margin = 0;            // NeighbourList::prune's, m (Spreader sets it with the skin)
   std::vector<ContactConstants> pair;        // per list entry, made when it comes into contact
@@ -624,19 +638,23 @@ struct SpreadLoop {
     constexpr std::uint8_t tool_bit = 1u << kTool;
     near_walls.clear();
     near_tool.clear();
+    for (auto& list_of_face : near_face) list_of_face.clear();
     const double plate = floor.empty() ? box.lower[2] : std::max(box.lower[2], floor_top);
     for (std::size_t i = 0; i < moving; ++i) {
-      const double r = bed.radius[i], x = bed.x[i], y = bed.y[i], z = bed.z[i];
-      bool walls = z - plate < r + margin || box.upper[2] - z < r + margin ||
-                   (wall_touch[i] & ~tool_bit) != 0;
-      for (int axis = 0; axis < 2; ++axis) {
-        const double p = axis == 0 ? x : y;
-        walls = walls || (!box.periodic[axis] && (p - box.lower[axis] < r + margin || box.upper[axis] - p < r + margin));
+      const double r = bed.radius[i], x = bed.x[i], y = bed.y[i], z = bed.z[i], reach = r + margin;
+      const bool x_open = !box.periodic[0], y_open = !box.periodic[1];
+      const bool near[kFaces] = {z - plate < reach, box.upper[2] - z < reach,
+                                 x_open && x - box.lower[0] < reach, x_open && box.upper[0] - x < reach,
+                                 y_open && y - box.lower[1] < reach, y_open && box.upper[1] - y < reach};
+      if (model.batch) {  // no history: a face's candidates are those within reach of it
+        for (std::size_t f = 0; f < kFaces; ++f)
+          if (near[f]) near_face[f].push_back(static_cast<std::uint32_t>(i));
+      } else if (std::any_of(near, near + kFaces, [](bool b) { return b; }) || (wall_touch[i] & ~tool_bit) != 0) {
+        near_walls.push_back(static_cast<std::uint32_t>(i));
       }
-      if (walls) near_walls.push_back(static_cast<std::uint32_t>(i));
-      const double reach = r + profile.rounding + margin;
+      const double tool_reach = r + profile.rounding + margin;
       const bool tool = tool_on && ((wall_touch[i] & tool_bit) != 0 ||
-                                    (profile.z_low - z < reach && x > tool_x - profile.half_width - reach));
+                                    (profile.z_low - z < tool_reach && x > tool_x - profile.half_width - tool_reach));
       if (tool) near_tool.push_back(static_cast<std::uint32_t>(i));
     }
   }
@@ -680,12 +698,85 @@ struct SpreadLoop {
   // The static walls touch only their particle's arrays, so they run on the threads; the tool
   // sums its force over its candidates, in index order, on one.
   void wall_forces(bool update) {
-    if (threads > 1) {
+    if (model.batch) {
+      batched_walls(update);
+    } else if (threads > 1) {
       detail::for_each_particle(near_walls.size(), threads, [&](std::size_t q) { static_walls(near_walls[q], update); });
     } else {
       for (const std::uint32_t i : near_walls) static_walls(i, update);
     }
     for (const std::uint32_t i : near_tool) tool_wall(i, update);
+  }
+
+  // Pass 1 of the box's faces as a batch (a model that batches: ContactModel::batch) for the
+  // moving particles [p0, p1), face by face (so each particle meets its faces in the order of
+  // static_walls): each face within a radius of a centre as a pair partner of radius 0 at the
+  // foot of the perpendicular (separation: the foot minus the centre; reach: the radius), so
+  // the pairs' kernel gives its force. A centre at or past the face (a particle about to be
+  // lost) has its foot put a radius away on the face's outer side with the reach lengthened to
+  // match, so the normal still points out of the box. The plate is a face only without a floor.
+  void collect_faces(std::size_t p0, std::size_t p1, detail::ContactBuffer& b) {
+    std::size_t m = 0;
+    if (floor.empty()) m = collect_face<2, 0>(p0, p1, b, m);
+    m = collect_face<2, 1>(p0, p1, b, m);
+    if (!box.periodic[0]) m = collect_face<0, 1>(p0, p1, b, collect_face<0, 0>(p0, p1, b, m));
+    if (!box.periodic[1]) m = collect_face<1, 1>(p0, p1, b, collect_face<1, 0>(p0, p1, b, m));
+    b.count = m;
+  }
+
+  // collect_faces's contacts with face (Axis, Side: 0 low, 1 high), appended at m; returns the
+  // new count. Compiled per face, so the axis and side cost nothing in the loop.
+  template <int Axis, int Side>
+  std::size_t collect_face(std::size_t p0, std::size_t p1, detail::ContactBuffer& b, std::size_t m) {
+    constexpr std::size_t f = Axis == 2 ? Side : 2 + 2 * Axis + Side;
+    constexpr double side = Side == 0 ? -1.0 : 1.0;
+    const auto [first, last] = candidates(near_face[f], p0, p1);
+    b.reserve(m + static_cast<std::size_t>(last - first));
+    const double* at = Axis == 0 ? bed.x.data() : Axis == 1 ? bed.y.data() : bed.z.data();
+    for (const std::uint32_t* it = first; it != last; ++it) {
+      const std::uint32_t i = *it;
+      const double r = bed.radius[i];
+      const double gap = Side == 0 ? at[i] - box.lower[Axis] : box.upper[Axis] - at[i];
+      if (!(gap < r)) continue;
+      const double d = gap > 0 ? gap : r;
+      b.i[m] = i;
+      b.dx[m] = Axis == 0 ? side * d : 0.0;
+      b.dy[m] = Axis == 1 ? side * d : 0.0;
+      b.dz[m] = Axis == 2 ? side * d : 0.0;
+      b.reach[m] = gap > 0 ? r : r - gap + d;
+      b.elastic[m] = wall[i].elastic;
+      b.damping[m] = wall[i].damping;
+      b.dvx[m] = bed.vx[i];
+      b.dvy[m] = bed.vy[i];
+      b.dvz[m] = bed.vz[i];
+      ++m;
+    }
+    return m;
+  }
+
+  // The walls of a model that batches, in blocks of particles: the floor's contacts (when there
+  // is one) one by one, then the box's faces as a batch (collect_faces), each added to its
+  // particle in static_walls's order.
+  void batched_walls(bool update) {
+    detail::for_each_chunk(moving, threads, [&](std::size_t begin, std::size_t end) {
+      detail::ContactBuffer& b = buffers[static_cast<std::size_t>(omp_get_thread_num())];
+      for (std::size_t p0 = begin; p0 < end; p0 += kBatchEntries) {
+        const std::size_t p1 = std::min(end, p0 + kBatchEntries);
+        if (!floor.empty()) {
+          const auto [first, last] = candidates(near_face[0], p0, p1);
+          for (auto it = first; it != last; ++it) plate_contact(*it, update);
+        }
+        collect_faces(p0, p1, b);
+        model.batch(b.count, model.coefficients.sliding, b.dx.data(), b.dy.data(), b.dz.data(), b.reach.data(),
+                    b.elastic.data(), b.damping.data(), b.dvx.data(), b.dvy.data(), b.dvz.data(), b.fx.data(),
+                    b.fy.data(), b.fz.data());
+        for (std::size_t c = 0; c < b.count; ++c) {
+          fx[b.i[c]] += b.fx[c];
+          fy[b.i[c]] += b.fy[c];
+          fz[b.i[c]] += b.fz[c];
+        }
+      }
+    });
   }
 
   // The pair loop's view of the run: local copies of the arrays' addresses (the contact model's
