@@ -125,6 +125,15 @@ std::array<double, 6> wall_forces(const bed::Bed& bed, const Scene& scene, doubl
   return f;
 }
 
+double full_stiffness_overlap(const Overlap& overlap, const Scene& scene, double young_scale) {
+  if (scene.law == ContactLaw::hertz) return bed::hertz_overlap_of_softened(overlap.relative, young_scale);
+  if (!(overlap.absolute > 0)) return 0.0;
+  const ContactModuli moduli = contact_moduli(scene, young_scale);
+  const double full = bed::hertz_overlap_of_linear(overlap.absolute, scene.stiffness,
+                                                   overlap.wall ? moduli.wall : moduli.pair, overlap.reduced_radius);
+  return overlap.relative * full / overlap.absolute;
+}
+
 Overlap max_overlap(const bed::Bed& bed, const Scene& scene) {
   Overlap o;
   const auto note = [&](double delta, double r, double r_star, bool wall) {

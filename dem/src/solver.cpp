@@ -20,7 +20,7 @@
 #include "flush_subnormals.hpp"
 #include "forces.hpp"
 #include "parallel.hpp"
-#include "rotating_drop.hpp"
+#include "drop_on_engine.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/random.hpp"
 #include "powderbed/bed/softening.hpp"
@@ -367,6 +367,7 @@ void check_lid(const LidSettings& lid, const Scene& scene) {
 // Everything run_deposition refuses, before any work.
 void check_run(const bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
   scene.validate();
+  detail::refuse_rotation_off_engine(scene, settings);
   bed.validate("deposit input bed");
   check_bed(bed);
   check_run_settings(settings);
@@ -866,19 +867,7 @@ void summarise(DropRun& run, const TimeStepBound& bound) {
   const Overlap overlap = max_overlap(c.bed, run.scene);
   summary.max_overlap = overlap.relative;
   summary.max_overlap_m = overlap.absolute;
-  if (run.scene.law == ContactLaw::linear) {
-    // The Hertz overlap at the materials' E* under the same force k_n delta (bed/softening.hpp).
-    const double e_star = overlap.wall ? c.params.wall.hertz.effective_modulus
-                                       : c.params.pair.hertz.effective_modulus;
-    const double full = overlap.absolute > 0 ? bed::hertz_overlap_of_linear(overlap.absolute, run.scene.stiffness,
-                                                                            e_star, overlap.reduced_radius)
-                                             : 0.0;
-    summary.max_overlap_full_stiffness =
-        overlap.absolute > 0 ? overlap.relative * full / overlap.absolute : 0.0;
-  } else {
-    summary.max_overlap_full_stiffness =
-        bed::hertz_overlap_of_softened(overlap.relative, run.settings.young_scale);
-  }
+  summary.max_overlap_full_stiffness = full_stiffness_overlap(overlap, run.scene, run.settings.young_scale);
   summary.lost = count_outside(c.bed, c.n);
   summary.neighbour_rebuilds = c.rebuilds;
 }
@@ -905,10 +894,10 @@ void check_run_settings(const RunSettings& s) {
 }
 
 RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
-  if (detail::needs_rotation(scene)) return detail::run_rotating_drop(bed, scene, settings);
+  check_run(bed, scene, settings);
+  if (detail::runs_on_engine(scene, settings)) return detail::run_drop_on_engine(bed, scene, settings);
   const auto started = std::chrono::steady_clock::now();
   const detail::FlushSubnormals flush;  // a settled bed's speeds decay into subnormals
-  check_run(bed, scene, settings);
   const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
   DropRun run(bed, scene, settings);
   Context& c = run.c;

@@ -640,10 +640,11 @@ struct SpreadLoop {
     near_tool.clear();
     for (auto& list_of_face : near_face) list_of_face.clear();
     const double plate = floor.empty() ? box.lower[2] : std::max(box.lower[2], floor_top);
+    const bool walls = scene.has(kWalls);  // off only in a drop (check_settings)
     for (std::size_t i = 0; i < moving; ++i) {
       const double r = bed.radius[i], x = bed.x[i], y = bed.y[i], z = bed.z[i], reach = r + margin;
-      const bool x_open = !box.periodic[0], y_open = !box.periodic[1];
-      const bool near[kFaces] = {z - plate < reach, box.upper[2] - z < reach,
+      const bool x_open = walls && !box.periodic[0], y_open = walls && !box.periodic[1];
+      const bool near[kFaces] = {walls && z - plate < reach, walls && box.upper[2] - z < reach,
                                  x_open && x - box.lower[0] < reach, x_open && box.upper[0] - x < reach,
                                  y_open && y - box.lower[1] < reach, y_open && box.upper[1] - y < reach};
       if (model.batch) {  // no history: a face's candidates are those within reach of it
@@ -1351,9 +1352,9 @@ void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSetting
     throw InputError("recoater: the box must be 3D with z not periodic (accepted: periodic x, y)");
   }
   if (settings.with_tool) check_tool(settings.tool, box);
-  if (!scene.has(kWalls)) {
-    throw InputError("effects.walls: off in a spreading run (accepted: on; the plate and the tool "
-                     "are walls)");
+  if (!scene.has(kWalls) && (settings.with_tool || !settings.floor.empty())) {
+    throw InputError("effects.walls: off in a spreading run (accepted: on; the plate, the floor and "
+                     "the tool are walls)");
   }
   if (!settings.rotation && (scene.friction_model == FrictionModel::history || scene.material.rolling > 0)) {
     throw InputError(std::string(scene.material.rolling > 0 ? "material.rolling" : "friction.model = history") +
@@ -1530,6 +1531,7 @@ struct Spreader {
     run.forces();
     const auto steps = static_cast<std::uint64_t>(std::ceil(settings.t_end / run.dt - 1e-9));
     resolve_thermo(steps);
+    if (settings.thermo) thermo();  // the state at the start, as a drop's table begins
     const std::uint64_t first = step;
     const bool stopped = settings.frame && settings.frame(step, static_cast<double>(step) * run.dt, bed);
     if (!stopped) advance(steps, [](std::uint64_t) {});

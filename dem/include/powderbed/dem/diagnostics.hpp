@@ -36,6 +36,11 @@ struct Overlap {
 };
 // Largest overlap among particle pairs and (walls on) particle–wall contacts.
 Overlap max_overlap(const bed::Bed& bed, const Scene& scene);
+// What that overlap (relative) would be at full stiffness under the same force: the Hertz force
+// goes as E delta^{3/2}, so delta_full = delta_soft * young_scale^{-2/3}; with the linear law
+// the Hertz overlap at the materials' E* (of the pair or of the wall) under k_n delta
+// (bed/softening.hpp).
+double full_stiffness_overlap(const Overlap& overlap, const Scene& scene, double young_scale);
 
 // Particles whose centre is outside the box on a non-periodic axis (lost), among the first `n`.
 std::size_t count_outside(const bed::Bed& bed, std::size_t n);

@@ -1,5 +1,5 @@
-// The drop of rotating_drop.hpp: RunSettings to SpreadSettings, SpreadSummary to RunSummary.
-#include "rotating_drop.hpp"
+// The drop of drop_on_engine.hpp: RunSettings to SpreadSettings, SpreadSummary to RunSummary.
+#include "drop_on_engine.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,17 +18,8 @@
 namespace powderbed::dem::detail {
 namespace {
 
-void refuse_drop_only(const Scene& scene, const RunSettings& settings) {
-  if (settings.lid.enabled || settings.insertion.enabled || settings.integrator != Integrator::verlet) {
-    throw InputError(std::string(scene.material.rolling > 0 ? "material.rolling" : "friction.model = history") +
-                     ": with the lid, insertion or --integrator rk4 (accepted: a drop with velocity "
-                     "Verlet, --t-end or --until-rest, and a trajectory; those need the drop solver, "
-                     "which has no particle rotation)");
-  }
-}
-
 // The drop's rest test (RestCriteria, as the drop solver's: about ten checks a window, at most
-// every 100 steps) and its trajectory, on the spreading engine's frames.
+// every 100 steps), its trajectory and its observer, on the engine's frames.
 class DropFrames {
  public:
   DropFrames(const bed::Bed& bed, const Scene& scene, const RunSettings& settings, double dt)
@@ -43,18 +34,24 @@ class DropFrames {
     if (!settings.trajectory.empty()) trajectory_.emplace(settings.trajectory, bed);
   }
 
-  // SpreadSettings::frame_every: every step that a test or a snapshot falls on.
+  // SpreadSettings::frame_every: every step that a test, a snapshot or the observer falls on.
   std::uint64_t every() const {
     const std::uint64_t rest = settings_.until_rest ? rest_every_ : 0;
     const std::uint64_t frames = trajectory_ ? settings_.trajectory_every : 0;
-    return std::gcd(rest, frames);
+    const std::uint64_t observed = settings_.observer ? settings_.observe_every : 0;
+    return std::gcd(std::gcd(rest, frames), observed);
   }
 
-  // SpreadSettings::frame: true once the bed has been quiet for the window.
+  // SpreadSettings::frame: true once the bed has been quiet for the window, or when the
+  // observer stops the run.
   bool operator()(std::uint64_t step, double time, const bed::Bed& bed) {
     if (trajectory_ && step % settings_.trajectory_every == 0) {
       trajectory_->write(step, time, bed);
       written_ = step;
+    }
+    if (settings_.observer && step > 0 && step % settings_.observe_every == 0 &&
+        settings_.observer(step, time, bed)) {
+      return true;
     }
     if (!settings_.until_rest || step % rest_every_ != 0) return false;
     if (quiet(bed)) {
@@ -96,9 +93,10 @@ class DropFrames {
   std::optional<TrajectoryWriter> trajectory_;
 };
 
-SpreadSettings spread_settings(const RunSettings& settings) {
+SpreadSettings spread_settings(const Scene& scene, const RunSettings& settings, double dt) {
   SpreadSettings s;
   s.with_tool = false;
+  s.rotation = needs_rotation(scene);
   s.t_end = settings.t_end > 0 ? settings.t_end : 1.0;  // the drop's cap with until_rest
   s.young_scale = settings.young_scale;
   s.dt = settings.dt;
@@ -108,11 +106,13 @@ SpreadSettings spread_settings(const RunSettings& settings) {
   s.parallel_min_particles = settings.parallel_min_particles;
   s.thermo = settings.thermo;  // the drop's table: no layer, no tool
   s.thermo_every = settings.thermo_every;
+  s.progress_every = settings.progress_every;
   if (settings.progress) {
-    s.progress = [&settings](double fraction, double kinetic_energy) {
+    s.progress = [&settings, dt, t_end = s.t_end](double fraction, double kinetic_energy) {
       Progress p;
-      p.time = fraction * settings.t_end;
-      p.t_end = settings.t_end;
+      p.time = fraction * t_end;
+      p.step = static_cast<std::uint64_t>(std::llround(p.time / dt));
+      p.t_end = t_end;
       p.kinetic_energy = kinetic_energy;
       settings.progress(p);
     };
@@ -126,13 +126,23 @@ bool needs_rotation(const Scene& scene) {
   return scene.friction_model == FrictionModel::history || scene.material.rolling > 0;
 }
 
-RunSummary run_rotating_drop(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
-  check_run_settings(settings);  // run_spread reads a negative dt as "the recommended one"
-  refuse_drop_only(scene, settings);
-  SpreadSettings spread = spread_settings(settings);
+bool runs_on_engine(const Scene& scene, const RunSettings&) { return needs_rotation(scene); }
+
+void refuse_rotation_off_engine(const Scene& scene, const RunSettings& settings) {
+  if (!needs_rotation(scene)) return;
+  if (!settings.lid.enabled && !settings.insertion.enabled && settings.integrator == Integrator::verlet) return;
+  throw InputError(std::string(scene.material.rolling > 0 ? "material.rolling" : "friction.model = history") +
+                   ": with the lid, insertion or --integrator rk4 (accepted: a drop with velocity "
+                   "Verlet, --t-end or --until-rest, and a trajectory; those need the drop solver, "
+                   "which has no particle rotation)");
+}
+
+RunSummary run_drop_on_engine(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
   // The frames need the step: the one run_spread will take (the user's or the recommended).
   const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
-  DropFrames frames(bed, scene, settings, settings.dt > 0 ? settings.dt : bound.recommended);
+  const double dt = settings.dt > 0 ? settings.dt : bound.recommended;
+  SpreadSettings spread = spread_settings(scene, settings, dt);
+  DropFrames frames(bed, scene, settings, dt);
   spread.frame_every = frames.every();
   if (spread.frame_every > 0) {
     spread.frame = [&frames](std::uint64_t step, double time, const bed::Bed& b) { return frames(step, time, b); };
@@ -153,14 +163,21 @@ RunSummary run_rotating_drop(bed::Bed& bed, const Scene& scene, const RunSetting
   const Overlap overlap = max_overlap(bed, scene);  // pairs and walls, as a drop's
   r.max_overlap = overlap.relative;
   r.max_overlap_m = overlap.absolute;
-  if (scene.law == ContactLaw::hertz) {
-    r.max_overlap_full_stiffness = bed::hertz_overlap_of_softened(overlap.relative, settings.young_scale);
-  }
+  r.max_overlap_full_stiffness = full_stiffness_overlap(overlap, scene, settings.young_scale);
+  r.lost = count_outside(bed, bed.n());
   r.neighbour_rebuilds = g.neighbour_rebuilds;
   for (std::size_t i = 0; i < bed.n(); ++i) {  // physical masses, as a drop's summary
     const double v2 = bed.vx[i] * bed.vx[i] + bed.vy[i] * bed.vy[i] + bed.vz[i] * bed.vz[i];
     r.kinetic_energy += 0.5 * bed::sphere_volume(bed.radius[i]) * scene.material.density * v2;
     r.max_speed = std::max(r.max_speed, std::sqrt(v2));
+  }
+  if (settings.progress) {  // the run's end, as the drop solver's last call
+    Progress p;
+    p.step = r.steps;
+    p.time = p.t_end = r.sim_time;
+    p.kinetic_energy = r.kinetic_energy;
+    p.max_speed = r.max_speed;
+    settings.progress(p);
   }
   return r;
 }
