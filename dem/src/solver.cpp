@@ -21,6 +21,7 @@
 #include "forces.hpp"
 #include "parallel.hpp"
 #include "drop_on_engine.hpp"
+#include "lid_phase.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/random.hpp"
 #include "powderbed/bed/softening.hpp"
@@ -670,184 +671,56 @@ class Insertion {
   double failing_since_ = kNotFailing;  // start of the current run of failed insertions
 };
 
-// The lid (solver.hpp LidSettings): the box's top face, moved between steps, lowered onto the
-// bed, held, then released (the bed relaxes) or kept as the bed's top face.
-class LidPhase {
+// The drop solver's side of the lid (lid_phase.hpp).
+class SolverLid {
  public:
-  LidPhase(DropRun& run, double (*force)(const Context&, bool))
-      : run_(run), c_(run.c), lid_(run.settings.lid), out_(run.summary.lid), box_(c_.params.box),
-        force_(force), damping_(run.scene.has(kDamping)), top_(box_.upper[2]) {}
+  SolverLid(DropRun& run, double (*force)(const Context&, bool))
+      : run_(run), c_(run.c), force_(force), damping_(run.scene.has(kDamping)) {}
 
-  void run() {
-    run_.summary.lid_used = true;
-    out_.released = lid_.release;
-    lower();
-    if (!run_.stopped) hold();
-    if (!lid_.release) {  // the lid stays: it is the bed's top face from now on
-      c_.bed.domain.upper[2] = box_.upper[2];
-      run_.summary.at_rest = false;
-      return;
-    }
-    release();
-    if (run_.stopped) return;
+  const RunSettings& settings() const { return run_.settings; }
+  RunSummary& summary() { return run_.summary; }
+  bool stopped() const { return run_.stopped; }
+  double time() const { return run_.time(); }
+  double dt() const { return c_.dt; }
+  const bed::Bed& bed() const { return c_.bed; }
+  std::size_t count() const { return c_.n; }
+  Box& box() { return c_.params.box; }
+  void set_top_velocity(double v) { c_.params.top_velocity = v; }
+  void keep_top(double z) { c_.bed.domain.upper[2] = z; }
+
+  // A list build: the face tables list the particles within r + skin of the lid.
+  void top_reset() {
     c_.rebuild();
     ++c_.rebuilds;
-    const auto relax_steps = static_cast<std::uint64_t>(std::ceil(lid_.relax / c_.dt - 1e-9));
-    run_.summary.at_rest = advance(relax_steps, true, nothing, never);
-  }
-
- private:
-  // The held lid's servo (LidSettings::hold): full speed once the force is 10 % off the target.
-  static constexpr double kServoGain = 10;
-
-  // Where the lowering starts (the highest particle top) and how far it may go: to the target
-  // force, the travel or depth asked for, or one smallest diameter above the floor.
-  void plan_travel() {
-    const bed::Bed& bed = c_.bed;
-    double highest = box_.lower[2], r_min = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < c_.n; ++i) {
-      highest = std::max(highest, bed.z[i] + bed.radius[i]);
-      r_min = std::min(r_min, bed.radius[i]);
-    }
-    out_.start_z = std::min(top_, highest);
-    out_.target_force = lid_.pressure * box_.length[0] * box_.length[1];
-    // No bed is thinner than one particle: the lid stops one smallest diameter above the floor.
-    floor_travel_ = std::max(0.0, out_.start_z - (box_.lower[2] + 2 * r_min));
-    requested_ = lid_.travel;
-    if (lid_.depth > 0) {  // to `depth` below the surface, the 90th percentile of the tops
-      std::vector<double> tops(c_.n);
-      for (std::size_t i = 0; i < c_.n; ++i) tops[i] = bed.z[i] + bed.radius[i];
-      const auto k = tops.begin() + static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(c_.n - 1));
-      std::nth_element(tops.begin(), k, tops.end());
-      out_.surface_z = *k;
-      requested_ = std::max(0.0, out_.start_z - (out_.surface_z - lid_.depth));
-    }
-    travel_ = requested_ > 0 ? std::min(requested_, floor_travel_) : floor_travel_;
-    per_step_ = lid_.speed * c_.dt;
-  }
-
-  void lower() {
-    plan_travel();
-    box_.upper[2] = out_.start_z;
-    c_.rebuild();
-    ++c_.rebuilds;
-    lid_at_build_ = box_.upper[2];
+    lid_at_build_ = c_.params.box.upper[2];
     builds_ = c_.rebuilds;
-    std::uint64_t lowered = 0;
-    const auto move = [&] {
-      ++lowered;
-      box_.upper[2] = out_.start_z - std::min(travel_, static_cast<double>(lowered) * per_step_);
-      rebuild_if_lid_moved();
-    };
-    const auto lowered_enough = [&] {
-      out_.stop_force = record();
-      if (out_.target_force > 0 && out_.stop_force >= out_.target_force) {
-        out_.stopped_by = "force";
-      } else if (static_cast<double>(lowered) * per_step_ >= travel_) {
-        out_.stopped_by = requested_ > 0 && requested_ <= floor_travel_
-                              ? (lid_.depth > 0 ? "depth" : "travel")
-                              : "floor";
-      }
-      return !out_.stopped_by.empty();
-    };
-    c_.params.top_velocity = -lid_.speed;
-    const auto lowering_steps = static_cast<std::uint64_t>(std::ceil(travel_ / per_step_)) + 1;
-    advance(lowering_steps, false, move, lowered_enough);
-    if (out_.stopped_by.empty()) out_.stopped_by = "floor";  // travel 0: the lid could not move
-    out_.stop_z = box_.upper[2];
-    c_.params.top_velocity = 0;
   }
-
-  // Held for lid.hold: with a pressure by the servo of LidSettings::hold, never below the floor
-  // limit, never above where the lid started; in place otherwise.
-  void hold() {
-    const auto hold_steps = static_cast<std::uint64_t>(std::ceil(lid_.hold / c_.dt - 1e-9));
-    double late_sum = 0;
-    std::uint64_t late = 0;
-    const std::uint64_t hold_start = run_.step;
-    const auto track = [&] {
-      out_.hold_end_force = record();
-      if (2 * (run_.step - hold_start) >= hold_steps) {
-        late_sum += out_.hold_end_force;
-        ++late;
-      }
-      return false;
-    };
-    const double lowest = out_.start_z - floor_travel_;
-    const auto servo = [&] {
-      const double error = (out_.target_force - out_.hold_end_force) / out_.target_force;
-      const double v = lid_.speed * std::clamp(kServoGain * error, -1.0, 1.0);
-      box_.upper[2] = std::clamp(box_.upper[2] - v * c_.dt, lowest, top_);
-      c_.params.top_velocity = -v;
-      rebuild_if_lid_moved();
-    };
-    out_.hold_end_force = out_.stop_force;
-    if (out_.target_force > 0)
-      advance(hold_steps, false, servo, track);
-    else
-      advance(hold_steps, false, nothing, track);
-    c_.params.top_velocity = 0;
-    out_.hold_end_z = box_.upper[2];
-    out_.hold_late_force = late ? late_sum / static_cast<double>(late) : out_.hold_end_force;
+  // Particles move at most skin/2 between builds, so a rebuild whenever the lid has moved skin/2
+  // keeps every particle that can touch it listed.
+  void top_moved() {
+    if (std::abs(lid_at_build_ - c_.params.box.upper[2]) > 0.5 * c_.list.skin()) {
+      c_.rebuild();
+      ++c_.rebuilds;
+    }
   }
-
-  // Raised back to the top of the box at lid.speed ([KE]: "raised again"), so that the bed
-  // unloads as slowly as it was loaded; at once, a bed pressed on stiff linear springs throws
-  // its top layers up.
-  void release() {
-    out_.release_time = run_.time();
-    c_.params.top_velocity = lid_.speed;
-    const auto raise = [&] {
-      box_.upper[2] = std::min(top_, box_.upper[2] + per_step_);
-      rebuild_if_lid_moved();
-    };
-    const auto raised = [&] {
-      record();
-      return box_.upper[2] >= top_;
-    };
-    const auto raising_steps =
-        static_cast<std::uint64_t>(std::ceil((top_ - box_.upper[2]) / per_step_)) + 1;
-    if (!run_.stopped) advance(raising_steps, false, raise, raised);
-    c_.params.top_velocity = 0;
-    box_.upper[2] = top_;
+  double top_force() {
+    if (c_.rebuilds != builds_) {  // in top_moved or in the step's own rebuild_if_needed
+      builds_ = c_.rebuilds;
+      lid_at_build_ = c_.params.box.upper[2];
+    }
+    return force_(c_, damping_);
   }
-
-  // `steps` more steps of the run (DropRun::advance), the progress bar's end at their end.
   template <class Before, class After>
   bool advance(std::uint64_t steps, bool until_rest, Before&& before, After&& after) {
     const std::uint64_t last = run_.step + steps;
     return run_.advance(last, until_rest, run_.time_at(last), before, after);
   }
 
-  // The face tables list the particles within r + skin of the lid at a build; particles move at
-  // most skin/2 before the next one, so a rebuild whenever the lid has moved skin/2 keeps every
-  // particle that can touch it listed.
-  void rebuild_if_lid_moved() {
-    if (std::abs(lid_at_build_ - box_.upper[2]) > 0.5 * c_.list.skin()) {
-      c_.rebuild();
-      ++c_.rebuilds;
-    }
-  }
-  // The bed's force on the lid now (its largest so far kept).
-  double record() {
-    if (c_.rebuilds != builds_) {  // here or in the step's own rebuild_if_needed
-      builds_ = c_.rebuilds;
-      lid_at_build_ = box_.upper[2];
-    }
-    const double force = force_(c_, damping_);
-    out_.max_force = std::max(out_.max_force, force);
-    return force;
-  }
-
+ private:
   DropRun& run_;
   Context& c_;
-  const LidSettings& lid_;
-  LidSummary& out_;
-  Box& box_;
   double (*force_)(const Context&, bool);  // lid_force<Law>
   bool damping_;
-  double top_;                 // m, the box's top face
-  double floor_travel_ = 0, requested_ = 0, travel_ = 0, per_step_ = 0;  // m
   double lid_at_build_ = 0;    // m, where the lid was at the last list build
   std::uint64_t builds_ = 0;   // c.rebuilds when lid_at_build_ was taken
 };
@@ -939,7 +812,8 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
                                     [&] { insertion.insert_due(); }, never);
   if (run.inserting) insertion.end("time", run.time());
   if (settings.lid.enabled && !run.stopped) {
-    LidPhase(run, linear ? &lid_force<detail::LinearLaw> : &lid_force<detail::HertzLaw>).run();
+    SolverLid lid(run, linear ? &lid_force<detail::LinearLaw> : &lid_force<detail::HertzLaw>);
+    detail::LidPhase<SolverLid>(lid).run();
   }
   if (run.trajectory) {
     if (run.step % settings.trajectory_every != 0) run.trajectory->write(run.step, run.time(), bed);
