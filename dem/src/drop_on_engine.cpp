@@ -1,14 +1,18 @@
-// The drop of drop_on_engine.hpp: RunSettings to SpreadSettings, SpreadSummary to RunSummary.
+// The drop of drop_on_engine.hpp: the deposition driver on the engine (engine.hpp), its settle,
+// rest test, snapshots and table, and the lid's side (lid_phase.hpp).
 #include "drop_on_engine.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
-#include <numeric>
 #include <optional>
 #include <string>
 
+#include "box.hpp"
+#include "engine.hpp"
+#include "flush_subnormals.hpp"
+#include "lid_phase.hpp"
 #include "powderbed/bed/errors.hpp"
-#include "powderbed/bed/softening.hpp"
 #include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/spread.hpp"
@@ -18,107 +22,191 @@
 namespace powderbed::dem::detail {
 namespace {
 
-// The drop's rest test (RestCriteria, as the drop solver's: about ten checks a window, at most
-// every 100 steps), its trajectory and its observer, on the engine's frames.
-class DropFrames {
- public:
-  DropFrames(const bed::Bed& bed, const Scene& scene, const RunSettings& settings, double dt)
-      : scene_(scene), settings_(settings) {
-    const RestCriteria& rest = settings.rest;
-    double mass = 0;
-    for (const double r : bed.radius) mass += bed::sphere_volume(r) * scene.material.density;
-    rest_energy_ = rest.kinetic_energy > 0 ? rest.kinetic_energy
-                                           : 1e-2 * 0.5 * mass * rest.max_speed * rest.max_speed;
-    rest_every_ = static_cast<std::uint64_t>(std::clamp(std::floor(rest.window / dt / 10.0), 1.0, 100.0));
-    window_steps_ = static_cast<std::uint64_t>(std::ceil(rest.window / dt));
-    if (!settings.trajectory.empty()) trajectory_.emplace(settings.trajectory, bed);
-  }
-
-  // SpreadSettings::frame_every: every step that a test, a snapshot or the observer falls on.
-  std::uint64_t every() const {
-    const std::uint64_t rest = settings_.until_rest ? rest_every_ : 0;
-    const std::uint64_t frames = trajectory_ ? settings_.trajectory_every : 0;
-    const std::uint64_t observed = settings_.observer ? settings_.observe_every : 0;
-    return std::gcd(std::gcd(rest, frames), observed);
-  }
-
-  // SpreadSettings::frame: true once the bed has been quiet for the window, or when the
-  // observer stops the run.
-  bool operator()(std::uint64_t step, double time, const bed::Bed& bed) {
-    if (trajectory_ && step % settings_.trajectory_every == 0) {
-      trajectory_->write(step, time, bed);
-      written_ = step;
-    }
-    if (settings_.observer && step > 0 && step % settings_.observe_every == 0 &&
-        settings_.observer(step, time, bed)) {
-      return true;
-    }
-    if (!settings_.until_rest || step % rest_every_ != 0) return false;
-    if (quiet(bed)) {
-      if (quiet_since_ == kNotQuiet) quiet_since_ = step;
-      at_rest_ = step - quiet_since_ >= window_steps_;
-    } else {
-      quiet_since_ = kNotQuiet;
-    }
-    return at_rest_;
-  }
-
-  // The last snapshot (unless the last step had one) and the file into place.
-  void finish(std::uint64_t step, double time, const bed::Bed& bed) {
-    if (!trajectory_) return;
-    if (written_ != step) trajectory_->write(step, time, bed);
-    trajectory_->close();
-  }
-
-  bool at_rest() const { return at_rest_; }
-
- private:
-  static constexpr std::uint64_t kNotQuiet = ~std::uint64_t{0};
-
-  bool quiet(const bed::Bed& bed) const {
-    double energy = 0, fastest = 0;
-    for (std::size_t i = 0; i < bed.n(); ++i) {
-      const double v2 = bed.vx[i] * bed.vx[i] + bed.vy[i] * bed.vy[i] + bed.vz[i] * bed.vz[i];
-      energy += 0.5 * bed::sphere_volume(bed.radius[i]) * scene_.material.density * v2;
-      fastest = std::max(fastest, v2);
-    }
-    return energy < rest_energy_ && std::sqrt(fastest) < settings_.rest.max_speed;
-  }
-
-  const Scene& scene_;
-  const RunSettings& settings_;
-  double rest_energy_ = 0;
-  std::uint64_t rest_every_ = 1, window_steps_ = 0, quiet_since_ = kNotQuiet, written_ = kNotQuiet;
-  bool at_rest_ = false;
-  std::optional<TrajectoryWriter> trajectory_;
-};
-
-SpreadSettings spread_settings(const Scene& scene, const RunSettings& settings, double dt) {
+// The engine's settings of a drop: no tool, the particles turning when a law needs it.
+SpreadSettings engine_settings(const Scene& scene, const RunSettings& settings) {
   SpreadSettings s;
   s.with_tool = false;
   s.rotation = needs_rotation(scene);
-  s.t_end = settings.t_end > 0 ? settings.t_end : 1.0;  // the drop's cap with until_rest
   s.young_scale = settings.young_scale;
   s.dt = settings.dt;
   s.unsafe_dt = settings.unsafe_dt;
   s.skin = settings.skin;
   s.threads = settings.threads;
   s.parallel_min_particles = settings.parallel_min_particles;
-  s.thermo = settings.thermo;  // the drop's table: no layer, no tool
-  s.thermo_every = settings.thermo_every;
-  s.progress_every = settings.progress_every;
-  if (settings.progress) {
-    s.progress = [&settings, dt, t_end = s.t_end](double fraction, double kinetic_energy) {
-      Progress p;
-      p.time = fraction * t_end;
-      p.step = static_cast<std::uint64_t>(std::llround(p.time / dt));
-      p.t_end = t_end;
-      p.kinetic_energy = kinetic_energy;
-      settings.progress(p);
-    };
-  }
   return s;
 }
+
+constexpr std::uint64_t kNotQuiet = ~std::uint64_t{0};
+
+// A drop on the engine: the settle for t_end or until rest, then the lid; and the engine's side
+// of the lid (lid_phase.hpp's Run).
+class EngineDrop {
+ public:
+  EngineDrop(bed::Bed& bed, const Scene& scene, const RunSettings& settings)
+      : bed_(bed), scene_(scene), settings_(settings), spread_(engine_settings(scene, settings)),
+        engine_(bed, scene, spread_) {}
+
+  RunSummary run() {
+    const auto started = std::chrono::steady_clock::now();
+    const FlushSubnormals flush;  // a settled bed's speeds decay into subnormals
+    const TimeStepBound bound = set_up();
+    const double t_end = settings_.t_end > 0 ? settings_.t_end : 1.0;  // the cap with until_rest
+    const auto steps = static_cast<std::uint64_t>(std::ceil(t_end / engine_.dt - 1e-9));
+    thermo_every_ = settings_.thermo_every > 0 ? settings_.thermo_every : thermo_interval(steps);
+    if (!settings_.trajectory.empty()) {
+      trajectory_.emplace(settings_.trajectory, bed_);
+      trajectory_->write(0, 0.0, bed_);
+    }
+    if (settings_.thermo) thermo();
+    summary_.at_rest = advance(steps, settings_.until_rest, [] {}, [] { return false; });
+    if (settings_.lid.enabled && !stopped_) LidPhase<EngineDrop>(*this).run();
+    engine_.sync(step_);
+    if (trajectory_) {
+      if (step_ % settings_.trajectory_every != 0) trajectory_->write(step_, time(), bed_);
+      trajectory_->close();
+    }
+    if (settings_.thermo && thermo_last_ != step_) thermo();
+    summarise(bound, started);
+    if (settings_.progress) report(summary_.sim_time);
+    return summary_;
+  }
+
+  // lid_phase.hpp's Run.
+  const RunSettings& settings() const { return settings_; }
+  RunSummary& summary() { return summary_; }
+  bool stopped() const { return stopped_; }
+  double time() const { return static_cast<double>(step_) * engine_.dt; }
+  double dt() const { return engine_.dt; }
+  const bed::Bed& bed() const { return bed_; }
+  std::size_t count() const { return bed_.n(); }
+  Box& box() { return engine_.box; }
+  void set_top_velocity(double v) { engine_.top_velocity = v; }
+  void keep_top(double z) { bed_.domain.upper[2] = z; }
+  // The walls' candidates found anew, the lid allowed to move half the prune margin before the
+  // next search (a particle moves at most as far between prunes).
+  void top_reset() {
+    engine_.top_slack = 0.5 * engine_.prune_margin;
+    engine_.find_wall_candidates();
+  }
+  void top_moved() {
+    if (std::abs(engine_.box.upper[2] - engine_.top_at_search) > engine_.top_slack) engine_.find_wall_candidates();
+  }
+  double top_force() const { return engine_.top_force(); }
+
+  // `steps` more steps: before() ahead of each, after() after it (true ends them); with
+  // until_rest, until the bed has been quiet for the rest window (then true). The observer's
+  // stop ends the run (stopped()).
+  template <class Before, class After>
+  bool advance(std::uint64_t steps, bool until_rest, Before&& before, After&& after) {
+    const double progress_end = static_cast<double>(step_ + steps) * engine_.dt;
+    std::uint64_t quiet_since = kNotQuiet;  // first step of the current quiet stretch
+    for (std::uint64_t s = 0; s < steps; ++s) {
+      before();
+      engine_.step(step_ + 1);
+      ++step_;
+      const double now = time();
+      if (trajectory_ && step_ % settings_.trajectory_every == 0) {
+        trajectory_->write(step_, now, engine_.whole_step_bed());
+      }
+      if (settings_.observer && step_ % settings_.observe_every == 0 &&
+          settings_.observer(step_, now, engine_.whole_step_bed())) {
+        stopped_ = true;
+        return false;
+      }
+      if (settings_.thermo && step_ % thermo_every_ == 0) thermo();
+      if (after()) return false;
+      if (until_rest && step_ % rest_every_ == 0 && quiet_for_window(quiet_since)) return true;
+      if (settings_.progress && step_ % settings_.progress_every == 0) report(progress_end);
+    }
+    return false;
+  }
+
+ private:
+  // The engine as the spreading driver sets it up without a tool, and the rest test's constants.
+  TimeStepBound set_up() {
+    if (bed_.n() == 0) throw InputError("deposit: the bed has no particles (accepted: N >= 1)");
+    engine_.box = Box::from(bed_.domain);
+    engine_.set_up();
+    const TimeStepBound bound = time_step_bound(bed_, scene_, settings_.young_scale);
+    engine_.set_time_step(bound);
+    engine_.bound_floor();
+    engine_.rebuild({});
+    engine_.forces();
+    const RestCriteria& rest = settings_.rest;
+    double mass = 0;
+    for (const double r : bed_.radius) mass += bed::sphere_volume(r) * scene_.material.density;
+    rest_energy_ = rest.kinetic_energy > 0 ? rest.kinetic_energy : 1e-2 * 0.5 * mass * rest.max_speed * rest.max_speed;
+    // Rest checks: about ten per window (at most every 100 steps), never every step.
+    rest_every_ = static_cast<std::uint64_t>(std::clamp(std::floor(rest.window / engine_.dt / 10.0), 1.0, 100.0));
+    window_steps_ = static_cast<std::uint64_t>(std::ceil(rest.window / engine_.dt));
+    return bound;
+  }
+
+  // The rest test (RestCriteria) at this step: true once the bed has been quiet for the window.
+  bool quiet_for_window(std::uint64_t& quiet_since) const {
+    if (engine_.kinetic_energy() < rest_energy_ && engine_.max_speed() < settings_.rest.max_speed) {
+      if (quiet_since == kNotQuiet) quiet_since = step_;
+      return step_ - quiet_since >= window_steps_;
+    }
+    quiet_since = kNotQuiet;
+    return false;
+  }
+
+  void thermo() {
+    ThermoRow row = thermo_row(bed_, scene_, bed_.n());
+    row.step = step_;
+    row.time = time();
+    row.kinetic_energy = engine_.kinetic_energy();
+    settings_.thermo(row);
+    thermo_last_ = step_;
+  }
+
+  void report(double progress_end) const {
+    Progress p;
+    p.step = step_;
+    p.time = time();
+    p.t_end = progress_end;
+    p.kinetic_energy = engine_.kinetic_energy();
+    p.max_speed = engine_.max_speed();
+    settings_.progress(p);
+  }
+
+  // The end state's summary (physical masses in the energy, pairs and walls in the overlap).
+  void summarise(const TimeStepBound& bound, std::chrono::steady_clock::time_point started) {
+    RunSummary& r = summary_;
+    r.n = bed_.n();
+    r.steps = step_;
+    r.sim_time = time();
+    r.dt = engine_.dt;
+    r.dt_stable = bound.stable;
+    r.dt_limited_by = bound.limited_by;
+    r.dt_limiting_radius = bound.limiting_radius;
+    r.kinetic_energy = engine_.kinetic_energy();
+    r.max_speed = engine_.max_speed();
+    const Overlap overlap = max_overlap(bed_, scene_);
+    r.max_overlap = overlap.relative;
+    r.max_overlap_m = overlap.absolute;
+    r.max_overlap_full_stiffness = full_stiffness_overlap(overlap, scene_, settings_.young_scale);
+    r.lost = count_outside(bed_, bed_.n());
+    r.neighbour_rebuilds = engine_.rebuilds;
+    r.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const double particle_steps = static_cast<double>(bed_.n()) * static_cast<double>(step_);
+    r.particle_steps_per_s = r.wall_time > 0 ? particle_steps / r.wall_time : 0;
+  }
+
+  bed::Bed& bed_;
+  const Scene& scene_;
+  const RunSettings& settings_;
+  SpreadSettings spread_;
+  Engine engine_;
+  RunSummary summary_;
+  std::optional<TrajectoryWriter> trajectory_;
+  std::uint64_t step_ = 0;
+  bool stopped_ = false;  // by the observer: no later phase runs
+  double rest_energy_ = 0;  // J, RestCriteria::kinetic_energy or its default
+  std::uint64_t rest_every_ = 1, window_steps_ = 0;
+  std::uint64_t thermo_every_ = 0, thermo_last_ = kNotQuiet;
+};
 
 }  // namespace
 
@@ -126,60 +214,20 @@ bool needs_rotation(const Scene& scene) {
   return scene.friction_model == FrictionModel::history || scene.material.rolling > 0;
 }
 
-bool runs_on_engine(const Scene& scene, const RunSettings&) { return needs_rotation(scene); }
+bool runs_on_engine(const Scene&, const RunSettings& settings) {
+  return !settings.insertion.enabled && settings.integrator == Integrator::verlet;
+}
 
 void refuse_rotation_off_engine(const Scene& scene, const RunSettings& settings) {
-  if (!needs_rotation(scene)) return;
-  if (!settings.lid.enabled && !settings.insertion.enabled && settings.integrator == Integrator::verlet) return;
+  if (!needs_rotation(scene) || runs_on_engine(scene, settings)) return;
   throw InputError(std::string(scene.material.rolling > 0 ? "material.rolling" : "friction.model = history") +
-                   ": with the lid, insertion or --integrator rk4 (accepted: a drop with velocity "
-                   "Verlet, --t-end or --until-rest, and a trajectory; those need the drop solver, "
+                   ": with insertion or --integrator rk4 (accepted: a drop with velocity Verlet, "
+                   "--t-end or --until-rest, the lid and a trajectory; those need the drop solver, "
                    "which has no particle rotation)");
 }
 
 RunSummary run_drop_on_engine(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
-  // The frames need the step: the one run_spread will take (the user's or the recommended).
-  const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
-  const double dt = settings.dt > 0 ? settings.dt : bound.recommended;
-  SpreadSettings spread = spread_settings(scene, settings, dt);
-  DropFrames frames(bed, scene, settings, dt);
-  spread.frame_every = frames.every();
-  if (spread.frame_every > 0) {
-    spread.frame = [&frames](std::uint64_t step, double time, const bed::Bed& b) { return frames(step, time, b); };
-  }
-  const SpreadSummary g = run_spread(bed, scene, spread);
-  frames.finish(g.steps, g.sim_time, bed);
-  RunSummary r;
-  r.at_rest = frames.at_rest();
-  r.n = bed.n();
-  r.steps = g.steps;
-  r.sim_time = g.sim_time;
-  r.wall_time = g.wall_time;
-  r.particle_steps_per_s = g.particle_steps_per_s;
-  r.dt = g.dt;
-  r.dt_stable = g.dt_stable;
-  r.dt_limited_by = g.dt_limited_by;
-  r.dt_limiting_radius = g.dt_limiting_radius;
-  const Overlap overlap = max_overlap(bed, scene);  // pairs and walls, as a drop's
-  r.max_overlap = overlap.relative;
-  r.max_overlap_m = overlap.absolute;
-  r.max_overlap_full_stiffness = full_stiffness_overlap(overlap, scene, settings.young_scale);
-  r.lost = count_outside(bed, bed.n());
-  r.neighbour_rebuilds = g.neighbour_rebuilds;
-  for (std::size_t i = 0; i < bed.n(); ++i) {  // physical masses, as a drop's summary
-    const double v2 = bed.vx[i] * bed.vx[i] + bed.vy[i] * bed.vy[i] + bed.vz[i] * bed.vz[i];
-    r.kinetic_energy += 0.5 * bed::sphere_volume(bed.radius[i]) * scene.material.density * v2;
-    r.max_speed = std::max(r.max_speed, std::sqrt(v2));
-  }
-  if (settings.progress) {  // the run's end, as the drop solver's last call
-    Progress p;
-    p.step = r.steps;
-    p.time = p.t_end = r.sim_time;
-    p.kinetic_energy = r.kinetic_energy;
-    p.max_speed = r.max_speed;
-    settings.progress(p);
-  }
-  return r;
+  return EngineDrop(bed, scene, settings).run();
 }
 
 }  // namespace powderbed::dem::detail

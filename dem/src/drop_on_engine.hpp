@@ -1,7 +1,7 @@
 #pragma once
-// run_deposition's drop on the one engine: the spreading engine without a tool (spread.hpp).
-// It runs the drops whose laws need rotation; the drop solver (solver.cpp) the others, until
-// the lid, insertion and RK4 move onto the engine (issue 33).
+// run_deposition's drop on the one engine (engine.hpp): every drop with velocity Verlet and
+// without insertion, the lid included; the drop solver (solver.cpp) runs those with insertion or
+// RK4 until they move onto the engine (issue 33).
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/dem/scene.hpp"
 #include "powderbed/dem/solver.hpp"
@@ -12,16 +12,16 @@ namespace powderbed::dem::detail {
 // material.rolling > 0), which the drop solver does not carry.
 bool needs_rotation(const Scene& scene);
 
-// Whether the drop runs on the engine: a scene whose laws need rotation (the engine's and the
-// drop solver's results for the others differ in rounding: tests/dem/test_engines.cpp).
+// Whether the drop runs on the engine: velocity Verlet without insertion.
 bool runs_on_engine(const Scene& scene, const RunSettings& settings);
 
 // Throws InputError for a scene whose laws need rotation with what only the drop solver has
-// (the lid, insertion, RK4).
+// (insertion, RK4).
 void refuse_rotation_off_engine(const Scene& scene, const RunSettings& settings);
 
-// The drop for settings.t_end or until rest, with its trajectory, observer, progress and thermo
-// table, summarised as the drop solver's run. run_deposition has checked the bed and settings.
+// The drop for settings.t_end or until rest, then the lid, with its trajectory, observer,
+// progress and thermo table, summarised as the drop solver's run. run_deposition has checked
+// the bed and settings.
 RunSummary run_drop_on_engine(bed::Bed& bed, const Scene& scene, const RunSettings& settings);
 
 }  // namespace powderbed::dem::detail

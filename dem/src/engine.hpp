@@ -36,6 +36,7 @@
 #include "powderbed/dem/scene.hpp"
 #include "powderbed/dem/spread.hpp"
 #include "powderbed/dem/stokes_drag.hpp"
+#include "powderbed/dem/time_step.hpp"
 
 namespace powderbed::dem::detail {
 
@@ -192,6 +193,10 @@ struct Engine {
   std::vector<std::uint8_t> wall_touch;
   std::vector<ContactConstants> wall;        // per particle
   std::vector<std::uint32_t> near_walls, near_tool;  // find_wall_candidates, at each prune
+  // The box's top as the lid (lid_phase.hpp): its velocity (m/s, in its contacts' approach
+  // rates), where find_wall_candidates last saw it, and how far it may move before they must be
+  // found again (their test of the top is widened by it). 0 without a lid.
+  double top_velocity = 0, top_at_search = 0, top_slack = 0;
   // With a model that batches, per face instead of near_walls (find_wall_candidates).
   std::array<std::vector<std::uint32_t>, kFaces> near_face;
   NeighbourList list;
@@ -248,6 +253,51 @@ struct Engine {
   ToolProfile profile;
   double tool_x = 0, tool_v = 0;
   double tool_force[3] = {0, 0, 0};
+
+  // The contact model, the (softened) moduli, gravity, zero velocities where the bed has none,
+  // and the per-particle arrays.
+  void set_up() {
+    model = choose_contact_model(scene, settings.rotation);
+    moduli = contact_moduli(scene, settings.young_scale);
+    const double gravity = scene.has(kGravity) ? scene.gravity : 0.0;
+    g[0] = gravity * std::sin(settings.gravity_tilt);
+    g[2] = -gravity * std::cos(settings.gravity_tilt);
+    if (!bed.has_velocity()) {
+      bed.vx.assign(bed.n(), 0.0);
+      bed.vy.assign(bed.n(), 0.0);
+      bed.vz.assign(bed.n(), 0.0);
+    }
+    grow();
+  }
+
+  // The user's step (checked against the bound) or the recommended one.
+  void set_time_step(const TimeStepBound& bound) {
+    if (settings.dt > 0) {
+      if (settings.dt > bound.stable && !settings.unsafe_dt) {
+        throw InputError(fmt::format(
+            "--dt: {:g} s is above the stable bound {:g} s (accepted: dt <= {:g} s, or add "
+            "--unsafe-dt)",
+            settings.dt, bound.stable, bound.stable));
+      }
+      dt = settings.dt;
+    } else {
+      dt = bound.recommended;
+    }
+    model.coefficients.dt = dt;
+  }
+
+  // The neighbour list for the bed as it is now, with the carried contacts' history: the skin
+  // (SpreadSettings::skin or default_skin), the prune margin and the threads for its particles.
+  void rebuild(const ActiveContacts& carried) {
+    const double r_max = largest_radius(bed);
+    const double skin = settings.skin > 0 ? settings.skin : default_skin(box, r_max);
+    list.configure(box, r_max, skin, bed.n());
+    prune_margin = std::min(kPruneMargin * r_max, 0.5 * skin);
+    threads = bed.n() < settings.parallel_min_particles ? 1
+              : settings.threads > 0                    ? settings.threads
+                                                        : omp_get_max_threads();
+    rebuild_with(carried);
+  }
 
   std::size_t n() const { return bed.n(); }
   ParticleView view() const { return {bed.x.data(), bed.y.data(), bed.z.data(), bed.radius.data(), n()}; }
@@ -628,10 +678,11 @@ struct Engine {
     for (auto& list_of_face : near_face) list_of_face.clear();
     const double plate = floor.empty() ? box.lower[2] : std::max(box.lower[2], floor_top);
     const bool walls = scene.has(kWalls);  // off only in a drop (check_settings)
+    top_at_search = box.upper[2];
     for (std::size_t i = 0; i < moving; ++i) {
       const double r = bed.radius[i], x = bed.x[i], y = bed.y[i], z = bed.z[i], reach = r + margin;
       const bool x_open = walls && !box.periodic[0], y_open = walls && !box.periodic[1];
-      const bool near[kFaces] = {walls && z - plate < reach, walls && box.upper[2] - z < reach,
+      const bool near[kFaces] = {walls && z - plate < reach, walls && box.upper[2] - z < reach + top_slack,
                                  x_open && x - box.lower[0] < reach, x_open && box.upper[0] - x < reach,
                                  y_open && y - box.lower[1] < reach, y_open && box.upper[1] - y < reach};
       if (model.batch) {  // no history: a face's candidates are those within reach of it
@@ -654,8 +705,8 @@ struct Engine {
     const double r = bed.radius[i];
     plate_contact(i, update);
     {
-      const double n[3] = {0, 0, 1};
-      wall_contact(i, kTop, r - (box.upper[2] - bed.z[i]), n, still, update);
+      const double n[3] = {0, 0, 1}, lid[3] = {0, 0, top_velocity};
+      wall_contact(i, kTop, r - (box.upper[2] - bed.z[i]), n, lid, update);
     }
     for (int axis = 0; axis < 2; ++axis) {
       if (box.periodic[axis]) continue;
@@ -736,7 +787,7 @@ struct Engine {
       b.damping[m] = wall[i].damping;
       b.dvx[m] = bed.vx[i];
       b.dvy[m] = bed.vy[i];
-      b.dvz[m] = bed.vz[i];
+      b.dvz[m] = Axis == 2 && Side == 1 ? bed.vz[i] - top_velocity : bed.vz[i];  // the lid moves
       ++m;
     }
     return m;
@@ -1045,26 +1096,61 @@ struct Engine {
   bed::Bed whole_step_bed() const {
     bed::Bed copy = bed;
     if (synced) return copy;
-    const double h = 0.5 * dt;
     for (std::size_t i = 0; i < moving; ++i) {
-      const double a = h * inv_mass[i];
-      copy.vx[i] += a * fx[i];
-      copy.vy[i] += a * fy[i];
-      copy.vz[i] += a * fz[i];
+      const auto v = whole_step_velocity(i);
+      copy.vx[i] = v[0];
+      copy.vy[i] = v[1];
+      copy.vz[i] = v[2];
     }
     return copy;
   }
 
   // The kinetic energy at the last whole step, whether or not its second half kick is pending.
   double kinetic_energy() const {
-    const double h = synced ? 0.0 : 0.5 * dt;
     double energy = 0;  // the frozen particles' is 0
     for (std::size_t i = 0; i < moving; ++i) {
-      const double a = h * inv_mass[i];
-      const double vx = bed.vx[i] + a * fx[i], vy = bed.vy[i] + a * fy[i], vz = bed.vz[i] + a * fz[i];
-      energy += 0.5 * weight[i] * (vx * vx + vy * vy + vz * vz);
+      const auto v = whole_step_velocity(i);
+      energy += 0.5 * weight[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     }
     return energy;
+  }
+
+  // The largest speed at the last whole step, m/s.
+  double max_speed() const {
+    double fastest = 0;
+    for (std::size_t i = 0; i < moving; ++i) {
+      const auto v = whole_step_velocity(i);
+      fastest = std::max(fastest, v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    }
+    return std::sqrt(fastest);
+  }
+
+  // Particle i's velocity at the last whole step: what sync()'s kick would make it, to the bit.
+  std::array<double, 3> whole_step_velocity(std::size_t i) const {
+    if (synced) return {bed.vx[i], bed.vy[i], bed.vz[i]};
+    const double h = 0.5 * dt;
+    return {bed.vx[i] + h * fx[i] * inv_mass[i], bed.vy[i] + h * fy[i] * inv_mass[i],
+            bed.vz[i] + h * fz[i] * inv_mass[i]};
+  }
+
+  // The particles' force on the box's top face now (the lid's, N), from the whole step's
+  // velocities: each contact's normal force (the tangential ones lie in the face), summed in
+  // index order; the histories are read, not advanced.
+  double top_force() const {
+    const double n[3] = {0, 0, 1}, still[3] = {0, 0, 0};
+    double total = 0;
+    for (std::size_t i = 0; i < moving; ++i) {
+      const double delta = bed.radius[i] - (box.upper[2] - bed.z[i]);
+      if (!(delta > 0)) continue;
+      const auto v = whole_step_velocity(i);
+      const double dv[3] = {v[0], v[1], v[2] - top_velocity};
+      double h[kContactHistory];
+      std::copy_n(wall_history.data() + i * kWallValues + kTop * kContactHistory, kContactHistory, h);
+      ContactForce c;
+      model.force(model.coefficients, wall[i], delta, n, dv, still, still, bed.radius[i] - delta, 0.0, h, false, c);
+      total -= c.f[2];
+    }
+    return total;
   }
 
   [[noreturn]] void throw_non_finite(std::uint64_t step_number) const {

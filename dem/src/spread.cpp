@@ -356,17 +356,7 @@ struct Spreader {
 
   // The contact model, the (softened) moduli, gravity, and the restart's state.
   void set_up() {
-    run.model = detail::choose_contact_model(scene, settings.rotation);
-    run.moduli = contact_moduli(scene, settings.young_scale);
-    const double gravity = scene.has(kGravity) ? scene.gravity : 0.0;
-    run.g[0] = gravity * std::sin(settings.gravity_tilt);
-    run.g[2] = -gravity * std::cos(settings.gravity_tilt);
-    if (!bed.has_velocity()) {
-      bed.vx.assign(bed.n(), 0.0);
-      bed.vy.assign(bed.n(), 0.0);
-      bed.vz.assign(bed.n(), 0.0);
-    }
-    run.grow();
+    run.set_up();
     run.floor = settings.floor.empty() && restart ? restart->floor : settings.floor;
     check_floor(run.floor, run.box);
     if (!restart) return;
@@ -385,45 +375,27 @@ struct Spreader {
     carried = from_state(*restart, bed);
   }
 
-  // The restart's step, the user's (checked against the bound) or the recommended one.
+  // The restart's step, or the engine's choice (Engine::set_time_step).
   void set_time_step() {
     const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
     summary.dt_stable = bound.stable;
     summary.dt_limited_by = bound.limited_by;
     summary.dt_limiting_radius = bound.limiting_radius;
-    if (restart) {
-      if (restart->dt > bound.stable && !settings.unsafe_dt) {
-        throw InputError(fmt::format(
-            "--in: the bed's /restart time step {:g} s is above the stable bound {:g} s of this "
-            "scene (accepted: a bed written by a spreading run of this scene, or add --unsafe-dt)",
-            restart->dt, bound.stable));
-      }
-      run.dt = restart->dt;
-    } else if (settings.dt > 0) {
-      if (settings.dt > bound.stable && !settings.unsafe_dt) {
-        throw InputError(fmt::format(
-            "--dt: {:g} s is above the stable bound {:g} s (accepted: dt <= {:g} s, or add "
-            "--unsafe-dt)",
-            settings.dt, bound.stable, bound.stable));
-      }
-      run.dt = settings.dt;
-    } else {
-      run.dt = bound.recommended;
+    if (!restart) {
+      run.set_time_step(bound);
+      return;
     }
+    if (restart->dt > bound.stable && !settings.unsafe_dt) {
+      throw InputError(fmt::format(
+          "--in: the bed's /restart time step {:g} s is above the stable bound {:g} s of this "
+          "scene (accepted: a bed written by a spreading run of this scene, or add --unsafe-dt)",
+          restart->dt, bound.stable));
+    }
+    run.dt = restart->dt;
     run.model.coefficients.dt = run.dt;
   }
 
-  // The neighbour list for the bed as it is now, with the carried contacts' history.
-  void rebuild() {
-    const double r_max = largest_radius(bed);
-    const double skin = settings.skin > 0 ? settings.skin : default_skin(run.box, r_max);
-    run.list.configure(run.box, r_max, skin, bed.n());
-    run.prune_margin = std::min(kPruneMargin * r_max, 0.5 * skin);
-    run.threads = bed.n() < settings.parallel_min_particles ? 1
-                  : settings.threads > 0                    ? settings.threads
-                                                            : omp_get_max_threads();
-    run.rebuild_with(carried);
-  }
+  void rebuild() { run.rebuild(carried); }
 
   // `steps` steps, `before(s)` ahead of the s-th, or fewer when the observer stops the run (false);
   // the velocities are the last whole step's after.

@@ -100,9 +100,9 @@ TEST(DepositSpread, DosingSuppliesTheLayersNominalPowder) {
   EXPECT_NEAR(test::json_number(second, "supplied"), per_height * 30e-6, 1.0) << r.out;
 }
 
-TEST(DepositSpread, DropWithHistoryFrictionRunsInTheRotatingLoop) {
-  // History friction and rolling resistance need particle rotation: a --t-end drop runs in the
-  // spreading loop without a tool; what only the drop solver has is refused.
+TEST(DepositSpread, DropWithHistoryFrictionRunsOnTheEngineWithTheLid) {
+  // History friction and rolling resistance need particle rotation: a --t-end drop runs on the
+  // engine, the lid too; what only the drop solver has (insertion, RK4) is refused.
   const std::string dir = test::scratch_dir("spread_drop");
   const std::string drop = "--psd mono:d=30e-6 --count 10 --domain 0.3e-3,0.3e-3,0.3e-3 "
                            "--young-scale 1e3 --seed 1 --out " + dir + "/out.h5 ";
@@ -112,8 +112,12 @@ TEST(DepositSpread, DropWithHistoryFrictionRunsInTheRotatingLoop) {
   EXPECT_NE(ok.out.find("\"friction_model\":\"history\""), std::string::npos) << ok.out;
   EXPECT_EQ(test::json_number(ok.out, "n"), 10);
   EXPECT_GT(test::json_number(ok.out, "steps"), 0);
+  const auto lid = test::run_app("deposit", drop + "--t-end 1e-3 --friction.model history --lid "
+                                                   "--lid.travel 1e-4 --lid.relax 1e-4 --thermo 0 --json");
+  ASSERT_EQ(lid.status, 0) << lid.err;
+  EXPECT_NE(lid.out.find("\"stopped_by\":\"travel\""), std::string::npos) << lid.out;
   for (const auto& [args, field] :
-       {std::pair{"--t-end 1e-3 --friction.model history --lid", "friction.model"},
+       {std::pair{"--t-end 1e-3 --friction.model history --insert.enabled true --insert.rate 1e5", "friction.model"},
         std::pair{"--t-end 1e-3 --integrator rk4 --material.rolling 0.1", "material.rolling"},
         std::pair{"--t-end 1e-3 --friction.model static", "friction.model"}}) {
     const auto r = test::run_app("deposit", drop + args);

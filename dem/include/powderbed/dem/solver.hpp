@@ -90,7 +90,9 @@ struct RunSettings {
   double t_end = 0;             // s; with until_rest the cap on simulated time (0: 1 s)
   bool until_rest = false;
   RestCriteria rest;
-  double skin = 0;              // Verlet skin, m; 0 = 0.1 * largest diameter
+  // Verlet skin, m; 0: the engine's default, 0.5 x the largest radius (narrowed on a narrow
+  // periodic axis; spread.hpp), or 0.1 x the largest diameter on the drop solver (insertion, RK4)
+  double skin = 0;
   int threads = 0;              // OpenMP threads; 0 = OpenMP's default
   // Beds with fewer particles run on one thread whatever `threads` says: a step of the 600-
   // particle [GZ] bed is ~20 us of work in ~5 parallel loops, and each fork/barrier costs
@@ -174,10 +176,11 @@ void check_run_settings(const RunSettings& settings);
 // domain, a 2D bed, a periodic axis shorter than 3 neighbour cells, a lid without
 // effects.walls, with neither pressure nor travel or a non-positive speed) and NumericalError
 // naming the particle id and step when the state goes non-finite. Deterministic: the same
-// input gives bit-identical output for any thread count. A scene whose laws need particle
-// rotation (friction.model = history, material.rolling > 0) runs on the spreading engine
-// without a tool (spread.hpp), which refuses --until-rest, the lid, insertion, RK4 and a
-// trajectory.
+// input gives bit-identical output for any thread count. A drop with velocity Verlet and
+// without insertion runs on the one engine (dem/src/engine.hpp, the spreading engine without a
+// tool), which also carries the laws that need particle rotation (friction.model = history,
+// material.rolling > 0); insertion and RK4 still run on the drop solver, which refuses those
+// laws.
 RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& settings);
 
 // Removes particles whose centre lies outside the domain on a non-periodic axis; returns how
