@@ -2,10 +2,14 @@
 """Before and after: two deposit binaries run in alternation on the same scenes.
 
     POWDERBED_BUILD=build python3 bench/studies/deposit_ab.py OLD_DEPOSIT NEW_DEPOSIT \
-        --old-label d29b46f --new-label c784a63 [--rounds 2] --page deposit-subnormals.md
+        --old-label d29b46f --new-label c784a63 [--rounds 2] [--cases A,B] --title "..." \
+        --page deposit-subnormals.md
 
-Cases (one thread each, seed 1): [GZ]'s own protocol at full stiffness (E = 193 GPa, dt = 2e-8 s,
-0.1 s; issue 37's "under 90 s" target) and one blade layer of data/scenes/spread-blade.ini. Per
+Cases (one thread each, seed 1; --cases picks some by their number, 1-based): [GZ]'s own
+protocol at full stiffness (E = 193 GPa, dt = 2e-8 s, 0.1 s; issue 37's "under 90 s" target),
+one blade layer of data/scenes/spread-blade.ini, the [GZ] drop with the scene's defaults, and
+the [GZ] drop stopped at 0.02 s and pressed by the lid 5 um into its surface (held 1 ms, then
+released and relaxed up to 5 ms). Per
 case and binary the page gives the median [min, max] of deposit's own `wall_time` over the rounds,
 the ratio new / old of the medians, the 1-min load average around each run, and whether the two
 beds are the same: positions and radii bit for bit, velocities to the largest difference.
@@ -33,13 +37,17 @@ CASES = {
     "[GZ] protocol, full stiffness": ["--config", scene("gz2016-deposit.ini"), "--young-scale", "1",
                                       "--dt", "2e-8", "--unsafe-dt", "--t-end", "0.1"],
     "spread-blade.ini, one layer": ["--config", scene("spread-blade.ini")],
+    "[GZ] drop, the scene's defaults": ["--config", scene("gz2016-deposit.ini")],
+    "[GZ] drop to 0.02 s, then the lid 5 um deep": [
+        "--config", scene("gz2016-deposit.ini"), "--t-end", "0.02", "--lid.enabled", "true",
+        "--lid.depth", "5e-6", "--lid.hold", "1e-3", "--lid.relax", "5e-3"],
 }
 
 
 def run(binary, case, out):
     """deposit's JSON summary of `case`, with the 1-min load before the run."""
     load = float(load_average().split()[0])
-    args = [binary, *CASES[case], "--seed", "1", "--threads", "1", "--out", out, "--json"]
+    args = [binary, *CASES[case], "--seed", "1", "--threads", "1", "--thermo", "0", "--out", out, "--json"]
     summary = json.loads(subprocess.run(args, check=True, capture_output=True, text=True).stdout)
     summary["load"] = load
     return summary
@@ -67,11 +75,16 @@ def main():
     p.add_argument("--new-label", required=True)
     p.add_argument("--rounds", type=int, default=2)
     p.add_argument("--page", required=True)
+    p.add_argument("--title", default="subnormal numbers flushed to zero",
+                   help="what changed between the binaries (the page's heading)")
+    p.add_argument("--cases", help="comma-separated case numbers (1-based); default: all")
     a = p.parse_args()
+    names = list(CASES)
+    cases = [names[int(k) - 1] for k in a.cases.split(",")] if a.cases else names
     os.makedirs(WORK, exist_ok=True)
     before = load_average()
     rows = []
-    for case in CASES:
+    for case in cases:
         times = {"old": [], "new": []}
         loads = []
         for k in range(a.rounds):
@@ -84,7 +97,7 @@ def main():
                               f"{min(loads):.2f}-{max(loads):.2f}",
                               compare(*(os.path.join(WORK, f"{t}.h5") for t in ("old", "new")))))
     text = "\n".join([
-        "# deposit before and after: subnormal numbers flushed to zero",
+        f"# deposit before and after: {a.title}",
         "",
         f"Written by `bench/studies/deposit_ab.py` ({a.rounds} rounds, the two binaries "
         f"alternating, one thread each). {machine(before, load_average())} Old: {a.old_label}; "
