@@ -11,6 +11,7 @@
 #include "box.hpp"
 #include "engine.hpp"
 #include "flush_subnormals.hpp"
+#include "insertion.hpp"
 #include "lid_phase.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/sphere_volume.hpp"
@@ -42,9 +43,18 @@ constexpr std::uint64_t kNotQuiet = ~std::uint64_t{0};
 // of the lid (lid_phase.hpp's Run).
 class EngineDrop {
  public:
+  // With insertion the bed passed in is the pool: it is moved aside, and the bed fills as its
+  // particles enter.
   EngineDrop(bed::Bed& bed, const Scene& scene, const RunSettings& settings)
       : bed_(bed), scene_(scene), settings_(settings), spread_(engine_settings(scene, settings)),
-        engine_(bed, scene, spread_) {}
+        engine_(bed, scene, spread_) {
+    if (!settings.insertion.enabled) return;
+    pool_ = bed;
+    for (auto* v : {&bed.x, &bed.y, &bed.z, &bed.radius, &bed.vx, &bed.vy, &bed.vz, &bed.temperature}) v->clear();
+    bed.id.clear();
+    bed.material.clear();
+    bed.phase.clear();
+  }
 
   RunSummary run() {
     const auto started = std::chrono::steady_clock::now();
@@ -58,7 +68,8 @@ class EngineDrop {
       trajectory_->write(0, 0.0, bed_);
     }
     if (settings_.thermo) thermo();
-    summary_.at_rest = advance(steps, settings_.until_rest, [] {}, [] { return false; });
+    summary_.at_rest = advance(steps, settings_.until_rest, [&] { insert_due(); }, [] { return false; });
+    if (insertion_ && insertion_->active()) insertion_->end("time", time());
     if (settings_.lid.enabled && !stopped_) LidPhase<EngineDrop>(*this).run();
     engine_.sync(step_);
     if (trajectory_) {
@@ -93,6 +104,34 @@ class EngineDrop {
   }
   double top_force() const { return engine_.top_force(); }
 
+  // insertion.hpp's Run (with settings(), summary(), time(), bed() above).
+  const Scene& scene() const { return scene_; }
+  const Box& box() const { return engine_.box; }
+  const bed::Bed& pool() const { return pool_; }
+  std::size_t inserted() const { return bed_.n(); }
+  void place(std::size_t k, const double p[3], double vz) {
+    bed_.x.push_back(p[0]);
+    bed_.y.push_back(p[1]);
+    bed_.z.push_back(p[2]);
+    bed_.radius.push_back(pool_.radius[k]);
+    bed_.id.push_back(pool_.id[k]);
+    bed_.vx.push_back(0);
+    bed_.vy.push_back(0);
+    bed_.vz.push_back(vz);
+    if (!pool_.material.empty()) bed_.material.push_back(pool_.material[k]);
+    if (!pool_.temperature.empty()) bed_.temperature.push_back(pool_.temperature[k]);
+    if (!pool_.phase.empty()) bed_.phase.push_back(pool_.phase[k]);
+  }
+  // The new particles' arrays and the neighbour list anew, every contact's history carried.
+  void entered() {
+    engine_.grow();
+    engine_.rebuild(engine_.active());
+    ++engine_.rebuilds;
+  }
+  void set_inserting(bool on) { inserting_ = on; }
+  void end_insertion() {}  // the bed holds the particles in, the pool the rest
+  void set_rest_energy(double energy) { rest_energy_ = energy; }
+
   // `steps` more steps: before() ahead of each, after() after it (true ends them); with
   // until_rest, until the bed has been quiet for the rest window (then true). The observer's
   // stop ends the run (stopped()).
@@ -102,7 +141,7 @@ class EngineDrop {
     std::uint64_t quiet_since = kNotQuiet;  // first step of the current quiet stretch
     for (std::uint64_t s = 0; s < steps; ++s) {
       before();
-      engine_.step(step_ + 1);
+      (engine_.*step_once_)(step_ + 1);
       ++step_;
       const double now = time();
       if (trajectory_ && step_ % settings_.trajectory_every == 0) {
@@ -115,26 +154,33 @@ class EngineDrop {
       }
       if (settings_.thermo && step_ % thermo_every_ == 0) thermo();
       if (after()) return false;
-      if (until_rest && step_ % rest_every_ == 0 && quiet_for_window(quiet_since)) return true;
+      if (until_rest && !inserting_ && step_ % rest_every_ == 0 && quiet_for_window(quiet_since)) return true;
       if (settings_.progress && step_ % settings_.progress_every == 0) report(progress_end);
     }
     return false;
   }
 
  private:
-  // The engine as the spreading driver sets it up without a tool, and the rest test's constants.
+  // The engine as the spreading driver sets it up without a tool (its step from the pool's radii
+  // with insertion, whose first particle enters now), and the rest test's constants.
   TimeStepBound set_up() {
-    if (bed_.n() == 0) throw InputError("deposit: the bed has no particles (accepted: N >= 1)");
+    const bed::Bed& all = settings_.insertion.enabled ? pool_ : bed_;
+    if (all.n() == 0) throw InputError("deposit: the bed has no particles (accepted: N >= 1)");
     engine_.box = Box::from(bed_.domain);
     engine_.set_up();
-    const TimeStepBound bound = time_step_bound(bed_, scene_, settings_.young_scale);
+    const TimeStepBound bound = time_step_bound(all, scene_, settings_.young_scale);
     engine_.set_time_step(bound);
+    if (settings_.integrator == Integrator::rk4) step_once_ = &Engine::step_rk4;
+    if (settings_.insertion.enabled) {
+      insertion_.emplace(*this, largest_radius(pool_));
+      engine_.grow();
+    }
     engine_.bound_floor();
     engine_.rebuild({});
     engine_.forces();
     const RestCriteria& rest = settings_.rest;
     double mass = 0;
-    for (const double r : bed_.radius) mass += bed::sphere_volume(r) * scene_.material.density;
+    for (const double r : all.radius) mass += bed::sphere_volume(r) * scene_.material.density;
     rest_energy_ = rest.kinetic_energy > 0 ? rest.kinetic_energy : 1e-2 * 0.5 * mass * rest.max_speed * rest.max_speed;
     // Rest checks: about ten per window (at most every 100 steps), never every step.
     rest_every_ = static_cast<std::uint64_t>(std::clamp(std::floor(rest.window / engine_.dt / 10.0), 1.0, 100.0));
@@ -150,6 +196,10 @@ class EngineDrop {
     }
     quiet_since = kNotQuiet;
     return false;
+  }
+
+  void insert_due() {
+    if (insertion_) insertion_->insert_due();
   }
 
   void thermo() {
@@ -201,6 +251,10 @@ class EngineDrop {
   Engine engine_;
   RunSummary summary_;
   std::optional<TrajectoryWriter> trajectory_;
+  bed::Bed pool_;  // with insertion: the particles to enter, in order
+  std::optional<Insertion<EngineDrop>> insertion_;
+  bool inserting_ = false;  // particles still enter: rest is not tested
+  void (Engine::*step_once_)(std::uint64_t) = &Engine::step;  // velocity Verlet or RK4
   std::uint64_t step_ = 0;
   bool stopped_ = false;  // by the observer: no later phase runs
   double rest_energy_ = 0;  // J, RestCriteria::kinetic_energy or its default
@@ -214,16 +268,11 @@ bool needs_rotation(const Scene& scene) {
   return scene.friction_model == FrictionModel::history || scene.material.rolling > 0;
 }
 
-bool runs_on_engine(const Scene&, const RunSettings& settings) {
-  return !settings.insertion.enabled && settings.integrator == Integrator::verlet;
-}
-
-void refuse_rotation_off_engine(const Scene& scene, const RunSettings& settings) {
-  if (!needs_rotation(scene) || runs_on_engine(scene, settings)) return;
+void refuse_rotation_with_rk4(const Scene& scene, const RunSettings& settings) {
+  if (!needs_rotation(scene) || settings.integrator != Integrator::rk4) return;
   throw InputError(std::string(scene.material.rolling > 0 ? "material.rolling" : "friction.model = history") +
-                   ": with insertion or --integrator rk4 (accepted: a drop with velocity Verlet, "
-                   "--t-end or --until-rest, the lid and a trajectory; those need the drop solver, "
-                   "which has no particle rotation)");
+                   ": with --integrator rk4 (accepted: velocity Verlet; the RK4 step has no particle "
+                   "rotation and no contact history)");
 }
 
 RunSummary run_drop_on_engine(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {

@@ -152,6 +152,60 @@ inline std::uint64_t kick_drift(std::size_t count, const DriftConstants k, doubl
   return bad;
 }
 
+// The classical Runge–Kutta step's state over particles [0, n): the state at the step's start
+// and the weighted sums of the stage derivatives (Engine::step_rk4).
+struct Rk4State {
+  std::vector<double> x0, y0, z0, u0, v0, w0, sx, sy, sz, su, sv, sw;
+
+  void start(const bed::Bed& b, std::size_t n) {
+    for (auto* v : {&x0, &y0, &z0, &u0, &v0, &w0, &sx, &sy, &sz, &su, &sv, &sw}) v->resize(n);
+    std::copy_n(b.x.begin(), n, x0.begin());
+    std::copy_n(b.y.begin(), n, y0.begin());
+    std::copy_n(b.z.begin(), n, z0.begin());
+    std::copy_n(b.vx.begin(), n, u0.begin());
+    std::copy_n(b.vy.begin(), n, v0.begin());
+    std::copy_n(b.vz.begin(), n, w0.begin());
+  }
+
+  // Stage k's derivative (the bed's velocities, F/m) into the sums, and the bed put at the next
+  // stage's state (half a step, half a step, a whole step from the start).
+  void stage(int k, double dt, bed::Bed& b, const double* fx, const double* fy, const double* fz,
+             const double* inv_mass, std::size_t n) {
+    const double weight = (k == 0 || k == 3) ? 1.0 : 2.0;
+    const double next = k < 2 ? 0.5 * dt : dt;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double d[6] = {b.vx[i], b.vy[i], b.vz[i], fx[i] * inv_mass[i], fy[i] * inv_mass[i],
+                           fz[i] * inv_mass[i]};
+      double* sum[6] = {&sx[i], &sy[i], &sz[i], &su[i], &sv[i], &sw[i]};
+      for (int q = 0; q < 6; ++q) *sum[q] = k == 0 ? d[q] : *sum[q] + weight * d[q];
+      if (k == 3) continue;
+      b.x[i] = x0[i] + next * d[0];
+      b.y[i] = y0[i] + next * d[1];
+      b.z[i] = z0[i] + next * d[2];
+      b.vx[i] = u0[i] + next * d[3];
+      b.vy[i] = v0[i] + next * d[4];
+      b.vz[i] = w0[i] + next * d[5];
+    }
+  }
+
+  // The step's end: the start plus dt/6 of the weighted sums, wrapped on periodic axes; false
+  // when a velocity is not finite.
+  bool finish(double dt, const BranchFreeWrap& wrap, bed::Bed& b, std::size_t n) const {
+    const double sixth = dt / 6.0;
+    std::uint64_t bad = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      b.x[i] = wrap(0, x0[i] + sixth * sx[i]);
+      b.y[i] = wrap(1, y0[i] + sixth * sy[i]);
+      b.z[i] = z0[i] + sixth * sz[i];
+      b.vx[i] = u0[i] + sixth * su[i];
+      b.vy[i] = v0[i] + sixth * sv[i];
+      b.vz[i] = w0[i] + sixth * sw[i];
+      bad |= non_finite_bit(std::abs(b.vx[i]) + std::abs(b.vy[i]) + std::abs(b.vz[i]));
+    }
+    return bad == 0;
+  }
+};
+
 // The entries of an index-ascending list of particles that lie in [p0, p1).
 inline std::pair<const std::uint32_t*, const std::uint32_t*> candidates(const std::vector<std::uint32_t>& list, std::size_t p0,
                                                                  std::size_t p1) {
@@ -211,6 +265,7 @@ struct Engine {
   // (kPairLoad per entry) holds each touching pair's force and torques for the gather.
   int threads = 1;
   std::vector<double> pair_load;
+  Rk4State rk4;  // step_rk4's arrays (empty with Verlet)
   // Per thread, the batch of a model that batches (ContactModel::batch; contact_kernel.hpp).
   std::vector<ContactBuffer> buffers = std::vector<ContactBuffer>(1);
   bed::HeightMap floor;               // the solid under the powder (empty: the flat plate)
@@ -513,6 +568,12 @@ struct Engine {
                         drag.data() + b);
     });
     if (bad) return false;  // no list of non-finite positions: the caller stops the run
+    refresh_list();
+    return true;
+  }
+
+  // The list rebuilt or pruned when the moving particles have gone far enough since the last.
+  void refresh_list() {
     ParticleView moved = view();
     moved.n = moving;
     switch (list.stale(moved)) {
@@ -526,7 +587,22 @@ struct Engine {
       case NeighbourList::Stale::no:
         break;
     }
-    return true;
+  }
+
+  // One step of the classical fourth-order Runge–Kutta method (deposit's --integrator rk4), for
+  // a model that neither turns the particles nor keeps a history (the driver refuses the
+  // others): the derivatives (v, F/m) at four stage states, weighted 1, 2, 2, 1, the list
+  // refreshed at the step's start (a stage moves a particle less than a step does). The
+  // velocities stay whole-step ones (no kick is ever pending).
+  void step_rk4(std::uint64_t step_number) {
+    refresh_list();
+    rk4.start(bed, moving);
+    for (int stage = 0; stage < 4; ++stage) {
+      body_forces();
+      contact_forces(false);
+      rk4.stage(stage, dt, bed, fx.data(), fy.data(), fz.data(), inv_mass.data(), moving);
+    }
+    if (!rk4.finish(dt, BranchFreeWrap(box), bed, moving)) throw_non_finite(step_number);
   }
 
   // The wall histories of a restart or of the particles left after an overflow, with the

@@ -21,9 +21,10 @@
 #include "forces.hpp"
 #include "parallel.hpp"
 #include "drop_on_engine.hpp"
+#include "drop_solver.hpp"
+#include "insertion.hpp"
 #include "lid_phase.hpp"
 #include "powderbed/bed/errors.hpp"
-#include "powderbed/bed/random.hpp"
 #include "powderbed/bed/softening.hpp"
 #include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
@@ -368,7 +369,7 @@ void check_lid(const LidSettings& lid, const Scene& scene) {
 // Everything run_deposition refuses, before any work.
 void check_run(const bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
   scene.validate();
-  detail::refuse_rotation_off_engine(scene, settings);
+  detail::refuse_rotation_with_rk4(scene, settings);
   bed.validate("deposit input bed");
   check_bed(bed);
   check_run_settings(settings);
@@ -552,123 +553,52 @@ struct DropRun {
   }
 };
 
-const auto nothing = [] {};
 const auto never = [] { return false; };
 
-// Insertion (solver.hpp InsertionSettings): the pool's particle c.n is the next to enter, so the
-// per-particle tables, made for the whole pool, stay indexed as they are.
-class Insertion {
+// The drop solver's side of insertion (insertion.hpp): the bed is the pool and its first c.n
+// particles are in, so the per-particle tables, made for the whole pool, stay indexed as they are.
+class SolverInsertion {
  public:
-  Insertion(DropRun& run, double r_max)
-      : run_(run), ins_(run.settings.insertion), pool_(run.c.n), r_max_(r_max), rng_(ins_.seed) {
-    // Time a new particle needs to fall one largest diameter (from `speed`, under gravity), twice.
-    const double g = run.scene.has(kGravity) ? run.scene.gravity : 0.0;
-    const double v = ins_.speed;
-    const double fall = g > 0 ? (std::sqrt(v * v + 2 * g * 2 * r_max) - v) / g : 2 * r_max / v;
-    patience_ = ins_.patience > 0 ? ins_.patience : 2 * fall;
-    run.inserting = ins_.enabled;
-    if (run.inserting) {
-      run.c.n = 0;
-      try_insert();
-    }
+  explicit SolverInsertion(DropRun& run) : run_(run), c_(run.c) {
+    if (run.settings.insertion.enabled) c_.n = 0;
   }
 
-  // Before each step: the particles due by now (one at t = 0, then `rate` per second) enter
-  // while there is room; insertion ends with the pool in or the box full.
-  void insert_due() {
-    Context& c = run_.c;
-    if (!run_.inserting) return;
-    const double time = run_.time();
-    const auto due = std::min<std::size_t>(
-        pool_, 1 + static_cast<std::size_t>(std::floor(ins_.rate * time)));
-    const std::size_t before = c.n;
-    while (c.n < due) {
-      if (try_insert()) {
-        failing_since_ = kNotFailing;
-        continue;
-      }
-      if (failing_since_ == kNotFailing) failing_since_ = time;
-      break;
-    }
-    if (c.n != before) {
-      c.rebuild();
-      ++c.rebuilds;
-    }
-    if (c.n == pool_) {
-      end("pool", time);
-    } else if (failing_since_ != kNotFailing && time - failing_since_ >= patience_) {
-      end("full", time);
-    }
-    if (!run_.inserting && run_.settings.rest.kinetic_energy <= 0) {  // the rest criterion's mass
-      double inserted_mass = 0;
-      for (std::size_t i = 0; i < c.n; ++i) inserted_mass += c.weight[i];
-      const double v = run_.settings.rest.max_speed;
-      run_.rest_energy = 1e-2 * 0.5 * inserted_mass * v * v;
-    }
+  const RunSettings& settings() const { return run_.settings; }
+  const Scene& scene() const { return run_.scene; }
+  RunSummary& summary() { return run_.summary; }
+  double time() const { return run_.time(); }
+  const Box& box() const { return c_.params.box; }
+  const bed::Bed& pool() const { return c_.bed; }
+  std::size_t inserted() const { return c_.n; }
+  const bed::Bed& bed() const { return c_.bed; }
+  void place(std::size_t k, const double p[3], double vz) {
+    bed::Bed& bed = c_.bed;
+    bed.x[k] = p[0];
+    bed.y[k] = p[1];
+    bed.z[k] = p[2];
+    bed.vx[k] = 0;
+    bed.vy[k] = 0;
+    bed.vz[k] = vz;
+    ++c_.n;
   }
-
-  // Ends insertion: the pool's rest is dropped, the bed shrinks to the inserted particles.
-  void end(const char* why, double time) {
-    Context& c = run_.c;
-    bed::Bed& bed = c.bed;
-    run_.inserting = false;
-    run_.summary.inserted = c.n;
-    run_.summary.insertion_end = time;
-    run_.summary.insertion_stopped_by = why;
-    for (auto* v : {&bed.x, &bed.y, &bed.z, &bed.radius, &bed.vx, &bed.vy, &bed.vz}) v->resize(c.n);
-    bed.id.resize(c.n);
-    if (!bed.material.empty()) bed.material.resize(c.n);
-    if (!bed.temperature.empty()) bed.temperature.resize(c.n);
-    if (!bed.phase.empty()) bed.phase.resize(c.n);
+  void entered() {
+    c_.rebuild();
+    ++c_.rebuilds;
   }
+  void set_inserting(bool on) { run_.inserting = on; }
+  void end_insertion() {
+    bed::Bed& bed = c_.bed;
+    for (auto* v : {&bed.x, &bed.y, &bed.z, &bed.radius, &bed.vx, &bed.vy, &bed.vz}) v->resize(c_.n);
+    bed.id.resize(c_.n);
+    if (!bed.material.empty()) bed.material.resize(c_.n);
+    if (!bed.temperature.empty()) bed.temperature.resize(c_.n);
+    if (!bed.phase.empty()) bed.phase.resize(c_.n);
+  }
+  void set_rest_energy(double energy) { run_.rest_energy = energy; }
 
  private:
-  static constexpr double kNotFailing = -1;
-
-  // The next particle of the pool at a free spot of the top layer (one largest diameter under
-  // the top face, inside the side faces), moving down at `speed`; false after `tries` draws.
-  bool try_insert() {
-    Context& c = run_.c;
-    bed::Bed& bed = c.bed;
-    const std::size_t k = c.n;
-    const double r = bed.radius[k];
-    const Box& box = c.params.box;
-    double lo[3], hi[3];
-    for (int a = 0; a < 2; ++a) {
-      lo[a] = box.lower[a] + (box.periodic[a] ? 0.0 : r);
-      hi[a] = box.upper[a] - (box.periodic[a] ? 0.0 : r);
-    }
-    lo[2] = box.upper[2] - 2 * r_max_ + r;
-    hi[2] = box.upper[2] - r;
-    for (std::size_t t = 0; t < ins_.tries; ++t) {
-      const double p[3] = {bed::uniform(rng_, lo[0], hi[0]), bed::uniform(rng_, lo[1], hi[1]),
-                           bed::uniform(rng_, lo[2], hi[2])};
-      bool free = true;
-      for (std::size_t j = 0; j < c.n && free; ++j) {
-        const double dx = box.image(0, bed.x[j] - p[0]), dy = box.image(1, bed.y[j] - p[1]),
-                     dz = bed.z[j] - p[2], reach = r + bed.radius[j];
-        free = dx * dx + dy * dy + dz * dz >= reach * reach;
-      }
-      if (!free) continue;
-      bed.x[k] = p[0];
-      bed.y[k] = p[1];
-      bed.z[k] = p[2];
-      bed.vx[k] = 0;
-      bed.vy[k] = 0;
-      bed.vz[k] = -ins_.speed;
-      ++c.n;
-      return true;
-    }
-    return false;
-  }
-
   DropRun& run_;
-  const InsertionSettings& ins_;
-  std::size_t pool_;
-  double r_max_;
-  bed::Rng rng_;
-  double patience_ = 0;
-  double failing_since_ = kNotFailing;  // start of the current run of failed insertions
+  Context& c_;
 };
 
 // The drop solver's side of the lid (lid_phase.hpp).
@@ -768,7 +698,15 @@ void check_run_settings(const RunSettings& s) {
 
 RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
   check_run(bed, scene, settings);
-  if (detail::runs_on_engine(scene, settings)) return detail::run_drop_on_engine(bed, scene, settings);
+  return detail::run_drop_on_engine(bed, scene, settings);
+}
+
+RunSummary detail::run_on_drop_solver(bed::Bed& bed, const Scene& scene, const RunSettings& settings) {
+  check_run(bed, scene, settings);
+  if (detail::needs_rotation(scene)) {
+    throw InputError("the drop solver: friction.model = history or material.rolling > 0 (accepted: "
+                     "laws without particle rotation)");
+  }
   const auto started = std::chrono::steady_clock::now();
   const detail::FlushSubnormals flush;  // a settled bed's speeds decay into subnormals
   const TimeStepBound bound = time_step_bound(bed, scene, settings.young_scale);
@@ -781,7 +719,8 @@ RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& 
   c.dt = chosen_dt(bound, settings);
   set_up_laws(c, scene);
   const Totals totals = set_up_particles(c, scene);
-  Insertion insertion(run, totals.r_max);
+  SolverInsertion inserting(run);
+  detail::Insertion<SolverInsertion> insertion(inserting, totals.r_max);
   c.rebuild();
 
   const bool linear = scene.law == ContactLaw::linear;

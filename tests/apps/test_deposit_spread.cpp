@@ -100,9 +100,9 @@ TEST(DepositSpread, DosingSuppliesTheLayersNominalPowder) {
   EXPECT_NEAR(test::json_number(second, "supplied"), per_height * 30e-6, 1.0) << r.out;
 }
 
-TEST(DepositSpread, DropWithHistoryFrictionRunsOnTheEngineWithTheLid) {
+TEST(DepositSpread, DropWithHistoryFrictionRunsOnTheEngineWithTheLidAndInsertion) {
   // History friction and rolling resistance need particle rotation: a --t-end drop runs on the
-  // engine, the lid too; what only the drop solver has (insertion, RK4) is refused.
+  // engine, the lid and insertion too; what only the drop solver has (RK4) is refused.
   const std::string dir = test::scratch_dir("spread_drop");
   const std::string drop = "--psd mono:d=30e-6 --count 10 --domain 0.3e-3,0.3e-3,0.3e-3 "
                            "--young-scale 1e3 --seed 1 --out " + dir + "/out.h5 ";
@@ -116,8 +116,12 @@ TEST(DepositSpread, DropWithHistoryFrictionRunsOnTheEngineWithTheLid) {
                                                    "--lid.travel 1e-4 --lid.relax 1e-4 --thermo 0 --json");
   ASSERT_EQ(lid.status, 0) << lid.err;
   EXPECT_NE(lid.out.find("\"stopped_by\":\"travel\""), std::string::npos) << lid.out;
+  const auto inserted = test::run_app("deposit", drop + "--t-end 1e-3 --friction.model history --insert.enabled "
+                                                        "true --insert.rate 1e5 --thermo 0 --json");
+  ASSERT_EQ(inserted.status, 0) << inserted.err;
+  EXPECT_EQ(test::json_number(inserted.out, "inserted"), 10) << inserted.out;
   for (const auto& [args, field] :
-       {std::pair{"--t-end 1e-3 --friction.model history --insert.enabled true --insert.rate 1e5", "friction.model"},
+       {std::pair{"--t-end 1e-3 --integrator rk4 --friction.model history", "friction.model"},
         std::pair{"--t-end 1e-3 --integrator rk4 --material.rolling 0.1", "material.rolling"},
         std::pair{"--t-end 1e-3 --friction.model static", "friction.model"}}) {
     const auto r = test::run_app("deposit", drop + args);

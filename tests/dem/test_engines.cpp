@@ -1,9 +1,11 @@
 // The two DEM engines on the drop's scenarios (issue 33: one engine, the other deleted once this
-// holds for every scenario): the spreading engine with particles that do not turn
-// (SpreadSettings::rotation false) against the drop solver, at the same step. They sum the
-// forces in different orders (the drop: walls by face, then pairs; the spread: plate, top,
-// sides, then pairs) and take the Verlet half kicks apart or merged, so they agree to rounding
-// at first and drift apart as collisions amplify the difference.
+// holds for every scenario): run_deposition, which runs every drop on the engine
+// (dem/src/engine.hpp through drop_on_engine.cpp), against the drop solver that ran them before
+// (dem/src/drop_solver.hpp), at the same step; each effect, both laws, RK4, the lid and
+// insertion. They sum the forces in different orders (the drop solver: walls by face, then
+// pairs; the engine: plate, top, sides, then pairs) and take the Verlet half kicks apart or
+// merged, so they agree to rounding at first and drift apart as collisions amplify the
+// difference.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,11 +15,14 @@
 #include "beds.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/dem/solver.hpp"
+#include "drop_solver.hpp"
 #include "powderbed/dem/spread.hpp"
 
 using namespace powderbed;
 
 namespace {
+
+enum class Driver { verlet, rk4, lid, insertion };
 
 struct Scenario {
   std::string name;
@@ -26,6 +31,7 @@ struct Scenario {
   std::size_t particles;
   double t_end;     // s
   double tolerance; // largest |x_drop - x_spread| over all particles and axes / smallest radius
+  Driver driver = Driver::verlet;
 };
 
 constexpr double kSmall = 10e-6, kLarge = 20e-6;  // radii, m
@@ -55,33 +61,57 @@ bed::Bed bed_of(const Scenario& s) {
   return b;
 }
 
-bed::Bed on_drop_solver(const Scenario& s) {
-  bed::Bed b = bed_of(s);
+dem::RunSettings settings_of(const Scenario& s) {
   dem::RunSettings run;
   run.t_end = s.t_end;
   run.dt = kDt;
   run.young_scale = s.law == dem::ContactLaw::hertz ? 1e3 : 1.0;
-  dem::run_deposition(b, scene_of(s), run);
-  return b;
+  if (s.driver == Driver::rk4) run.integrator = dem::Integrator::rk4;
+  if (s.driver == Driver::lid) {  // lowered at once 10 um into the column's top, held, released
+    run.lid.enabled = true;
+    run.lid.speed = 1;
+    run.lid.travel = 1e-5;
+    run.lid.hold = 2e-5;
+    run.lid.relax = 5e-5;
+  }
+  if (s.driver == Driver::insertion) {  // the pool enters within the first 4e-4 s
+    run.insertion.enabled = true;
+    run.insertion.rate = 1e5;
+    run.insertion.speed = 0.5;
+    run.insertion.seed = 5;
+  }
+  return run;
 }
 
-bed::Bed on_spreading_engine(const Scenario& s) {
-  bed::Bed b = bed_of(s);
-  dem::SpreadSettings run;
-  run.with_tool = false;
-  run.rotation = false;
-  run.t_end = s.t_end;
-  run.dt = kDt;
-  run.young_scale = s.law == dem::ContactLaw::hertz ? 1e3 : 1.0;
-  dem::run_spread(b, scene_of(s), run);
-  return b;
+struct Outcome {
+  bed::Bed bed;
+  dem::RunSummary summary;
+};
+
+Outcome on_drop_solver(const Scenario& s) {
+  Outcome o{bed_of(s), {}};
+  o.summary = dem::detail::run_on_drop_solver(o.bed, scene_of(s), settings_of(s));
+  return o;
+}
+
+Outcome on_engine(const Scenario& s) {
+  Outcome o{bed_of(s), {}};
+  o.summary = dem::run_deposition(o.bed, scene_of(s), settings_of(s));
+  return o;
 }
 
 class Engines : public ::testing::TestWithParam<Scenario> {};
 
-TEST_P(Engines, SpreadingEngineWithoutRotationIsTheDropSolver) {
+TEST_P(Engines, TheEngineRunsTheDropSolversScenarios) {
   const Scenario& s = GetParam();
-  const bed::Bed drop = on_drop_solver(s), spread = on_spreading_engine(s);
+  const Outcome old_run = on_drop_solver(s), new_run = on_engine(s);
+  const bed::Bed &drop = old_run.bed, &spread = new_run.bed;
+  EXPECT_EQ(old_run.summary.steps, new_run.summary.steps) << s.name;
+  EXPECT_EQ(old_run.summary.inserted, new_run.summary.inserted) << s.name;
+  if (s.driver == Driver::lid) {  // the lid pressed the column, with the same force
+    EXPECT_GT(old_run.summary.lid.max_force, 0) << s.name;
+    EXPECT_NEAR(new_run.summary.lid.max_force, old_run.summary.lid.max_force, 1e-9 * old_run.summary.lid.max_force);
+  }
   ASSERT_EQ(drop.n(), spread.n());
   double worst = 0, moved = 0;
   const bed::Bed start = bed_of(s);
@@ -94,14 +124,19 @@ TEST_P(Engines, SpreadingEngineWithoutRotationIsTheDropSolver) {
   EXPECT_GT(moved, kSmall) << s.name << ": the scene must move for the comparison to mean something";
 }
 
-// Each of the drop's effects over the walls (the spreading engine's plate is a wall, so it
-// always has them), then all of them with either law, on a column of six particles that land on
+// Each of the drop's effects over the walls (the engine's plate is a wall, so it always has
+// them), then all of them with either law, on a column of six particles that land on
 // the floor and on each other within the run; then forty with every effect. Both engines start
 // equal to rounding, and each contact that begins or ends amplifies the difference: with
 // damping the column's worst difference was 8e-12 of a radius at 5e-4 s, 1e-9 at 7e-4 s,
 // 2e-7 at 1.2e-3 s and 6e-6 at 1.5e-3 s, a single particle's 0 at any time. The runs stop
 // while it is small, and the tolerance, 1e-7 of a radius, is some hundred times what they
-// measured; a law that differed would be off by its own size at the first contact.
+// measured; a law that differed would be off by its own size at the first contact. Measured when
+// the drops moved onto the engine (worst / smallest radius): walls 1e-11, drag 6e-13, pairs
+// 3e-11, damping 4e-9, friction 4e-9, all_hertz 1.1e-8, all_linear 9e-11, many_hertz 4e-13,
+// many_linear 5e-14, rk4_hertz 6e-10, rk4_linear 5e-11, insertion (40 particles entering from the
+// top) 3e-13; the lid, lowered 10 um into the standing column's top at 1 m/s, held and
+// released, presses it with the same force (8.9e-5 N) on both.
 INSTANTIATE_TEST_SUITE_P(
     DropScenarios, Engines,
     ::testing::Values(
@@ -115,7 +150,11 @@ INSTANTIATE_TEST_SUITE_P(
         Scenario{"all_hertz", dem::kAllEffects, dem::ContactLaw::hertz, 6, 8e-4, 1e-7},
         Scenario{"all_linear", dem::kAllEffects, dem::ContactLaw::linear, 6, 8e-4, 1e-7},
         Scenario{"many_hertz", dem::kAllEffects, dem::ContactLaw::hertz, 40, 3e-4, 1e-7},
-        Scenario{"many_linear", dem::kAllEffects, dem::ContactLaw::linear, 40, 2e-4, 1e-7}),
+        Scenario{"many_linear", dem::kAllEffects, dem::ContactLaw::linear, 40, 2e-4, 1e-7},
+        Scenario{"rk4_hertz", dem::kAllEffects, dem::ContactLaw::hertz, 6, 8e-4, 1e-7, Driver::rk4},
+        Scenario{"rk4_linear", dem::kAllEffects, dem::ContactLaw::linear, 6, 8e-4, 1e-7, Driver::rk4},
+        Scenario{"lid", dem::kAllEffects, dem::ContactLaw::hertz, 6, 2e-6, 1e-7, Driver::lid},
+        Scenario{"insertion", dem::kAllEffects, dem::ContactLaw::hertz, 40, 3e-4, 1e-7, Driver::insertion}),
     [](const ::testing::TestParamInfo<Scenario>& p) { return p.param.name; });
 
 // Particles that do not turn cannot carry the laws that turn them.

@@ -91,7 +91,7 @@ struct RunSettings {
   bool until_rest = false;
   RestCriteria rest;
   // Verlet skin, m; 0: the engine's default, 0.5 x the largest radius (narrowed on a narrow
-  // periodic axis; spread.hpp), or 0.1 x the largest diameter on the drop solver (insertion, RK4)
+  // periodic axis; spread.hpp), or 0.1 x the largest diameter on the drop solver (RK4)
   double skin = 0;
   int threads = 0;              // OpenMP threads; 0 = OpenMP's default
   // Beds with fewer particles run on one thread whatever `threads` says: a step of the 600-
@@ -176,11 +176,10 @@ void check_run_settings(const RunSettings& settings);
 // domain, a 2D bed, a periodic axis shorter than 3 neighbour cells, a lid without
 // effects.walls, with neither pressure nor travel or a non-positive speed) and NumericalError
 // naming the particle id and step when the state goes non-finite. Deterministic: the same
-// input gives bit-identical output for any thread count. A drop with velocity Verlet and
-// without insertion runs on the one engine (dem/src/engine.hpp, the spreading engine without a
-// tool), which also carries the laws that need particle rotation (friction.model = history,
-// material.rolling > 0); insertion and RK4 still run on the drop solver, which refuses those
-// laws.
+// input gives bit-identical output for any thread count. A drop with velocity Verlet runs on
+// the one engine (dem/src/engine.hpp, the spreading engine without a tool), which also carries
+// the laws that need particle rotation (friction.model = history, material.rolling > 0); RK4
+// still runs on the drop solver, which refuses those laws.
 RunSummary run_deposition(bed::Bed& bed, const Scene& scene, const RunSettings& settings);
 
 // Removes particles whose centre lies outside the domain on a non-periodic axis; returns how
