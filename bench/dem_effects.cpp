@@ -1,15 +1,19 @@
-// What each effect of a deposition scene costs per step, and that an effect switched off costs
-// nothing (docs/architecture.md "Effects a scene calls for"): the solver picks, once per run, a force
-// loop compiled for the scene's effect mask (dem/scene.hpp kEffects), so a loop with friction off
-// is the loop of a build that never had friction. Two benchmark families on the same beds, one thread, E = 193 GPa:
+// What each effect of a deposition scene costs per step, and what an effect switched off costs
+// (docs/architecture.md "Effects a scene calls for"). run_deposition runs on the engine
+// (dem/src/engine.hpp), whose contact is composed once per run and whose batch kernel is compiled
+// for damping and friction (contact_kernel.hpp); gravity and drag act in the drift pass with
+// their coefficients (0 when off) and the walls' candidates are found at each prune. Three
+// benchmark families on the same beds, one thread, E = 193 GPa:
 //   BM_Step/<mask>: steps with the effects of <mask> on (kAllEffects, then each bit off in turn);
 //   BM_StepZeroed/<effect>: all bits on but that effect's coefficient set to 0 (mu_d = 0,
 //     zeta = 0, g = 0): the effect's code runs and adds nothing, which is what a run-time switch
 //     in the inner loop would cost. Bit off vs zeroed is the saving of compiling the effect out;
 //     bit off vs all on is the effect's cost;
-//   BM_Engine/<engine>/<bed>: every effect on, the whole run (set-up included) on the drop
-//     solver (0) or on the spreading engine with particles that do not turn (1, the same model:
-//     tests/dem/test_engines.cpp): what moving the drops onto the one engine (issue 33) costs.
+//   BM_Engine/<engine>/<bed>: every effect on, the whole run (set-up included) on the engine
+//     through run_deposition (0, the drop's model: particles that do not turn, its pairs and
+//     faces batched), through run_spread without a tool and without rotation (1, the same
+//     model) or with the spread's rotating model (2). The drop solver that BM_Engine/0 ran
+//     until issue 33 deleted it: docs/results/deposit-engine-ab.md.
 // Beds: FCC stacks of spheres of radius 13.5 um (the [GZ] mean) compressed by 0.1 % so every
 // neighbour touches (12 contacts per interior sphere), resting on the floor and touching the
 // side walls: 600 (5 x 5 x 6 cells) and 19,652 (17^3 cells) particles. The timer runs from the

@@ -1,7 +1,7 @@
 #pragma once
-// The contact law over a batch of contacts in contiguous arrays: the pair pass of a model whose
-// contacts neither turn the particles nor keep a history (the drop's, docs/physics.md §4), shared
-// by the drop solver (forces.hpp) and the spreading engine (spread.cpp).
+// The contact law over a batch of contacts in contiguous arrays: the pair and box-face passes of
+// a model whose contacts neither turn the particles nor keep a history (the drop's,
+// docs/physics.md §4), which the engine (engine.hpp) runs instead of a call per contact.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>

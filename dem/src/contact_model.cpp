@@ -49,7 +49,7 @@ struct SlidingFriction {
 };
 
 // The same at the centres' relative tangential velocity, for particles that do not turn: the
-// drop solver's friction ([GZ]'s model, dem/src/forces.hpp).
+// drop's friction ([GZ]'s model; its batch is contact_kernel.hpp's).
 struct CentreSliding {
   static constexpr bool friction = true, rotation = false, history = false;
   static void force(const ContactCoefficients& m, const ContactConstants& k, const Load& load,

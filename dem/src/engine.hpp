@@ -335,8 +335,11 @@ struct Engine {
             settings.dt, bound.stable, bound.stable));
       }
       dt = settings.dt;
-    } else {
+    } else if (std::isfinite(bound.recommended)) {
       dt = bound.recommended;
+    } else {
+      throw InputError("--dt: no effect bounds the time step (hertz, walls and drag are off; "
+                       "accepted: give --dt explicitly)");
     }
     model.coefficients.dt = dt;
   }

@@ -1,21 +1,23 @@
-// The two DEM engines on the drop's scenarios (issue 33: one engine, the other deleted once this
-// holds for every scenario): run_deposition, which runs every drop on the engine
-// (dem/src/engine.hpp through drop_on_engine.cpp), against the drop solver that ran them before
-// (dem/src/drop_solver.hpp), at the same step; each effect, both laws, RK4, the lid and
-// insertion. They sum the forces in different orders (the drop solver: walls by face, then
-// pairs; the engine: plate, top, sides, then pairs) and take the Verlet half kicks apart or
-// merged, so they agree to rounding at first and drift apart as collisions amplify the
-// difference.
+// The drop's scenarios on the engine (issue 33: one engine) against what the drop solver, the
+// engine that ran the drops before, gave for them: run_deposition (dem/src/engine.hpp through
+// drop_on_engine.cpp) against tests/data/drop_solver/<scenario>.csv, the drop solver's
+// positions at the run's end (and its step count, particles inserted and the lid's largest
+// force), written by dem::detail::run_on_drop_solver at commit cceef59 before it was deleted;
+// each effect, both laws, RK4, the lid and insertion, at the same step. The two sum the forces
+// in different orders (the drop solver: walls by face, then pairs; the engine: plate, top,
+// sides, then pairs) and took the Verlet half kicks apart or merged, so they agree to rounding
+// at first and drift apart as collisions amplify the difference.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <string>
+#include <vector>
 
 #include "beds.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/dem/solver.hpp"
-#include "drop_solver.hpp"
 #include "powderbed/dem/spread.hpp"
 
 using namespace powderbed;
@@ -88,9 +90,29 @@ struct Outcome {
   dem::RunSummary summary;
 };
 
+// The drop solver's end of the scenario (tests/data/drop_solver, see the top of this file).
 Outcome on_drop_solver(const Scenario& s) {
+  const std::string path = std::string(POWDERBED_TEST_DATA) + "/drop_solver/" + s.name + ".csv";
+  std::ifstream in(path);
   Outcome o{bed_of(s), {}};
-  o.summary = dem::detail::run_on_drop_solver(o.bed, scene_of(s), settings_of(s));
+  std::string tag, header;
+  unsigned long long steps = 0, inserted = 0;
+  in >> tag >> tag >> steps >> tag >> inserted >> tag >> o.summary.lid.max_force >> header;
+  o.summary.steps = steps;
+  o.summary.inserted = inserted;
+  std::vector<double> x, y, z;
+  char comma;
+  double a, b, c;
+  while (in >> a >> comma >> b >> comma >> c) {
+    x.push_back(a);
+    y.push_back(b);
+    z.push_back(c);
+  }
+  EXPECT_EQ(header, "x,y,z") << path;
+  o.bed.x = x;
+  o.bed.y = y;
+  o.bed.z = z;
+  o.bed.radius.resize(x.size());  // n(): the particles at the end (with insertion, those in)
   return o;
 }
 

@@ -56,8 +56,9 @@ struct Fines {
   double radius = 0;  // R_ref, m: particles with r < R_ref are scaled (> 0 when scaling is on)
 };
 
-// The effects of docs/architecture.md "Effects a scene calls for", one bit each: the name the
-// force loop tests at compile time (dem/src/forces.hpp).
+// The effects of docs/architecture.md "Effects a scene calls for", one bit each: what the
+// engine's contact model and its batch kernel are composed of (dem/src/contact_model.cpp,
+// contact_kernel.hpp).
 enum Effect : unsigned {
   kGravity = 1u << 0,
   kHertz = 1u << 1,     // particle–particle contact (Scene::law: Hertz or linear)
