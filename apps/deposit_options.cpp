@@ -101,7 +101,7 @@ void add_scene_options(po::options_description& desc, dem::Scene& s) {
        "wall nu")
       ("gravity", po::value<double>(&s.gravity)->default_value(s.gravity), "g (m/s^2)")
       ("fines.scaling", po::value<std::string>()->default_value("none"),
-       "keep the smallest particles from setting the time step (drop solver): none, mass (their "
+       "keep the smallest particles from setting the time step: none, mass (their "
        "inertial mass x (R_ref/r)^2; gravity and drag unchanged) or stiffness (their E x "
        "(r/R_ref)^2, Hertz law); docs/deposit-fines.md")
       ("fines.radius", po::value<double>(&s.fines.radius)->default_value(s.fines.radius),
