@@ -85,7 +85,7 @@ void bind_run_settings(py::module_& m) {
       .field("t_end", &R::t_end, "s; with until_rest the cap (0: 1 s)")
       .field("until_rest", &R::until_rest, "stop when the bed is at rest")
       .field("rest", &R::rest, "RestCriteria (or a dict of its fields)")
-      .field("skin", &R::skin, "Verlet skin, m; 0: 0.1 x the largest diameter")
+      .field("skin", &R::skin, "Verlet skin, m; 0: 0.5 x the largest radius (narrowed on a narrow periodic axis)")
       .field("threads", &R::threads, "OpenMP threads; 0: OpenMP's default")
       .field("parallel_min_particles", &R::parallel_min_particles,
              "beds with fewer particles run on one thread")
