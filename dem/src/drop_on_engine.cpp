@@ -39,8 +39,8 @@ SpreadSettings engine_settings(const Scene& scene, const RunSettings& settings) 
 
 constexpr std::uint64_t kNotQuiet = ~std::uint64_t{0};
 
-// A drop on the engine: the settle for t_end or until rest, then the lid; and the engine's side
-// of the lid (lid_phase.hpp's Run).
+// A drop on the engine: the settle (with insertion, while the pool enters) for t_end or until
+// rest, then the lid; and the engine's side of both (lid_phase.hpp's and insertion.hpp's Run).
 class EngineDrop {
  public:
   // With insertion the bed passed in is the pool: it is moved aside, and the bed fills as its
