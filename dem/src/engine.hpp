@@ -1214,11 +1214,12 @@ struct Engine {
 
   // The particles' force on the box's top face now (the lid's, N), from the whole step's
   // velocities: each contact's normal force (the tangential ones lie in the face), summed in
-  // index order; the histories are read, not advanced.
+  // index order over the walls' candidates (every particle that can touch the top is one);
+  // the histories are read, not advanced.
   double top_force() const {
     const double n[3] = {0, 0, 1}, still[3] = {0, 0, 0};
     double total = 0;
-    for (std::size_t i = 0; i < moving; ++i) {
+    for (const std::uint32_t i : model.batch ? near_face[1] : near_walls) {
       const double delta = bed.radius[i] - (box.upper[2] - bed.z[i]);
       if (!(delta > 0)) continue;
       const auto v = whole_step_velocity(i);
