@@ -213,6 +213,16 @@ void add_spread_options(po::options_description& desc, dem::SpreadSettings& spre
        "0: off, the default: powder 4 D90 under a blade still moves under the supply's heap, "
        "docs/deposit-spread.md \"Many layers\"; more than the largest diameter keeps the "
        "frozen out of the tool's reach, layers[k].frozen_tool_contacts counts any it meets)")
+      ("sleep.on", po::value<bool>(&spread.sleep.on)->default_value(spread.sleep.on),
+       "powder at rest under the tool sleeps (is not integrated) until what moves pushes it "
+       "(docs/deposit-spread.md \"Sleeping powder\"; layers[k].asleep reports how many slept)")
+      ("sleep.speed", po::value<double>(&spread.sleep.speed)->default_value(spread.sleep.speed),
+       "sleep.on: at rest below this speed, of the centre and of the surface about it (m/s)")
+      ("sleep.wake-speed", po::value<double>(&spread.sleep.wake_speed)->default_value(spread.sleep.wake_speed),
+       "sleep.on: a sleeper wakes, with the sleepers it touches, when an awake particle touching "
+       "it moves faster than this (m/s)")
+      ("sleep.steps", po::value<std::uint64_t>(&spread.sleep.steps)->default_value(spread.sleep.steps),
+       "sleep.on: steps in a row at rest before a particle sleeps")
       ("supply.x0", po::value<double>(&spread.supply_x0)->default_value(spread.supply_x0),
        "supply region: start along x (m)")
       ("supply.x1", po::value<double>(&spread.supply_x1)->default_value(spread.supply_x1),
@@ -384,6 +394,7 @@ int export_spread_deck(const po::variables_map& vm, const DepositOptions& bound,
                                  "the decks freeze nothing)",
                                  s.freeze_depth));
   }
+  if (s.sleep.on) throw InputError("sleep.on: true with --export-deck (accepted: false; the decks integrate every particle)");
   SpreadDeckRequest r;
   r.engine = bed::parse_deck_engine(engine, "--export-deck");
   r.first = (restart ? restart->layers_done : 0) + 1;

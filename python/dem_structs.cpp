@@ -112,6 +112,13 @@ void bind_spread_settings(py::module_& m) {
       .field("delay", &T::delay, "s before it moves")
       .field("settle", &T::settle, "s after it stopped")
       .done();
+  using Z = dem::SleepSettings;
+  StructBinding<Z>(m, "SleepSettings", "Powder at rest under the tool sleeps until what moves pushes it.")
+      .field("on", &Z::on, "sleep at all (default false)")
+      .field("speed", &Z::speed, "at rest below this speed, m/s")
+      .field("wake_speed", &Z::wake_speed, "a sleeper wakes when a particle this fast touches it, m/s")
+      .field("steps", &Z::steps, "steps in a row at rest before a particle sleeps")
+      .done();
   using S = dem::SpreadSettings;
   StructBinding<S>(m, "SpreadSettings", "How a spread runs (dem::SpreadSettings).")
       .field("tool", &S::tool, "Recoater (or a dict of its fields)")
@@ -126,6 +133,7 @@ void bind_spread_settings(py::module_& m) {
       .field("chamber", &S::chamber, "overflow: keep what lies under the tool's bottom")
       .field("layer_thickness", &S::layer_thickness, "plate drop between layers, m")
       .field("freeze_depth", &S::freeze_depth, "freeze powder this far below the tool, m (0: off)")
+      .field("sleep", &S::sleep, "SleepSettings (or a dict of its fields)")
       .field("young_scale", &S::young_scale, "E used = E / young_scale")
       .field("dt", &S::dt, "s; 0: 0.2 x the Rayleigh step")
       .field("unsafe_dt", &S::unsafe_dt, "accept dt above the stable bound (with a warning)")

@@ -234,6 +234,12 @@ struct Engine {
   // they keep their places, act on the moving ones' contacts as fixed spheres, and their own
   // force arrays collect those contacts' reactions, which nothing reads.
   std::size_t moving = 0;
+  // The contacts between two particles that are not integrated, kept out of the list (it holds
+  // no pair of two of them) with their history: sleeping powder that wakes (sleep.hpp) takes its
+  // contacts back, and a restart writes them (active()). In owner order.
+  ActiveContacts dormant;
+  // Per particle, steps in a row at rest (sleep.hpp); empty when the scene does not sleep.
+  std::vector<std::uint32_t> quiet;
   // The frozen particles whose tops reach above the tool's lowest point (found at each layer's
   // start: frozen particles do not move), and how many times, step by step, the tool overlapped
   // one of them this layer. The tool's contacts are the moving particles' only, so it would
@@ -383,6 +389,7 @@ struct Engine {
     wall_history.resize(count * kWallValues, 0.0);
     wall_touch.resize(count, 0);
     wall.resize(count);
+    if (settings.sleep.on) quiet.assign(count, 0);  // every particle moves now
     for (std::size_t i = old; i < count; ++i) {
       const double r = bed.radius[i];
       weight[i] = bed::sphere_volume(r) * scene.material.density;
@@ -394,6 +401,9 @@ struct Engine {
       wall[i] = model.constants(model.coefficients, wall_partners(i));
     }
     moving = count;  // until the next layer's start freezes some (sort_by_cell)
+    // Every particle moves now, so no contact is dormant: the caller's carried contacts (its
+    // active() before, or a restart's) hold them all.
+    dormant = {};
   }
 
   // Which particles a layer's start freezes (SpreadSettings::freeze_depth): those whose
@@ -424,6 +434,8 @@ struct Engine {
     }
   }
 
+  // Every contact with its history, in owner order: the list's touching entries and the dormant
+  // ones (whose owners are not integrated, so they come after the list's).
   ActiveContacts active() const {
     ActiveContacts a;
     const std::uint32_t* owner = list.owners();
@@ -435,6 +447,9 @@ struct Engine {
       a.h.insert(a.h.end(), pair_history.begin() + static_cast<std::ptrdiff_t>(k * kContactHistory),
                  pair_history.begin() + static_cast<std::ptrdiff_t>((k + 1) * kContactHistory));
     }
+    a.i.insert(a.i.end(), dormant.i.begin(), dormant.i.end());
+    a.j.insert(a.j.end(), dormant.j.begin(), dormant.j.end());
+    a.h.insert(a.h.end(), dormant.h.begin(), dormant.h.end());
     return a;
   }
 
@@ -443,9 +458,11 @@ struct Engine {
   // The particles reordered by the cells they lie in, the frozen ones last (spatial_order), everything kept per
   // particle with them; a carried contact whose owner would come after its partner is turned
   // round (its history is the force and torque on the owner: they change sign) and the
-  // contacts are put back in owner order, as rebuild_with reads them. Done at each layer's
-  // start: a spread carries powder millimetres along x, and a bed of several layers in supply
-  // order had its contact partners scattered through memory.
+  // contacts are put back in owner order, as rebuild_with reads them; those between two frozen
+  // particles go to `dormant`. Done at each layer's start (a spread carries powder millimetres
+  // along x, and a bed of several layers in supply order had its contact partners scattered
+  // through memory) and when powder falls asleep or wakes (sleep.hpp). `carried` must hold every
+  // contact (active()).
   void sort_by_cell(ActiveContacts& carried, const std::vector<std::uint8_t>& frozen) {
     const std::vector<std::size_t> order = spatial_order(bed, 2.0 * largest_radius(bed), frozen);
     moving = static_cast<std::size_t>(std::count(frozen.begin(), frozen.end(), 0));
@@ -457,9 +474,11 @@ struct Engine {
                     values.begin() + static_cast<std::ptrdiff_t>(k * stride));
     };
     for (auto* v : {&bed.x, &bed.y, &bed.z, &bed.radius, &bed.vx, &bed.vy, &bed.vz, &bed.temperature,
-                    &weight, &mass, &inv_mass, &inv_inertia, &drag, &young, &wx, &wy, &wz}) {
+                    &weight, &mass, &inv_mass, &inv_inertia, &drag, &young, &wx, &wy, &wz, &fx, &fy, &fz,
+                    &tx, &ty, &tz}) {
       permute(*v, 1);
     }
+    permute(quiet, 1);
     permute(bed.id, 1);
     permute(bed.material, 1);
     permute(bed.phase, 1);
@@ -482,11 +501,13 @@ struct Engine {
     std::sort(by_owner.begin(), by_owner.end(), [&](std::size_t p, std::size_t q) {
       return std::pair(carried.i[p], carried.j[p]) < std::pair(carried.i[q], carried.j[q]);
     });
+    dormant = {};
     for (const std::size_t c : by_owner) {
-      turned.i.push_back(carried.i[c]);
-      turned.j.push_back(carried.j[c]);
-      turned.h.insert(turned.h.end(), carried.h.begin() + static_cast<std::ptrdiff_t>(c * kContactHistory),
-                      carried.h.begin() + static_cast<std::ptrdiff_t>((c + 1) * kContactHistory));
+      ActiveContacts& to = carried.i[c] >= moving ? dormant : turned;  // owner < partner: both frozen
+      to.i.push_back(carried.i[c]);
+      to.j.push_back(carried.j[c]);
+      to.h.insert(to.h.end(), carried.h.begin() + static_cast<std::ptrdiff_t>(c * kContactHistory),
+                  carried.h.begin() + static_cast<std::ptrdiff_t>((c + 1) * kContactHistory));
     }
     carried = std::move(turned);
   }

@@ -16,6 +16,7 @@
 #include "engine.hpp"
 #include "flush_subnormals.hpp"
 #include "parallel.hpp"
+#include "sleep.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/sphere_volume.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
@@ -294,6 +295,22 @@ void check_above_floor(const bed::Bed& bed, const bed::HeightMap& floor) {
   }
 }
 
+// SpreadSettings::sleep: positive speeds, the wake speed above the sleep speed (else a calm
+// rim wakes what it touches); not beside freezing, whose frozen particles never wake.
+void check_sleep(const SpreadSettings& settings) {
+  const SleepSettings& s = settings.sleep;
+  if (!s.on) return;
+  require_in_range(std::isfinite(s.speed) && s.speed > 0, "sleep.speed", s.speed, "speed > 0 m/s");
+  require_in_range(std::isfinite(s.wake_speed) && s.wake_speed > s.speed, "sleep.wake-speed", s.wake_speed,
+                   "a speed above sleep.speed");
+  if (s.steps < 1) throw InputError("sleep.steps: 0 (accepted: steps >= 1)");
+  if (settings.freeze_depth > 0) {
+    throw InputError(fmt::format("recoater.freeze-depth: {:g} m with sleep.on = true (accepted: one of the two; "
+                                 "frozen powder never wakes)",
+                                 settings.freeze_depth));
+  }
+}
+
 void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSettings& settings,
                     const Box& box) {
   if (bed.domain.dimension != 3 || bed.domain.periodic[2]) {
@@ -314,6 +331,7 @@ void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSetting
                    "recoater.layer-thickness", settings.layer_thickness, "thickness >= 0 m");
   require_in_range(std::isfinite(settings.freeze_depth) && settings.freeze_depth >= 0,
                    "recoater.freeze-depth", settings.freeze_depth, "depth >= 0 m; 0: off");
+  check_sleep(settings);
   check_floor(settings.floor, box);
 }
 
@@ -327,6 +345,7 @@ struct Spreader {
   const SpreadSettings& settings;
   const SpreadState* restart;
   Engine run;
+  detail::SleepBook sleep_book{run};
   SpreadSummary summary;
   SpreadState state;
   ActiveContacts carried;
@@ -404,6 +423,7 @@ struct Spreader {
     for (std::uint64_t s = 1; s <= steps; ++s) {
       before(s);
       run.step(step + 1);
+      if (settings.sleep.on) sleep_book.after_step();
       ++step;
       if (settings.tool_force && settings.tool_force_every > 0 && step % settings.tool_force_every == 0) {
         ToolForceSample sample;
@@ -483,6 +503,8 @@ struct Spreader {
     const Recoater& tool = settings.tool;
     LayerSummary out;
     out.layer = number;
+    const double asleep_before = sleep_book.asleep_steps;
+    const std::uint64_t changes_before = sleep_book.changes;
     // The plate goes down by a layer thickness before each layer after the first; the bed
     // keeps the plate's frame, so the tool (and the supply above the powder) rise instead.
     const double plate_offset = static_cast<double>(number - 1) * settings.layer_thickness;
@@ -527,6 +549,8 @@ struct Spreader {
     out.sim_time = static_cast<double>(step) * run.dt;
     out.max_tool_force = force_max;
     out.frozen_tool_contacts = run.frozen_tool_contacts;
+    out.asleep = out.steps > 0 ? (sleep_book.asleep_steps - asleep_before) / static_cast<double>(out.steps) : 0.0;
+    out.sleep_changes = sleep_book.changes - changes_before;
     out.mean_tool_force_x = moving > 0 ? force_x / static_cast<double>(moving) : 0.0;
     const double front = tool.end + tool_half_extent(run.profile);
     finish_layer(run, out, settings.supply_x1, tool.end - tool_half_extent(run.profile), bottom);

@@ -88,7 +88,9 @@ void write_layer_json(bed::JsonWriter& j, const LayerSummary& l) {
       .value("lost", static_cast<std::uint64_t>(l.lost))
       .value("overflow", static_cast<std::uint64_t>(l.overflow))
       .value("frozen", static_cast<std::uint64_t>(l.frozen))
-      .value("frozen_tool_contacts", l.frozen_tool_contacts);
+      .value("frozen_tool_contacts", l.frozen_tool_contacts)
+      .value("asleep", l.asleep)
+      .value("sleep_changes", l.sleep_changes);
 }
 
 }  // namespace powderbed::dem

@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "beds.hpp"
+#include "small_spread.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/io.hpp"
 #include "powderbed/bed/surface_contacts.hpp"
@@ -34,18 +35,15 @@ namespace {
 
 using namespace powderbed;
 
-constexpr double kRadius = 15e-6;
-constexpr double kYoungScale = 1e3;  // the scenes' softening (data/scenes/spread-blade.ini)
+using test::kRadius;
+using test::kYoungScale;
+using test::granular_scene;
+using test::jittered_supply;
+using test::lattice_supply;
+using test::small_spread;
+using test::strip;
 constexpr double kG = 9.81;
 
-dem::Scene granular_scene(double mu, double mu_r, dem::FrictionModel model) {
-  dem::Scene s;  // 316L of [GZ]
-  s.material.friction = mu;
-  s.material.rolling = mu_r;
-  s.friction_model = model;
-  s.effects = dem::kGravity | dem::kHertz | dem::kDamping | dem::kFriction | dem::kWalls;
-  return s;
-}
 
 double sphere_mass(double r) { return 4.0 / 3.0 * std::numbers::pi * r * r * r * 7952; }
 
@@ -349,38 +347,8 @@ TEST(Recoater, SphereUnderTheGapPassesUntouched) {
 }
 
 // A supply of spheres of radius 15 um on a cubic lattice of pitch 32 um filling the region.
-bed::Bed lattice_supply(const bed::Domain& region, std::uint64_t) {
-  bed::Bed b;
-  b.domain = region;
-  const double pitch = 32e-6, r = kRadius;
-  for (double z = region.lower[2] + r + 1e-6; z + r <= region.upper[2]; z += pitch)
-    for (double y = region.lower[1] + r + 1e-6; y + r <= region.upper[1]; y += pitch)
-      for (double x = region.lower[0] + r + 1e-6; x + r <= region.upper[0]; x += pitch)
-        b.add(x, y, z, r);
-  return b;
-}
 
-dem::SpreadSettings small_spread() {
-  dem::SpreadSettings st;
-  st.young_scale = kYoungScale;
-  st.tool.thickness = 100e-6;
-  st.tool.gap = 60e-6;
-  st.tool.speed = 0.2;
-  st.tool.start = 0.1e-3;
-  st.tool.end = 1.2e-3;
-  st.supply_x0 = 0.16e-3;
-  st.supply_x1 = 0.4e-3;
-  st.supply_height = 0.15e-3;
-  st.supply = lattice_supply;
-  st.layer_thickness = 30e-6;
-  return st;
-}
 
-bed::Bed strip() {
-  bed::Bed b = test::box_bed(1.5e-3, 0.3e-3, 0.6e-3);
-  b.domain.periodic = {false, true, false};
-  return b;
-}
 
 TEST(Recoater, SpreadKeepsEveryParticle) {
   // None lost through the plate or the tool; with the overflow removed, every particle is
@@ -558,22 +526,6 @@ TEST(Recoater, ToolMeetingFrozenPowderIsCounted) {
   EXPECT_GT(touched.layers[1].frozen_tool_contacts, 0u);
 }
 
-// small_spread's lattice supply with each sphere moved by up to 0.9 um along each axis (the
-// lattice leaves 2 um between spheres), drawn from `seed` and the layer: one more seed of the
-// same spread (the spread is chaotic, so the jitter gives a different layer).
-dem::SupplyMaker jittered_supply(std::uint64_t seed) {
-  return [seed](const bed::Domain& region, std::uint64_t layer) {
-    bed::Bed b = lattice_supply(region, layer);
-    std::mt19937_64 draw(seed * 1000003u + layer);
-    std::uniform_real_distribution<double> jitter(-0.9e-6, 0.9e-6);
-    for (std::size_t i = 0; i < b.n(); ++i) {
-      b.x[i] += jitter(draw);
-      b.y[i] += jitter(draw);
-      b.z[i] += jitter(draw);
-    }
-    return b;
-  };
-}
 
 // The density under the gap (LayerSummary::density_under_gap) after `layers` layers of
 // small_spread with its overflow removed in the chamber (SpreadSettings::chamber) on the jittered

@@ -82,6 +82,23 @@ struct LayerSummary {
   // Steps x frozen particles the tool overlapped (it passes through them without a force): 0
   // when what froze lay out of the tool's reach, as it must (docs/deposit-spread.md "Many layers").
   std::uint64_t frozen_tool_contacts = 0;
+  // SpreadSettings::sleep: the particles asleep, averaged over the layer's steps, and how many
+  // times particles fell asleep or woke (each time the bed is reordered and the list rebuilt).
+  double asleep = 0;
+  std::uint64_t sleep_changes = 0;
+};
+
+// Powder at rest sleeps (docs/deposit-spread.md "Sleeping powder"; dem/src/sleep.hpp): a
+// particle that has moved slower than `speed` (its centre, and its surface about the centre)
+// for `steps` steps in a row, wholly under the tool's lowest point, and touches only particles
+// that have too (or sleep), stops being integrated; its contacts with other sleepers are no
+// longer computed (their forces cannot change while neither moves). It wakes, with the
+// sleepers it touches, when an awake particle touching it moves faster than `wake_speed`.
+struct SleepSettings {
+  bool on = false;
+  double speed = 1e-4;         // m/s
+  double wake_speed = 1e-3;    // m/s
+  std::uint64_t steps = 1000;  // in a row at rest
 };
 
 struct SpreadSettings {
@@ -114,6 +131,7 @@ struct SpreadSettings {
   // blade, and without freezing every earlier layer is integrated every step, so N layers cost
   // ~N^2 (docs/deposit-spread.md "Many layers"). 0: off, every particle moves.
   double freeze_depth = 0;
+  SleepSettings sleep;
   // The solid the powder is spread on (the fused top of earlier layers, build): a wall of
   // triangles on the nodes (HeightMap::surface), touched at each local minimum of the distance
   // (bed/surface_contacts.hpp), each contact with its own history; empty: the flat plate
