@@ -74,4 +74,16 @@ inline dem::SupplyMaker jittered_supply(std::uint64_t seed) {
   };
 }
 
+// How many particles of bed a (after the run that returned ra) differ from b's (rb) in x, z,
+// v_x, the spin about y or the id: a continued run against the uninterrupted one.
+inline std::size_t particles_differing(const bed::Bed& a, const dem::SpreadSummary& ra, const bed::Bed& b,
+                                       const dem::SpreadSummary& rb) {
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < b.n(); ++i) {
+    differ += (a.x[i] != b.x[i] || a.z[i] != b.z[i] || a.vx[i] != b.vx[i] || ra.state.wy[i] != rb.state.wy[i] ||
+               a.id[i] != b.id[i]) ? 1 : 0;
+  }
+  return differ;
+}
+
 }  // namespace powderbed::test

@@ -503,12 +503,7 @@ TEST(Recoater, ContinuedRunWithFrozenPowderEqualsTheUninterruptedOne) {
   const dem::SpreadSummary rest = dem::run_spread(part, s, frozen_spread(1, 60e-6), &first.state);
   EXPECT_EQ(rest.layers[0].frozen, straight.layers[2].frozen);
   ASSERT_EQ(part.n(), whole.n());
-  std::size_t differ = 0;
-  for (std::size_t i = 0; i < whole.n(); ++i) {
-    differ += (part.x[i] != whole.x[i] || part.z[i] != whole.z[i] || part.vx[i] != whole.vx[i] ||
-               rest.state.wy[i] != straight.state.wy[i] || part.id[i] != whole.id[i]) ? 1 : 0;
-  }
-  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(test::particles_differing(part, rest, whole, straight), 0u);
   EXPECT_EQ(rest.state.pair_history, straight.state.pair_history);
 }
 
