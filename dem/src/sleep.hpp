@@ -32,12 +32,11 @@ class SleepBook {
   void after_step() {
     const SleepSettings& s = run.settings.sleep;
     const std::size_t ready = count_ready(s);
-    std::vector<std::uint8_t> wake = pushed(s);
+    const std::vector<std::uint32_t> woken = pushed(s);
     asleep_steps += static_cast<double>(run.n() - run.moving);
     ++since_change;
-    const bool waking = std::any_of(wake.begin(), wake.end(), [](std::uint8_t w) { return w != 0; });
     const bool sleeping = since_change >= s.steps && ready > 0 && ready >= run.moving / kShare;
-    if (waking || sleeping) change(s, wake);
+    if (!woken.empty() || sleeping) change(s, woken);
   }
 
   double asleep_steps = 0;   // sleepers x steps
@@ -70,20 +69,21 @@ class SleepBook {
     return ready;
   }
 
-  // Per particle, 1 for the sleepers that an awake particle touches at more than the wake speed.
-  std::vector<std::uint8_t> pushed(const SleepSettings& s) const {
-    std::vector<std::uint8_t> wake(run.n(), 0);
+  // The sleepers that an awake particle touches at more than the wake speed (a sleeper may be
+  // named more than once). A sleeper's index is above every awake one's, so its pairs with the
+  // awake are the entries those own: only the fast particles' entries are read.
+  std::vector<std::uint32_t> pushed(const SleepSettings& s) const {
+    std::vector<std::uint32_t> woken;
+    if (run.moving == run.n()) return woken;
     const double v2 = s.wake_speed * s.wake_speed;
-    const std::uint32_t* owner = run.list.owners();
     const std::uint32_t* partner = run.list.partners();
-    const std::uint32_t* hot = run.list.hot();  // a touching entry is hot (Engine::prune)
-    for (std::size_t q = 0; q < run.list.hot_entries(); ++q) {  // owners are awake; a sleeper is a partner
-      const std::uint32_t k = hot[q], i = owner[k], j = partner[k];
-      if (!run.touching[k] || j < run.moving) continue;
+    for (std::size_t i = 0; i < run.moving; ++i) {
       const double speed2 = run.bed.vx[i] * run.bed.vx[i] + run.bed.vy[i] * run.bed.vy[i] + run.bed.vz[i] * run.bed.vz[i];
-      if (speed2 > v2) wake[j] = 1;
+      if (!(speed2 > v2)) continue;
+      for (std::size_t k = run.list.offset(i); k < run.list.offset(i + 1); ++k)
+        if (run.touching[k] && partner[k] >= run.moving) woken.push_back(partner[k]);
     }
-    return wake;
+    return woken;
   }
 
   // Per particle, 1 for the awake ones that fall asleep now: rested long enough under the
@@ -111,7 +111,9 @@ class SleepBook {
   // The sets changed: the pushed sleepers wake with the sleepers they touch, the calm ones fall
   // asleep (stopped), the bed is reordered (Engine::sort_by_cell), the list rebuilt and the
   // forces evaluated anew (the woken ones' for their next kick).
-  void change(const SleepSettings& s, std::vector<std::uint8_t>& wake) {
+  void change(const SleepSettings& s, const std::vector<std::uint32_t>& woken) {
+    std::vector<std::uint8_t> wake(run.n(), 0);
+    for (const std::uint32_t j : woken) wake[j] = 1;
     for (std::size_t c = 0; c < run.dormant.i.size(); ++c) {  // the pushed ones' sleeping partners
       const std::uint32_t i = run.dormant.i[c], j = run.dormant.j[c];
       if (wake[i] == 1 || wake[j] == 1) wake[i] = wake[j] = 2;
