@@ -116,7 +116,8 @@ class SleepBook {
     for (const std::uint32_t j : woken) wake[j] = 1;
     for (std::size_t c = 0; c < run.dormant.i.size(); ++c) {  // the pushed ones' sleeping partners
       const std::uint32_t i = run.dormant.i[c], j = run.dormant.j[c];
-      if (wake[i] == 1 || wake[j] == 1) wake[i] = wake[j] = 2;
+      if (wake[i] == 1 && wake[j] == 0) wake[j] = 2;
+      if (wake[j] == 1 && wake[i] == 0) wake[i] = 2;
     }
     const std::vector<std::uint8_t> falls = calm(s, wake);
     std::vector<std::uint8_t> asleep(run.n(), 0);
