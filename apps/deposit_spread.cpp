@@ -394,7 +394,10 @@ int export_spread_deck(const po::variables_map& vm, const DepositOptions& bound,
                                  "the decks freeze nothing)",
                                  s.freeze_depth));
   }
-  if (s.sleep.on) throw InputError("sleep.on: true with --export-deck (accepted: false; the decks integrate every particle)");
+  if (s.sleep.on) {
+    throw InputError("sleep.on: true with --export-deck (accepted: false; the decks integrate every "
+                     "particle)");
+  }
   SpreadDeckRequest r;
   r.engine = bed::parse_deck_engine(engine, "--export-deck");
   r.first = (restart ? restart->layers_done : 0) + 1;

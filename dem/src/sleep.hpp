@@ -54,6 +54,10 @@ class SleepBook {
     return run.tool_on ? run.profile.z_low - run.profile.rounding : std::numeric_limits<double>::infinity();
   }
 
+  double squared_speed(std::size_t i) const {
+    return run.bed.vx[i] * run.bed.vx[i] + run.bed.vy[i] * run.bed.vy[i] + run.bed.vz[i] * run.bed.vz[i];
+  }
+
   // The awake particles' steps in a row at rest, and how many have rested long enough under
   // the tool.
   std::size_t count_ready(const SleepSettings& s) {
@@ -61,7 +65,7 @@ class SleepBook {
     std::size_t ready = 0;
     for (std::size_t i = 0; i < run.moving; ++i) {
       const double r = run.bed.radius[i];
-      const double speed2 = run.bed.vx[i] * run.bed.vx[i] + run.bed.vy[i] * run.bed.vy[i] + run.bed.vz[i] * run.bed.vz[i];
+      const double speed2 = squared_speed(i);
       const double spin2 = (run.wx[i] * run.wx[i] + run.wy[i] * run.wy[i] + run.wz[i] * run.wz[i]) * r * r;
       run.quiet[i] = speed2 < v2 && spin2 < v2 ? run.quiet[i] + 1 : 0;
       if (run.quiet[i] >= s.steps && run.bed.z[i] + r < lowest) ++ready;
@@ -78,8 +82,7 @@ class SleepBook {
     const double v2 = s.wake_speed * s.wake_speed;
     const std::uint32_t* partner = run.list.partners();
     for (std::size_t i = 0; i < run.moving; ++i) {
-      const double speed2 = run.bed.vx[i] * run.bed.vx[i] + run.bed.vy[i] * run.bed.vy[i] + run.bed.vz[i] * run.bed.vz[i];
-      if (!(speed2 > v2)) continue;
+      if (!(squared_speed(i) > v2)) continue;
       for (std::size_t k = run.list.offset(i); k < run.list.offset(i + 1); ++k)
         if (run.touching[k] && partner[k] >= run.moving) woken.push_back(partner[k]);
     }
