@@ -31,12 +31,11 @@ class SleepBook {
   // particles are ready to sleep.
   void after_step() {
     const SleepSettings& s = run.settings.sleep;
-    const std::size_t ready = count_ready(s);
-    const std::vector<std::uint32_t> woken = pushed(s);
+    const Tally t = tally(s);
     asleep_steps += static_cast<double>(run.n() - run.moving);
     ++since_change;
-    const bool sleeping = since_change >= s.steps && ready > 0 && ready >= run.moving / kShare;
-    if (!woken.empty() || sleeping) change(s, woken);
+    const bool sleeping = since_change >= s.steps && t.ready > 0 && t.ready >= run.moving / kShare;
+    if (!t.woken.empty() || sleeping) change(s, t.woken);
   }
 
   double asleep_steps = 0;   // sleepers x steps
@@ -54,39 +53,38 @@ class SleepBook {
     return run.tool_on ? run.profile.z_low - run.profile.rounding : std::numeric_limits<double>::infinity();
   }
 
-  double squared_speed(std::size_t i) const {
-    return run.bed.vx[i] * run.bed.vx[i] + run.bed.vy[i] * run.bed.vy[i] + run.bed.vz[i] * run.bed.vz[i];
+  // Particle i (awake) has rested long enough, wholly under the tool's lowest point.
+  bool rested(std::size_t i, const SleepSettings& s, double lowest) const {
+    return run.quiet[i] >= s.steps && run.bed.z[i] + run.bed.radius[i] < lowest;
   }
 
-  // The awake particles' steps in a row at rest, and how many have rested long enough under
-  // the tool.
-  std::size_t count_ready(const SleepSettings& s) {
-    const double lowest = tool_lowest(), v2 = s.speed * s.speed;
+  // What one pass over the awake particles finds: how many could sleep now, and the sleepers
+  // that a particle faster than the wake speed touches (a sleeper may be named more than once).
+  struct Tally {
     std::size_t ready = 0;
+    std::vector<std::uint32_t> woken;
+  };
+
+  // The awake particles' steps in a row at rest counted, and the Tally. A sleeper's index is
+  // above every awake one's, so its pairs with the awake are entries those own: only the fast
+  // particles' entries are read.
+  Tally tally(const SleepSettings& s) {
+    const double lowest = tool_lowest(), rest2 = s.speed * s.speed, wake2 = s.wake_speed * s.wake_speed;
+    const bool sleepers = run.moving < run.n();
+    const std::uint32_t* partner = run.list.partners();
+    Tally t;
     for (std::size_t i = 0; i < run.moving; ++i) {
       const double r = run.bed.radius[i];
-      const double speed2 = squared_speed(i);
+      const double vx = run.bed.vx[i], vy = run.bed.vy[i], vz = run.bed.vz[i];
+      const double speed2 = vx * vx + vy * vy + vz * vz;
       const double spin2 = (run.wx[i] * run.wx[i] + run.wy[i] * run.wy[i] + run.wz[i] * run.wz[i]) * r * r;
-      run.quiet[i] = speed2 < v2 && spin2 < v2 ? run.quiet[i] + 1 : 0;
-      if (run.quiet[i] >= s.steps && run.bed.z[i] + r < lowest) ++ready;
-    }
-    return ready;
-  }
-
-  // The sleepers that an awake particle touches at more than the wake speed (a sleeper may be
-  // named more than once). A sleeper's index is above every awake one's, so its pairs with the
-  // awake are the entries those own: only the fast particles' entries are read.
-  std::vector<std::uint32_t> pushed(const SleepSettings& s) const {
-    std::vector<std::uint32_t> woken;
-    if (run.moving == run.n()) return woken;
-    const double v2 = s.wake_speed * s.wake_speed;
-    const std::uint32_t* partner = run.list.partners();
-    for (std::size_t i = 0; i < run.moving; ++i) {
-      if (!(squared_speed(i) > v2)) continue;
+      run.quiet[i] = speed2 < rest2 && spin2 < rest2 ? run.quiet[i] + 1 : 0;
+      if (rested(i, s, lowest)) ++t.ready;
+      if (!sleepers || !(speed2 > wake2)) continue;
       for (std::size_t k = run.list.offset(i); k < run.list.offset(i + 1); ++k)
-        if (run.touching[k] && partner[k] >= run.moving) woken.push_back(partner[k]);
+        if (run.touching[k] && partner[k] >= run.moving) t.woken.push_back(partner[k]);
     }
-    return woken;
+    return t;
   }
 
   // Per particle, 1 for the awake ones that fall asleep now: rested long enough under the
@@ -95,8 +93,7 @@ class SleepBook {
     const double lowest = tool_lowest();
     std::vector<std::uint8_t> settled(run.n(), 0), out(run.n(), 0);
     for (std::size_t i = 0; i < run.n(); ++i) {
-      settled[i] = i >= run.moving ? wake[i] == 0
-                                   : run.quiet[i] >= s.steps && run.bed.z[i] + run.bed.radius[i] < lowest;
+      settled[i] = i >= run.moving ? wake[i] == 0 : rested(i, s, lowest);
       out[i] = i < run.moving && settled[i];
     }
     const std::uint32_t* owner = run.list.owners();
