@@ -160,11 +160,8 @@ void update_surfaces(Sinter::State& s) {
 }
 
 void trace(Sinter::State& s, std::uint64_t key) {
-  if (s.vaporised_traced != s.vaporised) {  // rays pass where vaporised particles were
-    std::vector<std::uint32_t> gone;
-    for (std::size_t i = 0; i < s.x.size(); ++i)
-      if (s.gone[i]) gone.push_back(static_cast<std::uint32_t>(i));
-    s.tracer->remove(gone);
+  if (s.vaporised_traced != s.vaporised) {  // particles have gone (and drops grown) since
+    s.tracer->update(s.gone, s.z, s.radius);
     s.vaporised_traced = s.vaporised;
   }
   update_surfaces(s);

@@ -295,24 +295,21 @@ BeamTracer::BeamTracer(const bed::Bed& bed, const SubstrateGeometry& g, double s
 
 BeamTracer::~BeamTracer() = default;
 
-void BeamTracer::remove(const std::vector<std::uint32_t>& particles) {
+void BeamTracer::update(const std::vector<std::uint8_t>& gone, const std::vector<double>& z,
+                        const std::vector<double>& radius) {
   Impl& m = *impl_;
-  std::vector<std::uint8_t> drop(m.bed.n(), 0);
-  for (const auto p : particles) {
-    const auto it = std::lower_bound(m.index.begin(), m.index.end(), p);
-    if (it != m.index.end() && *it == p) drop[static_cast<std::size_t>(it - m.index.begin())] = 1;
-  }
   bed::Bed kept;
   kept.domain = m.bed.domain;
   std::vector<std::uint32_t> index;
   for (std::size_t i = 0; i < m.bed.n(); ++i) {
-    if (drop[i]) continue;
+    const std::uint32_t p = m.index[i];
+    if (gone[p]) continue;
     kept.x.push_back(m.bed.x[i]);
     kept.y.push_back(m.bed.y[i]);
-    kept.z.push_back(m.bed.z[i]);
-    kept.radius.push_back(m.bed.radius[i]);
+    kept.z.push_back(z[p]);
+    kept.radius.push_back(radius[p]);
     kept.id.push_back(m.bed.id[i]);
-    index.push_back(m.index[i]);
+    index.push_back(p);
   }
   m.bed = std::move(kept);
   m.index = std::move(index);

@@ -106,8 +106,11 @@ class BeamTracer {
   BeamTracer(const BeamTracer&) = delete;
   BeamTracer& operator=(const BeamTracer&) = delete;
 
-  // Removes particles from the scene (vaporised): rays pass where they were.
-  void remove(const std::vector<std::uint32_t>& particles);
+  // The particles as they are now (arrays by the caller's index): those `gone` (vaporised, or
+  // merged into the pool or another drop) leave the scene and rays pass where they were; the
+  // rest take their present heights and radii (a coalesced drop has grown).
+  void update(const std::vector<std::uint8_t>& gone, const std::vector<double>& z,
+              const std::vector<double>& radius);
 
   // Traces the beam centred at (x, y) over `surfaces` (a hit between top nodes takes the
   // nearest node's phase). `trace` numbers the random stream. Power absorbed on the top face
