@@ -67,7 +67,7 @@ constexpr bed::UnitEntry kUnits[] = {
     {"depression_temperature", "K"}, {"depression_depth", "m"}, {"particles", "1"},
     {"particles_molten", "1"}, {"particles_vaporised", "1"}, {"energy_balance_error", "1"},
     {"substrate_wetted", "1"}, {"substrate_arrested", "1"}, {"particles_merged", "1"},
-    {"bridges", "1"}, {"steps", "1"},
+    {"particles_coalesced", "1"}, {"bridges", "1"}, {"steps", "1"},
     {"particle_steps", "1"}, {"dt", "s"}, {"dt_particle", "s"}, {"dt_stable_grid", "s"},
     {"dt_stable_particle", "s"}, {"t_end", "s"}, {"implicit_iterations", "1"}, {"nodes", "1"},
     {"extinction", "1/m"}, {"porosity", "1"}, {"layer_height", "m"}, {"wall_time", "s"},

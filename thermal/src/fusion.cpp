@@ -35,6 +35,29 @@ bed::Bed keep_particles(const bed::Bed& bed, const std::vector<std::uint8_t>& ke
   return out;
 }
 
+// The bed as the scan left it: a drop that coalesced its molten neighbours has grown (its
+// height and radius are the sinter's; x and y, and the rest, are the bed's).
+bed::Bed as_scanned(const bed::Bed& bed, const Sinter& sinter) {
+  bed::Bed now = bed;
+  now.z = sinter.particle_z();
+  now.radius = sinter.particle_radius();
+  return now;
+}
+
+// A particle that coalesced into a drop ends as that drop does (fused, a ball or vapour) and is
+// counted so; its mass is the drop's.
+void follow_drops(const std::vector<std::uint32_t>& into, Fusion& f) {
+  for (std::size_t i = 0; i < into.size(); ++i) {
+    if (into[i] == i) continue;
+    std::size_t root = into[i];
+    while (into[root] != root) root = into[root];
+    f.state[i] = f.state[root];
+    f.fused += f.state[i] == kFused ? 1 : 0;
+    f.balled += f.state[i] == kBalled ? 1 : 0;
+    f.vaporised += f.state[i] == kVapour ? 1 : 0;
+  }
+}
+
 }  // namespace
 
 double Fusion::mass_error() const {
@@ -142,7 +165,7 @@ void capture_buried(const bed::Bed& bed, const SubstrateGeometry& g, const std::
   }
 }
 
-Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, double capture,
+Fusion fuse(const bed::Bed& start, const Sinter& sinter, double melt_fraction, double capture,
             double level) {
   require_in_range(melt_fraction > 0 && melt_fraction <= 1, "fuse.melt-fraction", melt_fraction,
                    "0 < f <= 1");
@@ -153,6 +176,8 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
   const auto& mass = sinter.particle_mass();
   const auto& merged = sinter.particle_merged();
   const auto now = sinter.particle_phase();
+  const auto& into = sinter.particle_coalesced_into();
+  const bed::Bed bed = as_scanned(start, sinter);
   Fusion f;
   f.threshold = phase.melting_point + (melt_fraction - 0.5) * phase.window;
   const std::vector<std::uint8_t> bonded = bonded_melt(bed, sinter, f.threshold);
@@ -162,6 +187,10 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
   f.state.assign(bed.n(), 0);
   std::vector<std::uint8_t> keep(bed.n(), 1);
   for (std::size_t i = 0; i < bed.n(); ++i) {
+    if (!into.empty() && into[i] != i) {  // in the drop it coalesced into (counted below)
+      keep[i] = 0;
+      continue;
+    }
     if (!merged.empty() && merged[i]) {  // in the pool during the scan: in the top already
       f.state[i] = kFused;
       keep[i] = 0;
@@ -190,6 +219,7 @@ Fusion fuse(const bed::Bed& bed, const Sinter& sinter, double melt_fraction, dou
     for (const auto& [column, weight] : top_footprint(g, bed.x[i], bed.y[i], bed.radius[i]))
       f.top[column] += volume * weight / (g.dx * g.dy);
   }
+  if (!into.empty()) follow_drops(into, f);
   require_in_range(level >= 0 && std::isfinite(level), "fuse.level", level, "a length >= 0 m");
   TopHeight before = sinter.top_height();
   if (before.empty()) before.assign(g.nx * g.ny, g.z_top);

@@ -92,6 +92,7 @@ void write_run_json(bed::JsonWriter& j, const SinterResult& r) {
   j.value("substrate_wetted", static_cast<std::uint64_t>(r.substrate_wetted))
       .value("substrate_arrested", static_cast<std::uint64_t>(r.substrate_arrested))
       .value("particles_merged", static_cast<std::uint64_t>(r.particles_merged))
+      .value("particles_coalesced", static_cast<std::uint64_t>(r.particles_coalesced))
       .value("bridges", static_cast<std::uint64_t>(r.bridges));
   energy_json(j, r.energy);
   j.value("steps", r.steps)

@@ -541,6 +541,11 @@ const TopHeight& Sinter::top_height() const { return s_->top; }
 const SinterScene& Sinter::scene() const { return s_->scene; }
 const std::vector<double>& Sinter::particle_mass() const { return s_->mass; }
 const std::vector<std::uint8_t>& Sinter::particle_merged() const { return s_->merged; }
+const std::vector<std::uint32_t>& Sinter::particle_coalesced_into() const {
+  return s_->coalesced_into;
+}
+const std::vector<double>& Sinter::particle_z() const { return s_->z; }
+const std::vector<double>& Sinter::particle_radius() const { return s_->radius; }
 const BedSurface& Sinter::surface() const { return s_->surface; }
 const ConductionNetwork& Sinter::network() const { return s_->net; }
 const Material& Sinter::material() const { return s_->material; }
@@ -561,7 +566,7 @@ const std::vector<std::uint32_t>& Sinter::top_planes() const { return s_->top_pl
 std::vector<std::uint8_t> Sinter::particle_phase() const {
   std::vector<std::uint8_t> phase(s_->x.size());
   for (std::size_t i = 0; i < phase.size(); ++i)
-    phase[i] = s_->gone[i] && (s_->merged.empty() || !s_->merged[i])
+    phase[i] = s_->gone[i] && !merged_away(*s_, i)
                    ? 2
                    : static_cast<std::uint8_t>(std::min(
                                      s_->material.phase(s_->temperature[i]),

@@ -108,6 +108,7 @@ struct Sinter::State {
     double shape;  // A / z_c of the cap's base area on the plate, m
     double interface;  // 1 / (h_c A) of an arrested contact, K/W (0: spread on remelted solid)
     std::vector<std::pair<std::size_t, double>> footprint;  // top nodes under the cap, weights
+    bool through_pool = false;  // not a cap: a contact with a particle that merged into the pool
   };
   std::vector<WettedContact> wetted;
   // Particles wholly molten on remelted solid that have merged into the pool (wetting.cpp):
@@ -115,9 +116,14 @@ struct Sinter::State {
   // them, their mass kept for fusion.
   std::vector<std::uint8_t> merged;
   std::size_t merged_count = 0;
+  // Molten particles that coalesced into a molten neighbour (coalescence.cpp): per particle the
+  // drop that took its mass and enthalpy (itself while it has not), and how many did.
+  std::vector<std::uint32_t> coalesced_into;
+  std::size_t coalesced_count = 0;
   std::vector<double> unwetted_area;  // per top-face column, m^2: what caps have not wetted
   std::size_t arrested = 0;           // wetted contacts still arrested
   std::size_t bridges = 0;  // pairs whose bridge has grown
+  std::vector<std::uint32_t> arrested_pairs;  // molten on solid it does not remelt (wetting.cpp)
   double k_max = 0;  // largest conductivity a run can reach (stability bounds)
 
   // Per-track statistics (track_stats.cpp): for each segment, its midpoint cross-section
@@ -198,6 +204,20 @@ double conductivity_at(const Sinter::State& s, double t) {
 void setup_wetting(Sinter::State& s);
 void spread_molten(Sinter::State& s);
 void wetted_exchange(Sinter::State& s, double dt);
+// The particle's stable step with its present contacts; more substeps if it is now shorter.
+void recheck_particle_step(Sinter::State& s, std::size_t i);
+// Whether particle i is wholly molten (past its melting window).
+inline bool wholly_molten(const Sinter::State& s, std::size_t i) {
+  return s.temperature[i] >= s.scene.phase_change.melting_point + 0.5 * s.scene.phase_change.window;
+}
+// Coalescence (coalescence.cpp): wholly molten particles in contact become one drop; the
+// particles touching one that merged into the pool touch the pool.
+void coalesce_molten(Sinter::State& s);
+void touch_pool(Sinter::State& s, std::size_t merged);
+// Whether particle i has merged into the pool or into another drop (gone, but not as vapour).
+inline bool merged_away(const Sinter::State& s, std::size_t i) {
+  return !s.merged.empty() && (s.merged[i] || s.coalesced_into[i] != i);
+}
 // The depression on particle i (evaporation.cpp), hotter than its T_d(r): the excess evaporated.
 void ablate(Sinter::State& s, std::size_t i);
 // A particle whose evaporated mass leaves less than this fraction of its start has left the bed.

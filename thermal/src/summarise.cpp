@@ -80,8 +80,8 @@ SinterResult summarise(Sinter::State& s, double particles_start, double substrat
     if (s.peak[i] >= t_m) ++r.particles_molten;
     // Without evaporation a particle that reached T_v counts ([GZ]'s reading); with it, one
     // whose mass evaporated.
-    const bool merged = !s.merged.empty() && s.merged[i];
-    if (evaporation ? s.gone[i] && !merged : s.peak[i] >= s.scene.phase_change.boiling_point)
+    if (evaporation ? s.gone[i] && !merged_away(s, i)
+                    : s.peak[i] >= s.scene.phase_change.boiling_point)
       ++r.particles_vaporised;
   }
   r.evaporated_mass_particles = s.evaporated_particles;
@@ -101,11 +101,13 @@ SinterResult summarise(Sinter::State& s, double particles_start, double substrat
   r.traces = s.traces;
   close_tracks(s);
   r.tracks = s.tracks;
-  r.substrate_wetted = s.wetted.size();
+  r.substrate_wetted = static_cast<std::size_t>(std::count_if(
+      s.wetted.begin(), s.wetted.end(), [](const auto& w) { return !w.through_pool; }));
   r.substrate_arrested = static_cast<std::size_t>(
       std::count_if(s.wetted.begin(), s.wetted.end(),
                     [&](const auto& w) { return w.interface > 0 && !s.gone[w.particle]; }));
   r.particles_merged = s.merged_count;
+  r.particles_coalesced = s.coalesced_count;
   r.bridges = s.bridges;
   return r;
 }

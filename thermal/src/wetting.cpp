@@ -20,26 +20,30 @@ namespace powderbed::thermal {
 
 namespace {
 
-// Whether the melt of particle i remelts the solid under its contact: the interface between the
-// liquid particle (its temperature) and the solid under it (the mean of the top nodes its cap
-// would cover) sits at the contact temperature of the two (contact_temperature.hpp), and the
-// solid melts where that is at or above T_m. On 316L a particle just molten on a 363 K plate
-// meets it at T_c ≈ 1200 K and arrests; past ≈ 2500 K (≈ 2300 K on solid at 1000 K) its melt
-// remelts the solid under it, and any melt does on solid already at T_m.
-bool interface_remelts(const Sinter::State& s, std::size_t i,
-                       const std::vector<std::pair<std::size_t, double>>& footprint) {
+// Whether melt at t_melt remelts the solid at t_solid it touches: their interface sits at the
+// contact temperature of the two (contact_temperature.hpp), and the solid melts where that is at
+// or above T_m. On 316L a particle just molten on a 363 K plate meets it at T_c ≈ 1200 K and
+// arrests; past ≈ 2500 K (≈ 2300 K on solid at 1000 K) its melt remelts the solid under it, and
+// any melt does on solid already at T_m.
+bool melt_remelts(const Sinter::State& s, double t_melt, double t_solid) {
   const double t_m = s.scene.phase_change.melting_point;
-  double t_solid = 0;
-  for (const auto& [column, weight] : footprint)
-    t_solid += weight * s.node_temperature[top_node(s, column)];
   if (t_solid >= t_m) return true;
   const Material& m = s.material;
-  const double t_melt = s.temperature[i];
   const double liquid =
       effusivity(m.conductivity(t_melt), m.density(t_melt), m.liquid_specific_heat());
   const double solid = effusivity(m.solid_conductivity(t_solid), m.solid_density(t_solid),
                                   m.solid_specific_heat(t_solid));
   return contact_temperature(liquid, t_melt, solid, t_solid) >= t_m;
+}
+
+// Whether the melt of particle i remelts the solid under its cap (the mean of the top nodes the
+// cap would cover).
+bool interface_remelts(const Sinter::State& s, std::size_t i,
+                       const std::vector<std::pair<std::size_t, double>>& footprint) {
+  double t_solid = 0;
+  for (const auto& [column, weight] : footprint)
+    t_solid += weight * s.node_temperature[top_node(s, column)];
+  return melt_remelts(s, s.temperature[i], t_solid);
 }
 
 // The area of the cap's base left on the plate: each column is wetted once at most, so a cap
@@ -88,7 +92,8 @@ void spread_on_substrate(Sinter::State& s, std::size_t i) {
   contact.shape = 0;  // out of the explicit network: wetted_exchange carries it
 }
 
-// The particle's stable step with its present contacts; more substeps if it is now shorter.
+}  // namespace
+
 void recheck_particle_step(Sinter::State& s, std::size_t i) {
   double conductance = 0;
   for (const auto p : s.pairs_of[i]) conductance += s.k_max * s.net.pairs[p].shape;
@@ -101,12 +106,12 @@ void recheck_particle_step(Sinter::State& s, std::size_t i) {
   s.substeps = std::max(s.substeps, s.substeps_stable);
 }
 
-}  // namespace
-
 void setup_wetting(Sinter::State& s) {
   const std::size_t n = s.x.size();
   s.unwetted_area.assign(s.g.nx * s.g.ny, s.g.dx * s.g.dy);
   s.merged.assign(n, 0);
+  s.coalesced_into.resize(n);
+  for (std::size_t i = 0; i < n; ++i) s.coalesced_into[i] = static_cast<std::uint32_t>(i);
   s.molten.assign(n, 0);
   s.pairs_of.assign(n, {});
   s.substrate_of.assign(n, -1);
@@ -151,12 +156,76 @@ void merge_into_pool(Sinter::State& s, const Sinter::State::WettedContact& w) {
   ++s.vaporised;  // the count of gone particles: the tracer removes them
 }
 
-// The spread caps whose particle is wholly molten merge into the pool.
+// The spread caps (and contacts with the pool) whose particle is wholly molten merge into the
+// pool; what touched a merged particle touches the pool from then on (touch_pool).
 void merge_molten(Sinter::State& s) {
-  const double liquid = s.scene.phase_change.melting_point + 0.5 * s.scene.phase_change.window;
-  for (const auto& w : s.wetted)
-    if (w.interface == 0 && !s.gone[w.particle] && s.temperature[w.particle] >= liquid)
-      merge_into_pool(s, w);
+  std::vector<std::size_t> pooled;
+  for (const auto& w : s.wetted) {
+    if (w.interface > 0 || s.gone[w.particle] || !wholly_molten(s, w.particle)) continue;
+    merge_into_pool(s, w);
+    if (s.merged[w.particle]) pooled.push_back(w.particle);
+  }
+  for (const std::size_t i : pooled) touch_pool(s, i);
+}
+
+// Whether the melt of particle `molten` wets its neighbour `other`: melt meets melt, or solid it
+// remelts (melt_remelts).
+bool wets(const Sinter::State& s, std::size_t molten, std::size_t other) {
+  const double t_other = s.temperature[other];
+  return t_other >= s.scene.phase_change.melting_point ||
+         melt_remelts(s, s.temperature[molten], t_other);
+}
+
+// The shape factor of pair p once the melt of `molten` meets the other particle: where it wets,
+// a liquid bridge whose neck has grown to the smaller sphere's radius; where it does not, the
+// same neck behind the interfacial conductance h_c, the contact line arrested as on the plate
+// (an interface resistance 1/(h_c A) is that of a slab of the metal k/h_c thick: ~27 µm of 316L
+// at T_m for h_c = 1e6 W/m²K, against centre distances of ~25 µm).
+double melt_contact_shape(const Sinter::State& s, const ContactPair& pair, std::size_t molten,
+                          bool wetted) {
+  const std::size_t other = pair.i == molten ? pair.j : pair.i;
+  const double d = std::hypot(s.x[molten] - s.x[other], s.y[molten] - s.y[other],
+                              s.z[molten] - s.z[other]);
+  const double t_m = s.scene.phase_change.melting_point;
+  const double slab = wetted ? 0.0 : s.material.conductivity(t_m) / s.scene.arrested_conductance;
+  return conduction_shape_factor(bridge_radius(s.radius[molten], s.radius[other]), d + slab);
+}
+
+// Particle `molten` has just melted: pair p grows to its melt contact (a contact only grows);
+// an arrested one joins the list respread_pairs watches. Returns whether it grew.
+bool wet_pair(Sinter::State& s, std::uint32_t p, std::size_t molten) {
+  ContactPair& pair = s.net.pairs[p];
+  const std::size_t other = pair.i == molten ? pair.j : pair.i;
+  if (s.gone[other] || pair.shape <= 0) return false;
+  const bool wetted = wets(s, molten, other);
+  const double shape = melt_contact_shape(s, pair, molten, wetted);
+  if (shape <= pair.shape) return false;
+  pair.shape = shape;
+  if (wetted) ++s.bridges;
+  else s.arrested_pairs.push_back(p);
+  recheck_particle_step(s, other);
+  return true;
+}
+
+// Arrested pairs whose melt now wets the other side (it heated, or the other did) become
+// bridges; the rest stay watched (a frozen one may melt again) until a particle has gone.
+void respread_pairs(Sinter::State& s) {
+  const double t_m = s.scene.phase_change.melting_point;
+  std::size_t kept = 0;
+  for (const std::uint32_t p : s.arrested_pairs) {
+    ContactPair& pair = s.net.pairs[p];
+    if (s.gone[pair.i] || s.gone[pair.j]) continue;
+    const std::size_t molten = s.temperature[pair.i] >= s.temperature[pair.j] ? pair.i : pair.j;
+    if (s.temperature[molten] < t_m || !wets(s, molten, molten == pair.i ? pair.j : pair.i)) {
+      s.arrested_pairs[kept++] = p;
+      continue;
+    }
+    pair.shape = std::max(pair.shape, melt_contact_shape(s, pair, molten, true));
+    ++s.bridges;
+    recheck_particle_step(s, pair.i);
+    recheck_particle_step(s, pair.j);
+  }
+  s.arrested_pairs.resize(kept);
 }
 
 }  // namespace
@@ -164,6 +233,8 @@ void merge_molten(Sinter::State& s) {
 void spread_molten(Sinter::State& s) {
   const double t_m = s.scene.phase_change.melting_point;
   merge_molten(s);
+  coalesce_molten(s);
+  respread_pairs(s);
   if (s.arrested > 0) {  // arrested contacts whose solid has remelted since
     for (std::size_t k = 0; k < s.wetted.size(); ++k)
       if (s.wetted[k].interface > 0 && !s.gone[s.wetted[k].particle])
@@ -176,18 +247,7 @@ void spread_molten(Sinter::State& s) {
     if (!melted) continue;
     spread_on_substrate(s, i);
     bool grown = false;
-    for (const auto p : s.pairs_of[i]) {
-      ContactPair& pair = s.net.pairs[p];
-      const std::uint32_t other = pair.i == i ? pair.j : pair.i;
-      if (s.gone[other] || s.temperature[other] < t_m) continue;
-      const double d = std::hypot(s.x[i] - s.x[other], s.y[i] - s.y[other], s.z[i] - s.z[other]);
-      const double shape = conduction_shape_factor(bridge_radius(s.radius[i], s.radius[other]), d);
-      if (shape <= pair.shape) continue;  // a bridge only grows
-      pair.shape = shape;
-      ++s.bridges;
-      grown = true;
-      recheck_particle_step(s, other);
-    }
+    for (const auto p : s.pairs_of[i]) grown = wet_pair(s, p, i) || grown;
     if (grown) recheck_particle_step(s, i);
   }
 }

@@ -119,6 +119,7 @@ struct SinterResult {
   std::size_t substrate_wetted = 0, bridges = 0;  // wetting: spread caps and liquid bridges
   std::size_t substrate_arrested = 0;  // wetting: caps of particles still there and arrested at t_end
   std::size_t particles_merged = 0;  // wetting: wholly molten on remelted solid, into the pool
+  std::size_t particles_coalesced = 0;  // wetting: wholly molten, into a molten neighbour
   std::vector<TrackStats> tracks;  // one per scan segment begun by t_end
 };
 
@@ -148,6 +149,13 @@ class Sinter {
   // Per particle, whether it merged into the pool (wetting): its volume is in top_height()
   // already. Empty without wetting.
   const std::vector<std::uint8_t>& particle_merged() const;
+  // Per particle, the drop it coalesced into (wetting: wholly molten into a molten neighbour,
+  // which took its mass; itself while it has not). Empty without wetting.
+  const std::vector<std::uint32_t>& particle_coalesced_into() const;
+  // The particles' heights and radii now: the bed's, but a drop that coalesced has grown (its
+  // bottom where it was).
+  const std::vector<double>& particle_z() const;
+  const std::vector<double>& particle_radius() const;
   const BedSurface& surface() const;
   const ConductionNetwork& network() const;
   const Material& material() const;
