@@ -108,7 +108,9 @@ struct Sinter::State {
     double shape;  // A / z_c of the cap's base area on the plate, m
     double interface;  // 1 / (h_c A) of an arrested contact, K/W (0: spread on remelted solid)
     std::vector<std::pair<std::size_t, double>> footprint;  // top nodes under the cap, weights
-    bool through_pool = false;  // not a cap: a contact with a particle that merged into the pool
+    // Not a cap: a contact with a particle that merged into the pool, or with plate that caps
+    // had wetted already (its conductance the contact's, its footprint the cap's it lacked).
+    bool through_pool = false;
   };
   std::vector<WettedContact> wetted;
   // Particles wholly molten on remelted solid that have merged into the pool (wetting.cpp):

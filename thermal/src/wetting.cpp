@@ -83,12 +83,17 @@ void spread_on_substrate(Sinter::State& s, std::size_t i) {
     }
     return;
   }
-  const double area = claim_area(s, footprint, std::numbers::pi * cap.base_radius * cap.base_radius);
-  if (area <= 0) return;  // the plate under it is wetted already: the contact stays as it was
-  const double interface = remelted ? 0 : 1 / (s.scene.arrested_conductance * area);
+  const double base = std::numbers::pi * cap.base_radius * cap.base_radius;
+  const double area = claim_area(s, footprint, base);
+  // The plate under it is wetted already (by caps that have merged, or will): the melt meets
+  // that melt through the contact it had, and joins the pool as a cap would.
+  const bool claimed = area <= 0;
+  const double interface =
+      remelted ? 0 : 1 / (s.scene.arrested_conductance * (claimed ? base : area));
   if (!remelted) ++s.arrested;
-  s.wetted.push_back({static_cast<std::uint32_t>(i), area / cap.centroid_height, interface,
-                      std::move(footprint)});
+  s.wetted.push_back({static_cast<std::uint32_t>(i),
+                      claimed ? contact.shape : area / cap.centroid_height, interface,
+                      std::move(footprint), claimed});
   contact.shape = 0;  // out of the explicit network: wetted_exchange carries it
 }
 
