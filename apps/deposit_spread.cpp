@@ -149,6 +149,8 @@ dem::SpreadSettings spread_settings(const po::variables_map& vm, const dem::Spre
   s.young_scale = vm["young-scale"].as<double>();
   if (vm.count("dt")) s.dt = vm["dt"].as<double>();
   s.unsafe_dt = vm["unsafe-dt"].as<bool>();
+  s.rest.max_speed = vm["rest.speed"].as<double>();
+  s.rest.window = vm["rest.window"].as<double>();
   auto thermo = attach_thermo(vm, true, s.thermo, s.thermo_every);
   if (table) *table = std::move(thermo);
   return s;
@@ -196,6 +198,11 @@ void add_spread_options(po::options_description& desc, dem::SpreadSettings& spre
        "time before the tool moves, the supply settling (s)")
       ("recoater.settle", po::value<double>(&t.settle)->default_value(t.settle),
        "time after the tool stopped, the layer settling (s)")
+      ("recoater.until-rest", po::value<bool>(&spread.until_rest)->default_value(spread.until_rest),
+       "after recoater.settle, settle on until the powder behind the tool rests (its fastest "
+       "particle below rest.speed for rest.window; layers[k].settle_time, at_rest)")
+      ("recoater.rest-cap", po::value<double>(&spread.rest_cap)->default_value(spread.rest_cap),
+       "recoater.until-rest: the most a layer settles (s)")
       ("recoater.overflow",
        po::value<bool>(&spread.remove_overflow)->default_value(spread.remove_overflow),
        "after each layer remove the powder pushed past the tool's end (the machine's overflow "
@@ -266,9 +273,13 @@ void refuse_drop_options(const po::variables_map& vm) {
                                    name));
     }
   }
-  if (vm["until-rest"].as<bool>() || vm["lid"].as<bool>() || vm["lid.enabled"].as<bool>() ||
+  if (vm["until-rest"].as<bool>()) {
+    throw InputError("--until-rest: given with recoater.tool (accepted: recoater.until-rest, "
+                     "which settles each layer to rest)");
+  }
+  if (vm["lid"].as<bool>() || vm["lid.enabled"].as<bool>() ||
       vm["insert.enabled"].as<bool>() || vm["integrator"].as<std::string>() != "verlet") {
-    throw InputError("recoater.tool: with --until-rest, the lid, insertion or --integrator rk4 "
+    throw InputError("recoater.tool: with the lid, insertion or --integrator rk4 "
                      "(accepted: none of them; the spread integrates with velocity Verlet)");
   }
 }
@@ -397,6 +408,10 @@ int export_spread_deck(const po::variables_map& vm, const DepositOptions& bound,
   if (s.sleep.on) {
     throw InputError("sleep.on: true with --export-deck (accepted: false; the decks integrate every "
                      "particle)");
+  }
+  if (s.until_rest) {
+    throw InputError("recoater.until-rest: true with --export-deck (accepted: false; the decks "
+                     "settle for the fixed recoater.settle)");
   }
   SpreadDeckRequest r;
   r.engine = bed::parse_deck_engine(engine, "--export-deck");

@@ -137,6 +137,10 @@ std::optional<LiggghtsEngine> spread_engine(const po::variables_map& vm, const p
       throw InputError("--mpi: given with --spread-engine deposit (accepted: with --spread-engine liggghts)");
     return std::nullopt;
   }
+  if (spread["recoater.until-rest"].as<bool>()) {
+    throw InputError("recoater.until-rest: true with --spread-engine liggghts (accepted: false; "
+                     "its decks settle for the fixed recoater.settle)");
+  }
   LiggghtsEngine e;
   e.ranks = ranks;
   e.liggghts = on_path("liggghts");

@@ -134,6 +134,10 @@ void bind_spread_settings(py::module_& m) {
       .field("layer_thickness", &S::layer_thickness, "plate drop between layers, m")
       .field("freeze_depth", &S::freeze_depth, "freeze powder this far below the tool, m (0: off)")
       .field("sleep", &S::sleep, "SleepSettings (or a dict of its fields)")
+      .field("until_rest", &S::until_rest,
+             "after the tool's settle, settle each layer on until the powder behind it rests")
+      .field("rest", &S::rest, "RestCriteria of until_rest (or a dict of its fields)")
+      .field("rest_cap", &S::rest_cap, "until_rest: the most a layer settles, s")
       .field("young_scale", &S::young_scale, "E used = E / young_scale")
       .field("dt", &S::dt, "s; 0: 0.2 x the Rayleigh step")
       .field("unsafe_dt", &S::unsafe_dt, "accept dt above the stable bound (with a warning)")

@@ -333,6 +333,14 @@ void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSetting
                    "recoater.freeze-depth", settings.freeze_depth, "depth >= 0 m; 0: off");
   check_sleep(settings);
   check_floor(settings.floor, box);
+  if (!settings.until_rest) return;
+  const RestCriteria& rest = settings.rest;
+  require_in_range(std::isfinite(rest.max_speed) && rest.max_speed > 0, "rest.speed",
+                   rest.max_speed, "v > 0 m/s");
+  require_in_range(std::isfinite(rest.window) && rest.window >= 0, "rest.window", rest.window,
+                   "window >= 0 s");
+  require_in_range(std::isfinite(settings.rest_cap) && settings.rest_cap > 0,
+                   "recoater.rest-cap", settings.rest_cap, "cap > 0 s");
 }
 
 // One call of run_spread: the run, its summary, the state a layer's end leaves and the
@@ -417,9 +425,12 @@ struct Spreader {
   void rebuild() { run.rebuild(carried); }
 
   // `steps` steps, `before(s)` ahead of the s-th, or fewer when the observer stops the run (false);
-  // the velocities are the last whole step's after.
+  // the velocities are the last whole step's after. Progress is the share done of `planned`
+  // steps of which `done` are behind (0: of `steps`; a settle to rest reports its cap's share).
   template <class Before>
-  bool advance(std::uint64_t steps, Before&& before) {
+  bool advance(std::uint64_t steps, Before&& before, std::uint64_t planned = 0,
+               std::uint64_t done = 0) {
+    if (planned == 0) planned = steps;
     for (std::uint64_t s = 1; s <= steps; ++s) {
       before(s);
       run.step(step + 1);
@@ -434,7 +445,8 @@ struct Spreader {
         settings.tool_force(sample);
       }
       if (settings.progress && step % settings.progress_every == 0) {
-        settings.progress(static_cast<double>(s) / static_cast<double>(steps), run.kinetic_energy());
+        settings.progress(static_cast<double>(done + s) / static_cast<double>(planned),
+                          run.kinetic_energy());
       }
       if (settings.thermo && step % thermo_every == 0) thermo();
       if (settings.frame && settings.frame_every > 0 && step % settings.frame_every == 0 &&
@@ -477,6 +489,38 @@ struct Spreader {
     if (!stopped) advance(steps, [](std::uint64_t) {});
     particle_steps = static_cast<double>(bed.n()) * static_cast<double>(step - first);
     save_state(state.layers_done);
+  }
+
+  // The fastest speed of the powder whose centres lie short of x (behind the tool's back).
+  double fastest_behind(double x) const {
+    const bed::Bed& b = run.bed;
+    double v2 = 0;
+    for (std::size_t i = 0; i < run.n(); ++i) {
+      if (b.x[i] < x) v2 = std::max(v2, b.vx[i] * b.vx[i] + b.vy[i] * b.vy[i] + b.vz[i] * b.vz[i]);
+    }
+    return std::sqrt(v2);
+  }
+
+  // SpreadSettings::until_rest: the tool stays where it stopped and the layer settles on, in
+  // checks about ten a window (at most every 100 steps), until the powder behind the tool's
+  // back has been slower than rest.max_speed for the window (out.at_rest) or rest_cap has
+  // passed. False when the observer stopped the run.
+  bool settle_to_rest(LayerSummary& out, double back) {
+    const RestCriteria& rest = settings.rest;
+    const auto every = static_cast<std::uint64_t>(
+        std::clamp(std::floor(rest.window / run.dt / 10.0), 1.0, 100.0));
+    const auto cap = static_cast<std::uint64_t>(std::ceil(settings.rest_cap / run.dt));
+    double quiet = 0;  // s the powder has been calm for
+    bool calm = fastest_behind(back) < rest.max_speed;
+    for (std::uint64_t done = 0; !(calm && quiet >= rest.window) && done < cap; done += every) {
+      if (!advance(every, [](std::uint64_t) {}, cap, done)) return false;
+      const double span = static_cast<double>(every) * run.dt;
+      out.settle_time += span;
+      calm = fastest_behind(back) < rest.max_speed;
+      quiet = calm ? quiet + span : 0;
+    }
+    out.at_rest = calm && quiet >= rest.window;
+    return true;
   }
 
   // The overflow out of the bed and the state, and the per-particle arrays anew from the state,
@@ -533,7 +577,7 @@ struct Spreader {
     const auto settle = static_cast<std::uint64_t>(std::ceil(tool.settle / run.dt - 1e-9));
     resolve_thermo((delay + moving + settle) * settings.layers);
     double force_x = 0, force_max = 0;
-    const bool finished = advance(delay + moving + settle, [&](std::uint64_t s) {
+    bool finished = advance(delay + moving + settle, [&](std::uint64_t s) {
       const double travelled =
           static_cast<double>(std::min(moving, s > delay ? s - delay : 0)) * tool.speed * run.dt;
       run.tool_x = std::min(tool.end, tool.start + travelled);
@@ -544,6 +588,9 @@ struct Spreader {
         if (s - 1 > delay && s - 1 <= delay + moving) force_x += f[0];
       }
     });
+    const double back = tool.end - tool_half_extent(run.profile);
+    out.settle_time = tool.settle;
+    if (finished && settings.until_rest) finished = settle_to_rest(out, back);
     out.steps = step - first_step;
     particle_steps += static_cast<double>(run.n()) * static_cast<double>(out.steps);
     out.sim_time = static_cast<double>(step) * run.dt;
@@ -553,7 +600,7 @@ struct Spreader {
     out.sleep_changes = sleep_book.changes - changes_before;
     out.mean_tool_force_x = moving > 0 ? force_x / static_cast<double>(moving) : 0.0;
     const double front = tool.end + tool_half_extent(run.profile);
-    finish_layer(run, out, settings.supply_x1, tool.end - tool_half_extent(run.profile), bottom);
+    finish_layer(run, out, settings.supply_x1, back, bottom);
     out.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - layer_started).count();
     save_state(number);
     state.plate_offset = plate_offset;

@@ -90,7 +90,9 @@ void write_layer_json(bed::JsonWriter& j, const LayerSummary& l) {
       .value("frozen", static_cast<std::uint64_t>(l.frozen))
       .value("frozen_tool_contacts", l.frozen_tool_contacts)
       .value("asleep", l.asleep)
-      .value("sleep_changes", l.sleep_changes);
+      .value("sleep_changes", l.sleep_changes)
+      .value("settle_time", l.settle_time)
+      .value("at_rest", l.at_rest);
 }
 
 }  // namespace powderbed::dem

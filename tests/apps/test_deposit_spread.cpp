@@ -57,6 +57,10 @@ TEST(DepositSpread, BadToolAndSupplyExit2WithOneLine) {
       // What the decks do not do: keep powder past the end, freeze the deep powder.
       {"--recoater.chamber true --export-deck liggghts", "recoater.chamber"},
       {"--recoater.freeze-depth 100e-6 --export-deck liggghts", "recoater.freeze-depth"},
+      {"--recoater.until-rest true --export-deck liggghts", "recoater.until-rest"},
+      {"--until-rest", "--until-rest"},  // a drop's; a spread's layers settle by recoater.until-rest
+      {"--recoater.until-rest true --recoater.rest-cap 0", "recoater.rest-cap"},
+      {"--recoater.until-rest true --rest.speed 0", "rest.speed"},
       // A tool that does not travel pushes the whole supply into the overflow: no layer. Found
       // after the run: --thermo 0 leaves the one line alone, without the run's thermo table.
       {"--recoater.end 0.100001e-3 --recoater.delay 0 --recoater.settle 0 --thermo 0",

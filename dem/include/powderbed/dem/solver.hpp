@@ -6,6 +6,7 @@
 
 #include "powderbed/bed/bed.hpp"
 #include "powderbed/dem/diagnostics.hpp"
+#include "powderbed/dem/rest_criteria.hpp"
 #include "powderbed/dem/scene.hpp"
 #include "powderbed/bed/option_words.hpp"
 
@@ -16,15 +17,6 @@ inline constexpr bed::OptionWord<Integrator> kIntegratorWords[] = {{"verlet", In
                                                                 {"rk4", Integrator::rk4}};
 // "verlet" | "rk4"; throws InputError naming `option` otherwise.
 Integrator parse_integrator(const std::string& text, const std::string& option = "--integrator");
-
-// The bed is at rest when, at every check during `window` seconds of simulated time, the
-// largest speed is below max_speed and the kinetic energy below kinetic_energy.
-struct RestCriteria {
-  double max_speed = 1e-4;        // m/s
-  double kinetic_energy = 0;      // J; 0 means 1e-2 * (1/2) M max_speed^2 (M the bed's mass),
-                                  // i.e. an RMS speed of 10 % of max_speed
-  double window = 1e-3;           // s
-};
 
 // The lid of the consolidation step ([KE], docs/physics.md §6: "lower the lid onto the bed and release
 // it"). After the settle, the box's top face comes down to the highest particle top and moves

@@ -16,6 +16,7 @@
 #include "powderbed/bed/height_map.hpp"
 #include "powderbed/dem/diagnostics.hpp"
 #include "powderbed/dem/recoater.hpp"
+#include "powderbed/dem/rest_criteria.hpp"
 #include "powderbed/dem/scene.hpp"
 
 namespace powderbed::bed {
@@ -86,6 +87,10 @@ struct LayerSummary {
   // times particles fell asleep or woke (each time the bed is reordered and the list rebuilt).
   double asleep = 0;
   std::uint64_t sleep_changes = 0;
+  // SpreadSettings::until_rest: how long the layer settled after the tool stopped (the tool's
+  // settle and what it took on to rest), and whether it came to rest within the cap.
+  double settle_time = 0;  // s
+  bool at_rest = false;
 };
 
 // Powder at rest sleeps (docs/deposit-spread.md "Sleeping powder"; dem/src/sleep.hpp): a
@@ -132,6 +137,15 @@ struct SpreadSettings {
   // ~N^2 (docs/deposit-spread.md "Many layers"). 0: off, every particle moves.
   double freeze_depth = 0;
   SleepSettings sleep;
+  // After the tool's settle, each layer settles on until the powder behind the tool rests: its
+  // fastest particle (centres short of the tool's back) slower than rest.max_speed for
+  // rest.window, checked about ten times a window; rest_cap s of settling at most. A laser
+  // scans a bed at rest (machines recoat seconds before they scan); a fixed settle of a few
+  // milliseconds leaves the last powder the blade let fall still in the air
+  // (docs/deposit-spread.md "Settling to rest").
+  bool until_rest = false;
+  RestCriteria rest;
+  double rest_cap = 0.1;  // s
   // The solid the powder is spread on (the fused top of earlier layers, build): a wall of
   // triangles on the nodes (HeightMap::surface), touched at each local minimum of the distance
   // (bed/surface_contacts.hpp), each contact with its own history; empty: the flat plate
@@ -168,7 +182,7 @@ struct SpreadSettings {
   // After each layer, with the bed and the state a restart needs.
   std::function<void(const LayerSummary&, const bed::Bed&, const SpreadState&)> layer_done;
   // Every progress_every steps: the fraction of the layer (or of t_end) done and the kinetic
-  // energy (J).
+  // energy (J); while a layer settles to rest (until_rest), the fraction of rest_cap.
   std::function<void(double fraction, double kinetic_energy)> progress;
   std::uint64_t progress_every = 2000;
   // The thermo table (diagnostics.hpp ThermoRow, with the layer and the tool's x), when set: a

@@ -1,0 +1,73 @@
+// A spread layer settling to rest (SpreadSettings::until_rest): the small blade spread of
+// small_spread.hpp stops its tool with the last powder it let fall still moving; settled to
+// rest, no particle behind the tool moves faster than the rest speed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "powderbed/bed/errors.hpp"
+#include "small_spread.hpp"
+
+namespace powderbed {
+namespace {
+
+using test::granular_scene;
+using test::small_spread;
+using test::strip;
+
+// The fastest speed of the particles whose centres lie behind x.
+double fastest_behind(const bed::Bed& b, double x) {
+  double v = 0;
+  for (std::size_t i = 0; i < b.n(); ++i)
+    if (b.x[i] < x) v = std::max(v, std::hypot(b.vx[i], b.vy[i], b.vz[i]));
+  return v;
+}
+
+dem::SpreadSettings settling(double speed, double window, double cap) {
+  dem::SpreadSettings st = small_spread();
+  st.until_rest = true;
+  st.rest.max_speed = speed;
+  st.rest.window = window;
+  st.rest_cap = cap;
+  return st;
+}
+
+TEST(SettleToRest, LayerSettlesUntilThePowderBehindTheToolRests) {
+  const dem::Scene s = granular_scene(0.5, 0.05, dem::FrictionModel::history);
+  const double back = small_spread().tool.end - 0.5 * small_spread().tool.thickness;
+  bed::Bed fixed = strip();
+  const dem::SpreadSummary stopped = dem::run_spread(fixed, s, small_spread());
+  EXPECT_FALSE(stopped.layers[0].at_rest);
+  EXPECT_GT(fastest_behind(fixed, back), 1e-3);  // the tool stopped with powder still falling
+
+  bed::Bed b = strip();
+  const dem::SpreadSummary r = dem::run_spread(b, s, settling(1e-3, 2e-4, 0.05));
+  const dem::LayerSummary& layer = r.layers[0];
+  EXPECT_TRUE(layer.at_rest);
+  EXPECT_GE(layer.settle_time, 2e-4);  // calm for the window at least
+  EXPECT_LT(layer.settle_time, 0.05);
+  EXPECT_LT(fastest_behind(b, back), 1e-3);
+  EXPECT_GT(layer.steps, stopped.layers[0].steps);
+}
+
+TEST(SettleToRest, CapEndsALayerThatDoesNotRestAndSaysSo) {
+  const dem::Scene s = granular_scene(0.5, 0.05, dem::FrictionModel::history);
+  bed::Bed b = strip();
+  const double cap = 1e-4;
+  const dem::SpreadSummary r = dem::run_spread(b, s, settling(1e-12, 1e-3, cap));
+  EXPECT_FALSE(r.layers[0].at_rest);
+  // Settled for the cap, in checks of at most 100 steps past it.
+  EXPECT_GE(r.layers[0].settle_time, cap);
+  EXPECT_LE(r.layers[0].settle_time, cap + 100 * r.dt);
+}
+
+TEST(SettleToRest, BadRestSettingsAreRefused) {
+  const dem::Scene s = granular_scene(0.5, 0, dem::FrictionModel::history);
+  for (const auto& st : {settling(0, 1e-3, 0.1), settling(1e-4, -1, 0.1), settling(1e-4, 1e-3, 0)}) {
+    bed::Bed b = strip();
+    EXPECT_THROW(dem::run_spread(b, s, st), InputError);
+  }
+}
+
+}  // namespace
+}  // namespace powderbed
