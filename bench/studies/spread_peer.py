@@ -309,6 +309,8 @@ def main():
         sys.exit("spread_peer: --liggghts-only and --initial-bed go together")
     seeds = [int(s) for s in args.seeds.split(",")] if args.seeds else ([1] if args.small else SEEDS)
     overrides = small_overrides(args.scene) if args.small else {}
+    # LIGGGHTS settles for the fixed recoater.settle; deposit settles the same time.
+    overrides["recoater.until-rest"] = "false"
     scene = Scene(args.scene, overrides)
     window = tuple(float(v) for v in args.window.split(",")) if args.window else scene.window()
     work = tempfile.mkdtemp(prefix="spread-peer-")
