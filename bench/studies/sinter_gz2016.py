@@ -19,6 +19,7 @@ import sys
 
 from lib import apps, references, report
 from lib.apps import pool_um, vaporised_by_size
+from lib.melted import melted_mass, plate_plane
 
 SCENE = apps.GZ2016_SINTER_SCENE
 DEPOSIT_SCENE = apps.scene("gz2016-deposit.ini")
@@ -34,12 +35,6 @@ SPEEDS = [0.4, 0.8, 1.2, 1.6, 2.0, 2.5, 3.0, 3.5, 4.0]     # m/s at 200 W
 # top of the drop (at 30 ms some were still in the air above the bed).
 FIG13_PSDS = apps.GZ2016_TABLE3_PSDS
 
-
-
-def plate_plane(f):
-    """The plate's top plane k of a run file (planes above it are room for a raised part)."""
-    sub = f["substrate"].attrs
-    return int(sub["plate_plane"]) if "plate_plane" in sub else int(sub["nodes"][2]) - 1
 
 def fig13_beds():
     """[(name, bed path)] of the two Fig. 13 beds, deposited once (~2 min for the bimodal one)."""
@@ -161,30 +156,6 @@ def roughness_runs(bed):
 
 # Speeds of the evaporation table at 200 W: [GZ]'s 2 m/s, the issue's 1 m/s, and a slow track.
 EVAPORATION_SPEEDS = [2.0, 1.0, 0.5]
-
-
-def melted_mass(run_path):
-    """Mass that melted along the track, kg: the particles whose peak reached T_m (their
-    starting mass), and the substrate's molten cross-section on x = Lx/2 (nodes whose peak
-    reached T_m, each its cell's area; the top row half a cell) times the plate's length, at
-    the solid density at T0 (the track is quasi-steady over the plate, so one section stands
-    for all; the ends where the beam enters and leaves make it an upper bound)."""
-    import h5py
-    import numpy as np
-    with h5py.File(run_path, "r") as f:
-        rad = np.array(f["particles/radius"])
-        peak = np.array(f["melt/particle"])
-        section = np.array(f["melt/section_x"])  # nz x ny
-        section = section[:plate_plane(f) + 1]  # up to the plate's top face
-        t_m = float(f["melt"].attrs["melting_point"])
-        nx = f["melt/top"].shape[1]
-        dx, dy, dz = f["substrate"].attrs["spacing"]
-    rho = 7952.0  # kg/m^3: data/materials/316L.csv ([GZ] Table 2, at 293 K)
-    cells = np.full(section.shape, dy * dz)
-    cells[-1, :] *= 0.5
-    area = float(cells[section >= t_m].sum())
-    particles = rho * 4.0 / 3.0 * np.pi * float((rad[peak >= t_m] ** 3).sum())
-    return particles + rho * area * dx * (nx - 1)
 
 
 def evaporation_runs(bed):
