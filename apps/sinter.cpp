@@ -307,7 +307,8 @@ std::optional<th::Fusion> fuse_if_asked(const po::variables_map& vm, const bed::
 
 // Particles that touch nothing exchange heat with nothing but the beam, and under it run to
 // their boiling point: in a spread bed they are powder still in the air (docs/deposit-spread.md
-// "Settling to rest"); in a packgen 0-contact bed, as meant.
+// "Settling to rest"); in a packgen 0-contact bed, as meant. Said after the run (or --explain's
+// report), so that a run that fails keeps its one line.
 void warn_isolated(const th::Sinter& sinter, std::size_t n) {
   const std::size_t isolated = sinter.network().isolated.size();
   if (isolated == 0) return;
@@ -339,10 +340,10 @@ int run(int argc, char** argv) {
                              "(--unsafe-dt)\n",
                              scene.dt, sinter.stable_steps().grid);
   }
-  warn_isolated(sinter, bed.n());
   if (explain_only) {
     const th::ExplainReport report = th::explain(bed, scene, sinter);
     std::cout << (vm.count("json") ? explain_json(report) : report.text);
+    warn_isolated(sinter, bed.n());
     return 0;
   }
 
@@ -358,6 +359,7 @@ int run(int argc, char** argv) {
   const std::optional<th::Fusion> fused = fuse_if_asked(vm, bed, sinter, writer);
   writer.finish(sinter, r, summary_of(r, wall));
   together.commit();
+  warn_isolated(sinter, bed.n());
   const RunReport report{bed, sinter, r, fused, wall, out};
   if (vm.count("json")) std::cout << result_json(vm, report);
   else print_result(scene, report);
