@@ -44,15 +44,23 @@ void expect_balanced(const thermal::EnergyLedger& e, double mass, double t0) {
   EXPECT_LT(std::abs(in - out), kRoundOff * mass * 450 * (kHot - t0));
 }
 
+// One particle resting on the plate and one resting on it, the two overlapping by 1 % of a
+// diameter.
+bed::Bed stacked_pair() {
+  bed::Bed bed = test::empty_bed(120e-6, 72e-6, 80e-6);
+  const double z0 = test::resting_z(kR);
+  bed.add(60e-6, 36e-6, z0, kR);
+  bed.add(60e-6, 36e-6, z0 + 1.98 * kR, kR);
+  return bed;
+}
+
 }  // namespace
 
 // One particle on the plate, one on top of it, both molten: the upper one runs into the lower,
 // which keeps its bottom and grows to the radius of their summed volume.
 TEST(Coalescence, TwoStackedDropsBecomeOneOnTheLowersBase) {
-  bed::Bed bed = test::empty_bed(120e-6, 72e-6, 80e-6);
-  const double z0 = test::resting_z(kR);
-  bed.add(60e-6, 36e-6, z0, kR);
-  bed.add(60e-6, 36e-6, z0 + 1.98 * kR, kR);
+  bed::Bed bed = stacked_pair();
+  const double z0 = bed.z[0];
   const thermal::SinterScene scene = dark_scene();
   thermal::Sinter sinter(bed, scene, test::table_316l());
   const double mass_before = total(sinter.particle_mass());
@@ -132,10 +140,7 @@ TEST(Coalescence, MeltOnSolidNeighbourArrestsUnlessItRemeltsIt) {
 // one, now with the pool's top nodes, and heats through it (without that contact it would be
 // left touching nothing, at T0).
 TEST(Coalescence, WhatTouchedAMergedParticleTouchesThePool) {
-  bed::Bed bed = test::empty_bed(120e-6, 72e-6, 80e-6);
-  const double z0 = test::resting_z(kR);
-  bed.add(60e-6, 36e-6, z0, kR);
-  bed.add(60e-6, 36e-6, z0 + 1.98 * kR, kR);
+  const bed::Bed bed = stacked_pair();
   const thermal::SinterScene scene = dark_scene();
   thermal::Sinter sinter(bed, scene, test::table_316l());
   sinter.set_particle_temperature(0, 3000);
