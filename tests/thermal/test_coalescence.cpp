@@ -44,6 +44,16 @@ void expect_balanced(const thermal::EnergyLedger& e, double mass, double t0) {
   EXPECT_LT(std::abs(in - out), kRoundOff * mass * 450 * (kHot - t0));
 }
 
+// Sets the first n particles wholly molten and runs in the dark, the energy balance checked;
+// returns the particles' mass before.
+double melt_and_run(thermal::Sinter& sinter, std::size_t n, thermal::SinterResult& r) {
+  const double mass = total(sinter.particle_mass());
+  for (std::size_t i = 0; i < n; ++i) sinter.set_particle_temperature(i, kHot);
+  r = sinter.run(nullptr, 0, nullptr);
+  expect_balanced(r.energy, mass, sinter.scene().initial_temperature);
+  return mass;
+}
+
 // One particle resting on the plate and one resting on it, the two overlapping by 1 % of a
 // diameter.
 bed::Bed stacked_pair() {
@@ -61,13 +71,10 @@ bed::Bed stacked_pair() {
 TEST(Coalescence, TwoStackedDropsBecomeOneOnTheLowersBase) {
   bed::Bed bed = stacked_pair();
   const double z0 = bed.z[0];
-  const thermal::SinterScene scene = dark_scene();
-  thermal::Sinter sinter(bed, scene, test::table_316l());
-  const double mass_before = total(sinter.particle_mass());
-  for (std::size_t i = 0; i < 2; ++i) sinter.set_particle_temperature(i, kHot);
-  const auto r = sinter.run(nullptr, 0, nullptr);
+  thermal::Sinter sinter(bed, dark_scene(), test::table_316l());
+  thermal::SinterResult r;
+  const double mass_before = melt_and_run(sinter, 2, r);
   EXPECT_EQ(r.particles_coalesced, 1u);
-  expect_balanced(r.energy, mass_before, scene.initial_temperature);
   ASSERT_EQ(sinter.particle_coalesced_into()[1], 0u);
   EXPECT_EQ(sinter.particle_coalesced_into()[0], 0u);
   EXPECT_NEAR(sinter.particle_mass()[0], mass_before, kRoundOff * mass_before);
@@ -93,13 +100,10 @@ TEST(Coalescence, ARowOfDropsMergesIntoOne) {
   bed::Bed bed = test::empty_bed(160e-6, 72e-6, 60e-6);
   for (std::size_t i = 0; i < 3; ++i)
     bed.add(50e-6 + 1.98 * kR * static_cast<double>(i), 36e-6, test::resting_z(kR), kR);
-  const thermal::SinterScene scene = dark_scene();
-  thermal::Sinter sinter(bed, scene, test::table_316l());
-  const double mass_before = total(sinter.particle_mass());
-  for (std::size_t i = 0; i < 3; ++i) sinter.set_particle_temperature(i, kHot);
-  const auto r = sinter.run(nullptr, 0, nullptr);
+  thermal::Sinter sinter(bed, dark_scene(), test::table_316l());
+  thermal::SinterResult r;
+  const double mass_before = melt_and_run(sinter, 3, r);
   EXPECT_EQ(r.particles_coalesced, 2u);
-  expect_balanced(r.energy, mass_before, scene.initial_temperature);
   for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(sinter.particle_coalesced_into()[i], 0u) << i;
   EXPECT_NEAR(sinter.particle_mass()[0], mass_before, kRoundOff * mass_before);
   EXPECT_NEAR(sinter.particle_radius()[0], std::cbrt(3.0) * kR, kRoundOff * kR);
