@@ -106,9 +106,9 @@ void coalesce_molten(Sinter::State& s) {
   }
 }
 
-// The contact keeps the conductance its pair had, now with the pool's top nodes around the
-// point where the two touched; the footprint is the toucher's disc there, where its volume goes
-// when it merges.
+// The contact keeps the conductance its pair had, now with the pool's top nodes in the toucher's
+// disc around the point where the two touched (when it merges, its volume goes under its centre:
+// merge_into_pool).
 void touch_pool(Sinter::State& s, std::size_t merged) {
   for (const auto p : s.pairs_of[merged]) {
     ContactPair& pair = s.net.pairs[p];
