@@ -79,7 +79,7 @@ void absorb(Sinter::State& s, std::size_t keep, std::size_t drop) {
   s.gone[drop] = 1;
   s.coalesced_into[drop] = static_cast<std::uint32_t>(keep);
   ++s.coalesced_count;
-  ++s.vaporised;  // the count of gone particles: the tracer drops it and resizes `keep`
+  ++s.gone_count;  // the tracer drops it and resizes `keep`
   particle_enthalpy_changed(s, keep);
   recheck_particle_step(s, keep);
 }

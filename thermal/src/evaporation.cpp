@@ -72,7 +72,7 @@ std::pair<double, double> lose_mass(Sinter::State& s, std::size_t i, double dm, 
     dm = s.mass[i];
     s.mass[i] = 0;
     s.gone[i] = 1;
-    ++s.vaporised;
+    ++s.gone_count;
     return {before, dm};
   }
   s.h[i] = (before - dm * h_out) / (s.mass[i] - dm);

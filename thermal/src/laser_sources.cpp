@@ -160,9 +160,9 @@ void update_surfaces(Sinter::State& s) {
 }
 
 void trace(Sinter::State& s, std::uint64_t key) {
-  if (s.vaporised_traced != s.vaporised) {  // particles have gone (and drops grown) since
+  if (s.gone_traced != s.gone_count) {  // particles have gone (and drops grown) since
     s.tracer->update(s.gone, s.z, s.radius);
-    s.vaporised_traced = s.vaporised;
+    s.gone_traced = s.gone_count;
   }
   update_surfaces(s);
   const std::size_t m = key_segment(key);
@@ -315,7 +315,7 @@ void prepare_traces(Sinter::State& s, double t0, double t1) {
   }
   if (needed.empty()) return;
   // A particle that vaporised leaves the beam at once: every map is traced anew without it.
-  if (s.vaporised != s.vaporised_traced) s.traced.clear();
+  if (s.gone_count != s.gone_traced) s.traced.clear();
   std::erase_if(s.traced,
                 [&](const Sinter::State::TracedBeam& t) { return t.k < needed.front(); });
   bool added = false;

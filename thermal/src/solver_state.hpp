@@ -55,7 +55,7 @@ struct Sinter::State {
   // The laser's power into each particle at the last particle step (W) and how long it has
   // been lit without a break (s): the lit surface's excess (lit_sphere_surface.hpp).
   std::vector<double> laser_power, lit_time;
-  std::vector<std::uint8_t> gone;                  // vaporised: out of the network
+  std::vector<std::uint8_t> gone;                  // vapour, pool or drop: out of the network
   std::vector<std::uint32_t> exposed;
 
   // Substrate nodes.
@@ -94,7 +94,7 @@ struct Sinter::State {
   std::vector<TracedBeam> traced;
   double trace_spacing = 0;
   TraceSurfaces surfaces;  // the phases and the depression the next trace sees
-  std::size_t vaporised = 0, vaporised_traced = 0;  // gone particles; those the tracer removed
+  std::size_t gone_count = 0, gone_traced = 0;  // particles gone (vapour, pool, drops); as traced
   TraceSummary traces;
 
   // Wetting (wetting.cpp): per particle, whether it was molten at the last check, its pairs
@@ -232,7 +232,7 @@ inline void particle_state_changed(Sinter::State& s, std::size_t i) {
   if (temp > s.peak[i]) s.peak[i] = temp;
   if (temp >= s.vaporised_temperature || s.mass[i] < kVaporisedMass * s.initial_mass[i]) {
     s.gone[i] = 1;  // left the bed as vapour
-    ++s.vaporised;
+    ++s.gone_count;
   }
 }
 // New enthalpy of particle i; with the depression none is hotter than its T_d(r) (ablate).

@@ -167,7 +167,7 @@ void merge_into_pool(Sinter::State& s, const Sinter::State::WettedContact& w) {
   s.gone[i] = 1;
   s.merged[i] = 1;
   ++s.merged_count;
-  ++s.vaporised;  // the count of gone particles: the tracer removes them
+  ++s.gone_count;  // the tracer removes it
 }
 
 // The spread caps (and contacts with the pool) whose particle is wholly molten merge into the
