@@ -37,7 +37,7 @@ SpreadSettings engine_settings(const Scene& scene, const RunSettings& settings) 
   return s;
 }
 
-constexpr std::uint64_t kNotQuiet = ~std::uint64_t{0};
+constexpr std::uint64_t kNever = ~std::uint64_t{0};  // no thermo row written yet
 
 // A drop on the engine: the settle (with insertion, while the pool enters) for t_end or until
 // rest, then the lid; and the engine's side of both (lid_phase.hpp's and insertion.hpp's Run).
@@ -138,7 +138,7 @@ class EngineDrop {
   template <class Before, class After>
   bool advance(std::uint64_t steps, bool until_rest, Before&& before, After&& after) {
     const double progress_end = static_cast<double>(step_ + steps) * engine_.dt;
-    std::uint64_t quiet_since = kNotQuiet;  // first step of the current quiet stretch
+    rest_.reset();
     for (std::uint64_t s = 0; s < steps; ++s) {
       before();
       (engine_.*step_once_)(step_ + 1);
@@ -154,7 +154,7 @@ class EngineDrop {
       }
       if (settings_.thermo && step_ % thermo_every_ == 0) thermo();
       if (after()) return false;
-      if (until_rest && !inserting_ && step_ % rest_every_ == 0 && quiet_for_window(quiet_since)) return true;
+      if (until_rest && !inserting_ && step_ % rest_.every() == 0 && rest_.check(step_, quiet())) return true;
       if (settings_.progress && step_ % settings_.progress_every == 0) report(progress_end);
     }
     return false;
@@ -182,20 +182,13 @@ class EngineDrop {
     double mass = 0;
     for (const double r : all.radius) mass += bed::sphere_volume(r) * scene_.material.density;
     rest_energy_ = rest.kinetic_energy > 0 ? rest.kinetic_energy : 1e-2 * 0.5 * mass * rest.max_speed * rest.max_speed;
-    // Rest checks: about ten per window (at most every 100 steps), never every step.
-    rest_every_ = static_cast<std::uint64_t>(std::clamp(std::floor(rest.window / engine_.dt / 10.0), 1.0, 100.0));
-    window_steps_ = static_cast<std::uint64_t>(std::ceil(rest.window / engine_.dt));
+    rest_ = RestWatch(rest, engine_.dt);
     return bound;
   }
 
-  // The rest test (RestCriteria) at this step: true once the bed has been quiet for the window.
-  bool quiet_for_window(std::uint64_t& quiet_since) const {
-    if (engine_.kinetic_energy() < rest_energy_ && engine_.max_speed() < settings_.rest.max_speed) {
-      if (quiet_since == kNotQuiet) quiet_since = step_;
-      return step_ - quiet_since >= window_steps_;
-    }
-    quiet_since = kNotQuiet;
-    return false;
+  // Whether the bed is quiet now (RestCriteria: its kinetic energy and its fastest particle).
+  bool quiet() const {
+    return engine_.kinetic_energy() < rest_energy_ && engine_.max_speed() < settings_.rest.max_speed;
   }
 
   void insert_due() {
@@ -258,8 +251,8 @@ class EngineDrop {
   std::uint64_t step_ = 0;
   bool stopped_ = false;  // by the observer: no later phase runs
   double rest_energy_ = 0;  // J, RestCriteria::kinetic_energy or its default
-  std::uint64_t rest_every_ = 1, window_steps_ = 0;
-  std::uint64_t thermo_every_ = 0, thermo_last_ = kNotQuiet;
+  RestWatch rest_{RestCriteria{}, 1.0};  // set_up() sets it from the scene's step
+  std::uint64_t thermo_every_ = 0, thermo_last_ = kNever;
 };
 
 }  // namespace

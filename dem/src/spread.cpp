@@ -501,25 +501,20 @@ struct Spreader {
     return std::sqrt(v2);
   }
 
-  // SpreadSettings::until_rest: the tool stays where it stopped and the layer settles on, in
-  // checks about ten a window (at most every 100 steps), until the powder behind the tool's
-  // back has been slower than rest.max_speed for the window (out.at_rest) or rest_cap has
-  // passed. False when the observer stopped the run.
+  // SpreadSettings::until_rest: the tool stays where it stopped and the layer settles on until
+  // the powder behind the tool's back has been slower than rest.max_speed for the window
+  // (RestWatch; out.at_rest) or rest_cap has passed. False when the observer stopped the run.
   bool settle_to_rest(LayerSummary& out, double back) {
-    const RestCriteria& rest = settings.rest;
-    const auto every = static_cast<std::uint64_t>(
-        std::clamp(std::floor(rest.window / run.dt / 10.0), 1.0, 100.0));
+    RestWatch watch(settings.rest, run.dt);
     const auto cap = static_cast<std::uint64_t>(std::ceil(settings.rest_cap / run.dt));
-    double quiet = 0;  // s the powder has been calm for
-    bool calm = fastest_behind(back) < rest.max_speed;
-    for (std::uint64_t done = 0; !(calm && quiet >= rest.window) && done < cap; done += every) {
-      if (!advance(every, [](std::uint64_t) {}, cap, done)) return false;
-      const double span = static_cast<double>(every) * run.dt;
-      out.settle_time += span;
-      calm = fastest_behind(back) < rest.max_speed;
-      quiet = calm ? quiet + span : 0;
+    const auto calm = [&] { return fastest_behind(back) < settings.rest.max_speed; };
+    bool rested = watch.check(0, calm());
+    for (std::uint64_t done = 0; !rested && done < cap; done += watch.every()) {
+      if (!advance(watch.every(), [](std::uint64_t) {}, cap, done)) return false;
+      out.settle_time += static_cast<double>(watch.every()) * run.dt;
+      rested = watch.check(done + watch.every(), calm());
     }
-    out.at_rest = calm && quiet >= rest.window;
+    out.at_rest = rested;
     return true;
   }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "powderbed/bed/errors.hpp"
+#include "powderbed/dem/rest_criteria.hpp"
 #include "small_spread.hpp"
 
 namespace powderbed {
@@ -30,6 +31,36 @@ dem::SpreadSettings settling(double speed, double window, double cap) {
   st.rest.window = window;
   st.rest_cap = cap;
   return st;
+}
+
+// The one rest test of the drop and the spread: a window of 1 ms at dt = 1e-5 s is 100 steps,
+// checked every 10; it counts from the first quiet check, and a loud check starts it again.
+TEST(RestWatch, RestAfterAWindowOfQuietChecksCountedFromTheFirst) {
+  dem::RestCriteria rest;
+  rest.window = 1e-3;
+  dem::RestWatch watch(rest, 1e-5);
+  ASSERT_EQ(watch.every(), 10u);
+  EXPECT_FALSE(watch.check(0, false));
+  EXPECT_FALSE(watch.check(10, true));  // the stretch starts here
+  EXPECT_FALSE(watch.check(100, true));  // 90 steps quiet: short of the window
+  EXPECT_TRUE(watch.check(110, true));
+  EXPECT_FALSE(watch.check(120, false));  // loud: the stretch ends
+  EXPECT_FALSE(watch.check(130, true));
+  EXPECT_FALSE(watch.check(220, true));
+  EXPECT_TRUE(watch.check(230, true));
+  watch.reset();
+  EXPECT_FALSE(watch.check(240, true));
+}
+
+// A window of zero: rest at the first quiet check; checks never come every step of a long window.
+TEST(RestWatch, ZeroWindowRestsAtOnceAndLongWindowsCheckEveryHundredSteps) {
+  dem::RestCriteria rest;
+  rest.window = 0;
+  dem::RestWatch now(rest, 1e-5);
+  EXPECT_EQ(now.every(), 1u);
+  EXPECT_TRUE(now.check(0, true));
+  rest.window = 1.0;
+  EXPECT_EQ(dem::RestWatch(rest, 1e-5).every(), 100u);
 }
 
 TEST(SettleToRest, LayerSettlesUntilThePowderBehindTheToolRests) {
