@@ -17,11 +17,16 @@ namespace {
 enum FeatureKind : std::uint64_t { kNode, kEdge, kFace };
 constexpr std::uint64_t feature_key(FeatureKind kind, std::uint64_t value) { return 3 * value + kind; }
 
+// Across a periodic seam the last node row is the first: a feature there is named by its node
+// in the first.
 std::uint64_t feature_of(const HeightMap& m, std::size_t t, TriangleFeature f) {
   const std::size_t i = (t / 2) % (m.nx - 1), j = (t / 2) / (m.nx - 1);
-  const auto node = [&](std::size_t a, std::size_t b) { return feature_key(kNode, a + m.nx * b); };
+  const auto index = [&](std::size_t a, std::size_t b) {
+    return (m.periodic_x && a == m.nx - 1 ? 0 : a) + m.nx * (m.periodic_y && b == m.ny - 1 ? 0 : b);
+  };
+  const auto node = [&](std::size_t a, std::size_t b) { return feature_key(kNode, index(a, b)); };
   const auto edge = [&](std::size_t a, std::size_t b, int direction) {
-    return feature_key(kEdge, 3 * (a + m.nx * b) + static_cast<std::uint64_t>(direction));
+    return feature_key(kEdge, 3 * index(a, b) + static_cast<std::uint64_t>(direction));
   };
   using F = TriangleFeature;
   const bool lower = t % 2 == 0;  // corners (i, j), (i + 1, j), (i + 1, j + 1); else (i, j), (i + 1, j + 1), (i, j + 1)
@@ -37,20 +42,24 @@ std::uint64_t feature_of(const HeightMap& m, std::size_t t, TriangleFeature f) {
   return feature_key(kFace, t);
 }
 
-// How many triangles of the grid hold a node or an edge.
+// How many triangles of the grid hold a node or an edge (on a periodic axis, every node is
+// inner).
 std::size_t triangles_holding(const HeightMap& m, std::uint64_t key) {
   const std::uint64_t value = key / 3;
-  const auto inner = [](std::size_t k, std::size_t n) { return std::size_t{k > 0} + std::size_t{k + 1 < n}; };
+  const auto inner = [](std::size_t k, std::size_t n, bool periodic) {
+    return periodic ? 2 : std::size_t{k > 0} + std::size_t{k + 1 < n};
+  };
   if (key % 3 == kNode) {
     const std::size_t i = value % m.nx, j = value / m.nx;
-    const bool left = i > 0, right = i + 1 < m.nx, below = j > 0, above = j + 1 < m.ny;
+    const bool left = m.periodic_x || i > 0, right = m.periodic_x || i + 1 < m.nx;
+    const bool below = m.periodic_y || j > 0, above = m.periodic_y || j + 1 < m.ny;
     return 2 * (right && above) + (left && above) + 2 * (left && below) + (right && below);
   }
   const std::size_t n = value / 3, i = n % m.nx, j = n / m.nx;
   switch (value % 3) {
-    case 0: return inner(j, m.ny);  // along x: the cells above and below
-    case 1: return inner(i, m.nx);  // along y: the cells left and right
-    default: return 2;             // a cell's diagonal
+    case 0: return inner(j, m.ny, m.periodic_y);  // along x: the cells above and below
+    case 1: return inner(i, m.nx, m.periodic_x);  // along y: the cells left and right
+    default: return 2;                            // a cell's diagonal
   }
 }
 
@@ -69,8 +78,8 @@ std::size_t surface_contacts(const HeightMap& m, double x, double y, double zc, 
   found.clear();
   const auto [xc, yc] = m.clamp(x, y);
   const Point3 centre{xc, yc, zc};
-  m.for_each_triangle_near(xc, yc, zc, r, [&](std::size_t t) {
-    const auto [a, b, c] = m.triangle(t);
+  m.for_each_triangle_near(xc, yc, zc, r, [&](std::size_t t, std::array<double, 2> shift) {
+    const auto [a, b, c] = m.triangle(t, shift);
     const TrianglePoint q = closest_point_on_triangle(centre, a, b, c);
     const double ex = q.point[0] - xc, ey = q.point[1] - yc, ez = q.point[2] - zc;
     const double distance = std::sqrt(ex * ex + ey * ey + ez * ez);

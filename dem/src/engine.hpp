@@ -292,14 +292,23 @@ struct Engine {
     const auto reach_x = static_cast<std::ptrdiff_t>(std::ceil(r_max / floor.dx)) + 1;
     const auto reach_y = static_cast<std::ptrdiff_t>(std::ceil(r_max / floor.dy)) + 1;
     const auto nx = static_cast<std::ptrdiff_t>(floor.nx), ny = static_cast<std::ptrdiff_t>(floor.ny);
+    // Nodes k - reach .. k + reach along one axis: wrapped on a periodic one, else cut at its ends.
+    const auto span = [](std::ptrdiff_t k, std::ptrdiff_t reach, std::ptrdiff_t n, bool periodic) {
+      return periodic ? std::array{k - reach, k + reach}
+                      : std::array{std::max<std::ptrdiff_t>(0, k - reach), std::min(n - 1, k + reach)};
+    };
+    const auto wrap = [](std::ptrdiff_t k, std::ptrdiff_t n) { return static_cast<std::size_t>(((k % (n - 1)) + (n - 1)) % (n - 1)); };
     for (std::ptrdiff_t j = 0; j < ny; ++j)
       for (std::ptrdiff_t i = 0; i < nx; ++i) {
         const auto at = [&](std::ptrdiff_t a, std::ptrdiff_t b) {
-          return floor.node(static_cast<std::size_t>(a), static_cast<std::size_t>(b));
+          return floor.node(floor.periodic_x ? wrap(a, nx) : static_cast<std::size_t>(a),
+                            floor.periodic_y ? wrap(b, ny) : static_cast<std::size_t>(b));
         };
         double hi = at(i, j), lo = hi;
-        for (std::ptrdiff_t b = std::max<std::ptrdiff_t>(0, j - reach_y); b <= std::min(ny - 1, j + reach_y); ++b)
-          for (std::ptrdiff_t a = std::max<std::ptrdiff_t>(0, i - reach_x); a <= std::min(nx - 1, i + reach_x); ++a) {
+        const auto [b0, b1] = span(j, reach_y, ny, floor.periodic_y);
+        const auto [a0, a1] = span(i, reach_x, nx, floor.periodic_x);
+        for (std::ptrdiff_t b = b0; b <= b1; ++b)
+          for (std::ptrdiff_t a = a0; a <= a1; ++a) {
             hi = std::max(hi, at(a, b));
             lo = std::min(lo, at(a, b));
           }

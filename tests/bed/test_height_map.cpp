@@ -3,6 +3,7 @@
 // seam of a periodic box.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -52,9 +53,55 @@ TEST(HeightMap, NearestPointAndOverlapOfASphere) {
 TEST(HeightMap, PeriodicSeamKeepsTheVolume) {
   bed::HeightMap m = plane();
   const double before = std::accumulate(m.z.begin(), m.z.end(), 0.0);
-  m.join_periodic_edges(false, true);
+  m.periodic_y = true;
+  m.join_periodic_edges();
   for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(m.node(i, 0), m.node(i, 2));
   EXPECT_NEAR(std::accumulate(m.z.begin(), m.z.end(), 0.0), before, 1e-20);
+}
+
+namespace {
+
+// 5 x 5 nodes 10 um apart, periodic along y (period 40 um: node row 4 is row 0): a ridge 6 um
+// high along x on row 3, 10 um across the seam from row 0; `periods` of them stacked along y on
+// a bounded grid is the same surface written out.
+bed::HeightMap ridge(std::size_t periods) {
+  bed::HeightMap m;
+  m.nx = 5;
+  m.ny = 4 * periods + 1;
+  m.dx = m.dy = 10e-6;
+  for (std::size_t j = 0; j < m.ny; ++j)
+    for (std::size_t i = 0; i < m.nx; ++i) m.z.push_back(j % 4 == 3 ? 6e-6 : 0.0);
+  m.periodic_y = periods == 1;
+  return m;
+}
+
+}  // namespace
+
+// A sphere near the seam of a periodic surface touches what lies across it: its contacts are
+// those of the same sphere one period further on the surface written out over three periods,
+// on both sides of the seam, and the same at y and at y + period. Held flat beyond the edge
+// (bounded), the ridge across the seam went unseen until the sphere crossed, and the overlap
+// jumped (docs/results/build-layers.md).
+TEST(HeightMap, PeriodicSurfaceIsTheSurfaceWrittenOutAcrossTheSeam) {
+  const bed::HeightMap seam = ridge(1), written = ridge(3);
+  const double period = 40e-6, r = 8e-6;
+  for (const double y : {1e-6, 3e-6, 39e-6, -2e-6}) {
+    std::array<bed::SurfaceContact, bed::kMaxSurfaceContacts> a, b;
+    const std::size_t na = bed::surface_contacts(seam, 20e-6, y, 7e-6, r, a);
+    const std::size_t nb = bed::surface_contacts(written, 20e-6, y + period, 7e-6, r, b);
+    ASSERT_EQ(na, nb) << "y " << y;
+    ASSERT_GE(na, y == 1e-6 ? 2u : 1u) << "y " << y << ": at 1 um, the plane and the ridge's slope across the seam";
+    for (std::size_t k = 0; k < na; ++k) {
+      EXPECT_NEAR(a[k].distance, b[k].distance, 1e-18) << "y " << y << " contact " << k;
+      for (int d = 0; d < 3; ++d) EXPECT_NEAR(a[k].offset[d], b[k].offset[d], 1e-18);
+    }
+    EXPECT_NEAR(bed::surface_overlap(seam, 20e-6, y, 7e-6, r), bed::surface_overlap(seam, 20e-6, y + period, 7e-6, r), 1e-18);
+  }
+  // The bounded grid held flat beyond its edge sees the plane alone at y = 1 um.
+  bed::HeightMap bounded = seam;
+  bounded.periodic_y = false;
+  EXPECT_NEAR(bed::surface_overlap(bounded, 20e-6, 1e-6, 7e-6, r), 1e-6, 1e-15);
+  EXPECT_GT(bed::surface_overlap(seam, 20e-6, 1e-6, 7e-6, r), 1.4e-6);
 }
 
 // Ericson's regions: a point over the face projects onto it; beyond an edge it meets the edge at

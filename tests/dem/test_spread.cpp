@@ -14,6 +14,7 @@
 #include <numbers>
 #include <random>
 #include <sstream>
+#include <string>
 #include <utility>
 #include <unistd.h>
 
@@ -701,6 +702,23 @@ TEST(SpreadFloor, SphereInAGrooveTouchesBothSlopesAndComesToRest) {
   st.floor = groove();
   EXPECT_LT(late_speed(b, s, st, 15e-3), 1e-9);
   EXPECT_NEAR(b.x[0], 100e-6, 1e-8);  // on the groove's line
+}
+
+// Along a periodic axis the floor must span the box (its seam is the box's): half the groove in
+// the periodic box is refused, naming the axis.
+TEST(SpreadFloor, FloorNotSpanningAPeriodicAxisIsRefused) {
+  const dem::Scene s = granular_scene(0.5, 0.1, dem::FrictionModel::history);
+  bed::Bed b = sphere_over_groove();
+  dem::SpreadSettings st = granular_run(1e-4, 0.0);
+  st.floor = groove();
+  st.floor.ny = 11;
+  st.floor.z.resize(st.floor.nx * st.floor.ny);
+  try {
+    dem::run_spread(b, s, st);
+    ADD_FAILURE() << "a floor spanning half the periodic y axis was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("periodic along y"), std::string::npos) << e.what();
+  }
 }
 
 // Without damping or friction the floor's contacts conserve energy: each is the gradient of a

@@ -77,19 +77,26 @@ double solid_mass(const SubstrateGeometry& g, const TopHeight& top, double densi
   return density * volume;
 }
 
-// On a bed periodic along x or y whose grid spans that period, the solid's two edge rows are one
-// line (bed::HeightMap::join_periodic_edges: their mean, the volume kept). The grid itself is not
-// periodic, so a track crossing the seam raises one edge and not the other; left so, powder
-// resting at the low edge finds itself inside the step the moment the edges are joined.
-void join_seams(const bed::Bed& bed, const SubstrateGeometry& g, TopHeight& top) {
+// The solid's top as the surface powder touches: on a bed periodic along x or y whose grid
+// spans that period, periodic there, its two edge rows one line (bed::HeightMap::
+// join_periodic_edges: their mean, the volume kept). The grid itself is not periodic, so a track
+// crossing the seam raises one edge and not the other; left so, powder resting at the low edge
+// finds itself inside the step the moment the edges are joined.
+bed::HeightMap seamed_surface(const bed::Bed& bed, const SubstrateGeometry& g, const TopHeight& top) {
   const auto spans = [&](int axis, double lower, double d, std::size_t n) {
     return bed.domain.periodic[axis] &&
            std::abs(lower - bed.domain.lower[axis]) < 1e-3 * d &&
            std::abs(d * static_cast<double>(n - 1) - bed.domain.length(axis)) < 1e-3 * d;
   };
   bed::HeightMap m = top_surface(g, top);
-  m.join_periodic_edges(spans(0, g.x0, g.dx, g.nx), spans(1, g.y0, g.dy, g.ny));
-  top = std::move(m.z);
+  m.periodic_x = spans(0, g.x0, g.dx, g.nx);
+  m.periodic_y = spans(1, g.y0, g.dy, g.ny);
+  m.join_periodic_edges();
+  return m;
+}
+
+void join_seams(const bed::Bed& bed, const SubstrateGeometry& g, TopHeight& top) {
+  top = seamed_surface(bed, g, top).z;
 }
 
 // The rise of `top` over `before` spread by a Gaussian of standard deviation `length`: each
@@ -143,8 +150,8 @@ void capture_buried(const bed::Bed& bed, const SubstrateGeometry& g, const std::
   std::vector<std::uint8_t> pool(f.top.size());
   for (std::size_t c = 0; c < pool.size(); ++c) pool[c] = f.top[c] > unscanned[c] ? 1 : 0;
   for (std::size_t pass = 0; pass < 100; ++pass) {
-    join_seams(bed, g, f.top);
-    const bed::HeightMap top = top_surface(g, f.top);
+    const bed::HeightMap top = seamed_surface(bed, g, f.top);
+    f.top = top.z;
     std::vector<std::size_t> taken;
     for (std::size_t i = 0; i < bed.n(); ++i)
       if (stays_in_bed(f.state[i]) && bed::surface_overlap(top, bed.x[i], bed.y[i], bed.z[i], bed.radius[i]) > capture * bed.radius[i])

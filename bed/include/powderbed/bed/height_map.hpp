@@ -1,6 +1,7 @@
 #pragma once
 // A surface z = h(x, y) given at the nodes of a regular grid (x0 + i dx, y0 + j dy), bilinear
-// between them and held at the edge value beyond the grid: the fused solid's top, which sinter
+// between them and held at the edge value beyond the grid, or repeated along an axis the grid
+// spans as a period (periodic_x, periodic_y): the fused solid's top, which sinter
 // raises (thermal/fusion.hpp) and the next layer's powder is spread on (dem/spread.hpp). The
 // thermal grid conducts through the bilinear surface; spheres touch the same nodes cut into
 // triangles (surface()), on which the nearest point is exact.
@@ -33,13 +34,30 @@ inline GridCell grid_cell(double x0, double dx, std::size_t nx, double y0, doubl
   return c;
 }
 
+// Wrapped into [lo, lo + period): where a position on a periodic axis lies in the period.
+inline double wrap_into(double v, double lo, double period) {
+  const double u = v - lo - period * std::floor((v - lo) / period);
+  return lo + (u < period ? u : 0.0);  // u rounds up to the period for v just below lo
+}
+
 struct HeightMap {
   std::size_t nx = 0, ny = 0;  // nodes along x and y (>= 2 each when not empty)
   double x0 = 0, y0 = 0, dx = 0, dy = 0;
   std::vector<double> z;       // per node i + nx j, m
+  // Along a periodic axis the grid spans the box's period: its last node row is its first
+  // (join_periodic_edges makes them equal), a position wraps into the period instead of being
+  // held at the edge, and a sphere over the seam touches the surface on both sides of it (a
+  // surface held flat beyond the seam would change under a sphere the moment it crosses it,
+  // and the jump in overlap throws it off: docs/results/build-layers.md).
+  bool periodic_x = false, periodic_y = false;
 
   bool empty() const { return z.empty(); }
-  GridCell cell(double x, double y) const { return grid_cell(x0, dx, nx, y0, dy, ny, x, y); }
+  double period_x() const { return dx * static_cast<double>(nx - 1); }
+  double period_y() const { return dy * static_cast<double>(ny - 1); }
+  GridCell cell(double x, double y) const {
+    return grid_cell(x0, dx, nx, y0, dy, ny, periodic_x ? wrap_into(x, x0, period_x()) : x,
+                     periodic_y ? wrap_into(y, y0, period_y()) : y);
+  }
   double node(std::size_t i, std::size_t j) const { return z[i + nx * j]; }
 
   // h(x, y), bilinear in the four nodes around (x, y).
@@ -52,19 +70,19 @@ struct HeightMap {
   std::array<double, 2> slope(double x, double y) const {
     const GridCell c = cell(x, y);
     const double ux = (x - x0) / dx, uy = (y - y0) / dy;
-    const bool inside_x = ux > 0 && ux < static_cast<double>(nx - 1);
-    const bool inside_y = uy > 0 && uy < static_cast<double>(ny - 1);
+    const bool inside_x = periodic_x || (ux > 0 && ux < static_cast<double>(nx - 1));
+    const bool inside_y = periodic_y || (uy > 0 && uy < static_cast<double>(ny - 1));
     const double sx = ((1 - c.fy) * (node(c.i + 1, c.j) - node(c.i, c.j)) +
                        c.fy * (node(c.i + 1, c.j + 1) - node(c.i, c.j + 1))) / dx;
     const double sy = ((1 - c.fx) * (node(c.i, c.j + 1) - node(c.i, c.j)) +
                        c.fx * (node(c.i + 1, c.j + 1) - node(c.i + 1, c.j))) / dy;
     return {inside_x ? sx : 0.0, inside_y ? sy : 0.0};
   }
-  // A surface over a box periodic along x or y has one edge line, not two: the nodes of the two
-  // edge rows (columns) take their mean, which keeps their sum, so the volume under the surface
-  // (each node owning dx dy) is unchanged. A sphere crossing the seam then finds the surface it
-  // left, instead of a step it would be deep inside.
-  void join_periodic_edges(bool periodic_x, bool periodic_y) {
+  // A surface periodic along x or y has one edge line, not two: the nodes of the two edge rows
+  // (columns) along a periodic axis take their mean, which keeps their sum, so the volume under
+  // the surface (each node owning dx dy) is unchanged. A sphere crossing the seam then finds the
+  // surface it left, instead of a step it would be deep inside.
+  void join_periodic_edges() {
     if (empty()) return;
     if (periodic_y)
       for (std::size_t i = 0; i < nx; ++i) {
@@ -99,38 +117,64 @@ struct HeightMap {
     const GridCell c = cell(x, y);
     return 2 * (c.i + (nx - 1) * c.j) + (c.fx >= c.fy ? 0 : 1);
   }
-  std::array<Point3, 3> triangle(std::size_t t) const {
+  // Triangle t's corners, moved by `shift` (an image across a periodic seam).
+  std::array<Point3, 3> triangle(std::size_t t, std::array<double, 2> shift = {0, 0}) const {
     const std::size_t i = (t / 2) % (nx - 1), j = (t / 2) / (nx - 1);
-    const double xa = x0 + dx * static_cast<double>(i), ya = y0 + dy * static_cast<double>(j);
+    const double xa = x0 + dx * static_cast<double>(i) + shift[0];
+    const double ya = y0 + dy * static_cast<double>(j) + shift[1];
     const Point3 a{xa, ya, node(i, j)}, c{xa + dx, ya + dy, node(i + 1, j + 1)};
     if (t % 2 == 0) return {a, Point3{xa + dx, ya, node(i + 1, j)}, c};
     return {a, c, Point3{xa, ya + dy, node(i, j + 1)}};
   }
-  // (x, y) clamped onto the grid: where the surface held beyond it is measured from.
+  // (x, y) clamped onto the grid along a bounded axis (where the surface held beyond it is
+  // measured from); along a periodic one as given (the triangles near it come as images).
   std::array<double, 2> clamp(double x, double y) const {
-    return {std::clamp(x, x0, x0 + dx * static_cast<double>(nx - 1)),
-            std::clamp(y, y0, y0 + dy * static_cast<double>(ny - 1))};
+    return {periodic_x ? x : std::clamp(x, x0, x0 + period_x()),
+            periodic_y ? y : std::clamp(y, y0, y0 + period_y())};
   }
-  // f(t) for each triangle t that may hold a point within `reach` of (x, y, zc): those of the
-  // cells whose box (the cell up to its highest node) comes within `reach`. A sphere resting on
-  // the surface has most of its footprint's cells just under its lowest point, and the box's
-  // horizontal distance rules them out: only the cells near where it touches remain.
+  // f(t, shift) for each triangle t that may hold a point within `reach` of (x, y, zc), moved by
+  // `shift` to the image nearest (x, y) on a periodic axis: those of the cells whose box (the
+  // cell up to its highest node) comes within `reach`. A sphere resting on the surface has most
+  // of its footprint's cells just under its lowest point, and the box's horizontal distance
+  // rules them out: only the cells near where it touches remain. A reach of half a period or
+  // more would meet a cell twice.
   template <class F>
   void for_each_triangle_near(double x, double y, double zc, double reach, F&& f) const {
-    const GridCell low = cell(x - reach, y - reach), high = cell(x + reach, y + reach);
-    for (std::size_t j = low.j; j <= high.j; ++j) {
-      const double ya = y0 + dy * static_cast<double>(j);
+    const auto [i0, i1] = cell_span(x0, dx, nx, periodic_x, x - reach, x + reach);
+    const auto [j0, j1] = cell_span(y0, dy, ny, periodic_y, y - reach, y + reach);
+    for (std::ptrdiff_t jj = j0; jj <= j1; ++jj) {
+      const std::size_t j = wrapped_cell(jj, ny);
+      const double ya = y0 + dy * static_cast<double>(jj);
       const double beside_y = std::max({0.0, ya - y, y - ya - dy});
-      for (std::size_t i = low.i; i <= high.i; ++i) {
-        const double xa = x0 + dx * static_cast<double>(i);
+      for (std::ptrdiff_t ii = i0; ii <= i1; ++ii) {
+        const std::size_t i = wrapped_cell(ii, nx);
+        const double xa = x0 + dx * static_cast<double>(ii);
         const double beside_x = std::max({0.0, xa - x, x - xa - dx});
         const double top = std::max({node(i, j), node(i + 1, j), node(i, j + 1), node(i + 1, j + 1)});
         const double above = std::max(0.0, zc - top);
         if (beside_x * beside_x + beside_y * beside_y + above * above >= reach * reach) continue;
-        f(2 * (i + (nx - 1) * j));
-        f(2 * (i + (nx - 1) * j) + 1);
+        const std::array<double, 2> shift{dx * static_cast<double>(ii - static_cast<std::ptrdiff_t>(i)),
+                                          dy * static_cast<double>(jj - static_cast<std::ptrdiff_t>(j))};
+        f(2 * (i + (nx - 1) * j), shift);
+        f(2 * (i + (nx - 1) * j) + 1, shift);
       }
     }
+  }
+
+ private:
+  // The cells meeting [a, b] along one axis (lower node from lo in steps d, n nodes): clamped
+  // onto the grid along a bounded axis, as unwrapped indices along a periodic one.
+  static std::array<std::ptrdiff_t, 2> cell_span(double lo, double d, std::size_t n, bool periodic,
+                                                 double a, double b) {
+    const auto index = [&](double v) { return static_cast<std::ptrdiff_t>(std::floor((v - lo) / d)); };
+    if (periodic) return {index(a), index(b)};
+    const auto last = static_cast<std::ptrdiff_t>(n) - 2;
+    return {std::clamp<std::ptrdiff_t>(index(a), 0, last), std::clamp<std::ptrdiff_t>(index(b), 0, last)};
+  }
+  // Cell k of n nodes' n - 1 cells, k wrapped into the period (k as it is on a bounded axis).
+  static std::size_t wrapped_cell(std::ptrdiff_t k, std::size_t n) {
+    const auto cells = static_cast<std::ptrdiff_t>(n) - 1;
+    return static_cast<std::size_t>(((k % cells) + cells) % cells);
   }
 };
 
