@@ -105,7 +105,7 @@ SinterResult summarise(Sinter::State& s, double particles_start, double substrat
       s.wetted.begin(), s.wetted.end(), [](const auto& w) { return !w.through_pool; }));
   r.substrate_arrested = static_cast<std::size_t>(
       std::count_if(s.wetted.begin(), s.wetted.end(),
-                    [&](const auto& w) { return w.interface > 0 && !s.gone[w.particle]; }));
+                    [&](const auto& w) { return !w.through_pool && w.interface > 0 && !s.gone[w.particle]; }));
   r.particles_merged = s.merged_count;
   r.particles_coalesced = s.coalesced_count;
   r.bridges = s.bridges;
