@@ -23,6 +23,18 @@ from lib.apps import ROOT, app
 from lib.report import load_average, machine, write_page
 
 CONFIG = os.path.join(ROOT, "data", "scenes", "build-316L.ini")
+SPREAD = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
+
+
+def spread_option(name):
+    """The blade scene's value of `name` as deposit resolves it (--print-config)."""
+    printed = subprocess.run([app("deposit"), "--config", SPREAD, "--print-config"], check=True,
+                             capture_output=True, text=True).stdout
+    for line in printed.splitlines():
+        key, _, value = line.partition("=")
+        if key.strip() == name:
+            return float(value)
+    raise KeyError(f"deposit --print-config of {SPREAD} has no {name}")
 
 
 def run_build(layers):
@@ -60,15 +72,16 @@ def page(report, wall, load):
         f"{max(0.0, wall - spread - scan):.0f} s.",
         "",
         "| layer | particles spread | supplied | overflow | spread steps | neighbour rebuilds "
-        "| spread (s) | scan (s) | layer density | fused | captured | balled | vaporised | fused fraction "
+        "| spread (s) | settle (ms) | at rest | scan (s) | layer density | fused | captured | balled | vaporised | fused fraction "
         "| lack of fusion | remelt depth mean / min (µm) | mean track width / depth (µm) "
         "| absorptance | part porosity | solid top max (µm) | recoater clearance (µm) | mass error |",
-        "|" + "---|" * 22,
+        "|" + "---|" * 24,
     ]
     for r in rows:
         lines.append(
             f"| {r['layer']} | {r['particles_spread']} | {r['supplied']} | {r['overflow']} | "
             f"{r['spread_steps']} | {r['neighbour_rebuilds']} | {r['spread_wall_time']:.0f} | "
+            f"{r['spread_settle_time'] * 1e3:.1f} | {'yes' if r['spread_at_rest'] else 'no'} | "
             f"{r['scan_wall_time']:.0f} | {r['layer_density']:.3f} | {r['fused']} | "
             f"{r['captured']} | {r['balled']} | {r['vaporised']} | {r['fused_fraction']:.2f} | "
             f"{r['lack_of_fusion']:.3f} | {r['remelt_depth_mean'] * 1e6:.1f} / "
@@ -84,6 +97,12 @@ def page(report, wall, load):
         "neighbour-list rebuilds while the supply falls); the scan is sinter's explicit solver "
         "on 261 × 51 × 31 nodes (and the planes over the plate the part grows into) with the "
         "ray-traced beam.",
+        "",
+        "Settle: how long the layer settled on after the blade stopped, until the powder behind "
+        f"it was slower than {spread_option('rest.speed') * 1e3:g} mm/s for "
+        f"{spread_option('rest.window') * 1e3:g} ms (at rest) or the scene's cap of "
+        f"{spread_option('recoater.rest-cap') * 1e3:g} ms passed "
+        "(data/scenes/spread-blade.ini, docs/deposit-spread.md \"Settling to rest\").",
         "",
         "Layer density is the solid fraction of the powder over the scanned columns between the "
         "solid's top and the tool's bottom; lack of fusion the area fraction of the scanned "
