@@ -297,12 +297,11 @@ struct Engine {
       return periodic ? std::array{k - reach, k + reach}
                       : std::array{std::max<std::ptrdiff_t>(0, k - reach), std::min(n - 1, k + reach)};
     };
-    const auto wrap = [](std::ptrdiff_t k, std::ptrdiff_t n) { return static_cast<std::size_t>(((k % (n - 1)) + (n - 1)) % (n - 1)); };
     for (std::ptrdiff_t j = 0; j < ny; ++j)
       for (std::ptrdiff_t i = 0; i < nx; ++i) {
         const auto at = [&](std::ptrdiff_t a, std::ptrdiff_t b) {
-          return floor.node(floor.periodic_x ? wrap(a, nx) : static_cast<std::size_t>(a),
-                            floor.periodic_y ? wrap(b, ny) : static_cast<std::size_t>(b));
+          return floor.node(floor.periodic_x ? bed::HeightMap::wrap_index(a, floor.nx) : static_cast<std::size_t>(a),
+                            floor.periodic_y ? bed::HeightMap::wrap_index(b, floor.ny) : static_cast<std::size_t>(b));
         };
         double hi = at(i, j), lo = hi;
         const auto [b0, b1] = span(j, reach_y, ny, floor.periodic_y);

@@ -284,7 +284,7 @@ void check_floor(const bed::HeightMap& floor, const Box& box) {
 // grid must span the box there, and its two edge rows become one (their mean, as fusion leaves
 // them). Held flat beyond the seam instead, the surface under a sphere changed the moment it
 // crossed, and the jump in overlap threw powder off at up to 1.5 m/s: a build's later layers
-// never came to rest (docs/results/build-layers.md).
+// never came to rest (docs/build.md "Limits").
 void make_floor_periodic(bed::HeightMap& floor, const Box& box) {
   if (floor.empty()) return;
   const auto spans = [&](int axis, double lower, double d, std::size_t n) {

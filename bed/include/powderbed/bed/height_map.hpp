@@ -48,7 +48,7 @@ struct HeightMap {
   // (join_periodic_edges makes them equal), a position wraps into the period instead of being
   // held at the edge, and a sphere over the seam touches the surface on both sides of it (a
   // surface held flat beyond the seam would change under a sphere the moment it crosses it,
-  // and the jump in overlap throws it off: docs/results/build-layers.md).
+  // and the jump in overlap throws it off: docs/build.md "Limits").
   bool periodic_x = false, periodic_y = false;
 
   bool empty() const { return z.empty(); }
@@ -143,11 +143,11 @@ struct HeightMap {
     const auto [i0, i1] = cell_span(x0, dx, nx, periodic_x, x - reach, x + reach);
     const auto [j0, j1] = cell_span(y0, dy, ny, periodic_y, y - reach, y + reach);
     for (std::ptrdiff_t jj = j0; jj <= j1; ++jj) {
-      const std::size_t j = wrapped_cell(jj, ny);
+      const std::size_t j = wrap_index(jj, ny);
       const double ya = y0 + dy * static_cast<double>(jj);
       const double beside_y = std::max({0.0, ya - y, y - ya - dy});
       for (std::ptrdiff_t ii = i0; ii <= i1; ++ii) {
-        const std::size_t i = wrapped_cell(ii, nx);
+        const std::size_t i = wrap_index(ii, nx);
         const double xa = x0 + dx * static_cast<double>(ii);
         const double beside_x = std::max({0.0, xa - x, x - xa - dx});
         const double top = std::max({node(i, j), node(i + 1, j), node(i, j + 1), node(i + 1, j + 1)});
@@ -161,6 +161,13 @@ struct HeightMap {
     }
   }
 
+  // Node or cell index k along a periodic axis of n nodes (n - 1 of them distinct: the last is
+  // the first), wrapped into 0 .. n - 2; k itself when it lies there already.
+  static std::size_t wrap_index(std::ptrdiff_t k, std::size_t n) {
+    const auto distinct = static_cast<std::ptrdiff_t>(n) - 1;
+    return static_cast<std::size_t>(((k % distinct) + distinct) % distinct);
+  }
+
  private:
   // The cells meeting [a, b] along one axis (lower node from lo in steps d, n nodes): clamped
   // onto the grid along a bounded axis, as unwrapped indices along a periodic one.
@@ -170,11 +177,6 @@ struct HeightMap {
     if (periodic) return {index(a), index(b)};
     const auto last = static_cast<std::ptrdiff_t>(n) - 2;
     return {std::clamp<std::ptrdiff_t>(index(a), 0, last), std::clamp<std::ptrdiff_t>(index(b), 0, last)};
-  }
-  // Cell k of n nodes' n - 1 cells, k wrapped into the period (k as it is on a bounded axis).
-  static std::size_t wrapped_cell(std::ptrdiff_t k, std::size_t n) {
-    const auto cells = static_cast<std::ptrdiff_t>(n) - 1;
-    return static_cast<std::size_t>(((k % cells) + cells) % cells);
   }
 };
 
