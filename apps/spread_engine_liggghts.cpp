@@ -141,6 +141,10 @@ std::optional<LiggghtsEngine> spread_engine(const po::variables_map& vm, const p
     throw InputError("recoater.until-rest: true with --spread-engine liggghts (accepted: false; "
                      "its decks settle for the fixed recoater.settle)");
   }
+  if (spread["sleep.on"].as<bool>()) {
+    throw InputError("sleep.on: true with --spread-engine liggghts (accepted: false; its decks "
+                     "integrate every particle)");
+  }
   LiggghtsEngine e;
   e.ranks = ranks;
   e.liggghts = on_path("liggghts");

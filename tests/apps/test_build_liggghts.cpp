@@ -44,6 +44,8 @@ TEST(BuildLiggghts, BadEngineOrMissingLiggghtsExits2WithOneLine) {
       {"--spread-engine liggghts --mpi 0", "--mpi: 0"},
       {"--mpi 2", "--mpi: given with --spread-engine deposit"},
       {"--spread-args '--export-deck liggghts'", "'--export-deck' is set by the build itself"},
+      {"--spread-engine liggghts --spread-args '--recoater.until-rest true'", "recoater.until-rest: true"},
+      {"--spread-engine liggghts --spread-args '--sleep.on true'", "sleep.on: true"},
   };
   for (const auto& [args, field] : cases) {
     const auto r = test::run_app("build", "--config " + kConfig + " " + args + out);
