@@ -453,7 +453,7 @@ struct Spreader {
 
   // `steps` steps, `before(s)` ahead of the s-th, or fewer when the observer stops the run (false);
   // the velocities are the last whole step's after. Progress is the share done of `planned`
-  // steps of which `done` are behind (0: of `steps`; a settle to rest reports its cap's share).
+  // steps of which `done` are behind (0: of `steps`; a layer plans its pass and its rest cap).
   template <class Before>
   bool advance(std::uint64_t steps, Before&& before, std::uint64_t planned = 0,
                std::uint64_t done = 0) {
@@ -528,16 +528,22 @@ struct Spreader {
     return std::sqrt(v2);
   }
 
+  // Steps of settling to rest at most (SpreadSettings::rest_cap); 0 without until_rest.
+  std::uint64_t rest_cap_steps() const {
+    return settings.until_rest ? static_cast<std::uint64_t>(std::ceil(settings.rest_cap / run.dt)) : 0;
+  }
+
   // SpreadSettings::until_rest: the tool stays where it stopped and the layer settles on until
   // the powder behind the tool's back has been slower than rest.max_speed for the window
-  // (RestWatch; out.at_rest) or rest_cap has passed. False when the observer stopped the run.
-  bool settle_to_rest(LayerSummary& out, double back) {
+  // (RestWatch; out.at_rest) or rest_cap has passed; progress counts on from the pass's `pass`
+  // steps. False when the observer stopped the run.
+  bool settle_to_rest(LayerSummary& out, double back, std::uint64_t pass) {
     RestWatch watch(settings.rest, run.dt);
-    const auto cap = static_cast<std::uint64_t>(std::ceil(settings.rest_cap / run.dt));
+    const std::uint64_t cap = rest_cap_steps();
     const auto calm = [&] { return fastest_behind(back) < settings.rest.max_speed; };
     bool rested = watch.check(0, calm());
     for (std::uint64_t done = 0; !rested && done < cap; done += watch.every()) {
-      if (!advance(watch.every(), [](std::uint64_t) {}, cap, done)) return false;
+      if (!advance(watch.every(), [](std::uint64_t) {}, pass + cap, pass + done)) return false;
       out.settle_time += static_cast<double>(watch.every()) * run.dt;
       rested = watch.check(done + watch.every(), calm());
     }
@@ -599,7 +605,8 @@ struct Spreader {
     const auto settle = static_cast<std::uint64_t>(std::ceil(tool.settle / run.dt - 1e-9));
     resolve_thermo((delay + moving + settle) * settings.layers);
     double force_x = 0, force_max = 0;
-    bool finished = advance(delay + moving + settle, [&](std::uint64_t s) {
+    const std::uint64_t pass = delay + moving + settle;
+    bool finished = advance(pass, [&](std::uint64_t s) {
       const double travelled =
           static_cast<double>(std::min(moving, s > delay ? s - delay : 0)) * tool.speed * run.dt;
       run.tool_x = std::min(tool.end, tool.start + travelled);
@@ -609,10 +616,10 @@ struct Spreader {
         force_max = std::max(force_max, std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]));
         if (s - 1 > delay && s - 1 <= delay + moving) force_x += f[0];
       }
-    });
+    }, pass + rest_cap_steps());
     const double back = tool.end - tool_half_extent(run.profile);
     out.settle_time = tool.settle;
-    if (finished && settings.until_rest) finished = settle_to_rest(out, back);
+    if (finished && settings.until_rest) finished = settle_to_rest(out, back, pass);
     out.steps = step - first_step;
     particle_steps += static_cast<double>(run.n()) * static_cast<double>(out.steps);
     out.sim_time = static_cast<double>(step) * run.dt;

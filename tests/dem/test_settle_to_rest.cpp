@@ -3,7 +3,9 @@
 // rest, no particle behind the tool moves faster than the rest speed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/dem/rest_criteria.hpp"
@@ -72,8 +74,17 @@ TEST(SettleToRest, LayerSettlesUntilThePowderBehindTheToolRests) {
   EXPECT_GT(fastest_behind(fixed, back), 1e-3);  // the tool stopped with powder still falling
 
   bed::Bed b = strip();
-  const dem::SpreadSummary r = dem::run_spread(b, s, settling(1e-3, 2e-4, 0.05));
+  dem::SpreadSettings st = settling(1e-3, 2e-4, 0.05);
+  // Progress plans the pass and the cap: it never goes back, and a layer resting well before
+  // the cap ends short of 1.
+  std::vector<double> fractions;
+  st.progress = [&](double f, double) { fractions.push_back(f); };
+  st.progress_every = 100;
+  const dem::SpreadSummary r = dem::run_spread(b, s, st);
   const dem::LayerSummary& layer = r.layers[0];
+  ASSERT_GT(fractions.size(), 2u);
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_LT(fractions.back(), 1.0);
   EXPECT_TRUE(layer.at_rest);
   EXPECT_GE(layer.settle_time, 2e-4);  // calm for the window at least
   EXPECT_LT(layer.settle_time, 0.05);

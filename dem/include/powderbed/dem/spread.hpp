@@ -182,7 +182,8 @@ struct SpreadSettings {
   // After each layer, with the bed and the state a restart needs.
   std::function<void(const LayerSummary&, const bed::Bed&, const SpreadState&)> layer_done;
   // Every progress_every steps: the fraction of the layer (or of t_end) done and the kinetic
-  // energy (J); while a layer settles to rest (until_rest), the fraction of rest_cap.
+  // energy (J). With until_rest a layer is its pass and rest_cap of settling at most, so the
+  // fraction never goes back; a layer that rests before the cap ends short of 1.
   std::function<void(double fraction, double kinetic_energy)> progress;
   std::uint64_t progress_every = 2000;
   // The thermo table (diagnostics.hpp ThermoRow, with the layer and the tool's x), when set: a
