@@ -168,11 +168,18 @@ def findings(ours):
                     f"{': met' if quarter['porosity'] > 0.1 else ': not met'})")
     densest = min(ours, key=lambda p: p["porosity"])
     density = [p["layer_density"] for p in ours]
+    dense = [p for p in ours if p["porosity"] < 0.01]
+    window = (f"the dense window (under 1 %) is reached only at {min(p['energy'] for p in dense):.0f} "
+              "J/mm³ and above on this grid" if dense else
+              "the dense window (under 1 %) is not reached on this grid")
     text.append(f"the densest point is {densest['power']:g} W, {densest['speed']:g} m/s "
                 f"({densest['energy']:.0f} J/mm³, {densest['porosity']:.1%}). The lack-of-fusion "
                 "branch falls with energy density as the measured series do, and the 10 % crossing "
-                "lies between theirs, but the dense window (under 1 %) is not reached on this grid, "
-                "where both measured series are dense from 35-57 J/mm³. The spread layers the scans "
+                f"lies between theirs, but {window}, "
+                "where both measured series are dense from 35-57 J/mm³. One row of nodes, the "
+                "strip's periodic seam, never melts: the thermal grid's sides are Dirichlet at T0 "
+                "(docs/build.md \"Limits\"): 0.019-0.021 of the scanned area in the layers of "
+                "docs/results/build-layers.md. The spread layers the scans "
                 f"met held {min(density):.3f}-{max(density):.3f} of solid (measured spread layers: "
                 "0.38-0.60; docs/results/spread-density.md): each layer adds little solid, the powder "
                 "over the part thickens layer by layer and the melt reaches the layer below less "
