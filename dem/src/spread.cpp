@@ -287,14 +287,8 @@ void check_floor(const bed::HeightMap& floor, const Box& box) {
 // never came to rest (docs/build.md "Limits").
 void make_floor_periodic(bed::HeightMap& floor, const Box& box) {
   if (floor.empty()) return;
-  const auto spans = [&](int axis, double lower, double d, std::size_t n) {
-    const double tolerance = 1e-6 * box.length[axis];
-    return std::abs(lower - box.lower[axis]) <= tolerance &&
-           std::abs(d * static_cast<double>(n - 1) - box.length[axis]) <= tolerance;
-  };
-  const std::array<bool, 2> spanning{spans(0, floor.x0, floor.dx, floor.nx), spans(1, floor.y0, floor.dy, floor.ny)};
   for (int axis = 0; axis < 2; ++axis) {
-    if (box.periodic[axis] && !spanning[static_cast<std::size_t>(axis)]) {
+    if (box.periodic[axis] && !floor.spans(axis, box.lower[axis], box.length[axis])) {
       throw InputError(fmt::format(
           "floor: the box is periodic along {} but the floor's grid does not span it (accepted: "
           "nodes from the box's lower face {:g} m to its upper face {:g} m along a periodic axis)",

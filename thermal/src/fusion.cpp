@@ -83,14 +83,12 @@ double solid_mass(const SubstrateGeometry& g, const TopHeight& top, double densi
 // crossing the seam raises one edge and not the other; left so, powder resting at the low edge
 // finds itself inside the step the moment the edges are joined.
 bed::HeightMap seamed_surface(const bed::Bed& bed, const SubstrateGeometry& g, const TopHeight& top) {
-  const auto spans = [&](int axis, double lower, double d, std::size_t n) {
-    return bed.domain.periodic[axis] &&
-           std::abs(lower - bed.domain.lower[axis]) < 1e-3 * d &&
-           std::abs(d * static_cast<double>(n - 1) - bed.domain.length(axis)) < 1e-3 * d;
-  };
   bed::HeightMap m = top_surface(g, top);
-  m.periodic_x = spans(0, g.x0, g.dx, g.nx);
-  m.periodic_y = spans(1, g.y0, g.dy, g.ny);
+  const auto periodic = [&](int axis) {
+    return bed.domain.periodic[axis] && m.spans(axis, bed.domain.lower[axis], bed.domain.length(axis));
+  };
+  m.periodic_x = periodic(0);
+  m.periodic_y = periodic(1);
   m.join_periodic_edges();
   return m;
 }

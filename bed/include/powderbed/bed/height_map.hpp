@@ -54,6 +54,13 @@ struct HeightMap {
   bool empty() const { return z.empty(); }
   double period_x() const { return dx * static_cast<double>(nx - 1); }
   double period_y() const { return dy * static_cast<double>(ny - 1); }
+  // Whether the nodes run from `lower` to `lower + length` along axis 0 (x) or 1 (y), to a
+  // thousandth of a spacing: whether the grid can be periodic over a box that long there.
+  bool spans(int axis, double lower, double length) const {
+    const double start = axis == 0 ? x0 : y0, d = axis == 0 ? dx : dy;
+    const double extent = axis == 0 ? period_x() : period_y();
+    return std::abs(start - lower) < 1e-3 * d && std::abs(extent - length) < 1e-3 * d;
+  }
   GridCell cell(double x, double y) const {
     return grid_cell(x0, dx, nx, y0, dy, ny, periodic_x ? wrap_into(x, x0, period_x()) : x,
                      periodic_y ? wrap_into(y, y0, period_y()) : y);
