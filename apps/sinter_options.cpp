@@ -232,6 +232,8 @@ void add_material_and_grid_options(po::options_description& desc, th::SinterScen
       ("substrate.depth", po::value<double>(&s.substrate_depth)->default_value(s.substrate_depth),
        "depth (m)")
       ("substrate.nodes", po::value<std::string>()->default_value("201,101,61"), "NX,NY,NZ")
+      ("substrate.periodic", po::value<std::string>()->default_value("none"),
+       "none (Dirichlet y sides at T0) or y (the y sides one seam; the bed periodic along y)")
       ("time.safety", po::value<double>(&s.safety)->default_value(s.safety),
        "fraction of the stable step")
       ("time.max-particle-rise",
@@ -284,6 +286,7 @@ void set_laser(const po::variables_map& vm, th::SinterScene& s) {
   s.rays.reflection =
       bed::parse_word(word("laser.reflection"), "laser.reflection", th::kReflectionWords);
   s.optics = bed::parse_word(word("laser.optics"), "laser.optics", th::kOpticsWords);
+  s.periodic_y = bed::parse_word(word("substrate.periodic"), "substrate.periodic", th::kSubstratePeriodicWords);
 }
 
 // The substrate's nodes (--grid-spacing: from the bed's x-y extent lx, ly and its depth).

@@ -115,7 +115,7 @@ void ablate(Sinter::State& s, std::size_t i) {
   s.evaporated_particles += mass;
 }
 
-// The substrate's surface: per free column its surface node (the top node, or the
+// The substrate's surface: per free column (neither Dirichlet nor a periodic seam's image) its surface node (the top node, or the
 // depression's wall: surface_node) over the column's area dx dy. The grid keeps its volume
 // (the evaporated mass, booked, is below a percent of a cell's), so the energy lost is L_v dm.
 // Taken from the nodes' enthalpies at once (the grid step's conduction reads temperatures), so
@@ -125,7 +125,8 @@ void evaporate_surface(Sinter::State& s, double dt) {
   const double latent = s.vapour.latent_vapour, area = g.dx * g.dy;
   double energy = 0, mass = 0;
   for (std::size_t c = 0; c < g.columns(); ++c) {
-    if (!evaporates(s, s.node_temperature[top_node(s, c)]) || g.fixed_column(c)) continue;
+    if (!evaporates(s, s.node_temperature[top_node(s, c)]) || g.fixed_column(c) || g.image_column(c))
+      continue;
     const std::size_t node = surface_node(s, c);
     const double t = s.node_temperature[node];
     if (!evaporates(s, t)) continue;

@@ -107,7 +107,8 @@ constexpr auto kParticleKernels =
     particle_kernels(std::make_index_sequence<std::size_t{1} << kParticleEffects.size()>{});
 
 // Heat from the free nodes into the Dirichlet sides and bottom over dt, with the face fluxes
-// the grid step uses (a side face as tall as the thinner of its two nodes).
+// the grid step uses (a side face as tall as the thinner of its two nodes). A periodic seam is
+// no side: what crosses it stays in the grid.
 void boundary_outflow(Sinter::State& s, double dt) {
   const SubstrateGeometry& g = s.g;
   const auto& t = s.node_temperature;
@@ -126,16 +127,16 @@ void boundary_outflow(Sinter::State& s, double dt) {
       return w > 0 ? flux(a, b, shape * w) : 0.0;
     };
     double sum = 0;
-    for (std::size_t j = 1; j + 1 < g.ny; ++j) {
+    for (std::size_t j = g.first_row(); j + 1 < g.ny; ++j) {
       sum += side(g.index(1, j, kk), g.index(0, j, kk), gx);
       sum += side(g.index(g.nx - 2, j, kk), g.index(g.nx - 1, j, kk), gx);
     }
-    for (std::size_t i = 1; i + 1 < g.nx; ++i) {
+    for (std::size_t i = 1; i + 1 < g.nx && !g.periodic_y; ++i) {
       sum += side(g.index(i, 1, kk), g.index(i, 0, kk), gy);
       sum += side(g.index(i, g.ny - 2, kk), g.index(i, g.ny - 1, kk), gy);
     }
     if (kk == 1) {
-      for (std::size_t j = 1; j + 1 < g.ny; ++j)
+      for (std::size_t j = g.first_row(); j + 1 < g.ny; ++j)
         for (std::size_t i = 1; i + 1 < g.nx; ++i)
           sum += flux(g.index(i, j, 1), g.index(i, j, 0), gz);
     }
@@ -148,7 +149,8 @@ void boundary_outflow(Sinter::State& s, double dt) {
 
 // The planes from the plate's top up over a raised top (fusion): a node is as thick as
 // node_thickness says; a side face is as tall as the thinner of its two nodes (none to an empty
-// node), the face above exists while the column's solid goes on.
+// node), the face above exists while the column's solid goes on. Row 0 of a periodic seam
+// meets row ny - 2 across it.
 template <bool Variable>
 void raised_planes(Sinter::State& s, double dt) {
   const SubstrateGeometry& g = s.g;
@@ -164,9 +166,10 @@ void raised_planes(Sinter::State& s, double dt) {
   const std::size_t k_end = s.highest_plane + 1;
   for (std::size_t k = g.k_plate(); k < k_end; ++k) {
     const auto thick = [&](std::size_t column) { return column_thickness(s, column, k); };
-    for (std::size_t j = 1; j + 1 < g.ny; ++j) {
+    for (std::size_t j = g.first_row(); j + 1 < g.ny; ++j) {
       for (std::size_t i = 1; i + 1 < g.nx; ++i) {
         const std::size_t col = i + g.nx * j, c = col + sz * k;
+        const std::size_t before = i + g.nx * g.row_before(j);
         const double th = thick(col);
         if (th == 0) continue;
         const double tc = t[c];
@@ -175,7 +178,7 @@ void raised_planes(Sinter::State& s, double dt) {
           return w > 0 ? conduction_flow(k_at(c), k_at(nb), shape * w, t[nb] - tc) : 0.0;
         };
         double energy = side(col - sx, c - sx, gx) + side(col + sx, c + sx, gx) +
-                        side(col - sy, c - sy, gy) + side(col + sy, c + sy, gy) +
+                        side(before, before + sz * k, gy) + side(col + sy, c + sy, gy) +
                         conduction_flow(k_at(c), k_at(c - sz), gz, t[c - sz] - tc);
         if (k < s.top_plane[col]) energy += conduction_flow(k_at(c), k_at(c + sz), gz, t[c + sz] - tc);
         s.e[c] += energy * dt / (g.cell_volume() * th);
@@ -185,11 +188,14 @@ void raised_planes(Sinter::State& s, double dt) {
 }
 
 // Finite-volume update of every free node, then T = T(e) and, if properties vary, K = K(T).
+// Across a periodic seam row 0 meets row ny - 2 and row ny - 2 the image of row 0 (row ny - 1),
+// refreshed before the update reads it and after it.
 template <bool Variable>
 void grid_step(Sinter::State& s, double dt) {
   const SubstrateGeometry& g = s.g;
   const double gx = g.dy * g.dz / g.dx, gy = g.dx * g.dz / g.dy, gz = g.dx * g.dy / g.dz;
   const std::size_t sx = 1, sy = g.nx, sz = g.nx * g.ny;
+  copy_image_row(s);
   double* e = s.e.data();
   double* t = s.node_temperature.data();
   double* kk = s.node_k.data();
@@ -204,21 +210,21 @@ void grid_step(Sinter::State& s, double dt) {
     const double half = top ? 0.5 : 1.0;
     const double cx = 0.5 * gx * half * dt, cy = 0.5 * gy * half * dt, cz = 0.5 * gz * dt;
     const double inv_volume = 1 / (g.cell_volume() * half);
-    for (std::size_t j = 1; j + 1 < g.ny; ++j) {
-      const std::size_t row = g.index(0, j, k);
+    for (std::size_t j = g.first_row(); j + 1 < g.ny; ++j) {
+      const std::size_t row = g.index(0, j, k), before = g.index(0, g.row_before(j), k);
       for (std::size_t i = 1; i + 1 < g.nx; ++i) {
-        const std::size_t c = row + i;
+        const std::size_t c = row + i, b = before + i;
         const double tc = t[c];
         double energy;
         if constexpr (Variable) {
           const double kc = kk[c];
           energy = cx * ((kc + kk[c - sx]) * (t[c - sx] - tc) + (kc + kk[c + sx]) * (t[c + sx] - tc)) +
-                   cy * ((kc + kk[c - sy]) * (t[c - sy] - tc) + (kc + kk[c + sy]) * (t[c + sy] - tc)) +
+                   cy * ((kc + kk[b]) * (t[b] - tc) + (kc + kk[c + sy]) * (t[c + sy] - tc)) +
                    cz * (kc + kk[c - sz]) * (t[c - sz] - tc);
           if (!top) energy += cz * (kc + kk[c + sz]) * (t[c + sz] - tc);
         } else {
           energy = 2 * k0 *
-                   (cx * (t[c - sx] + t[c + sx] - 2 * tc) + cy * (t[c - sy] + t[c + sy] - 2 * tc) +
+                   (cx * (t[c - sx] + t[c + sx] - 2 * tc) + cy * (t[b] + t[c + sy] - 2 * tc) +
                     cz * (t[c - sz] - tc));
           if (!top) energy += 2 * k0 * cz * (t[c + sz] - tc);
         }
@@ -240,7 +246,7 @@ void grid_step(Sinter::State& s, double dt) {
   const std::size_t k_top = raised ? s.highest_plane + 1 : k_end, k_plate = g.k_plate();
 #pragma omp parallel for schedule(static) reduction(max : hottest) if (g.size() >= kParallelNodes)
   for (std::size_t k = 1; k < k_top; ++k) {
-    for (std::size_t j = 1; j + 1 < g.ny; ++j) {
+    for (std::size_t j = g.first_row(); j + 1 < g.ny; ++j) {
       const std::size_t row = g.index(0, j, k);
       for (std::size_t i = 1; i + 1 < g.nx; ++i) {
         if (k > k_plate && s.top_plane[i + g.nx * j] < k) continue;
@@ -254,6 +260,7 @@ void grid_step(Sinter::State& s, double dt) {
     }
   }
   s.node_max = hottest;
+  copy_image_row(s);
 }
 
 }  // namespace

@@ -73,17 +73,21 @@ double Fusion::fused_fraction() const {
 
 double solid_mass(const SubstrateGeometry& g, const TopHeight& top, double density) {
   double volume = 0;
-  for (const double h : top) volume += g.dx * g.dy * (h - g.z_top);
+  for (std::size_t c = 0; c < top.size(); ++c)
+    if (!g.image_column(c)) volume += g.dx * g.dy * (top[c] - g.z_top);
   return density * volume;
 }
 
 // The solid's top as the surface powder touches: on a bed periodic along x or y whose grid
 // spans that period, periodic there, its two edge rows one line (bed::HeightMap::
-// join_periodic_edges: their mean, the volume kept). The grid itself is not periodic, so a track
+// join_periodic_edges: their mean, the volume kept). On a grid that is not periodic a track
 // crossing the seam raises one edge and not the other; left so, powder resting at the low edge
-// finds itself inside the step the moment the edges are joined.
+// finds itself inside the step the moment the edges are joined. A periodic grid's image row is
+// row 0 (deposits go to row 0), so it takes row 0's heights first and the mean changes nothing.
 bed::HeightMap seamed_surface(const bed::Bed& bed, const SubstrateGeometry& g, const TopHeight& top) {
   bed::HeightMap m = top_surface(g, top);
+  if (g.periodic_y && !m.empty())
+    std::copy_n(m.z.begin(), g.nx, m.z.begin() + static_cast<std::ptrdiff_t>(g.nx * (g.ny - 1)));
   const auto periodic = [&](int axis) {
     return bed.domain.periodic[axis] && m.spans(axis, bed.domain.lower[axis], bed.domain.length(axis));
   };
@@ -100,22 +104,31 @@ void join_seams(const bed::Bed& bed, const SubstrateGeometry& g, TopHeight& top)
 // The rise of `top` over `before` spread by a Gaussian of standard deviation `length`: each
 // column's rise scattered to the columns within 3 length, by weights normalised over those that
 // exist (so the volume is kept to round-off at the plate's edges too) and, given `pool`, that it
-// marks; a rise with no such column within reach stays where it is.
+// marks; a rise with no such column within reach stays where it is. Across a periodic seam the
+// columns wrap (the image row takes row 0's heights when the seam is joined).
 void level_deposit(const SubstrateGeometry& g, const TopHeight& before, double length, TopHeight& top,
                    const std::vector<std::uint8_t>* pool = nullptr) {
   const auto reach = [&](double d) { return static_cast<long>(std::ceil(3 * length / d)); };
   const long rx = reach(g.dx), ry = reach(g.dy);
   const auto nx = static_cast<long>(g.nx), ny = static_cast<long>(g.ny);
-  const auto column = [nx](long a, long b) { return static_cast<std::size_t>(a + nx * b); };
+  const auto column = [&](long a, long b) {
+    return static_cast<std::size_t>(a) + g.nx * (g.periodic_y ? g.wrap_row(b) : static_cast<std::size_t>(b));
+  };
+  // The rows b within reach of row j: on the grid, or counted on past a periodic seam.
+  const auto rows = [&](long j) {
+    return g.periodic_y ? std::pair{j - ry, j + ry} : std::pair{std::max(0L, j - ry), std::min(ny - 1, j + ry)};
+  };
   TopHeight levelled = before;
   std::vector<double> w;
   for (long j = 0; j < ny; ++j)
     for (long i = 0; i < nx; ++i) {
+      if (g.periodic_y && j == ny - 1) continue;  // the image row: row 0's rise is levelled
       const double rise = top[column(i, j)] - before[column(i, j)];
       if (rise == 0) continue;
       double sum = 0;
       w.clear();
-      for (long b = std::max(0L, j - ry); b <= std::min(ny - 1, j + ry); ++b)
+      const auto [b0, b1] = rows(j);
+      for (long b = b0; b <= b1; ++b)
         for (long a = std::max(0L, i - rx); a <= std::min(nx - 1, i + rx); ++a) {
           const double ex = static_cast<double>(a - i) * g.dx, ey = static_cast<double>(b - j) * g.dy;
           const bool open = !pool || (*pool)[column(a, b)];
@@ -127,7 +140,7 @@ void level_deposit(const SubstrateGeometry& g, const TopHeight& before, double l
         continue;
       }
       std::size_t k = 0;
-      for (long b = std::max(0L, j - ry); b <= std::min(ny - 1, j + ry); ++b)
+      for (long b = b0; b <= b1; ++b)
         for (long a = std::max(0L, i - rx); a <= std::min(nx - 1, i + rx); ++a)
           levelled[column(a, b)] += rise * w[k++] / sum;
     }

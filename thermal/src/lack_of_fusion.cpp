@@ -57,8 +57,8 @@ LackOfFusion lack_of_fusion(const Sinter& sinter, double half_width, double thre
       const bool scanned = std::any_of(path.begin(), path.end(), [&](const ScanSegment& s) {
         return s.length() > 0 && within_strip(s, half_width, g.x(i), g.y(j));
       });
-      if (!scanned) continue;
       const std::size_t column = i + g.nx * j;
+      if (!scanned || g.image_column(column)) continue;  // an image is counted as its row 0
       const bool bonded = peak[g.node(column, plane[column])] >= threshold;
       out.map[i + g.nx * j] = bonded ? kBonded : kUnbonded;
       const double top = start.empty() ? g.z_top : start[column];
@@ -74,7 +74,7 @@ double bonded_width(const LackOfFusion& lof, const SubstrateGeometry& g, double 
   const auto i = static_cast<std::size_t>(
       std::clamp(std::lround((x_plane - g.x0) / g.dx), 0L, static_cast<long>(g.nx - 1)));
   std::size_t bonded = 0;
-  for (std::size_t j = 0; j < g.ny; ++j) bonded += lof.map[i + g.nx * j] == kBonded ? 1 : 0;
+  for (std::size_t j = 0; j < g.ny; ++j) bonded += lof.map[i + g.nx * j] == kBonded ? 1 : 0;  // images: kNotScanned
   return static_cast<double>(bonded) * g.dy;
 }
 

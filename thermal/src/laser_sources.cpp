@@ -30,7 +30,8 @@ double beer_lambert_particles(Sinter::State& s, double t, std::vector<double>& q
   return absorbed;
 }
 
-// Laser power that passes the powder onto the free top nodes (docs/physics.md §5 top-face flux).
+// Laser power that passes the powder onto the free top nodes (docs/physics.md §5 top-face flux);
+// across a periodic seam the beam's rows wrap (row ny - 1 is row 0).
 void beer_lambert_substrate(Sinter::State& s, double t, double dt) {
   const SubstrateGeometry& g = s.g;
   const ScanSchedule::Beam beam = beam_at(s, t);
@@ -38,22 +39,27 @@ void beer_lambert_substrate(Sinter::State& s, double t, double dt) {
   const LaserParams laser = laser_with_power(s, beam.power);
   const double xl = beam.x, yl = beam.y;
   const double reach = std::sqrt(kBeamCutoff2) * s.laser.spot_radius;
+  // The first node index at or past v, held to the free nodes 1 .. count - 2 (and one past them).
   const auto first = [](double lo, double spacing, std::size_t count, double v) {
     const double f = std::ceil((v - lo) / spacing);
-    return static_cast<std::size_t>(std::clamp(f, 1.0, static_cast<double>(count - 1)));
+    return static_cast<long>(std::clamp(f, 1.0, static_cast<double>(count - 1)));
   };
-  const std::size_t i0 = first(g.x0, g.dx, g.nx, xl - reach);
-  const std::size_t i1 = first(g.x0, g.dx, g.nx, xl + reach);
-  const std::size_t j0 = first(g.y0, g.dy, g.ny, yl - reach);
-  const std::size_t j1 = first(g.y0, g.dy, g.ny, yl + reach);
+  const long i0 = first(g.x0, g.dx, g.nx, xl - reach), i1 = first(g.x0, g.dx, g.nx, xl + reach);
+  long j0 = first(g.y0, g.dy, g.ny, yl - reach), j1 = first(g.y0, g.dy, g.ny, yl + reach);
+  if (g.periodic_y) {
+    j0 = static_cast<long>(std::ceil((yl - reach - g.y0) / g.dy));
+    j1 = static_cast<long>(std::ceil((yl + reach - g.y0) / g.dy));
+  }
   double absorbed = 0;
-  for (std::size_t j = j0; j < j1 && j + 1 < g.ny; ++j) {
-    const double dy = g.y(j) - yl;
-    for (std::size_t i = i0; i < i1 && i + 1 < g.nx; ++i) {
-      const double dx = g.x(i) - xl;
+  for (long j = j0; j < j1; ++j) {
+    const double dy = g.y0 + g.dy * static_cast<double>(j) - yl;
+    const std::size_t row = g.periodic_y ? g.wrap_row(j) : static_cast<std::size_t>(j);
+    for (long i = i0; i < i1; ++i) {
+      const double dx = g.x(static_cast<std::size_t>(i)) - xl;
+      const std::size_t column = static_cast<std::size_t>(i) + g.nx * row;
       const double energy =
-          node_laser_power(laser, dx * dx + dy * dy, s.transmission[i + g.nx * j], g.dx, g.dy) * dt;
-      add_surface_energy(s, i + g.nx * j, energy);
+          node_laser_power(laser, dx * dx + dy * dy, s.transmission[column], g.dx, g.dy) * dt;
+      add_surface_energy(s, column, energy);
       absorbed += energy;
     }
   }
@@ -235,6 +241,7 @@ SurfaceOptics surface_optics(const SinterScene& scene) {
 }
 
 void add_surface_energy(Sinter::State& s, std::size_t column, double energy) {
+  column = s.g.canonical_column(column);  // a periodic seam's image row is row 0
   if (!s.scene.has(kDepression)) {
     s.sources.push_back({top_node(s, column), energy});
     return;
@@ -290,7 +297,7 @@ double absorbed_fraction(const Sinter::State& s, double x, double y) {
   double absorbed = 0;
   for_each_lit_particle(s, x, y, peak_intensity(s.laser), [&](std::size_t, double f) { absorbed += f; });
   const SubstrateGeometry& g = s.g;
-  for (std::size_t j = 1; j + 1 < g.ny; ++j)
+  for (std::size_t j = g.first_row(); j + 1 < g.ny; ++j)
     for (std::size_t i = 1; i + 1 < g.nx; ++i) {
       const double dx = g.x(i) - x, dy = g.y(j) - y;
       absorbed +=

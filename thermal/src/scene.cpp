@@ -73,6 +73,9 @@ void SinterScene::validate() const {
     throw InputError("effects.wetting: works with --integrator explicit only (accepted: "
                      "--integrator explicit, or effects.wetting = false)");
   require(positive(substrate_depth), "substrate.depth", substrate_depth, "depth > 0 m");
+  if (periodic_y && integrator != Integrator::explicit_euler)
+    throw InputError("substrate.periodic: y works with --integrator explicit only (accepted: "
+                     "--integrator explicit, or substrate.periodic = none)");
   static const char* axis[] = {"x", "y", "z"};
   for (std::size_t a = 0; a < 3; ++a) {
     if (nodes[a] < 3) {

@@ -105,6 +105,10 @@ SubstrateGeometry make_grid(const bed::Bed& bed, const SinterScene& scene, const
   g.dx = bed.domain.length(0) / static_cast<double>(g.nx - 1);
   g.dy = bed.domain.length(1) / static_cast<double>(g.ny - 1);
   g.dz = scene.substrate_depth / static_cast<double>(scene.nodes[2] - 1);
+  g.periodic_y = scene.periodic_y;
+  if (g.periodic_y && !bed.domain.periodic[1])
+    throw InputError("substrate.periodic: y on a bed bounded along y (accepted: a bed periodic "
+                     "along y, or substrate.periodic = none)");
   g.nz_above = planes_above(bed, scene, top, g.z_top, g.dz);
   g.nz = scene.nodes[2] + g.nz_above;
   return g;
@@ -191,7 +195,7 @@ std::pair<double, double> internal_energy(const Sinter::State& s) {
   double substrate = 0;
   const SubstrateGeometry& g = s.g;
   for (std::size_t k = 1; k < g.nz; ++k)
-    for (std::size_t j = 1; j + 1 < g.ny; ++j)
+    for (std::size_t j = g.first_row(); j + 1 < g.ny; ++j)
       for (std::size_t i = 1; i + 1 < g.nx; ++i) {
         const std::size_t c = g.index(i, j, k);
         substrate += node_volume(s, c) * s.e[c];
@@ -469,6 +473,7 @@ Sinter::Sinter(const bed::Bed& bed, const SinterScene& scene, const MaterialTabl
   setup_vapour(s);
   setup_substrate(s);
   setup_laser(s, bed);
+  copy_image_row(s);  // a raised top's image row may differ from row 0 in the last bit
   if (scene.has(kWetting)) setup_wetting(s);
   choose_steps(s);
   setup_tracks(s);
@@ -583,6 +588,8 @@ void Sinter::set_particle_temperature(std::size_t i, double t) {
 void Sinter::set_substrate_temperature(std::size_t node, double t) {
   State& s = *s_;
   const SubstrateGeometry& g = s.g;
+  const std::size_t plane = g.columns();  // an image node is its row-0 node
+  node = g.canonical_column(node % plane) + plane * (node / plane);
   if (g.fixed(node % g.nx, (node / g.nx) % g.ny, node / (g.nx * g.ny))) {
     // A Dirichlet node: its value is a boundary condition, not state.
     s.node_temperature.at(node) = t;

@@ -165,6 +165,9 @@ void set_top_planes(Sinter::State& s);
 // its top node thickens, and past one dz the node above joins the solid at the top node's
 // enthalpy density (the energy is unchanged: the same e over the same total volume).
 void raise_column(Sinter::State& s, std::size_t column, double rise);
+// Copies row 0 of every substrate field onto its image across a periodic seam (row ny - 1;
+// periodic_seam.cpp); nothing without periodic_y.
+void copy_image_row(Sinter::State& s);
 // Laser models (laser_sources.cpp): chooses s.particle_laser and s.substrate_laser for the
 // scene and, for ray tracing, builds the tracer.
 void setup_laser(Sinter::State& s, const bed::Bed& bed);

@@ -10,26 +10,36 @@
 namespace powderbed::thermal {
 
 TopStencil top_stencil(const SubstrateGeometry& g, double x, double y) {
+  // Across a periodic seam a position wraps into the period and row ny - 1 is row 0.
+  if (g.periodic_y) y = bed::wrap_into(y, g.y0, g.dy * static_cast<double>(g.ny - 1));
   const bed::GridCell c = bed::grid_cell(g.x0, g.dx, g.nx, g.y0, g.dy, g.ny, x, y);
-  const std::size_t col = c.i + g.nx * c.j;
-  return TopStencil{{col, col + 1, col + g.nx, col + g.nx + 1},
+  const std::size_t col = c.i + g.nx * c.j, up = g.canonical_column(col + g.nx);
+  return TopStencil{{col, col + 1, up, up + 1},
                     {(1 - c.fx) * (1 - c.fy), c.fx * (1 - c.fy), (1 - c.fx) * c.fy, c.fx * c.fy}};
 }
 
 std::vector<std::pair<std::size_t, double>> top_footprint(const SubstrateGeometry& g, double x,
                                                           double y, double a) {
   std::vector<std::pair<std::size_t, double>> nodes;
-  const auto range = [](double lo, double spacing, std::size_t count, double v0, double v1) {
-    const double first = std::clamp(std::ceil((v0 - lo) / spacing), 0.0, double(count - 1));
-    const double last = std::clamp(std::floor((v1 - lo) / spacing), 0.0, double(count - 1));
-    return std::pair{static_cast<std::size_t>(first), static_cast<std::size_t>(last)};
+  // The node indices within [v0, v1]: held on the grid along a bounded axis, unwrapped along a
+  // periodic one, the disc then reaching across the seam.
+  const auto range = [](double lo, double spacing, std::size_t count, bool periodic, double v0,
+                        double v1) {
+    double first = std::ceil((v0 - lo) / spacing), last = std::floor((v1 - lo) / spacing);
+    if (!periodic) {
+      first = std::clamp(first, 0.0, double(count - 1));
+      last = std::clamp(last, 0.0, double(count - 1));
+    }
+    return std::pair{static_cast<long>(first), static_cast<long>(last)};
   };
-  const auto [i0, i1] = range(g.x0, g.dx, g.nx, x - a, x + a);
-  const auto [j0, j1] = range(g.y0, g.dy, g.ny, y - a, y + a);
-  for (std::size_t j = j0; j <= j1; ++j)
-    for (std::size_t i = i0; i <= i1; ++i) {
-      const double dx = g.x(i) - x, dy = g.y(j) - y;
-      if (dx * dx + dy * dy <= a * a) nodes.push_back({i + g.nx * j, 1.0});
+  const auto [i0, i1] = range(g.x0, g.dx, g.nx, false, x - a, x + a);
+  const auto [j0, j1] = range(g.y0, g.dy, g.ny, g.periodic_y, y - a, y + a);
+  for (long j = j0; j <= j1; ++j)
+    for (long i = i0; i <= i1; ++i) {
+      const double dx = g.x0 + g.dx * double(i) - x, dy = g.y0 + g.dy * double(j) - y;
+      if (dx * dx + dy * dy > a * a) continue;
+      const std::size_t row = g.periodic_y ? g.wrap_row(j) : static_cast<std::size_t>(j);
+      nodes.push_back({static_cast<std::size_t>(i) + g.nx * row, 1.0});
     }
   if (nodes.empty()) {
     const TopStencil st = top_stencil(g, x, y);

@@ -73,6 +73,11 @@ enum class SubstrateShading { layer, column };
 inline constexpr bed::OptionWord<SubstrateShading> kShadingWords[] = {
     {"layer", SubstrateShading::layer}, {"column", SubstrateShading::column}};
 
+// The substrate's y sides: Dirichlet walls at T0 (`none`), or one periodic seam (`y`: the plate
+// of a strip periodic across y, as a build spreads it; the bed must be periodic along y). The
+// particles' network and the rays stay bounded either way (docs/sinter.md "Periodic plate").
+inline constexpr bed::OptionWord<bool> kSubstratePeriodicWords[] = {{"none", false}, {"y", true}};
+
 struct SinterScene {
   // Material ([GZ] Tables 1–2).
   std::string material_table = "316L";  // a name of data/materials or a path to a material file
@@ -121,6 +126,7 @@ struct SinterScene {
   // Substrate under the bed: x, y extents are the bed's domain; depth and node counts here.
   double substrate_depth = 0.3e-3;
   std::array<std::size_t, 3> nodes{201, 101, 61};
+  bool periodic_y = false;  // kSubstratePeriodicWords
   // Time stepping: dt <= 0 means the computed stable bound times `safety`.
   Integrator integrator = Integrator::explicit_euler;
   double dt = 0;

@@ -6,7 +6,10 @@
 // are empty). Node-centred finite volumes: interior nodes own dx dy dz, a column's top node
 // the half cell below its node plus the solid above it, less than one dz (the half-cell balance
 // docs/physics.md §5 describes for the top flux). Dirichlet T = T0 on the four sides and the
-// bottom. Face conductivity K_face = (K_a + K_b) / 2; second-order central differences.
+// bottom, or, with periodic_y, on the x sides and the bottom only: the two y sides are then one
+// seam (the plate of a strip periodic across y, as a build spreads it), row 0 is free and row
+// ny - 1 its image, a copy the grid step refreshes. Face conductivity K_face = (K_a + K_b) / 2;
+// second-order central differences.
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -20,6 +23,7 @@ struct SubstrateGeometry {
   std::size_t nz_above = 0;          // planes over the plate's top, for a part to grow into
   double x0 = 0, y0 = 0, z_top = 0;  // lower corner of the plate's top face
   double dx = 0, dy = 0, dz = 0;
+  bool periodic_y = false;  // the y sides one seam: row ny - 1 is row 0 (period (ny - 1) dy)
 
   std::size_t index(std::size_t i, std::size_t j, std::size_t k) const {
     return i + nx * (j + ny * k);
@@ -36,12 +40,26 @@ struct SubstrateGeometry {
   // The node of column i + nx j in plane k.
   std::size_t node(std::size_t column, std::size_t k) const { return column + columns() * k; }
   bool fixed(std::size_t i, std::size_t j, std::size_t k) const {
-    return i == 0 || j == 0 || k == 0 || i + 1 == nx || j + 1 == ny;
+    return i == 0 || k == 0 || i + 1 == nx || (!periodic_y && (j == 0 || j + 1 == ny));
   }
   // Whether column i + nx j is a Dirichlet column (on the sides).
   bool fixed_column(std::size_t column) const {
     const std::size_t i = column % nx, j = column / nx;
-    return i == 0 || j == 0 || i + 1 == nx || j + 1 == ny;
+    return i == 0 || i + 1 == nx || (!periodic_y && (j == 0 || j + 1 == ny));
+  }
+  // Whether column i + nx j is the image of row 0 across a periodic seam (neither free nor
+  // fixed: a copy), and the column it copies (the column itself when it is no image).
+  bool image_column(std::size_t column) const { return periodic_y && column / nx + 1 == ny; }
+  std::size_t canonical_column(std::size_t column) const {
+    return image_column(column) ? column - nx * (ny - 1) : column;
+  }
+  // The free rows are first_row() .. ny - 2; the row before row j (across the seam for row 0).
+  std::size_t first_row() const { return periodic_y ? 0 : 1; }
+  std::size_t row_before(std::size_t j) const { return j == 0 ? ny - 2 : j - 1; }
+  // Row index j counted on past the seam (below 0 or beyond ny - 2), wrapped into the period.
+  std::size_t wrap_row(long j) const {
+    const long n = static_cast<long>(ny) - 1;
+    return static_cast<std::size_t>(((j % n) + n) % n);
   }
   // Volume of a whole cell; a column's top node owns a share of it (Sinter's thickness).
   double cell_volume() const { return dx * dy * dz; }
