@@ -101,8 +101,9 @@ std::vector<char> scan_and_fuse(const BuildPlan& plan, const bed::Bed& bed, bed:
   rep.density = scanned_layer_density(bed, sinter.grid(), floor.z, lof, rep.tool_bottom);
   rep.scanned_particles = bed.n();
   report_fusion(sinter, fused, lof, part, rep);
-  // The spread is periodic across y, the thermal grid is not: fuse joins the solid's two edge
-  // rows into one seam (their mean; the volume is kept) before it captures what the seam buries.
+  // The spread is periodic across y: fuse gives the solid's image row (the scan's plate is
+  // periodic there, substrate.periodic = y) row 0's heights, or, on a bounded plate, joins its
+  // two edge rows into one seam (their mean; the volume is kept).
   floor = th::top_surface(sinter.grid(), fused.top);
   std::vector<char> keep(bed.n());
   for (std::size_t i = 0; i < bed.n(); ++i) keep[i] = th::stays_in_bed(fused.state[i]) ? 1 : 0;
