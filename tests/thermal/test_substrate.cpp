@@ -187,20 +187,22 @@ TEST(Substrate, PeriodicPlateCarriesAModeAcrossTheSeam) {
 // half a period away leaves, moved by half a period (to round-off). The beam's Gaussian is summed
 // over its images across the seam and every joule it brings stays in the grid (the run's energy
 // ledger closes, or summarise throws). With walls at T0 the track on the seam would be cooled by
-// the wall and barely warm the plate's row there.
+// the wall and barely warm the plate's row there; its pool would be measured from the seam's
+// one side to the other.
 TEST(Substrate, PeriodicPlateHasNoSpecialRow) {
   const double lx = 200e-6, ly = 120e-6;
   bed::Bed bed = test::empty_bed(lx, ly, 40e-6);
   bed.domain.periodic[1] = 1;
   const std::size_t ny = 25;  // 24 distinct rows, 5 um apart: half a period is 12 rows
   std::vector<std::vector<double>> peaks;
+  std::vector<double> widths;
   for (const double y : {0.0, 0.5 * ly}) {
     thermal::SinterScene scene = test::small_scene(thermal::kLaserSubstrate, {41, ny, 13}, 60e-6);
     scene.periodic_y = true;
     scene.spot_radius = 15e-6;
     scene.scan_path = {{20e-6, y, 180e-6, y, 10.0, 1.0}};
     thermal::Sinter sinter(bed, scene, test::table_316l());
-    sinter.run(nullptr, 0, nullptr);
+    widths.push_back(sinter.run(nullptr, 0, nullptr).tracks.at(0).pool.width);
     peaks.push_back(sinter.substrate_peak());
   }
   thermal::SinterScene scene = test::small_scene(thermal::kLaserSubstrate, {41, ny, 13}, 60e-6);
@@ -219,4 +221,8 @@ TEST(Substrate, PeriodicPlateHasNoSpecialRow) {
   // Distances from the beam differ by round-off (1e-21 m on 1e-5 m): 1e-6 K is far above that
   // and far below a wall's effect (thousands of kelvins on the seam row).
   EXPECT_LT(worst, 1e-6);
+  // The track's own pool, measured across it over one period centred on it: as wide on the seam
+  // as off it (not the seam-to-seam extent of what melted on both sides of it).
+  EXPECT_GT(widths[0], 2 * g.dy) << "the track melts the plate";
+  EXPECT_NEAR(widths[0], widths[1], 1e-9) << "on the seam " << widths[0] << " m, off it " << widths[1];
 }

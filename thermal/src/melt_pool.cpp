@@ -78,9 +78,12 @@ MeltPool measure_section(const SectionInput& in) {
     s_hi = std::max(s_hi, hi);
   }
   const auto& x = *in.x;
+  const double period = g.dy * static_cast<double>(g.ny - 1);
   for (std::size_t p = 0; p < x.size(); ++p) {
     const double r = (*in.radius)[p];
-    const double ox = x[p] - in.cx, oy = (*in.y)[p] - in.cy;
+    const double ox = x[p] - in.cx;
+    double oy = (*in.y)[p] - in.cy;
+    if (g.periodic_y) oy -= period * std::round(oy / period);  // seen from the track, as the probe
     const double off = ox * in.dx + oy * in.dy;  // from the plane
     if ((*in.particle_peak)[p] < t_m || std::abs(off) >= r) continue;
     const double cut = std::sqrt(r * r - off * off), along = -ox * in.dy + oy * in.dx;

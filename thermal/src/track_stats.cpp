@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "powderbed/bed/height_map.hpp"
 #include "powderbed/thermal/melt_pool.hpp"
 #include "solver_state.hpp"
 
@@ -31,16 +32,28 @@ Sinter::State::TrackProbe make_probe(const Sinter::State& s, std::size_t m) {
   const double cx = 0.5 * (seg.x0 + seg.x1), cy = 0.5 * (seg.y0 + seg.y1);
   Sinter::State::TrackProbe p;
   // Across: the columns nearest points along the normal (-dy, dx) at half the finer spacing,
-  // over the whole grid, each once, placed where its node projects onto the plane.
+  // over the whole grid, each once, placed where its node projects onto the plane. On a plate
+  // periodic across y, over one period centred on the track, the points past the seam wrapped
+  // into it and their nodes placed where they lie seen from the track (else the pool's far side,
+  // across the seam, would count as the section's other end).
   const double step = 0.5 * std::min(g.dx, g.dy);
   const double span = std::hypot(g.dx * static_cast<double>(g.nx - 1), g.dy * static_cast<double>(g.ny - 1));
+  const double period = g.dy * static_cast<double>(g.ny - 1);
   const auto count = static_cast<long>(std::ceil(span / step));
   for (long q = -count; q <= count; ++q) {
     const double a = static_cast<double>(q) * step;
+    double py = cy + a * d[0], shift = 0;
+    if (g.periodic_y) {
+      if (std::abs(a * d[0]) >= 0.5 * period) continue;
+      const double wrapped = bed::wrap_into(py, g.y0, period);
+      shift = py - wrapped;
+      py = wrapped;
+    }
     std::size_t column;
-    if (!nearest_column(g, cx - a * d[1], cy + a * d[0], column)) continue;
+    if (!nearest_column(g, cx - a * d[1], py, column)) continue;
+    const double x = g.x(column % g.nx), y = g.y(column / g.nx) + shift;
+    column = g.canonical_column(column);
     if (std::find(p.columns.begin(), p.columns.end(), column) != p.columns.end()) continue;
-    const double x = g.x(column % g.nx), y = g.y(column / g.nx);
     const double along = -(x - cx) * d[1] + (y - cy) * d[0];
     if (!p.across.empty() && along <= p.across.back()) continue;  // keep them in order
     p.columns.push_back(column);
