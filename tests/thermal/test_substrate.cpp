@@ -226,3 +226,28 @@ TEST(Substrate, PeriodicPlateHasNoSpecialRow) {
   EXPECT_GT(widths[0], 2 * g.dy) << "the track melts the plate";
   EXPECT_NEAR(widths[0], widths[1], 1e-9) << "on the seam " << widths[0] << " m, off it " << widths[1];
 }
+
+// A track at 45 degrees from y = 0 to y = Ly on a periodic plate runs into its own image across
+// the seam: along its normal the image lies Ly cos 45 away, and its section measured over the
+// whole period would run from the pool to the image's (a layer turned 134 degrees in
+// build-316L.ini measured 714 um pools so). Its section stops half way to the image, and its
+// pool is as wide as the same track's on a bounded plate, where the seam's walls lie 85 um from
+// the section's centre along the track.
+TEST(Substrate, PeriodicPlateMeasuresADiagonalTrackNotItsImage) {
+  const double lx = 240e-6, ly = 120e-6;
+  std::vector<double> widths;
+  for (const bool periodic : {false, true}) {
+    bed::Bed bed = test::empty_bed(lx, ly, 40e-6);
+    bed.domain.periodic[1] = periodic ? 1 : 0;
+    thermal::SinterScene scene = test::small_scene(thermal::kLaserSubstrate, {49, 25, 13}, 60e-6);
+    scene.periodic_y = periodic;
+    scene.spot_radius = 15e-6;
+    scene.scan_path = {{60e-6, 0, 180e-6, ly, 10.0, 1.0}};
+    thermal::Sinter sinter(bed, scene, test::table_316l());
+    widths.push_back(sinter.run(nullptr, 0, nullptr).tracks.at(0).pool.width);
+  }
+  ASSERT_GT(widths[0], 10e-6) << "the track melts the plate";
+  // 15 %: the two plates differ only far from the section (the walls, or the track's own heat
+  // coming back across the seam); the image's pool would double the width or more.
+  EXPECT_NEAR(widths[1], widths[0], 0.15 * widths[0]) << "bounded " << widths[0] << " m, periodic " << widths[1];
+}

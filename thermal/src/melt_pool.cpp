@@ -87,6 +87,8 @@ MeltPool measure_section(const SectionInput& in) {
     const double off = ox * in.dx + oy * in.dy;  // from the plane
     if ((*in.particle_peak)[p] < t_m || std::abs(off) >= r) continue;
     const double cut = std::sqrt(r * r - off * off), along = -ox * in.dy + oy * in.dx;
+    // Beyond the section's ends (a periodic plate's: section_reach) it is another pool's.
+    if (samples > 0 && (along + cut < across.front() || along - cut > across.back())) continue;
     pool.height = std::max(pool.height, (*in.z)[p] + cut - g.z_top);
     s_lo = std::min(s_lo, along - cut);
     s_hi = std::max(s_hi, along + cut);

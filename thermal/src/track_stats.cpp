@@ -7,6 +7,7 @@
 // and the particles; the centre line is read each step for the pool's length.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "powderbed/bed/height_map.hpp"
 #include "powderbed/thermal/melt_pool.hpp"
@@ -25,6 +26,21 @@ bool nearest_column(const SubstrateGeometry& g, double x, double y, std::size_t&
   return true;
 }
 
+// How far from a track its cross-section may reach on a plate periodic across y (infinite on a
+// bounded one): not past the seam onto itself (|a d_x| under half the period) and, where the
+// segment is long enough to reach across the seam (its half-length plus two spot radii of pool
+// beyond L |d_y|), not to its own image, which lies L |d_x| along the normal: else the pool's
+// part across the seam would count as the section's other end.
+double section_reach(const SubstrateGeometry& g, const ScanSegment& seg, std::array<double, 2> d,
+                     double spot_radius) {
+  if (!g.periodic_y) return std::numeric_limits<double>::infinity();
+  const double period = g.dy * static_cast<double>(g.ny - 1);
+  double reach = std::abs(d[0]) > 0 ? 0.5 * period / std::abs(d[0]) : std::numeric_limits<double>::infinity();
+  if (period * std::abs(d[1]) <= 0.5 * seg.length() + 2 * spot_radius)
+    reach = std::min(reach, 0.5 * period * std::abs(d[0]));
+  return reach;
+}
+
 Sinter::State::TrackProbe make_probe(const Sinter::State& s, std::size_t m) {
   const SubstrateGeometry& g = s.g;
   const ScanSegment& seg = s.schedule.segments()[m];
@@ -33,18 +49,18 @@ Sinter::State::TrackProbe make_probe(const Sinter::State& s, std::size_t m) {
   Sinter::State::TrackProbe p;
   // Across: the columns nearest points along the normal (-dy, dx) at half the finer spacing,
   // over the whole grid, each once, placed where its node projects onto the plane. On a plate
-  // periodic across y, over one period centred on the track, the points past the seam wrapped
-  // into it and their nodes placed where they lie seen from the track (else the pool's far side,
-  // across the seam, would count as the section's other end).
+  // periodic across y, within section_reach, the points past the seam wrapped into the period
+  // and their nodes placed where they lie seen from the track.
   const double step = 0.5 * std::min(g.dx, g.dy);
   const double span = std::hypot(g.dx * static_cast<double>(g.nx - 1), g.dy * static_cast<double>(g.ny - 1));
   const double period = g.dy * static_cast<double>(g.ny - 1);
+  const double reach = section_reach(g, seg, d, s.scene.spot_radius);
   const auto count = static_cast<long>(std::ceil(span / step));
   for (long q = -count; q <= count; ++q) {
     const double a = static_cast<double>(q) * step;
+    if (std::abs(a) >= reach) continue;
     double py = cy + a * d[0], shift = 0;
     if (g.periodic_y) {
-      if (std::abs(a * d[0]) >= 0.5 * period) continue;
       const double wrapped = bed::wrap_into(py, g.y0, period);
       shift = py - wrapped;
       py = wrapped;
