@@ -70,15 +70,16 @@ struct Candidate {
   double distance;
 };
 
-}  // namespace
-
-std::size_t surface_contacts(const HeightMap& m, double x, double y, double zc, double r,
-                             std::array<SurfaceContact, kMaxSurfaceContacts>& out) {
+// The contacts among the triangles `each` visits (f(t, shift) for each): the candidates within
+// r, a node or edge kept only where every triangle holding it found it, deepest first.
+template <class Each>
+std::size_t contacts_among(const HeightMap& m, double x, double y, double zc, double r, Each&& each,
+                           std::array<SurfaceContact, kMaxSurfaceContacts>& out) {
   thread_local std::vector<Candidate> found;  // reused: the spread asks every step
   found.clear();
   const auto [xc, yc] = m.clamp(x, y);
   const Point3 centre{xc, yc, zc};
-  m.for_each_triangle_near(xc, yc, zc, r, [&](std::size_t t, std::array<double, 2> shift) {
+  each([&](std::size_t t, std::array<double, 2> shift) {
     const auto [a, b, c] = m.triangle(t, shift);
     const TrianglePoint q = closest_point_on_triangle(centre, a, b, c);
     const double ex = q.point[0] - xc, ey = q.point[1] - yc, ez = q.point[2] - zc;
@@ -105,6 +106,36 @@ std::size_t surface_contacts(const HeightMap& m, double x, double y, double zc, 
     out[k] = {c.facet, {c.point[0] - xc, c.point[1] - yc, c.point[2] - zc}, c.distance};
   }
   return count;
+}
+
+}  // namespace
+
+std::size_t surface_contacts(const HeightMap& m, double x, double y, double zc, double r,
+                             std::array<SurfaceContact, kMaxSurfaceContacts>& out) {
+  const auto [xc, yc] = m.clamp(x, y);
+  return contacts_among(m, x, y, zc, r, [&](auto&& f) { m.for_each_triangle_near(xc, yc, zc, r, f); }, out);
+}
+
+void triangles_near(const HeightMap& m, double x, double y, double zc, double reach,
+                    std::vector<TriangleImage>& near) {
+  const auto [xc, yc] = m.clamp(x, y);
+  const Point3 centre{xc, yc, zc};
+  m.for_each_triangle_near(xc, yc, zc, reach, [&](std::size_t t, std::array<double, 2> shift) {
+    const auto [a, b, c] = m.triangle(t, shift);
+    const TrianglePoint q = closest_point_on_triangle(centre, a, b, c);
+    const double ex = q.point[0] - xc, ey = q.point[1] - yc, ez = q.point[2] - zc;
+    if (ex * ex + ey * ey + ez * ez >= reach * reach) return;
+    near.push_back({t, {std::lround(shift[0] / m.dx), std::lround(shift[1] / m.dy)}});
+  });
+}
+
+std::size_t surface_contacts(const HeightMap& m, double x, double y, double zc, double r,
+                             std::span<const TriangleImage> near, std::array<std::ptrdiff_t, 2> wrapped,
+                             std::array<SurfaceContact, kMaxSurfaceContacts>& out) {
+  return contacts_among(m, x, y, zc, r, [&](auto&& f) {
+    for (const TriangleImage& n : near)
+      f(n.triangle, m.image_shift({n.cells[0] + wrapped[0], n.cells[1] + wrapped[1]}));
+  }, out);
 }
 
 double surface_overlap(const HeightMap& m, double x, double y, double zc, double r) {

@@ -165,3 +165,55 @@ TEST(SurfaceContacts, ValleyTwiceRidgeOncePlaneOnce) {
   for (const double x : {130e-6, 135e-6, 140e-6})
     EXPECT_EQ(bed::surface_contacts(groove(1), x, 95e-6, groove(1).at(x, 95e-6) + 14e-6, r, c), 1u) << x;
 }
+
+// The triangles found once near a sphere (triangles_near, within r plus a margin) give the same
+// contacts as the search of the whole surface wherever the sphere goes within that margin,
+// including across a periodic seam it is wrapped over (the spread keeps such a list per
+// particle between prunes of its neighbour list): on a rough periodic surface, 2000 spheres
+// resting at random on it, each moved by up to the margin, bit for bit.
+TEST(HeightMap, TrianglesFoundOnceGiveTheContactsOfTheWholeSurface) {
+  bed::HeightMap m;
+  m.nx = 13;
+  m.ny = 9;
+  m.dx = m.dy = 10e-6;
+  m.periodic_x = m.periodic_y = true;
+  std::uint64_t state = 12345;
+  const auto uniform = [&state] {  // xorshift: no library stream needed for a rough surface
+    state ^= state << 13;
+    state ^= state >> 7;
+    state ^= state << 17;
+    return static_cast<double>(state >> 11) * 0x1.0p-53;
+  };
+  for (std::size_t k = 0; k < m.nx * m.ny; ++k) m.z.push_back(8e-6 * uniform());
+  m.join_periodic_edges();
+  const double lx = m.period_x(), ly = m.period_y(), margin = 1.5e-6;
+  std::size_t touching = 0, several = 0;
+  for (int n = 0; n < 2000; ++n) {
+    const double r = 6e-6 + 8e-6 * uniform();
+    const double x = lx * uniform(), y = ly * uniform();
+    const double z = m.at(x, y) + r * (0.6 + 0.5 * uniform());
+    std::vector<bed::TriangleImage> near;
+    bed::triangles_near(m, x, y, z, r + margin, near);
+    // Moved by up to the margin, then wrapped into the period as the spread wraps its particles.
+    const double step = margin / std::sqrt(3.0);
+    const double ux = x + step * (2 * uniform() - 1), uy = y + step * (2 * uniform() - 1);
+    const double zc = z + step * (2 * uniform() - 1);
+    const double wx = bed::wrap_into(ux, 0, lx), wy = bed::wrap_into(uy, 0, ly);
+    const std::array<std::ptrdiff_t, 2> wrapped{std::lround((wx - x) / lx) * static_cast<std::ptrdiff_t>(m.nx - 1),
+                                                std::lround((wy - y) / ly) * static_cast<std::ptrdiff_t>(m.ny - 1)};
+    std::array<bed::SurfaceContact, bed::kMaxSurfaceContacts> all, listed;
+    const std::size_t na = bed::surface_contacts(m, wx, wy, zc, r, all);
+    const std::size_t nb = bed::surface_contacts(m, wx, wy, zc, r, near, wrapped, listed);
+    ASSERT_EQ(na, nb) << "sphere " << n;
+    for (std::size_t k = 0; k < na; ++k) {
+      EXPECT_EQ(all[k].facet, listed[k].facet) << "sphere " << n;
+      EXPECT_EQ(all[k].distance, listed[k].distance) << "sphere " << n;
+      for (int d = 0; d < 3; ++d) EXPECT_EQ(all[k].offset[d], listed[k].offset[d]) << "sphere " << n;
+    }
+    touching += na > 0 ? 1 : 0;
+    several += na > 1 ? 1 : 0;
+  }
+  // The draw must exercise the search: most spheres touch, and some touch several facets.
+  EXPECT_GT(touching, 1000u);
+  EXPECT_GT(several, 50u);
+}

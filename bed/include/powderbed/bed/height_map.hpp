@@ -133,6 +133,10 @@ struct HeightMap {
     if (t % 2 == 0) return {a, Point3{xa + dx, ya, node(i + 1, j)}, c};
     return {a, c, Point3{xa, ya + dy, node(i, j + 1)}};
   }
+  // The shift of an image moved by whole cells along x and y (periods' worth on a periodic axis).
+  std::array<double, 2> image_shift(std::array<std::ptrdiff_t, 2> cells) const {
+    return {dx * static_cast<double>(cells[0]), dy * static_cast<double>(cells[1])};
+  }
   // (x, y) clamped onto the grid along a bounded axis (where the surface held beyond it is
   // measured from); along a periodic one as given (the triangles near it come as images).
   std::array<double, 2> clamp(double x, double y) const {
@@ -160,8 +164,8 @@ struct HeightMap {
         const double top = std::max({node(i, j), node(i + 1, j), node(i, j + 1), node(i + 1, j + 1)});
         const double above = std::max(0.0, zc - top);
         if (beside_x * beside_x + beside_y * beside_y + above * above >= reach * reach) continue;
-        const std::array<double, 2> shift{dx * static_cast<double>(ii - static_cast<std::ptrdiff_t>(i)),
-                                          dy * static_cast<double>(jj - static_cast<std::ptrdiff_t>(j))};
+        const std::array<double, 2> shift =
+            image_shift({ii - static_cast<std::ptrdiff_t>(i), jj - static_cast<std::ptrdiff_t>(j)});
         f(2 * (i + (nx - 1) * j), shift);
         f(2 * (i + (nx - 1) * j) + 1, shift);
       }

@@ -9,6 +9,9 @@
 // holds it finds it nearest; a face point always is.
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
 
 #include "powderbed/bed/height_map.hpp"
 
@@ -27,6 +30,26 @@ struct SurfaceContact {
 // The contacts of a sphere at (x, y, zc) of radius r whose centre lies above the surface under
 // it, deepest first (ties by facet); how many.
 std::size_t surface_contacts(const HeightMap& surface, double x, double y, double zc, double r,
+                             std::array<SurfaceContact, kMaxSurfaceContacts>& out);
+
+// A triangle of the surface and the image of it a sphere meets: moved by whole cells (a period's
+// worth along a periodic axis; 0 on the grid itself).
+struct TriangleImage {
+  std::size_t triangle;
+  std::array<std::ptrdiff_t, 2> cells;
+};
+
+// The triangles within `reach` (> r) of a sphere's centre, appended to `near`: a list the
+// spread finds once per prune of its neighbour list and reads every step until the next, as
+// LIGGGHTS keeps a neighbour list of mesh triangles per particle.
+void triangles_near(const HeightMap& surface, double x, double y, double zc, double reach,
+                    std::vector<TriangleImage>& near);
+
+// surface_contacts among `near` only, found by triangles_near from a centre this one lies within
+// reach - r of, each image moved on by `wrapped` cells (the whole periods the centre was wrapped
+// by since): the same contacts as the search of the whole surface.
+std::size_t surface_contacts(const HeightMap& surface, double x, double y, double zc, double r,
+                             std::span<const TriangleImage> near, std::array<std::ptrdiff_t, 2> wrapped,
                              std::array<SurfaceContact, kMaxSurfaceContacts>& out);
 
 // How deep a sphere reaches into the surface: r less its distance to the nearest point (its
