@@ -29,7 +29,7 @@ import subprocess
 import time
 
 from lib.apps import ROOT, WORK, app
-from lib.report import load_average, machine, write_page
+from lib.report import load_average, machine, source, write_page
 
 CONFIG = os.path.join(ROOT, "data", "scenes", "build-316L.ini")
 MEASURED = os.path.join(ROOT, "data", "validation", "part-density")
@@ -55,15 +55,37 @@ def run_map(layers, powers, speeds):
         subprocess.run(["rm", "-rf", OUT], check=True)
     os.makedirs(os.path.dirname(OUT), exist_ok=True)
     load = load_average()
+    built = source(app("build"))  # what ran, before a later build can replace it
     start = time.perf_counter()
     subprocess.run([app("build"), "--config", CONFIG, "--layers", str(layers), "--threads", "1",
                     "--progress", "0", "--map.power", powers, "--map.speed", speeds, "--out", OUT],
                    check=True, capture_output=True)
     wall = time.perf_counter() - start
-    run = {"wall": wall, "load": [load, load_average()], "layers": layers}
+    run = {"wall": wall, "load": [load, load_average()], "layers": layers, "source": built}
     with open(os.path.join(OUT, "run.json"), "w") as f:
         json.dump(run, f)
     return run
+
+
+def top_share(point, layers):
+    """The share of a point's porosity that lies at its columns' tops after the last layer: the
+    powder the last scan captured (docs/build.md "Porosity of the part"), which no later layer
+    remelts; the rest is buried under remelted solid. From /part of its last layer file (per
+    never-molten interval: column, lo, hi)."""
+    import h5py  # only here: the page's table needs the run's files
+    path = os.path.join(OUT, point["folder"], f"layer-{layers:03d}.h5")
+    with h5py.File(path, "r") as f:
+        intervals = f["part/never_molten"][:]
+        top = f["part/top"][:].ravel()
+        core = f["part/scanned"][:].ravel() == layers
+    total = at_top = 0.0
+    for column, lo, hi in intervals:
+        c = int(column)
+        if not core[c]:
+            continue
+        total += hi - lo
+        at_top += (hi - lo) if abs(hi - top[c]) <= 1e-12 else 0.0
+    return at_top / total if total > 0 else 0.0
 
 
 def crossing(points, level):
@@ -106,7 +128,8 @@ def plot(ours, measured, path):
 
 
 def page(data, run, measured):
-    ours = [{"energy": p["energy_density"] * 1e-9, **p} for p in data["map"]]
+    ours = [{"energy": p["energy_density"] * 1e-9, "top_share": top_share(p, run["layers"]), **p}
+            for p in data["map"]]
     lines = [
         "# Part density: build's porosity against measured 316L parts",
         "",
@@ -115,17 +138,23 @@ def page(data, run, measured):
         "--map.speed ...` (docs/build.md \"Process maps\"), one thread; the measured series of "
         "data/validation/part-density/ (their headers give the sources).",
         "",
-        machine(run["load"][0], run["load"][1], program=app("build")),
+        machine(run["load"][0], run["load"][1], program=app("build"), source_text=run.get("source")),
         "",
         f"The map took {run['wall']:.0f} s for {len(ours)} points of {run['layers']} layers.",
         "",
-        "| P (W) | v (m/s) | E (J/mm³) | porosity | lack of fusion (last layer) | remelt depth (µm) "
-        "| pool W / D (µm) | ΔH/h_s (keyhole >) | Tang | layer density | regions | wall (s) |",
-        "|" + "---|" * 12,
+        "Of it at the top: the share of the porosity that lies at the columns' tops after the "
+        "last layer, the powder its scan captured (docs/build.md \"Porosity of the part\"), "
+        "which no later layer has remelted; the rest is buried under remelted solid.",
+        "",
+        "| P (W) | v (m/s) | E (J/mm³) | porosity | of it at the top | lack of fusion (last layer) "
+        "| remelt depth (µm) | pool W / D (µm) | ΔH/h_s (keyhole >) | Tang | layer density | regions "
+        "| wall (s) |",
+        "|" + "---|" * 13,
     ]
     for p in sorted(ours, key=lambda p: (p["power"], p["speed"])):
         lines.append(
             f"| {p['power']:g} | {p['speed']:g} | {p['energy']:.1f} | {p['porosity']:.2%} | "
+            f"{p['top_share']:.0%} | "
             f"{p['lack_of_fusion']:.1%} | {p['remelt_depth_mean'] * 1e6:.1f} | "
             f"{p['mean_track_width'] * 1e6:.0f} / {p['mean_track_depth'] * 1e6:.0f} | "
             f"{p['normalised_enthalpy']:.1f} ({p['keyhole_threshold']:.1f}) | "
@@ -176,10 +205,11 @@ def findings(ours):
                 f"({densest['energy']:.0f} J/mm³, {densest['porosity']:.1%}). The lack-of-fusion "
                 "branch falls with energy density as the measured series do, and the 10 % crossing "
                 f"lies between theirs, but {window}, "
-                "where both measured series are dense from 35-57 J/mm³. One row of nodes, the "
-                "strip's periodic seam, never melts: the thermal grid's sides are Dirichlet at T0 "
-                "(docs/build.md \"Limits\"): 0.019-0.021 of the scanned area in the layers of "
-                "docs/results/build-layers.md. The spread layers the scans "
+                "where both measured series are dense from 35-57 J/mm³. "
+                + (f"At the standard point {standard['top_share']:.0%} of the porosity is the last "
+                   "layer's captured powder at the top, which a later layer would remelt: the "
+                   "porosity of a part two layers thick is mostly its top. " if standard else "")
+                + "The spread layers the scans "
                 f"met held {min(density):.3f}-{max(density):.3f} of solid (measured spread layers: "
                 "0.38-0.60; docs/results/spread-density.md): each layer adds little solid, the powder "
                 "over the part thickens layer by layer and the melt reaches the layer below less "

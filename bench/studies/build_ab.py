@@ -1,0 +1,92 @@
+#!/usr/bin/env python3
+"""Before and after: two build binaries run in alternation on one layer of a part.
+
+    POWDERBED_BUILD=build python3 bench/studies/build_ab.py OLD_BUILD NEW_BUILD \
+        --old-label eecb474 --new-label 9b5b7ba [--rounds 2] --title "..." --page build-ab.md
+
+The case: layer 2 of data/scenes/build-316L.ini (spread over layer 1's fused solid, then
+scanned), one thread, continued from a layer-1 file the new binary writes once (`build --in
+LAYER-1 --layers 1`). Per binary the page gives the median [min, max] over the rounds of the
+layer's spread and scan wall times (build.json), the ratio new / old of the medians, the 1-min
+load average around each run, and whether the two layers are the same: the spread's and the
+fused layer's particles compared as deposit_ab.py compares beds. Alternating the two puts both
+under the same load. Build the old binary in a clone (`git clone -q . /tmp/old && git -C /tmp/old
+checkout COMMIT`, then `cmake --build /tmp/old/build --target build_app`).
+"""
+import argparse
+import json
+import os
+import shutil
+import statistics
+import subprocess
+
+from deposit_ab import MARKER, compare, spread
+from lib import apps
+from lib.apps import scene
+from lib.report import load_average, machine, read_page, table_head, table_row, write_page
+
+WORK = os.path.join(apps.WORK, "build-ab")
+FIRST = os.path.join(WORK, "first")
+
+
+def build(binary, out, *args):
+    """build's report (build.json) of one run into the new folder `out`, with the 1-min load before it."""
+    load = float(load_average().split()[0])
+    shutil.rmtree(out, ignore_errors=True)
+    subprocess.run([binary, "--config", scene("build-316L.ini"), "--threads", "1", "--progress", "0",
+                    "--out", out, *args], check=True, capture_output=True)
+    with open(os.path.join(out, "build.json")) as f:
+        report = json.load(f)
+    report["load"] = load
+    return report
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("old")
+    p.add_argument("new")
+    p.add_argument("--old-label", required=True)
+    p.add_argument("--new-label", required=True)
+    p.add_argument("--rounds", type=int, default=2)
+    p.add_argument("--page", required=True)
+    p.add_argument("--title", required=True, help="what changed between the binaries (the page's heading)")
+    a = p.parse_args()
+    os.makedirs(WORK, exist_ok=True)
+    before = load_average()
+    build(a.new, FIRST, "--layers", "1")
+    layer_1 = os.path.join(FIRST, "layer-001.h5")
+    times = {(tag, stage): [] for tag in ("old", "new") for stage in ("spread", "scan")}
+    loads = []
+    for _ in range(a.rounds):
+        for tag, binary in (("old", a.old), ("new", a.new)):
+            report = build(binary, os.path.join(WORK, tag), "--in", layer_1, "--layers", "1")
+            times[(tag, "spread")].append(report["layers"][-1]["spread_wall_time"])
+            times[(tag, "scan")].append(report["layers"][-1]["scan_wall_time"])
+            loads.append(report["load"])
+    rows = []
+    for stage, file in (("spread", "layer-002-spread.h5"), ("scan and fusion", "layer-002.h5")):
+        key = stage.split()[0]
+        ratio = statistics.median(times[("new", key)]) / statistics.median(times[("old", key)])
+        rows.append(table_row(f"layer 2, {stage}", spread(times[("old", key)]), spread(times[("new", key)]),
+                              f"{ratio:.2f}", f"{min(loads):.2f}-{max(loads):.2f}", compare(*(os.path.join(WORK, t, file) for t in ("old", "new")))))
+    text = "\n".join([
+        f"# build before and after: {a.title}",
+        "",
+        f"Written by `bench/studies/build_ab.py` ({a.rounds} rounds, the two binaries alternating, "
+        f"one thread each): layer 2 of data/scenes/build-316L.ini, continued from its layer 1. "
+        f"{machine(before, load_average())} Old: {a.old_label}; new: {a.new_label}.",
+        "",
+        "Wall time (s) from build.json: median [min, max] over the rounds.",
+        "",
+        *table_head("stage", f"old {a.old_label} (s)", f"new {a.new_label} (s)", "new / old",
+                   "load (1 min)", "particles"),
+        *rows,
+        "",
+        MARKER,
+    ])
+    old = read_page(a.page)
+    write_page(a.page, text + (old[old.index(MARKER) + len(MARKER):] if MARKER in old else "\n"))
+
+
+if __name__ == "__main__":
+    main()
