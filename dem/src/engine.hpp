@@ -716,12 +716,13 @@ struct Engine {
     }
     std::array<bed::SurfaceContact, kFloorSlots> c;
     std::size_t count = 0;
-    const double high = floor_high.at(x, y);
+    const bed::GridCell cell = floor.cell(x, y);  // the bounds are maps on the floor's grid
+    const double high = floor_high.at(cell);
     if (z - r <= high) {  // else above the solid's highest point within its reach: no contact
-      const bool flat = high - floor_low.at(x, y) <= 1e-9;  // under the whole footprint
-      const double foot = flat ? high : floor.surface(x, y);
+      const bool flat = high - floor_low.at(cell) <= 1e-9;  // under the whole footprint
+      const double foot = flat ? high : floor.surface(cell);
       if (flat || foot >= z) {  // the plane's contact, or the centre below the surface: straight up
-        c[0] = {floor.triangle_at(x, y), {0, 0, foot - z}, std::abs(foot - z)};
+        c[0] = {floor.triangle_at(cell), {0, 0, foot - z}, std::abs(foot - z)};
         count = foot - z + r > 0 ? 1 : 0;
       } else {
         const auto wrapped = [](double now, double seen, bool periodic, double period, std::size_t cells) {

@@ -67,9 +67,10 @@ struct HeightMap {
   }
   double node(std::size_t i, std::size_t j) const { return z[i + nx * j]; }
 
-  // h(x, y), bilinear in the four nodes around (x, y).
-  double at(double x, double y) const {
-    const GridCell c = cell(x, y);
+  // h(x, y), bilinear in the four nodes around (x, y); or in those of cell c (found once for
+  // maps on the same grid, as the spread's floor and its bounds).
+  double at(double x, double y) const { return at(cell(x, y)); }
+  double at(const GridCell& c) const {
     return (1 - c.fy) * ((1 - c.fx) * node(c.i, c.j) + c.fx * node(c.i + 1, c.j)) +
            c.fy * ((1 - c.fx) * node(c.i, c.j + 1) + c.fx * node(c.i + 1, c.j + 1));
   }
@@ -114,14 +115,14 @@ struct HeightMap {
   // from the bilinear at() by at most |z(i, j) + z(i + 1, j + 1) - z(i + 1, j) - z(i, j + 1)| / 4,
   // at its centre. Triangle t of cell (i, j) is 2 (i + (nx - 1) j) + (0: corners (i, j),
   // (i + 1, j), (i + 1, j + 1); 1: (i, j), (i + 1, j + 1), (i, j + 1)).
-  double surface(double x, double y) const {
-    const GridCell c = cell(x, y);
+  double surface(double x, double y) const { return surface(cell(x, y)); }
+  double surface(const GridCell& c) const {
     const double a = node(c.i, c.j), diagonal = node(c.i + 1, c.j + 1);
     if (c.fx >= c.fy) return a + c.fx * (node(c.i + 1, c.j) - a) + c.fy * (diagonal - node(c.i + 1, c.j));
     return a + c.fy * (node(c.i, c.j + 1) - a) + c.fx * (diagonal - node(c.i, c.j + 1));
   }
-  std::size_t triangle_at(double x, double y) const {
-    const GridCell c = cell(x, y);
+  std::size_t triangle_at(double x, double y) const { return triangle_at(cell(x, y)); }
+  std::size_t triangle_at(const GridCell& c) const {
     return 2 * (c.i + (nx - 1) * c.j) + (c.fx >= c.fy ? 0 : 1);
   }
   // Triangle t's corners, moved by `shift` (an image across a periodic seam).
