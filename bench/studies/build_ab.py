@@ -13,17 +13,15 @@ fused layer's particles compared as deposit_ab.py compares beds. Alternating the
 under the same load. Build the old binary in a clone (`git clone -q . /tmp/old && git -C /tmp/old
 checkout COMMIT`, then `cmake --build /tmp/old/build --target build_app`).
 """
-import argparse
 import json
 import os
 import shutil
-import statistics
 import subprocess
 
-from deposit_ab import MARKER, compare, spread
+from deposit_ab import ab_arguments, ab_row, compare, write_ab_page
 from lib import apps
 from lib.apps import scene
-from lib.report import load_average, machine, read_page, table_head, table_row, write_page
+from lib.report import load_average
 
 WORK = os.path.join(apps.WORK, "build-ab")
 FIRST = os.path.join(WORK, "first")
@@ -42,15 +40,7 @@ def build(binary, out, *args):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("old")
-    p.add_argument("new")
-    p.add_argument("--old-label", required=True)
-    p.add_argument("--new-label", required=True)
-    p.add_argument("--rounds", type=int, default=2)
-    p.add_argument("--page", required=True)
-    p.add_argument("--title", required=True, help="what changed between the binaries (the page's heading)")
-    a = p.parse_args()
+    a = ab_arguments(__doc__.splitlines()[0]).parse_args()
     os.makedirs(WORK, exist_ok=True)
     before = load_average()
     build(a.new, FIRST, "--layers", "1")
@@ -63,30 +53,13 @@ def main():
             times[(tag, "spread")].append(report["layers"][-1]["spread_wall_time"])
             times[(tag, "scan")].append(report["layers"][-1]["scan_wall_time"])
             loads.append(report["load"])
-    rows = []
-    for stage, file in (("spread", "layer-002-spread.h5"), ("scan and fusion", "layer-002.h5")):
-        key = stage.split()[0]
-        ratio = statistics.median(times[("new", key)]) / statistics.median(times[("old", key)])
-        rows.append(table_row(f"layer 2, {stage}", spread(times[("old", key)]), spread(times[("new", key)]),
-                              f"{ratio:.2f}", f"{min(loads):.2f}-{max(loads):.2f}", compare(*(os.path.join(WORK, t, file) for t in ("old", "new")))))
-    text = "\n".join([
-        f"# build before and after: {a.title}",
-        "",
-        f"Written by `bench/studies/build_ab.py` ({a.rounds} rounds, the two binaries alternating, "
-        f"one thread each): layer 2 of data/scenes/build-316L.ini, continued from its layer 1. "
-        f"{machine(before, load_average())} Old: {a.old_label}; new: {a.new_label}.",
-        "",
-        "Wall time (s) from build.json: median [min, max] over the rounds.",
-        "",
-        *table_head("stage", f"old {a.old_label} (s)", f"new {a.new_label} (s)", "new / old",
-                   "load (1 min)", "particles"),
-        *rows,
-        "",
-        MARKER,
-    ])
-    old = read_page(a.page)
-    write_page(a.page, text + (old[old.index(MARKER) + len(MARKER):] if MARKER in old else "\n"))
-
+    rows = [ab_row(f"layer 2, {stage}", times[("old", key)], times[("new", key)], loads,
+                   compare(*(os.path.join(WORK, t, file) for t in ("old", "new"))))
+            for stage, key, file in (("spread", "spread", "layer-002-spread.h5"),
+                                     ("scan and fusion", "scan", "layer-002.h5"))]
+    write_ab_page(a, "build", ": layer 2 of data/scenes/build-316L.ini, continued from its layer 1",
+                  before, "Wall time (s) from build.json: median [min, max] over the rounds.", "stage",
+                  "particles", rows)
 
 if __name__ == "__main__":
     main()

@@ -28,9 +28,7 @@ import numpy as np
 
 from lib import apps
 from lib.apps import scene
-from lib.report import load_average, machine, read_page, table_head, table_row, write_page
-
-MARKER = "<!-- discussion: kept when the script rewrites this page -->"
+from lib.report import load_average, machine, table_head, table_row, write_page_with_discussion
 
 WORK = os.path.join(apps.WORK, "deposit-ab")
 CASES = {
@@ -67,16 +65,48 @@ def spread(values):
     return f"{statistics.median(values):.1f} [{min(values):.1f}, {max(values):.1f}]"
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def ab_arguments(description, title_default=None):
+    """The options every A/B study takes: the two binaries, their labels, the rounds, the page
+    and what changed (its heading)."""
+    p = argparse.ArgumentParser(description=description)
     p.add_argument("old")
     p.add_argument("new")
     p.add_argument("--old-label", required=True)
     p.add_argument("--new-label", required=True)
     p.add_argument("--rounds", type=int, default=2)
     p.add_argument("--page", required=True)
-    p.add_argument("--title", default="subnormal numbers flushed to zero",
+    p.add_argument("--title", default=title_default, required=title_default is None,
                    help="what changed between the binaries (the page's heading)")
+    return p
+
+
+def ab_row(name, old, new, loads, same):
+    """A row of an A/B table: the old and new times (median [min, max]), their ratio, the load
+    range and what compare() said of the two results."""
+    ratio = statistics.median(new) / statistics.median(old)
+    return table_row(name, spread(old), spread(new), f"{ratio:.2f}", f"{min(loads):.2f}-{max(loads):.2f}", same)
+
+
+def write_ab_page(a, program, what_ran, before, timing, first, last, rows):
+    """The A/B page of `program` (deposit, build): heading, how it was run, the machine, the
+    table, and the discussion kept below it."""
+    write_page_with_discussion(a.page, "\n".join([
+        f"# {program} before and after: {a.title}",
+        "",
+        f"Written by `bench/studies/{program}_ab.py` ({a.rounds} rounds, the two binaries "
+        f"alternating, one thread each){what_ran}. {machine(before, load_average())} Old: "
+        f"{a.old_label}; new: {a.new_label}.",
+        "",
+        timing,
+        "",
+        *table_head(first, f"old {a.old_label} (s)", f"new {a.new_label} (s)", "new / old",
+                    "load (1 min)", last),
+        *rows,
+    ]))
+
+
+def main():
+    p = ab_arguments(__doc__.splitlines()[0], "subnormal numbers flushed to zero")
     p.add_argument("--cases", help="comma-separated case numbers (1-based); default: all")
     a = p.parse_args()
     names = list(CASES)
@@ -92,28 +122,10 @@ def main():
                 s = run(binary, case, os.path.join(WORK, f"{tag}.h5"))
                 times[tag].append(s["wall_time"])
                 loads.append(s["load"])
-        ratio = statistics.median(times["new"]) / statistics.median(times["old"])
-        rows.append(table_row(case, spread(times["old"]), spread(times["new"]), f"{ratio:.2f}",
-                              f"{min(loads):.2f}-{max(loads):.2f}",
-                              compare(*(os.path.join(WORK, f"{t}.h5") for t in ("old", "new")))))
-    text = "\n".join([
-        f"# deposit before and after: {a.title}",
-        "",
-        f"Written by `bench/studies/deposit_ab.py` ({a.rounds} rounds, the two binaries "
-        f"alternating, one thread each). {machine(before, load_average())} Old: {a.old_label}; "
-        f"new: {a.new_label}.",
-        "",
-        "Wall time is deposit's own `wall_time` (s): median [min, max] over the rounds.",
-        "",
-        *table_head("case", f"old {a.old_label} (s)", f"new {a.new_label} (s)", "new / old",
-                   "load (1 min)", "beds"),
-        *rows,
-        "",
-        MARKER,
-    ])
-    old = read_page(a.page)
-    write_page(a.page, text + (old[old.index(MARKER) + len(MARKER):] if MARKER in old else "\n"))
-
+        rows.append(ab_row(case, times["old"], times["new"], loads,
+                           compare(*(os.path.join(WORK, f"{t}.h5") for t in ("old", "new")))))
+    write_ab_page(a, "deposit", "", before, "Wall time is deposit's own `wall_time` (s): median "
+                  "[min, max] over the rounds.", "case", "beds", rows)
 
 if __name__ == "__main__":
     main()

@@ -33,7 +33,7 @@ import sys
 import tempfile
 
 from lib.apps import ROOT, app, bedstat, run_json
-from lib.report import RESULTS, machine, write_page
+from lib.report import RESULTS, machine, write_page_with_discussion
 from lib.spread_scene import Scene, shown_path
 
 SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
@@ -191,15 +191,7 @@ def write_study_page(scene, args, groups, base_dt):
             f"{qm:.2f} ± {qsd:.2f} |")
     plot(groups, os.path.join(RESULTS, "spread-accuracy.png"))
     rows += ["", "![layer density and coverage against wall time](spread-accuracy.png)", ""]
-    marker = "<!-- discussion: kept when the script rewrites this page -->"
-    old = os.path.join(RESULTS, "spread-accuracy.md")
-    tail = ""
-    if os.path.exists(old):
-        with open(old) as f:
-            text = f.read()
-        if marker in text:
-            tail = text[text.index(marker):]
-    print(write_page("spread-accuracy.md", "\n".join(rows) + ("\n" + tail if tail else "")))
+    print(write_page_with_discussion("spread-accuracy.md", "\n".join(rows)))
 
 
 if __name__ == "__main__":

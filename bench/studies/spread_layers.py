@@ -56,11 +56,10 @@ import tempfile
 import time
 
 from lib.apps import ROOT, app, bedstat
-from lib.report import RESULTS, load_average, machine, source, write_page
+from lib.report import RESULTS, load_average, machine, source, write_page_with_discussion
 from lib.spread_scene import Scene, shown_path
 
 SCENE = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
-MARKER = "<!-- discussion: kept when the script rewrites this page -->"
 
 
 def supply_text(scene):
@@ -356,15 +355,7 @@ def main():
     if args.work:
         with open(os.path.join(work, "spread-layers-rows.json"), "w") as f:
             json.dump({"rows": rows, "reference": reference}, f, indent=1)
-    # The hand-written discussion below the marker in the page survives a regeneration.
-    old = os.path.join(RESULTS, "spread-layers.md")
-    tail = ""
-    if os.path.exists(old):
-        with open(old) as f:
-            text = f.read()
-        if MARKER in text:
-            tail = text[text.index(MARKER):]
-    print(write_page("spread-layers.md", "\n".join(lines) + "\n" + ("\n" + tail if tail else "")))
+    print(write_page_with_discussion("spread-layers.md", "\n".join(lines)))
 
 
 if __name__ == "__main__":

@@ -53,6 +53,18 @@ def read_page(name):
         return f.read()
 
 
+DISCUSSION = "<!-- discussion: kept when the script rewrites this page -->"
+
+
+def write_page_with_discussion(name, text):
+    """write_page of `text` followed by the page's hand-written discussion as it stands: from the
+    DISCUSSION marker on (the marker alone when the page has none), so a study that regenerates
+    its page keeps what people wrote under it."""
+    old = read_page(name)
+    tail = old[old.index(DISCUSSION):] if DISCUSSION in old else DISCUSSION + "\n"
+    return write_page(name, text.rstrip("\n") + "\n\n" + tail)
+
+
 def section_markers(key):
     """The HTML comments around a section of a page that another study writes."""
     return f"<!-- {key}:begin -->", f"<!-- {key}:end -->"

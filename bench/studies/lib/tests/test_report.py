@@ -37,6 +37,17 @@ def test_write_page_replaces_whole(tmp_path, monkeypatch):
     assert os.listdir(tmp_path) == ["p.md"]
 
 
+def test_write_page_with_discussion_keeps_what_people_wrote(tmp_path, monkeypatch):
+    monkeypatch.setattr(report, "RESULTS", str(tmp_path))
+    marker = report.DISCUSSION
+    report.write_page_with_discussion("p.md", "table one\n")
+    assert report.read_page("p.md") == f"table one\n\n{marker}\n"
+    with open(os.path.join(str(tmp_path), "p.md"), "a") as f:
+        f.write("\nWhy the numbers moved.\n")
+    report.write_page_with_discussion("p.md", "table two")
+    assert report.read_page("p.md") == f"table two\n\n{marker}\n\nWhy the numbers moved.\n"
+
+
 def test_write_page_keeping_carries_other_studies_sections(tmp_path, monkeypatch):
     monkeypatch.setattr(report, "RESULTS", str(tmp_path))
     begin, end = report.section_markers("theirs")
