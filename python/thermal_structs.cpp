@@ -107,6 +107,8 @@ void process_fields(StructBinding<th::SinterScene>& b) {
       .field("arrested_conductance", &S::arrested_conductance, "wetting: W/m^2K")
       .field("substrate_depth", &S::substrate_depth, "m")
       .field("nodes", &S::nodes, "substrate nodes along x, y, z")
+      .word("substrate_periodic", &S::periodic_y, th::kSubstratePeriodicWords,
+            "none | y (the plate's y sides one seam; the bed periodic along y)")
       .word("integrator", &S::integrator, th::kIntegratorWords, "explicit | implicit")
       .field("dt", &S::dt, "s; 0: the stable bound x safety")
       .field("unsafe_dt", &S::unsafe_dt, "accept dt above the explicit bound (with a warning)")

@@ -51,6 +51,15 @@ def test_sinter_scene_is_a_class_with_the_librarys_defaults():
     assert scene.absorption == "ray-trace" and "wetting" in scene.effects
     with pytest.raises(ValueError, match=r"^absorption: 'lambert' \(accepted: beer-lambert, ray-trace\)$"):
         scene.absorption = "lambert"
+    assert scene.substrate_periodic == "none"
+    with pytest.raises(ValueError, match=r"^substrate_periodic: 'x' \(accepted: none, y\)$"):
+        scene.substrate_periodic = "x"
+
+
+def test_a_periodic_plate_needs_a_bed_periodic_along_y(sinter_bed):
+    bed = powderbed.read_bed(sinter_bed)
+    with pytest.raises(powderbed.InputError, match=r"^substrate.periodic: y on a bed bounded along y"):
+        powderbed.sinter(bed, substrate_periodic="y", **SMALL_GRID)
 
 
 # A strip 1.5 mm along the blade's travel, periodic across, as tests/dem/test_spread.cpp's

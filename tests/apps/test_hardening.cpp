@@ -906,6 +906,10 @@ std::vector<Case> all_cases() {
   add("sinter_substrate_nodes_word", "sinter", si + "--substrate.nodes a,b,c --out @out.h5", 2, {"substrate.nodes"});
   add("sinter_substrate_nodes_huge", "sinter", si + "--substrate.nodes 100000,100000,100000 --out @out.h5", 2,
       {"substrate.nodes"});
+  add("sinter_substrate_periodic_word", "sinter", si + "--substrate.periodic x --out @out.h5", 2,
+      {"substrate.periodic", "'x'", "none, y"});
+  add("sinter_substrate_periodic_bounded_bed", "sinter", si + "--substrate.periodic y --out @out.h5", 2,
+      {"substrate.periodic", "bounded along y"});
   add("sinter_missing_out", "sinter", si, 2, {"--out"});
   add("sinter_spot_metres", "sinter", si + "--spot 54 --out @out.h5", 2, {"--spot", "54"});
   add("sinter_out_is_bed", "sinter", si + "--out @wide.h5", 2, {"--out", "input"});
