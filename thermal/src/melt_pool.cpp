@@ -78,7 +78,7 @@ MeltPool measure_section(const SectionInput& in) {
     s_hi = std::max(s_hi, hi);
   }
   const auto& x = *in.x;
-  const double period = g.dy * static_cast<double>(g.ny - 1);
+  const double period = g.period_y();
   for (std::size_t p = 0; p < x.size(); ++p) {
     const double r = (*in.radius)[p];
     const double ox = x[p] - in.cx;

@@ -11,7 +11,7 @@ namespace powderbed::thermal {
 
 TopStencil top_stencil(const SubstrateGeometry& g, double x, double y) {
   // Across a periodic seam a position wraps into the period and row ny - 1 is row 0.
-  if (g.periodic_y) y = bed::wrap_into(y, g.y0, g.dy * static_cast<double>(g.ny - 1));
+  if (g.periodic_y) y = bed::wrap_into(y, g.y0, g.period_y());
   const bed::GridCell c = bed::grid_cell(g.x0, g.dx, g.nx, g.y0, g.dy, g.ny, x, y);
   const std::size_t col = c.i + g.nx * c.j, up = g.canonical_column(col + g.nx);
   return TopStencil{{col, col + 1, up, up + 1},

@@ -34,7 +34,7 @@ bool nearest_column(const SubstrateGeometry& g, double x, double y, std::size_t&
 double section_reach(const SubstrateGeometry& g, const ScanSegment& seg, std::array<double, 2> d,
                      double spot_radius) {
   if (!g.periodic_y) return std::numeric_limits<double>::infinity();
-  const double period = g.dy * static_cast<double>(g.ny - 1);
+  const double period = g.period_y();
   double reach = std::abs(d[0]) > 0 ? 0.5 * period / std::abs(d[0]) : std::numeric_limits<double>::infinity();
   if (period * std::abs(d[1]) <= 0.5 * seg.length() + 2 * spot_radius)
     reach = std::min(reach, 0.5 * period * std::abs(d[0]));
@@ -53,7 +53,7 @@ Sinter::State::TrackProbe make_probe(const Sinter::State& s, std::size_t m) {
   // and their nodes placed where they lie seen from the track.
   const double step = 0.5 * std::min(g.dx, g.dy);
   const double span = std::hypot(g.dx * static_cast<double>(g.nx - 1), g.dy * static_cast<double>(g.ny - 1));
-  const double period = g.dy * static_cast<double>(g.ny - 1);
+  const double period = g.period_y();
   const double reach = section_reach(g, seg, d, s.scene.spot_radius);
   const auto count = static_cast<long>(std::ceil(span / step));
   for (long q = -count; q <= count; ++q) {

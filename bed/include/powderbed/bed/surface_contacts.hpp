@@ -9,7 +9,6 @@
 // holds it finds it nearest; a face point always is.
 #include <array>
 #include <cstddef>
-#include <cstdint>
 #include <span>
 #include <vector>
 

@@ -56,11 +56,11 @@ struct SubstrateGeometry {
   // The free rows are first_row() .. ny - 2; the row before row j (across the seam for row 0).
   std::size_t first_row() const { return periodic_y ? 0 : 1; }
   std::size_t row_before(std::size_t j) const { return j == 0 ? ny - 2 : j - 1; }
-  // Row index j counted on past the seam (below 0 or beyond ny - 2), wrapped into the period.
-  std::size_t wrap_row(long j) const {
-    const long n = static_cast<long>(ny) - 1;
-    return static_cast<std::size_t>(((j % n) + n) % n);
-  }
+  // Row index j counted on past the seam (below 0 or beyond ny - 2), wrapped into the period
+  // (the rows as a periodic HeightMap's nodes: the last is the first).
+  std::size_t wrap_row(long j) const { return bed::HeightMap::wrap_index(j, ny); }
+  // The seam's period across y: the plate's width, row ny - 1 being row 0 again.
+  double period_y() const { return dy * static_cast<double>(ny - 1); }
   // Volume of a whole cell; a column's top node owns a share of it (Sinter's thickness).
   double cell_volume() const { return dx * dy * dz; }
 };
