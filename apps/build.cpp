@@ -70,11 +70,11 @@ void write_report(const po::variables_map& vm, const Build& b, const std::vector
     std::printf("build: layer %llu: %zu particles spread (density %.3f over the scan), %zu fused "
                 "(%.0f %% of the powder's mass), %zu balled, %zu vaporised; lack of fusion %.1f %% of the "
                 "scanned area, remelt depth %.1f um mean (%.1f min); solid top %.1f to %.1f um; part "
-                "porosity %.2f %%; mass conserved to %.1e; %.0f s spread + %.0f s scan\n",
+                "porosity %.2f %% (below the layer: %.2f %%); mass conserved to %.1e; %.0f s spread + %.0f s scan\n",
                 static_cast<unsigned long long>(r.layer), r.scanned_particles, r.density, r.fused,
                 100 * r.fused_fraction, r.balled, r.vaporised, 100 * r.lack_of_fusion,
                 r.remelt_mean * 1e6, r.remelt_min * 1e6, r.top_min * 1e6, r.top_max * 1e6,
-                100 * r.part.fraction(), r.mass_error, r.spread.wall_time, r.scan_wall);
+                100 * r.part.fraction(), 100 * r.interior.fraction(), r.mass_error, r.spread.wall_time, r.scan_wall);
   std::printf("build: %zu layer(s) in %.0f s -> %s\n", reports.size(), wall, b.plan.out.c_str());
 }
 
@@ -148,7 +148,8 @@ app::MapPoint map_point(const Build& point, const bed::Bed& box, const process::
   p.hatch = hatch;
   p.layer = point.plan.spread.layer_thickness;
   p.folder = fs::path(point.plan.out).filename().string();
-  p.porosity = last.part.fraction();
+  p.porosity = last.interior.fraction();
+  p.whole_porosity = last.part.fraction();
   p.lack_of_fusion = last.lack_of_fusion;
   p.remelt_mean = last.remelt_mean;
   p.layer_density = last.density;
@@ -213,6 +214,10 @@ int run_map(const po::variables_map& vm, Build& b) {
   const auto hatches = vm.count("map.hatch") ? map_values(vm, "map.hatch", "hatch spacings, m")
                                              : std::vector<double>{b.plan.hatch->spacing};
   const auto layers = vm["layers"].as<std::uint64_t>();
+  if (layers < 2)
+    throw InputError(fmt::format("--layers: {} with a map (accepted: 2 or more; a point is judged by "
+                                 "the porosity of its part below the last layer, which a later "
+                                 "scan has been over)", layers));
   std::vector<Build> points;
   std::vector<th::PartRecord> parts;
   std::vector<std::array<double, 3>> settings;

@@ -23,7 +23,7 @@ constexpr bed::UnitEntry kUnits[] = {
     {"keyhole_threshold", "1"},  {"tang", "1"},
     {"balling_tracks", "1"},     {"tracks", "1"},
     {"layer_density", "1"},      {"points", "1"},
-    {"dense_porosity", "1"}};
+    {"dense_porosity", "1"},     {"whole_porosity", "1"}};
 
 }  // namespace
 
@@ -58,6 +58,7 @@ void write_map_json(bed::JsonWriter& j, const std::vector<MapPoint>& points, dou
         .value("energy_density", p.energy_density())
         .value("folder", p.folder)
         .value("porosity", p.porosity)
+        .value("whole_porosity", p.whole_porosity)
         .value("lack_of_fusion", p.lack_of_fusion)
         .value("remelt_depth_mean", p.remelt_mean)
         .value("mean_track_width", p.width)

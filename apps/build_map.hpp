@@ -7,7 +7,8 @@
 //                   the normalised enthalpy of sinter --explain), or the last layer's pools
 //                   W / D <= 1.5 (Johnson et al. 2019, Acta Mater. 176), D their depth below the
 //                   solid's top, which the vapour depression deepens where the scene has it
-//   lack of fusion  the part's porosity (thermal/part_porosity.hpp) at or above 1 %, the
+//   lack of fusion  the porosity of the part's interior (thermal/part_porosity.hpp: below the
+//                   top the layer before the last left, as a measured density is) at or above 1 %, the
 //                   density (99 %) the measured series of data/validation/part-density/ cross
 //                   from dense to lack of fusion; beside it Tang, Pistorius & Beuth's
 //                   (h/W)^2 + (t/D_t)^2 (Addit. Manuf. 14, 2017), D_t = t + D the pools' depth
@@ -27,7 +28,8 @@ namespace powderbed::app {
 struct MapPoint {
   double power = 0, speed = 0, hatch = 0, layer = 0;  // W, m/s, m, m (the plate's drop)
   std::string folder;                                 // the point's layer files, in --out
-  double porosity = 0;                                // the part's, after the last layer
+  double porosity = 0;                                // the part's interior, after the last layer
+  double whole_porosity = 0;                          // the part's to its final top
   double lack_of_fusion = 0;                          // the last layer's unbonded area fraction
   double remelt_mean = 0;                             // m, the last layer's
   double width = 0, depth = 0;                        // m, the last layer's mean pool

@@ -89,7 +89,7 @@ def page(report, wall, load):
         "| layer | particles spread | supplied | overflow | spread steps | neighbour rebuilds "
         "| spread (s) | settle (ms) | at rest | scan (s) | layer density | fused | captured | balled | vaporised | fused fraction "
         "| lack of fusion | remelt depth mean / min (µm) | mean track width / depth (µm) "
-        "| absorptance | part porosity | solid top max (µm) | recoater clearance (µm) | mass error |",
+        "| absorptance | part porosity (interior) | solid top max (µm) | recoater clearance (µm) | mass error |",
         "|" + "---|" * 24,
     ]
     for r in rows:
@@ -102,7 +102,7 @@ def page(report, wall, load):
             f"{r['lack_of_fusion']:.3f} | {r['remelt_depth_mean'] * 1e6:.1f} / "
             f"{r['remelt_depth_min'] * 1e6:.1f} | {r['mean_track_width'] * 1e6:.0f} / "
             f"{r['mean_track_depth'] * 1e6:.0f} | {r['absorptance']:.3f} | "
-            f"{r['part_porosity']:.2%} | {r['solid_top_max'] * 1e6:.0f} | "
+            f"{r['part_porosity']:.2%} ({r['interior_porosity']:.2%}) | {r['solid_top_max'] * 1e6:.0f} | "
             f"{r['recoater_clearance'] * 1e6:.0f} | {r['mass_error']:.1e} |")
     lines += [
         "",
@@ -127,7 +127,8 @@ def page(report, wall, load):
         "Captured: powder the grown solid overlapped by more than 5 % of its radius, fused with "
         "it. Balled: melted on solid that did not melt, left in the bed as a ball. Part "
         "porosity: the never-molten share of the solid over the columns every layer so far "
-        "scanned, after that layer (docs/build.md \"Porosity of the part\").",
+        "scanned, after that layer, and of its interior, below the top the layer before left "
+        "(docs/build.md \"Porosity of the part\").",
         "",
         "The supply: 2500 particles a layer. The scene's psd gives D10/D50/D90 by volume "
         "(bed/include/powderbed/bed/psd.hpp), so their number median is ~23 um and they hold "

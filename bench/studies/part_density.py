@@ -15,8 +15,10 @@ layer here); --from-json redraws the page from its map.json.
 
 What is compared, and what is not: the measured series are whole cubes of many layers on other
 machines (their spot, hatch and layer given per row), ours a patch of a few layers whose
-porosity is the never-molten share of the solid over the patch's core (docs/build.md "Porosity
-of the part"). Energy density alone does not fix a part's density (the measured series say so
+porosity is the never-molten share of the solid over the patch's core below the top the layer
+before the last left, its interior (docs/build.md "Porosity of the part"): a measured density is a
+part's interior, and the last layer's top carries a film of captured powder no later scan
+remelts (the whole part's porosity, that film included, is in the table too). Energy density alone does not fix a part's density (the measured series say so
 too: the same E gives different densities at different P); the page plots both against it
 because that is the axis users read, and says where each crosses 1 % and 10 % porosity.
 """
@@ -67,27 +69,6 @@ def run_map(layers, powers, speeds):
     return run
 
 
-def top_share(point, layers):
-    """The share of a point's porosity that lies at its columns' tops after the last layer: the
-    powder the last scan captured (docs/build.md "Porosity of the part"), which no later layer
-    remelts; the rest is buried under remelted solid. From /part of its last layer file (per
-    never-molten interval: column, lo, hi)."""
-    import h5py  # only here: the page's table needs the run's files
-    path = os.path.join(OUT, point["folder"], f"layer-{layers:03d}.h5")
-    with h5py.File(path, "r") as f:
-        intervals = f["part/never_molten"][:]
-        top = f["part/top"][:].ravel()
-        core = f["part/scanned"][:].ravel() == layers
-    total = at_top = 0.0
-    for column, lo, hi in intervals:
-        c = int(column)
-        if not core[c]:
-            continue
-        total += hi - lo
-        at_top += (hi - lo) if abs(hi - top[c]) <= 1e-12 else 0.0
-    return at_top / total if total > 0 else 0.0
-
-
 def crossing(points, level):
     """The energy densities (J/mm^3) between which the porosity passes `level`, going down in E
     from the densest point: the lowest E at or below `level` and the highest above it under it."""
@@ -128,8 +109,7 @@ def plot(ours, measured, path):
 
 
 def page(data, run, measured):
-    ours = [{"energy": p["energy_density"] * 1e-9, "top_share": top_share(p, run["layers"]), **p}
-            for p in data["map"]]
+    ours = [{"energy": p["energy_density"] * 1e-9, **p} for p in data["map"]]
     lines = [
         "# Part density: build's porosity against measured 316L parts",
         "",
@@ -142,11 +122,11 @@ def page(data, run, measured):
         "",
         f"The map took {run['wall']:.0f} s for {len(ours)} points of {run['layers']} layers.",
         "",
-        "Of it at the top: the share of the porosity that lies at the columns' tops after the "
-        "last layer, the powder its scan captured (docs/build.md \"Porosity of the part\"), "
-        "which no later layer has remelted; the rest is buried under remelted solid.",
+        "Porosity: of the part's interior, below the top the layer before the last left, as a "
+        "measured density is (docs/build.md \"Porosity of the part\"); whole part: to the final "
+        "top, with the film of powder the last scan captured there, which no later layer remelts.",
         "",
-        "| P (W) | v (m/s) | E (J/mm³) | porosity | of it at the top | lack of fusion (last layer) "
+        "| P (W) | v (m/s) | E (J/mm³) | porosity | whole part | lack of fusion (last layer) "
         "| remelt depth (µm) | pool W / D (µm) | ΔH/h_s (keyhole >) | Tang | layer density | regions "
         "| wall (s) |",
         "|" + "---|" * 13,
@@ -154,7 +134,7 @@ def page(data, run, measured):
     for p in sorted(ours, key=lambda p: (p["power"], p["speed"])):
         lines.append(
             f"| {p['power']:g} | {p['speed']:g} | {p['energy']:.1f} | {p['porosity']:.2%} | "
-            f"{p['top_share']:.0%} | "
+            f"{p['whole_porosity']:.2%} | "
             f"{p['lack_of_fusion']:.1%} | {p['remelt_depth_mean'] * 1e6:.1f} | "
             f"{p['mean_track_width'] * 1e6:.0f} / {p['mean_track_depth'] * 1e6:.0f} | "
             f"{p['normalised_enthalpy']:.1f} ({p['keyhole_threshold']:.1f}) | "
@@ -206,16 +186,15 @@ def findings(ours):
                 "branch falls with energy density as the measured series do, and the 10 % crossing "
                 f"lies between theirs, but {window}, "
                 "where both measured series are dense from 35-57 J/mm³. "
-                + (f"At the standard point {standard['top_share']:.0%} of the porosity is the last "
-                   "layer's captured powder at the top, which a later layer would remelt: the "
-                   "porosity of a part two layers thick is mostly its top. " if standard else "")
+                + (f"At the standard point the whole part, its top's film of captured powder "
+                   f"included, holds {standard['whole_porosity']:.1%}: the porosity of a part two "
+                   "layers thick is mostly its top. " if standard else "")
                 + "The spread layers the scans "
                 f"met held {min(density):.3f}-{max(density):.3f} of solid (measured spread layers: "
                 "0.38-0.60; docs/results/spread-density.md): each layer adds little solid, the powder "
                 "over the part thickens layer by layer and the melt reaches the layer below less "
                 "(docs/results/build-layers.md), so the porosity at a given energy density is high. "
-                "A point is two layers, so the porosity is that of a thin part: the core's first "
-                "layer on the plate weighs as much as the second")
+                "A point of two layers judges its first layer as the second left it")
     return "; ".join(text[:2]) + ("; " if len(text) > 2 else "") + text[-1] + "."
 
 

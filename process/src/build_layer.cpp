@@ -64,6 +64,7 @@ void report_fusion(const th::Sinter& sinter, const th::Fusion& fused, const th::
   rep.top_max = *high - g.z_top;
   rep.solid_mass = fused.solid_mass_after;
   rep.part = th::part_porosity(part);
+  rep.interior = th::interior_porosity(part);
   rep.part_column_area = g.dx * g.dy;
 }
 

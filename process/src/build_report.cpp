@@ -22,7 +22,7 @@ constexpr bed::UnitEntry kUnits[] = {
     {"captured", "1"}, {"balled", "1"}, {"fused_fraction", "1"}, {"lack_of_fusion", "1"},
     {"remelt_depth_mean", "m"}, {"remelt_depth_min", "m"}, {"scanned_area", "m^2"},
     {"mass_error", "1"}, {"solid_top_min", "m"}, {"solid_top_max", "m"}, {"solid_mass", "kg"},
-    {"part_porosity", "1"}, {"part_core_area", "m^2"}};
+    {"part_porosity", "1"}, {"interior_porosity", "1"}, {"part_core_area", "m^2"}};
 
 }  // namespace
 
@@ -71,6 +71,7 @@ void write_layer_json(bed::JsonWriter& j, const LayerReport& l, const LayerPictu
       .value("solid_top_max", l.top_max)
       .value("solid_mass", l.solid_mass)
       .value("part_porosity", l.part.fraction())
+      .value("interior_porosity", l.interior.fraction())
       .value("part_core_area", static_cast<double>(l.part.core_columns) * l.part_column_area);
   j.begin_object("pictures");
   for (const auto& [kind, file] : pictures) j.value(kind, file);

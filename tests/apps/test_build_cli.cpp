@@ -238,11 +238,12 @@ TEST(BuildCli, SingleTrackBuildJudgesTheTracksStrip) {
 // build --map.power ... --map.speed ...: one spread of the first layer, a folder per point built
 // from it, map.json with each point's energy density P / (v h t), its part's porosity and its
 // regions; the points differ in the laser only, so a faster scan at the same power leaves pools
-// no wider. Bad grids exit 2 with one line and write nothing.
+// no wider. The porosity judged is the interior's, no more than the whole part's. Bad grids and
+// a map of one layer (no interior) exit 2 with one line and write nothing.
 TEST(BuildCli, MapBuildsEveryPointFromOneSpread) {
   const std::string dir = test::scratch_dir("build_map");
-  const std::string base = "--config " + kConfig + " --layers 1 --pictures false --threads 1 ";
-  const auto r = test::run_app("build", base + "--map.power 100 --map.speed 0.5,1.5 --json --out " + dir + "/map");
+  const std::string base = "--config " + kConfig + " --pictures false --threads 1 ";
+  const auto r = test::run_app("build", base + "--layers 2 --map.power 100 --map.speed 0.5,1.5 --json --out " + dir + "/map");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(std::filesystem::exists(dir + "/map/layer-001-spread.h5"));
   EXPECT_TRUE(std::filesystem::exists(dir + "/map/map.json"));
@@ -256,6 +257,7 @@ TEST(BuildCli, MapBuildsEveryPointFromOneSpread) {
   const double hatch = test::json_number(r.out, "hatch"), layer = test::json_number(r.out, "layer");
   EXPECT_NEAR(test::json_number(r.out, "energy_density"), 100 / (0.5 * hatch * layer), 1e-6 * 100 / (0.5 * hatch * layer));
   EXPECT_GE(test::json_number(r.out, "porosity"), 0);
+  EXPECT_LE(test::json_number(r.out, "porosity"), test::json_number(r.out, "whole_porosity"));
   EXPECT_GE(test::json_number(r.out, "mean_track_width"), test::json_number(second, "mean_track_width"));
   EXPECT_NE(r.out.find("\"regions\":[\""), std::string::npos) << r.out;
   const std::pair<std::string, std::string> cases[] = {
@@ -265,6 +267,7 @@ TEST(BuildCli, MapBuildsEveryPointFromOneSpread) {
       {"--map.power 100", "one given without the other"},
       {"--map.power 100 --map.speed 1 --map.hatch 0", "--map.hatch"},
       {"--map.power 100 --map.speed 1 --sinter " + kScenes + "/scan-track.ini", "scans no hatch"},
+      {"--map.power 100 --map.speed 1 --layers 1", "--layers: 1 with a map"},
   };
   for (const auto& [args, field] : cases) {
     const auto bad = test::run_app("build", base + args + " --out " + dir + "/bad");

@@ -179,6 +179,34 @@ TEST(LackOfFusion, SingleTrackOfTheDefaultsIsScanned) {
   EXPECT_GT(s.lof.scanned - s.lof.unbonded, 0u);  // the melt bonded to the plate under it
 }
 
+namespace {
+
+// The plate raised by `lift` of captured powder (never molten: the record of one layer that
+// scanned every column) and one track over it: the track's lack of fusion, its fusion and the
+// record before this layer.
+struct BlockUnderTrack {
+  thermal::LackOfFusion lof;
+  thermal::Fusion fusion;
+  thermal::PartRecord record;
+};
+BlockUnderTrack block_under_track(thermal::Sinter& raised, const bed::Bed& b,
+                                  const thermal::TopHeight& top, double lift) {
+  raised.run(nullptr, 0, nullptr);
+  const double t_m = raised.material().phase_change().melting_point;
+  BlockUnderTrack s{thermal::lack_of_fusion(raised, 60e-6, t_m, top), thermal::fuse(b, raised),
+                    thermal::part_record(raised.grid())};
+  const thermal::SubstrateGeometry& g = raised.grid();
+  s.record.layers = 1;
+  for (std::size_t c = 0; c < g.columns(); ++c) {
+    s.record.top[c] = top[c];
+    s.record.scanned[c] = 1;
+    s.record.never_molten[c] = {{g.z_top, g.z_top + lift}};
+  }
+  return s;
+}
+
+}  // namespace
+
 // The part's porosity (part_porosity.hpp): a layer's melt takes the never-molten solid under it
 // down to the melt's bottom, column by column. The plate raised by a block of captured powder
 // (never molten, 3 cells thick) and one track over it: what is left in each scanned column is
@@ -186,22 +214,11 @@ TEST(LackOfFusion, SingleTrackOfTheDefaultsIsScanned) {
 // the block, and the cells of the field hold the same volumes.
 TEST(PartPorosity, MeltTakesTheNeverMoltenSolidDownToItsBottom) {
   const bed::Bed b = bare_plate();
-  const auto scene = one_track(b);
   const double lift = 3 * kDx;
-  const thermal::TopHeight top(scene.nodes[0] * scene.nodes[1], lift);
-  thermal::Sinter raised(b, scene, test::table_316l(), top);
-  raised.run(nullptr, 0, nullptr);
-  const double t_m = raised.material().phase_change().melting_point;
-  const auto lof = thermal::lack_of_fusion(raised, 60e-6, t_m, top);
-  thermal::Fusion f = thermal::fuse(b, raised);
+  const thermal::TopHeight top(one_track(b).nodes[0] * one_track(b).nodes[1], lift);
+  thermal::Sinter raised(b, one_track(b), test::table_316l(), top);
+  auto [lof, f, r] = block_under_track(raised, b, top, lift);
   const thermal::SubstrateGeometry& g = raised.grid();
-  thermal::PartRecord r = thermal::part_record(g);
-  r.layers = 1;  // the layer that left the block: scanned everywhere, never molten
-  for (std::size_t c = 0; c < g.columns(); ++c) {
-    r.top[c] = top[c];
-    r.scanned[c] = 1;
-    r.never_molten[c] = {{g.z_top, g.z_top + lift}};
-  }
   // Powder this layer's fusion captured over column 0, far from the track.
   f.top[0] += 5e-6;
   thermal::record_layer(r, raised, f, lof);
@@ -233,4 +250,41 @@ TEST(PartPorosity, MeltTakesTheNeverMoltenSolidDownToItsBottom) {
   std::printf("  block %.0f um: porosity of the scanned columns %.3f after the track; %zu of %zu "
               "columns remelted through\n",
               lift * 1e6, p.fraction(), emptied, lof.scanned);
+}
+
+// The interior (part_porosity.hpp): below the top the layer before the last left. Powder the
+// last layer's fusion captured on top of its melt over every column counts in the whole part's
+// porosity and not in the interior's, which is the block's remainder under the track alone.
+TEST(PartPorosity, InteriorLeavesOutTheFilmTheLastLayerCaptured) {
+  const bed::Bed b = bare_plate();
+  const double lift = 3 * kDx, film = 5e-6;
+  const thermal::TopHeight top(one_track(b).nodes[0] * one_track(b).nodes[1], lift);
+  thermal::Sinter raised(b, one_track(b), test::table_316l(), top);
+  auto [lof, f, r] = block_under_track(raised, b, top, lift);
+  const thermal::SubstrateGeometry& g = raised.grid();
+  for (std::size_t c = 0; c < g.columns(); ++c) f.top[c] = f.melt_top[c] + film;
+  const thermal::PartPorosity before = thermal::part_porosity(r);
+  thermal::record_layer(r, raised, f, lof);
+  const thermal::PartPorosity whole = thermal::part_porosity(r), inside = thermal::interior_porosity(r);
+  double left = 0, films = 0, under = 0;
+  for (std::size_t c = 0; c < g.columns(); ++c) {
+    if (lof.map[c] == thermal::kNotScanned) continue;
+    for (const auto& s : r.never_molten[c]) left += std::max(0.0, std::min(s.hi, r.below_last[c]) - s.lo);
+    films += f.top[c] - std::max(f.melt_top[c], r.below_last[c]);
+    under += r.below_last[c] - g.z_top;
+  }
+  const double area = g.dx * g.dy;
+  EXPECT_EQ(inside.core_columns, lof.scanned);
+  EXPECT_NEAR(inside.volume, area * under, 1e-12 * inside.volume);
+  EXPECT_NEAR(inside.never_molten, area * left, 1e-12 * inside.volume);
+  EXPECT_LT(inside.never_molten, before.never_molten) << "the track remelted some of the block";
+  EXPECT_NEAR(whole.never_molten - inside.never_molten, area * films, 1e-12 * whole.volume);
+  EXPECT_GT(whole.fraction(), inside.fraction());
+  // After one layer there is no interior yet.
+  thermal::PartRecord first = thermal::part_record(g);
+  thermal::record_layer(first, raised, f, lof);
+  EXPECT_EQ(thermal::interior_porosity(first).volume, 0.0);
+  EXPECT_GT(thermal::part_porosity(first).volume, 0.0);
+  std::printf("  film %.0f um over a %.0f um block: porosity %.3f of the whole part, %.3f of its "
+              "interior\n", film * 1e6, lift * 1e6, whole.fraction(), inside.fraction());
 }

@@ -54,6 +54,7 @@ PartRecord part_record(const SubstrateGeometry& g) {
   r.dz = g.dz;
   r.z_top = g.z_top;
   r.top.assign(g.columns(), g.z_top);
+  r.below_last.assign(g.columns(), g.z_top);
   r.scanned.assign(g.columns(), 0);
   r.never_molten.assign(g.columns(), {});
   return r;
@@ -79,24 +80,36 @@ void record_layer(PartRecord& r, const Sinter& sinter, const Fusion& f, const La
     // stand below the melt's own, and then nothing of it is captured powder.
     if (f.top[c] > f.melt_top[c]) column.push_back({f.melt_top[c], f.top[c]});
     clip(column, g.z_top, f.top[c]);
+    r.below_last[c] = r.top[c];
     r.top[c] = f.top[c];
     r.scanned[c] += lof.map[c] != kNotScanned ? 1 : 0;
   }
   ++r.layers;
 }
 
-PartPorosity part_porosity(const PartRecord& r) {
+namespace {
+
+// The porosity of the core's solid from the plate up to `limit` (per column; the part's top
+// where that is lower).
+PartPorosity porosity_below(const PartRecord& r, const TopHeight& limit) {
   PartPorosity p;
   if (r.layers == 0) return p;
   const double area = r.dx * r.dy;
   for (std::size_t c = 0; c < r.columns(); ++c) {
     if (r.scanned[c] != r.layers) continue;
     ++p.core_columns;
-    p.volume += area * (r.top[c] - r.z_top);
-    for (const auto& s : r.never_molten[c]) p.never_molten += area * (s.hi - s.lo);
+    const double high = std::min(limit[c], r.top[c]);
+    p.volume += area * std::max(0.0, high - r.z_top);
+    for (const auto& s : r.never_molten[c]) p.never_molten += area * overlap(s.lo, s.hi, r.z_top, high);
   }
   return p;
 }
+
+}  // namespace
+
+PartPorosity part_porosity(const PartRecord& r) { return porosity_below(r, r.top); }
+
+PartPorosity interior_porosity(const PartRecord& r) { return porosity_below(r, r.below_last); }
 
 PartField part_field(const PartRecord& r) {
   PartField out;
@@ -125,6 +138,7 @@ void write_part_record(bed::H5Output& out, const PartRecord& r) {
   for (const auto& [name, value] : grid) out.attribute(kGroup, name, value);
   const std::string g = kGroup;
   out.write(g + "/top", r.top, {r.ny, r.nx}, "m");
+  out.write(g + "/below_last", r.below_last, {r.ny, r.nx}, "m");
   out.write(g + "/scanned", r.scanned, {r.ny, r.nx}, "1");
   std::vector<double> rows;
   for (std::size_t c = 0; c < r.columns(); ++c)
@@ -135,6 +149,7 @@ void write_part_record(bed::H5Output& out, const PartRecord& r) {
   out.write(g + "/never_molten_fraction", field.never_molten, {field.nk, r.ny, r.nx}, "1");
   const PartPorosity p = part_porosity(r);
   out.attribute(kGroup, "porosity", p.fraction());
+  out.attribute(kGroup, "interior_porosity", interior_porosity(r).fraction());
   out.attribute(kGroup, "core_columns", static_cast<std::uint64_t>(p.core_columns));
 }
 
@@ -154,10 +169,15 @@ PartRecord read_part_record(const std::string& path) {
   r.dz = real("dz");
   r.z_top = real("z_top");
   r.top = in.read_doubles(g + "/top", r.nx);
+  if (!in.exists(g + "/below_last"))
+    throw InputError(fmt::format("{}: /part has no below_last, the part's top before its last layer "
+                                 "(accepted: a layer file written by this version of build)", path));
+  r.below_last = in.read_doubles(g + "/below_last", r.nx);
   r.scanned = in.read_uint64s(g + "/scanned", r.nx);
   const auto rows = in.read_doubles(g + "/never_molten", 3);
-  if (r.top.size() != r.columns() || r.scanned.size() != r.columns() || !(r.dz > 0))
-    throw InputError(fmt::format("{}: /part: top or scanned does not hold {} x {} columns, or dz "
+  if (r.top.size() != r.columns() || r.below_last.size() != r.columns() ||
+      r.scanned.size() != r.columns() || !(r.dz > 0))
+    throw InputError(fmt::format("{}: /part: top, below_last or scanned does not hold {} x {} columns, or dz "
                                  "is not > 0 (accepted: a layer file written by build)",
                                  path, r.nx, r.ny));
   r.never_molten.assign(r.columns(), {});

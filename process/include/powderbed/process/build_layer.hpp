@@ -33,6 +33,7 @@ struct LayerReport {
   double remelt_mean = 0, remelt_min = 0;  // m: remelt depth into the solid below (lack_of_fusion.hpp)
   double solid_mass = 0;                   // kg above the plate after the layer
   thermal::PartPorosity part;              // the part so far (part_porosity.hpp)
+  thermal::PartPorosity interior;          // of it, below the top the layer before left
   double part_column_area = 0;             // m^2: dx dy of the part's columns
   std::size_t captured = 0;                // of the fused: powder the grown solid swallowed
   std::size_t balled = 0;                  // melted on solid that did not melt: balls left in the bed

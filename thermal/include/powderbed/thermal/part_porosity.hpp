@@ -14,7 +14,11 @@
 // holds an unbonded interface of no volume: the layer's lack_of_fusion counts it, this does not.
 // Keyhole pores (the depression collapsing) are not modelled.
 //
-// The part's porosity is taken over its core: the columns every layer's scan covered.
+// The part's porosity is taken over its core: the columns every layer's scan covered, to the
+// part's final top and over its interior (below the top the layer before the last left). The
+// interior is what a later layer's scan has been over, as all but the top of a built part is: a
+// measured density (Archimedes, or a polished section away from the top) is the interior's,
+// while the final top carries the powder the last scan captured, a film no later scan remelts.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -41,6 +45,7 @@ struct PartRecord {
   double x0 = 0, y0 = 0, dx = 0, dy = 0, dz = 0, z_top = 0;
   std::uint64_t layers = 0;                            // layers recorded
   TopHeight top;                                       // per column: the part's top, m
+  TopHeight below_last;                                // per column: its top before the last layer, m
   std::vector<std::uint64_t> scanned;                  // per column: layers whose scan covered it
   std::vector<std::vector<HeightInterval>> never_molten;  // per column, in order of height
 
@@ -67,7 +72,10 @@ struct PartPorosity {
   // never_molten / volume (0 when the core holds no solid).
   double fraction() const { return volume > 0 ? never_molten / volume : 0.0; }
 };
+// To the part's final top.
 PartPorosity part_porosity(const PartRecord& r);
+// Of its interior: below the top the layer before the last left (no volume after one layer).
+PartPorosity interior_porosity(const PartRecord& r);
 
 // The record as cells for pictures and ParaView: nk planes of dz from the plate's top up to the
 // highest column's top, nk × ny × nx (x fastest), each cell the fraction of its volume that is
