@@ -2,15 +2,19 @@
 """Layers of a part, three by default (issues 17 and 32): `build --config data/scenes/build-316L.ini` on one
 thread, and where its time goes (spread against scan, per layer).
 
-Writes docs/results/build-layers.md. Run from anywhere with /usr/bin/python3 after building
-(POWDERBED_BUILD selects the build folder):
-    POWDERBED_BUILD=build python3 bench/studies/build_layers.py [LAYERS] [--from-json build.json]
+Writes docs/results/build-layers.md, or with --dosing D docs/results/build-layers-dosed.md. Run
+from anywhere with /usr/bin/python3 after building (POWDERBED_BUILD selects the build folder):
+    POWDERBED_BUILD=build python3 bench/studies/build_layers.py [LAYERS] [--dosing D]
+        [--from-json build.json]
 
 The scene: per layer the blade spreads data/scenes/spread-blade.ini's 2500-particle supply over
 the 2 x 0.5 mm strip (316L 15-45 um, gap 90 um then 45 um layers), the laser scans five hatched
 tracks 100 um apart over x 0.8-2.0 mm at 200 W and 1 m/s, turned 67 degrees a layer
-(data/scenes/build-316L-scan.ini), and what melted fuses. --from-json rewrites the page from a
-build.json of an earlier run (its wall times and load are then that run's).
+(data/scenes/build-316L-scan.ini), and what melted fuses. --dosing D supplies instead D times
+each layer's nominal powder (deposit's supply.dosing, as machines dose), from a supply region
+twice as long, with the chamber's far wall keeping what the blade pushes past the strip.
+--from-json rewrites the page from a build.json of an earlier run (its wall times and load are
+then that run's).
 """
 import argparse
 import json
@@ -24,6 +28,11 @@ from lib.report import load_average, machine, write_page
 
 CONFIG = os.path.join(ROOT, "data", "scenes", "build-316L.ini")
 SPREAD = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
+# --dosing D: the scene's 2500 particles replaced by D times the layer's nominal powder
+# (supply.dosing), in a supply region 0.7 mm long instead of 0.5 (the first layer's dose on its
+# 90 um gap fills 0.39 of it, near the random loose packing's limit for placement without
+# overlap), and the overflow kept against the box's far wall (recoater.chamber).
+DOSED = "--supply.dosing {} --supply.count 0 --supply.x1 0.9e-3 --recoater.chamber true"
 
 
 def spread_option(name):
@@ -37,17 +46,19 @@ def spread_option(name):
     raise KeyError(f"deposit --print-config of {SPREAD} has no {name}")
 
 
-def run_build(layers):
+def run_build(layers, dosing):
     with tempfile.TemporaryDirectory() as work:
         out = os.path.join(work, "run")
         load = load_average()
         start = time.perf_counter()
+        dosed = ["--spread-args", DOSED.format(dosing)] if dosing else []
         subprocess.run([app("build"), "--config", CONFIG, "--layers", str(layers), "--out", out,
-                        "--threads", "1", "--progress", "0"], check=True, capture_output=True)
+                        "--threads", "1", "--progress", "0", *dosed], check=True, capture_output=True)
         wall = time.perf_counter() - start
         with open(os.path.join(out, "build.json")) as f:
             report = json.load(f)
         report["seam_lack_of_fusion"] = [seam_share(out, r["layer"]) for r in report["layers"]]
+    report["dosing"] = dosing
     return report, wall, (load, load_average())
 
 
@@ -69,12 +80,17 @@ def page(report, wall, load):
     spread = sum(r["spread_wall_time"] for r in rows)
     added = ", ".join(f"{r['layer_density'] * r['recoater_clearance'] * 1e6:.0f}" for r in rows)
     scan = sum(r["scan_wall_time"] for r in rows)
+    dosing = report.get("dosing")
+    spread_args = f" --spread-args \"{DOSED.format(dosing)}\"" if dosing else ""
     lines = [
-        f"# A part layer after layer: {len(rows)} layers of 316L",
+        f"# A part layer after layer: {len(rows)} layers of 316L" + (f", dosed {dosing:g}×" if dosing else ""),
         "",
-        f"`POWDERBED_BUILD=build python3 bench/studies/build_layers.py {len(rows)}`: "
-        f"`build --config data/scenes/build-316L.ini --layers {len(rows)} --threads 1` "
-        "(docs/build.md): each layer the blade spreads 2500 particles of 316L 15–45 µm over the "
+        f"`POWDERBED_BUILD=build python3 bench/studies/build_layers.py {len(rows)}"
+        + (f" --dosing {dosing:g}" if dosing else "") + "`: "
+        f"`build --config data/scenes/build-316L.ini --layers {len(rows)} --threads 1{spread_args}` "
+        "(docs/build.md): each layer the blade spreads "
+        + (f"{dosing:g} times the layer's nominal powder" if dosing else "2500 particles")
+        + " of 316L 15–45 µm over the "
         "2 × 0.5 mm strip (data/scenes/spread-blade.ini), five tracks 100 µm apart at 200 W and "
         "1 m/s scan x 0.8–2.0 mm, turned 67° a layer (data/scenes/build-316L-scan.ini, 10 µm "
         "grid), and what melted fuses.",
@@ -130,13 +146,7 @@ def page(report, wall, load):
         "scanned, after that layer, and of its interior, below the top the layer before left "
         "(docs/build.md \"Porosity of the part\").",
         "",
-        "The supply: 2500 particles a layer. The scene's psd gives D10/D50/D90 by volume "
-        "(bed/include/powderbed/bed/psd.hpp), so their number median is ~23 um and they hold "
-        "~2.3e-11 m^3 of solid (2.34e-11 expected from the psd as sampled; deposit's first "
-        "supply holds 2.40e-11 with seed 1, 2.30e-11 with seed 2): a dosing factor of ~0.5 on "
-        "the first layer's 90 um gap and ~1.0 on the 45 um layers after it, at a dosed bulk "
-        "density of 0.5 (deposit's `supply.dosing`: d phi_b L W t; docs/deposit-spread.md), "
-        "where machines dose 1.5-2.",
+        supply_text(dosing),
         "",
         "The clearance over the solid: a layer adds about layer density x clearance of solid "
         f"({added} um here) while the plate goes down 45 um, so over many layers the clearance "
@@ -160,9 +170,28 @@ def page(report, wall, load):
     return "\n".join(lines)
 
 
+def supply_text(dosing):
+    """What the page says of the supply: the scene's 2500 particles, or a dose."""
+    if dosing:
+        return (f"The supply: dosed {dosing:g}× (deposit's `supply.dosing`: d phi_b L W t of solid "
+                "a layer, phi_b = 0.5, L the blade's 2.1 mm travel, W the 0.5 mm strip, t the "
+                "first layer's 90 um gap and then 45 um; docs/deposit-spread.md), as machines dose "
+                "1.5-2, placed in x 0.2-0.9 mm; the box's far wall keeps what the blade pushes "
+                "past the strip (`recoater.chamber`), as a machine's chamber wall does.")
+    return ("The supply: 2500 particles a layer. The scene's psd gives D10/D50/D90 by volume "
+            "(bed/include/powderbed/bed/psd.hpp), so their number median is ~23 um and they hold "
+            "~2.3e-11 m^3 of solid (2.34e-11 expected from the psd as sampled; deposit's first "
+            "supply holds 2.40e-11 with seed 1, 2.30e-11 with seed 2): a dosing factor of ~0.5 on "
+            "the first layer's 90 um gap and ~1.0 on the 45 um layers after it, at a dosed bulk "
+            "density of 0.5 (deposit's `supply.dosing`: d phi_b L W t; docs/deposit-spread.md), "
+            "where machines dose 1.5-2 (`--dosing 2` runs the build dosed: "
+            "docs/results/build-layers-dosed.md).")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("layers", nargs="?", type=int, default=3)
+    parser.add_argument("--dosing", type=float, help="dose D times each layer's nominal powder")
     parser.add_argument("--from-json", help="a build.json of an earlier run, with --wall and --load")
     parser.add_argument("--wall", type=float, help="with --from-json: the run's wall time, s")
     parser.add_argument("--load", default="unknown,unknown",
@@ -174,8 +203,9 @@ def main():
         wall = args.wall if args.wall else report["wall_time"]
         load = tuple(args.load.split(","))
     else:
-        report, wall, load = run_build(args.layers)
-    print(write_page("build-layers.md", page(report, wall, load)))
+        report, wall, load = run_build(args.layers, args.dosing)
+    dosed = report.get("dosing")
+    print(write_page("build-layers-dosed.md" if dosed else "build-layers.md", page(report, wall, load)))
 
 
 if __name__ == "__main__":
