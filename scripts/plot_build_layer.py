@@ -77,6 +77,7 @@ def load(path):
             "part_scanned": dataset(f, "/part/scanned", grid),
             "part_layers": int(f["/part"].attrs["layers"]),
             "part_porosity": float(f["/part"].attrs["porosity"]),
+            "interior_porosity": float(f["/part"].attrs.get("interior_porosity", np.nan)),
             "dz": float(f["/part"].attrs["dz"]),
         }
 
@@ -179,7 +180,8 @@ def draw_section(d, layer):
                        Patch(facecolor="0.2", label="the core (every layer scanned)")],
               loc="upper left", bbox_to_anchor=(1.01, 1), borderaxespad=0)
     ax.set_title(f"layer {layer}: the part at y = {d['gy'][j] / UM:.0f} µm; porosity of the core "
-                 f"{d['part_porosity']:.2%} (height stretched)")
+                 f"{d['part_porosity']:.2%}, below the last layer {d['interior_porosity']:.2%} "
+                 "(height stretched)")
     return fig
 
 
