@@ -113,6 +113,8 @@ TEST(BuildCli, ContinuedBuildEqualsTheUninterruptedOneBitForBit) {
   const thermal::PartRecord pa = thermal::read_part_record(a), pb = thermal::read_part_record(b);
   EXPECT_EQ(pa.layers, 3u);
   EXPECT_EQ(pa.top, pb.top);
+  EXPECT_EQ(pa.below_last, pb.below_last);
+  EXPECT_NE(pa.below_last, pa.top);  // layer 3 raised the top over what layer 2 left
   EXPECT_EQ(pa.scanned, pb.scanned);
   ASSERT_EQ(pa.never_molten.size(), pb.never_molten.size());
   for (std::size_t c = 0; c < pa.never_molten.size(); ++c) {
