@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Draws a build's process map (docs/build.md "Process maps") from its map.json: one panel per
 hatch spacing, laser power over scan speed, each point coloured by its region (dense, lack of
-fusion, keyhole, balling; a second region as a ring), labelled with the part's porosity, and the
-porosity's contours at 1, 5 and 10 % where the points span an area. Written to PNG.tmp.<pid> and
+fusion, keyhole, balling; a second region as a ring), labelled with the porosity of the part's
+interior (below its last layer), and the porosity's contours at 1, 5 and 10 % where the points
+span an area. Written to PNG.tmp.<pid> and
 renamed into place, so a killed run leaves no half picture.
 
 `build --map.power ... --map.speed ...` runs it at the end (build/scripts/plot_build_map, with the
@@ -99,8 +100,8 @@ def draw(data):
         axes[0][-1].scatter([], [], c=colour, edgecolors="k", label=name)
     axes[0][-1].plot([], [], color="0.3", linestyle="dashed", label="porosity contours")
     axes[0][-1].legend(fontsize=8, loc="center left", bbox_to_anchor=(1.02, 0.5))
-    fig.suptitle(f"build process map: the part's porosity at each point "
-                 f"(dense below {data.get('dense_porosity', 0.01):.0%})", fontsize=10)
+    fig.suptitle("build process map: the porosity of the part's interior (below its last layer) "
+                 f"at each point (dense below {data.get('dense_porosity', 0.01):.0%})", fontsize=10)
     fig.tight_layout()
     return fig
 

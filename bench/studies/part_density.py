@@ -156,13 +156,14 @@ def page(data, run, measured):
             cells.append("not reached" if c is None else
                          f"{'—' if c[0] is None else f'{c[0]:.0f}'} → {c[1]:.0f} J/mm³")
         lines.append(f"| {name} | {cells[0]} | {cells[1]} |")
-    lines += ["", findings(ours), ""]
+    lines += ["", findings(ours, measured), ""]
     return "\n".join(lines)
 
 
-def findings(ours):
+def findings(ours, measured):
     """What the page shows, in its own numbers: the standard point, a quarter of its energy
-    density, the densest point, and the layer density behind them."""
+    density, the densest point, where the dense window starts against the measured series', and
+    the layer density behind it."""
     def at(power, speed):
         return next((p for p in ours if p["power"] == power and p["speed"] == speed), None)
     text = []
@@ -177,24 +178,31 @@ def findings(ours):
                     f"{': met' if quarter['porosity'] > 0.1 else ': not met'})")
     densest = min(ours, key=lambda p: p["porosity"])
     density = [p["layer_density"] for p in ours]
-    dense = [p for p in ours if p["porosity"] < 0.01]
-    window = (f"the dense window (under 1 %) is reached only at {min(p['energy'] for p in dense):.0f} "
-              "J/mm³ and above on this grid" if dense else
-              "the dense window (under 1 %) is not reached on this grid")
+    ours_dense = crossing(ours, 0.01)
+    theirs = {}
+    for m in measured:
+        theirs.setdefault(m["source"].replace(".csv", ""), []).append(m)
+    starts = [c[1] for c in (crossing(rows, 0.01) for rows in theirs.values()) if c]
+    if ours_dense is None:
+        window = "the dense window (under 1 %) is not reached on this grid"
+    else:
+        side = ("below both" if ours_dense[1] < min(starts) else
+                "above both" if ours_dense[1] > max(starts) else "between") if starts else "—"
+        window = (f"the dense window (under 1 %) starts at {ours_dense[1]:.0f} J/mm³ on this grid, "
+                  f"{side} of the measured series' ({', '.join(f'{e:.0f}' for e in starts)} J/mm³)")
     text.append(f"the densest point is {densest['power']:g} W, {densest['speed']:g} m/s "
-                f"({densest['energy']:.0f} J/mm³, {densest['porosity']:.1%}). The lack-of-fusion "
-                "branch falls with energy density as the measured series do, and the 10 % crossing "
-                f"lies between theirs, but {window}, "
-                "where both measured series are dense from 35-57 J/mm³. "
+                f"({densest['energy']:.0f} J/mm³, {densest['porosity']:.1%}). The porosity rises as "
+                f"the energy density falls, as the measured series' does; {window}. "
                 + (f"At the standard point the whole part, its top's film of captured powder "
                    f"included, holds {standard['whole_porosity']:.1%}: the porosity of a part two "
                    "layers thick is mostly its top. " if standard else "")
                 + "The spread layers the scans "
-                f"met held {min(density):.3f}-{max(density):.3f} of solid (measured spread layers: "
-                "0.38-0.60; docs/results/spread-density.md): each layer adds little solid, the powder "
-                "over the part thickens layer by layer and the melt reaches the layer below less "
-                "(docs/results/build-layers.md), so the porosity at a given energy density is high. "
-                "A point of two layers judges its first layer as the second left it")
+                f"met held {min(density):.3f}-{max(density):.3f} of solid where measured spread layers "
+                "hold 0.38-0.60 (docs/results/spread-density.md): a layer brings a fraction of the "
+                "metal a machine's layer does, so a melt that would leave a machine's layer unbonded "
+                "still goes through this one to the layer below (docs/results/build-layers-dosed.md "
+                "builds with the supply dosed as machines dose). A point of two layers judges its "
+                "first layer as the second left it")
     return "; ".join(text[:2]) + ("; " if len(text) > 2 else "") + text[-1] + "."
 
 
