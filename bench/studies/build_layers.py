@@ -23,16 +23,11 @@ import subprocess
 import tempfile
 import time
 
-from lib.apps import ROOT, app
+from lib.apps import ROOT, app, dosed_build_spread
 from lib.report import load_average, machine, write_page
 
 CONFIG = os.path.join(ROOT, "data", "scenes", "build-316L.ini")
 SPREAD = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
-# --dosing D: the scene's 2500 particles replaced by D times the layer's nominal powder
-# (supply.dosing), in a supply region 0.7 mm long instead of 0.5 (the first layer's dose on its
-# 90 um gap fills 0.39 of it, near the random loose packing's limit for placement without
-# overlap), and the overflow kept against the box's far wall (recoater.chamber).
-DOSED = "--supply.dosing {} --supply.count 0 --supply.x1 0.9e-3 --recoater.chamber true"
 
 
 def spread_option(name):
@@ -51,7 +46,7 @@ def run_build(layers, dosing):
         out = os.path.join(work, "run")
         load = load_average()
         start = time.perf_counter()
-        dosed = ["--spread-args", DOSED.format(dosing)] if dosing else []
+        dosed = ["--spread-args", dosed_build_spread(dosing)] if dosing else []
         subprocess.run([app("build"), "--config", CONFIG, "--layers", str(layers), "--out", out,
                         "--threads", "1", "--progress", "0", *dosed], check=True, capture_output=True)
         wall = time.perf_counter() - start
@@ -81,7 +76,7 @@ def page(report, wall, load):
     added = ", ".join(f"{r['layer_density'] * r['recoater_clearance'] * 1e6:.0f}" for r in rows)
     scan = sum(r["scan_wall_time"] for r in rows)
     dosing = report.get("dosing")
-    spread_args = f" --spread-args \"{DOSED.format(dosing)}\"" if dosing else ""
+    spread_args = f" --spread-args \"{dosed_build_spread(dosing)}\"" if dosing else ""
     lines = [
         f"# A part layer after layer: {len(rows)} layers of 316L" + (f", dosed {dosing:g}×" if dosing else ""),
         "",

@@ -6,7 +6,8 @@ data/validation/part-density/ beside it, each point with its volumetric energy d
 E = P / (v h t).
 
 Writes docs/results/part-density.md, part-density.png and part-density-map.png (build's own
-map.png). Run with /usr/bin/python3 after
+map.png); with --dosing D the build's spreads are dosed D times each layer's nominal powder, as
+machines dose (lib.apps.dosed_build_spread), into part-density-dosed.md and its pictures. Run with /usr/bin/python3 after
 building (POWDERBED_BUILD selects the build folder):
     POWDERBED_BUILD=build python3 bench/studies/part_density.py [--layers N]
         [--power 100,200,300] [--speed 1,2,4] [--from-json]
@@ -30,12 +31,16 @@ import shutil
 import subprocess
 import time
 
-from lib.apps import ROOT, WORK, app
+from lib.apps import ROOT, WORK, app, dosed_build_spread
 from lib.report import load_average, machine, source, write_page
 
 CONFIG = os.path.join(ROOT, "data", "scenes", "build-316L.ini")
 MEASURED = os.path.join(ROOT, "data", "validation", "part-density")
-OUT = os.path.join(WORK, "part-density")
+
+
+def named(dosing):
+    """The study's name: its folder in out/studies and its page's (and pictures') stem."""
+    return "part-density-dosed" if dosing else "part-density"
 
 
 def read_measured():
@@ -52,19 +57,22 @@ def read_measured():
     return rows
 
 
-def run_map(layers, powers, speeds):
-    if os.path.exists(OUT):
-        subprocess.run(["rm", "-rf", OUT], check=True)
-    os.makedirs(os.path.dirname(OUT), exist_ok=True)
+def run_map(layers, powers, speeds, dosing):
+    out = os.path.join(WORK, named(dosing))
+    if os.path.exists(out):
+        subprocess.run(["rm", "-rf", out], check=True)
+    os.makedirs(os.path.dirname(out), exist_ok=True)
     load = load_average()
     built = source(app("build"))  # what ran, before a later build can replace it
     start = time.perf_counter()
     subprocess.run([app("build"), "--config", CONFIG, "--layers", str(layers), "--threads", "1",
-                    "--progress", "0", "--map.power", powers, "--map.speed", speeds, "--out", OUT],
+                    "--progress", "0", "--map.power", powers, "--map.speed", speeds, "--out", out,
+                    *(["--spread-args", dosed_build_spread(dosing)] if dosing else [])],
                    check=True, capture_output=True)
     wall = time.perf_counter() - start
-    run = {"wall": wall, "load": [load, load_average()], "layers": layers, "source": built}
-    with open(os.path.join(OUT, "run.json"), "w") as f:
+    run = {"wall": wall, "load": [load, load_average()], "layers": layers, "source": built,
+           "dosing": dosing, "power": powers, "speed": speeds}
+    with open(os.path.join(out, "run.json"), "w") as f:
         json.dump(run, f)
     return run
 
@@ -110,13 +118,24 @@ def plot(ours, measured, path):
 
 def page(data, run, measured):
     ours = [{"energy": p["energy_density"] * 1e-9, **p} for p in data["map"]]
+    dosing = run.get("dosing")
+    stem = named(dosing)
+    grid = f" --power {run['power']} --speed {run['speed']}" if "power" in run else ""
     lines = [
-        "# Part density: build's porosity against measured 316L parts",
+        "# Part density: build's porosity against measured 316L parts"
+        + (f", the spreads dosed {dosing:g}×" if dosing else ""),
         "",
-        f"`POWDERBED_BUILD=build python3 bench/studies/part_density.py --layers {run['layers']}`: "
+        f"`POWDERBED_BUILD=build python3 bench/studies/part_density.py --layers {run['layers']}{grid}"
+        + (f" --dosing {dosing:g}" if dosing else "") + "`: "
         f"`build --config data/scenes/build-316L.ini --layers {run['layers']} --map.power ... "
-        "--map.speed ...` (docs/build.md \"Process maps\"), one thread; the measured series of "
-        "data/validation/part-density/ (their headers give the sources).",
+        "--map.speed ..."
+        + (f" --spread-args \"{dosed_build_spread(dosing)}\"" if dosing else "")
+        + "` (docs/build.md \"Process maps\"), one thread; the measured series of "
+        "data/validation/part-density/ (their headers give the sources)"
+        + (f"; the supply dosed {dosing:g} times each layer's nominal powder, as machines dose "
+           "(docs/deposit-spread.md \"supply.dosing\"; the undosed map: part-density.md)."
+           if dosing else "; docs/results/part-density-dosed.md runs the spreads dosed as "
+           "machines dose."),
         "",
         machine(run["load"][0], run["load"][1], program=app("build"), source_text=run.get("source")),
         "",
@@ -141,8 +160,8 @@ def page(data, run, measured):
             f"{p['tang'] if p['tang'] is not None else float('inf'):.2f} | {p['layer_density']:.3f} | "
             f"{', '.join(p['regions'])} | {p['wall_time']:.0f} |")
     lines += ["", "The map as build draws it (map.png; dashed: the porosity's contours):", "",
-              "![the process map](part-density-map.png)", "",
-              "![porosity against energy density](part-density.png)", "",
+              f"![the process map]({stem}-map.png)", "",
+              f"![porosity against energy density]({stem}.png)", "",
               "Where the porosity crosses 1 % and 10 % going down in energy density (the highest "
               "E still above the level, and the lowest E below it):", "",
               "| series | 1 % | 10 % |", "|---|---|---|"]
@@ -211,20 +230,24 @@ def main():
     parser.add_argument("--layers", type=int, default=2)
     parser.add_argument("--power", default="100,200,300")
     parser.add_argument("--speed", default="1,2,4")
+    parser.add_argument("--dosing", type=float, help="dose D times each layer's nominal powder")
     parser.add_argument("--from-json", action="store_true")
     args = parser.parse_args()
+    stem = named(args.dosing)
+    out = os.path.join(WORK, stem)
     if args.from_json:
-        with open(os.path.join(OUT, "run.json")) as f:
+        with open(os.path.join(out, "run.json")) as f:
             run = json.load(f)
     else:
-        run = run_map(args.layers, args.power, args.speed)
-    with open(os.path.join(OUT, "map.json")) as f:
+        run = run_map(args.layers, args.power, args.speed, args.dosing)
+    with open(os.path.join(out, "map.json")) as f:
         data = json.load(f)
     measured = read_measured()
     ours = [{"energy": p["energy_density"] * 1e-9, "porosity": p["porosity"]} for p in data["map"]]
-    plot(ours, measured, os.path.join(ROOT, "docs", "results", "part-density.png"))
-    shutil.copyfile(os.path.join(OUT, "map.png"), os.path.join(ROOT, "docs", "results", "part-density-map.png"))
-    write_page("part-density.md", page(data, run, measured))
+    results = os.path.join(ROOT, "docs", "results")
+    plot(ours, measured, os.path.join(results, f"{stem}.png"))
+    shutil.copyfile(os.path.join(out, "map.png"), os.path.join(results, f"{stem}-map.png"))
+    write_page(f"{stem}.md", page(data, run, measured))
 
 
 if __name__ == "__main__":
