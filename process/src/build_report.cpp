@@ -15,7 +15,7 @@ constexpr bed::UnitEntry kUnits[] = {
     {"layer", "1"}, {"particles_spread", "1"}, {"supplied", "1"}, {"overflow", "1"},
     {"tool_bottom", "m"}, {"recoater_clearance", "m"}, {"layer_density", "1"},
     {"spread_steps", "1"}, {"neighbour_rebuilds", "1"}, {"ejected", "1"}, {"behind_start", "1"},
-    {"spread_settle_time", "s"}, {"spread_wall_time", "s"}, {"tracks", "1"}, {"mean_track_width", "m"},
+    {"spread_settle_time", "s"}, {"spread_asleep", "1"}, {"sleep_changes", "1"}, {"spread_wall_time", "s"}, {"tracks", "1"}, {"mean_track_width", "m"},
     {"mean_track_depth", "m"}, {"max_temperature", "K"}, {"absorptance", "1"},
     {"depression_depth", "m"}, {"evaporated_mass", "kg"}, {"energy_balance_error", "1"},
     {"scan_wall_time", "s"}, {"fused", "1"}, {"vaporised", "1"}, {"powder_left", "1"},
@@ -46,6 +46,8 @@ void write_layer_json(bed::JsonWriter& j, const LayerReport& l, const LayerPictu
       .value("behind_start", static_cast<std::uint64_t>(l.behind))
       .value("spread_settle_time", l.spread.settle_time)
       .value("spread_at_rest", l.spread.at_rest)
+      .value("spread_asleep", l.spread.asleep)
+      .value("sleep_changes", l.spread.sleep_changes)
       .value("spread_wall_time", l.spread.wall_time)
       .value("tracks", static_cast<std::uint64_t>(l.scan.tracks.size()))
       .value("mean_track_width", width)
