@@ -13,8 +13,9 @@ tracks 100 um apart over x 0.8-2.0 mm at 200 W and 1 m/s, turned 67 degrees a la
 (data/scenes/build-316L-scan.ini), and what melted fuses. --dosing D supplies instead D times
 each layer's nominal powder (deposit's supply.dosing, as machines dose), from a supply region
 twice as long, with the chamber's far wall keeping what the blade pushes past the strip.
---from-json rewrites the page from a build.json of an earlier run (its wall times and load are
-then that run's).
+A run keeps its report (build.json with the study's own fields) as
+out/studies/build-layers[-dosed].json; --from-json rewrites the page from it or from a build.json
+of an earlier run (its wall times and load are then that run's).
 """
 import argparse
 import json
@@ -23,7 +24,7 @@ import subprocess
 import tempfile
 import time
 
-from lib.apps import ROOT, app, dosed_build_spread
+from lib.apps import ROOT, WORK, app, dosed_build_spread
 from lib.report import load_average, machine, write_page
 
 CONFIG = os.path.join(ROOT, "data", "scenes", "build-316L.ini")
@@ -74,6 +75,7 @@ def page(report, wall, load):
     rows = report["layers"]
     spread = sum(r["spread_wall_time"] for r in rows)
     added = ", ".join(f"{r['layer_density'] * r['recoater_clearance'] * 1e6:.0f}" for r in rows)
+    clearance = ", ".join(f"{r['recoater_clearance'] * 1e6:.0f}" for r in rows)
     scan = sum(r["scan_wall_time"] for r in rows)
     dosing = report.get("dosing")
     spread_args = f" --spread-args \"{dosed_build_spread(dosing)}\"" if dosing else ""
@@ -143,11 +145,14 @@ def page(report, wall, load):
         "",
         supply_text(dosing),
         "",
-        "The clearance over the solid: a layer adds about layer density x clearance of solid "
-        f"({added} um here) while the plate goes down 45 um, so over many layers the clearance "
-        "tends to t / phi, the layer thickness over the layer density; with a spread layer as "
-        "sparse as this scene's (docs/results/spread-density.md) that is several hundred um of "
-        "powder for the beam to melt through before it reaches the solid under it.",
+        "The clearance over the solid (the tool's bottom over the solid's highest point: "
+        f"{clearance} um here): a layer adds about layer density x clearance of solid "
+        f"({added} um here) while the plate goes down 45 um. Where that is less than 45 um the "
+        "solid's mean top falls behind the plate, and over many layers the powder over it tends "
+        "to t / phi, the layer thickness over the layer density: with a spread layer as sparse "
+        "as 0.1-0.2 (docs/results/spread-density.md) several hundred um for the beam to melt "
+        "through before it reaches the solid under it. The tracks' beads stand above that mean "
+        "(solid top max), so the clearance over them can shrink while the mean falls behind.",
         "",
     ]
     seam = report.get("seam_lack_of_fusion")
@@ -189,16 +194,22 @@ def main():
     parser.add_argument("--dosing", type=float, help="dose D times each layer's nominal powder")
     parser.add_argument("--from-json", help="a build.json of an earlier run, with --wall and --load")
     parser.add_argument("--wall", type=float, help="with --from-json: the run's wall time, s")
-    parser.add_argument("--load", default="unknown,unknown",
-                        help="with --from-json: the load averages before,after (as recorded)")
+    parser.add_argument("--load", help="with --from-json: the load averages before,after (as "
+                        "recorded; default: the report's own, else unknown)")
     args = parser.parse_args()
     if args.from_json:
         with open(args.from_json) as f:
             report = json.load(f)
         wall = args.wall if args.wall else report["wall_time"]
-        load = tuple(args.load.split(","))
+        load = tuple(args.load.split(",")) if args.load else tuple(report.get("load", ("unknown",) * 2))
     else:
         report, wall, load = run_build(args.layers, args.dosing)
+        report["wall_time"], report["load"] = wall, list(load)
+        kept = os.path.join(WORK, f"build-layers{'-dosed' if args.dosing else ''}.json")
+        os.makedirs(WORK, exist_ok=True)
+        with open(kept, "w") as f:
+            json.dump(report, f)
+        print(f"the run's report, for --from-json: {kept}")
     dosed = report.get("dosing")
     print(write_page("build-layers-dosed.md" if dosed else "build-layers.md", page(report, wall, load)))
 
