@@ -100,15 +100,15 @@ def page(report, wall, load):
         f"{max(0.0, wall - spread - scan):.0f} s.",
         "",
         "| layer | particles spread | supplied | overflow | spread steps | neighbour rebuilds "
-        "| spread (s) | settle (ms) | at rest | scan (s) | layer density | fused | captured | balled | vaporised | fused fraction "
+        "| asleep (mean) | spread (s) | settle (ms) | at rest | scan (s) | layer density | fused | captured | balled | vaporised | fused fraction "
         "| lack of fusion | remelt depth mean / min (µm) | mean track width / depth (µm) "
         "| absorptance | part porosity (interior) | solid top max (µm) | recoater clearance (µm) | mass error |",
-        "|" + "---|" * 24,
+        "|" + "---|" * 25,
     ]
     for r in rows:
         lines.append(
             f"| {r['layer']} | {r['particles_spread']} | {r['supplied']} | {r['overflow']} | "
-            f"{r['spread_steps']} | {r['neighbour_rebuilds']} | {r['spread_wall_time']:.0f} | "
+            f"{r['spread_steps']} | {r['neighbour_rebuilds']} | {asleep(r)} | {r['spread_wall_time']:.0f} | "
             f"{r['spread_settle_time'] * 1e3:.1f} | {'yes' if r['spread_at_rest'] else 'no'} | "
             f"{r['scan_wall_time']:.0f} | {r['layer_density']:.3f} | {r['fused']} | "
             f"{r['captured']} | {r['balled']} | {r['vaporised']} | {r['fused_fraction']:.2f} | "
@@ -125,6 +125,10 @@ def page(report, wall, load):
         "neighbour-list rebuilds while the supply falls); the scan is sinter's explicit solver "
         "on 261 × 51 × 31 nodes (and the planes over the plate the part grows into) with the "
         "ray-traced beam.",
+        "",
+        "Asleep: the particles that slept through the spread, on average over its steps (at rest "
+        "under the tool: docs/deposit-spread.md \"Sleeping powder\"); the rest were integrated "
+        "at every step.",
         "",
         "Settle: how long the layer settled on after the blade stopped, until the powder behind "
         f"it was slower than {spread_option('rest.speed') * 1e3:g} mm/s for "
@@ -168,6 +172,12 @@ def page(report, wall, load):
             "",
         ]
     return "\n".join(lines)
+
+
+def asleep(row):
+    """The particles asleep through a layer's spread, on average (build.json's spread_asleep;
+    "–" in a report from before build gave it)."""
+    return f"{row['spread_asleep']:.0f}" if "spread_asleep" in row else "–"
 
 
 def supply_text(dosing):
