@@ -70,11 +70,13 @@ void write_report(const po::variables_map& vm, const Build& b, const std::vector
     std::printf("build: layer %llu: %zu particles spread (density %.3f over the scan), %zu fused "
                 "(%.0f %% of the powder's mass), %zu balled, %zu vaporised; lack of fusion %.1f %% of the "
                 "scanned area, remelt depth %.1f um mean (%.1f min); solid top %.1f to %.1f um; part "
-                "porosity %.2f %% (below the layer: %.2f %%); mass conserved to %.1e; %.0f s spread + %.0f s scan\n",
+                "porosity %.2f %% (interior %.2f %%); mass conserved to %.1e; %.0f s spread + %.0f s "
+                "scan\n",
                 static_cast<unsigned long long>(r.layer), r.scanned_particles, r.density, r.fused,
                 100 * r.fused_fraction, r.balled, r.vaporised, 100 * r.lack_of_fusion,
                 r.remelt_mean * 1e6, r.remelt_min * 1e6, r.top_min * 1e6, r.top_max * 1e6,
-                100 * r.part.fraction(), 100 * r.interior.fraction(), r.mass_error, r.spread.wall_time, r.scan_wall);
+                100 * r.part.fraction(), 100 * r.interior.fraction(), r.mass_error,
+                r.spread.wall_time, r.scan_wall);
   std::printf("build: %zu layer(s) in %.0f s -> %s\n", reports.size(), wall, b.plan.out.c_str());
 }
 

@@ -80,7 +80,8 @@ def page(report, wall, load):
     dosing = report.get("dosing")
     spread_args = f" --spread-args \"{dosed_build_spread(dosing)}\"" if dosing else ""
     lines = [
-        f"# A part layer after layer: {len(rows)} layers of 316L" + (f", dosed {dosing:g}×" if dosing else ""),
+        f"# A part layer after layer: {len(rows)} layers of 316L"
+        + (f", dosed {dosing:g}×" if dosing else ""),
         "",
         f"`POWDERBED_BUILD=build python3 bench/studies/build_layers.py {len(rows)}"
         + (f" --dosing {dosing:g}" if dosing else "") + "`: "

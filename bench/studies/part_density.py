@@ -7,21 +7,22 @@ E = P / (v h t).
 
 Writes docs/results/part-density.md, part-density.png and part-density-map.png (build's own
 map.png); with --dosing D the build's spreads are dosed D times each layer's nominal powder, as
-machines dose (lib.apps.dosed_build_spread), into part-density-dosed.md and its pictures. Run with /usr/bin/python3 after
-building (POWDERBED_BUILD selects the build folder):
+machines dose (lib.apps.dosed_build_spread), into part-density-dosed.md and its pictures. Run
+with /usr/bin/python3 after building (POWDERBED_BUILD selects the build folder):
     POWDERBED_BUILD=build python3 bench/studies/part_density.py [--layers N]
-        [--power 100,200,300] [--speed 1,2,4] [--from-json]
-The map runs once into out/studies/part-density/ (about 3 minutes of one core per point and
-layer here); --from-json redraws the page from its map.json.
+        [--power 100,200,300] [--speed 1,2,4] [--dosing D] [--from-json]
+The map runs once into out/studies/part-density[-dosed]/ (about 3 minutes of one core per point
+and layer here, undosed); --from-json redraws the page from its map.json.
 
 What is compared, and what is not: the measured series are whole cubes of many layers on other
 machines (their spot, hatch and layer given per row), ours a patch of a few layers whose
 porosity is the never-molten share of the solid over the patch's core below the top the layer
 before the last left, its interior (docs/build.md "Porosity of the part"): a measured density is a
 part's interior, and the last layer's top carries a film of captured powder no later scan
-remelts (the whole part's porosity, that film included, is in the table too). Energy density alone does not fix a part's density (the measured series say so
-too: the same E gives different densities at different P); the page plots both against it
-because that is the axis users read, and says where each crosses 1 % and 10 % porosity.
+remelts (the whole part's porosity, that film included, is in the table too). Energy density
+alone does not fix a part's density (the measured series say so too: the same E gives different
+densities at different P); the page plots both against it because that is the axis users read,
+and says where each crosses 1 % and 10 % porosity.
 """
 import argparse
 import csv
