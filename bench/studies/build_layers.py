@@ -24,8 +24,8 @@ import subprocess
 import tempfile
 import time
 
-from lib.apps import ROOT, WORK, app, dosed_build_spread
-from lib.report import load_average, machine, write_page
+from lib.apps import ROOT, WORK, app, dosed_build_spread, dosed_build_text
+from lib.report import load_average, machine, source, write_page
 
 CONFIG = os.path.join(ROOT, "data", "scenes", "build-316L.ini")
 SPREAD = os.path.join(ROOT, "data", "scenes", "spread-blade.ini")
@@ -46,6 +46,7 @@ def run_build(layers, dosing):
     with tempfile.TemporaryDirectory() as work:
         out = os.path.join(work, "run")
         load = load_average()
+        built = source(app("build"))  # what ran, before a later build can replace it
         start = time.perf_counter()
         dosed = ["--spread-args", dosed_build_spread(dosing)] if dosing else []
         subprocess.run([app("build"), "--config", CONFIG, "--layers", str(layers), "--out", out,
@@ -55,6 +56,7 @@ def run_build(layers, dosing):
             report = json.load(f)
         report["seam_lack_of_fusion"] = [seam_share(out, r["layer"]) for r in report["layers"]]
     report["dosing"] = dosing
+    report["source"] = built
     return report, wall, (load, load_average())
 
 
@@ -78,13 +80,12 @@ def page(report, wall, load):
     clearance = ", ".join(f"{r['recoater_clearance'] * 1e6:.0f}" for r in rows)
     scan = sum(r["scan_wall_time"] for r in rows)
     dosing = report.get("dosing")
-    spread_args = f" --spread-args \"{dosed_build_spread(dosing)}\"" if dosing else ""
+    study_option, spread_args = dosed_build_text(dosing)
     lines = [
         f"# A part layer after layer: {len(rows)} layers of 316L"
         + (f", dosed {dosing:g}×" if dosing else ""),
         "",
-        f"`POWDERBED_BUILD=build python3 bench/studies/build_layers.py {len(rows)}"
-        + (f" --dosing {dosing:g}" if dosing else "") + "`: "
+        f"`POWDERBED_BUILD=build python3 bench/studies/build_layers.py {len(rows)}{study_option}`: "
         f"`build --config data/scenes/build-316L.ini --layers {len(rows)} --threads 1{spread_args}` "
         "(docs/build.md): each layer the blade spreads "
         + (f"{dosing:g} times the layer's nominal powder" if dosing else "2500 particles")
@@ -93,7 +94,7 @@ def page(report, wall, load):
         "1 m/s scan x 0.8–2.0 mm, turned 67° a layer (data/scenes/build-316L-scan.ini, 10 µm "
         "grid), and what melted fuses.",
         "",
-        machine(load[0], load[1], program=app("build")),
+        machine(load[0], load[1], program=app("build"), source_text=report.get("source")),
         "",
         f"**Whole run: {wall:.0f} s** (the goals: three layers in under 10 minutes, issue 17; "
         "ten in under 20 minutes, issue 32, there on a 1 × 1 mm patch); "

@@ -32,7 +32,7 @@ import shutil
 import subprocess
 import time
 
-from lib.apps import ROOT, WORK, app, dosed_build_spread
+from lib.apps import ROOT, WORK, app, dosed_build_spread, dosed_build_text
 from lib.report import load_average, machine, source, write_page
 
 CONFIG = os.path.join(ROOT, "data", "scenes", "build-316L.ini")
@@ -122,16 +122,14 @@ def page(data, run, measured):
     dosing = run.get("dosing")
     stem = named(dosing)
     grid = f" --power {run['power']} --speed {run['speed']}" if "power" in run else ""
+    study_option, spread_args = dosed_build_text(dosing)
     lines = [
         "# Part density: build's porosity against measured 316L parts"
         + (f", the spreads dosed {dosing:g}×" if dosing else ""),
         "",
         f"`POWDERBED_BUILD=build python3 bench/studies/part_density.py --layers {run['layers']}{grid}"
-        + (f" --dosing {dosing:g}" if dosing else "") + "`: "
-        f"`build --config data/scenes/build-316L.ini --layers {run['layers']} --map.power ... "
-        "--map.speed ..."
-        + (f" --spread-args \"{dosed_build_spread(dosing)}\"" if dosing else "")
-        + "` (docs/build.md \"Process maps\"), one thread; the measured series of "
+        f"{study_option}`: `build --config data/scenes/build-316L.ini --layers {run['layers']} "
+        f"--map.power ... --map.speed ...{spread_args}` (docs/build.md \"Process maps\"), one thread; the measured series of "
         "data/validation/part-density/ (their headers give the sources)"
         + (f"; the supply dosed {dosing:g} times each layer's nominal powder, as machines dose "
            "(docs/deposit-spread.md \"supply.dosing\"; the undosed map: part-density.md)."

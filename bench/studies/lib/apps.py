@@ -35,6 +35,14 @@ def dosed_build_spread(dosing):
             "--recoater.chamber true")
 
 
+def dosed_build_text(dosing):
+    """What a page prints of how its build was dosed: the study's option and build's (both
+    empty when the build was not dosed)."""
+    if not dosing:
+        return "", ""
+    return f" --dosing {dosing:g}", f" --spread-args \"{dosed_build_spread(dosing)}\""
+
+
 def scene(name):
     """The path of a scene file of data/scenes/."""
     return os.path.join(SCENES, name)

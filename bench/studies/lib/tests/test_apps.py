@@ -1,5 +1,8 @@
 """lib/apps.py's reading of --print-config, on text written as the programs write it
-(apps/common/options.cpp print_config_text). Run from bench/studies: python3 -m pytest lib/tests"""
+(apps/common/options.cpp print_config_text), and its dosed build spread as this build's deposit
+resolves it (POWDERBED_BUILD). Run from bench/studies: python3 -m pytest lib/tests"""
+import shlex
+
 import pytest
 
 from lib import apps
@@ -43,3 +46,17 @@ def test_refuses_a_key_given_twice():
 def test_option_args():
     assert apps.option_args({"recoater.gap": "1e-4", "effects.drag": "false"}) == [
         "--recoater.gap", "1e-4", "--effects.drag", "false"]
+
+
+def test_the_dosed_build_spread_is_what_deposit_resolves():
+    """The words the studies give build's spreads to dose them, given to this build's deposit
+    on the build's spread scene: the dose replaces the count, in the longer region, with the
+    chamber's wall; and the pages print the same words."""
+    words = shlex.split(apps.dosed_build_spread(2))
+    options = apps.resolved_options("deposit", ["--config", apps.scene("spread-blade.ini"), *words])
+    assert float(options["supply.dosing"]) == 2
+    assert options["supply.count"] == "0"
+    assert float(options["supply.x1"]) == 0.9e-3
+    assert options["recoater.chamber"] == "true"
+    assert apps.dosed_build_text(2) == (" --dosing 2", f' --spread-args "{apps.dosed_build_spread(2)}"')
+    assert apps.dosed_build_text(None) == ("", "")
