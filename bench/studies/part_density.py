@@ -174,14 +174,23 @@ def page(data, run, measured):
             cells.append("not reached" if c is None else
                          f"{'—' if c[0] is None else f'{c[0]:.0f}'} → {c[1]:.0f} J/mm³")
         lines.append(f"| {name} | {cells[0]} | {cells[1]} |")
-    lines += ["", findings(ours, measured), ""]
+    lines += ["", findings(ours, measured, run["layers"]), ""]
     return "\n".join(lines)
 
 
-def findings(ours, measured):
+def judged(layers):
+    """What a point's interior is, for a part of `layers` layers (2 or more)."""
+    if layers == 2:
+        return ("A point of 2 layers judges its first as the second left it: its interior is the "
+                "layer on the plate, which bonds to dense solid")
+    return (f"A point of {layers} layers judges its first {layers - 1} as the last left them: the "
+            f"layer on the plate, which bonds to dense solid, is 1/{layers - 1} of its interior")
+
+
+def findings(ours, measured, layers):
     """What the page shows, in its own numbers: the standard point, a quarter of its energy
     density, the densest point, where the dense window starts against the measured series', and
-    the layer density behind it."""
+    the layer density behind it (each point built `layers` layers)."""
     def at(power, speed):
         return next((p for p in ours if p["power"] == power and p["speed"] == speed), None)
     text = []
@@ -212,15 +221,14 @@ def findings(ours, measured):
                 f"({densest['energy']:.0f} J/mm³, {densest['porosity']:.1%}). The porosity rises as "
                 f"the energy density falls, as the measured series' does; {window}. "
                 + (f"At the standard point the whole part, its top's film of captured powder "
-                   f"included, holds {standard['whole_porosity']:.1%}: the porosity of a part two "
-                   "layers thick is mostly its top. " if standard else "")
+                   f"included, holds {standard['whole_porosity']:.1%}: the porosity of a part "
+                   f"{layers} layers thick is mostly its top. " if standard else "")
                 + "The spread layers the scans "
                 f"met held {min(density):.3f}-{max(density):.3f} of solid where measured spread layers "
                 "hold 0.38-0.60 (docs/results/spread-density.md): a layer brings a fraction of the "
                 "metal a machine's layer does, so a melt that would leave a machine's layer unbonded "
                 "still goes through this one to the layer below (docs/results/build-layers-dosed.md "
-                "builds with the supply dosed as machines dose). A point of two layers judges its "
-                "first layer as the second left it")
+                "builds with the supply dosed as machines dose). " + judged(layers))
     return "; ".join(text[:2]) + ("; " if len(text) > 2 else "") + text[-1] + "."
 
 
