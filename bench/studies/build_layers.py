@@ -24,7 +24,7 @@ import subprocess
 import tempfile
 import time
 
-from lib.apps import ROOT, WORK, app, dosed_build_spread, dosed_build_text
+from lib.apps import ROOT, WORK, app, dosed_build_spread, dosed_build_text, dosed_name
 from lib.report import load_average, machine, source, write_page
 
 CONFIG = os.path.join(ROOT, "data", "scenes", "build-316L.ini")
@@ -217,13 +217,12 @@ def main():
     else:
         report, wall, load = run_build(args.layers, args.dosing)
         report["wall_time"], report["load"] = wall, list(load)
-        kept = os.path.join(WORK, f"build-layers{'-dosed' if args.dosing else ''}.json")
+        kept = os.path.join(WORK, dosed_name("build-layers", args.dosing) + ".json")
         os.makedirs(WORK, exist_ok=True)
         with open(kept, "w") as f:
             json.dump(report, f)
         print(f"the run's report, for --from-json: {kept}")
-    dosed = report.get("dosing")
-    print(write_page("build-layers-dosed.md" if dosed else "build-layers.md", page(report, wall, load)))
+    print(write_page(dosed_name("build-layers", report.get("dosing")) + ".md", page(report, wall, load)))
 
 
 if __name__ == "__main__":

@@ -32,16 +32,11 @@ import shutil
 import subprocess
 import time
 
-from lib.apps import ROOT, WORK, app, dosed_build_spread, dosed_build_text
+from lib.apps import ROOT, WORK, app, dosed_build_spread, dosed_build_text, dosed_name
 from lib.report import load_average, machine, source, write_page
 
 CONFIG = os.path.join(ROOT, "data", "scenes", "build-316L.ini")
 MEASURED = os.path.join(ROOT, "data", "validation", "part-density")
-
-
-def named(dosing):
-    """The study's name: its folder in out/studies and its page's (and pictures') stem."""
-    return "part-density-dosed" if dosing else "part-density"
 
 
 def read_measured():
@@ -59,7 +54,7 @@ def read_measured():
 
 
 def run_map(layers, powers, speeds, dosing):
-    out = os.path.join(WORK, named(dosing))
+    out = os.path.join(WORK, dosed_name("part-density", dosing))
     if os.path.exists(out):
         subprocess.run(["rm", "-rf", out], check=True)
     os.makedirs(os.path.dirname(out), exist_ok=True)
@@ -120,7 +115,7 @@ def plot(ours, measured, path):
 def page(data, run, measured):
     ours = [{"energy": p["energy_density"] * 1e-9, **p} for p in data["map"]]
     dosing = run.get("dosing")
-    stem = named(dosing)
+    stem = dosed_name("part-density", dosing)
     grid = f" --power {run['power']} --speed {run['speed']}" if "power" in run else ""
     study_option, spread_args = dosed_build_text(dosing)
     lines = [
@@ -240,7 +235,7 @@ def main():
     parser.add_argument("--dosing", type=float, help="dose D times each layer's nominal powder")
     parser.add_argument("--from-json", action="store_true")
     args = parser.parse_args()
-    stem = named(args.dosing)
+    stem = dosed_name("part-density", args.dosing)
     out = os.path.join(WORK, stem)
     if args.from_json:
         with open(os.path.join(out, "run.json")) as f:

@@ -215,8 +215,9 @@ BlockUnderTrack block_under_track(thermal::Sinter& raised, const bed::Bed& b,
 TEST(PartPorosity, MeltTakesTheNeverMoltenSolidDownToItsBottom) {
   const bed::Bed b = bare_plate();
   const double lift = 3 * kDx;
-  const thermal::TopHeight top(one_track(b).nodes[0] * one_track(b).nodes[1], lift);
-  thermal::Sinter raised(b, one_track(b), test::table_316l(), top);
+  const auto scene = one_track(b);
+  const thermal::TopHeight top(scene.nodes[0] * scene.nodes[1], lift);
+  thermal::Sinter raised(b, scene, test::table_316l(), top);
   auto [lof, f, r] = block_under_track(raised, b, top, lift);
   const thermal::SubstrateGeometry& g = raised.grid();
   // Powder this layer's fusion captured over column 0, far from the track.
@@ -258,8 +259,9 @@ TEST(PartPorosity, MeltTakesTheNeverMoltenSolidDownToItsBottom) {
 TEST(PartPorosity, InteriorLeavesOutTheFilmTheLastLayerCaptured) {
   const bed::Bed b = bare_plate();
   const double lift = 3 * kDx, film = 5e-6;
-  const thermal::TopHeight top(one_track(b).nodes[0] * one_track(b).nodes[1], lift);
-  thermal::Sinter raised(b, one_track(b), test::table_316l(), top);
+  const auto scene = one_track(b);
+  const thermal::TopHeight top(scene.nodes[0] * scene.nodes[1], lift);
+  thermal::Sinter raised(b, scene, test::table_316l(), top);
   auto [lof, f, r] = block_under_track(raised, b, top, lift);
   const thermal::SubstrateGeometry& g = raised.grid();
   for (std::size_t c = 0; c < g.columns(); ++c) f.top[c] = f.melt_top[c] + film;

@@ -35,6 +35,12 @@ def dosed_build_spread(dosing):
             "--recoater.chamber true")
 
 
+def dosed_name(stem, dosing):
+    """A study's name (its page's stem, its folder or report in out/studies) for a dosed build
+    or not."""
+    return f"{stem}-dosed" if dosing else stem
+
+
 def dosed_build_text(dosing):
     """What a page prints of how its build was dosed: the study's option and build's (both
     empty when the build was not dosed)."""
