@@ -2,11 +2,11 @@
 """Before and after: two build binaries run in alternation on one layer of a part.
 
     POWDERBED_BUILD=build python3 bench/studies/build_ab.py OLD_BUILD NEW_BUILD \
-        --old-label eecb474 --new-label 9b5b7ba [--rounds 2] --title "..." --page build-ab.md
+        --old-label eecb474 --new-label 9b5b7ba [--rounds 2] [--layer K] --title "..." --page build-ab.md
 
-The case: layer 2 of data/scenes/build-316L.ini (spread over layer 1's fused solid, then
-scanned), one thread, continued from a layer-1 file the new binary writes once (`build --in
-LAYER-1 --layers 1`). Per binary the page gives the median [min, max] over the rounds of the
+The case: layer K (default 2) of data/scenes/build-316L.ini (spread over the fused solid of the
+layers before it, then scanned), one thread, continued from the file of layer K - 1 the new
+binary writes once (`build --in LAYER-K-1 --layers 1`). Per binary the page gives the median [min, max] over the rounds of the
 layer's spread and scan wall times (build.json), the ratio new / old of the medians, the 1-min
 load average around each run, and whether the two layers are the same: the spread's and the
 fused layer's particles compared as deposit_ab.py compares beds. Alternating the two puts both
@@ -40,24 +40,29 @@ def build(binary, out, *args):
 
 
 def main():
-    a = ab_arguments(__doc__.splitlines()[0]).parse_args()
+    p = ab_arguments(__doc__.splitlines()[0])
+    p.add_argument("--layer", type=int, default=2, help="the layer timed (>= 2)")
+    a = p.parse_args()
+    if a.layer < 2:
+        p.error("--layer: the layer timed continues from the one before it (accepted: 2 or more)")
     os.makedirs(WORK, exist_ok=True)
     before = load_average()
-    build(a.new, FIRST, "--layers", "1")
-    layer_1 = os.path.join(FIRST, "layer-001.h5")
+    build(a.new, FIRST, "--layers", str(a.layer - 1))
+    start = os.path.join(FIRST, f"layer-{a.layer - 1:03d}.h5")
     times = {(tag, stage): [] for tag in ("old", "new") for stage in ("spread", "scan")}
     loads = []
     for _ in range(a.rounds):
         for tag, binary in (("old", a.old), ("new", a.new)):
-            report = build(binary, os.path.join(WORK, tag), "--in", layer_1, "--layers", "1")
+            report = build(binary, os.path.join(WORK, tag), "--in", start, "--layers", "1")
             times[(tag, "spread")].append(report["layers"][-1]["spread_wall_time"])
             times[(tag, "scan")].append(report["layers"][-1]["scan_wall_time"])
             loads.append(report["load"])
-    rows = [ab_row(f"layer 2, {stage}", times[("old", key)], times[("new", key)], loads,
+    rows = [ab_row(f"layer {a.layer}, {stage}", times[("old", key)], times[("new", key)], loads,
                    compare(*(os.path.join(WORK, t, file) for t in ("old", "new"))))
-            for stage, key, file in (("spread", "spread", "layer-002-spread.h5"),
-                                     ("scan and fusion", "scan", "layer-002.h5"))]
-    write_ab_page(a, "build", ": layer 2 of data/scenes/build-316L.ini, continued from its layer 1",
+            for stage, key, file in (("spread", "spread", f"layer-{a.layer:03d}-spread.h5"),
+                                     ("scan and fusion", "scan", f"layer-{a.layer:03d}.h5"))]
+    write_ab_page(a, "build", f": layer {a.layer} of data/scenes/build-316L.ini, continued from its layer "
+                  f"{a.layer - 1}",
                   before, "Wall time (s) from build.json: median [min, max] over the rounds.", "stage",
                   "particles", rows)
 
