@@ -2,16 +2,18 @@
 """Before and after: two build binaries run in alternation on one layer of a part.
 
     POWDERBED_BUILD=build python3 bench/studies/build_ab.py OLD_BUILD NEW_BUILD \
-        --old-label eecb474 --new-label 9b5b7ba [--rounds 2] [--layer K] --title "..." --page build-ab.md
+        --old-label eecb474 --new-label 9b5b7ba [--rounds 2] [--layer K] --title "..." \
+        --page build-ab.md
 
 The case: layer K (default 2) of data/scenes/build-316L.ini (spread over the fused solid of the
 layers before it, then scanned), one thread, continued from the file of layer K - 1 the new
-binary writes once (`build --in LAYER-K-1 --layers 1`). Per binary the page gives the median [min, max] over the rounds of the
-layer's spread and scan wall times (build.json), the ratio new / old of the medians, the 1-min
-load average around each run, and whether the two layers are the same: the spread's and the
-fused layer's particles compared as deposit_ab.py compares beds. Alternating the two puts both
-under the same load. Build the old binary in a clone (`git clone -q . /tmp/old && git -C /tmp/old
-checkout COMMIT`, then `cmake --build /tmp/old/build --target build_app`).
+binary writes once (`build --in LAYER-K-1 --layers 1`). Per binary the page gives the median
+[min, max] over the rounds of the layer's spread and scan wall times (build.json), the ratio
+new / old of the medians, the 1-min load average around each run, and whether the two layers are
+the same: the spread's and the fused layer's particles compared as deposit_ab.py compares beds.
+Alternating the two puts both under the same load. Build the old binary in a clone (`git clone
+-q . /tmp/old && git -C /tmp/old checkout COMMIT`, then `cmake --build /tmp/old/build --target
+build_app`).
 """
 import json
 import os

@@ -276,8 +276,9 @@ struct Engine {
   std::vector<ContactBuffer> buffers = std::vector<ContactBuffer>(1);
   bed::HeightMap floor;               // the solid under the powder (empty: the flat plate)
   // The floor's highest and lowest node within reach of a sphere's footprint around each node
-  // (floor_reach: the largest radius they were made for): bounds that let a sphere high above
-  // the solid, or over a flat stretch of it, skip the sampled contact.
+  // (floor_reach: the largest radius they were made for; the footprint also takes in the prune
+  // margin): bounds that let a sphere high above the solid, or over a flat stretch of it, skip
+  // the sampled contact, and one far above it be no wall candidate.
   bed::HeightMap floor_high, floor_low;
   double floor_reach = -1;
   // Per wall candidate i, the floor's triangles within its radius plus the margin at the last
