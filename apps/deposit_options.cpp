@@ -181,7 +181,7 @@ std::span<const bed::UnitEntry> deposit_units() {
       // a spread and its layers
       {"rolling", "1"}, {"layers_done", "1"}, {"layer", "1"}, {"supplied", "1"},
       {"tool_bottom", "m"}, {"max_tool_force", "N"}, {"mean_tool_force_x", "N"},
-      {"density_under_gap", "1"}, {"overflow", "1"}, {"frozen", "1"}, {"frozen_tool_contacts", "1"},
+      {"density_under_gap", "1"}, {"overflow", "1"}, {"under_platform", "1"}, {"frozen", "1"}, {"frozen_tool_contacts", "1"},
       {"asleep", "1"}, {"sleep_changes", "1"}, {"settle_time", "s"},
   };
   return kUnits;

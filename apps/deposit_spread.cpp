@@ -146,6 +146,7 @@ dem::SpreadSettings spread_settings(const po::variables_map& vm, const dem::Spre
   dem::SpreadSettings s = bound;
   s.tool.shape = dem::parse_tool_shape(vm["recoater.tool"].as<std::string>());
   s.supply = supply_maker(vm, seed);
+  if (vm.count("supply.platform-edge")) s.platform_edge = vm["supply.platform-edge"].as<double>();
   s.young_scale = vm["young-scale"].as<double>();
   if (vm.count("dt")) s.dt = vm["dt"].as<double>();
   s.unsafe_dt = vm["unsafe-dt"].as<bool>();
@@ -237,6 +238,11 @@ void add_spread_options(po::options_description& desc, dem::SpreadSettings& spre
       ("supply.height",
        po::value<double>(&spread.supply_height)->default_value(spread.supply_height),
        "supply region: height above the plate or the powder under it (m)")
+      ("supply.platform-edge", po::value<double>(),
+       "the dosing platform's edge along x (m; supply.x1 <= edge < recoater.end): the floor at "
+       "x <= edge stands at the tool's bottom each layer, the table a machine doses on, so the "
+       "supply lies on it and not on the earlier layers' powder (docs/deposit-spread.md \"The "
+       "dosing platform\"; unset: none)")
       ("supply.count", po::value<std::size_t>()->default_value(0),
        "supply per layer: particles of --psd (or supply.volume)")
       ("supply.volume", po::value<double>()->default_value(0),
@@ -408,6 +414,10 @@ int export_spread_deck(const po::variables_map& vm, const DepositOptions& bound,
   if (s.sleep.on) {
     throw InputError("sleep.on: true with --export-deck (accepted: false; the decks integrate every "
                      "particle)");
+  }
+  if (s.platform_edge) {
+    throw InputError("supply.platform-edge: set with --export-deck (accepted: unset; the decks' "
+                     "supply falls on the plate)");
   }
   if (s.until_rest) {
     throw InputError("recoater.until-rest: true with --export-deck (accepted: false; the decks "

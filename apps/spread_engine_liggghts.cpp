@@ -145,6 +145,10 @@ std::optional<LiggghtsEngine> spread_engine(const po::variables_map& vm, const p
     throw InputError("sleep.on: true with --spread-engine liggghts (accepted: false; its decks "
                      "integrate every particle)");
   }
+  if (spread.count("supply.platform-edge")) {
+    throw InputError("supply.platform-edge: set with --spread-engine liggghts (accepted: unset; its "
+                     "decks' supply falls on the plate or the powder there)");
+  }
   LiggghtsEngine e;
   e.ranks = ranks;
   e.liggghts = on_path("liggghts");

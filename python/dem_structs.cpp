@@ -128,6 +128,9 @@ void bind_spread_settings(py::module_& m) {
       .field("supply_x0", &S::supply_x0, "supply region's start along x, m")
       .field("supply_x1", &S::supply_x1, "supply region's end along x, m")
       .field("supply_height", &S::supply_height, "supply region's height, m")
+      .field("platform_edge", &S::platform_edge,
+             "the dosing platform's edge along x, m (None: no platform; the floor at x <= edge "
+             "stands at the tool's bottom)")
       .field("layers", &S::layers, "layers to spread")
       .field("remove_overflow", &S::remove_overflow, "remove the powder pushed past the tool's end")
       .field("chamber", &S::chamber, "overflow: keep what lies under the tool's bottom")

@@ -13,12 +13,14 @@
 
 #include "box.hpp"
 #include "contact_model.hpp"
+#include "dosing_platform.hpp"
 #include "engine.hpp"
 #include "flush_subnormals.hpp"
 #include "parallel.hpp"
 #include "sleep.hpp"
 #include "powderbed/bed/errors.hpp"
 #include "powderbed/bed/sphere_volume.hpp"
+#include "powderbed/bed/surface_contacts.hpp"
 #include "powderbed/dem/contact_moduli.hpp"
 #include "powderbed/dem/time_step.hpp"
 
@@ -331,6 +333,19 @@ void check_sleep(const SpreadSettings& settings) {
   }
 }
 
+// SpreadSettings::platform_edge: under the supply and short of where the tool stops (it must
+// carry the powder off the platform), with a tool.
+void check_platform(const SpreadSettings& s) {
+  if (!s.platform_edge) return;
+  const double edge = *s.platform_edge, low = s.supply ? s.supply_x1 : s.tool.start;
+  if (!s.with_tool || !std::isfinite(edge) || edge < low || edge >= s.tool.end) {
+    throw InputError(fmt::format(
+        "supply.platform-edge: {:g} m (accepted: with a recoater, {} {:g} <= edge < recoater.end "
+        "{:g} m: the supply lies on the platform and the tool carries it off)",
+        edge, s.supply ? "supply.x1" : "recoater.start", low, s.tool.end));
+  }
+}
+
 void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSettings& settings,
                     const Box& box) {
   if (bed.domain.dimension != 3 || bed.domain.periodic[2]) {
@@ -353,6 +368,7 @@ void check_settings(const bed::Bed& bed, const Scene& scene, const SpreadSetting
                    "recoater.freeze-depth", settings.freeze_depth, "depth >= 0 m; 0: off");
   check_sleep(settings);
   check_floor(settings.floor, box);
+  check_platform(settings);
   if (!settings.until_rest) return;
   const RestCriteria& rest = settings.rest;
   require_in_range(std::isfinite(rest.max_speed) && rest.max_speed > 0, "rest.speed",
@@ -377,6 +393,9 @@ struct Spreader {
   SpreadSummary summary;
   SpreadState state;
   ActiveContacts carried;
+  // The solid the powder lies on (SpreadSettings::floor or the restart's; empty: the flat
+  // plate): run.floor is this with the dosing platform raised, and the state keeps this.
+  bed::HeightMap solid_floor;
   std::uint64_t step = 0;
   double particle_steps = 0;  // the particles each step moved (a layer's overflow included)
   std::uint64_t thermo_every = 0;         // SpreadSettings::thermo_every resolved
@@ -404,9 +423,10 @@ struct Spreader {
   // The contact model, the (softened) moduli, gravity, and the restart's state.
   void set_up() {
     run.set_up();
-    run.floor = settings.floor.empty() && restart ? restart->floor : settings.floor;
-    check_floor(run.floor, run.box);
-    make_floor_periodic(run.floor, run.box);
+    solid_floor = settings.floor.empty() && restart ? restart->floor : settings.floor;
+    check_floor(solid_floor, run.box);
+    make_floor_periodic(solid_floor, run.box);
+    run.floor = solid_floor;
     if (!restart) return;
     if (restart->wx.size() != bed.n() ||
         restart->wall_history.size() != bed.n() * kWallValues) {
@@ -489,7 +509,7 @@ struct Spreader {
   void save_state(std::uint64_t layers_done) {
     carried = run.active();
     state = to_state(run, carried);
-    state.floor = run.floor;
+    state.floor = solid_floor;
     state.layers_done = layers_done;
     state.step = step;
     state.time = static_cast<double>(step) * run.dt;
@@ -545,20 +565,51 @@ struct Spreader {
     return true;
   }
 
-  // The overflow out of the bed and the state, and the per-particle arrays anew from the state,
-  // as a continued run makes them.
-  void drop_overflow(LayerSummary& out, double front) {
-    out.overflow = remove_overflow(bed, state, front, settings.chamber, out.tool_bottom);
-    out.n = bed.n();
+  // The per-particle arrays anew from `s` (the bed's particles after a removal), as a
+  // continued run makes them.
+  void reload(const SpreadState& s) {
     for (auto* v : {&run.mass, &run.wx, &run.wy, &run.wz}) v->clear();  // grow() redoes them
     run.wall.clear();
     run.grow();
-    run.wx = state.wx;
-    run.wy = state.wy;
-    run.wz = state.wz;
-    run.set_wall_history(state.wall_history);
-    carried = from_state(state, bed);
+    run.wx = s.wx;
+    run.wy = s.wy;
+    run.wz = s.wz;
+    run.set_wall_history(s.wall_history);
+    carried = from_state(s, bed);
+  }
+
+  // The overflow out of the bed and the state, and the per-particle arrays anew from the state.
+  void drop_overflow(LayerSummary& out, double front) {
+    out.overflow = remove_overflow(bed, state, front, settings.chamber, out.tool_bottom);
+    out.n = bed.n();
+    reload(state);
     if (bed.n() > 0) rebuild();  // an empty bed has no cells to size (the next supply rebuilds)
+  }
+
+  // SpreadSettings::platform_edge: the floor with the platform at `top` (the tool's bottom), and
+  // out of the run the particles its rise reached, those it overlaps deeper than the floor of the
+  // layer before did (1e-9 r: the flat plate's overlap and its triangles' round differently).
+  void raise_platform(LayerSummary& out, double top) {
+    bed::HeightMap raised =
+        detail::with_platform(solid_floor, run.box, *settings.platform_edge, top, settings.tool.gap / 8);
+    make_floor_periodic(raised, run.box);
+    const auto overlap = [&](const bed::HeightMap& f, std::size_t i) {
+      const double r = bed.radius[i];
+      if (f.empty()) return std::max(0.0, run.box.lower[2] + r - bed.z[i]);
+      return bed::surface_overlap(f, bed.x[i], bed.y[i], bed.z[i], r);
+    };
+    std::vector<char> keep(bed.n(), 1);
+    bool any = false;
+    for (std::size_t i = 0; i < bed.n(); ++i) {
+      keep[i] = overlap(raised, i) <= overlap(run.floor, i) + 1e-9 * bed.radius[i] ? 1 : 0;
+      any = any || !keep[i];
+    }
+    run.floor = raised;
+    run.floor_reach = -1;  // bound_floor makes the bounds of the new floor
+    if (!any) return;
+    SpreadState now = to_state(run, carried);
+    out.under_platform = remove_particles(bed, now, keep);
+    reload(now);
   }
 
   // One layer: the tool back at its start and raised by the plate's descent, a new supply,
@@ -583,6 +634,7 @@ struct Spreader {
     run.tool_x = tool.start;
     run.tool_v = 0;
     out.tool_bottom = bottom;
+    if (settings.platform_edge) raise_platform(out, bottom);
     out.supplied = add_supply(run, number);
     run.grow();
     run.sort_by_cell(carried, run.freeze_below(bottom - settings.freeze_depth));

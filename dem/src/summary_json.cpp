@@ -87,6 +87,7 @@ void write_layer_json(bed::JsonWriter& j, const LayerSummary& l) {
       .value("max_speed", l.max_speed)
       .value("lost", static_cast<std::uint64_t>(l.lost))
       .value("overflow", static_cast<std::uint64_t>(l.overflow))
+      .value("under_platform", static_cast<std::uint64_t>(l.under_platform))
       .value("frozen", static_cast<std::uint64_t>(l.frozen))
       .value("frozen_tool_contacts", l.frozen_tool_contacts)
       .value("asleep", l.asleep)

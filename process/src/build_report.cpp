@@ -13,7 +13,7 @@ namespace {
 constexpr bed::UnitEntry kUnits[] = {
     {"layers_done", "1"}, {"first_layer", "1"}, {"particles", "1"}, {"wall_time", "s"},
     {"layer", "1"}, {"particles_spread", "1"}, {"supplied", "1"}, {"overflow", "1"},
-    {"tool_bottom", "m"}, {"recoater_clearance", "m"}, {"layer_density", "1"},
+    {"under_platform", "1"}, {"tool_bottom", "m"}, {"recoater_clearance", "m"}, {"layer_density", "1"},
     {"spread_steps", "1"}, {"neighbour_rebuilds", "1"}, {"ejected", "1"}, {"behind_start", "1"},
     {"spread_settle_time", "s"}, {"spread_asleep", "1"}, {"sleep_changes", "1"},
     {"spread_wall_time", "s"}, {"tracks", "1"}, {"mean_track_width", "m"},
@@ -38,6 +38,7 @@ void write_layer_json(bed::JsonWriter& j, const LayerReport& l, const LayerPictu
       .value("particles_spread", static_cast<std::uint64_t>(l.scanned_particles))
       .value("supplied", static_cast<std::uint64_t>(l.spread.supplied))
       .value("overflow", static_cast<std::uint64_t>(l.spread.overflow))
+      .value("under_platform", static_cast<std::uint64_t>(l.spread.under_platform))
       .value("tool_bottom", l.tool_bottom)
       .value("recoater_clearance", l.clearance)
       .value("layer_density", l.density)

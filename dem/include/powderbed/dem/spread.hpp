@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,9 @@ struct LayerSummary {
   double density_under_gap = 0;
   std::size_t lost = 0;           // centres below the plate or outside non-periodic faces
   std::size_t overflow = 0;       // removed past the tool's end (SpreadSettings::remove_overflow)
+  // Removed at the layer's start where the dosing platform rose into them
+  // (SpreadSettings::platform_edge): powder that had rolled back onto it below the new top.
+  std::size_t under_platform = 0;
   std::size_t frozen = 0;         // particles frozen through the layer (SpreadSettings::freeze_depth)
   // Steps x frozen particles the tool overlapped (it passes through them without a force): 0
   // when what froze lay out of the tool's reach, as it must (docs/deposit-spread.md "Many layers").
@@ -117,6 +121,13 @@ struct SpreadSettings {
   // bed holds the powder).
   double supply_x0 = 0, supply_x1 = 0, supply_height = 0;
   SupplyMaker supply;
+  // The dosing platform's edge along x (docs/deposit-spread.md "The dosing platform"): the
+  // floor at x <= edge stands at the tool's bottom, each layer, the fixed table a machine doses
+  // on beside its build chamber, so the supply lies on it and not on the earlier layers'
+  // powder. Particles it rises into at a layer's start are removed (LayerSummary::under_platform).
+  // The part's floor in the state (SpreadState::floor) stays the solid's. Unset: no platform, the
+  // supply falls on the plate or the powder there. supply_x1 <= edge < tool.end.
+  std::optional<double> platform_edge;
   std::uint64_t layers = 1;       // layers to spread in this run
   // After each layer, remove the powder the tool pushed past its end (centres in front of its
   // front face where it stopped): the machine's overflow slot, so that the excess does not pile
