@@ -587,8 +587,9 @@ struct Spreader {
   }
 
   // SpreadSettings::platform_edge: the floor with the platform at `top` (the tool's bottom), and
-  // out of the run the particles its rise reached, those it overlaps deeper than the floor of the
-  // layer before did (1e-9 r: the flat plate's overlap and its triangles' round differently).
+  // out of the run the particles it reaches, those it overlaps deeper than the solid alone does
+  // (1e-9 r: the flat plate's overlap and its triangles' round differently). Against the solid,
+  // not the platform of the layer before, so that a continued run removes the same.
   void raise_platform(LayerSummary& out, double top) {
     bed::HeightMap raised =
         detail::with_platform(solid_floor, run.box, *settings.platform_edge, top, settings.tool.gap / 8);
@@ -601,7 +602,7 @@ struct Spreader {
     std::vector<char> keep(bed.n(), 1);
     bool any = false;
     for (std::size_t i = 0; i < bed.n(); ++i) {
-      keep[i] = overlap(raised, i) <= overlap(run.floor, i) + 1e-9 * bed.radius[i] ? 1 : 0;
+      keep[i] = overlap(raised, i) <= overlap(solid_floor, i) + 1e-9 * bed.radius[i] ? 1 : 0;
       any = any || !keep[i];
     }
     run.floor = raised;
