@@ -58,6 +58,10 @@ TEST(DepositSpread, BadToolAndSupplyExit2WithOneLine) {
       {"--recoater.chamber true --export-deck liggghts", "recoater.chamber"},
       {"--recoater.freeze-depth 100e-6 --export-deck liggghts", "recoater.freeze-depth"},
       {"--recoater.until-rest true --export-deck liggghts", "recoater.until-rest"},
+      {"--supply.platform-edge 0.5e-3 --export-deck liggghts", "supply.platform-edge"},
+      // The dosing platform under the supply's end or at the tool's end.
+      {"--supply.platform-edge 0.3e-3", "supply.platform-edge"},
+      {"--supply.platform-edge 1.2e-3", "supply.platform-edge"},
       {"--until-rest", "--until-rest"},  // a drop's; a spread's layers settle by recoater.until-rest
       {"--recoater.until-rest true --recoater.rest-cap 0", "recoater.rest-cap"},
       {"--recoater.until-rest true --rest.speed 0", "rest.speed"},
