@@ -97,6 +97,21 @@ def test_spread_continued_from_its_state_equals_the_straight_run():
     assert again.provenance["contact_law"] == "hertz"
 
 
+def test_spread_on_the_dosing_platform_counts_what_it_removes():
+    # platform_edge 0.45 mm, past the supply's end: its floor stands at the blade's bottom, the
+    # report counts under_platform, and every particle is in the bed or counted.
+    bed, report, _ = powderbed.spread(strip(), supply=lattice_supply, platform_edge=0.45e-3,
+                                          **SPREAD, **SCENE)
+    layer = report["layers"][0]
+    assert layer["under_platform"] == 0 and layer["overflow"] == 0  # SPREAD keeps the overflow
+    assert layer["supplied"] > 100 and len(bed.x) == layer["supplied"]
+    gap = SPREAD["tool"]["gap"]
+    on_it = bed.x < 0.45e-3 - bed.r
+    assert np.all(bed.z[on_it] > gap + 0.99 * bed.r[on_it])
+    with pytest.raises(powderbed.InputError, match=r"^supply.platform-edge: 0.0003 m"):
+        powderbed.spread(strip(), supply=lattice_supply, platform_edge=0.3e-3, **SPREAD, **SCENE)
+
+
 def test_spread_progress_and_supply_errors_propagate():
     fractions = []
     powderbed.spread(strip(), supply=lattice_supply, progress_every=500,
