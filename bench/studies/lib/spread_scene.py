@@ -77,8 +77,12 @@ class Scene:
 
     def window(self):
         """The layer the blade leaves behind it: from its front face at the start (where the
-        supply begins) to its back face at the end, less WINDOW_MARGIN of that at each end."""
+        supply begins), or the dosing platform's edge when the scene has one (the layer begins
+        past the table: docs/deposit-spread.md "The dosing platform"), to its back face at the
+        end, less WINDOW_MARGIN of that at each end."""
         lo, hi = self.start + self.thickness / 2, self.end - self.thickness / 2
+        if self.options.get("supply.platform-edge"):
+            lo = max(lo, self.num("supply.platform-edge"))
         if not hi > lo:
             sys.exit(f"spread scene: the blade travels {self.end - self.start} m, less than its thickness "
                      f"{self.thickness} m: it leaves no layer behind it (accepted: a longer travel or --window)")
