@@ -83,6 +83,33 @@ TEST(DosingPlatform, RiseRemovesWhatItReachesAndOnlyThat) {
   EXPECT_NEAR(b.x[0], 0.8e-3, 1e-3 * kRadius);
 }
 
+TEST(DosingPlatform, BedSpreadWithoutItLosesThePowderUnderItsTopAndKeepsTheRest) {
+  // A layer spread without the platform leaves powder in the supply region under the gap; a
+  // second layer continued on the platform removes it at its start, with its contacts, and the
+  // run goes on with every other particle and contact as the state had them.
+  const dem::Scene s = granular_scene(0.5, 0.05, dem::FrictionModel::history);
+  dem::SpreadSettings plain = small_spread();
+  bed::Bed b = strip();
+  const dem::SpreadSummary first = dem::run_spread(b, s, plain);
+  const double top = plain.tool.gap + plain.layer_thickness;  // the table's top in layer 2
+  std::size_t reached = 0;
+  for (std::size_t i = 0; i < b.n(); ++i) reached += b.x[i] < kEdge - b.radius[i] ? 1 : 0;
+  ASSERT_GT(reached, 10u);  // the powder the first layer left under the supply region
+  const std::size_t before = b.n();
+  dem::SpreadSettings st = on_platform(1);
+  st.tool.speed = 0.2;
+  dem::LayerSummary second;
+  st.layer_done = [&](const dem::LayerSummary& l, const bed::Bed& bed, const dem::SpreadState&) {
+    second = l;
+    EXPECT_EQ(under_the_top(bed, top), 0u);
+  };
+  const dem::SpreadSummary rest = dem::run_spread(b, s, st, &first.state);
+  EXPECT_GE(second.under_platform, reached);
+  EXPECT_EQ(second.n, before + second.supplied - second.overflow - second.under_platform);
+  EXPECT_EQ(rest.state.wx.size(), b.n());
+  EXPECT_EQ(rest.state.wall_history.size(), b.n() * dem::kWallHistoryValues);
+}
+
 TEST(DosingPlatform, ContinuedRunEqualsTheUninterruptedOne) {
   const dem::Scene s = granular_scene(0.5, 0.05, dem::FrictionModel::history);
   const auto fast = [](std::uint64_t layers) {  // small_spread's speed: a quarter of the steps
