@@ -16,13 +16,14 @@
 namespace powderbed::dem::detail {
 
 // The floor a layer spreads on: `solid` (the fused part; empty: the flat plate, then on a grid of
-// about `spacing` over the box) with every node at x <= edge raised to `top`. Between the last
-// node on the platform and the next the floor falls in one cell: the platform's edge, as steep
-// as the grid allows.
+// about an eighth of the tool's `gap` over the box) with every node at x <= edge raised to `top`.
+// Between the last node on the platform and the next the floor falls in one cell: the platform's
+// edge, as steep as the grid allows (8 : 1 on the layer's scale on the plate's own grid).
 inline bed::HeightMap with_platform(const bed::HeightMap& solid, const Box& box, double edge, double top,
-                                    double spacing) {
+                                    double gap) {
   bed::HeightMap floor = solid;
   if (floor.empty()) {
+    const double spacing = gap / 8;
     const auto nodes = [&](int a) {
       return static_cast<std::size_t>(std::ceil(box.length[a] / spacing - 1e-9)) + 1;
     };

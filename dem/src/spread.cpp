@@ -592,7 +592,7 @@ struct Spreader {
   // not the platform of the layer before, so that a continued run removes the same.
   void raise_platform(LayerSummary& out, double top) {
     bed::HeightMap raised =
-        detail::with_platform(solid_floor, run.box, *settings.platform_edge, top, settings.tool.gap / 8);
+        detail::with_platform(solid_floor, run.box, *settings.platform_edge, top, settings.tool.gap);
     make_floor_periodic(raised, run.box);
     const auto overlap = [&](const bed::HeightMap& f, std::size_t i) {
       const double r = bed.radius[i];
@@ -676,7 +676,10 @@ struct Spreader {
     out.sleep_changes = sleep_book.changes - changes_before;
     out.mean_tool_force_x = moving > 0 ? force_x / static_cast<double>(moving) : 0.0;
     const double front = tool.end + tool_half_extent(run.profile);
-    finish_layer(run, out, settings.supply_x1, back, bottom);
+    // The quick look's window starts where the layer does: at the supply's back, or past the
+    // dosing platform (under it there is no powder to measure).
+    finish_layer(run, out, std::max(settings.supply_x1, settings.platform_edge.value_or(settings.supply_x1)),
+                 back, bottom);
     out.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - layer_started).count();
     save_state(number);
     state.plate_offset = plate_offset;

@@ -76,7 +76,8 @@ struct LayerSummary {
   double kinetic_energy = 0;      // J, at the end
   double max_speed = 0;           // m/s, at the end
   // Solid fraction of the particles whose centres lie under the tool's lowest point, between
-  // the supply's back and the tool's end (by centres, the quick look; bedstat measures layers).
+  // the supply's back (or the dosing platform's edge past it) and the tool's end (by centres,
+  // the quick look; bedstat measures layers).
   double density_under_gap = 0;
   std::size_t lost = 0;           // centres below the plate or outside non-periodic faces
   std::size_t overflow = 0;       // removed past the tool's end (SpreadSettings::remove_overflow)
